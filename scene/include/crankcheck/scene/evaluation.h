@@ -1,0 +1,37 @@
+#pragma once
+/// @file
+/// What an engine (analytic or Simbody) reports for a mechanism at one crank angle. Both engines fill the same
+/// struct so that the CLI, the tests and the reports compare like with like. Names, frames and signs are those
+/// of ../shared/CONVENTIONS.md: global X horizontal, Y up, forces "ON b FROM a" in global components.
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace crankcheck {
+
+/// A planar vector in global (X, Y) components.
+using Vec2 = std::array<double, 2>;
+
+/// Per-cylinder quantities.
+struct CylinderEvaluation {
+  double x_p = 0.0;             ///< [m] wrist pin position along the cylinder axis e, from the crank centre O
+  double v_p = 0.0;             ///< [m/s] dx_p/dt at constant omega
+  double a_p = 0.0;             ///< [m/s^2] d^2x_p/dt^2 at constant omega
+  Vec2 crank_pin_force{};       ///< [N] crank on rod j at its crank pin B_j
+  Vec2 wrist_pin_force{};       ///< [N] rod on piston j at its wrist pin A_j
+  double wall_force = 0.0;      ///< [N] N_w: the wall pushes piston j with N_w n
+};
+
+/// Whole-mechanism quantities at crank angle phi (of cylinder 0) and the scene's constant speed omega.
+struct Evaluation {
+  std::string engine;           ///< "analytic" or "simbody"
+  double phi = 0.0;             ///< [rad]
+  double U = 0.0;               ///< [J] V(phi) - V(0)
+  double Q = 0.0;               ///< [N m] dU/dphi
+  double drive_torque = 0.0;    ///< [N m] about +Z, keeps omega constant (= Q when omega = 0)
+  Vec2 bearing_force{};         ///< [N] frame on crankshaft at O, all throws
+  std::vector<CylinderEvaluation> cylinders;
+};
+
+}  // namespace crankcheck

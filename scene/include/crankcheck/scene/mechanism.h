@@ -1,0 +1,92 @@
+#pragma once
+/// @file
+/// The plain description of a k-crank inline mechanism that both engines (analytic and Simbody) are built from.
+/// Symbols, frames and signs follow ../shared/CONVENTIONS.md and docs/CONVENTIONS-crankcheck.md.
+/// Everything here is in SI units (m, kg, s, rad); degrees exist only in scene files and CLI flags.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace crankcheck {
+
+/// Working cycle: sets the cycle period T of eq (8): 2 pi (two-stroke) or 4 pi (four-stroke).
+enum class Cycle { kTwoStroke, kFourStroke };
+
+/// Single- or double-acting cylinders: double-acting halves the phase angle (eqs 9, 10).
+enum class Acting { kSingle, kDouble };
+
+/// The engine as a whole.
+struct EngineParams {
+  int cylinders = 1;                         ///< k, number of cylinders (= crank throws), >= 1
+  Cycle cycle = Cycle::kFourStroke;
+  Acting acting = Acting::kSingle;
+  /// alpha_j [rad], j = 0..k-1: crank angle of throw j relative to throw 0. Either the phase angles of
+  /// eqs (8)-(11) (see calcPhaseAngles) or the scene's explicit crank_angles_deg.
+  std::vector<double> crank_angles;
+  bool explicit_crank_angles = false;        ///< true when crank_angles came from the scene, not eqs (8)-(11)
+  double cylinder_angle = 0.0;               ///< gamma [rad], cylinder axis above the horizontal
+  double speed = 0.0;                        ///< omega [rad/s], constant crank speed (0 = static)
+  double gravity = 9.80665;                  ///< g [m/s^2], acting along -Y
+};
+
+/// One crank throw (identical for every cylinder).
+struct CrankParams {
+  double radius = 0.0;                       ///< r [m]
+  double mass = 0.0;                         ///< m_s [kg], a point on the crank line at com_radius
+  double com_radius = 0.0;                   ///< r_s [m]
+  double counterweight_mass = 0.0;           ///< m_p [kg], a point opposite the crank pin
+  double counterweight_radius = 0.0;         ///< r_p [m]
+};
+
+/// Connecting rod, a rigid body with its true inertia.
+struct RodParams {
+  double length = 0.0;                       ///< l [m], wrist pin to crank pin
+  double mass = 0.0;                         ///< m_k [kg]
+  double com_from_wrist_pin = 0.0;           ///< z_k [m], on the rod axis, measured from the wrist pin
+  double inertia_about_wrist_pin = 0.0;      ///< I_o [kg m^2], about the wrist pin axis (>= m_k z_k^2)
+};
+
+/// Piston: a particle at the wrist pin.
+struct PistonParams {
+  double mass = 0.0;                         ///< m_o [kg]
+};
+
+/// A complete scene: the mechanism plus what a scene file may add (a name, the flywheel inertia).
+struct Mechanism {
+  std::string name;                          ///< for reports; the scene file's stem
+  EngineParams engine;
+  CrankParams crank;
+  RodParams rod;
+  PistonParams piston;
+  std::optional<double> flywheel_inertia;    ///< I_w [kg m^2], only for dimensionless output
+  double speed_rpm = 0.0;                    ///< the scene's speed as given, for display
+};
+
+/// lambda = r / l, the crank ratio.
+double calcCrankRatio(const Mechanism& m);
+
+/// Phase angles alpha_j = (T / k) j of eqs (8)-(11), j = 0..k-1, in radians, each reduced to [0, 2 pi).
+/// T = 2 pi (two-stroke) or 4 pi (four-stroke); double-acting halves T / k. Angles that are exact multiples
+/// of 90 degrees come out as the same doubles radiansFromDegrees gives them (exact quarter turns).
+/// @throws std::invalid_argument if cylinders < 1.
+std::vector<double> calcPhaseAngles(int cylinders, Cycle cycle, Acting acting);
+
+/// Phase angles as fractions of a turn: alpha_j / (2 pi) = numerators[j] / denominator, exactly.
+/// Used where an exact (integer) answer is needed, e.g. which harmonics survive the sum over throws.
+struct PhaseTurns {
+  std::vector<long long> numerators;
+  long long denominator = 1;
+};
+/// @throws std::invalid_argument if cylinders < 1.
+PhaseTurns calcPhaseTurns(int cylinders, Cycle cycle, Acting acting);
+
+/// Degrees to radians at the user's edge. Exact multiples of 90 degrees map to n * (pi/2) computed as
+/// n * M_PI_2, so that downstream trigonometry can recognise quarter turns exactly.
+double radiansFromDegrees(double degrees);
+double degreesFromRadians(double radians);
+
+std::string toString(Cycle cycle);   ///< "two-stroke" | "four-stroke"
+std::string toString(Acting acting); ///< "single" | "double"
+
+}  // namespace crankcheck

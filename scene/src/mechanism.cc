@@ -1,0 +1,51 @@
+#include "crankcheck/scene/mechanism.h"
+
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+namespace crankcheck {
+
+double calcCrankRatio(const Mechanism& m) { return m.crank.radius / m.rod.length; }
+
+PhaseTurns calcPhaseTurns(int cylinders, Cycle cycle, Acting acting) {
+  if (cylinders < 1) throw std::invalid_argument("calcPhaseTurns: cylinders must be >= 1");
+  // alpha_j / (2 pi) = (T / 2 pi) j / k, eqs (8)-(11). In units of 1/(2k) turn: T/(2 pi) = 1 or 2, halved
+  // for double-acting, so the step is t / (2k) turn with t = 2 (two-stroke), 4 (four-stroke), halved.
+  long long t = (cycle == Cycle::kTwoStroke) ? 2 : 4;
+  if (acting == Acting::kDouble) t /= 2;
+  PhaseTurns turns;
+  turns.denominator = 2LL * cylinders;
+  for (int j = 0; j < cylinders; ++j) turns.numerators.push_back((t * j) % turns.denominator);
+  return turns;
+}
+
+std::vector<double> calcPhaseAngles(int cylinders, Cycle cycle, Acting acting) {
+  const PhaseTurns turns = calcPhaseTurns(cylinders, cycle, acting);
+  std::vector<double> alpha;
+  alpha.reserve(turns.numerators.size());
+  for (long long num : turns.numerators) {
+    // 360 * num / (2k) degrees; exact whenever the result is a whole number of degrees.
+    const double degrees = 180.0 * static_cast<double>(num) / static_cast<double>(cylinders);
+    alpha.push_back(radiansFromDegrees(degrees));
+  }
+  return alpha;
+}
+
+double radiansFromDegrees(double degrees) {
+  if (std::isfinite(degrees) && std::fmod(degrees, 90.0) == 0.0) return (degrees / 90.0) * M_PI_2;
+  return degrees * (M_PI / 180.0);
+}
+
+double degreesFromRadians(double radians) {
+  if (std::isfinite(radians) && radians != 0.0) {
+    const double quarter_turns = std::nearbyint(radians / M_PI_2);
+    if (quarter_turns * M_PI_2 == radians) return quarter_turns * 90.0;
+  }
+  return radians * (180.0 / M_PI);
+}
+
+std::string toString(Cycle cycle) { return cycle == Cycle::kTwoStroke ? "two-stroke" : "four-stroke"; }
+std::string toString(Acting acting) { return acting == Acting::kSingle ? "single" : "double"; }
+
+}  // namespace crankcheck
