@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// Kinematics of one centric slider-crank at constant crank speed omega: exact closed forms, Norton's two-term
+/// approximation (Design of Machinery, 13.3c-e) and the Fourier series of any order with exact coefficients.
+///
+/// theta is the crank angle of this cylinder [rad] (theta = 0: outer dead centre), x_p is measured from the crank
+/// centre O along the cylinder axis e (CONVENTIONS.md): x_p = r cos(theta) + l sqrt(1 - lambda^2 sin^2 theta).
+/// Time derivatives are at the scene's constant omega = m.engine.speed: v_p = omega dx_p/dtheta, etc.
+
+#include "crankcheck/scene/mechanism.h"
+
+namespace crankcheck::analytic {
+
+/// Position and its time derivatives along the cylinder axis e.
+struct PistonKinematics {
+  double x_p = 0.0;  ///< [m]
+  double v_p = 0.0;  ///< [m/s]
+  double a_p = 0.0;  ///< [m/s^2]
+  double j_p = 0.0;  ///< [m/s^3] jerk
+};
+
+/// The rod's angle beta to the cylinder axis, sin(beta) = lambda sin(theta), |beta| < pi/2, and its time
+/// derivatives. The vector from wrist pin A to crank pin B is l (-cos(beta) e + sin(beta) n), so the rod body
+/// turns about +Z with angular velocity -beta_dot and angular acceleration -beta_ddot.
+struct RodKinematics {
+  double beta = 0.0;       ///< [rad]
+  double beta_dot = 0.0;   ///< [rad/s]
+  double beta_ddot = 0.0;  ///< [rad/s^2]
+};
+
+/// Exact piston kinematics (Norton 13.1d and its derivatives; closed forms, no series).
+PistonKinematics calcPistonKinematics(const Mechanism& m, double theta);
+
+/// Exact rod angle and its derivatives: beta' = lambda cos(theta) / cos(beta),
+/// beta'' = -lambda (1 - lambda^2) sin(theta) / cos^3(beta) (per radian of crank; times omega, omega^2).
+RodKinematics calcRodKinematics(const Mechanism& m, double theta);
+
+/// Norton's two-term approximation: x = l - r^2/(4l) + r (cos + (r/4l) cos 2theta)   (13.3c),
+/// v = -r omega (sin + (r/2l) sin 2theta)   (13.3d), a = -r omega^2 (cos + (r/l) cos 2theta)   (13.3e),
+/// and j, the time derivative of (13.3e).
+PistonKinematics calcPistonKinematicsNorton(const Mechanism& m, double theta);
+
+/// The Fourier series of x_p truncated after harmonic `order` (>= 1), with the exact coefficients of
+/// fourier_series.h, and its term-by-term time derivatives.
+/// @throws std::invalid_argument if order < 1.
+PistonKinematics calcPistonKinematicsFourier(const Mechanism& m, double theta, int order);
+
+}  // namespace crankcheck::analytic

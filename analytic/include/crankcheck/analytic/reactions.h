@@ -1,0 +1,44 @@
+#pragma once
+/// @file
+/// Joint reactions of the k-crank inline mechanism at constant crank speed with gravity: Newton-Euler of piston
+/// (a particle), rod (a rigid body with its true inertia I_o about the wrist pin) and crank throw, per cylinder.
+/// Names and signs: CONVENTIONS.md ("force ON b FROM a", global X, Y components).
+///
+/// Per cylinder, in the cylinder frame (e, n), with F_A = wrist_pin_force, F_B = crank_pin_force, G the rod's
+/// centre of mass (a fixed fraction z_k / l of the way from A to B), psi the rod's angle about +Z:
+///   piston, along e:      m_o a_p = F_A.e + m_o g.e
+///   piston, along n:      0 = F_A.n + N_w + m_o g.n
+///   rod, forces:          m_k a_G = F_B - F_A + m_k g
+///   rod, moments about A: I_o psi_ddot + m_k (G - A) x a_A = (B - A) x F_B + (G - A) x m_k g
+///   crank throw, forces:  F_O,j = m_s a_s + m_p a_c - (m_s + m_p) g + F_B
+///   crank throw, moments about the fixed O (angular momentum constant at constant omega):
+///                         tau_j = B x F_B - P_s x m_s g - P_c x m_p g
+/// bearing_force = sum_j F_O,j, drive_torque = sum_j tau_j.
+
+#include <vector>
+
+#include "crankcheck/scene/evaluation.h"
+#include "crankcheck/scene/mechanism.h"
+
+namespace crankcheck::analytic {
+
+struct CylinderReactions {
+  Vec2 crank_pin_force{};  ///< [N] crank on rod j at B_j
+  Vec2 wrist_pin_force{};  ///< [N] rod on piston j at A_j
+  double wall_force = 0.0; ///< [N] N_w, the wall pushes piston j with N_w n
+};
+
+struct Reactions {
+  double drive_torque = 0.0;  ///< [N m] about +Z, to keep omega constant
+  Vec2 bearing_force{};       ///< [N] frame on crankshaft at O, all throws
+  std::vector<CylinderReactions> cylinders;
+};
+
+/// Reactions at crank angle phi [rad] and the scene's omega (m.engine.speed).
+Reactions calcReactions(const Mechanism& m, double phi);
+
+/// Everything the analytic engine reports at phi, in the struct both engines share (engine = "analytic"):
+/// U (eq 12), Q (eq 13), exact piston kinematics and calcReactions.
+Evaluation calcEvaluation(const Mechanism& m, double phi);
+
+}  // namespace crankcheck::analytic

@@ -1,0 +1,138 @@
+#include "crankcheck/analytic/gravity_torque.h"
+
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "crankcheck/analytic/exact_trig.h"
+#include "crankcheck/analytic/fourier_series.h"
+
+namespace crankcheck::analytic {
+namespace {
+
+std::vector<double> lambdaCoefficients(double lambda, int order, LambdaSource source) {
+  return source == LambdaSource::kExact ? calcLambdaCoefficients(lambda, order)
+                                        : calcLambdaCoefficientsAsPrinted(lambda, order);
+}
+
+// The coefficients of eq (14): N, N1, N2.
+struct Eq14Coefficients {
+  double N, N1, N2;
+};
+Eq14Coefficients calcEq14Coefficients(const Mechanism& m, Eq5Form form) {
+  const auto [U1, U2] = calcGravityCoefficients(m, form);
+  const SinCos gamma = calcSinCos(m.engine.cylinder_angle);
+  return {U2 * gamma.cos, -U1 * gamma.sin, -U2 * gamma.sin};
+}
+
+// S_n = sum_j e^{i n alpha_j}, as (real, imaginary).
+SinCos sumOverThrows(const Mechanism& m, int n) {
+  SinCos s{0.0, 0.0};
+  if (!m.engine.explicit_crank_angles) {
+    // Phase angles are exact fractions of a turn: reduce n * numerator modulo the denominator in integers.
+    const PhaseTurns turns = calcPhaseTurns(m.engine.cylinders, m.engine.cycle, m.engine.acting);
+    for (long long numerator : turns.numerators) {
+      const long long reduced = (n * numerator) % turns.denominator;
+      const SinCos e = calcSinCos(2.0 * M_PI * static_cast<double>(reduced) / static_cast<double>(turns.denominator));
+      s.cos += e.cos;
+      s.sin += e.sin;
+    }
+    return s;
+  }
+  for (double alpha : m.engine.crank_angles) {
+    const SinCos e = calcSinCos(n * alpha);
+    s.cos += e.cos;
+    s.sin += e.sin;
+  }
+  return s;
+}
+
+}  // namespace
+
+double calcGravityTorque(const Mechanism& m, double phi, Eq5Form form) {
+  const auto [U1, U2] = calcGravityCoefficients(m, form);
+  const double lambda = m.crank.radius / m.rod.length;
+  const SinCos gamma = calcSinCos(m.engine.cylinder_angle);
+  double Q = 0.0;
+  for (double alpha : m.engine.crank_angles) {
+    const SinCos theta = calcSinCos(phi + alpha);
+    const double root = std::sqrt((1.0 - lambda * theta.sin) * (1.0 + lambda * theta.sin));
+    // Stanczak eq (13); lambda sin 2theta / (2 root) written as lambda sin cos / root.
+    Q += U2 * (theta.cos * gamma.cos - theta.sin * gamma.sin) -
+         U1 * (theta.sin + lambda * theta.sin * theta.cos / root) * gamma.sin;
+  }
+  return Q;
+}
+
+double calcGravityTorqueFourier(const Mechanism& m, double phi, int order, LambdaSource source, Eq5Form form) {
+  if (order < 1) throw std::invalid_argument("calcGravityTorqueFourier: order must be >= 1");
+  const auto [N, N1, N2] = calcEq14Coefficients(m, form);
+  const std::vector<double> big_lambda = lambdaCoefficients(m.crank.radius / m.rod.length, order, source);
+  double Q = 0.0;
+  for (double alpha : m.engine.crank_angles) {
+    const SinCos theta = calcSinCos(phi + alpha);
+    Q += N * theta.cos + (N1 + N2) * theta.sin;  // Stanczak eq (14), W_1 = N1 + N2
+    for (int n = 2; n <= order; n += 2) Q += N1 * big_lambda[n] * calcSinCos(n * (phi + alpha)).sin;
+  }
+  return Q;
+}
+
+std::vector<TorqueHarmonic> calcGravityTorqueHarmonics(const Mechanism& m, int order, LambdaSource source,
+                                                       Eq5Form form) {
+  if (order < 1) throw std::invalid_argument("calcGravityTorqueHarmonics: order must be >= 1");
+  const auto [N, N1, N2] = calcEq14Coefficients(m, form);
+  const std::vector<double> big_lambda = lambdaCoefficients(m.crank.radius / m.rod.length, order, source);
+  std::vector<int> orders;
+  if (m.engine.explicit_crank_angles) {
+    orders.push_back(1);
+    for (int n = 2; n <= order; n += 2) orders.push_back(n);
+  } else {
+    orders = findSurvivingHarmonics(m.engine.cylinders, m.engine.cycle, m.engine.acting, order);
+  }
+  std::vector<TorqueHarmonic> harmonics;
+  for (int n : orders) {
+    const SinCos S = sumOverThrows(m, n);  // S.cos = Re S_n, S.sin = Im S_n
+    TorqueHarmonic h{n, 0.0, 0.0};
+    if (n == 1) {
+      // N sum_j cos(phi + alpha_j) + W_1 sum_j sin(phi + alpha_j), W_1 = N1 + N2
+      const double W1 = N1 + N2;
+      h.cos_coefficient = N * S.cos + W1 * S.sin;
+      h.sin_coefficient = -N * S.sin + W1 * S.cos;
+    } else {
+      const double Wn = N1 * big_lambda[n];  // W_n = N1 Lambda_n
+      h.cos_coefficient = Wn * S.sin;
+      h.sin_coefficient = Wn * S.cos;
+    }
+    harmonics.push_back(h);
+  }
+  return harmonics;
+}
+
+double calcGravityTorqueSummed(const Mechanism& m, double phi, int order, LambdaSource source, Eq5Form form) {
+  double Q = 0.0;
+  for (const TorqueHarmonic& h : calcGravityTorqueHarmonics(m, order, source, form)) {
+    const SinCos e = calcSinCos(h.n * phi);
+    Q += h.cos_coefficient * e.cos + h.sin_coefficient * e.sin;  // Stanczak eq (16)
+  }
+  return Q;
+}
+
+std::vector<int> findSurvivingHarmonics(int cylinders, Cycle cycle, Acting acting, int max_order) {
+  if (max_order < 1) throw std::invalid_argument("findSurvivingHarmonics: max_order must be >= 1");
+  const PhaseTurns turns = calcPhaseTurns(cylinders, cycle, acting);
+  // calcPhaseTurns gives a uniform sequence alpha_j = j * step / denominator turns.
+  const long long step = cylinders > 1 ? turns.numerators[1] : 0;
+  std::vector<int> survivors;
+  for (int n = 1; n <= max_order; n = (n == 1 ? 2 : n + 2)) {
+    const long long a = (n * step) % turns.denominator;
+    bool survives = true;
+    if (a != 0) {
+      const long long d = turns.denominator / std::gcd(a, turns.denominator);
+      survives = (cylinders % d) != 0;
+    }
+    if (survives) survivors.push_back(n);
+  }
+  return survivors;
+}
+
+}  // namespace crankcheck::analytic

@@ -1,0 +1,77 @@
+#include "crankcheck/analytic/kinematics.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "crankcheck/analytic/exact_trig.h"
+#include "crankcheck/analytic/fourier_series.h"
+
+namespace crankcheck::analytic {
+
+PistonKinematics calcPistonKinematics(const Mechanism& m, double theta) {
+  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed;
+  const double lambda = r / l;
+  const auto [s1, c1] = calcSinCos(theta);
+  const double s2 = 2.0 * s1 * c1;              // sin 2theta
+  const double c2 = (c1 - s1) * (c1 + s1);      // cos 2theta
+  const double root = std::sqrt((1.0 - lambda * s1) * (1.0 + lambda * s1));  // sqrt(1 - lambda^2 sin^2), no cancellation
+  const double root3 = root * root * root, root5 = root3 * root * root;
+  PistonKinematics k;
+  k.x_p = r * c1 + l * root;  // Norton 13.1d
+  // dx/dtheta = -r (sin + lambda sin2 / (2 root))
+  k.v_p = -r * w * (s1 + lambda * s2 / (2.0 * root));
+  // d2x/dtheta2 = -r (cos + lambda cos2 / root + lambda^3 sin^2 2 / (4 root^3))
+  k.a_p = -r * w * w * (c1 + lambda * c2 / root + lambda * lambda * lambda * s2 * s2 / (4.0 * root3));
+  // d3x/dtheta3 = r (sin + 2 lambda sin2 / root - (3/2) lambda^3 sin2 cos2 / root^3 - (3/8) lambda^5 sin^3 2 / root^5)
+  const double l3 = lambda * lambda * lambda, l5 = l3 * lambda * lambda;
+  k.j_p = r * w * w * w *
+          (s1 + 2.0 * lambda * s2 / root - 1.5 * l3 * s2 * c2 / root3 - 0.375 * l5 * s2 * s2 * s2 / root5);
+  return k;
+}
+
+RodKinematics calcRodKinematics(const Mechanism& m, double theta) {
+  const double lambda = m.crank.radius / m.rod.length, w = m.engine.speed;
+  const auto [s1, c1] = calcSinCos(theta);
+  const double cos_beta = std::sqrt((1.0 - lambda * s1) * (1.0 + lambda * s1));
+  RodKinematics k;
+  k.beta = std::asin(lambda * s1);
+  k.beta_dot = w * lambda * c1 / cos_beta;
+  k.beta_ddot = -w * w * lambda * (1.0 - lambda) * (1.0 + lambda) * s1 / (cos_beta * cos_beta * cos_beta);
+  return k;
+}
+
+PistonKinematics calcPistonKinematicsNorton(const Mechanism& m, double theta) {
+  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed;
+  const auto [s1, c1] = calcSinCos(theta);
+  const double s2 = 2.0 * s1 * c1, c2 = (c1 - s1) * (c1 + s1);
+  PistonKinematics k;
+  k.x_p = l - r * r / (4.0 * l) + r * (c1 + r / (4.0 * l) * c2);  // 13.3c
+  k.v_p = -r * w * (s1 + r / (2.0 * l) * s2);                    // 13.3d
+  k.a_p = -r * w * w * (c1 + r / l * c2);                        // 13.3e
+  k.j_p = r * w * w * w * (s1 + 2.0 * r / l * s2);               // d/dt of 13.3e
+  return k;
+}
+
+PistonKinematics calcPistonKinematicsFourier(const Mechanism& m, double theta, int order) {
+  if (order < 1) throw std::invalid_argument("calcPistonKinematicsFourier: order must be >= 1");
+  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed;
+  const std::vector<double> a = calcRadicalFourierCoefficients(r / l, order);
+  const auto [s1, c1] = calcSinCos(theta);
+  PistonKinematics k;
+  // x = r cos + l (A_0 + sum A_n cos n theta); derivatives term by term.
+  k.x_p = r * c1 + l * a[0];
+  k.v_p = -r * w * s1;
+  k.a_p = -r * w * w * c1;
+  k.j_p = r * w * w * w * s1;
+  for (int n = 2; n <= order; n += 2) {
+    const auto [sn, cn] = calcSinCos(n * theta);
+    const double la = l * a[n];
+    k.x_p += la * cn;
+    k.v_p -= la * n * w * sn;
+    k.a_p -= la * n * n * w * w * cn;
+    k.j_p += la * n * n * n * w * w * w * sn;
+  }
+  return k;
+}
+
+}  // namespace crankcheck::analytic

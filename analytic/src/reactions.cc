@@ -1,0 +1,96 @@
+#include "crankcheck/analytic/reactions.h"
+
+#include <cmath>
+
+#include "crankcheck/analytic/exact_trig.h"
+#include "crankcheck/analytic/gravity_torque.h"
+#include "crankcheck/analytic/kinematics.h"
+#include "crankcheck/analytic/potential_energy.h"
+
+namespace crankcheck::analytic {
+namespace {
+
+// Planar vectors in the cylinder frame (e, n); the frame is right-handed, so cross products are the same
+// as in (X, Y).
+struct P2 {
+  double e = 0.0, n = 0.0;
+};
+P2 operator+(P2 a, P2 b) { return {a.e + b.e, a.n + b.n}; }
+P2 operator-(P2 a, P2 b) { return {a.e - b.e, a.n - b.n}; }
+P2 operator*(double s, P2 a) { return {s * a.e, s * a.n}; }
+double cross(P2 a, P2 b) { return a.e * b.n - a.n * b.e; }
+
+}  // namespace
+
+Reactions calcReactions(const Mechanism& m, double phi) {
+  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed, g = m.engine.gravity;
+  const double m_o = m.piston.mass, m_k = m.rod.mass, I_o = m.rod.inertia_about_wrist_pin;
+  const double m_s = m.crank.mass, m_p = m.crank.counterweight_mass;
+  const double mu = m.rod.com_from_wrist_pin / l;
+  const SinCos gamma = calcSinCos(m.engine.cylinder_angle);
+  // Global (X, Y) of e and n, and gravity (0, -g) in the cylinder frame.
+  const Vec2 e_W{gamma.cos, gamma.sin}, n_W{-gamma.sin, gamma.cos};
+  const P2 g_C{-g * gamma.sin, -g * gamma.cos};
+  const auto toGlobal = [&](P2 v) { return Vec2{v.e * e_W[0] + v.n * n_W[0], v.e * e_W[1] + v.n * n_W[1]}; };
+
+  Reactions out;
+  for (double alpha : m.engine.crank_angles) {
+    const double theta = phi + alpha;
+    const SinCos t = calcSinCos(theta);
+    const PistonKinematics piston = calcPistonKinematics(m, theta);
+    const RodKinematics rod = calcRodKinematics(m, theta);
+    const double psi_ddot = -rod.beta_ddot;  // the rod turns about +Z by -beta (kinematics.h)
+
+    const P2 p_OA{piston.x_p, 0.0}, p_OB{r * t.cos, r * t.sin};
+    const P2 p_AB = p_OB - p_OA, p_AG = mu * p_AB;
+    const P2 a_A{piston.a_p, 0.0}, a_B = (-w * w) * p_OB;
+    const P2 a_G = (1.0 - mu) * a_A + mu * a_B;
+
+    // Piston along e gives F_A.e; rod moments about A give F_A.n (see the header).
+    P2 F_A;
+    F_A.e = m_o * (piston.a_p - g_C.e);
+    const P2 rod_net = m_k * (a_G - g_C);  // F_B - F_A
+    const double moment = I_o * psi_ddot + cross(p_AG, m_k * a_A) - cross(p_AG, m_k * g_C) - cross(p_AB, rod_net);
+    // moment = (B - A) x F_A = p_AB.e F_A.n - p_AB.n F_A.e
+    F_A.n = (moment + p_AB.n * F_A.e) / p_AB.e;
+    const P2 F_B = rod_net + F_A;
+    const double N_w = -F_A.n - m_o * g_C.n;
+
+    const P2 p_OS = (m.crank.com_radius / r) * p_OB;
+    const P2 p_OC = (-m.crank.counterweight_radius / r) * p_OB;
+    const P2 F_O = m_s * ((-w * w) * p_OS - g_C) + m_p * ((-w * w) * p_OC - g_C) + F_B;
+    const double tau = cross(p_OB, F_B) - cross(p_OS, m_s * g_C) - cross(p_OC, m_p * g_C);
+
+    out.cylinders.push_back({toGlobal(F_B), toGlobal(F_A), N_w});
+    const Vec2 F_O_W = toGlobal(F_O);
+    out.bearing_force[0] += F_O_W[0];
+    out.bearing_force[1] += F_O_W[1];
+    out.drive_torque += tau;
+  }
+  return out;
+}
+
+Evaluation calcEvaluation(const Mechanism& m, double phi) {
+  Evaluation ev;
+  ev.engine = "analytic";
+  ev.phi = phi;
+  ev.U = calcPotentialEnergy(m, phi);
+  ev.Q = calcGravityTorque(m, phi);
+  const Reactions reactions = calcReactions(m, phi);
+  ev.drive_torque = reactions.drive_torque;
+  ev.bearing_force = reactions.bearing_force;
+  for (size_t j = 0; j < m.engine.crank_angles.size(); ++j) {
+    const PistonKinematics k = calcPistonKinematics(m, phi + m.engine.crank_angles[j]);
+    CylinderEvaluation c;
+    c.x_p = k.x_p;
+    c.v_p = k.v_p;
+    c.a_p = k.a_p;
+    c.crank_pin_force = reactions.cylinders[j].crank_pin_force;
+    c.wrist_pin_force = reactions.cylinders[j].wrist_pin_force;
+    c.wall_force = reactions.cylinders[j].wall_force;
+    ev.cylinders.push_back(c);
+  }
+  return ev;
+}
+
+}  // namespace crankcheck::analytic

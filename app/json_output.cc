@@ -1,0 +1,157 @@
+#include "json_output.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace crankcheck::app {
+namespace {
+
+std::string number17(double x) {
+  if (!std::isfinite(x)) return "null";  // JSON has no NaN or inf; the engines never produce them for valid scenes
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x + 0.0);  // + 0.0 prints -0 as 0
+  return buffer;
+}
+
+void write(const nlohmann::ordered_json& j, std::ostringstream& out, int indent) {
+  const std::string pad(indent + 2, ' '), close(indent, ' ');
+  switch (j.type()) {
+    case nlohmann::ordered_json::value_t::object: {
+      if (j.empty()) { out << "{}"; return; }
+      out << "{\n";
+      bool first = true;
+      for (auto it = j.begin(); it != j.end(); ++it) {
+        if (!first) out << ",\n";
+        first = false;
+        out << pad << nlohmann::ordered_json(it.key()).dump() << ": ";
+        write(it.value(), out, indent + 2);
+      }
+      out << "\n" << close << "}";
+      return;
+    }
+    case nlohmann::ordered_json::value_t::array: {
+      if (j.empty()) { out << "[]"; return; }
+      // Arrays of numbers (vectors such as [X, Y]) stay on one line.
+      bool numbers = true;
+      for (const auto& v : j) numbers = numbers && v.is_number();
+      if (numbers) {
+        out << "[";
+        for (size_t i = 0; i < j.size(); ++i) {
+          if (i) out << ", ";
+          write(j[i], out, indent);
+        }
+        out << "]";
+        return;
+      }
+      out << "[\n";
+      for (size_t i = 0; i < j.size(); ++i) {
+        if (i) out << ",\n";
+        out << pad;
+        write(j[i], out, indent + 2);
+      }
+      out << "\n" << close << "]";
+      return;
+    }
+    case nlohmann::ordered_json::value_t::number_float:
+      out << number17(j.get<double>());
+      return;
+    default:
+      out << j.dump();
+  }
+}
+
+nlohmann::ordered_json vec(const Vec2& v) { return nlohmann::ordered_json::array({v[0], v[1]}); }
+
+}  // namespace
+
+std::string dumpJson(const nlohmann::ordered_json& document) {
+  std::ostringstream out;
+  write(document, out, 0);
+  out << "\n";
+  return out.str();
+}
+
+nlohmann::ordered_json sceneToJson(const Mechanism& m) {
+  nlohmann::ordered_json j;
+  j["name"] = m.name;
+  j["engine"] = {
+      {"cylinders", m.engine.cylinders},
+      {"cycle", toString(m.engine.cycle)},
+      {"acting", toString(m.engine.acting)},
+      {"crank_angles", m.engine.crank_angles},
+      {"explicit_crank_angles", m.engine.explicit_crank_angles},
+      {"cylinder_angle", m.engine.cylinder_angle},
+      {"speed", m.engine.speed},
+      {"gravity", m.engine.gravity},
+  };
+  j["crank"] = {{"radius", m.crank.radius},
+                {"mass", m.crank.mass},
+                {"com_radius", m.crank.com_radius},
+                {"counterweight_mass", m.crank.counterweight_mass},
+                {"counterweight_radius", m.crank.counterweight_radius}};
+  j["rod"] = {{"length", m.rod.length},
+              {"mass", m.rod.mass},
+              {"com_from_wrist_pin", m.rod.com_from_wrist_pin},
+              {"inertia_about_wrist_pin", m.rod.inertia_about_wrist_pin}};
+  j["piston"] = {{"mass", m.piston.mass}};
+  j["flywheel"] = m.flywheel_inertia ? nlohmann::ordered_json{{"inertia", *m.flywheel_inertia}} : nlohmann::ordered_json(nullptr);
+  j["lambda"] = calcCrankRatio(m);
+  j["units"] = "SI: m, kg, s, rad, N, N m, J";
+  return j;
+}
+
+nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg) {
+  nlohmann::ordered_json j;
+  j["engine"] = ev.engine;
+  j["phi_deg"] = phi_deg;
+  j["U"] = ev.U;
+  j["Q"] = ev.Q;
+  j["drive_torque"] = ev.drive_torque;
+  j["bearing_force"] = vec(ev.bearing_force);
+  nlohmann::ordered_json cylinders = nlohmann::ordered_json::array();
+  for (const CylinderEvaluation& c : ev.cylinders) {
+    cylinders.push_back({{"x_p", c.x_p},
+                         {"v_p", c.v_p},
+                         {"a_p", c.a_p},
+                         {"crank_pin_force", vec(c.crank_pin_force)},
+                         {"wrist_pin_force", vec(c.wrist_pin_force)},
+                         {"wall_force", c.wall_force}});
+  }
+  j["cylinders"] = cylinders;
+  return j;
+}
+
+std::string formatTable(const Mechanism& m, const std::string& scene_path, const std::vector<Evaluation>& results,
+                        const std::vector<double>& phi_deg) {
+  std::ostringstream out;
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "scene %s: k = %d, %s, %s-acting, gamma = %.6g deg, %.6g rpm, lambda = %.6g, g = %.6g m/s^2\n",
+                scene_path.c_str(), m.engine.cylinders, toString(m.engine.cycle).c_str(),
+                toString(m.engine.acting).c_str(), degreesFromRadians(m.engine.cylinder_angle), m.speed_rpm,
+                calcCrankRatio(m), m.engine.gravity);
+  out << line;
+  for (size_t i = 0; i < results.size(); ++i) {
+    const Evaluation& ev = results[i];
+    std::snprintf(line, sizeof line,
+                  "\n%-9s phi = %.10g deg   U = %.12g J   Q = %.12g N m   drive_torque = %.12g N m   "
+                  "bearing_force = (%.12g, %.12g) N\n",
+                  ev.engine.c_str(), phi_deg[i], ev.U + 0.0, ev.Q, ev.drive_torque, ev.bearing_force[0],
+                  ev.bearing_force[1]);
+    out << line;
+    std::snprintf(line, sizeof line, "  %3s %15s %15s %15s %33s %33s %15s\n", "cyl", "x_p [m]", "v_p [m/s]",
+                  "a_p [m/s^2]", "crank_pin_force (X, Y) [N]", "wrist_pin_force (X, Y) [N]", "wall_force [N]");
+    out << line;
+    for (size_t j = 0; j < ev.cylinders.size(); ++j) {
+      const CylinderEvaluation& c = ev.cylinders[j];
+      std::snprintf(line, sizeof line, "  %3zu %15.9g %15.9g %15.9g %16.9g %16.9g %16.9g %16.9g %15.9g\n", j, c.x_p,
+                    c.v_p, c.a_p, c.crank_pin_force[0], c.crank_pin_force[1], c.wrist_pin_force[0],
+                    c.wrist_pin_force[1], c.wall_force);
+      out << line;
+    }
+  }
+  return out.str();
+}
+
+}  // namespace crankcheck::app
