@@ -1,0 +1,131 @@
+#pragma once
+/// @file
+/// The k-crank inline mechanism of ../shared/CONVENTIONS.md built as a Simbody multibody system: the second,
+/// independent engine of crankcheck. Simbody assembles the positions, solves the velocities and computes the
+/// accelerations and reactions itself; no closed-form kinematics is used anywhere in this library, and it never
+/// includes the analytic library.
+///
+/// Simbody stays behind a pimpl: this header pulls in no Simbody header, so translation units that only use the
+/// model compile fast and never see SimTK names (see SIMBODY-NOTES.md: Simbody headers must not be compiled with
+/// NDEBUG, and SimTK's operators clash with Eigen).
+///
+/// The model (one degree of freedom, no redundant constraint equations):
+///  - crankshaft: MobilizedBody::Pin from Ground about +Z at O, carrying every throw's point masses (m_s at r_s on
+///    the crank line, m_p at r_p opposite). Its angle is prescribed by a position-level Motion: q = phi,
+///    qdot = omega, qdotdot = 0 (constant crank speed).
+///  - piston j: MobilizedBody::Slider from Ground along e, a particle of mass m_o at the wrist pin A_j.
+///  - rod j: MobilizedBody::Pin on piston j at A_j; mass m_k, centre of mass on the rod axis at z_k from A_j,
+///    inertia I_o about A_j (Z axis).
+///  - loop closure j: Constraint::PointOnLine, the rod's big-end point on the Z-parallel line through the crank
+///    pin B_j of the crankshaft (2 equations).
+///  - gravity: Force::Gravity, (0, -g).
+
+#include <memory>
+#include <vector>
+
+#include "crankcheck/scene/evaluation.h"
+#include "crankcheck/scene/mechanism.h"
+
+namespace crankcheck::simbody_models {
+
+/// Numerical options of the Simbody model.
+struct ModelOptions {
+  /// Required RMS accuracy [m, resp. m/s] of the position and velocity projections (System::projectQ/projectU).
+  /// Simbody's default (1e-4) leaves 0.2 N of reaction error; 1e-12..1e-13 is tight, 1e-14 hits roundoff and
+  /// Simbody throws.
+  double projection_tolerance = 1e-12;
+};
+
+/// One rigid body of the Simbody model at one crank angle, planar part only, as Simbody sees it.
+struct BodyKinematics {
+  double mass = 0.0;                  ///< [kg] as built into the Simbody body
+  double inertia_about_com = 0.0;     ///< [kg m^2] about the Z axis through the centre of mass, as built
+  Vec2 com{};                         ///< [m] centre of mass, global
+  Vec2 com_acceleration{};            ///< [m/s^2] from Simbody's body accelerations
+  double angular_acceleration = 0.0;  ///< [rad/s^2] about +Z, from Simbody
+};
+
+/// Per-cylinder details that the Evaluation does not carry; for checks of the reported reactions.
+struct CylinderDiagnostics {
+  BodyKinematics piston;
+  BodyKinematics rod;
+  Vec2 wrist_pin{};          ///< [m] A_j: origin of the piston body (Simbody station location)
+  Vec2 crank_pin{};          ///< [m] B_j: the crank pin station on the crankshaft body
+  Vec2 rod_big_end{};        ///< [m] the rod's big-end station (equals crank_pin to the projection tolerance)
+  Vec2 slider_reaction{};    ///< [N] force on piston j from the frame through its slider, global (wall_force n
+                             ///<     plus an e-component that must be zero: nothing acts along the slider)
+  double slider_reaction_moment = 0.0;  ///< [N m] Z moment of that reaction about A_j (zero for a particle)
+};
+
+/// Everything evaluate() reports plus Simbody's own kinematics and energies at the same state.
+struct Diagnostics {
+  Evaluation evaluation;
+  double omega = 0.0;                       ///< [rad/s] the crank speed used
+  double kinetic_energy = 0.0;              ///< [J] Simbody's KE; includes the constant
+                                            ///<     crankshaft_nominal_inertia omega^2 / 2
+  double potential_energy = 0.0;            ///< [J] Simbody's V (zero height at O), not V - V(0)
+  double crankshaft_nominal_inertia = 0.0;  ///< [kg m^2] rotational inertia about Z at O added to the
+                                            ///<     crankshaft (no effect at constant omega, see .cc)
+  BodyKinematics crankshaft;
+  std::vector<CylinderDiagnostics> cylinders;
+  double position_constraint_error = 0.0;   ///< [m] max |constraint error| after projectQ
+  double velocity_constraint_error = 0.0;   ///< [m/s] max |constraint error| after projectU
+};
+
+/// The k-crank mechanism in Simbody. Builds one System in the constructor and reuses it for every crank angle
+/// (the previous configuration is the warm start of the next assembly). Not thread-safe: one object per thread.
+class KCrankModel {
+ public:
+  /// Builds the Simbody system for `m` (k = m.engine.cylinders, phases m.engine.crank_angles, gamma, omega, g)
+  /// and assembles it at phi = 0 to get the reference potential V(0).
+  /// @throws std::invalid_argument if m is not a valid mechanism (k < 1, crank angle count != k, non-positive
+  ///         lengths, lambda >= 1, negative masses, I_o < m_k z_k^2, non-finite values, projection tolerance
+  ///         not > 0).
+  /// @throws std::runtime_error if Simbody fails to build or assemble the system.
+  explicit KCrankModel(const Mechanism& m, ModelOptions options = {});
+  ~KCrankModel();
+  KCrankModel(const KCrankModel&) = delete;
+  KCrankModel& operator=(const KCrankModel&) = delete;
+  KCrankModel(KCrankModel&&) noexcept;
+  KCrankModel& operator=(KCrankModel&&) noexcept;
+
+  /// Everything at crank angle phi [rad] and the scene's omega [rad/s], engine = "simbody":
+  /// U [J] (= V(phi) - V(0)), Q [N m] (static holding torque route, as calcHoldingTorque), drive_torque [N m],
+  /// bearing_force [N], and per cylinder x_p [m], v_p [m/s], a_p [m/s^2], crank_pin_force [N],
+  /// wrist_pin_force [N], wall_force [N]. Signs and frames: CONVENTIONS.md.
+  /// @throws std::invalid_argument if phi is not finite.
+  /// @throws std::runtime_error if Simbody cannot assemble the mechanism at phi.
+  Evaluation evaluate(double phi);
+
+  /// evaluate(phi) together with Simbody's own body kinematics and energies at the same state.
+  /// @throws as evaluate().
+  Diagnostics calcDiagnostics(double phi);
+
+  /// U = V(phi) - V(0) [J], from MultibodySystem::calcPotentialEnergy. @throws as evaluate().
+  double calcPotentialEnergy(double phi);
+
+  /// Simbody's kinetic energy [J] at phi [rad] and the scene's omega, including the constant
+  /// crankshaft_nominal_inertia omega^2 / 2 (see Diagnostics). @throws as evaluate().
+  double calcKineticEnergy(double phi);
+
+  /// Q route 1 [N m]: the static torque about +Z that holds the crank still at phi against gravity (omega = 0),
+  /// from the prescribed-motion force of the crank mobilizer. @throws as evaluate().
+  double calcHoldingTorque(double phi);
+
+  /// Q route 2 [N m]: -(sum over bodies of Simbody's gravity spatial force . body spatial velocity) at unit
+  /// crank speed, i.e. dU/dphi by virtual power. @throws as evaluate().
+  double calcVirtualPowerQ(double phi);
+
+  /// Q route 3 [N m]: (U(phi + h) - U(phi - h)) / (2 h), h [rad] > 0.
+  /// @throws std::invalid_argument if h is not finite and > 0; otherwise as evaluate().
+  double calcQByCentralDifference(double phi, double h);
+
+  /// The mechanism the model was built from.
+  const Mechanism& mechanism() const;
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace crankcheck::simbody_models

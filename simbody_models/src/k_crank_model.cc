@@ -1,0 +1,433 @@
+// The k-crank mechanism in Simbody. This is the only translation unit of the library that includes Simbody.
+// It must never be compiled with NDEBUG (SIMBODY-NOTES.md); the top-level CMake sets flags without it and
+// simbody_models/CMakeLists.txt checks. SimTK names stay qualified: a global `using namespace SimTK` breaks Eigen.
+#include "crankcheck/simbody_models/k_crank_model.h"
+
+#include <Simbody.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "crankcheck/scene/scene_file.h"
+
+#ifdef NDEBUG
+#error "Simbody code must not be compiled with NDEBUG: Debian's Simbody was built without it (SIMBODY-NOTES.md)"
+#endif
+
+namespace crankcheck::simbody_models {
+namespace {
+
+/// What the crank mobilizer is told to do: angle phi [rad] and constant speed omega [rad/s].
+struct CrankDrive {
+  double phi = 0.0;
+  double omega = 0.0;
+};
+
+/// Position-level prescribed motion of the crank: q = phi, qdot = omega, qdotdot = 0. The values live in a
+/// CrankDrive owned by the model; whoever changes them must invalidate the state's cache (phi: Stage::Time, where
+/// Simbody evaluates the prescribed q; omega: Stage::Position, where it evaluates the prescribed qdot).
+class CrankMotion : public SimTK::Motion::Custom::Implementation {
+ public:
+  explicit CrankMotion(std::shared_ptr<const CrankDrive> drive) : drive_(std::move(drive)) {}
+  Implementation* clone() const override { return new CrankMotion(*this); }
+  SimTK::Motion::Level getLevel(const SimTK::State&) const override { return SimTK::Motion::Position; }
+  void calcPrescribedPosition(const SimTK::State&, int nq, SimTK::Real* q) const override {
+    if (nq != 1) throw std::logic_error("CrankMotion: the crank pin has one q");
+    q[0] = drive_->phi;
+  }
+  void calcPrescribedPositionDot(const SimTK::State&, int nq, SimTK::Real* qdot) const override {
+    if (nq != 1) throw std::logic_error("CrankMotion: the crank pin has one q");
+    qdot[0] = drive_->omega;
+  }
+  void calcPrescribedPositionDotDot(const SimTK::State&, int nq, SimTK::Real* qdotdot) const override {
+    if (nq != 1) throw std::logic_error("CrankMotion: the crank pin has one q");
+    qdotdot[0] = 0.0;
+  }
+
+ private:
+  std::shared_ptr<const CrankDrive> drive_;
+};
+
+Vec2 toVec2(const SimTK::Vec3& v) { return {v[0], v[1]}; }
+
+/// Angle difference reduced to (-pi, pi].
+double wrappedDifference(double a, double b) {
+  return std::remainder(a - b, 2.0 * SimTK::Pi);
+}
+
+}  // namespace
+
+class KCrankModel::Impl {
+ public:
+  Impl(const Mechanism& m, ModelOptions options);
+
+  /// Assembles the positions at phi (crank prescribed, pistons and rods projected). On return the state is
+  /// realized through Stage::Position.
+  void assemble(double phi);
+  /// Prescribes crank speed omega at the assembled positions, projects the velocities and realizes
+  /// Stage::Acceleration.
+  void solveMotion(double omega);
+  /// Drive torque [N m] about +Z at the current (Acceleration-realized) state.
+  double driveTorque() const;
+  Evaluation evaluateAt(double phi, Diagnostics* diagnostics);
+  double potentialEnergy(double phi);
+  double kineticEnergy(double phi);
+  double holdingTorque(double phi);
+  double virtualPowerQ(double phi);
+
+  const Mechanism& mechanism() const { return m_; }
+
+ private:
+  BodyKinematics bodyKinematics(const SimTK::MobilizedBody& body) const;
+  double maxAbs(const SimTK::Vector& v) const;
+  void setReferenceGuess();
+
+  Mechanism m_;
+  ModelOptions options_;
+  int k_ = 0;
+  SimTK::Vec3 e_;  // cylinder axis, global
+  SimTK::Vec3 n_;  // e turned +90 degrees
+  double nominal_crank_inertia_ = 0.0;
+
+  std::shared_ptr<CrankDrive> drive_ = std::make_shared<CrankDrive>();
+  SimTK::MultibodySystem system_;
+  SimTK::SimbodyMatterSubsystem matter_{system_};
+  SimTK::GeneralForceSubsystem forces_{system_};
+  SimTK::Force::Gravity gravity_;
+  SimTK::MobilizedBody::Pin crank_;
+  std::vector<SimTK::MobilizedBody::Slider> pistons_;
+  std::vector<SimTK::MobilizedBody::Pin> rods_;
+  std::vector<SimTK::Vec3> crank_pins_in_crank_;  // B_j in the crankshaft body frame
+  SimTK::Vec3 rod_big_end_in_rod_;                // B in the rod body frame
+  SimTK::State state_;
+
+  double reference_potential_ = 0.0;  // V(0)
+  bool assembled_ = false;
+  double assembled_phi_ = 0.0;
+};
+
+KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), options_(options) {
+  try {
+    validateMechanism(m_, m_.name.empty() ? std::string("mechanism") : m_.name);
+  } catch (const SceneError& error) {
+    throw std::invalid_argument(std::string("KCrankModel: invalid mechanism: ") + error.what());
+  }
+  if (!(std::isfinite(options_.projection_tolerance) && options_.projection_tolerance > 0.0))
+    throw std::invalid_argument("KCrankModel: projection_tolerance must be finite and > 0");
+
+  k_ = m_.engine.cylinders;
+  const double gamma = m_.engine.cylinder_angle;
+  e_ = SimTK::Vec3(std::cos(gamma), std::sin(gamma), 0.0);
+  n_ = SimTK::Vec3(-std::sin(gamma), std::cos(gamma), 0.0);
+  const double r = m_.crank.radius;
+  const double l = m_.rod.length;
+
+  try {
+    // Gravity (0, -g): Simbody's potential energy has zero height at the Ground origin O.
+    gravity_ = SimTK::Force::Gravity(forces_, matter_, SimTK::UnitVec3(0, -1, 0), m_.engine.gravity);
+
+    // Crankshaft. Its mobilizer frame F on Ground is turned by gamma about Z, so the pin angle q is the crank
+    // angle phi of throw 0 (theta = 0: crank pin on +e). Throw j's crank line points at alpha_j in the body.
+    SimTK::Real crank_mass = 0.0;
+    SimTK::Vec3 first_moment(0);
+    SimTK::Inertia crank_inertia(0);  // about the body origin O
+    for (int j = 0; j < k_; ++j) {
+      const double alpha = m_.engine.crank_angles[j];
+      const SimTK::Vec3 u(std::cos(alpha), std::sin(alpha), 0.0);
+      crank_pins_in_crank_.push_back(r * u);
+      const SimTK::Vec3 p_s = m_.crank.com_radius * u;
+      const SimTK::Vec3 p_p = -m_.crank.counterweight_radius * u;
+      crank_mass += m_.crank.mass + m_.crank.counterweight_mass;
+      first_moment += m_.crank.mass * p_s + m_.crank.counterweight_mass * p_p;
+      crank_inertia += SimTK::Inertia(p_s, m_.crank.mass) + SimTK::Inertia(p_p, m_.crank.counterweight_mass);
+    }
+    // Optional nominal rotational inertia about the Z axis at O (see ModelOptions / Diagnostics). The crank's
+    // motion is prescribed (constant omega about a fixed axis through O, products of inertia with Z untouched),
+    // so such an inertia contributes no force, torque or reaction; it only adds nominal * omega^2 / 2 to the
+    // kinetic energy.
+    nominal_crank_inertia_ = 0.0;
+    if (nominal_crank_inertia_ > 0.0)
+      crank_inertia += SimTK::Inertia(0.5 * nominal_crank_inertia_, 0.5 * nominal_crank_inertia_,
+                                      nominal_crank_inertia_);
+    const SimTK::Body::Rigid crank_body(SimTK::MassProperties(
+        crank_mass, crank_mass > 0.0 ? first_moment / crank_mass : SimTK::Vec3(0), crank_inertia));
+    const SimTK::Rotation cylinder_rotation(gamma, SimTK::ZAxis);
+    crank_ = SimTK::MobilizedBody::Pin(matter_.Ground(), SimTK::Transform(cylinder_rotation, SimTK::Vec3(0)),
+                                       crank_body, SimTK::Transform());
+    SimTK::Motion::Custom(crank_, new CrankMotion(drive_));
+
+    // Rod body frame = its mobilizer frame M, origin at the wrist pin A. At rod pin angle 0 the rod points
+    // along -x of the piston frame (from A toward O): big end at (-l, 0, 0), centre of mass at (-z_k, 0, 0).
+    rod_big_end_in_rod_ = SimTK::Vec3(-l, 0, 0);
+    const double z_k = m_.rod.com_from_wrist_pin;
+    const double m_k = m_.rod.mass;
+    // Central inertia about Z (and about the in-plane axis normal to the rod); zero about the rod axis.
+    const double rod_central = std::max(0.0, m_.rod.inertia_about_wrist_pin - m_k * z_k * z_k);
+    const SimTK::Vec3 rod_com(-z_k, 0, 0);
+    SimTK::Body::Rigid rod_body(SimTK::MassProperties(
+        m_k, rod_com,
+        m_k > 0.0 ? SimTK::Inertia(0.0, rod_central, rod_central) + SimTK::Inertia(rod_com, m_k)
+                  : SimTK::Inertia(0)));
+    SimTK::Body::Rigid piston_body(SimTK::MassProperties(m_.piston.mass, SimTK::Vec3(0), SimTK::Inertia(0)));
+    if (m_k == 0.0 && m_.rod.inertia_about_wrist_pin != 0.0)
+      throw std::invalid_argument("KCrankModel: a massless rod must have zero inertia");
+
+    for (int j = 0; j < k_; ++j) {
+      // Piston: slider along the x axis of F = Ground turned by gamma, so q = x_p along +e from O.
+      pistons_.emplace_back(matter_.Ground(), SimTK::Transform(cylinder_rotation, SimTK::Vec3(0)), piston_body,
+                            SimTK::Transform());
+      rods_.emplace_back(pistons_.back(), SimTK::Transform(), rod_body, SimTK::Transform());
+      // Loop closure: the rod's big end on the line through B_j parallel to Z (2 equations, planar).
+      SimTK::Constraint::PointOnLine(crank_, SimTK::UnitVec3(SimTK::ZAxis), crank_pins_in_crank_[j], rods_.back(),
+                                     rod_big_end_in_rod_);
+    }
+
+    system_.realizeTopology();
+    state_ = system_.getDefaultState();
+    system_.realizeModel(state_);
+  } catch (const std::invalid_argument&) {
+    throw;
+  } catch (const std::exception& error) {
+    throw std::runtime_error(std::string("KCrankModel: Simbody failed to build the system: ") + error.what());
+  }
+
+  assemble(0.0);
+  system_.realize(state_, SimTK::Stage::Dynamics);
+  reference_potential_ = system_.calcPotentialEnergy(state_);
+}
+
+void KCrankModel::Impl::setReferenceGuess() {
+  // A crude, angle-independent starting configuration for the projection (not a solution): every piston at
+  // x = l along e, every rod pointing back at O. Newton's method from here lands on the physical branch
+  // (piston outside the crank circle), which assemble() checks.
+  for (int j = 0; j < k_; ++j) {
+    pistons_[j].setQ(state_, m_.rod.length);
+    rods_[j].setQ(state_, 0.0);
+  }
+}
+
+void KCrankModel::Impl::assemble(double phi) {
+  if (!std::isfinite(phi)) throw std::invalid_argument("KCrankModel: crank angle phi must be finite");
+  // Warm start from the previous solution when it is near; otherwise from the crude guess.
+  const bool warm = assembled_ && std::abs(wrappedDifference(phi, assembled_phi_)) <= 1.0;
+  if (!warm) setReferenceGuess();
+  drive_->phi = phi;
+  // u's are irrelevant to positions but zero them so nothing stale survives a failed attempt.
+  state_.updU() = 0;
+  state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Time);
+
+  auto project = [&]() {
+    system_.projectQ(state_, options_.projection_tolerance);  // prescribes crank q = phi, projects the rest
+    // projectQ stops as soon as the RMS error is below tolerance * 0.1, which can leave 1e-13 m. One more
+    // forced Newton step from there lands on roundoff (errors ~1e-17 m) for the cost of one iteration.
+    SimTK::Vector no_error_estimate;
+    SimTK::ProjectOptions polish(options_.projection_tolerance);
+    polish.setOption(SimTK::ProjectOptions::ForceProjection);
+    SimTK::ProjectResults results;
+    system_.projectQ(state_, no_error_estimate, polish, results);
+  };
+  auto physical = [&]() {
+    for (const auto& piston : pistons_)
+      if (!(piston.getQ(state_) > 0.0)) return false;
+    return true;
+  };
+  try {
+    project();
+    if (!physical()) {
+      if (!warm) throw std::runtime_error("assembly converged on the unphysical branch (piston inside the crank)");
+      setReferenceGuess();
+      state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Time);
+      project();
+      if (!physical())
+        throw std::runtime_error("assembly converged on the unphysical branch (piston inside the crank)");
+    }
+  } catch (const std::exception& error) {
+    assembled_ = false;
+    throw std::runtime_error("KCrankModel: Simbody could not assemble the mechanism at phi = " +
+                             std::to_string(phi) + " rad: " + error.what());
+  }
+  assembled_ = true;
+  assembled_phi_ = phi;
+}
+
+void KCrankModel::Impl::solveMotion(double omega) {
+  drive_->omega = omega;
+  // The prescribed qdot is evaluated at Stage::Position: invalidate it (the q's stay as assembled).
+  state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Position);
+  try {
+    system_.projectU(state_, options_.projection_tolerance);  // prescribes crank u = omega, projects the rest
+    system_.realize(state_, SimTK::Stage::Acceleration);
+  } catch (const std::exception& error) {
+    throw std::runtime_error("KCrankModel: Simbody failed to solve the motion at phi = " +
+                             std::to_string(drive_->phi) + " rad: " + error.what());
+  }
+}
+
+double KCrankModel::Impl::driveTorque() const {
+  // tau is the generalized force Simbody's equations carry on the left-hand side with the multipliers
+  // (M udot + tau + ~G lambda = f), i.e. minus the torque the drive applies to the crank.
+  return -crank_.getOneTau(state_, SimTK::MobilizerUIndex(0));
+}
+
+double KCrankModel::Impl::maxAbs(const SimTK::Vector& v) const {
+  double result = 0.0;
+  for (int i = 0; i < v.size(); ++i) result = std::max(result, std::abs(v[i]));
+  return result;
+}
+
+BodyKinematics KCrankModel::Impl::bodyKinematics(const SimTK::MobilizedBody& body) const {
+  BodyKinematics b;
+  const SimTK::MassProperties& mp = body.getBodyMassProperties(state_);
+  b.mass = mp.getMass();
+  const SimTK::Vec3 com_in_body = mp.getMassCenter();
+  b.inertia_about_com = mp.calcCentralInertia().getMoments()[2];  // Z axis, body Z = global Z
+  b.com = toVec2(body.findStationLocationInGround(state_, com_in_body));
+  b.com_acceleration = toVec2(body.findStationAccelerationInGround(state_, com_in_body));
+  b.angular_acceleration = body.getBodyAngularAcceleration(state_)[2];
+  return b;
+}
+
+Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
+  Evaluation ev;
+  ev.engine = "simbody";
+  ev.phi = phi;
+
+  assemble(phi);
+  const double position_error = maxAbs(state_.getQErr());
+
+  // Static pass (omega = 0): the holding torque is Q, route 1.
+  solveMotion(0.0);
+  ev.U = system_.calcPotentialEnergy(state_) - reference_potential_;
+  ev.Q = driveTorque();
+
+  // Dynamic pass at the scene's omega (also at omega = 0, so the two passes stay independent computations).
+  const double omega = m_.engine.speed;
+  solveMotion(omega);
+  ev.drive_torque = driveTorque();
+
+  // Mobilizer reactions: force ON the child FROM its parent, at the child's M origin, in Ground.
+  SimTK::Vector_<SimTK::SpatialVec> reactions;
+  matter_.calcMobilizerReactionForces(state_, reactions);
+  // Constraint forces as applied forces (negated multipliers), at each body's origin, in Ground.
+  SimTK::Vector_<SimTK::SpatialVec> constraint_body_forces;
+  SimTK::Vector constraint_mobility_forces;
+  matter_.calcConstraintForcesFromMultipliers(state_, -matter_.getConstraintMultipliers(state_),
+                                              constraint_body_forces, constraint_mobility_forces);
+
+  // Crank mobilizer M origin is O: its reaction force is the bearing on the crankshaft.
+  ev.bearing_force = toVec2(reactions[crank_.getMobilizedBodyIndex()][1]);
+  ev.cylinders.resize(k_);
+  for (int j = 0; j < k_; ++j) {
+    const auto& piston = pistons_[j];
+    const auto& rod = rods_[j];
+    CylinderEvaluation& c = ev.cylinders[j];
+    c.x_p = piston.getQ(state_);
+    c.v_p = piston.getU(state_);
+    c.a_p = piston.getUDot(state_);
+    // The only constraint acting on rod j is its loop closure; it acts at the crank pin (a force, no moment
+    // there), reported as a force at the rod origin A plus the moment (B - A) x F. The force is what we need.
+    c.crank_pin_force = toVec2(constraint_body_forces[rod.getMobilizedBodyIndex()][1]);
+    // Rod reaction is on the rod from the piston; the piston gets the opposite.
+    const SimTK::Vec3 piston_on_rod = reactions[rod.getMobilizedBodyIndex()][1];
+    c.wrist_pin_force = toVec2(-piston_on_rod);
+    const SimTK::Vec3 frame_on_piston = reactions[piston.getMobilizedBodyIndex()][1];
+    c.wall_force = SimTK::dot(frame_on_piston, n_);
+  }
+
+  if (diagnostics != nullptr) {
+    Diagnostics& d = *diagnostics;
+    d.omega = omega;
+    d.kinetic_energy = system_.calcKineticEnergy(state_);
+    d.potential_energy = system_.calcPotentialEnergy(state_);
+    d.crankshaft_nominal_inertia = nominal_crank_inertia_;
+    d.crankshaft = bodyKinematics(crank_);
+    d.position_constraint_error = position_error;
+    d.velocity_constraint_error = maxAbs(state_.getUErr());
+    d.cylinders.resize(k_);
+    for (int j = 0; j < k_; ++j) {
+      CylinderDiagnostics& c = d.cylinders[j];
+      c.piston = bodyKinematics(pistons_[j]);
+      c.rod = bodyKinematics(rods_[j]);
+      c.wrist_pin = toVec2(pistons_[j].getBodyOriginLocation(state_));
+      c.crank_pin = toVec2(crank_.findStationLocationInGround(state_, crank_pins_in_crank_[j]));
+      c.rod_big_end = toVec2(rods_[j].findStationLocationInGround(state_, rod_big_end_in_rod_));
+      const SimTK::SpatialVec& slider = reactions[pistons_[j].getMobilizedBodyIndex()];
+      c.slider_reaction = toVec2(slider[1]);
+      c.slider_reaction_moment = slider[0][2];
+    }
+    d.evaluation = ev;
+  }
+  return ev;
+}
+
+double KCrankModel::Impl::potentialEnergy(double phi) {
+  assemble(phi);
+  system_.realize(state_, SimTK::Stage::Dynamics);
+  return system_.calcPotentialEnergy(state_) - reference_potential_;
+}
+
+double KCrankModel::Impl::kineticEnergy(double phi) {
+  assemble(phi);
+  drive_->omega = m_.engine.speed;
+  state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Position);
+  system_.projectU(state_, options_.projection_tolerance);
+  system_.realize(state_, SimTK::Stage::Dynamics);
+  return system_.calcKineticEnergy(state_);
+}
+
+double KCrankModel::Impl::holdingTorque(double phi) {
+  assemble(phi);
+  solveMotion(0.0);
+  return driveTorque();
+}
+
+double KCrankModel::Impl::virtualPowerQ(double phi) {
+  assemble(phi);
+  // Unit crank speed: every body's velocity is then its velocity per unit dphi/dt.
+  drive_->omega = 1.0;
+  state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Position);
+  system_.projectU(state_, options_.projection_tolerance);
+  system_.realize(state_, SimTK::Stage::Velocity);
+  const SimTK::Vector_<SimTK::SpatialVec>& gravity_forces = gravity_.getBodyForces(state_);
+  double power = 0.0;
+  for (SimTK::MobilizedBodyIndex b(1); b < matter_.getNumBodies(); ++b) {
+    const SimTK::SpatialVec& force = gravity_forces[b];  // moment about and force at the body origin
+    const SimTK::SpatialVec& velocity = matter_.getMobilizedBody(b).getBodyVelocity(state_);  // w, v_origin
+    power += SimTK::dot(force[0], velocity[0]) + SimTK::dot(force[1], velocity[1]);
+  }
+  // Power of gravity = -dV/dt = -Q dphi/dt with dphi/dt = 1.
+  return -power;
+}
+
+KCrankModel::KCrankModel(const Mechanism& m, ModelOptions options)
+    : impl_(std::make_unique<Impl>(m, options)) {}
+KCrankModel::~KCrankModel() = default;
+KCrankModel::KCrankModel(KCrankModel&&) noexcept = default;
+KCrankModel& KCrankModel::operator=(KCrankModel&&) noexcept = default;
+
+Evaluation KCrankModel::evaluate(double phi) { return impl_->evaluateAt(phi, nullptr); }
+
+Diagnostics KCrankModel::calcDiagnostics(double phi) {
+  Diagnostics d;
+  impl_->evaluateAt(phi, &d);
+  return d;
+}
+
+double KCrankModel::calcPotentialEnergy(double phi) { return impl_->potentialEnergy(phi); }
+double KCrankModel::calcKineticEnergy(double phi) { return impl_->kineticEnergy(phi); }
+double KCrankModel::calcHoldingTorque(double phi) { return impl_->holdingTorque(phi); }
+double KCrankModel::calcVirtualPowerQ(double phi) { return impl_->virtualPowerQ(phi); }
+
+double KCrankModel::calcQByCentralDifference(double phi, double h) {
+  if (!(std::isfinite(h) && h > 0.0))
+    throw std::invalid_argument("KCrankModel::calcQByCentralDifference: step h must be finite and > 0");
+  const double up = impl_->potentialEnergy(phi + h);
+  const double down = impl_->potentialEnergy(phi - h);
+  return (up - down) / (2.0 * h);
+}
+
+const Mechanism& KCrankModel::mechanism() const { return impl_->mechanism(); }
+
+}  // namespace crankcheck::simbody_models
