@@ -1,0 +1,116 @@
+#include "cases.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace crankcheck::testing {
+
+const std::vector<double>& sweepLambdas() {
+  static const std::vector<double> v{1e-6, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.9, 0.999};
+  return v;
+}
+const std::vector<double>& sweepModerateLambdas() {
+  static const std::vector<double> v{1e-6, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.9};
+  return v;
+}
+const std::vector<double>& sweepGammasDeg() {
+  static const std::vector<double> v{0.0, 180.0, 90.0, -90.0, 37.0};
+  return v;
+}
+const std::vector<double>& sweepPhisDeg() {
+  static const std::vector<double> v{0.0, 17.0, 45.0, 90.0, 133.0, 180.0, 222.5, 270.0, 300.0, 359.0, -60.0};
+  return v;
+}
+
+Mechanism makeMechanism(const CaseSpec& spec) {
+  Mechanism m;
+  m.name = caseName(spec);
+  m.engine.cylinders = spec.cylinders;
+  m.engine.cycle = spec.cycle;
+  m.engine.acting = spec.acting;
+  m.engine.crank_angles = calcPhaseAngles(spec.cylinders, spec.cycle, spec.acting);
+  m.engine.cylinder_angle = radiansFromDegrees(spec.gamma_deg);
+  m.speed_rpm = spec.rpm;
+  m.engine.speed = spec.rpm * (M_PI / 30.0);
+  m.engine.gravity = 9.80665;
+  m.crank.radius = 0.05;
+  m.crank.mass = 1.7;
+  m.crank.com_radius = 0.4 * m.crank.radius;
+  m.crank.counterweight_mass = 1.3;
+  m.crank.counterweight_radius = 0.8 * m.crank.radius;
+  m.rod.length = m.crank.radius / spec.lambda;
+  m.rod.mass = 0.61;
+  m.rod.com_from_wrist_pin = 0.3 * m.rod.length;
+  const double radius_of_gyration = 0.27 * m.rod.length;
+  m.rod.inertia_about_wrist_pin = m.rod.mass * (m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin +
+                                                radius_of_gyration * radius_of_gyration);
+  m.piston.mass = 0.43;
+  m.flywheel_inertia = 0.2;
+  return m;
+}
+
+namespace {
+std::string numberTag(double x, int decimals) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, std::fabs(x));
+  std::string s(buffer);
+  std::replace(s.begin(), s.end(), '.', 'p');
+  return (x < 0 ? "m" : "") + s;
+}
+}  // namespace
+
+std::string lambdaTag(double lambda) {
+  if (lambda < 1e-3) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.0e", lambda);
+    std::string s(buffer);
+    std::replace(s.begin(), s.end(), '-', 'm');
+    std::replace(s.begin(), s.end(), '+', 'p');
+    return s;
+  }
+  return numberTag(lambda, lambda >= 0.9 && lambda != 0.9 ? 3 : 2);
+}
+
+std::string caseNameWithoutLambda(const CaseSpec& spec) {
+  std::string name = "k" + std::to_string(spec.cylinders) + (spec.cycle == Cycle::kTwoStroke ? "_two" : "_four");
+  if (spec.acting == Acting::kDouble) name += "_double";
+  return name + "_gamma" + numberTag(spec.gamma_deg, 0);
+}
+
+std::string caseName(const CaseSpec& spec) {
+  return caseNameWithoutLambda(spec) + "_lambda" + lambdaTag(spec.lambda) + "_" + numberTag(spec.rpm, 0) + "rpm";
+}
+
+double calcEnergyScale(const Mechanism& m) {
+  return m.engine.cylinders * m.engine.gravity *
+         (m.crank.radius * (m.piston.mass + m.rod.mass) + m.crank.mass * m.crank.com_radius +
+          m.crank.counterweight_mass * m.crank.counterweight_radius);
+}
+
+double calcAccelerationScale(const Mechanism& m) {
+  const double lambda = m.crank.radius / m.rod.length;
+  const double w = m.engine.speed;
+  return m.engine.gravity + m.crank.radius * w * w * (1.0 + std::pow((1.0 - lambda) * (1.0 + lambda), -1.5));
+}
+
+double calcForceScale(const Mechanism& m) {
+  const double mass = m.piston.mass + m.rod.mass + m.rod.inertia_about_wrist_pin / (m.rod.length * m.rod.length) +
+                      m.crank.mass + m.crank.counterweight_mass;
+  return m.engine.cylinders * mass * calcAccelerationScale(m);
+}
+
+double calcTorqueScale(const Mechanism& m) {
+  return calcForceScale(m) * std::max({m.crank.radius, m.crank.com_radius, m.crank.counterweight_radius});
+}
+
+::testing::AssertionResult isClose(double a, double b, double tol) {
+  const double diff = std::fabs(a - b);
+  if (diff <= tol) return ::testing::AssertionSuccess();
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, "  a = %.17g\n  b = %.17g\n  |a - b| = %.3e > tol = %.3e (%.2f x tol)", a, b,
+                diff, tol, tol > 0 ? diff / tol : INFINITY);
+  return ::testing::AssertionFailure() << buffer;
+}
+
+}  // namespace crankcheck::testing
