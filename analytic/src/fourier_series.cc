@@ -71,21 +71,27 @@ std::vector<double> calcLambdaCoefficients(double lambda, int order) {
   return big_lambda;
 }
 
-std::vector<double> calcLambdaCoefficientsAsPrinted(double lambda, int order) {
-  checkArguments(lambda, order, "calcLambdaCoefficientsAsPrinted");
+double getLambdaSeriesCoefficientAsPrinted(int n, int power) {
+  if (n < 2 || n > 12 || n % 2 != 0 || power < 1 || power > 11 || power % 2 == 0)
+    throw std::invalid_argument("getLambdaSeriesCoefficientAsPrinted: the table has n = 2..12 even, power = 1..11 odd");
   // Stanczak eq (15), transcribed: coefficients of lambda^1, lambda^3, ..., lambda^11 for Lambda_2 .. Lambda_12.
   static constexpr double kPrinted[6][6] = {
-      {0.5, 0.125, 0.058594, 0.034180, 0.022432, 0.015862},      // Lambda_2
+      {0.5, 0.125, 0.058594, 0.034180, 0.022432, 0.015862},        // Lambda_2
       {0.0, -0.0625, -0.046875, -0.034180, -0.025635, -0.019827},  // Lambda_4
-      {0.0, 0.0, 0.011719, 0.014648, 0.014420, 0.013218},         // Lambda_6
-      {0.0, 0.0, 0.0, -0.002441, -0.004272, -0.005287},           // Lambda_8
-      {0.0, 0.0, 0.0, 0.0, 0.000534, 0.001202},                   // Lambda_10
-      {0.0, 0.0, 0.0, 0.0, 0.0, -0.000120},                       // Lambda_12
+      {0.0, 0.0, 0.011719, 0.014648, 0.014420, 0.013218},          // Lambda_6
+      {0.0, 0.0, 0.0, -0.002441, -0.004272, -0.005287},            // Lambda_8
+      {0.0, 0.0, 0.0, 0.0, 0.000534, 0.001202},                    // Lambda_10
+      {0.0, 0.0, 0.0, 0.0, 0.0, -0.000120},                        // Lambda_12
   };
+  return kPrinted[n / 2 - 1][power / 2];
+}
+
+std::vector<double> calcLambdaCoefficientsAsPrinted(double lambda, int order) {
+  checkArguments(lambda, order, "calcLambdaCoefficientsAsPrinted");
   std::vector<double> big_lambda(order + 1, 0.0);
   for (int n = 2; n <= std::min(order, 12); n += 2) {
     double sum = 0.0, power = lambda;
-    for (int p = 0; p < 6; ++p, power *= lambda * lambda) sum += kPrinted[n / 2 - 1][p] * power;
+    for (int p = 1; p <= 11; p += 2, power *= lambda * lambda) sum += getLambdaSeriesCoefficientAsPrinted(n, p) * power;
     big_lambda[n] = sum;
   }
   return big_lambda;

@@ -33,6 +33,11 @@ std::vector<double> calcLambdaCoefficients(double lambda, int order);
 /// 735/32768 = 0.0224304 (see docs/ERRATA.md).
 std::vector<double> calcLambdaCoefficientsAsPrinted(double lambda, int order);
 
+/// The printed coefficient of lambda^power in Lambda_n in the paper's eq (15) table (n = 2..12 even,
+/// power = 1..11 odd; zero where the table has no entry).
+/// @throws std::invalid_argument outside that range.
+double getLambdaSeriesCoefficientAsPrinted(int n, int power);
+
 /// A 128-bit integer (a GCC/Clang extension), enough for the binomials of calcLambdaSeriesCoefficient.
 __extension__ typedef __int128 Int128;
 
