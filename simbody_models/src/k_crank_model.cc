@@ -89,7 +89,6 @@ class KCrankModel::Impl {
   int k_ = 0;
   SimTK::Vec3 e_;  // cylinder axis, global
   SimTK::Vec3 n_;  // e turned +90 degrees
-  double nominal_crank_inertia_ = 0.0;
 
   std::shared_ptr<CrankDrive> drive_ = std::make_shared<CrankDrive>();
   SimTK::MultibodySystem system_;
@@ -117,6 +116,13 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
   if (!(std::isfinite(options_.projection_tolerance) && options_.projection_tolerance > 0.0))
     throw std::invalid_argument("KCrankModel: projection_tolerance must be finite and > 0");
 
+  // Simbody's rod pin and the pistons' sliders are free mobilities whose accelerations come from the mass
+  // matrix: a rod without mass or without inertia about its wrist pin makes it singular (the answers were NaN).
+  if (!(m_.rod.mass > 0.0 && m_.rod.inertia_about_wrist_pin > 0.0))
+    throw std::invalid_argument(
+        "KCrankModel: the Simbody model needs a rod with mass > 0 and inertia about the wrist pin > 0 (a massless "
+        "rod makes Simbody's mass matrix singular)");
+
   k_ = m_.engine.cylinders;
   const double gamma = m_.engine.cylinder_angle;
   e_ = SimTK::Vec3(std::cos(gamma), std::sin(gamma), 0.0);
@@ -143,14 +149,8 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
       first_moment += m_.crank.mass * p_s + m_.crank.counterweight_mass * p_p;
       crank_inertia += SimTK::Inertia(p_s, m_.crank.mass) + SimTK::Inertia(p_p, m_.crank.counterweight_mass);
     }
-    // Optional nominal rotational inertia about the Z axis at O (see ModelOptions / Diagnostics). The crank's
-    // motion is prescribed (constant omega about a fixed axis through O, products of inertia with Z untouched),
-    // so such an inertia contributes no force, torque or reaction; it only adds nominal * omega^2 / 2 to the
-    // kinetic energy.
-    nominal_crank_inertia_ = 0.0;
-    if (nominal_crank_inertia_ > 0.0)
-      crank_inertia += SimTK::Inertia(0.5 * nominal_crank_inertia_, 0.5 * nominal_crank_inertia_,
-                                      nominal_crank_inertia_);
+    // No nominal inertia: the crank's motion is prescribed, so Simbody never divides by its inertia (a crankshaft
+    // without any mass works).
     const SimTK::Body::Rigid crank_body(SimTK::MassProperties(
         crank_mass, crank_mass > 0.0 ? first_moment / crank_mass : SimTK::Vec3(0), crank_inertia));
     const SimTK::Rotation cylinder_rotation(gamma, SimTK::ZAxis);
@@ -168,11 +168,8 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
     const SimTK::Vec3 rod_com(-z_k, 0, 0);
     SimTK::Body::Rigid rod_body(SimTK::MassProperties(
         m_k, rod_com,
-        m_k > 0.0 ? SimTK::Inertia(0.0, rod_central, rod_central) + SimTK::Inertia(rod_com, m_k)
-                  : SimTK::Inertia(0)));
+        SimTK::Inertia(0.0, rod_central, rod_central) + SimTK::Inertia(rod_com, m_k)));
     SimTK::Body::Rigid piston_body(SimTK::MassProperties(m_.piston.mass, SimTK::Vec3(0), SimTK::Inertia(0)));
-    if (m_k == 0.0 && m_.rod.inertia_about_wrist_pin != 0.0)
-      throw std::invalid_argument("KCrankModel: a massless rod must have zero inertia");
 
     for (int j = 0; j < k_; ++j) {
       // Piston: slider along the x axis of F = Ground turned by gamma, so q = x_p along +e from O.
@@ -336,12 +333,22 @@ Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
     c.wall_force = SimTK::dot(frame_on_piston, n_);
   }
 
+  bool finite = std::isfinite(ev.U) && std::isfinite(ev.Q) && std::isfinite(ev.drive_torque) &&
+                std::isfinite(ev.bearing_force[0]) && std::isfinite(ev.bearing_force[1]);
+  for (const CylinderEvaluation& c : ev.cylinders)
+    finite = finite && std::isfinite(c.x_p) && std::isfinite(c.v_p) && std::isfinite(c.a_p) &&
+             std::isfinite(c.crank_pin_force[0]) && std::isfinite(c.crank_pin_force[1]) &&
+             std::isfinite(c.wrist_pin_force[0]) && std::isfinite(c.wrist_pin_force[1]) &&
+             std::isfinite(c.wall_force);
+  if (!finite)
+    throw std::runtime_error("KCrankModel: Simbody returned non-finite results at phi = " + std::to_string(phi) +
+                             " rad (singular mass matrix?)");
+
   if (diagnostics != nullptr) {
     Diagnostics& d = *diagnostics;
     d.omega = omega;
     d.kinetic_energy = system_.calcKineticEnergy(state_);
     d.potential_energy = system_.calcPotentialEnergy(state_);
-    d.crankshaft_nominal_inertia = nominal_crank_inertia_;
     d.crankshaft = bodyKinematics(crank_);
     d.position_constraint_error = position_error;
     d.velocity_constraint_error = maxAbs(state_.getUErr());

@@ -11,8 +11,9 @@
 ///
 /// The model (one degree of freedom, no redundant constraint equations):
 ///  - crankshaft: MobilizedBody::Pin from Ground about +Z at O, carrying every throw's point masses (m_s at r_s on
-///    the crank line, m_p at r_p opposite). Its angle is prescribed by a position-level Motion: q = phi,
-///    qdot = omega, qdotdot = 0 (constant crank speed).
+///    the crank line, m_p at r_p opposite) and nothing else (no nominal inertia is needed: its motion is
+///    prescribed). Its angle is prescribed by a position-level Motion: q = phi, qdot = omega, qdotdot = 0
+///    (constant crank speed).
 ///  - piston j: MobilizedBody::Slider from Ground along e, a particle of mass m_o at the wrist pin A_j.
 ///  - rod j: MobilizedBody::Pin on piston j at A_j; mass m_k, centre of mass on the rod axis at z_k from A_j,
 ///    inertia I_o about A_j (Z axis).
@@ -61,11 +62,8 @@ struct CylinderDiagnostics {
 struct Diagnostics {
   Evaluation evaluation;
   double omega = 0.0;                       ///< [rad/s] the crank speed used
-  double kinetic_energy = 0.0;              ///< [J] Simbody's KE; includes the constant
-                                            ///<     crankshaft_nominal_inertia omega^2 / 2
+  double kinetic_energy = 0.0;              ///< [J] Simbody's KE of the whole mechanism
   double potential_energy = 0.0;            ///< [J] Simbody's V (zero height at O), not V - V(0)
-  double crankshaft_nominal_inertia = 0.0;  ///< [kg m^2] rotational inertia about Z at O added to the
-                                            ///<     crankshaft (no effect at constant omega, see .cc)
   BodyKinematics crankshaft;
   std::vector<CylinderDiagnostics> cylinders;
   double position_constraint_error = 0.0;   ///< [m] max |constraint error| after projectQ
@@ -80,7 +78,8 @@ class KCrankModel {
   /// and assembles it at phi = 0 to get the reference potential V(0).
   /// @throws std::invalid_argument if m is not a valid mechanism (k < 1, crank angle count != k, non-positive
   ///         lengths, lambda >= 1, negative masses, I_o < m_k z_k^2, non-finite values, projection tolerance
-  ///         not > 0).
+  ///         not > 0), and if the rod has no mass or no inertia about the wrist pin (m_k = 0 or I_o = 0: Simbody's
+  ///         mass matrix is then singular; a massless piston or crankshaft is fine).
   /// @throws std::runtime_error if Simbody fails to build or assemble the system.
   explicit KCrankModel(const Mechanism& m, ModelOptions options = {});
   ~KCrankModel();
@@ -94,7 +93,7 @@ class KCrankModel {
   /// bearing_force [N], and per cylinder x_p [m], v_p [m/s], a_p [m/s^2], crank_pin_force [N],
   /// wrist_pin_force [N], wall_force [N]. Signs and frames: CONVENTIONS.md.
   /// @throws std::invalid_argument if phi is not finite.
-  /// @throws std::runtime_error if Simbody cannot assemble the mechanism at phi.
+  /// @throws std::runtime_error if Simbody cannot assemble the mechanism at phi or returns non-finite values.
   Evaluation evaluate(double phi);
 
   /// evaluate(phi) together with Simbody's own body kinematics and energies at the same state.
@@ -104,8 +103,8 @@ class KCrankModel {
   /// U = V(phi) - V(0) [J], from MultibodySystem::calcPotentialEnergy. @throws as evaluate().
   double calcPotentialEnergy(double phi);
 
-  /// Simbody's kinetic energy [J] at phi [rad] and the scene's omega, including the constant
-  /// crankshaft_nominal_inertia omega^2 / 2 (see Diagnostics). @throws as evaluate().
+  /// Simbody's kinetic energy [J] of the whole mechanism at phi [rad] and the scene's omega.
+  /// @throws as evaluate().
   double calcKineticEnergy(double phi);
 
   /// Q route 1 [N m]: the static torque about +Z that holds the crank still at phi against gravity (omega = 0),
