@@ -6,6 +6,7 @@
 #include <Simbody.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -103,6 +104,7 @@ class KCrankModel::Impl {
   SimTK::State state_;
 
   double reference_potential_ = 0.0;  // V(0)
+  double polish_threshold_ = 0.0;     // [m] constraint error below which no extra Newton step is taken
   bool assembled_ = false;
   double assembled_phi_ = 0.0;
 };
@@ -129,6 +131,7 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
   n_ = SimTK::Vec3(-std::sin(gamma), std::cos(gamma), 0.0);
   const double r = m_.crank.radius;
   const double l = m_.rod.length;
+  polish_threshold_ = 8.0 * std::numeric_limits<double>::epsilon() * (l + r);
 
   try {
     // Gravity (0, -g): Simbody's potential energy has zero height at the Ground origin O.
@@ -219,6 +222,7 @@ void KCrankModel::Impl::assemble(double phi) {
     system_.projectQ(state_, options_.projection_tolerance);  // prescribes crank q = phi, projects the rest
     // projectQ stops as soon as the RMS error is below tolerance * 0.1, which can leave 1e-13 m. One more
     // forced Newton step from there lands on roundoff (errors ~1e-17 m) for the cost of one iteration.
+    if (maxAbs(state_.getQErr()) <= polish_threshold_) return;
     SimTK::Vector no_error_estimate;
     SimTK::ProjectOptions polish(options_.projection_tolerance);
     polish.setOption(SimTK::ProjectOptions::ForceProjection);
