@@ -29,8 +29,10 @@ std::string formatNumber(double x) {
 // Reads one table of the scene, keeping track of which keys were used so that unknown keys are refused.
 class TableReader {
  public:
-  TableReader(const toml::table& root, std::string name, std::string source, bool required)
-      : name_(std::move(name)), source_(std::move(source)) {
+  // Refuses unknown keys first, so that a misspelt key is reported as such, not as a missing one.
+  TableReader(const toml::table& root, std::string name, std::string source, bool required,
+              std::set<std::string> allowed)
+      : name_(std::move(name)), source_(std::move(source)), allowed_(std::move(allowed)) {
     const toml::node* node = root.get(name_);
     if (node == nullptr) {
       if (required) fail(source_, "[" + name_ + "]", "missing table");
@@ -38,13 +40,21 @@ class TableReader {
     }
     table_ = node->as_table();
     if (table_ == nullptr) fail(source_, "[" + name_ + "]", "must be a table");
+    for (const auto& [k, v] : *table_) {
+      const std::string key_name(k.str());
+      if (!allowed_.contains(key_name)) {
+        std::string list;
+        for (const std::string& a : allowed_) list += (list.empty() ? "" : ", ") + a;
+        fail(source_, key(key_name), "unknown key (allowed: " + list + ")");
+      }
+    }
   }
 
   bool present() const { return table_ != nullptr; }
   std::string key(const std::string& k) const { return "[" + name_ + "]." + k; }
 
   const toml::node* find(const std::string& k) {
-    known_.insert(k);
+    if (!allowed_.contains(k)) throw std::logic_error("scene reader: key not in the allowed list: " + k);
     return table_ == nullptr ? nullptr : table_->get(k);
   }
 
@@ -91,15 +101,6 @@ class TableReader {
     return values;
   }
 
-  // Call after all known keys were read: refuses anything else (a typo must not be ignored).
-  void refuseUnknownKeys() const {
-    if (table_ == nullptr) return;
-    for (const auto& [k, v] : *table_) {
-      const std::string name(k.str());
-      if (!known_.contains(name)) fail(source_, key(name), "unknown key");
-    }
-  }
-
  private:
   double toNumber(const toml::node& node, const std::string& key_name) const {
     double x = 0.0;
@@ -118,8 +119,8 @@ class TableReader {
 
   std::string name_;
   std::string source_;
+  std::set<std::string> allowed_;
   const toml::table* table_ = nullptr;
-  std::set<std::string> known_;
 };
 
 }  // namespace
@@ -184,7 +185,8 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
   Mechanism m;
   m.name = std::filesystem::path(source).stem().string();
 
-  TableReader engine(root, "engine", source, true);
+  TableReader engine(root, "engine", source, true,
+                     {"cylinders", "cycle", "acting", "crank_angles_deg", "cylinder_angle_deg", "speed_rpm", "gravity"});
   const long long cylinders = engine.integer("cylinders");
   if (cylinders < 1 || cylinders > kMaxCylinders)
     fail(source, engine.key("cylinders"), "must be between 1 and 64 (got " + std::to_string(cylinders) + ")");
@@ -211,31 +213,28 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
   m.speed_rpm = engine.number("speed_rpm");
   m.engine.speed = m.speed_rpm * (M_PI / 30.0);
   m.engine.gravity = engine.number("gravity", 9.80665);
-  engine.refuseUnknownKeys();
 
-  TableReader crank(root, "crank", source, true);
+  TableReader crank(root, "crank", source, true,
+                    {"radius", "mass", "com_radius", "counterweight_mass", "counterweight_radius"});
   m.crank.radius = crank.number("radius");
   m.crank.mass = crank.number("mass");
   m.crank.com_radius = crank.number("com_radius");
   m.crank.counterweight_mass = crank.number("counterweight_mass", 0.0);
   if (m.crank.counterweight_mass > 0) m.crank.counterweight_radius = crank.number("counterweight_radius");
   else m.crank.counterweight_radius = crank.number("counterweight_radius", 0.0);
-  crank.refuseUnknownKeys();
 
-  TableReader rod(root, "rod", source, true);
+  TableReader rod(root, "rod", source, true,
+                  {"length", "mass", "com_from_wrist_pin", "inertia_about_wrist_pin"});
   m.rod.length = rod.number("length");
   m.rod.mass = rod.number("mass");
   m.rod.com_from_wrist_pin = rod.number("com_from_wrist_pin");
   m.rod.inertia_about_wrist_pin = rod.number("inertia_about_wrist_pin");
-  rod.refuseUnknownKeys();
 
-  TableReader piston(root, "piston", source, true);
+  TableReader piston(root, "piston", source, true, {"mass"});
   m.piston.mass = piston.number("mass");
-  piston.refuseUnknownKeys();
 
-  TableReader flywheel(root, "flywheel", source, false);
+  TableReader flywheel(root, "flywheel", source, false, {"inertia"});
   if (flywheel.present()) m.flywheel_inertia = flywheel.number("inertia");
-  flywheel.refuseUnknownKeys();
 
   validateMechanism(m, source);
   return m;
