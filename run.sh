@@ -3,4 +3,4 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 scripts/setup.sh
-build/bin/crankcheck eval scenes/single_cylinder.toml --phi-deg 0,37.5,90,180,270
+build/bin/crankcheck eval scenes/single_cylinder.toml --engine both --phi-deg 0,37.5,90,180,270

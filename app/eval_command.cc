@@ -1,9 +1,11 @@
 #include "eval_command.h"
 
 #include <cmath>
+#include <memory>
 
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
+#include "crankcheck/simbody_models/k_crank_model.h"
 #include "json_output.h"
 #include "usage_error.h"
 
@@ -31,16 +33,35 @@ std::string runEval(const EvalOptions& options) {
   }
   for (double phi : options.phi_deg)
     if (!std::isfinite(phi)) throw UsageError("--phi-deg: angles must be finite numbers");
-  if (options.engine != "analytic")
-    throw UsageError("--engine " + options.engine +
-                     ": the Simbody engine is not built into this version yet; use --engine analytic");
+  const bool use_analytic = options.engine != "simbody";
+  const bool use_simbody = options.engine != "analytic";
+  std::unique_ptr<simbody_models::KCrankModel> model;
+  if (use_simbody) {
+    try {
+      model = std::make_unique<simbody_models::KCrankModel>(m);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(options.scene_path + ": --engine " + options.engine + ": " + e.what());
+    }
+  }
 
+  // One row per angle and engine; for --engine both the analytic row comes first.
   std::vector<Evaluation> results;
   std::vector<double> results_phi_deg;  // the user's angle of each result, printed as given
   for (double phi_deg : options.phi_deg) {
     const double phi = radiansFromDegrees(phi_deg);
-    results.push_back(analytic::calcEvaluation(m, phi));
-    results_phi_deg.push_back(phi_deg);
+    if (use_analytic) {
+      results.push_back(analytic::calcEvaluation(m, phi));
+      results_phi_deg.push_back(phi_deg);
+    }
+    if (use_simbody) {
+      try {
+        results.push_back(model->evaluate(phi));
+      } catch (const std::runtime_error& e) {
+        throw UsageError(options.scene_path + ": --engine " + options.engine + ": Simbody could not evaluate phi = " +
+                         std::to_string(phi_deg) + " deg: " + e.what());
+      }
+      results_phi_deg.push_back(phi_deg);
+    }
   }
 
   if (options.format == "table") return formatTable(m, options.scene_path, results, results_phi_deg);
