@@ -105,6 +105,7 @@ class KCrankModel::Impl {
 
   double reference_potential_ = 0.0;  // V(0)
   double polish_threshold_ = 0.0;     // [m] constraint error below which no extra Newton step is taken
+  double projection_tolerance_ = 0.0; // [m, m/s] options_.projection_tolerance times max(1 m, l + r)
   bool assembled_ = false;
   double assembled_phi_ = 0.0;
 };
@@ -132,6 +133,10 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
   const double r = m_.crank.radius;
   const double l = m_.rod.length;
   polish_threshold_ = 8.0 * std::numeric_limits<double>::epsilon() * (l + r);
+  // Simbody's projections measure constraint errors in absolute units (m, m/s). A very long mechanism (a 50 km
+  // rod at lambda = 1e-6) cannot close its loop to 1e-12 m: roundoff alone is eps l = 1e-11 m. The tolerance is
+  // therefore relative to the mechanism's size, and never tighter than the absolute value for machines below 1 m.
+  projection_tolerance_ = options_.projection_tolerance * std::max(1.0, l + r);
 
   try {
     // Gravity (0, -g): Simbody's potential energy has zero height at the Ground origin O.
@@ -219,12 +224,12 @@ void KCrankModel::Impl::assemble(double phi) {
   state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Time);
 
   auto project = [&]() {
-    system_.projectQ(state_, options_.projection_tolerance);  // prescribes crank q = phi, projects the rest
+    system_.projectQ(state_, projection_tolerance_);  // prescribes crank q = phi, projects the rest
     // projectQ stops as soon as the RMS error is below tolerance * 0.1, which can leave 1e-13 m. One more
     // forced Newton step from there lands on roundoff (errors ~1e-17 m) for the cost of one iteration.
     if (maxAbs(state_.getQErr()) <= polish_threshold_) return;
     SimTK::Vector no_error_estimate;
-    SimTK::ProjectOptions polish(options_.projection_tolerance);
+    SimTK::ProjectOptions polish(projection_tolerance_);
     polish.setOption(SimTK::ProjectOptions::ForceProjection);
     SimTK::ProjectResults results;
     system_.projectQ(state_, no_error_estimate, polish, results);
@@ -258,7 +263,7 @@ void KCrankModel::Impl::solveMotion(double omega) {
   // The prescribed qdot is evaluated at Stage::Position: invalidate it (the q's stay as assembled).
   state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Position);
   try {
-    system_.projectU(state_, options_.projection_tolerance);  // prescribes crank u = omega, projects the rest
+    system_.projectU(state_, projection_tolerance_);  // prescribes crank u = omega, projects the rest
     system_.realize(state_, SimTK::Stage::Acceleration);
   } catch (const std::exception& error) {
     throw std::runtime_error("KCrankModel: Simbody failed to solve the motion at phi = " +
@@ -383,7 +388,7 @@ double KCrankModel::Impl::kineticEnergy(double phi) {
   assemble(phi);
   drive_->omega = m_.engine.speed;
   state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Position);
-  system_.projectU(state_, options_.projection_tolerance);
+  system_.projectU(state_, projection_tolerance_);
   system_.realize(state_, SimTK::Stage::Dynamics);
   return system_.calcKineticEnergy(state_);
 }
@@ -399,7 +404,7 @@ double KCrankModel::Impl::virtualPowerQ(double phi) {
   // Unit crank speed: every body's velocity is then its velocity per unit dphi/dt.
   drive_->omega = 1.0;
   state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Position);
-  system_.projectU(state_, options_.projection_tolerance);
+  system_.projectU(state_, projection_tolerance_);
   system_.realize(state_, SimTK::Stage::Velocity);
   const SimTK::Vector_<SimTK::SpatialVec>& gravity_forces = gravity_.getBodyForces(state_);
   double power = 0.0;

@@ -79,7 +79,10 @@ std::string caseNameWithoutLambda(const CaseSpec& spec) {
 }
 
 std::string caseName(const CaseSpec& spec) {
-  return caseNameWithoutLambda(spec) + "_lambda" + lambdaTag(spec.lambda) + "_" + numberTag(spec.rpm, 0) + "rpm";
+  std::string name = "k" + std::to_string(spec.cylinders) + (spec.cycle == Cycle::kTwoStroke ? "_two" : "_four");
+  if (spec.acting == Acting::kDouble) name += "_double";
+  return name + "_lambda" + lambdaTag(spec.lambda) + "_gamma" + numberTag(spec.gamma_deg, 0) + "_" +
+         numberTag(spec.rpm, 0) + "rpm";
 }
 
 double calcEnergyScale(const Mechanism& m) {

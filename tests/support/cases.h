@@ -37,7 +37,7 @@ struct CaseSpec {
 /// I_o = m_k z_k^2 + m_k (0.27 l)^2, m_s = 1.7 kg at r_s = 0.4 r, m_p = 1.3 kg at r_p = 0.8 r, g = 9.80665.
 Mechanism makeMechanism(const CaseSpec& spec);
 
-/// e.g. "k4_four_lambda0p30_gamma90_3000rpm" (gamma -90 -> "gammam90", double-acting adds "_double").
+/// e.g. "k4_four_lambda0p30_gamma90_3000rpm" (gamma -90 -> "gammam90", double-acting adds "_double" after the stroke).
 std::string caseName(const CaseSpec& spec);
 /// e.g. "0p30", "1em06", "0p999".
 std::string lambdaTag(double lambda);

@@ -31,9 +31,9 @@ namespace crankcheck::simbody_models {
 
 /// Numerical options of the Simbody model.
 struct ModelOptions {
-  /// Required RMS accuracy [m, resp. m/s] of the position and velocity projections (System::projectQ/projectU).
-  /// Simbody's default (1e-4) leaves 0.2 N of reaction error; 1e-12..1e-13 is tight, 1e-14 hits roundoff and
-  /// Simbody throws.
+  /// Required RMS accuracy of the position and velocity projections (System::projectQ/projectU) [m, m/s] for a
+  /// mechanism up to 1 m; multiplied by l + r above that (roundoff of a long rod is eps l). Simbody's default (1e-4) leaves
+  /// 0.2 N of reaction error; 1e-12..1e-13 is tight, 1e-14 hits roundoff and Simbody throws.
   double projection_tolerance = 1e-12;
 };
 
