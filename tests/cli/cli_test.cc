@@ -1,0 +1,152 @@
+// The crankcheck program as a user runs it: JSON for every example scene with both engines, numbers that round-trip
+// exactly, and bad input refused with one message naming the file and key or flag, exit status 2, no output.
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+#include "crankcheck/analytic/reactions.h"
+#include "crankcheck/scene/scene_file.h"
+
+namespace crankcheck {
+namespace {
+
+struct RunResult {
+  int exit_status = -1;
+  std::string out, err;
+};
+
+std::string readFile(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs the CLI with `args` (already shell-quoted), capturing stdout and stderr.
+RunResult run(const std::string& args) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto out = dir / ("crankcheck_cli_out_" + std::to_string(::getpid()));
+  const auto err = dir / ("crankcheck_cli_err_" + std::to_string(::getpid()));
+  const std::string command = std::string(CRANKCHECK_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(command.c_str());
+  RunResult r;
+  r.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = readFile(out);
+  r.err = readFile(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return r;
+}
+
+std::vector<std::filesystem::path> exampleScenes() {
+  std::vector<std::filesystem::path> scenes;
+  for (const auto& entry : std::filesystem::directory_iterator(CRANKCHECK_SCENES_DIR))
+    if (entry.path().extension() == ".toml") scenes.push_back(entry.path());
+  std::sort(scenes.begin(), scenes.end());
+  return scenes;
+}
+
+TEST(Cli, EvalJsonForEveryExampleSceneWithBothEngines) {
+  for (const auto& scene : exampleScenes()) {
+    SCOPED_TRACE(scene.string());
+    const RunResult r = run("eval " + scene.string() + " --phi-deg 0,37.5,90 --engine both --format json");
+    ASSERT_EQ(r.exit_status, 0) << r.err;
+    EXPECT_EQ(r.err, "");
+    const nlohmann::json doc = nlohmann::json::parse(r.out);
+    const Mechanism m = loadSceneFile(scene);
+    EXPECT_DOUBLE_EQ(doc["scene"]["lambda"].get<double>(), calcCrankRatio(m));
+    ASSERT_EQ(doc["results"].size(), 6u);  // 3 angles x 2 engines
+    for (size_t i = 0; i < doc["results"].size(); ++i) {
+      const auto& result = doc["results"][i];
+      EXPECT_EQ(result["engine"], i % 2 == 0 ? "analytic" : "simbody");
+      EXPECT_EQ(result["cylinders"].size(), static_cast<size_t>(m.engine.cylinders));
+      for (const char* key : {"phi_deg", "U", "Q", "drive_torque"}) EXPECT_TRUE(result[key].is_number()) << key;
+      EXPECT_EQ(result["bearing_force"].size(), 2u);
+      for (const auto& c : result["cylinders"]) {
+        for (const char* key : {"x_p", "v_p", "a_p", "wall_force"}) EXPECT_TRUE(c[key].is_number()) << key;
+        EXPECT_EQ(c["crank_pin_force"].size(), 2u);
+        EXPECT_EQ(c["wrist_pin_force"].size(), 2u);
+      }
+    }
+    EXPECT_EQ(doc["results"][2]["phi_deg"].get<double>(), 37.5);
+  }
+}
+
+// 17 significant digits round-trip: the printed numbers are the library's doubles, bit for bit.
+TEST(Cli, JsonNumbersRoundTripExactly) {
+  const auto scene = std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml";
+  const RunResult r = run("eval " + scene.string() + " --phi-deg 37.5 --format json");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  const Evaluation ev = analytic::calcEvaluation(loadSceneFile(scene), radiansFromDegrees(37.5));
+  const auto& result = doc["results"][0];
+  EXPECT_EQ(result["U"].get<double>(), ev.U);
+  EXPECT_EQ(result["Q"].get<double>(), ev.Q);
+  EXPECT_EQ(result["drive_torque"].get<double>(), ev.drive_torque);
+  EXPECT_EQ(result["bearing_force"][1].get<double>(), ev.bearing_force[1]);
+  EXPECT_EQ(result["cylinders"][3]["a_p"].get<double>(), ev.cylinders[3].a_p);
+  EXPECT_EQ(result["cylinders"][2]["crank_pin_force"][0].get<double>(), ev.cylinders[2].crank_pin_force[0]);
+}
+
+TEST(Cli, TableIsTheDefaultFormat) {
+  const auto scene = std::filesystem::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml";
+  const RunResult r = run("eval " + scene.string());
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_NE(r.out.find("drive_torque"), std::string::npos);
+  EXPECT_NE(r.out.find("analytic"), std::string::npos);
+}
+
+struct BadRun {
+  std::string name;
+  std::string args;
+  std::string expected;  // in the message
+};
+
+class CliBadInputTest : public ::testing::TestWithParam<BadRun> {};
+
+TEST_P(CliBadInputTest, ExitsWithStatus2AndOneMessage) {
+  const BadRun& bad = GetParam();
+  const std::string scenes = CRANKCHECK_SCENES_DIR;
+  std::string args = bad.args;
+  for (size_t at; (at = args.find("SCENES")) != std::string::npos;) args.replace(at, 6, scenes);
+  const RunResult r = run(args);
+  EXPECT_EQ(r.exit_status, 2) << r.err;
+  EXPECT_EQ(r.out, "") << "no partial output";
+  EXPECT_NE(r.err.find(bad.expected), std::string::npos) << r.err;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Refusals, CliBadInputTest,
+    ::testing::Values(BadRun{"missing_scene_file", "eval SCENES/no_such_scene.toml", "no_such_scene.toml: file"},
+                      BadRun{"bad_angle_list", "eval SCENES/single_cylinder.toml --phi-deg 0,abc", "--phi-deg"},
+                      BadRun{"bad_engine", "eval SCENES/single_cylinder.toml --engine maple", "--engine"},
+                      BadRun{"bad_format", "eval SCENES/single_cylinder.toml --format xml", "--format"},
+                      BadRun{"unknown_flag", "eval SCENES/single_cylinder.toml --frobnicate", "--frobnicate"},
+                      BadRun{"no_verb", "", "subcommand"},
+                      BadRun{"no_scene", "eval", "scene"},
+                      BadRun{"nan_angle", "eval SCENES/single_cylinder.toml --phi-deg nan", "--phi-deg"}),
+    [](const auto& info) { return info.param.name; });
+
+TEST(Cli, BadSceneNamesFileAndKey) {
+  const auto path = std::filesystem::temp_directory_path() / "crankcheck_cli_bad_scene.toml";
+  {
+    std::ofstream out(path);
+    out << readFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml") << "\n[rod2]\nmass = 1\n";
+  }
+  const RunResult r = run("eval " + path.string() + " --engine both --format json");
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find(path.string() + ": rod2: unknown key"), std::string::npos) << r.err;
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace crankcheck
