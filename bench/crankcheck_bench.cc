@@ -1,0 +1,104 @@
+// Cost per crank angle of each method, measured side by side in one run (Google Benchmark). Ratios between the
+// rows are what the reports use: absolute times drift on shared machines.
+//   build/bin/crankcheck_bench [--benchmark_format=json]
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+
+#include "crankcheck/analytic/gravity_torque.h"
+#include "crankcheck/analytic/kinematics.h"
+#include "crankcheck/analytic/potential_energy.h"
+#include "crankcheck/analytic/reactions.h"
+#include "crankcheck/simbody_models/k_crank_model.h"
+
+namespace crankcheck {
+namespace {
+
+// The same mechanism family as the tests: r = 0.05 m, lambda = 0.3, rod centre of mass off the middle.
+Mechanism benchMechanism(int k) {
+  Mechanism m;
+  m.engine.cylinders = k;
+  m.engine.cycle = Cycle::kFourStroke;
+  m.engine.crank_angles = calcPhaseAngles(k, m.engine.cycle, m.engine.acting);
+  m.engine.cylinder_angle = radiansFromDegrees(90.0);
+  m.engine.speed = 4500.0 * M_PI / 30.0;
+  m.crank = {0.05, 1.7, 0.02, 1.3, 0.04};
+  m.rod = {0.05 / 0.3, 0.61, 0.05, 0.61 * (0.05 * 0.05 + 0.045 * 0.045)};
+  m.piston.mass = 0.43;
+  return m;
+}
+
+// A stream of crank angles that the compiler cannot fold: one turn in 1024 steps, then again.
+double nextAngle(int& i) { return 2.0 * M_PI * ((i++) & 1023) / 1024.0; }
+
+void BM_BareSinCosSqrt(benchmark::State& state) {  // the floor of any closed form: one sin, one cos, one sqrt
+  int i = 0;
+  for (auto _ : state) {
+    const double phi = nextAngle(i);
+    benchmark::DoNotOptimize(std::sin(phi) + std::cos(phi) + std::sqrt(1.0 - 0.09 * std::sin(phi) * std::sin(phi)));
+  }
+}
+BENCHMARK(BM_BareSinCosSqrt);
+
+void BM_AnalyticQ(benchmark::State& state) {
+  const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(analytic::calcGravityTorque(m, nextAngle(i)));
+}
+BENCHMARK(BM_AnalyticQ)->Arg(1)->Arg(4)->Arg(12);
+
+void BM_AnalyticU(benchmark::State& state) {
+  const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(analytic::calcPotentialEnergy(m, nextAngle(i)));
+}
+BENCHMARK(BM_AnalyticU)->Arg(1)->Arg(4)->Arg(12);
+
+void BM_AnalyticKinematics(benchmark::State& state) {
+  const Mechanism m = benchMechanism(1);
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(analytic::calcPistonKinematics(m, nextAngle(i)));
+}
+BENCHMARK(BM_AnalyticKinematics);
+
+void BM_AnalyticReactions(benchmark::State& state) {
+  const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(analytic::calcReactions(m, nextAngle(i)));
+}
+BENCHMARK(BM_AnalyticReactions)->Arg(1)->Arg(4)->Arg(12);
+
+void BM_FourierQ(benchmark::State& state) {  // eq (14), coefficients computed once per call as a user would
+  const Mechanism m = benchMechanism(1);
+  const int order = static_cast<int>(state.range(0));
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(analytic::calcGravityTorqueFourier(m, nextAngle(i), order));
+}
+BENCHMARK(BM_FourierQ)->Arg(2)->Arg(4)->Arg(8)->Arg(12);
+
+void BM_SimbodyEvaluate(benchmark::State& state) {  // U, Q (holding torque), reactions, kinematics
+  simbody_models::KCrankModel model(benchMechanism(static_cast<int>(state.range(0))));
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(model.evaluate(nextAngle(i)));
+}
+BENCHMARK(BM_SimbodyEvaluate)->Arg(1)->Arg(2)->Arg(4)->Arg(6)->Arg(12)->Unit(benchmark::kMicrosecond);
+
+void BM_SimbodyHoldingTorque(benchmark::State& state) {
+  simbody_models::KCrankModel model(benchMechanism(static_cast<int>(state.range(0))));
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(model.calcHoldingTorque(nextAngle(i)));
+}
+BENCHMARK(BM_SimbodyHoldingTorque)->Arg(1)->Arg(2)->Arg(4)->Arg(6)->Arg(12)->Unit(benchmark::kMicrosecond);
+
+void BM_SimbodyPotentialEnergy(benchmark::State& state) {
+  simbody_models::KCrankModel model(benchMechanism(static_cast<int>(state.range(0))));
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(model.calcPotentialEnergy(nextAngle(i)));
+}
+BENCHMARK(BM_SimbodyPotentialEnergy)->Arg(1)->Arg(4)->Arg(12)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+}  // namespace crankcheck
+
+BENCHMARK_MAIN();
