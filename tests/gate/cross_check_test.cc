@@ -9,8 +9,9 @@
 //   F   calcForceScale (forces), T = F max(r, r_s, r_p) (drive torque)
 // Both engines round each quantity at the level of a few eps of its scale; Simbody adds its position projection
 // (solved to 8 eps (l + r), see simbody_models/README.md) which moves forces by F x that relative error, and its
-// accelerations come from a k-body articulated solve (O(10 k) operations). kMultiple = 256 covers these with
-// margin at every case of the sweep; the worst ratios seen are printed with CRANKCHECK_PRINT_RATIOS=1 and listed
+// accelerations come from a k-body articulated solve (O(10 k) operations). The worst error seen over the whole
+// sweep is 9.4 eps x scale x conditioning (x_p; forces 4, torques 1); kMultiple = 64 keeps a margin of about 7
+// for other compilers and libm versions. The worst ratios are printed with CRANKCHECK_PRINT_RATIOS=1 and listed
 // in the README.
 // Conditioning: near lambda = 1 the rod's angular acceleration grows like (1 - lambda^2)^(-1/2) and both engines'
 // rounding is amplified by the loop's condition number 1/(1 - lambda^2); for tiny lambda Simbody's coordinates
@@ -40,7 +41,7 @@ namespace {
 using testing::CaseSpec;
 using testing::kEps;
 
-constexpr double kMultiple = 256;
+constexpr double kMultiple = 64;
 
 // Worst agreement seen per quantity, printed at exit with CRANKCHECK_PRINT_RATIOS=1 (the README's table):
 // the error in units of eps x scale x conditioning (what the tolerance allows 256 of), and the plain error / scale
@@ -85,6 +86,7 @@ class RatioPrinter : public ::testing::Environment {
 
 struct Scales {
   double E, E_V, X, V, A, F, T, conditioning;
+  double closure;  // 1 / sqrt(1 - lambda^2): how much the loop closure amplifies a position error into x_p
 };
 Scales calcScales(const Mechanism& m) {
   const double lambda = m.crank.radius / m.rod.length, r = m.crank.radius, l = m.rod.length;
@@ -101,6 +103,7 @@ Scales calcScales(const Mechanism& m) {
   // (l + r) / r because Simbody holds the rod in absolute coordinates: its roundoff is eps (l + r), i.e. eps / lambda
   // relative to crank-scale quantities (4.3 at lambda = 0.3, 1e6 at lambda = 1e-6, where the rod is 50 km long).
   s.conditioning = stiff * (l + r) / r;
+  s.closure = std::sqrt(stiff);
   return s;
 }
 
@@ -116,7 +119,7 @@ void expectEvaluationsAgree(const Mechanism& m, const Evaluation& a, const Evalu
   for (size_t j = 0; j < a.cylinders.size(); ++j) {
     SCOPED_TRACE("cylinder " + std::to_string(j));
     const CylinderEvaluation &ca = a.cylinders[j], &cs = s.cylinders[j];
-    EXPECT_TRUE(agree("x_p", ca.x_p, cs.x_p, sc.X));
+    EXPECT_TRUE(agree("x_p", ca.x_p, cs.x_p, sc.X, sc.closure));
     EXPECT_TRUE(agree("v_p", ca.v_p, cs.v_p, sc.V, sc.conditioning));
     EXPECT_TRUE(agree("a_p", ca.a_p, cs.a_p, sc.A, sc.conditioning));
     for (int i = 0; i < 2; ++i) {
