@@ -44,7 +44,7 @@ using testing::kEps;
 constexpr double kMultiple = 64;
 
 // Worst agreement seen per quantity, printed at exit with CRANKCHECK_PRINT_RATIOS=1 (the README's table):
-// the error in units of eps x scale x conditioning (what the tolerance allows 256 of), and the plain error / scale
+// the error in units of eps x scale x conditioning (what the tolerance allows kMultiple of), and the plain error / scale
 // over the engine range lambda = 0.05..0.4.
 struct Worst {
   double in_tolerance_units = 0.0;
