@@ -2,20 +2,12 @@
 // quantity: U, Q (holding torque and virtual power), piston kinematics, every reaction and the drive torque;
 // and the paper's formulas "as printed", whose disagreement with Simbody is asserted where they are wrong.
 //
-// Tolerances (CONVENTIONS.md): a multiple of machine epsilon times a physical scale of the case.
-//   E   energy scale k g (r (m_o + m_k) + m_s r_s + m_p r_p)                      (U, Q)
-//   E_V E + k g (m_o + m_k)(l + r): Simbody's U is V(phi) - V(0) of absolute heights up to l + r
-//   X   l + r (positions), V = r w (1 + (1 - lambda^2)^(-1/2)) (velocities), A = calcAccelerationScale
-//   F   calcForceScale (forces), T = F max(r, r_s, r_p) (drive torque)
-// Both engines round each quantity at the level of a few eps of its scale; Simbody adds its position projection
-// (solved to 8 eps (l + r), see simbody_models/README.md) which moves forces by F x that relative error, and its
-// accelerations come from a k-body articulated solve (O(10 k) operations). The worst error seen over the whole
-// sweep is 9.4 eps x scale x conditioning (x_p; forces 4, torques 1); kMultiple = 64 keeps a margin of about 7
-// for other compilers and libm versions. The worst ratios are printed with CRANKCHECK_PRINT_RATIOS=1 and listed
-// in the README.
-// Conditioning: near lambda = 1 the rod's angular acceleration grows like (1 - lambda^2)^(-1/2) and both engines'
-// rounding is amplified by the loop's condition number 1/(1 - lambda^2); for tiny lambda Simbody's coordinates
-// are of size l = r / lambda, so its rounding relative to crank-scale quantities grows like 1/lambda (calcScales).
+// Tolerances: validation/scales.h (the rule shared with `crankcheck validate`): |a - b| <= 64 eps x scale x
+// conditioning, with the scales of docs/CONVENTIONS-crankcheck.md. Both engines round each quantity at the level
+// of a few eps of its scale; Simbody adds its position projection (solved to 8 eps (l + r)) and a k-body
+// articulated solve. Conditioning: near lambda = 1 the loop's condition number 1/(1 - lambda^2); for tiny lambda
+// Simbody's coordinates are of size l = r / lambda, so its rounding relative to crank-scale quantities grows like
+// 1/lambda. The worst ratios are printed with CRANKCHECK_PRINT_RATIOS=1 and listed in the README.
 
 #include <gtest/gtest.h>
 
@@ -34,17 +26,17 @@
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/scales.h"
 
 namespace crankcheck {
 namespace {
 
 using testing::CaseSpec;
-using testing::kEps;
+using validation::kEps;
 
-constexpr double kMultiple = 64;
 
 // Worst agreement seen per quantity, printed at exit with CRANKCHECK_PRINT_RATIOS=1 (the README's table):
-// the error in units of eps x scale x conditioning (what the tolerance allows kMultiple of), and the plain error / scale
+// the error in units of eps x scale x conditioning (what the tolerance allows kAgreementMultiple of), and the plain error / scale
 // over the engine range lambda = 0.05..0.4.
 struct Worst {
   double in_tolerance_units = 0.0;
@@ -66,68 +58,35 @@ class RatioPrinter : public ::testing::Environment {
 };
 [[maybe_unused]] const auto* const kRatioPrinter = ::testing::AddGlobalTestEnvironment(new RatioPrinter);
 
-// |a - b| <= kMultiple eps scale conditioning, printing both sides; records the ratio to the scale.
-::testing::AssertionResult agree(const std::string& quantity, double analytic, double simbody, double scale,
-                                 double conditioning = 1.0) {
-  const double error = std::fabs(analytic - simbody);
-  Worst& worst = worstRatios()[quantity];
-  worst.in_tolerance_units = std::max(worst.in_tolerance_units, error / (kEps * scale * conditioning));
+using validation::Comparison;
+using validation::Scales;
+using validation::calcScales;
+using validation::kAgreementMultiple;
+
+// The agreement rule of validation/scales.h, printing both sides; records the worst ratios.
+::testing::AssertionResult agree(const Comparison& c) {
+  Worst& worst = worstRatios()[c.quantity];
+  worst.in_tolerance_units = std::max(worst.in_tolerance_units, c.error() / (kEps * c.scale * c.conditioning));
   if (g_current_lambda >= 0.05 && g_current_lambda <= 0.4)
-    worst.relative_engine_range = std::max(worst.relative_engine_range, error / scale);
-  const double tol = kMultiple * kEps * scale * conditioning;
-  if (error <= tol) return ::testing::AssertionSuccess();
-  char buffer[320];
+    worst.relative_engine_range = std::max(worst.relative_engine_range, c.error() / c.scale);
+  if (c.agrees()) return ::testing::AssertionSuccess();
+  char buffer[360];
   std::snprintf(buffer, sizeof buffer,
-                "%s: analytic %.17g, simbody %.17g, |difference| %.3e > tol %.3e (= %g eps x scale %.3e x "
+                "%s%s: analytic %.17g, simbody %.17g, |difference| %.3e > tol %.3e (= %g eps x scale %.3e x "
                 "conditioning %.3g)",
-                quantity.c_str(), analytic, simbody, error, tol, kMultiple, scale, conditioning);
+                c.quantity.c_str(), c.cylinder >= 0 ? (" of cylinder " + std::to_string(c.cylinder)).c_str() : "",
+                c.a, c.b, c.error(), c.tolerance(), kAgreementMultiple, c.scale, c.conditioning);
   return ::testing::AssertionFailure() << buffer;
 }
-
-struct Scales {
-  double E, E_V, X, V, A, F, T, conditioning;
-  double closure;  // 1 / sqrt(1 - lambda^2): how much the loop closure amplifies a position error into x_p
-};
-Scales calcScales(const Mechanism& m) {
-  const double lambda = m.crank.radius / m.rod.length, r = m.crank.radius, l = m.rod.length;
-  const double stiff = 1.0 / ((1.0 - lambda) * (1.0 + lambda));
-  Scales s;
-  s.E = testing::calcEnergyScale(m);
-  s.E_V = s.E + m.engine.cylinders * m.engine.gravity * (m.piston.mass + m.rod.mass) * (l + r);
-  s.X = l + r;
-  s.V = r * m.engine.speed * (1.0 + std::sqrt(stiff));
-  s.A = testing::calcAccelerationScale(m);
-  s.F = testing::calcForceScale(m);
-  s.T = testing::calcTorqueScale(m);
-  // 1 / (1 - lambda^2) (1.19 at 0.4, 5.3 at 0.9, 500 at 0.999) for the loop's condition near lambda = 1, times
-  // (l + r) / r because Simbody holds the rod in absolute coordinates: its roundoff is eps (l + r), i.e. eps / lambda
-  // relative to crank-scale quantities (4.3 at lambda = 0.3, 1e6 at lambda = 1e-6, where the rod is 50 km long).
-  s.conditioning = stiff * (l + r) / r;
-  s.closure = std::sqrt(stiff);
-  return s;
+::testing::AssertionResult agree(const std::string& quantity, double analytic, double simbody, double scale,
+                                 double conditioning = 1.0) {
+  return agree(Comparison{quantity, -1, analytic, simbody, scale, conditioning});
 }
 
 // Every quantity of the two engines' Evaluation at one angle.
 void expectEvaluationsAgree(const Mechanism& m, const Evaluation& a, const Evaluation& s) {
-  const Scales sc = calcScales(m);
-  EXPECT_TRUE(agree("U", a.U, s.U, sc.E_V));
-  EXPECT_TRUE(agree("Q (holding torque)", a.Q, s.Q, sc.E, sc.conditioning));
-  EXPECT_TRUE(agree("drive_torque", a.drive_torque, s.drive_torque, sc.T, sc.conditioning));
-  EXPECT_TRUE(agree("bearing_force", a.bearing_force[0], s.bearing_force[0], sc.F, sc.conditioning));
-  EXPECT_TRUE(agree("bearing_force", a.bearing_force[1], s.bearing_force[1], sc.F, sc.conditioning));
   ASSERT_EQ(a.cylinders.size(), s.cylinders.size());
-  for (size_t j = 0; j < a.cylinders.size(); ++j) {
-    SCOPED_TRACE("cylinder " + std::to_string(j));
-    const CylinderEvaluation &ca = a.cylinders[j], &cs = s.cylinders[j];
-    EXPECT_TRUE(agree("x_p", ca.x_p, cs.x_p, sc.X, sc.closure));
-    EXPECT_TRUE(agree("v_p", ca.v_p, cs.v_p, sc.V, sc.conditioning));
-    EXPECT_TRUE(agree("a_p", ca.a_p, cs.a_p, sc.A, sc.conditioning));
-    for (int i = 0; i < 2; ++i) {
-      EXPECT_TRUE(agree("crank_pin_force", ca.crank_pin_force[i], cs.crank_pin_force[i], sc.F, sc.conditioning));
-      EXPECT_TRUE(agree("wrist_pin_force", ca.wrist_pin_force[i], cs.wrist_pin_force[i], sc.F, sc.conditioning));
-    }
-    EXPECT_TRUE(agree("wall_force", ca.wall_force, cs.wall_force, sc.F, sc.conditioning));
-  }
+  for (const Comparison& c : validation::compareEvaluations(m, a, s)) EXPECT_TRUE(agree(c));
 }
 
 class CrossCheckTest : public ::testing::TestWithParam<CaseSpec> {};
@@ -146,7 +105,7 @@ TEST_P(CrossCheckTest, EveryQuantityAgrees) {
       const double phi = radiansFromDegrees(phi_deg);
       const Evaluation a = analytic::calcEvaluation(m, phi);
       expectEvaluationsAgree(m, a, model.evaluate(phi));
-      if (rpm == 0.0) EXPECT_TRUE(agree("Q (virtual power)", a.Q, model.calcVirtualPowerQ(phi), sc.E, sc.conditioning));
+      if (rpm == 0.0) EXPECT_TRUE(agree("Q (virtual power)", a.Q, model.calcVirtualPowerQ(phi), sc.energy, sc.conditioning));
     }
   }
 }
@@ -215,17 +174,17 @@ TEST_P(PaperAsPrintedTest, Eq5AsPrintedDisagreesWithSimbodyUnlessRodIsSymmetric)
     SCOPED_TRACE("phi_deg " + std::to_string(phi_deg));
     const double phi = radiansFromDegrees(phi_deg);
     const double U_simbody = model.calcPotentialEnergy(phi), Q_simbody = model.calcHoldingTorque(phi);
-    EXPECT_TRUE(agree("U", analytic::calcPotentialEnergy(m, phi), U_simbody, sc.E_V));
-    EXPECT_TRUE(agree("Q (holding torque)", analytic::calcGravityTorque(m, phi), Q_simbody, sc.E, sc.conditioning));
+    EXPECT_TRUE(agree("U", analytic::calcPotentialEnergy(m, phi), U_simbody, sc.simbody_energy));
+    EXPECT_TRUE(agree("Q", analytic::calcGravityTorque(m, phi), Q_simbody, sc.energy, sc.conditioning));
     worst_printed = std::max({worst_printed,
                               std::fabs(analytic::calcPotentialEnergy(m, phi, analytic::Eq5Form::kAsPrinted) - U_simbody),
                               std::fabs(analytic::calcGravityTorque(m, phi, analytic::Eq5Form::kAsPrinted) - Q_simbody)});
     EXPECT_TRUE(agree("U", analytic::calcPotentialEnergy(symmetric, phi, analytic::Eq5Form::kAsPrinted),
-                      symmetric_model.calcPotentialEnergy(phi), sc.E_V));
+                      symmetric_model.calcPotentialEnergy(phi), sc.simbody_energy));
   }
   // The misplaced rod weight (m_k g = 6 N, 0.4 l off) makes errors of order 1e-2 of the energy scale: more than
   // 1e9 times the gate's tolerance.
-  EXPECT_GT(worst_printed, 1e-2 * sc.E) << "eq (5) as printed agreed with Simbody";
+  EXPECT_GT(worst_printed, 1e-2 * sc.energy) << "eq (5) as printed agreed with Simbody";
 }
 
 INSTANTIATE_TEST_SUITE_P(Gate, PaperAsPrintedTest,
@@ -251,14 +210,14 @@ TEST(PaperAsPrinted, Eq15TableIsVisiblyTruncatedAtLambda0p4) {
   for (double phi_deg = 0.0; phi_deg < 360.0; phi_deg += 7.5) {
     const double phi = radiansFromDegrees(phi_deg);
     const double Q_simbody = model.calcHoldingTorque(phi);
-    EXPECT_TRUE(agree("Q (eq 14, exact Lambda)", analytic::calcGravityTorqueFourier(m, phi, 60), Q_simbody, sc.E,
+    EXPECT_TRUE(agree("Q (eq 14, exact Lambda)", analytic::calcGravityTorqueFourier(m, phi, 60), Q_simbody, sc.energy,
                       sc.conditioning));
     worst_printed = std::max(worst_printed, std::fabs(analytic::calcGravityTorqueFourier(
                                                           m, phi, 12, analytic::LambdaSource::kAsPrinted) - Q_simbody));
   }
-  const double tol = kMultiple * kEps * sc.E * sc.conditioning;
+  const double tol = kAgreementMultiple * kEps * sc.energy * sc.conditioning;
   EXPECT_GT(worst_printed, 100 * tol) << "the printed Lambda table agreed with Simbody at lambda = 0.4";
-  EXPECT_LT(worst_printed, 1e-4 * sc.E) << "but it is still a close approximation";
+  EXPECT_LT(worst_printed, 1e-4 * sc.energy) << "but it is still a close approximation";
 }
 
 // Norton's two-term piston motion (13.3c-e) against Simbody's: off by O(lambda^3) r w^2 in acceleration, far
@@ -274,7 +233,7 @@ TEST(PaperAsPrinted, NortonTwoTermIsAnApproximationOfSimbodysMotion) {
     const double phi = radiansFromDegrees(phi_deg);
     const CylinderEvaluation s = model.evaluate(phi).cylinders[0];
     const analytic::PistonKinematics norton = analytic::calcPistonKinematicsNorton(m, phi);
-    EXPECT_LE(std::fabs(norton.x_p - s.x_p), bound_x + kMultiple * kEps * sc.X);
+    EXPECT_LE(std::fabs(norton.x_p - s.x_p), bound_x + kAgreementMultiple * kEps * sc.position);
     worst_a = std::max(worst_a, std::fabs(norton.a_p - s.a_p));
   }
   EXPECT_GT(worst_a, 1e-3 * m.crank.radius * m.engine.speed * m.engine.speed);

@@ -85,27 +85,7 @@ std::string caseName(const CaseSpec& spec) {
          numberTag(spec.rpm, 0) + "rpm";
 }
 
-double calcEnergyScale(const Mechanism& m) {
-  return m.engine.cylinders * m.engine.gravity *
-         (m.crank.radius * (m.piston.mass + m.rod.mass) + m.crank.mass * m.crank.com_radius +
-          m.crank.counterweight_mass * m.crank.counterweight_radius);
-}
-
-double calcAccelerationScale(const Mechanism& m) {
-  const double lambda = m.crank.radius / m.rod.length;
-  const double w = m.engine.speed;
-  return m.engine.gravity + m.crank.radius * w * w * (1.0 + std::pow((1.0 - lambda) * (1.0 + lambda), -1.5));
-}
-
-double calcForceScale(const Mechanism& m) {
-  const double mass = m.piston.mass + m.rod.mass + m.rod.inertia_about_wrist_pin / (m.rod.length * m.rod.length) +
-                      m.crank.mass + m.crank.counterweight_mass;
-  return m.engine.cylinders * mass * calcAccelerationScale(m);
-}
-
-double calcTorqueScale(const Mechanism& m) {
-  return calcForceScale(m) * std::max({m.crank.radius, m.crank.com_radius, m.crank.counterweight_radius});
-}
+void PrintTo(const CaseSpec& spec, std::ostream* os) { *os << caseName(spec); }
 
 ::testing::AssertionResult isClose(double a, double b, double tol) {
   const double diff = std::fabs(a - b);

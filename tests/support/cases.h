@@ -11,10 +11,11 @@
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/scales.h"
 
 namespace crankcheck::testing {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+using validation::kEps;
 
 /// The sweep values of the issues: lambda 0.05 .. 0.4 plus the hard values, the cylinder angles.
 const std::vector<double>& sweepLambdas();      // 1e-6, 0.05, 0.1, ..., 0.4, 0.9, 0.999
@@ -43,17 +44,14 @@ std::string caseName(const CaseSpec& spec);
 std::string lambdaTag(double lambda);
 /// e.g. "k4_four_gamma90".
 std::string caseNameWithoutLambda(const CaseSpec& spec);
+/// Prints a case by its name (gtest and ctest show parameters with it).
+void PrintTo(const CaseSpec& spec, std::ostream* os);
 
-/// Energy scale [J] for U and Q (torque scale for Q is the same number in N m per radian):
-/// k g (r (m_o + m_k) + m_s r_s + m_p r_p).
-double calcEnergyScale(const Mechanism& m);
-/// Acceleration scale [m/s^2]: g + r omega^2 (1 + 1/(1 - lambda^2)^(3/2)) (the rod's angular acceleration and
-/// the piston's grow like (1 - lambda^2)^(-3/2) near lambda = 1).
-double calcAccelerationScale(const Mechanism& m);
-/// Force scale [N]: k (m_o + m_k + I_o / l^2 + m_s + m_p) times the acceleration scale.
-double calcForceScale(const Mechanism& m);
-/// Torque scale [N m]: force scale times max(r, r_s, r_p).
-double calcTorqueScale(const Mechanism& m);
+// The physical scales of a case live in the validation library, shared with `crankcheck validate`.
+using validation::calcAccelerationScale;
+using validation::calcEnergyScale;
+using validation::calcForceScale;
+using validation::calcTorqueScale;
 
 /// |a - b| <= tol, printing both values, their difference and the tolerance on failure.
 ::testing::AssertionResult isClose(double a, double b, double tol);

@@ -1,0 +1,73 @@
+#include "crankcheck/validation/scales.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace crankcheck::validation {
+
+double calcEnergyScale(const Mechanism& m) {
+  return m.engine.cylinders * m.engine.gravity *
+         (m.crank.radius * (m.piston.mass + m.rod.mass) + m.crank.mass * m.crank.com_radius +
+          m.crank.counterweight_mass * m.crank.counterweight_radius);
+}
+
+double calcAccelerationScale(const Mechanism& m) {
+  const double lambda = m.crank.radius / m.rod.length;
+  const double w = m.engine.speed;
+  return m.engine.gravity + m.crank.radius * w * w * (1.0 + std::pow((1.0 - lambda) * (1.0 + lambda), -1.5));
+}
+
+double calcForceScale(const Mechanism& m) {
+  const double mass = m.piston.mass + m.rod.mass + m.rod.inertia_about_wrist_pin / (m.rod.length * m.rod.length) +
+                      m.crank.mass + m.crank.counterweight_mass;
+  return m.engine.cylinders * mass * calcAccelerationScale(m);
+}
+
+double calcTorqueScale(const Mechanism& m) {
+  return calcForceScale(m) * std::max({m.crank.radius, m.crank.com_radius, m.crank.counterweight_radius});
+}
+
+Scales calcScales(const Mechanism& m) {
+  const double r = m.crank.radius, l = m.rod.length, lambda = r / l;
+  const double stiff = 1.0 / ((1.0 - lambda) * (1.0 + lambda));
+  Scales s;
+  s.energy = calcEnergyScale(m);
+  s.simbody_energy = s.energy + m.engine.cylinders * m.engine.gravity * (m.piston.mass + m.rod.mass) * (l + r);
+  s.position = l + r;
+  s.velocity = r * m.engine.speed * (1.0 + std::sqrt(stiff));
+  s.acceleration = calcAccelerationScale(m);
+  s.force = calcForceScale(m);
+  s.torque = calcTorqueScale(m);
+  s.conditioning = stiff * (l + r) / r;
+  s.closure = std::sqrt(stiff);
+  return s;
+}
+
+double Comparison::error() const { return std::fabs(a - b); }
+double Comparison::tolerance() const { return kAgreementMultiple * kEps * scale * conditioning; }
+
+std::vector<Comparison> compareEvaluations(const Mechanism& m, const Evaluation& a, const Evaluation& s) {
+  const Scales sc = calcScales(m);
+  std::vector<Comparison> out;
+  out.push_back({"U", -1, a.U, s.U, sc.simbody_energy, 1.0});
+  out.push_back({"Q", -1, a.Q, s.Q, sc.energy, sc.conditioning});
+  out.push_back({"drive_torque", -1, a.drive_torque, s.drive_torque, sc.torque, sc.conditioning});
+  for (int i = 0; i < 2; ++i)
+    out.push_back({"bearing_force", -1, a.bearing_force[i], s.bearing_force[i], sc.force, sc.conditioning});
+  const size_t k = std::min(a.cylinders.size(), s.cylinders.size());
+  for (size_t j = 0; j < k; ++j) {
+    const CylinderEvaluation &ca = a.cylinders[j], &cs = s.cylinders[j];
+    const int c = static_cast<int>(j);
+    out.push_back({"x_p", c, ca.x_p, cs.x_p, sc.position, sc.closure});
+    out.push_back({"v_p", c, ca.v_p, cs.v_p, sc.velocity, sc.conditioning});
+    out.push_back({"a_p", c, ca.a_p, cs.a_p, sc.acceleration, sc.conditioning});
+    for (int i = 0; i < 2; ++i) {
+      out.push_back({"crank_pin_force", c, ca.crank_pin_force[i], cs.crank_pin_force[i], sc.force, sc.conditioning});
+      out.push_back({"wrist_pin_force", c, ca.wrist_pin_force[i], cs.wrist_pin_force[i], sc.force, sc.conditioning});
+    }
+    out.push_back({"wall_force", c, ca.wall_force, cs.wall_force, sc.force, sc.conditioning});
+  }
+  return out;
+}
+
+}  // namespace crankcheck::validation
