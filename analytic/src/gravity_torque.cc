@@ -1,5 +1,6 @@
 #include "crankcheck/analytic/gravity_torque.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -108,13 +109,17 @@ std::vector<TorqueHarmonic> calcGravityTorqueHarmonics(const Mechanism& m, int o
   return harmonics;
 }
 
-double calcGravityTorqueSummed(const Mechanism& m, double phi, int order, LambdaSource source, Eq5Form form) {
+double evaluateTorqueHarmonics(const std::vector<TorqueHarmonic>& harmonics, double phi) {
   double Q = 0.0;
-  for (const TorqueHarmonic& h : calcGravityTorqueHarmonics(m, order, source, form)) {
+  for (const TorqueHarmonic& h : harmonics) {
     const SinCos e = calcSinCos(h.n * phi);
     Q += h.cos_coefficient * e.cos + h.sin_coefficient * e.sin;  // Stanczak eq (16)
   }
   return Q;
+}
+
+double calcGravityTorqueSummed(const Mechanism& m, double phi, int order, LambdaSource source, Eq5Form form) {
+  return evaluateTorqueHarmonics(calcGravityTorqueHarmonics(m, order, source, form), phi);
 }
 
 std::vector<int> findSurvivingHarmonics(int cylinders, Cycle cycle, Acting acting, int max_order) {
@@ -133,6 +138,25 @@ std::vector<int> findSurvivingHarmonics(int cylinders, Cycle cycle, Acting actin
     if (survives) survivors.push_back(n);
   }
   return survivors;
+}
+
+}  // namespace crankcheck::analytic
+
+namespace crankcheck::analytic {
+
+std::optional<bool> getPaperHarmonicClaim(int cylinders, Cycle cycle, int n) {
+  if (n < 1 || n > 12 || (n > 1 && n % 2 != 0)) return std::nullopt;
+  if (cycle == Cycle::kTwoStroke) {
+    // Table 1, transcribed: for each W_n, the k for which it is marked nonzero.
+    static const std::vector<std::vector<int>> kTable1 = {
+        /* n = 1 */ {1}, /* 2 */ {1, 2}, /* 4 */ {1, 2, 4}, /* 6 */ {1, 2, 3, 6},
+        /* 8 */ {1, 2, 4, 8}, /* 10 */ {1, 2, 5, 10}, /* 12 */ {1, 2, 3, 4, 6, 12}};
+    const std::vector<int>& ks = kTable1[n == 1 ? 0 : n / 2];
+    return std::find(ks.begin(), ks.end(), cylinders) != ks.end();
+  }
+  // Eq (18): chi = k for k = 1, 2 (the n = 1 terms), orders n = nu k / 2 that are whole numbers.
+  if (n == 1) return cylinders <= 2;
+  return (2 * n) % cylinders == 0;
 }
 
 }  // namespace crankcheck::analytic

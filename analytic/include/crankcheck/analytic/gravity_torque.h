@@ -4,6 +4,7 @@
 /// harmonics that survive the sum over throws (the paper's tables 1 and 2), computed, not tabulated.
 /// The static torque that holds the shaft against gravity is +Q (CONVENTIONS.md).
 
+#include <optional>
 #include <vector>
 
 #include "crankcheck/analytic/potential_energy.h"
@@ -44,6 +45,9 @@ std::vector<TorqueHarmonic> calcGravityTorqueHarmonics(const Mechanism& m, int o
                                                        LambdaSource source = LambdaSource::kExact,
                                                        Eq5Form form = Eq5Form::kDerived);
 
+/// sum_n cos_coefficient cos(n phi) + sin_coefficient sin(n phi): eq (16) from harmonics computed once.
+double evaluateTorqueHarmonics(const std::vector<TorqueHarmonic>& harmonics, double phi);
+
 /// Eq (16): Q(phi) from calcGravityTorqueHarmonics.
 double calcGravityTorqueSummed(const Mechanism& m, double phi, int order, LambdaSource source = LambdaSource::kExact,
                                Eq5Form form = Eq5Form::kDerived);
@@ -55,5 +59,10 @@ double calcGravityTorqueSummed(const Mechanism& m, double phi, int order, Lambda
 /// Two-stroke single-acting: n survives iff k divides n (the paper's table 1).
 /// @throws std::invalid_argument if cylinders < 1 or max_order < 1.
 std::vector<int> findSurvivingHarmonics(int cylinders, Cycle cycle, Acting acting, int max_order);
+
+/// What the paper claims about harmonic n of a single-acting k-cylinder engine: for two-stroke its table 1, for
+/// four-stroke eq (18) (p = k/2, chi = k for k = 1, 2, "half-integer" orders zero; the scan holds no table 2).
+/// The paper stops at W_12: returns std::nullopt for n > 12 and for odd n > 1 (not in eq 14).
+std::optional<bool> getPaperHarmonicClaim(int cylinders, Cycle cycle, int n);
 
 }  // namespace crankcheck::analytic
