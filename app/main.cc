@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "eval_command.h"
+#include "validate_command.h"
 #include "usage_error.h"
 
 int main(int argc, char** argv) {
@@ -18,6 +19,17 @@ int main(int argc, char** argv) {
       "eval", "Evaluate U, Q, drive torque, reactions and piston kinematics of a scene at given crank angles");
   crankcheck::app::addEvalOptions(*eval_cmd, eval);
 
+  crankcheck::app::ValidateOptions validate;
+  CLI::App* validate_cmd = app.add_subcommand(
+      "validate", "The main job: cross-check both engines over a campaign and write the report (figures, CSV, index)");
+  crankcheck::app::addValidateOptions(*validate_cmd, validate);
+
+  crankcheck::app::MergeOptions merge;
+  CLI::App* report_cmd = app.add_subcommand("report", "Work with reports");
+  report_cmd->require_subcommand(1);
+  CLI::App* merge_cmd = report_cmd->add_subcommand("merge", "Merge shards of 'validate --shard I/N' into one report");
+  crankcheck::app::addMergeOptions(*merge_cmd, merge);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {  // --help, --version
@@ -28,6 +40,8 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (validate_cmd->parsed()) return crankcheck::app::runValidate(validate);
+    if (merge_cmd->parsed()) return crankcheck::app::runMerge(merge);
     std::string output;
     if (eval_cmd->parsed()) output = crankcheck::app::runEval(eval);
     std::fwrite(output.data(), 1, output.size(), stdout);  // only complete results are ever printed
@@ -35,5 +49,8 @@ int main(int argc, char** argv) {
   } catch (const crankcheck::app::UsageError& e) {
     std::cerr << "crankcheck: " << e.what() << "\n";
     return 2;
+  } catch (const std::exception& e) {  // not the user's fault: a failure of the harness or its tools
+    std::cerr << "crankcheck: error: " << e.what() << "\n";
+    return 1;
   }
 }

@@ -446,4 +446,10 @@ double KCrankModel::calcQByCentralDifference(double phi, double h) {
 
 const Mechanism& KCrankModel::mechanism() const { return impl_->mechanism(); }
 
+std::string getSimbodyVersion() {
+  int major = 0, minor = 0, build = 0;
+  SimTK_version_simbody(&major, &minor, &build);
+  return std::to_string(major) + "." + std::to_string(minor) + "." + std::to_string(build);
+}
+
 }  // namespace crankcheck::simbody_models

@@ -22,6 +22,7 @@
 ///  - gravity: Force::Gravity, (0, -g).
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "crankcheck/scene/evaluation.h"
@@ -126,5 +127,8 @@ class KCrankModel {
   class Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// The version of the Simbody library linked in, "major.minor.build" (for reports).
+std::string getSimbodyVersion();
 
 }  // namespace crankcheck::simbody_models

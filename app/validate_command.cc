@@ -1,0 +1,212 @@
+#include "validate_command.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include "crankcheck/scene/scene_file.h"
+#include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/report.h"
+#include "usage_error.h"
+
+namespace crankcheck::app {
+namespace fs = std::filesystem;
+using validation::TableSet;
+using validation::Task;
+
+void addValidateOptions(CLI::App& command, ValidateOptions& options) {
+  command.add_option("scenes", options.scene_paths,
+                     "Scene files (TOML) to cross-check; none: the built-in default campaign");
+  command.add_option("--out", options.out, "Report folder (replaced atomically when the run completes)")
+      ->capture_default_str();
+  command.add_flag("--quick", options.quick, "A fast smoke run: fewer lambdas, angles and methods");
+  command.add_option("--jobs", options.jobs, "Worker threads (default: one per core)")->check(CLI::Range(1, 1024));
+  command.add_option("--shard", options.shard,
+                     "Run only part I of N (0-based) of the campaign and write its data for 'crankcheck report merge'");
+}
+
+void addMergeOptions(CLI::App& command, MergeOptions& options) {
+  command.add_option("shards", options.shard_dirs, "Shard folders written by 'crankcheck validate --shard I/N'")
+      ->required();
+  command.add_option("--out", options.out, "Report folder")->capture_default_str();
+}
+
+namespace {
+
+// Removes a staging folder unless it was installed.
+class StagingGuard {
+ public:
+  explicit StagingGuard(fs::path path) : path_(std::move(path)) {}
+  ~StagingGuard() {
+    std::error_code ec;
+    if (!path_.empty()) fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+  void release() { path_.clear(); }
+
+ private:
+  fs::path path_;
+};
+
+fs::path stage(const std::string& out) {
+  try {
+    return validation::createStagingDirectory(out);
+  } catch (const std::exception& e) {
+    throw UsageError("--out " + std::string(e.what()));
+  }
+}
+
+// Runs the tasks, those that measure time alone after the others; shows progress when stderr is a terminal.
+TableSet runTasks(const std::vector<Task>& tasks, int jobs) {
+  const bool progress = ::isatty(STDERR_FILENO);
+  std::vector<TableSet> results(tasks.size());
+  std::vector<std::string> errors;
+  std::mutex mutex;
+  std::atomic<size_t> next{0}, done{0};
+  auto runOne = [&](size_t i) {
+    try {
+      results[i] = tasks[i].run();
+    } catch (const std::exception& e) {
+      std::lock_guard<std::mutex> lock(mutex);
+      errors.push_back(tasks[i].id + ": " + e.what());
+    }
+    const size_t finished = ++done;
+    if (progress) {
+      std::lock_guard<std::mutex> lock(mutex);
+      std::fprintf(stderr, "\r\033[K[%3zu/%zu] %s", finished, tasks.size(), tasks[i].id.c_str());
+      std::fflush(stderr);
+    }
+  };
+  std::vector<size_t> parallel, serial;
+  for (size_t i = 0; i < tasks.size(); ++i) (tasks[i].measures_time ? serial : parallel).push_back(i);
+  std::vector<std::thread> workers;
+  for (int w = 0; w < jobs; ++w)
+    workers.emplace_back([&] {
+      for (size_t n; (n = next++) < parallel.size();) runOne(parallel[n]);
+    });
+  for (auto& worker : workers) worker.join();
+  for (size_t i : serial) runOne(i);
+  if (progress) std::fprintf(stderr, "\r\033[K");
+  if (!errors.empty()) {
+    std::string message = "the campaign could not run:";
+    for (const auto& e : errors) message += "\n  " + e;
+    throw std::runtime_error(message);
+  }
+  TableSet merged;
+  for (const TableSet& r : results) validation::appendTables(merged, r);
+  return merged;
+}
+
+int reportAndInstall(const TableSet& tables, const validation::ReportInfo& info, StagingGuard& staging,
+                     const std::string& out) {
+  validation::renderReport(tables, info, staging.path());
+  validation::installDirectory(staging.path(), out);
+  staging.release();
+  const std::vector<validation::SummaryRow> summary = validation::summarize(tables);
+  const bool pass = std::all_of(summary.begin(), summary.end(), [](const auto& s) { return s.pass; });
+  std::cout << validation::formatSummary(summary) << "\n"
+            << (pass ? "All comparisons agree." : "SOME COMPARISONS FAIL (see the summary).") << "\n"
+            << "Report: " << (fs::path(out) / "index.md").string() << " (also index.html)\n";
+  return pass ? 0 : 1;
+}
+
+}  // namespace
+
+int runValidate(const ValidateOptions& options) {
+  validation::CampaignOptions campaign;
+  campaign.quick = options.quick;
+  std::set<std::string> names;
+  for (const std::string& path : options.scene_paths) {
+    try {
+      campaign.scenes.push_back(loadSceneFile(path));
+    } catch (const SceneError& e) {
+      throw UsageError(e.what());
+    }
+    if (!names.insert(campaign.scenes.back().name).second)
+      throw UsageError(path + ": a scene named " + campaign.scenes.back().name + " is given twice");
+    const Mechanism& m = campaign.scenes.back();
+    if (!(m.rod.mass > 0 && m.rod.inertia_about_wrist_pin > 0))
+      throw UsageError(path + ": [rod].mass and [rod].inertia_about_wrist_pin must be > 0 for the Simbody engine");
+  }
+  int shard_index = 0, shard_count = 1;
+  if (!options.shard.empty()) {
+    char extra = 0;
+    if (std::sscanf(options.shard.c_str(), "%d/%d%c", &shard_index, &shard_count, &extra) != 2 || shard_count < 1 ||
+        shard_index < 0 || shard_index >= shard_count)
+      throw UsageError("--shard " + options.shard + ": expected I/N with 0 <= I < N, e.g. --shard 0/4");
+  }
+  const int jobs = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
+  StagingGuard staging(stage(options.out));
+
+  const std::vector<Task> all = validation::buildCampaign(campaign);
+  std::vector<Task> mine;
+  for (size_t i = 0; i < all.size(); ++i)
+    if (static_cast<int>(i % shard_count) == shard_index) mine.push_back(all[i]);
+  const auto start = std::chrono::steady_clock::now();
+  TableSet tables;
+  try {
+    tables = runTasks(mine, jobs);
+  } catch (const std::runtime_error& e) {
+    std::cerr << "crankcheck: " << e.what() << "\n";
+    return 1;
+  }
+  validation::ReportInfo info;
+  info.quick = options.quick;
+  info.jobs = jobs;
+  info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  if (shard_count > 1) {
+    validation::sortTables(tables);
+    validation::writeTables(tables, staging.path());
+    validation::ShardManifest manifest{shard_index, shard_count, options.quick, {}, static_cast<int>(all.size())};
+    for (const Mechanism& m : campaign.scenes) manifest.scenes.push_back(m.name);
+    validation::writeShardManifest(manifest, staging.path());
+    validation::installDirectory(staging.path(), options.out);
+    staging.release();
+    const auto summary = validation::summarize(tables);
+    const bool pass = std::all_of(summary.begin(), summary.end(), [](const auto& s) { return s.pass; });
+    std::cout << "Shard " << shard_index << "/" << shard_count << " (" << mine.size() << " of " << all.size()
+              << " tasks) written to " << options.out << (pass ? "" : "; SOME COMPARISONS FAIL")
+              << ". Merge the shards with: crankcheck report merge SHARD_DIR... --out DIR\n";
+    return pass ? 0 : 1;
+  }
+  return reportAndInstall(tables, info, staging, options.out);
+}
+
+int runMerge(const MergeOptions& options) {
+  TableSet tables;
+  std::set<int> seen;
+  validation::ShardManifest first;
+  for (size_t i = 0; i < options.shard_dirs.size(); ++i) {
+    const std::string& dir = options.shard_dirs[i];
+    validation::ShardManifest manifest;
+    try {
+      manifest = validation::readShardManifest(dir);
+      validation::appendTables(tables, validation::readTables(dir));
+    } catch (const std::runtime_error& e) {
+      throw UsageError(e.what());
+    }
+    if (i == 0) first = manifest;
+    if (manifest.count != first.count || manifest.quick != first.quick || manifest.scenes != first.scenes ||
+        manifest.tasks != first.tasks)
+      throw UsageError(dir + ": shard of a different campaign than " + options.shard_dirs[0]);
+    if (!seen.insert(manifest.index).second) throw UsageError(dir + ": shard " + std::to_string(manifest.index) + " given twice");
+  }
+  if (static_cast<int>(seen.size()) != first.count)
+    throw UsageError("shards: " + std::to_string(seen.size()) + " of " + std::to_string(first.count) + " given; all are needed");
+  StagingGuard staging(stage(options.out));
+  validation::ReportInfo info;
+  info.quick = first.quick;
+  info.shards = first.count;
+  return reportAndInstall(tables, info, staging, options.out);
+}
+
+}  // namespace crankcheck::app

@@ -1,0 +1,34 @@
+#pragma once
+/// @file
+/// `crankcheck validate [SCENE...] [--out DIR] [--quick] [--jobs N] [--shard I/N]` and
+/// `crankcheck report merge SHARD_DIR... --out DIR`.
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace crankcheck::app {
+
+struct ValidateOptions {
+  std::vector<std::string> scene_paths;
+  std::string out = "out/report";
+  bool quick = false;
+  int jobs = 0;            ///< 0: one per core
+  std::string shard;       ///< "I/N", empty = the whole campaign
+};
+
+struct MergeOptions {
+  std::vector<std::string> shard_dirs;
+  std::string out = "out/report";
+};
+
+void addValidateOptions(CLI::App& command, ValidateOptions& options);
+void addMergeOptions(CLI::App& command, MergeOptions& options);
+
+/// Runs the campaign and writes the report (or the shard). Returns the exit status: 0 when every comparison that
+/// should hold holds, 1 otherwise. @throws UsageError for bad scenes or flags (exit status 2).
+int runValidate(const ValidateOptions& options);
+/// Merges shards into one report; same exit statuses.
+int runMerge(const MergeOptions& options);
+
+}  // namespace crankcheck::app

@@ -1,0 +1,63 @@
+#pragma once
+/// @file
+/// The validation campaign behind `crankcheck validate`: a list of independent tasks (so that they can run on
+/// several threads or be cut into shards), each producing rows of the report's tables.
+///
+/// Tables (CSV stems, columns in docs of reports/README.md):
+///   crosscheck            family,case,lambda,quantity,worst_rel_error,where_phi_deg,where_speed_rpm,tolerance_rel,pass
+///   error_vs_lambda       quantity,method,lambda,max_abs_error,max_rel_error
+///   speed_vs_error        method,ns_per_eval,max_rel_error
+///   harmonics             cycle,k,n,simbody_amplitude,analytic_amplitude,paper_nonzero
+///   gravity_significance  cycle,k,max_abs_Q,ratio_to_k1,max_inertia_torque,ratio_to_inertia,simbody_max_abs_Q
+///   norton_fig13_8        crank_angle_deg,x_exact,x_two_term,v_exact,v_two_term,a_exact,a_two_term
+///   errata                item,printed,holds,max_abs_difference,scale,relative_difference
+///   scenes                family,cylinders,cycle,acting,gamma_deg,speed_rpm,r,l,lambda,m_o,m_k,z_k,I_o,m_s,r_s,m_p,r_p
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "crankcheck/scene/mechanism.h"
+
+namespace crankcheck::validation {
+
+/// One table of the report: a header and rows of already formatted fields (numbers as %.17g, no commas).
+struct Table {
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;
+};
+/// Tables by name (the CSV file stem).
+using TableSet = std::map<std::string, Table>;
+
+/// Appends `from`'s rows to `into`. @throws std::runtime_error if a table's columns differ.
+void appendTables(TableSet& into, const TableSet& from);
+
+/// Sorts every table's rows, column by column, numerically where both fields are numbers: the report is the
+/// same whatever the order tasks ran in, on one thread, several, or in shards.
+void sortTables(TableSet& tables);
+
+struct CampaignOptions {
+  bool quick = false;               ///< fewer lambdas, angles and methods: a smoke test of the whole report
+  std::vector<Mechanism> scenes;    ///< the families to cross-check; empty = the built-in default campaign
+};
+
+/// One independent unit of work.
+struct Task {
+  std::string id;                   ///< e.g. "crosscheck inline4_four_gamma90 lambda=0.3"
+  bool measures_time = false;       ///< must run alone (its timings would suffer from parallel work)
+  std::function<TableSet()> run;
+};
+
+/// The built-in scenes: a single cylinder (gamma 90, 0, 180, -90), inline 2, 3, 4, 6, 8, 12 in both strokes,
+/// an inline four at gamma 0, 180, -90, a marine-size and a small-engine scale.
+std::vector<Mechanism> buildDefaultScenes();
+
+/// The campaign: cross-checks of every family over lambda (its own and 0.1 .. 0.9), and the data of every report
+/// figure. With options.scenes the first scene is the base of the lambda sweeps and figures.
+std::vector<Task> buildCampaign(const CampaignOptions& options);
+
+/// %.17g
+std::string formatNumber(double x);
+
+}  // namespace crankcheck::validation

@@ -1,0 +1,19 @@
+#pragma once
+/// @file
+/// Cost per call of several functions, measured side by side in one Google Benchmark run (in-process), so that
+/// the report's speed figures are ratios of one run on one machine.
+
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace crankcheck::validation {
+
+/// Runs each function under Google Benchmark for at least `min_seconds` and returns nanoseconds per call by name.
+/// The functions must defeat the optimizer themselves (benchmark::DoNotOptimize on their result).
+std::map<std::string, double> measureNanosecondsPerCall(
+    const std::vector<std::pair<std::string, std::function<void()>>>& functions, double min_seconds);
+
+}  // namespace crankcheck::validation

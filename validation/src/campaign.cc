@@ -1,0 +1,525 @@
+#include "crankcheck/validation/campaign.h"
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <stdexcept>
+
+#include "crankcheck/analytic/fourier_series.h"
+#include "crankcheck/analytic/gravity_torque.h"
+#include "crankcheck/analytic/kinematics.h"
+#include "crankcheck/analytic/potential_energy.h"
+#include "crankcheck/analytic/reactions.h"
+#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/scales.h"
+#include "crankcheck/validation/timing.h"
+
+namespace crankcheck::validation {
+
+std::string formatNumber(double x) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x + 0.0);
+  return buffer;
+}
+
+void appendTables(TableSet& into, const TableSet& from) {
+  for (const auto& [name, table] : from) {
+    auto [it, inserted] = into.try_emplace(name, table);
+    if (inserted) continue;
+    if (it->second.columns != table.columns) throw std::runtime_error("table " + name + ": columns differ");
+    it->second.rows.insert(it->second.rows.end(), table.rows.begin(), table.rows.end());
+  }
+}
+
+namespace {
+
+bool parseNumber(const std::string& s, double& x) {
+  if (s.empty()) return false;
+  char* end = nullptr;
+  x = std::strtod(s.c_str(), &end);
+  return end == s.c_str() + s.size();
+}
+
+bool rowLess(const std::vector<std::string>& a, const std::vector<std::string>& b) {
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    double x, y;
+    if (parseNumber(a[i], x) && parseNumber(b[i], y)) {
+      if (x != y) return x < y;
+    } else if (a[i] != b[i]) {
+      return a[i] < b[i];
+    }
+  }
+  return a.size() < b.size();
+}
+
+}  // namespace
+
+void sortTables(TableSet& tables) {
+  for (auto& [name, table] : tables) std::stable_sort(table.rows.begin(), table.rows.end(), rowLess);
+}
+
+namespace {
+
+using analytic::Eq5Form;
+using analytic::LambdaSource;
+
+std::string num(double x) { return formatNumber(x); }
+
+// ------------------------------------------------------------------------------------------------------------
+// Scenes
+
+Mechanism makeScene(const std::string& name, int k, Cycle cycle, double gamma_deg, double rpm) {
+  Mechanism m;
+  m.name = name;
+  m.engine.cylinders = k;
+  m.engine.cycle = cycle;
+  m.engine.crank_angles = calcPhaseAngles(k, cycle, Acting::kSingle);
+  m.engine.cylinder_angle = radiansFromDegrees(gamma_deg);
+  m.speed_rpm = rpm;
+  m.engine.speed = rpm * (M_PI / 30.0);
+  // A passenger-car cylinder (the example scene scenes/single_cylinder.toml).
+  m.crank = {0.043, 1.2, 0.02, 0.8, 0.035};
+  m.rod = {0.145, 0.55, 0.105, 0.0072};
+  m.piston.mass = 0.35;
+  m.flywheel_inertia = 0.15;
+  return m;
+}
+
+std::string gammaTag(double gamma_deg) {
+  return "gamma" + std::string(gamma_deg < 0 ? "m" : "") + std::to_string(static_cast<int>(std::fabs(gamma_deg)));
+}
+
+// The same mechanism with crank ratio lambda: the rod is lengthened or shortened (r fixed), its centre of mass
+// stays at the same fraction of its length and its radius of gyration scales with it.
+Mechanism withLambda(const Mechanism& base, double lambda) {
+  Mechanism m = base;
+  const double scale = (base.crank.radius / lambda) / base.rod.length;
+  m.rod.length = base.crank.radius / lambda;
+  m.rod.com_from_wrist_pin = base.rod.com_from_wrist_pin * scale;
+  m.rod.inertia_about_wrist_pin = base.rod.inertia_about_wrist_pin * scale * scale;
+  return m;
+}
+
+Mechanism withCylinders(const Mechanism& base, int k, Cycle cycle) {
+  Mechanism m = base;
+  m.engine.cylinders = k;
+  m.engine.cycle = cycle;
+  m.engine.acting = Acting::kSingle;
+  m.engine.explicit_crank_angles = false;
+  m.engine.crank_angles = calcPhaseAngles(k, cycle, Acting::kSingle);
+  return m;
+}
+
+Mechanism withSpeed(const Mechanism& base, double rpm) {
+  Mechanism m = base;
+  m.speed_rpm = rpm;
+  m.engine.speed = rpm * (M_PI / 30.0);
+  return m;
+}
+
+Mechanism withGamma(const Mechanism& base, double gamma_deg) {
+  Mechanism m = base;
+  m.engine.cylinder_angle = radiansFromDegrees(gamma_deg);
+  return m;
+}
+
+std::vector<double> anglesDeg(double step) {
+  std::vector<double> v;
+  for (double a = 0.0; a < 360.0 - 1e-9; a += step) v.push_back(a);
+  return v;
+}
+
+double lambdaOf(const Mechanism& m) { return calcCrankRatio(m); }
+
+// ------------------------------------------------------------------------------------------------------------
+// Cross-check of one case: every quantity, at the scene's speed and at rest; one row per quantity with the worst
+// comparison (largest error / tolerance).
+
+struct WorstComparison {
+  double ratio_to_tolerance = -1.0;
+  double rel_error = 0.0, tolerance_rel = 0.0, phi_deg = 0.0, rpm = 0.0;
+  bool pass = true;
+};
+
+TableSet crossCheckCase(const std::string& family, const Mechanism& m, bool quick) {
+  std::map<std::string, WorstComparison> worst;
+  auto note = [&](const Comparison& c, double phi_deg, double rpm) {
+    WorstComparison& w = worst[c.quantity];
+    const double ratio = c.error() / c.tolerance();
+    w.pass = w.pass && c.agrees();
+    if (ratio > w.ratio_to_tolerance) {
+      w.ratio_to_tolerance = ratio;
+      w.rel_error = c.error() / c.scale;
+      w.tolerance_rel = c.tolerance() / c.scale;
+      w.phi_deg = phi_deg;
+      w.rpm = rpm;
+    }
+  };
+  for (double rpm : {m.speed_rpm, 0.0}) {
+    const Mechanism case_m = withSpeed(m, rpm);
+    simbody_models::KCrankModel model(case_m);
+    const Scales sc = calcScales(case_m);
+    for (double phi_deg : anglesDeg(quick ? 45.0 : 15.0)) {
+      const double phi = radiansFromDegrees(phi_deg);
+      const Evaluation a = analytic::calcEvaluation(case_m, phi);
+      for (const Comparison& c : compareEvaluations(case_m, a, model.evaluate(phi))) note(c, phi_deg, rpm);
+      if (rpm == 0.0)
+        note({"Q (virtual power)", -1, a.Q, model.calcVirtualPowerQ(phi), sc.energy, sc.conditioning}, phi_deg, rpm);
+    }
+  }
+  Table t;
+  t.columns = {"family", "case", "lambda", "quantity", "worst_rel_error", "where_phi_deg", "where_speed_rpm",
+               "tolerance_rel", "pass"};
+  char case_name[160];
+  std::snprintf(case_name, sizeof case_name, "%s lambda=%.4g", m.name.c_str(), lambdaOf(m));
+  for (const auto& [quantity, w] : worst)
+    t.rows.push_back({family, case_name, num(lambdaOf(m)), quantity, num(w.rel_error), num(w.phi_deg), num(w.rpm),
+                      num(w.tolerance_rel), w.pass ? "pass" : "FAIL"});
+  return {{"crosscheck", t}};
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// error_vs_lambda: every approximate method against its exact reference at one lambda.
+
+TableSet errorVsLambda(const Mechanism& base, double lambda, bool quick) {
+  const Mechanism m = withLambda(base, lambda);
+  const double r = m.crank.radius, w = m.engine.speed;
+  const double E = calcEnergyScale(m);
+  Table t;
+  t.columns = {"quantity", "method", "lambda", "max_abs_error", "max_rel_error"};
+  auto add = [&](const std::string& quantity, const std::string& method, double max_abs, double scale) {
+    t.rows.push_back({quantity, method, num(lambda), num(max_abs), num(max_abs / scale)});
+  };
+  std::map<std::string, double> worst;
+  auto track = [&](const std::string& key, double error) { worst[key] = std::max(worst[key], std::fabs(error)); };
+  const std::vector<int> orders = {2, 4, 6, 8, 10, 12};
+  std::map<int, std::vector<analytic::TorqueHarmonic>> fourier;
+  for (int order : orders) fourier[order] = analytic::calcGravityTorqueHarmonics(m, order);
+  const auto printed = analytic::calcGravityTorqueHarmonics(m, 12, LambdaSource::kAsPrinted);
+  for (double phi_deg : anglesDeg(quick ? 5.0 : 1.0)) {
+    const double phi = radiansFromDegrees(phi_deg);
+    const analytic::PistonKinematics exact = analytic::calcPistonKinematics(m, phi);
+    const analytic::PistonKinematics norton = analytic::calcPistonKinematicsNorton(m, phi);
+    track("x_p norton_two_term", norton.x_p - exact.x_p);
+    track("v_p norton_two_term", norton.v_p - exact.v_p);
+    track("a_p norton_two_term", norton.a_p - exact.a_p);
+    const double Q = analytic::calcGravityTorque(m, phi);
+    for (int order : orders) track("Q fourier_order_" + std::to_string(order), analytic::evaluateTorqueHarmonics(fourier[order], phi) - Q);
+    track("Q paper_eq15_printed", analytic::evaluateTorqueHarmonics(printed, phi) - Q);
+    track("Q paper_eq5_printed", analytic::calcGravityTorque(m, phi, Eq5Form::kAsPrinted) - Q);
+    track("U paper_eq5_printed",
+          analytic::calcPotentialEnergy(m, phi, Eq5Form::kAsPrinted) - analytic::calcPotentialEnergy(m, phi));
+  }
+  simbody_models::KCrankModel model(m);
+  for (double phi_deg : anglesDeg(quick ? 30.0 : 5.0)) {
+    const double phi = radiansFromDegrees(phi_deg);
+    const Evaluation s = model.evaluate(phi), a = analytic::calcEvaluation(m, phi);
+    track("Q analytic_vs_simbody", a.Q - s.Q);
+    track("U analytic_vs_simbody", a.U - s.U);
+    track("x_p analytic_vs_simbody", a.cylinders[0].x_p - s.cylinders[0].x_p);
+    track("v_p analytic_vs_simbody", a.cylinders[0].v_p - s.cylinders[0].v_p);
+    track("a_p analytic_vs_simbody", a.cylinders[0].a_p - s.cylinders[0].a_p);
+  }
+  for (const auto& [key, error] : worst) {
+    const std::string quantity = key.substr(0, key.find(' ')), method = key.substr(key.find(' ') + 1);
+    const double scale = quantity == "x_p" ? r : quantity == "v_p" ? r * w : quantity == "a_p" ? r * w * w : E;
+    add(quantity, method, error, scale);
+  }
+  return {{"error_vs_lambda", t}};
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// speed_vs_error: cost per evaluation of Q against its error, every method measured in one Google Benchmark run.
+
+TableSet speedVsError(const Mechanism& base, bool quick) {
+  const Mechanism m = withSpeed(base, 0.0);
+  const double E = calcEnergyScale(m);
+  const std::vector<double> angles = [&] {
+    std::vector<double> v;
+    for (double d : anglesDeg(quick ? 30.0 : 5.0)) v.push_back(radiansFromDegrees(d));
+    return v;
+  }();
+  std::vector<double> exact;
+  for (double phi : angles) exact.push_back(analytic::calcGravityTorque(m, phi));
+
+  struct Method {
+    std::string name;
+    std::function<double(double)> eval;   // Q at phi
+    std::shared_ptr<simbody_models::KCrankModel> model;
+  };
+  std::vector<Method> methods;
+  methods.push_back({"exact_closed_form", [m](double phi) { return analytic::calcGravityTorque(m, phi); }, nullptr});
+  for (int order : {2, 4, 6, 8, 12}) {
+    auto harmonics = std::make_shared<std::vector<analytic::TorqueHarmonic>>(analytic::calcGravityTorqueHarmonics(m, order));
+    methods.push_back({"fourier_order_" + std::to_string(order),
+                       [harmonics](double phi) { return analytic::evaluateTorqueHarmonics(*harmonics, phi); }, nullptr});
+  }
+  auto printed = std::make_shared<std::vector<analytic::TorqueHarmonic>>(
+      analytic::calcGravityTorqueHarmonics(m, 12, LambdaSource::kAsPrinted));
+  methods.push_back({"paper_eq15_printed", [printed](double phi) { return analytic::evaluateTorqueHarmonics(*printed, phi); }, nullptr});
+  for (double tol : quick ? std::vector<double>{1e-4, 1e-12} : std::vector<double>{1e-4, 1e-6, 1e-8, 1e-10, 1e-12}) {
+    auto model = std::make_shared<simbody_models::KCrankModel>(m, simbody_models::ModelOptions{tol});
+    char name[48];
+    std::snprintf(name, sizeof name, "simbody_tol_%.0e", tol);
+    methods.push_back({name, [model](double phi) { return model->calcHoldingTorque(phi); }, model});
+  }
+
+  // Errors against the exact closed form; the closed form's own error against Simbody at 1e-12.
+  std::map<std::string, double> errors;
+  simbody_models::KCrankModel reference(m);
+  for (const Method& method : methods) {
+    double worst = 0.0;
+    for (size_t i = 0; i < angles.size(); ++i) {
+      const double ref = method.name == "exact_closed_form" ? reference.calcHoldingTorque(angles[i]) : exact[i];
+      worst = std::max(worst, std::fabs(method.eval(angles[i]) - ref));
+    }
+    errors[method.name] = worst / E;
+  }
+  std::vector<std::pair<std::string, std::function<void()>>> timed;
+  for (const Method& method : methods) {
+    auto counter = std::make_shared<size_t>(0);
+    timed.emplace_back(method.name, [method, counter, angles] {
+      const double phi = angles[(*counter)++ % angles.size()];
+      benchmark::DoNotOptimize(method.eval(phi));
+    });
+  }
+  const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, quick ? 0.01 : 0.05);
+  Table t;
+  t.columns = {"method", "ns_per_eval", "max_rel_error"};
+  for (const Method& method : methods) {
+    const auto it = ns.find(method.name);
+    if (it != ns.end()) t.rows.push_back({method.name, num(it->second), num(errors[method.name])});
+  }
+  return {{"speed_vs_error", t}};
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// harmonics: DFT of Simbody's Q over one turn, against the analytic prediction and the paper's claim.
+
+TableSet harmonics(const Mechanism& base, Cycle cycle) {
+  const int M = 64, max_order = 24;
+  Table t;
+  t.columns = {"cycle", "k", "n", "simbody_amplitude", "analytic_amplitude", "paper_nonzero"};
+  for (int k = 1; k <= 12; ++k) {
+    const Mechanism m = withSpeed(withGamma(withCylinders(withLambda(base, 0.4), k, cycle), 90.0), 0.0);
+    const double E = calcEnergyScale(m);
+    simbody_models::KCrankModel model(m);
+    std::vector<double> q(M);
+    for (int i = 0; i < M; ++i) q[i] = model.calcHoldingTorque(2.0 * M_PI * i / M);
+    std::map<int, double> predicted;
+    for (const analytic::TorqueHarmonic& h : analytic::calcGravityTorqueHarmonics(m, max_order))
+      predicted[h.n] = std::hypot(h.cos_coefficient, h.sin_coefficient);
+    for (int n = 1; n <= max_order; ++n) {
+      std::complex<double> sum = 0.0;
+      for (int i = 0; i < M; ++i) sum += q[i] * std::polar(1.0, -2.0 * M_PI * n * i / M);
+      const double amplitude = 2.0 * std::abs(sum) / M;
+      const std::optional<bool> claim = analytic::getPaperHarmonicClaim(k, cycle, n);
+      t.rows.push_back({toString(cycle), std::to_string(k), std::to_string(n), num(amplitude / E),
+                        num(predicted.count(n) ? predicted[n] / E : 0.0), claim ? (*claim ? "1" : "0") : ""});
+    }
+  }
+  return {{"harmonics", t}};
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// gravity_significance: max |Q| against k, relative to k = 1 and to the inertia torque at the scene's speed.
+
+TableSet gravitySignificance(const Mechanism& base, Cycle cycle, bool quick) {
+  Table t;
+  t.columns = {"cycle", "k", "max_abs_Q", "ratio_to_k1", "max_inertia_torque", "ratio_to_inertia", "simbody_max_abs_Q"};
+  double q1 = 0.0;
+  for (int k = 1; k <= 12; ++k) {
+    const Mechanism m = withGamma(withCylinders(base, k, cycle), 90.0);
+    double max_q = 0.0, max_inertia = 0.0, max_q_simbody = 0.0;
+    for (double phi_deg : anglesDeg(quick ? 5.0 : 1.0)) {
+      const double phi = radiansFromDegrees(phi_deg);
+      const double q = analytic::calcGravityTorque(m, phi);
+      max_q = std::max(max_q, std::fabs(q));
+      max_inertia = std::max(max_inertia, std::fabs(analytic::calcReactions(m, phi).drive_torque - q));
+    }
+    simbody_models::KCrankModel model(withSpeed(m, 0.0));
+    for (double phi_deg : anglesDeg(quick ? 30.0 : 10.0))
+      max_q_simbody = std::max(max_q_simbody, std::fabs(model.calcHoldingTorque(radiansFromDegrees(phi_deg))));
+    if (k == 1) q1 = max_q;
+    t.rows.push_back({toString(cycle), std::to_string(k), num(max_q), num(max_q / q1), num(max_inertia),
+                      num(max_inertia > 0 ? max_q / max_inertia : 0.0), num(max_q_simbody)});
+  }
+  return {{"gravity_significance", t}};
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// norton_fig13_8: piston motion over two revolutions, exact and two-term (Norton's figure 13-8).
+
+TableSet nortonFigure(const Mechanism& base) {
+  Table t;
+  t.columns = {"crank_angle_deg", "x_exact", "x_two_term", "v_exact", "v_two_term", "a_exact", "a_two_term"};
+  for (int d = 0; d <= 720; ++d) {
+    const double theta = radiansFromDegrees(d);
+    const analytic::PistonKinematics e = analytic::calcPistonKinematics(base, theta);
+    const analytic::PistonKinematics n = analytic::calcPistonKinematicsNorton(base, theta);
+    t.rows.push_back({std::to_string(d), num(e.x_p), num(n.x_p), num(e.v_p), num(n.v_p), num(e.a_p), num(n.a_p)});
+  }
+  return {{"norton_fig13_8", t}};
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// errata: each printed formula against what the engines agree on, with the size of the difference.
+
+TableSet errata(const Mechanism& base, bool quick) {
+  Table t;
+  t.columns = {"item", "printed", "holds", "max_abs_difference", "scale", "relative_difference"};
+  auto add = [&](const std::string& item, const std::string& printed, const std::string& holds, double diff, double scale) {
+    t.rows.push_back({item, printed, holds, num(diff), num(scale), num(diff / scale)});
+  };
+  const std::vector<double> angles = anglesDeg(quick ? 15.0 : 5.0);
+  {  // eq (5) as printed, against Simbody, on the base scene at rest
+    const Mechanism m = withSpeed(base, 0.0);
+    simbody_models::KCrankModel model(m);
+    double worst_q = 0.0, worst_u = 0.0;
+    for (double d : angles) {
+      const double phi = radiansFromDegrees(d);
+      worst_q = std::max(worst_q, std::fabs(analytic::calcGravityTorque(m, phi, Eq5Form::kAsPrinted) - model.calcHoldingTorque(phi)));
+      worst_u = std::max(worst_u, std::fabs(analytic::calcPotentialEnergy(m, phi, Eq5Form::kAsPrinted) - model.calcPotentialEnergy(phi)));
+    }
+    add("Stanczak eq (5): Q of " + base.name, "U1 with l_z = z_k/l; U2 with (l - z_k)/l",
+        "U1 with (l - z_k)/l; U2 with z_k/l (z_k from the wrist pin; eq 2)", worst_q, calcEnergyScale(m));
+    add("Stanczak eq (5): U of " + base.name, "as above", "as above", worst_u, calcEnergyScale(m));
+  }
+  {  // the misprinted coefficient of eq (15)
+    const double printed = analytic::getLambdaSeriesCoefficientAsPrinted(2, 9);
+    const double exact = analytic::calcLambdaSeriesCoefficient(2, 9).toDouble();
+    add("Stanczak eq (15): Lambda_2 coefficient of lambda^9", "0.022432", "735/32768 = 0.02243041992", std::fabs(printed - exact), exact);
+  }
+  {  // eq (15) truncated at lambda^11, against Simbody at lambda = 0.4
+    const Mechanism m = withSpeed(withLambda(base, 0.4), 0.0);
+    simbody_models::KCrankModel model(m);
+    const auto printed = analytic::calcGravityTorqueHarmonics(m, 12, LambdaSource::kAsPrinted);
+    double worst = 0.0;
+    for (double d : angles) {
+      const double phi = radiansFromDegrees(d);
+      worst = std::max(worst, std::fabs(analytic::evaluateTorqueHarmonics(printed, phi) - model.calcHoldingTorque(phi)));
+    }
+    add("Stanczak eq (15): Q from the printed Lambda table at lambda = 0.4", "Lambda_2..Lambda_12 to lambda^11",
+        "exact Lambda_n (any order)", worst, calcEnergyScale(m));
+  }
+  {  // eq (12): each cylinder referred to its own outer dead centre
+    const Mechanism m3 = withCylinders(base, 3, Cycle::kTwoStroke);
+    Mechanism single = withCylinders(base, 1, Cycle::kTwoStroke);
+    double offset = 0.0;
+    for (double alpha : m3.engine.crank_angles) offset += analytic::calcPotentialEnergy(single, alpha);
+    add("Stanczak eq (12): U_w(0) of a three-cylinder two-stroke", "sum of eq (3) per cylinder (U_w(0) != 0)",
+        "U = V(phi) - V(0); Q unaffected", std::fabs(offset), calcEnergyScale(m3));
+  }
+  {  // Norton 13.3e, against Simbody's piston acceleration
+    simbody_models::KCrankModel model(base);
+    double worst = 0.0;
+    for (double d : angles) {
+      const double phi = radiansFromDegrees(d);
+      worst = std::max(worst, std::fabs(analytic::calcPistonKinematicsNorton(base, phi).a_p - model.evaluate(phi).cylinders[0].a_p));
+    }
+    const double r = base.crank.radius, w = base.engine.speed;
+    char item[96];
+    std::snprintf(item, sizeof item, "Norton 13.3e: piston acceleration at lambda = %.3g", lambdaOf(base));
+    add(item, "-r w^2 (cos + lambda cos 2theta)", "exact (Simbody)", worst, r * w * w);
+  }
+  return {{"errata", t}};
+}
+
+TableSet scenesTable(const std::vector<std::pair<std::string, Mechanism>>& families) {
+  Table t;
+  t.columns = {"family", "scene", "cylinders", "cycle", "acting", "gamma_deg", "speed_rpm", "r", "l", "lambda", "m_o",
+               "m_k", "z_k", "I_o", "m_s", "r_s", "m_p", "r_p"};
+  for (const auto& [family, m] : families)
+    t.rows.push_back({family, m.name, std::to_string(m.engine.cylinders), toString(m.engine.cycle), toString(m.engine.acting),
+                      num(degreesFromRadians(m.engine.cylinder_angle)), num(m.speed_rpm), num(m.crank.radius),
+                      num(m.rod.length), num(lambdaOf(m)), num(m.piston.mass), num(m.rod.mass),
+                      num(m.rod.com_from_wrist_pin), num(m.rod.inertia_about_wrist_pin), num(m.crank.mass),
+                      num(m.crank.com_radius), num(m.crank.counterweight_mass), num(m.crank.counterweight_radius)});
+  return {{"scenes", t}};
+}
+
+}  // namespace
+
+std::vector<Mechanism> buildDefaultScenes() {
+  std::vector<Mechanism> scenes;
+  for (double gamma : {90.0, 0.0, 180.0, -90.0})
+    scenes.push_back(makeScene("single_cylinder_four_" + gammaTag(gamma), 1, Cycle::kFourStroke, gamma, 3000.0));
+  for (int k : {2, 3, 4, 6, 8, 12})
+    for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke}) {
+      const bool two = cycle == Cycle::kTwoStroke;
+      scenes.push_back(makeScene("inline" + std::to_string(k) + (two ? "_two_" : "_four_") + gammaTag(90.0), k, cycle,
+                                 90.0, two ? 3000.0 : 6000.0));
+    }
+  for (double gamma : {0.0, 180.0, -90.0})
+    scenes.push_back(makeScene("inline4_four_" + gammaTag(gamma), 4, Cycle::kFourStroke, gamma, 6000.0));
+  // Marine scale: a slow two-stroke crosshead diesel (scenes/inline6_two_stroke_marine.toml).
+  Mechanism marine = makeScene("marine_inline6_two_gamma90", 6, Cycle::kTwoStroke, 90.0, 105.0);
+  marine.crank = {1.2, 9000.0, 0.6, 6000.0, 0.9};
+  marine.rod = {3.0, 12000.0, 1.9, 55000.0};
+  marine.piston.mass = 14000.0;
+  marine.flywheel_inertia = 9.0e5;
+  scenes.push_back(marine);
+  // Small-engine scale: a 50 cm^3 single-cylinder two-stroke.
+  Mechanism small = makeScene("small_engine_single_two_gamma90", 1, Cycle::kTwoStroke, 90.0, 9000.0);
+  small.crank = {0.02, 0.15, 0.008, 0.1, 0.014};
+  small.rod = {0.075, 0.035, 0.05, 1.2e-4};
+  small.piston.mass = 0.06;
+  small.flywheel_inertia = 0.004;
+  scenes.push_back(small);
+  return scenes;
+}
+
+std::string familyOf(const Mechanism& m) {
+  const std::string& n = m.name;
+  if (n.rfind("single_cylinder", 0) == 0) return "single cylinder, gamma 90/0/180/-90";
+  if (n.rfind("inline4_four_gamma", 0) == 0 && n != "inline4_four_gamma90") return "inline 4 four-stroke, gamma 0/180/-90";
+  if (n.rfind("inline", 0) == 0) return n.find("_two_") != std::string::npos ? "inline two-stroke, k = 2..12" : "inline four-stroke, k = 2..12";
+  if (n.rfind("marine", 0) == 0) return "marine scale (inline 6 two-stroke)";
+  if (n.rfind("small_engine", 0) == 0) return "small-engine scale (50 cm^3)";
+  return n;
+}
+
+std::vector<Task> buildCampaign(const CampaignOptions& options) {
+  const bool quick = options.quick;
+  const std::vector<Mechanism> scenes = options.scenes.empty() ? buildDefaultScenes() : options.scenes;
+  // (family of cases, scene): the built-in scenes are grouped into families, user scenes are their own family.
+  std::vector<std::pair<std::string, Mechanism>> families;
+  for (const Mechanism& m : scenes) families.emplace_back(options.scenes.empty() ? familyOf(m) : m.name, m);
+  const Mechanism& base = scenes.front();
+
+  std::vector<Task> tasks;
+  tasks.push_back({"scenes", false, [families] { return scenesTable(families); }});
+  const std::vector<double> sweep = quick ? std::vector<double>{} : std::vector<double>{0.1, 0.2, 0.3, 0.4, 0.6, 0.9};
+  for (const auto& [family, m] : families) {
+    std::vector<double> lambdas = {lambdaOf(m)};
+    for (double lambda : sweep)
+      if (std::fabs(lambda - lambdaOf(m)) > 1e-3) lambdas.push_back(lambda);
+    for (double lambda : lambdas) {
+      const Mechanism variant = withLambda(m, lambda);
+      char id[128];
+      std::snprintf(id, sizeof id, "crosscheck %s lambda=%.3g", m.name.c_str(), lambda);
+      tasks.push_back({id, false, [family = family, variant, quick] { return crossCheckCase(family, variant, quick); }});
+    }
+  }
+  const int n_lambda = quick ? 5 : 20;
+  for (int i = 0; i < n_lambda; ++i) {
+    const double lambda = 0.01 * std::pow(95.0, static_cast<double>(i) / (n_lambda - 1));  // 0.01 .. 0.95, log spaced
+    char id[64];
+    std::snprintf(id, sizeof id, "error_vs_lambda lambda=%.3g", lambda);
+    tasks.push_back({id, false, [base, lambda, quick] { return errorVsLambda(base, lambda, quick); }});
+  }
+  for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke}) {
+    tasks.push_back({"harmonics " + toString(cycle), false, [base, cycle] { return harmonics(base, cycle); }});
+    tasks.push_back({"gravity_significance " + toString(cycle), false,
+                     [base, cycle, quick] { return gravitySignificance(base, cycle, quick); }});
+  }
+  tasks.push_back({"norton_fig13_8", false, [base] { return nortonFigure(base); }});
+  tasks.push_back({"errata", false, [base, quick] { return errata(base, quick); }});
+  tasks.push_back({"speed_vs_error", true, [base, quick] { return speedVsError(base, quick); }});
+  return tasks;
+}
+
+}  // namespace crankcheck::validation

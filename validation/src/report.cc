@@ -1,0 +1,417 @@
+#include "crankcheck/validation/report.h"
+
+#include <fcntl.h>
+#include <stdio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "crankcheck/simbody_models/k_crank_model.h"
+
+#ifndef CRANKCHECK_REPORTS_DIR
+#error "CRANKCHECK_REPORTS_DIR (the folder of the gnuplot scripts) must be defined by the build"
+#endif
+
+namespace crankcheck::validation {
+namespace fs = std::filesystem;
+
+namespace {
+
+double toDouble(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
+
+std::string shortNumber(double x, int digits = 2) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
+  return buffer;
+}
+
+size_t column(const Table& t, const std::string& name) {
+  const auto it = std::find(t.columns.begin(), t.columns.end(), name);
+  if (it == t.columns.end()) throw std::runtime_error("report: table has no column " + name);
+  return static_cast<size_t>(it - t.columns.begin());
+}
+
+}  // namespace
+
+std::vector<SummaryRow> summarize(const TableSet& tables) {
+  std::vector<SummaryRow> out;
+  const auto it = tables.find("crosscheck");
+  if (it == tables.end()) return out;
+  const Table& t = it->second;
+  const size_t family = column(t, "family"), kase = column(t, "case"), quantity = column(t, "quantity"),
+               rel = column(t, "worst_rel_error"), phi = column(t, "where_phi_deg"), rpm = column(t, "where_speed_rpm"),
+               tol = column(t, "tolerance_rel"), pass = column(t, "pass");
+  std::map<std::pair<std::string, std::string>, SummaryRow> rows;
+  for (const auto& row : t.rows) {
+    SummaryRow& s = rows[{row[quantity], row[family]}];
+    const bool first = s.quantity.empty();
+    s.quantity = row[quantity];
+    s.family = row[family];
+    s.pass = s.pass && row[pass] == "pass";
+    const double r = toDouble(row[rel]);
+    if (first || r / toDouble(row[tol]) > s.worst_rel_error / s.tolerance_rel) {
+      s.worst_rel_error = r;
+      s.tolerance_rel = toDouble(row[tol]);
+      s.where = row[kase] + ", phi " + row[phi] + " deg, " + row[rpm] + " rpm";
+    }
+  }
+  for (auto& [key, row] : rows) out.push_back(row);
+  return out;
+}
+
+std::string formatSummary(const std::vector<SummaryRow>& summary) {
+  std::ostringstream out;
+  char line[400];
+  std::snprintf(line, sizeof line, "%-18s %-38s %11s  %-54s %10s  %s\n", "quantity", "family of cases", "worst/scale",
+                "where", "tol/scale", "result");
+  out << line;
+  for (const SummaryRow& s : summary) {
+    std::snprintf(line, sizeof line, "%-18s %-38s %11.2e  %-54s %10.2e  %s\n", s.quantity.c_str(), s.family.c_str(),
+                  s.worst_rel_error, s.where.c_str(), s.tolerance_rel, s.pass ? "pass" : "FAIL");
+    out << line;
+  }
+  return out.str();
+}
+
+void writeTables(const TableSet& tables, const fs::path& dir) {
+  fs::create_directories(dir / "data");
+  for (const auto& [name, table] : tables) {
+    std::ofstream out(dir / "data" / (name + ".csv"));
+    for (size_t i = 0; i < table.columns.size(); ++i) out << (i ? "," : "") << table.columns[i];
+    out << "\n";
+    for (const auto& row : table.rows) {
+      for (size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << row[i];
+      out << "\n";
+    }
+    if (!out) throw std::runtime_error("cannot write " + (dir / "data" / (name + ".csv")).string());
+  }
+}
+
+TableSet readTables(const fs::path& dir) {
+  TableSet tables;
+  if (!fs::is_directory(dir / "data")) throw std::runtime_error(dir.string() + ": no data/ folder (not a crankcheck report or shard)");
+  for (const auto& entry : fs::directory_iterator(dir / "data")) {
+    if (entry.path().extension() != ".csv") continue;
+    std::ifstream in(entry.path());
+    std::string line;
+    Table table;
+    auto split = [](const std::string& s) {
+      std::vector<std::string> fields;
+      std::stringstream ss(s);
+      std::string field;
+      while (std::getline(ss, field, ',')) fields.push_back(field);
+      if (!s.empty() && s.back() == ',') fields.push_back("");
+      return fields;
+    };
+    if (!std::getline(in, line)) throw std::runtime_error(entry.path().string() + ": empty table");
+    table.columns = split(line);
+    while (std::getline(in, line)) {
+      std::vector<std::string> row = split(line);
+      if (row.size() != table.columns.size())
+        throw std::runtime_error(entry.path().string() + ": a row has " + std::to_string(row.size()) + " fields, the header " +
+                                 std::to_string(table.columns.size()));
+      table.rows.push_back(std::move(row));
+    }
+    tables[entry.path().stem().string()] = std::move(table);
+  }
+  return tables;
+}
+
+namespace {
+
+// ------------------------------------------------------------------------------------------------------------
+// A small document model rendered both as Markdown and as HTML.
+
+struct Block {
+  enum Kind { kHeading, kParagraph, kTable, kFigure } kind = kParagraph;
+  std::string text = {};                       // heading / paragraph / caption
+  std::vector<std::string> header = {};        // table
+  std::vector<std::vector<std::string>> rows = {};
+  std::string name = {};                       // figure stem (name.png, name.svg, data/name.csv); "#" on the title
+};
+
+std::string escapeHtml(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else out += c;
+  }
+  return out;
+}
+
+std::string escapeMarkdownCell(const std::string& s) {
+  std::string out;
+  for (char c : s) out += (c == '|') ? std::string("\\|") : std::string(1, c);
+  return out;
+}
+
+std::string toMarkdown(const std::vector<Block>& blocks) {
+  std::ostringstream md;
+  for (const Block& b : blocks) {
+    switch (b.kind) {
+      case Block::kHeading: md << (b.name.empty() ? "## " : b.name + " ") << b.text << "\n\n"; break;
+      case Block::kParagraph: md << b.text << "\n\n"; break;
+      case Block::kTable:
+        md << "|";
+        for (const auto& h : b.header) md << " " << escapeMarkdownCell(h) << " |";
+        md << "\n|";
+        for (size_t i = 0; i < b.header.size(); ++i) md << "---|";
+        md << "\n";
+        for (const auto& row : b.rows) {
+          md << "|";
+          for (const auto& cell : row) md << " " << escapeMarkdownCell(cell) << " |";
+          md << "\n";
+        }
+        md << "\n";
+        break;
+      case Block::kFigure:
+        md << "![" << b.text << "](" << b.name << ".png)\n\n*" << b.text << "* ([SVG](" << b.name << ".svg), [CSV](data/"
+           << b.name << ".csv))\n\n";
+        break;
+    }
+  }
+  return md.str();
+}
+
+std::string toHtml(const std::vector<Block>& blocks, const std::string& title) {
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << escapeHtml(title)
+       << "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em}"
+          "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #bbb;padding:2px 6px}"
+          "img{max-width:100%}figcaption{font-style:italic}</style></head><body>\n";
+  for (const Block& b : blocks) {
+    switch (b.kind) {
+      case Block::kHeading:
+        html << (b.name == "#" ? "<h1>" : "<h2>") << escapeHtml(b.text) << (b.name == "#" ? "</h1>" : "</h2>") << "\n";
+        break;
+      case Block::kParagraph: html << "<p>" << escapeHtml(b.text) << "</p>\n"; break;
+      case Block::kTable:
+        html << "<table><tr>";
+        for (const auto& h : b.header) html << "<th>" << escapeHtml(h) << "</th>";
+        html << "</tr>\n";
+        for (const auto& row : b.rows) {
+          html << "<tr>";
+          for (const auto& cell : row) html << "<td>" << escapeHtml(cell) << "</td>";
+          html << "</tr>\n";
+        }
+        html << "</table>\n";
+        break;
+      case Block::kFigure:
+        html << "<figure><a href=\"" << b.name << ".svg\"><img src=\"" << b.name << ".png\" alt=\"" << escapeHtml(b.text)
+             << "\"></a><figcaption>" << escapeHtml(b.text) << " (<a href=\"" << b.name << ".svg\">SVG</a>, <a href=\"data/"
+             << b.name << ".csv\">CSV</a>)</figcaption></figure>\n";
+        break;
+    }
+  }
+  html << "</body></html>\n";
+  return html.str();
+}
+
+std::string runAndCapture(const std::string& command) {
+  std::string out;
+  if (FILE* pipe = ::popen(command.c_str(), "r")) {
+    char buffer[256];
+    while (std::fgets(buffer, sizeof buffer, pipe)) out += buffer;
+    ::pclose(pipe);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out;
+}
+
+fs::path scriptsDir() {
+  if (const char* env = std::getenv("CRANKCHECK_REPORTS_DIR")) return env;
+  return CRANKCHECK_REPORTS_DIR;
+}
+
+void plot(const std::string& name, const fs::path& dir) {
+  const fs::path script = scriptsDir() / (name + ".gp");
+  if (!fs::exists(script)) throw std::runtime_error("gnuplot script not found: " + script.string());
+  const fs::path log = dir / ("." + name + ".gnuplot.log");
+  const std::string command = "gnuplot -e \"in_dir='" + (dir / "data").string() + "'; out_dir='" + dir.string() +
+                              "'\" '" + script.string() + "' >'" + log.string() + "' 2>&1";
+  const int status = std::system(command.c_str());
+  if (status != 0 || !fs::exists(dir / (name + ".svg")) || !fs::exists(dir / (name + ".png"))) {
+    std::ifstream in(log);
+    std::stringstream s;
+    s << in.rdbuf();
+    throw std::runtime_error("gnuplot failed on " + script.string() + ":\n" + s.str());
+  }
+  fs::remove(log);
+}
+
+std::vector<std::vector<std::string>> tableRows(const TableSet& tables, const std::string& name,
+                                                const std::vector<std::string>& columns,
+                                                const std::vector<bool>& numeric = {}) {
+  std::vector<std::vector<std::string>> rows;
+  const auto it = tables.find(name);
+  if (it == tables.end()) return rows;
+  std::vector<size_t> index;
+  for (const auto& c : columns) index.push_back(column(it->second, c));
+  for (const auto& row : it->second.rows) {
+    std::vector<std::string> out;
+    for (size_t i = 0; i < index.size(); ++i) {
+      const std::string& field = row[index[i]];
+      out.push_back(i < numeric.size() && numeric[i] && !field.empty() ? shortNumber(toDouble(field), 4) : field);
+    }
+    rows.push_back(std::move(out));
+  }
+  return rows;
+}
+
+std::string today() {
+  const std::time_t now = std::time(nullptr);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  return buffer;
+}
+
+}  // namespace
+
+void renderReport(const TableSet& input, const ReportInfo& info, const fs::path& dir) {
+  TableSet tables = input;
+  sortTables(tables);
+  writeTables(tables, dir);
+  if (runAndCapture("command -v gnuplot").empty())
+    throw std::runtime_error("gnuplot is not installed (Debian package gnuplot-nox; ./run.sh installs it)");
+
+  const std::vector<std::pair<std::string, std::string>> figures = {
+      {"error_vs_lambda",
+       "1. Max error over the crank turn against lambda: Norton's two-term x, v, a; Q from Fourier series of order 2-12 "
+       "with exact coefficients, from the paper's printed coefficients (eq 15) and with eq (5) as printed; the analytic "
+       "engine against Simbody"},
+      {"speed_vs_error",
+       "2. Cost per evaluation of Q against its error, measured in one run: the exact closed form, Fourier orders, the "
+       "printed eq (15), Simbody at several projection tolerances (Pareto front joined)"},
+      {"harmonics",
+       "3. Harmonics of Q by a DFT of Simbody's Q(phi) (lambda = 0.4, standing engines), with the analytic prediction "
+       "and the paper's table 1 / eq (18)"},
+      {"gravity_significance",
+       "4. Max |Q| against k relative to k = 1, and relative to the inertia torque at the base scene's speed"},
+      {"norton_fig13_8", "5. Piston position, velocity and acceleration over two revolutions, exact and Norton's two-term "
+                         "(13.3c-e), for the base scene"},
+  };
+  for (const auto& [name, caption] : figures)
+    if (tables.count(name)) plot(name, dir);
+
+  const std::vector<SummaryRow> summary = summarize(tables);
+  const bool all_pass = std::all_of(summary.begin(), summary.end(), [](const SummaryRow& s) { return s.pass; });
+  std::vector<Block> doc;
+  doc.push_back({Block::kHeading, info.title, {}, {}, "#"});
+  std::ostringstream meta;
+  meta << "Generated " << today() << " by crankcheck 0.1.0 with Simbody " << simbody_models::getSimbodyVersion()
+       << ", compiler " << __VERSION__ << ", " << runAndCapture("gnuplot --version") << ". Campaign: "
+       << (info.quick ? "quick" : "full") << ", " << info.jobs << " job(s)" << (info.shards > 1 ? ", merged from " + std::to_string(info.shards) + " shards" : "")
+       << (info.seconds > 0 ? ", " + shortNumber(info.seconds, 3) + " s" : "") << ".";
+  doc.push_back({Block::kParagraph, meta.str()});
+
+  doc.push_back({Block::kHeading, "Summary: the analytic engine against Simbody"});
+  doc.push_back({Block::kParagraph,
+                 std::string(all_pass ? "Every comparison agrees" : "SOME COMPARISONS FAIL") +
+                     " within the gate's rule: |analytic - simbody| <= 64 eps x scale x conditioning "
+                     "(docs/CONVENTIONS-crankcheck.md). Errors are relative to the quantity's physical scale."});
+  Block summary_table{Block::kTable, "", {"quantity", "family", "worst error / scale", "where", "tolerance / scale", "result"}};
+  for (const SummaryRow& s : summary)
+    summary_table.rows.push_back({s.quantity, s.family, shortNumber(s.worst_rel_error), s.where, shortNumber(s.tolerance_rel),
+                                  s.pass ? "pass" : "FAIL"});
+  doc.push_back(summary_table);
+
+  doc.push_back({Block::kHeading, "Scenes"});
+  doc.push_back({Block::kParagraph,
+                 "Each scene is cross-checked at its own lambda and, in the full campaign, with the rod lengthened or "
+                 "shortened to lambda = 0.1, 0.2, 0.3, 0.4, 0.6, 0.9. The first scene is the base of the figures. SI units."});
+  doc.push_back({Block::kTable, "",
+                 {"scene", "family", "k", "cycle", "gamma [deg]", "rpm", "r", "l", "lambda", "m_o", "m_k", "z_k", "I_o", "m_s", "r_s", "m_p", "r_p"},
+                 tableRows(tables, "scenes",
+                           {"scene", "family", "cylinders", "cycle", "gamma_deg", "speed_rpm", "r", "l", "lambda", "m_o", "m_k", "z_k",
+                            "I_o", "m_s", "r_s", "m_p", "r_p"},
+                           {false, false, false, false, true, true, true, true, true, true, true, true, true, true, true, true, true})});
+
+  for (const auto& [name, caption] : figures) {
+    if (!tables.count(name)) continue;
+    doc.push_back({Block::kHeading, caption.substr(3, caption.find(':') == std::string::npos ? 40 : caption.find(':') - 3)});
+    doc.push_back({Block::kFigure, caption, {}, {}, name});
+    if (name == "speed_vs_error")
+      doc.push_back({Block::kTable, "", {"method", "ns per evaluation", "max error / energy scale"},
+                     tableRows(tables, name, {"method", "ns_per_eval", "max_rel_error"}, {false, true, true})});
+    if (name == "gravity_significance") {
+      doc.push_back({Block::kTable, "", {"cycle", "k", "max |Q| [N m]", "/ k = 1", "max inertia torque [N m]", "max |Q| / inertia", "Simbody max |Q|"},
+                     tableRows(tables, name, {"cycle", "k", "max_abs_Q", "ratio_to_k1", "max_inertia_torque", "ratio_to_inertia", "simbody_max_abs_Q"},
+                               {false, false, true, true, true, true, true})});
+      doc.push_back({Block::kParagraph,
+                     "The paper's claim (section 7): for k = 7, 9, 11 gravity can be neglected, the first nonzero term being "
+                     "Lambda_14. The rows above give the size for both strokes; the two-stroke k = 7, 9, 11 rows sit at "
+                     "lambda^13 and below."});
+    }
+  }
+  doc.push_back({Block::kHeading, "6. Errata: the sources as printed against what the engines agree on"});
+  doc.push_back({Block::kTable, "", {"item", "printed", "holds", "max |difference|", "scale", "relative"},
+                 tableRows(tables, "errata", {"item", "printed", "holds", "max_abs_difference", "scale", "relative_difference"},
+                           {false, false, false, true, true, true})});
+  doc.push_back({Block::kParagraph, "Details and the tests that assert each entry: docs/ERRATA.md. Data of every table and "
+                                    "figure: data/*.csv."});
+
+  std::ofstream(dir / "index.md") << toMarkdown(doc);
+  std::ofstream(dir / "index.html") << toHtml(doc, info.title);
+}
+
+void writeShardManifest(const ShardManifest& manifest, const fs::path& dir) {
+  nlohmann::json j = {{"crankcheck_shard", 1},     {"index", manifest.index}, {"count", manifest.count},
+                      {"quick", manifest.quick},   {"scenes", manifest.scenes}, {"tasks", manifest.tasks}};
+  std::ofstream(dir / "shard.json") << j.dump(2) << "\n";
+}
+
+ShardManifest readShardManifest(const fs::path& dir) {
+  std::ifstream in(dir / "shard.json");
+  if (!in) throw std::runtime_error(dir.string() + ": no shard.json (not a shard written by crankcheck validate --shard)");
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    ShardManifest m;
+    m.index = j.at("index").get<int>();
+    m.count = j.at("count").get<int>();
+    m.quick = j.at("quick").get<bool>();
+    m.scenes = j.at("scenes").get<std::vector<std::string>>();
+    m.tasks = j.at("tasks").get<int>();
+    return m;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error((dir / "shard.json").string() + ": malformed: " + e.what());
+  }
+}
+
+fs::path createStagingDirectory(const fs::path& target) {
+  const fs::path absolute = fs::absolute(target);
+  const fs::path parent = absolute.parent_path();
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec) throw std::runtime_error(target.string() + ": cannot create its parent folder: " + ec.message());
+  const fs::path staging = parent / ("." + absolute.filename().string() + ".partial-" + std::to_string(::getpid()));
+  fs::remove_all(staging, ec);
+  if (!fs::create_directory(staging, ec) || ec)
+    throw std::runtime_error(target.string() + ": cannot write there: " + (ec ? ec.message() : "exists"));
+  return staging;
+}
+
+void installDirectory(const fs::path& staging, const fs::path& target) {
+  const fs::path absolute = fs::absolute(target);
+  if (fs::exists(absolute)) {
+    // Swap the two directories in one step (Linux renameat2), then remove the old report.
+    if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, absolute.c_str(), RENAME_EXCHANGE) != 0)
+      throw std::runtime_error(target.string() + ": cannot replace the previous report: " + std::strerror(errno));
+    fs::remove_all(staging);
+  } else {
+    fs::rename(staging, absolute);
+  }
+}
+
+}  // namespace crankcheck::validation
