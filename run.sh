@@ -3,4 +3,5 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 scripts/setup.sh
-build/bin/crankcheck eval scenes/single_cylinder.toml --engine both --phi-deg 0,37.5,90,180,270
+# The main job: the default validation campaign; the report goes to out/report/ (index.md, index.html).
+build/bin/crankcheck validate --out out/report "$@"

@@ -474,9 +474,9 @@ std::vector<Mechanism> buildDefaultScenes() {
 
 std::string familyOf(const Mechanism& m) {
   const std::string& n = m.name;
-  if (n.rfind("single_cylinder", 0) == 0) return "single cylinder, gamma 90/0/180/-90";
-  if (n.rfind("inline4_four_gamma", 0) == 0 && n != "inline4_four_gamma90") return "inline 4 four-stroke, gamma 0/180/-90";
-  if (n.rfind("inline", 0) == 0) return n.find("_two_") != std::string::npos ? "inline two-stroke, k = 2..12" : "inline four-stroke, k = 2..12";
+  if (n.rfind("single_cylinder", 0) == 0) return "single cylinder (gamma 90/0/180/-90)";
+  if (n.rfind("inline4_four_gamma", 0) == 0 && n != "inline4_four_gamma90") return "inline 4 four-stroke (gamma 0/180/-90)";
+  if (n.rfind("inline", 0) == 0) return n.find("_two_") != std::string::npos ? "inline two-stroke (k = 2..12)" : "inline four-stroke (k = 2..12)";
   if (n.rfind("marine", 0) == 0) return "marine scale (inline 6 two-stroke)";
   if (n.rfind("small_engine", 0) == 0) return "small-engine scale (50 cm^3)";
   return n;

@@ -90,7 +90,11 @@ void writeTables(const TableSet& tables, const fs::path& dir) {
     for (size_t i = 0; i < table.columns.size(); ++i) out << (i ? "," : "") << table.columns[i];
     out << "\n";
     for (const auto& row : table.rows) {
-      for (size_t i = 0; i < row.size(); ++i) out << (i ? "," : "") << row[i];
+      for (size_t i = 0; i < row.size(); ++i) {
+        if (row[i].find_first_of(",\n") != std::string::npos)
+          throw std::logic_error("table " + name + ": a field contains a comma or newline: " + row[i]);
+        out << (i ? "," : "") << row[i];
+      }
       out << "\n";
     }
     if (!out) throw std::runtime_error("cannot write " + (dir / "data" / (name + ".csv")).string());

@@ -1,0 +1,147 @@
+// `crankcheck validate` and `crankcheck report merge` as a user runs them: every part of the report, shards that
+// merge into the same data as one run, refusals with exit status 2, and a good report never replaced by a failed run.
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace crankcheck {
+namespace {
+namespace fs = std::filesystem;
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+struct RunResult {
+  int exit_status = -1;
+  std::string out, err;
+};
+
+class ValidateTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("crankcheck_validate_test_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  RunResult run(const std::string& args, const std::string& env = "") {
+    const fs::path out = dir_ / "stdout", err = dir_ / "stderr";
+    const std::string command =
+        env + " " + std::string(CRANKCHECK_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
+    const int status = std::system(command.c_str());
+    RunResult r;
+    r.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = readFile(out);
+    r.err = readFile(err);
+    return r;
+  }
+
+  fs::path dir_;
+};
+
+const char* kFigures[] = {"error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance", "norton_fig13_8"};
+const char* kTables[] = {"crosscheck", "error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance",
+                         "norton_fig13_8", "errata", "scenes"};
+
+TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
+  const fs::path report = dir_ / "report";
+  const RunResult r = run("validate --quick --out " + report.string());
+  ASSERT_EQ(r.exit_status, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("All comparisons agree."), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("quantity"), std::string::npos);
+  const std::string index = readFile(report / "index.md");
+  for (const char* figure : kFigures) {
+    SCOPED_TRACE(figure);
+    EXPECT_GT(fs::file_size(report / (std::string(figure) + ".svg")), 1000u);
+    EXPECT_GT(fs::file_size(report / (std::string(figure) + ".png")), 1000u);
+    EXPECT_NE(index.find(std::string("](") + figure + ".png)"), std::string::npos);
+    EXPECT_NE(index.find(std::string("data/") + figure + ".csv"), std::string::npos);
+  }
+  for (const char* table : kTables) EXPECT_TRUE(fs::exists(report / "data" / (std::string(table) + ".csv"))) << table;
+  EXPECT_NE(index.find("Errata"), std::string::npos);
+  EXPECT_NE(index.find("Simbody 3.7"), std::string::npos);
+  EXPECT_NE(readFile(report / "index.html").find("<img src=\"harmonics.png\""), std::string::npos);
+  EXPECT_EQ(readFile(report / "data/error_vs_lambda.csv").rfind("quantity,method,lambda,max_abs_error,max_rel_error\n", 0), 0u);
+  EXPECT_EQ(readFile(report / "data/speed_vs_error.csv").rfind("method,ns_per_eval,max_rel_error\n", 0), 0u);
+  // Nothing but the report next to it: no staging folder left behind.
+  for (const auto& entry : fs::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().filename().string().find(".report.partial"), std::string::npos) << entry.path();
+}
+
+// Two shards merged give the same data as one run (timings excepted: they are measurements).
+TEST_F(ValidateTest, ShardsMergeIntoTheSameReportAsOneRun) {
+  ASSERT_EQ(run("validate --quick --jobs 1 --out " + (dir_ / "whole").string()).exit_status, 0);
+  const RunResult s0 = run("validate --quick --shard 0/2 --out " + (dir_ / "s0").string());
+  const RunResult s1 = run("validate --quick --shard 1/2 --out " + (dir_ / "s1").string());
+  ASSERT_EQ(s0.exit_status, 0) << s0.err;
+  ASSERT_EQ(s1.exit_status, 0) << s1.err;
+  EXPECT_TRUE(fs::exists(dir_ / "s0" / "shard.json"));
+  const RunResult merged = run("report merge " + (dir_ / "s0").string() + " " + (dir_ / "s1").string() + " --out " +
+                               (dir_ / "merged").string());
+  ASSERT_EQ(merged.exit_status, 0) << merged.err;
+  for (const char* table : kTables) {
+    if (std::string(table) == "speed_vs_error") continue;
+    EXPECT_EQ(readFile(dir_ / "merged/data" / (std::string(table) + ".csv")),
+              readFile(dir_ / "whole/data" / (std::string(table) + ".csv")))
+        << table;
+  }
+  for (const char* figure : kFigures) EXPECT_TRUE(fs::exists(dir_ / "merged" / (std::string(figure) + ".png")));
+  const RunResult incomplete = run("report merge " + (dir_ / "s0").string() + " --out " + (dir_ / "m2").string());
+  EXPECT_EQ(incomplete.exit_status, 2);
+  EXPECT_NE(incomplete.err.find("1 of 2 given"), std::string::npos) << incomplete.err;
+}
+
+// A run that fails (here: the figure scripts cannot be found) leaves the previous good report exactly as it was.
+TEST_F(ValidateTest, FailedRunNeverReplacesAGoodReport) {
+  const fs::path report = dir_ / "report";
+  ASSERT_EQ(run("validate --quick --out " + report.string()).exit_status, 0);
+  const std::string before = readFile(report / "index.md");
+  const RunResult failed = run("validate --quick --out " + report.string(), "CRANKCHECK_REPORTS_DIR=/nonexistent");
+  EXPECT_EQ(failed.exit_status, 1);
+  EXPECT_NE(failed.err.find("gnuplot script not found"), std::string::npos) << failed.err;
+  EXPECT_EQ(readFile(report / "index.md"), before);
+  for (const auto& entry : fs::directory_iterator(dir_))
+    EXPECT_EQ(entry.path().filename().string().find("partial"), std::string::npos) << entry.path();
+}
+
+TEST_F(ValidateTest, BadInputIsRefusedWithStatus2) {
+  const RunResult bad_out = run("validate --quick --out /proc/crankcheck/report");
+  EXPECT_EQ(bad_out.exit_status, 2);
+  EXPECT_NE(bad_out.err.find("--out /proc/crankcheck/report"), std::string::npos) << bad_out.err;
+  EXPECT_EQ(bad_out.out, "");
+  const RunResult bad_shard = run("validate --quick --shard 2/2 --out " + (dir_ / "x").string());
+  EXPECT_EQ(bad_shard.exit_status, 2);
+  EXPECT_NE(bad_shard.err.find("--shard 2/2"), std::string::npos) << bad_shard.err;
+  const RunResult bad_scene = run("validate " + (dir_ / "missing.toml").string() + " --out " + (dir_ / "x").string());
+  EXPECT_EQ(bad_scene.exit_status, 2);
+  EXPECT_NE(bad_scene.err.find("missing.toml: file"), std::string::npos) << bad_scene.err;
+  EXPECT_FALSE(fs::exists(dir_ / "x"));
+  const RunResult not_a_shard = run("report merge " + dir_.string() + " --out " + (dir_ / "x").string());
+  EXPECT_EQ(not_a_shard.exit_status, 2);
+  EXPECT_NE(not_a_shard.err.find("shard.json"), std::string::npos) << not_a_shard.err;
+}
+
+TEST_F(ValidateTest, SceneFilesAreTheirOwnFamilies) {
+  const std::string scenes = CRANKCHECK_SCENES_DIR;
+  const RunResult r = run("validate --quick " + scenes + "/single_cylinder.toml " + scenes +
+                          "/compressor2_explicit_angles.toml --out " + (dir_ / "report").string());
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_NE(r.out.find("compressor2_explicit_angles"), std::string::npos) << r.out;
+  EXPECT_NE(readFile(dir_ / "report/data/scenes.csv").find("single_cylinder"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace crankcheck
