@@ -1,0 +1,104 @@
+# gravity_significance.gp -- how large the gravity torque is, against the number of cylinders k.
+#
+#   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/gravity_significance.gp
+#
+# Reads  in_dir/gravity_significance.csv   cycle,k,max_abs_Q,ratio_to_k1,max_inertia_torque,ratio_to_inertia
+# Writes out_dir/gravity_significance.svg and out_dir/gravity_significance.png
+#
+# Per cycle (two-stroke blue, four-stroke orange) two lines against k = 1..12 on a log y axis:
+# ratio_to_k1 (solid, filled points) = max|Q| relative to the same cycle's k = 1, and
+# ratio_to_inertia (dashed, open points) = max|Q| relative to the largest inertia torque.
+# Zeros (and anything below 1e-17) are drawn at 1e-17. k = 7, 9, 11 are shaded. Rows may come in
+# any order; an absent cycle or column simply has no line.
+
+if (!exists("in_dir"))  in_dir  = "."
+if (!exists("out_dir")) out_dir = "."
+name = "gravity_significance"
+file = in_dir . "/" . name . ".csv"
+
+reset
+set encoding utf8
+set datafile separator ","
+floor = 1e-17
+clamp(v) = (v < floor) ? floor : v
+fin(v) = (v == v && abs(v) < 1e300)      # false for nan and inf: such values are not drawn
+
+# ---- presence per (cycle, column) and the range of the plotted values ----------------------------
+present = "|"; ymin = 1; ymax = 1
+reg(c, col, v) = (fin(v) && strstrt(present, "|" . c . ":" . col . "|") == 0) ? present = present . c . ":" . col . "|" : 0
+# ---- number of data rows: a constant-only "using" counts the header line too (no warning even for a
+#      header-only CSV); every later stats is skipped when there is no data row ----------------------
+nlines = 0
+stats file using (nlines = nlines + 1, 1) nooutput
+if (nlines == 0) { print "error: " . file . " is missing or empty (not even a header line)"; exit status 1 }
+ndata = nlines - 1
+
+if (ndata > 0) {
+    stats file skip 1 using (reg(strcol(1), "4", column(4)), reg(strcol(1), "6", column(6)), \
+        (fin(column(4)) ? (ymin = clamp(column(4)) < ymin ? clamp(column(4)) : ymin, \
+                                   ymax = column(4) > ymax ? column(4) : ymax) : 0), \
+        (fin(column(6)) ? (ymin = clamp(column(6)) < ymin ? clamp(column(6)) : ymin, \
+                                   ymax = column(6) > ymax ? column(6) : ymax) : 0), 0) nooutput
+}
+
+has(c, col) = strstrt(present, "|" . c . ":" . col . "|") > 0
+
+array CYC[2] = ["two-stroke", "four-stroke"]
+array COL[2] = [4, 6]
+array WHAT[2] = ["relative to k = 1", "relative to the inertia torque"]
+set style line 1 lc rgb "#1f77b4" lw 2 pt 7 ps 1.0
+set style line 2 lc rgb "#1f77b4" lw 2 dt 2 pt 6 ps 1.1
+set style line 3 lc rgb "#ff7f0e" lw 2 pt 5 ps 1.0
+set style line 4 lc rgb "#ff7f0e" lw 2 dt 2 pt 4 ps 1.1
+
+cmd = ""
+do for [p = 1:2] {
+    do for [w = 1:2] {
+        if (has(CYC[p], sprintf("%d", COL[w]))) {
+            s = 2 * (p - 1) + w
+            eval sprintf("set table $S%d separator comma", s)
+            plot file skip 1 using 2:(clamp(column(COL[w]))) with table if (strcol(1) eq CYC[p] && fin(column(COL[w])))
+            unset table
+            cmd = cmd . sprintf("$S%d using 1:2 smooth unique with linespoints ls %d title '%s, %s', ", s, s, CYC[p], WHAT[w])
+        }
+    }
+}
+cmd = (cmd eq "") ? "NaN notitle" : cmd[1:strlen(cmd) - 2]
+
+# ---- axes ---------------------------------------------------------------------------------------
+set logscale y
+lo = 10**floor(log10(ymin)); hi = 10**(ceil(log10(ymax)) + 1)
+set xrange [0.5:12.5]
+set yrange [lo : hi]
+set xtics 1, 1, 12
+set format y "10^{%T}"
+ystep = (hi / lo > 1e9) ? 100 : 10
+set ytics ystep
+set grid ytics lc rgb "#dddddd"
+set xlabel "number of cylinders k (inline, evenly spaced cranks)"
+set ylabel "max |Q| ratio (dimensionless, log scale)"
+do for [k in "7 9 11"] {
+    set object rectangle from first k - 0.4, graph 0 to first k + 0.4, graph 1 fillcolor rgb "#fff2b3" fillstyle solid 1.0 noborder behind
+}
+set label 1 "shaded: k = 7, 9, 11 (the paper: gravity negligible, first surviving order 2k)" at graph 0.99, graph 0.97 right font ",9" tc rgb "#555555"
+if (ymin <= floor) { set label 2 "0 shown at 10^{-17} (below double precision)" at graph 0.01, first floor left offset 0, 0.6 font ",9" tc rgb "#444444" }
+set bmargin at screen 0.19
+set key at screen 0.5, screen 0.06 center center horizontal maxrows 2 reverse Left samplen 3 font ",10" box lc rgb "#bbbbbb"
+
+if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) { pngterm = "pngcairo" } else { pngterm = "png" }
+
+do for [fmt in "svg png"] {
+    if (fmt eq "svg") {
+        set terminal svg size 900,560 enhanced font "DejaVu Sans,10" background rgb "white"
+    } else {
+        if (pngterm eq "pngcairo") {
+            set terminal pngcairo size 900,560 enhanced font "DejaVu Sans,10" background rgb "white"
+        } else {
+            set terminal png size 900,560 enhanced font "DejaVuSans,10" background rgb "white"
+        }
+    }
+    set output out_dir . "/" . name . "." . fmt
+    set title "How much gravity matters: max |Q| against k, relative to k = 1 and to the inertia torque" font ",12"
+    eval "plot " . cmd
+    unset output
+}
