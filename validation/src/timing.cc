@@ -13,7 +13,8 @@ class Collector : public benchmark::BenchmarkReporter {
   bool ReportContext(const Context&) override { return true; }
   void ReportRuns(const std::vector<Run>& runs) override {
     for (const Run& run : runs)
-      if (!run.error_occurred) nanoseconds[run.benchmark_name()] = run.GetAdjustedRealTime();  // default unit: ns
+      // run_name.function_name is the registered name (benchmark_name() appends "/min_time:...").
+      if (!run.error_occurred) nanoseconds[run.run_name.function_name] = run.GetAdjustedRealTime();  // unit: ns
   }
   std::map<std::string, double> nanoseconds;
 };
