@@ -290,24 +290,28 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   if (runAndCapture("command -v gnuplot").empty())
     throw std::runtime_error("gnuplot is not installed (Debian package gnuplot-nox; ./run.sh installs it)");
 
-  const std::vector<std::pair<std::string, std::string>> figures = {
-      {"error_vs_lambda",
-       "1. Max error over the crank turn against lambda: Norton's two-term x, v, a; Q from Fourier series of order 2-12 "
-       "with exact coefficients, from the paper's printed coefficients (eq 15) and with eq (5) as printed; the analytic "
-       "engine against Simbody"},
-      {"speed_vs_error",
-       "2. Cost per evaluation of Q against its error, measured in one run: the exact closed form, Fourier orders, the "
-       "printed eq (15), Simbody at several projection tolerances (Pareto front joined)"},
-      {"harmonics",
-       "3. Harmonics of Q by a DFT of Simbody's Q(phi) (lambda = 0.4, standing engines), with the analytic prediction "
-       "and the paper's table 1 / eq (18)"},
-      {"gravity_significance",
-       "4. Max |Q| against k relative to k = 1, and relative to the inertia torque at the base scene's speed"},
-      {"norton_fig13_8", "5. Piston position, velocity and acceleration over two revolutions, exact and Norton's two-term "
-                         "(13.3c-e), for the base scene"},
+  struct Figure {
+    std::string name, heading, caption;
   };
-  for (const auto& [name, caption] : figures)
-    if (tables.count(name)) plot(name, dir);
+  const std::vector<Figure> figures = {
+      {"error_vs_lambda", "1. Error against lambda",
+       "Max error over the crank turn against lambda, relative to the quantity's scale (r, r w, r w^2 for x, v, a; "
+       "the energy scale for Q and U): Norton's two-term x, v, a; Q from Fourier series of order 2-12 with exact "
+       "coefficients, from the paper's printed coefficients (eq 15) and with eq (5) as printed; analytic against Simbody"},
+      {"speed_vs_error", "2. Speed against error",
+       "Cost per evaluation of Q against its error, all measured in one run on this machine: the exact closed form, "
+       "Fourier orders, the printed eq (15), Simbody at several projection tolerances; the Pareto front joined"},
+      {"harmonics", "3. Harmonics of Q",
+       "Harmonics of Q by a DFT of Simbody's Q(phi) (64 angles, lambda = 0.4, standing engines), with the analytic "
+       "prediction (circles) and the paper's table 1 / eq (18) (crosses)"},
+      {"gravity_significance", "4. When gravity matters",
+       "Max |Q| against k, relative to k = 1 and relative to the inertia torque at the base scene's speed"},
+      {"norton_fig13_8", "5. Piston motion (after Norton fig. 13-8)",
+       "Piston position, velocity and acceleration over two revolutions, exact and Norton's two-term (13.3c-e), for "
+       "the base scene"},
+  };
+  for (const Figure& f : figures)
+    if (tables.count(f.name)) plot(f.name, dir);
 
   const std::vector<SummaryRow> summary = summarize(tables);
   const bool all_pass = std::all_of(summary.begin(), summary.end(), [](const SummaryRow& s) { return s.pass; });
@@ -342,10 +346,11 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
                             "I_o", "m_s", "r_s", "m_p", "r_p"},
                            {false, false, false, false, true, true, true, true, true, true, true, true, true, true, true, true, true})});
 
-  for (const auto& [name, caption] : figures) {
+  for (const Figure& f : figures) {
+    const std::string& name = f.name;
     if (!tables.count(name)) continue;
-    doc.push_back({Block::kHeading, caption.substr(3, caption.find(':') == std::string::npos ? 40 : caption.find(':') - 3)});
-    doc.push_back({Block::kFigure, caption, {}, {}, name});
+    doc.push_back({Block::kHeading, f.heading});
+    doc.push_back({Block::kFigure, f.caption, {}, {}, name});
     if (name == "speed_vs_error")
       doc.push_back({Block::kTable, "", {"method", "ns per evaluation", "max error / energy scale"},
                      tableRows(tables, name, {"method", "ns_per_eval", "max_rel_error"}, {false, true, true})});
