@@ -5,7 +5,10 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <random>
+#include <vector>
 
+#include "crankcheck/analytic/batch.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/potential_energy.h"
@@ -40,6 +43,60 @@ void BM_BareSinCosSqrt(benchmark::State& state) {  // the floor of any closed fo
   }
 }
 BENCHMARK(BM_BareSinCosSqrt);
+
+// Batches of 1e6 angles: items_per_second counts angles (ns per angle = 1e9 / items_per_second).
+constexpr size_t kBatch = 1'000'000;
+
+std::vector<double> randomAngles() {
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> angle(-10.0, 10.0);
+  std::vector<double> phi(kBatch);
+  for (double& p : phi) p = angle(rng);
+  return phi;
+}
+
+void setPerAngle(benchmark::State& state) {
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(kBatch));
+}
+
+// The floor of any closed form for arbitrary angles: one sin, one cos and one sqrt per angle.
+void BM_BatchBareSinCosSqrt(benchmark::State& state) {
+  const std::vector<double> phi = randomAngles();
+  std::vector<double> out(kBatch);
+  for (auto _ : state) {
+    for (size_t i = 0; i < kBatch; ++i) {
+      const double s = std::sin(phi[i]), c = std::cos(phi[i]);
+      out[i] = c + std::sqrt(1.0 - 0.09 * s * s);
+    }
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  setPerAngle(state);
+}
+BENCHMARK(BM_BatchBareSinCosSqrt)->Unit(benchmark::kMillisecond);
+
+void BM_BatchQArbitraryAngles(benchmark::State& state) {
+  const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
+  const std::vector<double> phi = randomAngles();
+  std::vector<double> Q(kBatch);
+  for (auto _ : state) {
+    analytic::calcGravityTorqueBatch(m, phi, Q);
+    benchmark::DoNotOptimize(Q.data());
+  }
+  setPerAngle(state);
+}
+BENCHMARK(BM_BatchQArbitraryAngles)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+
+void BM_BatchQUniformGrid(benchmark::State& state) {
+  const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
+  std::vector<double> Q(kBatch);
+  for (auto _ : state) {
+    analytic::calcGravityTorqueOnGrid(m, 0.0, 2.0 * M_PI / 3600.0, Q);
+    benchmark::DoNotOptimize(Q.data());
+  }
+  setPerAngle(state);
+}
+BENCHMARK(BM_BatchQUniformGrid)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
 
 void BM_AnalyticQ(benchmark::State& state) {
   const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
