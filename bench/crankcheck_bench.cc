@@ -13,6 +13,7 @@
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/analytic/reactions.h"
+#include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 
 namespace crankcheck {
@@ -154,6 +155,21 @@ void BM_SimbodyPotentialEnergy(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(model.calcPotentialEnergy(nextAngle(i)));
 }
 BENCHMARK(BM_SimbodyPotentialEnergy)->Arg(1)->Arg(4)->Arg(12)->Unit(benchmark::kMicrosecond);
+
+// The reduced model (two-mass rods, one distance constraint per cylinder) for the same U and Q.
+void BM_SimbodyReducedHoldingTorque(benchmark::State& state) {
+  simbody_models::KCrankGravityModel model(benchMechanism(static_cast<int>(state.range(0))));
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(model.calcHoldingTorque(nextAngle(i)));
+}
+BENCHMARK(BM_SimbodyReducedHoldingTorque)->Arg(1)->Arg(2)->Arg(4)->Arg(6)->Arg(12)->Unit(benchmark::kMicrosecond);
+
+void BM_SimbodyReducedPotentialEnergy(benchmark::State& state) {
+  simbody_models::KCrankGravityModel model(benchMechanism(static_cast<int>(state.range(0))));
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(model.calcPotentialEnergy(nextAngle(i)));
+}
+BENCHMARK(BM_SimbodyReducedPotentialEnergy)->Arg(1)->Arg(4)->Arg(12)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace crankcheck

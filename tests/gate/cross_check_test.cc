@@ -25,6 +25,7 @@
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
+#include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/scales.h"
 
@@ -238,6 +239,47 @@ TEST(PaperAsPrinted, NortonTwoTermIsAnApproximationOfSimbodysMotion) {
   }
   EXPECT_GT(worst_a, 1e-3 * m.crank.radius * m.engine.speed * m.engine.speed);
 }
+
+
+// ---------------------------------------------------------------------------------------------------------------
+// The reduced Simbody model (two-mass rods, one distance constraint per cylinder) computes U and Q by its own
+// dynamics; it must agree with the analytic engine and with the full model to the same tolerance.
+
+class ReducedModelTest : public ::testing::TestWithParam<CaseSpec> {};
+
+TEST_P(ReducedModelTest, UAndQAgreeWithAnalyticAndFullModel) {
+  for (double lambda : {0.05, 0.3, 0.9, 0.999}) {
+    CaseSpec spec = GetParam();
+    spec.lambda = lambda;
+    spec.rpm = 0.0;
+    const Mechanism m = testing::makeMechanism(spec);
+    g_current_lambda = lambda;
+    simbody_models::KCrankGravityModel reduced(m);
+    simbody_models::KCrankModel full(m);
+    const Scales sc = calcScales(m);
+    for (double phi_deg : testing::sweepPhisDeg()) {
+      SCOPED_TRACE(testing::caseName(spec) + " phi_deg " + std::to_string(phi_deg));
+      const double phi = radiansFromDegrees(phi_deg);
+      const double Q = analytic::calcGravityTorque(m, phi);
+      EXPECT_TRUE(agree("U (reduced model)", analytic::calcPotentialEnergy(m, phi), reduced.calcPotentialEnergy(phi), sc.simbody_energy));
+      EXPECT_TRUE(agree("Q (reduced model, holding torque)", Q, reduced.calcHoldingTorque(phi), sc.energy, sc.conditioning));
+      EXPECT_TRUE(agree("Q (reduced model, virtual power)", Q, reduced.calcVirtualPowerQ(phi), sc.energy, sc.conditioning));
+      EXPECT_TRUE(agree("Q (reduced against full model)", full.calcHoldingTorque(phi), reduced.calcHoldingTorque(phi), sc.energy,
+                        sc.conditioning));
+    }
+  }
+}
+
+std::vector<CaseSpec> reducedCases() {
+  std::vector<CaseSpec> cases;
+  for (int k = 1; k <= 12; ++k)
+    for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke})
+      for (double gamma : {90.0, 37.0, 0.0}) cases.push_back({k, cycle, Acting::kSingle, 0.3, gamma, 0.0});
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Gate, ReducedModelTest, ::testing::ValuesIn(reducedCases()),
+                         [](const auto& info) { return testing::caseNameWithoutLambda(info.param); });
 
 }  // namespace
 }  // namespace crankcheck
