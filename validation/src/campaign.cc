@@ -13,6 +13,7 @@
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/analytic/reactions.h"
+#include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/timing.h"
@@ -144,7 +145,7 @@ struct WorstComparison {
   bool pass = true;
 };
 
-TableSet crossCheckCase(const std::string& family, const Mechanism& m, bool quick) {
+TableSet crossCheckCase(const std::string& family, const Mechanism& m, const std::vector<double>& angles_deg) {
   std::map<std::string, WorstComparison> worst;
   auto note = [&](const Comparison& c, double phi_deg, double rpm) {
     WorstComparison& w = worst[c.quantity];
@@ -158,11 +159,11 @@ TableSet crossCheckCase(const std::string& family, const Mechanism& m, bool quic
       w.rpm = rpm;
     }
   };
-  for (double rpm : {m.speed_rpm, 0.0}) {
+  for (double rpm : m.speed_rpm > 0.0 ? std::vector<double>{m.speed_rpm, 0.0} : std::vector<double>{0.0}) {
     const Mechanism case_m = withSpeed(m, rpm);
     simbody_models::KCrankModel model(case_m);
     const Scales sc = calcScales(case_m);
-    for (double phi_deg : anglesDeg(quick ? 45.0 : 15.0)) {
+    for (double phi_deg : angles_deg) {
       const double phi = radiansFromDegrees(phi_deg);
       const Evaluation a = analytic::calcEvaluation(case_m, phi);
       for (const Comparison& c : compareEvaluations(case_m, a, model.evaluate(phi))) note(c, phi_deg, rpm);
@@ -251,6 +252,8 @@ TableSet speedVsError(const Mechanism& base, bool quick) {
     std::shared_ptr<simbody_models::KCrankModel> model;
   };
   std::vector<Method> methods;
+  auto reduced = std::make_shared<simbody_models::KCrankGravityModel>(m);
+  methods.push_back({"simbody_reduced_tol_1e-12", [reduced](double phi) { return reduced->calcHoldingTorque(phi); }, nullptr});
   methods.push_back({"exact_closed_form", [m](double phi) { return analytic::calcGravityTorque(m, phi); }, nullptr});
   for (int order : {2, 4, 6, 8, 12}) {
     auto harmonics = std::make_shared<std::vector<analytic::TorqueHarmonic>>(analytic::calcGravityTorqueHarmonics(m, order));
@@ -306,7 +309,7 @@ TableSet harmonics(const Mechanism& base, Cycle cycle) {
   for (int k = 1; k <= 12; ++k) {
     const Mechanism m = withSpeed(withGamma(withCylinders(withLambda(base, 0.4), k, cycle), 90.0), 0.0);
     const double E = calcEnergyScale(m);
-    simbody_models::KCrankModel model(m);
+    simbody_models::KCrankGravityModel model(m);  // U and Q only: the reduced model suffices
     std::vector<double> q(M);
     for (int i = 0; i < M; ++i) q[i] = model.calcHoldingTorque(2.0 * M_PI * i / M);
     std::map<int, double> predicted;
@@ -340,7 +343,7 @@ TableSet gravitySignificance(const Mechanism& base, Cycle cycle, bool quick) {
       max_q = std::max(max_q, std::fabs(q));
       max_inertia = std::max(max_inertia, std::fabs(analytic::calcReactions(m, phi).drive_torque - q));
     }
-    simbody_models::KCrankModel model(withSpeed(m, 0.0));
+    simbody_models::KCrankGravityModel model(withSpeed(m, 0.0));
     for (double phi_deg : anglesDeg(quick ? 30.0 : 10.0))
       max_q_simbody = std::max(max_q_simbody, std::fabs(model.calcHoldingTorque(radiansFromDegrees(phi_deg))));
     if (k == 1) q1 = max_q;
@@ -377,7 +380,7 @@ TableSet errata(const Mechanism& base, bool quick) {
   const std::vector<double> angles = anglesDeg(quick ? 15.0 : 5.0);
   {  // eq (5) as printed, against Simbody, on the base scene at rest
     const Mechanism m = withSpeed(base, 0.0);
-    simbody_models::KCrankModel model(m);
+    simbody_models::KCrankGravityModel model(m);
     double worst_q = 0.0, worst_u = 0.0;
     for (double d : angles) {
       const double phi = radiansFromDegrees(d);
@@ -395,7 +398,7 @@ TableSet errata(const Mechanism& base, bool quick) {
   }
   {  // eq (15) truncated at lambda^11, against Simbody at lambda = 0.4
     const Mechanism m = withSpeed(withLambda(base, 0.4), 0.0);
-    simbody_models::KCrankModel model(m);
+    simbody_models::KCrankGravityModel model(m);
     const auto printed = analytic::calcGravityTorqueHarmonics(m, 12, LambdaSource::kAsPrinted);
     double worst = 0.0;
     for (double d : angles) {
@@ -501,8 +504,37 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
       const Mechanism variant = withLambda(m, lambda);
       char id[128];
       std::snprintf(id, sizeof id, "crosscheck %s lambda=%.3g", m.name.c_str(), lambda);
-      tasks.push_back({id, false, [family = family, variant, quick] { return crossCheckCase(family, variant, quick); }});
+      const std::vector<double> angles = anglesDeg(quick ? 45.0 : 15.0);
+      tasks.push_back({id, false, [family = family, variant, angles] { return crossCheckCase(family, variant, angles); }});
     }
+  }
+  // The gate's sweep (tests/gate): every k and stroke over lambda and gamma, at the gate's crank angles (both dead
+  // centres and quarter turns), at speed and at rest. Only with the built-in campaign.
+  if (options.scenes.empty()) {
+    const std::vector<double> sweep_lambdas =
+        quick ? std::vector<double>{0.3, 0.999}
+              : std::vector<double>{1e-6, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.9, 0.999};
+    const std::vector<double> sweep_gammas = quick ? std::vector<double>{90.0, 37.0} : std::vector<double>{0.0, 180.0, 90.0, -90.0, 37.0};
+    const std::vector<double> gate_angles = {0.0, 17.0, 45.0, 90.0, 133.0, 180.0, 222.5, 270.0, 300.0, 359.0, -60.0};
+    for (int k = 1; k <= 12; ++k)
+      for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke}) {
+        const bool two = cycle == Cycle::kTwoStroke;
+        const std::string family = std::string("gate sweep ") + (two ? "two" : "four") + "-stroke (k = 1..12)";
+        const Mechanism kbase = withSpeed(withCylinders(base, k, cycle), two ? 3000.0 : 6000.0);
+        tasks.push_back({"sweep k=" + std::to_string(k) + " " + toString(cycle), false,
+                         [family, kbase, k, two, sweep_lambdas, sweep_gammas, gate_angles] {
+                           TableSet out;
+                           for (double lambda : sweep_lambdas)
+                             for (double gamma : sweep_gammas) {
+                               Mechanism variant = withGamma(withLambda(kbase, lambda), gamma);
+                               char name[96];
+                               std::snprintf(name, sizeof name, "k%d_%s_%s", k, two ? "two" : "four", gammaTag(gamma).c_str());
+                               variant.name = name;
+                               appendTables(out, crossCheckCase(family, variant, gate_angles));
+                             }
+                           return out;
+                         }});
+      }
   }
   const int n_lambda = quick ? 5 : 20;
   for (int i = 0; i < n_lambda; ++i) {
