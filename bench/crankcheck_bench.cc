@@ -15,6 +15,7 @@
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/campaign.h"
 
 namespace crankcheck {
 namespace {
@@ -164,12 +165,30 @@ void BM_SimbodyReducedHoldingTorque(benchmark::State& state) {
 }
 BENCHMARK(BM_SimbodyReducedHoldingTorque)->Arg(1)->Arg(2)->Arg(4)->Arg(6)->Arg(12)->Unit(benchmark::kMicrosecond);
 
+void BM_SimbodyReducedVirtualPowerQ(benchmark::State& state) {
+  simbody_models::KCrankGravityModel model(benchMechanism(static_cast<int>(state.range(0))));
+  int i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(model.calcVirtualPowerQ(nextAngle(i)));
+}
+BENCHMARK(BM_SimbodyReducedVirtualPowerQ)->Arg(1)->Arg(12)->Unit(benchmark::kMicrosecond);
+
 void BM_SimbodyReducedPotentialEnergy(benchmark::State& state) {
   simbody_models::KCrankGravityModel model(benchMechanism(static_cast<int>(state.range(0))));
   int i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(model.calcPotentialEnergy(nextAngle(i)));
 }
 BENCHMARK(BM_SimbodyReducedPotentialEnergy)->Arg(1)->Arg(4)->Arg(12)->Unit(benchmark::kMicrosecond);
+
+// The whole default campaign of `crankcheck validate`, every task in turn on one thread (the command itself spreads
+// them over --jobs threads). Timing tasks are skipped: they would measure themselves.
+void BM_DefaultCampaign(benchmark::State& state) {
+  validation::CampaignOptions options;
+  options.quick = state.range(0) != 0;
+  for (auto _ : state)
+    for (const validation::Task& task : validation::buildCampaign(options))
+      if (!task.measures_time) benchmark::DoNotOptimize(task.run());
+}
+BENCHMARK(BM_DefaultCampaign)->Arg(1)->Arg(0)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 }  // namespace crankcheck
