@@ -11,3 +11,11 @@ set(CMAKE_CXX_FLAGS_RELWITHDEBINFO "-O2 -g" CACHE STRING "RelWithDebInfo flags (
 set(CMAKE_CXX_FLAGS_DEBUG "-O0 -g" CACHE STRING "Debug flags" FORCE)
 
 add_compile_options(-Wall -Wextra -Wpedantic)
+
+# AddressSanitizer and UndefinedBehaviorSanitizer for every target (scripts/sanitize.sh, build-asan/). Still no
+# NDEBUG. Simbody's own libraries are not instrumented; our code and the Simbody templates it instantiates are.
+option(CRANKCHECK_SANITIZE "Build with -fsanitize=address,undefined" OFF)
+if(CRANKCHECK_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=address,undefined)
+endif()

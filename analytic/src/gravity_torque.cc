@@ -56,7 +56,7 @@ double calcGravityTorque(const Mechanism& m, double phi, Eq5Form form) {
   const SinCos gamma = calcSinCos(m.engine.cylinder_angle);
   double Q = 0.0;
   for (double alpha : m.engine.crank_angles) {
-    const SinCos theta = calcSinCos(phi + alpha);
+    const SinCos theta = calcThrowSinCos(phi, alpha);
     const double root = std::sqrt((1.0 - lambda * theta.sin) * (1.0 + lambda * theta.sin));
     // Stanczak eq (13); lambda sin 2theta / (2 root) written as lambda sin cos / root.
     Q += U2 * (theta.cos * gamma.cos - theta.sin * gamma.sin) -
@@ -71,9 +71,9 @@ double calcGravityTorqueFourier(const Mechanism& m, double phi, int order, Lambd
   const std::vector<double> big_lambda = lambdaCoefficients(m.crank.radius / m.rod.length, order, source);
   double Q = 0.0;
   for (double alpha : m.engine.crank_angles) {
-    const SinCos theta = calcSinCos(phi + alpha);
+    const SinCos theta = calcThrowSinCos(phi, alpha);
     Q += N * theta.cos + (N1 + N2) * theta.sin;  // Stanczak eq (14), W_1 = N1 + N2
-    for (int n = 2; n <= order; n += 2) Q += N1 * big_lambda[n] * calcSinCos(n * (phi + alpha)).sin;
+    for (int n = 2; n <= order; n += 2) Q += N1 * big_lambda[n] * calcThrowSinCos(n * phi, n * alpha).sin;
   }
   return Q;
 }

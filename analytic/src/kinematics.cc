@@ -9,9 +9,13 @@
 namespace crankcheck::analytic {
 
 PistonKinematics calcPistonKinematics(const Mechanism& m, double theta) {
+  return calcPistonKinematics(m, calcSinCos(theta));
+}
+
+PistonKinematics calcPistonKinematics(const Mechanism& m, const SinCos& theta) {
   const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed;
   const double lambda = r / l;
-  const auto [s1, c1] = calcSinCos(theta);
+  const auto [s1, c1] = theta;
   const double s2 = 2.0 * s1 * c1;              // sin 2theta
   const double c2 = (c1 - s1) * (c1 + s1);      // cos 2theta
   const double root = std::sqrt((1.0 - lambda * s1) * (1.0 + lambda * s1));  // sqrt(1 - lambda^2 sin^2), no cancellation
@@ -29,9 +33,11 @@ PistonKinematics calcPistonKinematics(const Mechanism& m, double theta) {
   return k;
 }
 
-RodKinematics calcRodKinematics(const Mechanism& m, double theta) {
+RodKinematics calcRodKinematics(const Mechanism& m, double theta) { return calcRodKinematics(m, calcSinCos(theta)); }
+
+RodKinematics calcRodKinematics(const Mechanism& m, const SinCos& theta) {
   const double lambda = m.crank.radius / m.rod.length, w = m.engine.speed;
-  const auto [s1, c1] = calcSinCos(theta);
+  const auto [s1, c1] = theta;
   const double cos_beta = std::sqrt((1.0 - lambda * s1) * (1.0 + lambda * s1));
   RodKinematics k;
   k.beta = std::asin(lambda * s1);

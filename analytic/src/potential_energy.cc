@@ -28,9 +28,9 @@ double calcPotentialEnergy(const Mechanism& m, double phi, Eq5Form form) {
   double U = 0.0;
   for (double alpha : m.engine.crank_angles) {
     // x = alpha + phi/2, the mean of the two crank angles theta = alpha + phi and alpha.
-    const SinCos x = calcSinCos(alpha + 0.5 * phi);
-    const SinCos theta = calcSinCos(alpha + phi);
     const SinCos a = calcSinCos(alpha);
+    const SinCos x = addAngles(a, half);              // angle addition: no rounding of alpha + phi/2
+    const SinCos theta = addAngles(x, half);
     const double root_theta = std::sqrt((1.0 - lambda * theta.sin) * (1.0 + lambda * theta.sin));
     const double root_alpha = std::sqrt((1.0 - lambda * a.sin) * (1.0 + lambda * a.sin));
     // U2 [sin(theta + gamma) - sin(alpha + gamma)] = U2 2 sin(phi/2) cos(x + gamma)

@@ -35,10 +35,9 @@ Reactions calcReactions(const Mechanism& m, double phi) {
 
   Reactions out;
   for (double alpha : m.engine.crank_angles) {
-    const double theta = phi + alpha;
-    const SinCos t = calcSinCos(theta);
-    const PistonKinematics piston = calcPistonKinematics(m, theta);
-    const RodKinematics rod = calcRodKinematics(m, theta);
+    const SinCos t = calcThrowSinCos(phi, alpha);
+    const PistonKinematics piston = calcPistonKinematics(m, t);
+    const RodKinematics rod = calcRodKinematics(m, t);
     const double psi_ddot = -rod.beta_ddot;  // the rod turns about +Z by -beta (kinematics.h)
 
     const P2 p_OA{piston.x_p, 0.0}, p_OB{r * t.cos, r * t.sin};
@@ -80,7 +79,7 @@ Evaluation calcEvaluation(const Mechanism& m, double phi) {
   ev.drive_torque = reactions.drive_torque;
   ev.bearing_force = reactions.bearing_force;
   for (size_t j = 0; j < m.engine.crank_angles.size(); ++j) {
-    const PistonKinematics k = calcPistonKinematics(m, phi + m.engine.crank_angles[j]);
+    const PistonKinematics k = calcPistonKinematics(m, calcThrowSinCos(phi, m.engine.crank_angles[j]));
     CylinderEvaluation c;
     c.x_p = k.x_p;
     c.v_p = k.v_p;

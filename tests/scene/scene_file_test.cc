@@ -150,6 +150,23 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"table_is_value", "", "engine = 3\n", "[engine]", "must be a table"}),
     [](const auto& info) { return info.param.name; });
 
+// Inputs the fuzzer (fuzz/scene_fuzzer.cc, scripts/fuzz.sh) found or that guard what it checks: each must give a
+// valid scene or a SceneError, never another exception or a crash.
+TEST(SceneFile, FuzzRegressionInputsAreHandled) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(CRANKCHECK_FUZZ_REGRESSIONS_DIR)) {
+    SCOPED_TRACE(entry.path().string());
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    try {
+      parseScene(text, entry.path().string());
+    } catch (const SceneError&) {
+    }
+    ++count;
+  }
+  EXPECT_GE(count, 1);
+}
+
 TEST(SceneFile, UnreadableAndBinaryFilesAreRefused) {
   EXPECT_THROW(loadSceneFile("/nonexistent/scene.toml"), SceneError);
   const auto path = std::filesystem::temp_directory_path() / "crankcheck_binary_scene.toml";

@@ -16,4 +16,13 @@ struct SinCos {
 /// std::sin and std::cos.
 SinCos calcSinCos(double angle);
 
+/// sin and cos of a + b from those of a and b (angle addition): no rounding of the sum a + b, so a throw's angle
+/// phi + alpha_j stays as accurate as phi itself at any magnitude (phi = 1e6 rad), and exact zeros survive.
+inline SinCos addAngles(const SinCos& a, const SinCos& b) {
+  return {a.sin * b.cos + a.cos * b.sin, a.cos * b.cos - a.sin * b.sin};
+}
+
+/// sin and cos of throw j's crank angle theta_j = phi + alpha_j (CONVENTIONS.md).
+inline SinCos calcThrowSinCos(double phi, double alpha) { return addAngles(calcSinCos(phi), calcSinCos(alpha)); }
+
 }  // namespace crankcheck::analytic

@@ -7,6 +7,7 @@
 /// centre O along the cylinder axis e (CONVENTIONS.md): x_p = r cos(theta) + l sqrt(1 - lambda^2 sin^2 theta).
 /// Time derivatives are at the scene's constant omega = m.engine.speed: v_p = omega dx_p/dtheta, etc.
 
+#include "crankcheck/analytic/exact_trig.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::analytic {
@@ -30,10 +31,13 @@ struct RodKinematics {
 
 /// Exact piston kinematics (Norton 13.1d and its derivatives; closed forms, no series).
 PistonKinematics calcPistonKinematics(const Mechanism& m, double theta);
+/// The same from sin and cos of theta (e.g. calcThrowSinCos(phi, alpha_j)).
+PistonKinematics calcPistonKinematics(const Mechanism& m, const SinCos& theta);
 
 /// Exact rod angle and its derivatives: beta' = lambda cos(theta) / cos(beta),
 /// beta'' = -lambda (1 - lambda^2) sin(theta) / cos^3(beta) (per radian of crank; times omega, omega^2).
 RodKinematics calcRodKinematics(const Mechanism& m, double theta);
+RodKinematics calcRodKinematics(const Mechanism& m, const SinCos& theta);
 
 /// Norton's two-term approximation: x = l - r^2/(4l) + r (cos + (r/4l) cos 2theta)   (13.3c),
 /// v = -r omega (sin + (r/2l) sin 2theta)   (13.3d), a = -r omega^2 (cos + (r/l) cos 2theta)   (13.3e),

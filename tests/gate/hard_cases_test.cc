@@ -1,0 +1,112 @@
+// Hard cases of the cross-check: large and negative crank angles, machine scales from a 1 mm crank to a 2 m one,
+// masses from grams to tonnes, gravity off and lunar, irregular explicit crank angles, and lambda next to 1, where
+// Simbody must either agree or refuse with a clear message, never return the wrong branch.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "../support/cases.h"
+#include "crankcheck/analytic/reactions.h"
+#include "crankcheck/simbody_models/k_crank_gravity_model.h"
+#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/scales.h"
+
+namespace crankcheck {
+namespace {
+
+using testing::CaseSpec;
+
+void expectAgreementAt(const Mechanism& m, simbody_models::KCrankModel& model, double phi) {
+  const Evaluation a = analytic::calcEvaluation(m, phi), s = model.evaluate(phi);
+  for (const validation::Comparison& c : validation::compareEvaluations(m, a, s))
+    EXPECT_TRUE(c.agrees()) << c.quantity << " cylinder " << c.cylinder << " at phi " << phi << ": analytic " << c.a
+                            << ", simbody " << c.b << ", |diff| " << c.error() << " > tol " << c.tolerance();
+}
+
+// Both engines take phi = 1e6 rad through their own sin and cos (libm reduces exactly), so they agree as anywhere.
+TEST(GateHardCases, LargeAndNegativeAngles) {
+  const Mechanism m = testing::makeMechanism({4, Cycle::kFourStroke, Acting::kSingle, 0.3, 37.0, 4500.0});
+  simbody_models::KCrankModel model(m);
+  for (double phi : {1e6, -1e6, 12345.678, -720.5, 1e4, -1e-9, 1e-300}) expectAgreementAt(m, model, phi);
+}
+
+struct ScaleCase {
+  std::string name;
+  double length_factor, mass_factor, gravity;
+};
+
+class GateScalesTest : public ::testing::TestWithParam<ScaleCase> {};
+
+// The same engine scaled: every length by length_factor (r from 1 mm to 2 m), every mass by mass_factor (grams to
+// tonnes; inertias by both), gravity 0 (no weight: U and Q vanish exactly in both engines), 1.62 (the Moon), 9.80665.
+// The comparison uses the case's own scales, so the tolerance follows the case.
+TEST_P(GateScalesTest, EveryQuantityAgrees) {
+  const ScaleCase& sc = GetParam();
+  for (double rpm : {0.0, 3000.0}) {
+    Mechanism m = testing::makeMechanism({3, Cycle::kTwoStroke, Acting::kSingle, 0.3, 70.0, rpm});
+    const double L = sc.length_factor, M = sc.mass_factor;
+    m.crank = {m.crank.radius * L, m.crank.mass * M, m.crank.com_radius * L, m.crank.counterweight_mass * M,
+               m.crank.counterweight_radius * L};
+    m.rod = {m.rod.length * L, m.rod.mass * M, m.rod.com_from_wrist_pin * L, m.rod.inertia_about_wrist_pin * M * L * L};
+    m.piston.mass *= M;
+    m.engine.gravity = sc.gravity;
+    simbody_models::KCrankModel model(m);
+    for (double phi_deg : testing::sweepPhisDeg()) expectAgreementAt(m, model, radiansFromDegrees(phi_deg));
+    if (sc.gravity == 0.0) {
+      EXPECT_EQ(model.calcPotentialEnergy(1.0), 0.0);
+      EXPECT_EQ(analytic::calcEvaluation(m, 1.0).Q, 0.0);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Gate, GateScalesTest,
+                         ::testing::Values(ScaleCase{"crank1mm_grams", 0.02, 1e-3, 9.80665},
+                                           ScaleCase{"crank2m_tonnes", 40.0, 1e3, 9.80665},
+                                           ScaleCase{"crank2m_grams", 40.0, 1e-3, 9.80665},
+                                           ScaleCase{"crank1mm_tonnes", 0.02, 1e3, 9.80665},
+                                           ScaleCase{"no_gravity", 1.0, 1.0, 0.0},
+                                           ScaleCase{"lunar_gravity", 1.0, 1.0, 1.62}),
+                         [](const auto& info) { return info.param.name; });
+
+// Irregular explicit crank angles (not a phase pattern of eqs 8-11), and throws that coincide.
+TEST(GateHardCases, ExplicitCrankAngles) {
+  for (const std::vector<double>& degrees : {std::vector<double>{0.0, 100.0, 250.0}, std::vector<double>{0.0, 0.0, 180.0, 33.3}}) {
+    Mechanism m = testing::makeMechanism({static_cast<int>(degrees.size()), Cycle::kTwoStroke, Acting::kSingle, 0.3, 60.0, 3000.0});
+    m.engine.crank_angles.clear();
+    for (double d : degrees) m.engine.crank_angles.push_back(radiansFromDegrees(d));
+    m.engine.explicit_crank_angles = true;
+    simbody_models::KCrankModel model(m);
+    for (double phi_deg : testing::sweepPhisDeg()) expectAgreementAt(m, model, radiansFromDegrees(phi_deg));
+  }
+}
+
+// lambda next to 1: the loop is nearly singular at theta = +-90 degrees (the rod almost perpendicular to the axis).
+// Simbody must agree within the conditioning-scaled tolerance, or refuse with a message; a wrong branch would show
+// as a large disagreement in x_p and fail.
+TEST(GateHardCases, LambdaNextToOne) {
+  for (double lambda : {0.9999, 0.99999}) {
+    const Mechanism m = testing::makeMechanism({1, Cycle::kFourStroke, Acting::kSingle, lambda, 90.0, 3000.0});
+    simbody_models::KCrankModel model(m);
+    simbody_models::KCrankGravityModel reduced(m);
+    for (double phi_deg : {0.0, 45.0, 89.0, 90.0, 91.0, 180.0, 269.0, 270.0, 300.0}) {
+      SCOPED_TRACE("lambda " + std::to_string(lambda) + " phi_deg " + std::to_string(phi_deg));
+      const double phi = radiansFromDegrees(phi_deg);
+      try {
+        expectAgreementAt(m, model, phi);
+        const validation::Scales sc = validation::calcScales(m);
+        const validation::Comparison q{"Q (reduced)", -1, analytic::calcEvaluation(m, phi).Q, reduced.calcHoldingTorque(phi),
+                                       sc.energy, sc.conditioning};
+        EXPECT_TRUE(q.agrees()) << q.a << " vs " << q.b;
+      } catch (const std::runtime_error& e) {
+        const std::string message = e.what();
+        EXPECT_TRUE(message.find("assemble") != std::string::npos || message.find("branch") != std::string::npos)
+            << "refusals must say what failed: " << message;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace crankcheck
