@@ -1,0 +1,135 @@
+#include "crankcheck/analytic/motion.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "crankcheck/analytic/exact_trig.h"
+#include "crankcheck/analytic/gravity_torque.h"
+#include "crankcheck/analytic/kinematics.h"
+#include "crankcheck/analytic/potential_energy.h"
+
+namespace crankcheck::analytic {
+
+ReducedInertia calcReducedInertia(const Mechanism& m, double phi, RodInertiaForm form) {
+  Mechanism unit = m;
+  unit.engine.speed = 1.0;  // time derivatives at unit crank speed are the derivatives with respect to theta
+  const double r = m.crank.radius, l = m.rod.length, z = m.rod.com_from_wrist_pin, mu = z / l;
+  const double m_o = m.piston.mass, m_k = m.rod.mass, I_o = m.rod.inertia_about_wrist_pin;
+  ReducedInertia out;
+  out.J = m.flywheel_inertia.value_or(0.0);
+  for (double alpha : m.engine.crank_angles) {
+    const SinCos t = calcThrowSinCos(phi, alpha);
+    const PistonKinematics p = calcPistonKinematics(unit, t);   // v_p = x', a_p = x''
+    const RodKinematics rod = calcRodKinematics(unit, t);       // beta', beta''
+    const double crank = m.crank.mass * m.crank.com_radius * m.crank.com_radius +
+                         m.crank.counterweight_mass * m.crank.counterweight_radius * m.crank.counterweight_radius;
+    out.J += crank;
+    switch (form) {
+      case RodInertiaForm::kTrueInertia: {
+        // G' = (1 - mu) A' + mu B' in the cylinder frame; B' = r (-sin, cos), B'' = -r (cos, sin).
+        const double Ge = (1 - mu) * p.v_p - mu * r * t.sin, Gn = mu * r * t.cos;
+        const double Gee = (1 - mu) * p.a_p - mu * r * t.cos, Gnn = -mu * r * t.sin;
+        const double I_G = I_o - m_k * z * z;
+        out.J += m_o * p.v_p * p.v_p + m_k * (Ge * Ge + Gn * Gn) + I_G * rod.beta_dot * rod.beta_dot;
+        out.dJ += 2.0 * (m_o * p.v_p * p.a_p + m_k * (Ge * Gee + Gn * Gnn) + I_G * rod.beta_dot * rod.beta_ddot);
+        break;
+      }
+      case RodInertiaForm::kTwoMassWithDeltaI:
+      case RodInertiaForm::kTwoMassWithoutDeltaI: {
+        // Eq (2): m_k1 = m_k (l - z_k)/l at A, m_k3 = m_k z_k / l at B (moving at r per radian), Delta_I = I_o - l z_k m_k.
+        const double m_k1 = m_k * (l - z) / l, m_k3 = m_k * z / l;
+        const double delta_I = form == RodInertiaForm::kTwoMassWithDeltaI ? I_o - l * z * m_k : 0.0;
+        out.J += (m_o + m_k1) * p.v_p * p.v_p + m_k3 * r * r + delta_I * rod.beta_dot * rod.beta_dot;
+        out.dJ += 2.0 * ((m_o + m_k1) * p.v_p * p.a_p + delta_I * rod.beta_dot * rod.beta_ddot);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+double calcCrankAcceleration(const Mechanism& m, double phi, double phi_dot, double net_torque, bool gravity) {
+  const ReducedInertia inertia = calcReducedInertia(m, phi);
+  const double Q = gravity ? calcGravityTorque(m, phi) : 0.0;
+  return (net_torque - Q - 0.5 * inertia.dJ * phi_dot * phi_dot) / inertia.J;
+}
+
+namespace {
+
+double energyOf(const Mechanism& m, double omega0) { return 0.5 * calcReducedInertia(m, 0.0).J * omega0 * omega0; }
+
+void checkFreeRun(const Mechanism& m, double omega0) {
+  if (!(omega0 > 0.0)) throw std::invalid_argument("free run: the release speed must be > 0 ([engine].speed_rpm)");
+  if (!m.flywheel_inertia) throw std::invalid_argument("free run: the scene needs the flywheel inertia [flywheel].inertia");
+}
+
+// phi_dot^2 at phi and its derivative d(phi_dot^2)/dphi = 2 (-Q J - (E - U) J') / J^2.
+struct SpeedSquared {
+  double value, slope;
+};
+SpeedSquared speedSquared(const Mechanism& m, double E, double phi, bool gravity) {
+  const ReducedInertia inertia = calcReducedInertia(m, phi);
+  const double U = gravity ? calcPotentialEnergy(m, phi) : 0.0, Q = gravity ? calcGravityTorque(m, phi) : 0.0;
+  return {2.0 * (E - U) / inertia.J, 2.0 * (-Q * inertia.J - (E - U) * inertia.dJ) / (inertia.J * inertia.J)};
+}
+
+}  // namespace
+
+double calcFreeRunSpeed(const Mechanism& m, double omega0, double phi, bool gravity) {
+  checkFreeRun(m, omega0);
+  const double v2 = speedSquared(m, energyOf(m, omega0), phi, gravity).value;
+  if (!(v2 > 0.0)) throw std::domain_error("free run: the crank stops before this angle (released too slowly)");
+  return std::sqrt(v2);
+}
+
+FreeRun calcFreeRun(const Mechanism& m, double omega0, bool gravity) {
+  checkFreeRun(m, omega0);
+  FreeRun run;
+  run.energy = energyOf(m, omega0);
+  const double E = run.energy;
+  // Sample one revolution; J and U are 2 pi periodic in phi.
+  const int n = 2048;
+  const double h = 2.0 * M_PI / n;
+  std::vector<double> v2(n), slope(n);
+  for (int i = 0; i < n; ++i) {
+    const SpeedSquared s = speedSquared(m, E, i * h, gravity);
+    if (!(s.value > 0.0))
+      throw std::domain_error("free run: the crank does not complete a revolution (released too slowly against gravity)");
+    v2[i] = s.value;
+    slope[i] = s.slope;
+  }
+  // Mean speed: T = integral of dphi / phi_dot over a period. The integrand is smooth and periodic, so the
+  // trapezoidal rule converges geometrically; 2048 points agree with 1024 to double precision (tests/analytic/motion_test.cc).
+  double period = 0.0;
+  for (int i = 0; i < n; ++i) period += h / std::sqrt(v2[i]);
+  run.omega_mean = 2.0 * M_PI / period;
+  // Extremes: the zeros of the slope of phi_dot^2, bracketed by sign changes between samples, refined by bisection.
+  double vmax = v2[0], vmin = v2[0];
+  for (int i = 0; i < n; ++i) {
+    vmax = std::max(vmax, v2[i]);
+    vmin = std::min(vmin, v2[i]);
+    const int j = (i + 1) % n;
+    if ((slope[i] > 0.0) == (slope[j] > 0.0) || slope[i] == 0.0) continue;
+    double a = i * h, b = (i + 1) * h, fa = slope[i];
+    for (int it = 0; it < 60 && b - a > 1e-15 * (1.0 + std::fabs(a)); ++it) {
+      const double mid = 0.5 * (a + b);
+      const double fm = speedSquared(m, E, mid, gravity).slope;
+      if ((fm > 0.0) == (fa > 0.0)) {
+        a = mid;
+        fa = fm;
+      } else {
+        b = mid;
+      }
+    }
+    const double v = speedSquared(m, E, 0.5 * (a + b), gravity).value;
+    vmax = std::max(vmax, v);
+    vmin = std::min(vmin, v);
+  }
+  run.omega_max = std::sqrt(vmax);
+  run.omega_min = std::sqrt(vmin);
+  run.delta = (run.omega_max - run.omega_min) / run.omega_mean;
+  return run;
+}
+
+}  // namespace crankcheck::analytic
