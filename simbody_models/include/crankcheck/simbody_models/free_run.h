@@ -1,0 +1,42 @@
+#pragma once
+/// @file
+/// The free run in Simbody: the mechanism of KCrankModel with the crankshaft free (carrying the flywheel inertia
+/// I_w), released at phi = 0 with speed omega0 and integrated by one of Simbody's integrators, with gravity on or
+/// off. Nothing analytic enters: Simbody's own dynamics move the crank. No Simbody header here.
+
+#include <string>
+#include <vector>
+
+#include "crankcheck/scene/mechanism.h"
+
+namespace crankcheck::simbody_models {
+
+enum class IntegratorKind {
+  kRungeKuttaMerson,    ///< explicit, 4th order with error control
+  kCPodes,              ///< implicit multistep (BDF) with projection
+  kSemiExplicitEuler2,  ///< first-order symplectic-like, with error control
+};
+std::string toString(IntegratorKind kind);  ///< "RungeKuttaMerson", "CPodes", "SemiExplicitEuler2"
+
+struct FreeRunOptions {
+  IntegratorKind integrator = IntegratorKind::kRungeKuttaMerson;
+  double accuracy = 1e-10;            ///< the integrator's relative accuracy (Integrator::setAccuracy)
+  int revolutions = 2;                ///< how far to integrate
+  int samples_per_revolution = 720;   ///< reporting points (TimeStepper::stepTo) per nominal revolution
+  bool gravity = true;
+};
+
+struct FreeRunResult {
+  std::vector<double> time, phi, phi_dot, energy;  ///< samples [s, rad, rad/s, J] (phi unwrapped, energy KE + PE)
+  double omega_min = 0.0, omega_max = 0.0;          ///< [rad/s] over the first revolution (refined between samples)
+  double omega_mean = 0.0;                          ///< [rad/s] 2 pi / time of the first revolution
+  double delta = 0.0;                               ///< (omega_max - omega_min) / omega_mean
+  double energy_drift_per_revolution = 0.0;         ///< max |E(t) - E(0)| / E(0) over the run, per revolution
+  int steps = 0;                                    ///< integrator steps taken
+};
+
+/// @throws std::invalid_argument if omega0 <= 0, the scene has no flywheel inertia, or the rod is massless;
+///         std::runtime_error if Simbody fails or the crank does not complete the revolutions.
+FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOptions& options = {});
+
+}  // namespace crankcheck::simbody_models

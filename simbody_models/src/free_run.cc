@@ -1,0 +1,182 @@
+// The free run in Simbody (free_run.h). Never compiled with NDEBUG.
+#include "crankcheck/simbody_models/free_run.h"
+
+#include <Simbody.h>
+
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+#include "crankcheck/scene/scene_file.h"
+
+#ifdef NDEBUG
+#error "Simbody code must not be compiled with NDEBUG: Debian's Simbody was built without it (SIMBODY-NOTES.md)"
+#endif
+
+namespace crankcheck::simbody_models {
+
+std::string toString(IntegratorKind kind) {
+  switch (kind) {
+    case IntegratorKind::kRungeKuttaMerson: return "RungeKuttaMerson";
+    case IntegratorKind::kCPodes: return "CPodes";
+    case IntegratorKind::kSemiExplicitEuler2: return "SemiExplicitEuler2";
+  }
+  return "?";
+}
+
+namespace {
+
+// Cubic Hermite interpolation of q(t) between two samples with slopes u: the time at which q reaches `target`.
+double hermiteCrossing(double t0, double q0, double u0, double t1, double q1, double u1, double target) {
+  const double h = t1 - t0;
+  double s = (target - q0) / (q1 - q0);  // linear guess in [0, 1]
+  for (int it = 0; it < 20; ++it) {
+    const double s2 = s * s, s3 = s2 * s;
+    const double q = (2 * s3 - 3 * s2 + 1) * q0 + (s3 - 2 * s2 + s) * h * u0 + (-2 * s3 + 3 * s2) * q1 + (s3 - s2) * h * u1;
+    const double dq = (6 * s2 - 6 * s) * q0 + (3 * s2 - 4 * s + 1) * h * u0 + (-6 * s2 + 6 * s) * q1 + (3 * s2 - 2 * s) * h * u1;
+    const double step = (q - target) / dq;
+    s -= step;
+    if (std::fabs(step) < 1e-16) break;
+  }
+  return t0 + s * h;
+}
+
+// Vertex of the parabola through three equally spaced samples (the extreme between samples).
+double parabolaVertex(double y0, double y1, double y2) {
+  const double denominator = y0 - 2 * y1 + y2;
+  if (denominator == 0.0) return y1;
+  const double d = 0.5 * (y0 - y2) / denominator;  // offset of the vertex in units of the spacing
+  return y1 - 0.25 * (y0 - y2) * d;
+}
+
+}  // namespace
+
+FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOptions& options) {
+  try {
+    validateMechanism(m, m.name.empty() ? std::string("mechanism") : m.name);
+  } catch (const SceneError& error) {
+    throw std::invalid_argument(std::string("simulateFreeRun: invalid mechanism: ") + error.what());
+  }
+  if (!(omega0 > 0.0)) throw std::invalid_argument("simulateFreeRun: the release speed must be > 0");
+  if (!m.flywheel_inertia) throw std::invalid_argument("simulateFreeRun: the scene needs [flywheel].inertia");
+  if (!(m.rod.mass > 0.0 && m.rod.inertia_about_wrist_pin > 0.0))
+    throw std::invalid_argument("simulateFreeRun: the Simbody model needs a rod with mass and inertia");
+
+  const double r = m.crank.radius, l = m.rod.length, gamma = m.engine.cylinder_angle;
+  SimTK::MultibodySystem system;
+  SimTK::SimbodyMatterSubsystem matter(system);
+  SimTK::GeneralForceSubsystem forces(system);
+  SimTK::Force::Gravity gravity(forces, matter, SimTK::UnitVec3(0, -1, 0), options.gravity ? m.engine.gravity : 0.0);
+
+  // Crankshaft: throws' point masses plus the shaft and flywheel, a disk of polar inertia I_w about Z.
+  const double I_w = *m.flywheel_inertia;
+  SimTK::Real crank_mass = 0.0;
+  SimTK::Vec3 first_moment(0);
+  SimTK::Inertia inertia(0.5 * I_w, 0.5 * I_w, I_w);
+  std::vector<SimTK::Vec3> pins;
+  for (double alpha : m.engine.crank_angles) {
+    const SimTK::Vec3 u(std::cos(alpha), std::sin(alpha), 0.0);
+    pins.push_back(r * u);
+    const SimTK::Vec3 p_s = m.crank.com_radius * u, p_p = -m.crank.counterweight_radius * u;
+    crank_mass += m.crank.mass + m.crank.counterweight_mass;
+    first_moment += m.crank.mass * p_s + m.crank.counterweight_mass * p_p;
+    inertia += SimTK::Inertia(p_s, m.crank.mass) + SimTK::Inertia(p_p, m.crank.counterweight_mass);
+  }
+  const SimTK::Rotation cylinder_rotation(gamma, SimTK::ZAxis);
+  SimTK::MobilizedBody::Pin crank(
+      matter.Ground(), SimTK::Transform(cylinder_rotation, SimTK::Vec3(0)),
+      SimTK::Body::Rigid(SimTK::MassProperties(crank_mass, crank_mass > 0 ? first_moment / crank_mass : SimTK::Vec3(0), inertia)),
+      SimTK::Transform());
+  // Pistons on sliders, rods on pins at the wrist pin, loop closure at the crank pin (as KCrankModel).
+  const double z = m.rod.com_from_wrist_pin, central = std::max(0.0, m.rod.inertia_about_wrist_pin - m.rod.mass * z * z);
+  const SimTK::Vec3 rod_com(-z, 0, 0);
+  const SimTK::Body::Rigid rod_body(
+      SimTK::MassProperties(m.rod.mass, rod_com, SimTK::Inertia(0.0, central, central) + SimTK::Inertia(rod_com, m.rod.mass)));
+  const SimTK::Body::Rigid piston_body(SimTK::MassProperties(m.piston.mass, SimTK::Vec3(0), SimTK::Inertia(0)));
+  std::vector<SimTK::MobilizedBody::Slider> pistons;
+  std::vector<SimTK::MobilizedBody::Pin> rods;
+  for (const SimTK::Vec3& pin : pins) {
+    pistons.emplace_back(matter.Ground(), SimTK::Transform(cylinder_rotation, SimTK::Vec3(0)), piston_body, SimTK::Transform());
+    rods.emplace_back(pistons.back(), SimTK::Transform(), rod_body, SimTK::Transform());
+    SimTK::Constraint::PointOnLine(crank, SimTK::UnitVec3(SimTK::ZAxis), pin, rods.back(), SimTK::Vec3(-l, 0, 0));
+  }
+  system.realizeTopology();
+  SimTK::State state = system.getDefaultState();
+
+  // Release: assemble at phi = 0 with the crank locked, then the velocities at omega0, then unlock.
+  const double tolerance = 1e-12 * std::max(1.0, l + r);
+  for (size_t j = 0; j < pistons.size(); ++j) {
+    pistons[j].setQ(state, l);
+    rods[j].setQ(state, 0.0);
+  }
+  crank.lockAt(state, 0.0, SimTK::Motion::Position);
+  system.realizeModel(state);
+  system.projectQ(state, tolerance);
+  crank.lockAt(state, omega0, SimTK::Motion::Velocity);
+  system.realizeModel(state);
+  system.projectU(state, tolerance);
+  crank.unlock(state);
+  system.realize(state, SimTK::Stage::Acceleration);
+  for (const auto& piston : pistons)
+    if (!(piston.getQ(state) > 0.0)) throw std::runtime_error("simulateFreeRun: assembly landed on the unphysical branch");
+
+  std::unique_ptr<SimTK::Integrator> integrator;
+  switch (options.integrator) {
+    case IntegratorKind::kRungeKuttaMerson: integrator = std::make_unique<SimTK::RungeKuttaMersonIntegrator>(system); break;
+    case IntegratorKind::kCPodes: integrator = std::make_unique<SimTK::CPodesIntegrator>(system); break;
+    case IntegratorKind::kSemiExplicitEuler2: integrator = std::make_unique<SimTK::SemiExplicitEuler2Integrator>(system); break;
+  }
+  integrator->setAccuracy(options.accuracy);
+  integrator->setConstraintTolerance(std::min(options.accuracy, 1e-6));
+  SimTK::TimeStepper stepper(system, *integrator);
+  stepper.initialize(state);
+
+  FreeRunResult out;
+  const double dt = 2.0 * SimTK::Pi / omega0 / options.samples_per_revolution;
+  const double target = 2.0 * SimTK::Pi * options.revolutions;
+  const double t_limit = 20.0 * options.revolutions * 2.0 * SimTK::Pi / omega0;
+  auto record = [&](const SimTK::State& s) {
+    system.realize(s, SimTK::Stage::Dynamics);
+    out.time.push_back(s.getTime());
+    out.phi.push_back(crank.getQ(s));
+    out.phi_dot.push_back(crank.getU(s));
+    out.energy.push_back(system.calcEnergy(s));
+  };
+  record(stepper.getState());
+  try {
+    for (int k = 1; out.phi.back() < target; ++k) {
+      if (k * dt > t_limit || !(out.phi_dot.back() > 0.0))
+        throw std::runtime_error("the crank does not complete " + std::to_string(options.revolutions) +
+                                 " revolutions (it stops or turns back)");
+      stepper.stepTo(k * dt);
+      record(stepper.getState());
+    }
+  } catch (const std::exception& e) {
+    throw std::runtime_error("simulateFreeRun (" + toString(options.integrator) + "): " + e.what());
+  }
+  out.steps = integrator->getNumStepsTaken();
+
+  // First revolution: time by Hermite interpolation at phi = 2 pi; extremes by parabolas through sample triples.
+  const double two_pi = 2.0 * SimTK::Pi;
+  size_t i1 = 1;
+  while (out.phi[i1] < two_pi) ++i1;
+  const double t_rev = hermiteCrossing(out.time[i1 - 1], out.phi[i1 - 1], out.phi_dot[i1 - 1], out.time[i1], out.phi[i1],
+                                       out.phi_dot[i1], two_pi);
+  out.omega_mean = two_pi / t_rev;
+  out.omega_max = out.omega_min = out.phi_dot[0];
+  for (size_t i = 1; i + 1 <= i1 && i + 1 < out.phi_dot.size(); ++i) {
+    const double y0 = out.phi_dot[i - 1], y1 = out.phi_dot[i], y2 = out.phi_dot[i + 1];
+    if (y1 >= y0 && y1 >= y2) out.omega_max = std::max(out.omega_max, parabolaVertex(y0, y1, y2));
+    if (y1 <= y0 && y1 <= y2) out.omega_min = std::min(out.omega_min, parabolaVertex(y0, y1, y2));
+    out.omega_max = std::max(out.omega_max, y1);
+    out.omega_min = std::min(out.omega_min, y1);
+  }
+  out.delta = (out.omega_max - out.omega_min) / out.omega_mean;
+  double drift = 0.0;
+  for (double e : out.energy) drift = std::max(drift, std::fabs(e - out.energy.front()));
+  const double kinetic = 0.5 * I_w * omega0 * omega0;  // the scale of the run's energy
+  out.energy_drift_per_revolution = drift / std::max(kinetic, std::fabs(out.energy.front())) / options.revolutions;
+  return out;
+}
+
+}  // namespace crankcheck::simbody_models
