@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "eval_command.h"
+#include "motion_command.h"
 #include "validate_command.h"
 #include "usage_error.h"
 
@@ -18,6 +19,11 @@ int main(int argc, char** argv) {
   CLI::App* eval_cmd = app.add_subcommand(
       "eval", "Evaluate U, Q, drive torque, reactions and piston kinematics of a scene at given crank angles");
   crankcheck::app::addEvalOptions(*eval_cmd, eval);
+
+  crankcheck::app::MotionOptions motion;
+  CLI::App* motion_cmd = app.add_subcommand(
+      "motion", "The free run under gravity: speed fluctuation delta with and without gravity, analytic and Simbody");
+  crankcheck::app::addMotionOptions(*motion_cmd, motion);
 
   crankcheck::app::ValidateOptions validate;
   CLI::App* validate_cmd = app.add_subcommand(
@@ -44,6 +50,7 @@ int main(int argc, char** argv) {
     if (merge_cmd->parsed()) return crankcheck::app::runMerge(merge);
     std::string output;
     if (eval_cmd->parsed()) output = crankcheck::app::runEval(eval);
+    if (motion_cmd->parsed()) output = crankcheck::app::runMotion(motion);
     std::fwrite(output.data(), 1, output.size(), stdout);  // only complete results are ever printed
     return 0;
   } catch (const crankcheck::app::UsageError& e) {

@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -134,6 +136,38 @@ INSTANTIATE_TEST_SUITE_P(
                       BadRun{"no_scene", "eval", "scene"},
                       BadRun{"nan_angle", "eval SCENES/single_cylinder.toml --phi-deg nan", "--phi-deg"}),
     [](const auto& info) { return info.param.name; });
+
+// `crankcheck motion` on every example scene: both engines' free run, close to each other (RungeKuttaMerson at
+// 1e-10: 1e3 x accuracy relative, the gate's free-run tolerance).
+TEST(Cli, MotionJsonForEveryExampleScene) {
+  for (const auto& scene : exampleScenes()) {
+    SCOPED_TRACE(scene.string());
+    const RunResult r = run("motion " + scene.string() + " --format json");
+    ASSERT_EQ(r.exit_status, 0) << r.err;
+    const nlohmann::json doc = nlohmann::json::parse(r.out);
+    for (const char* key : {"delta_gravity", "delta_no_gravity", "omega_min", "omega_max", "omega_mean"}) {
+      const double a = doc["analytic"][key].get<double>(), s = doc["simbody"][key].get<double>();
+      const double scale = doc["analytic"]["omega_mean"].get<double>();
+      const bool is_delta = std::string(key).rfind("delta", 0) == 0;
+      EXPECT_LE(std::fabs(a - s), 1e-7 * (is_delta ? 1.0 : scale)) << key;
+    }
+    EXPECT_GT(doc["analytic"]["delta_gravity"].get<double>(), 0.0);
+  }
+}
+
+TEST(Cli, MotionNeedsFlywheelAndSpeed) {
+  const auto path = std::filesystem::temp_directory_path() / "crankcheck_cli_no_flywheel.toml";
+  {
+    std::string text = readFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml");
+    text = text.substr(0, text.find("[flywheel]"));
+    std::ofstream(path) << text;
+  }
+  const RunResult r = run("motion " + path.string());
+  EXPECT_EQ(r.exit_status, 2);
+  EXPECT_EQ(r.out, "");
+  EXPECT_NE(r.err.find("[flywheel].inertia"), std::string::npos) << r.err;
+  std::filesystem::remove(path);
+}
 
 TEST(Cli, BadSceneNamesFileAndKey) {
   const auto path = std::filesystem::temp_directory_path() / "crankcheck_cli_bad_scene.toml";
