@@ -11,8 +11,10 @@
 #include "crankcheck/analytic/fourier_series.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/kinematics.h"
+#include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/analytic/reactions.h"
+#include "crankcheck/simbody_models/free_run.h"
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/scales.h"
@@ -436,6 +438,86 @@ TableSet errata(const Mechanism& base, bool quick) {
   return {{"errata", t}};
 }
 
+// ------------------------------------------------------------------------------------------------------------
+// delta_vs_k: the free run's speed fluctuation with and without gravity, k = 1..12, both strokes, a few speeds.
+
+TableSet deltaVsK(const Mechanism& base, Cycle cycle, bool quick) {
+  Table t;
+  t.columns = {"cycle", "k", "speed_rpm", "delta_gravity", "delta_no_gravity", "delta_due_to_gravity"};
+  Mechanism flywheeled = base;
+  if (!flywheeled.flywheel_inertia) flywheeled.flywheel_inertia = 0.15;  // the base scene's, if it has none
+  for (int k = 1; k <= 12; ++k)
+    for (double rpm : quick ? std::vector<double>{300.0, 3000.0} : std::vector<double>{60.0, 300.0, 1500.0, 6000.0}) {
+      const Mechanism m = withSpeed(withGamma(withCylinders(flywheeled, k, cycle), 90.0), rpm);
+      double with = std::nan(""), without = std::nan("");
+      try {
+        with = analytic::calcFreeRun(m, m.engine.speed, true).delta;
+        without = analytic::calcFreeRun(m, m.engine.speed, false).delta;
+      } catch (const std::domain_error&) {  // too slow to turn over against gravity: no free run to report
+      }
+      t.rows.push_back({toString(cycle), std::to_string(k), num(rpm), num(with), num(without), num(std::fabs(with - without))});
+    }
+  return {{"delta_vs_k", t}};
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// integrator_pareto: Simbody's free run by each integrator and accuracy: cost per simulated revolution (one Google
+// Benchmark run) against the error of delta and the energy drift, the analytic energy integral as reference.
+
+TableSet integratorPareto(const Mechanism& base, bool quick) {
+  Mechanism m = withSpeed(base, 300.0);
+  if (!m.flywheel_inertia) m.flywheel_inertia = 0.15;
+  const analytic::FreeRun exact = analytic::calcFreeRun(m, m.engine.speed, true);
+  struct Run {
+    simbody_models::FreeRunOptions options;
+    std::string name;
+  };
+  std::vector<Run> runs;
+  const std::vector<double> accuracies = quick ? std::vector<double>{1e-4, 1e-8} : std::vector<double>{1e-3, 1e-4, 1e-6, 1e-8, 1e-10};
+  for (simbody_models::IntegratorKind kind : {simbody_models::IntegratorKind::kRungeKuttaMerson, simbody_models::IntegratorKind::kCPodes,
+                                              simbody_models::IntegratorKind::kSemiExplicitEuler2})
+    for (double accuracy : accuracies) {
+      // SemiExplicitEuler2 is first order: below 1e-6 it needs millions of steps per revolution.
+      if (kind == simbody_models::IntegratorKind::kSemiExplicitEuler2 && accuracy < 1e-6) continue;
+      simbody_models::FreeRunOptions options;
+      options.integrator = kind;
+      options.accuracy = accuracy;
+      options.samples_per_revolution = 360;
+      char name[64];
+      std::snprintf(name, sizeof name, "%s %.0e", simbody_models::toString(kind).c_str(), accuracy);
+      runs.push_back({options, name});
+    }
+  Table t;
+  t.columns = {"integrator", "accuracy", "ns_per_revolution", "delta_error", "energy_drift", "status"};
+  std::vector<std::pair<std::string, std::function<void()>>> timed;
+  std::map<std::string, simbody_models::FreeRunResult> results;
+  std::map<std::string, std::string> failures;
+  for (const Run& run : runs) {
+    try {
+      results[run.name] = simbody_models::simulateFreeRun(m, m.engine.speed, run.options);
+      timed.emplace_back(run.name, [m, options = run.options] {
+        benchmark::DoNotOptimize(simbody_models::simulateFreeRun(m, m.engine.speed, options).delta);
+      });
+    } catch (const std::exception& e) {
+      failures[run.name] = e.what();
+    }
+  }
+  const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, 0.01);
+  for (const Run& run : runs) {
+    const std::string integrator = simbody_models::toString(run.options.integrator);
+    const auto it = results.find(run.name);
+    if (it == results.end()) {
+      t.rows.push_back({integrator, num(run.options.accuracy), "nan", "nan", "nan", "failed"});
+      continue;
+    }
+    const auto time = ns.find(run.name);
+    t.rows.push_back({integrator, num(run.options.accuracy),
+                      num(time == ns.end() ? std::nan("") : time->second / run.options.revolutions),
+                      num(std::fabs(it->second.delta - exact.delta) / exact.delta), num(it->second.energy_drift_per_revolution), "ok"});
+  }
+  return {{"integrator_pareto", t}};
+}
+
 TableSet scenesTable(const std::vector<std::pair<std::string, Mechanism>>& families) {
   Table t;
   t.columns = {"family", "scene", "cylinders", "cycle", "acting", "gamma_deg", "speed_rpm", "r", "l", "lambda", "m_o",
@@ -553,6 +635,9 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
     tasks.push_back({"gravity_significance " + toString(cycle), false,
                      [base, cycle, quick] { return gravitySignificance(base, cycle, quick); }});
   }
+  for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke})
+    tasks.push_back({"delta_vs_k " + toString(cycle), false, [base, cycle, quick] { return deltaVsK(base, cycle, quick); }});
+  tasks.push_back({"integrator_pareto", true, [base, quick] { return integratorPareto(base, quick); }});
   tasks.push_back({"norton_fig13_8", false, [base] { return nortonFigure(base); }});
   tasks.push_back({"errata", false, [base, quick] { return errata(base, quick); }});
   tasks.push_back({"speed_vs_error", true, [base, quick] { return speedVsError(base, quick); }});
