@@ -3,6 +3,7 @@
 
 #include <Simbody.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -41,12 +42,36 @@ double hermiteCrossing(double t0, double q0, double u0, double t1, double q1, do
   return t0 + s * h;
 }
 
-// Vertex of the parabola through three equally spaced samples (the extreme between samples).
-double parabolaVertex(double y0, double y1, double y2) {
-  const double denominator = y0 - 2 * y1 + y2;
-  if (denominator == 0.0) return y1;
-  const double d = 0.5 * (y0 - y2) / denominator;  // offset of the vertex in units of the spacing
-  return y1 - 0.25 * (y0 - y2) * d;
+// Extremes of u(t) on [t0, t1] from the cubic Hermite interpolant with the end slopes udot (what the dynamics
+// gives at each step): the stationary points of the cubic, from its quadratic derivative, plus the ends.
+void hermiteExtremes(double h, double u0, double a0, double u1, double a1, double& lo, double& hi) {
+  // u(s) = h00 u0 + h10 h a0 + h01 u1 + h11 h a1, s in [0, 1]; u'(s) = A s^2 + B s + C.
+  const double A = 6 * u0 + 3 * h * a0 - 6 * u1 + 3 * h * a1;
+  const double B = -6 * u0 - 4 * h * a0 + 6 * u1 - 2 * h * a1;
+  const double C = h * a0;
+  auto value = [&](double s) {
+    const double s2 = s * s, s3 = s2 * s;
+    return (2 * s3 - 3 * s2 + 1) * u0 + (s3 - 2 * s2 + s) * h * a0 + (-2 * s3 + 3 * s2) * u1 + (s3 - s2) * h * a1;
+  };
+  auto consider = [&](double s) {
+    if (s > 0.0 && s < 1.0) {
+      const double v = value(s);
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  };
+  lo = std::min({lo, u0, u1});
+  hi = std::max({hi, u0, u1});
+  if (std::fabs(A) < 1e-300) {
+    if (B != 0.0) consider(-C / B);
+    return;
+  }
+  const double disc = B * B - 4 * A * C;
+  if (disc < 0.0) return;
+  const double root = std::sqrt(disc);
+  const double q = -0.5 * (B + (B >= 0 ? root : -root));  // stable quadratic roots
+  consider(q / A);
+  if (q != 0.0) consider(C / q);
 }
 
 }  // namespace
@@ -128,49 +153,51 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOp
   }
   integrator->setAccuracy(options.accuracy);
   integrator->setConstraintTolerance(std::min(options.accuracy, 1e-6));
-  SimTK::TimeStepper stepper(system, *integrator);
-  stepper.initialize(state);
+  // Every internal step is recorded: the integrator alone chooses its steps (report times would cap them), and the
+  // extremes and the revolution time come from Hermite cubics through the steps (slopes from the dynamics).
+  const double two_pi = 2.0 * SimTK::Pi;
+  const double target = two_pi * options.revolutions;
+  const double t_limit = 20.0 * options.revolutions * two_pi / omega0;
+  integrator->setReturnEveryInternalStep(true);
+  integrator->setFinalTime(t_limit);
+  integrator->initialize(state);
 
   FreeRunResult out;
-  const double dt = 2.0 * SimTK::Pi / omega0 / options.samples_per_revolution;
-  const double target = 2.0 * SimTK::Pi * options.revolutions;
-  const double t_limit = 20.0 * options.revolutions * 2.0 * SimTK::Pi / omega0;
+  std::vector<double> accel;  // crank phi'' at each recorded step
   auto record = [&](const SimTK::State& s) {
-    system.realize(s, SimTK::Stage::Dynamics);
+    system.realize(s, SimTK::Stage::Acceleration);
     out.time.push_back(s.getTime());
     out.phi.push_back(crank.getQ(s));
     out.phi_dot.push_back(crank.getU(s));
+    accel.push_back(crank.getOneUDot(s, SimTK::MobilizerUIndex(0)));
     out.energy.push_back(system.calcEnergy(s));
   };
-  record(stepper.getState());
+  record(integrator->getState());
   try {
-    for (int k = 1; out.phi.back() < target; ++k) {
-      if (k * dt > t_limit || !(out.phi_dot.back() > 0.0))
-        throw std::runtime_error("the crank does not complete " + std::to_string(options.revolutions) +
-                                 " revolutions (it stops or turns back)");
-      stepper.stepTo(k * dt);
-      record(stepper.getState());
+    while (out.phi.back() < target) {
+      if (!(out.phi_dot.back() > 0.0))
+        throw std::runtime_error("the crank stops or turns back before " + std::to_string(options.revolutions) + " revolutions");
+      const SimTK::Integrator::SuccessfulStepStatus status = integrator->stepTo(t_limit);
+      if (status == SimTK::Integrator::EndOfSimulation || status == SimTK::Integrator::ReachedFinalTime)
+        throw std::runtime_error("the crank does not complete " + std::to_string(options.revolutions) + " revolutions in time");
+      record(integrator->getState());
     }
   } catch (const std::exception& e) {
     throw std::runtime_error("simulateFreeRun (" + toString(options.integrator) + "): " + e.what());
   }
   out.steps = integrator->getNumStepsTaken();
 
-  // First revolution: time by Hermite interpolation at phi = 2 pi; extremes by parabolas through sample triples.
-  const double two_pi = 2.0 * SimTK::Pi;
+  // First revolution: its time at phi = 2 pi, its extremes over the steps up to there.
   size_t i1 = 1;
   while (out.phi[i1] < two_pi) ++i1;
   const double t_rev = hermiteCrossing(out.time[i1 - 1], out.phi[i1 - 1], out.phi_dot[i1 - 1], out.time[i1], out.phi[i1],
                                        out.phi_dot[i1], two_pi);
   out.omega_mean = two_pi / t_rev;
-  out.omega_max = out.omega_min = out.phi_dot[0];
-  for (size_t i = 1; i + 1 <= i1 && i + 1 < out.phi_dot.size(); ++i) {
-    const double y0 = out.phi_dot[i - 1], y1 = out.phi_dot[i], y2 = out.phi_dot[i + 1];
-    if (y1 >= y0 && y1 >= y2) out.omega_max = std::max(out.omega_max, parabolaVertex(y0, y1, y2));
-    if (y1 <= y0 && y1 <= y2) out.omega_min = std::min(out.omega_min, parabolaVertex(y0, y1, y2));
-    out.omega_max = std::max(out.omega_max, y1);
-    out.omega_min = std::min(out.omega_min, y1);
-  }
+  double lo = out.phi_dot[0], hi = out.phi_dot[0];
+  for (size_t i = 0; i < i1; ++i)
+    hermiteExtremes(out.time[i + 1] - out.time[i], out.phi_dot[i], accel[i], out.phi_dot[i + 1], accel[i + 1], lo, hi);
+  out.omega_min = lo;
+  out.omega_max = hi;
   out.delta = (out.omega_max - out.omega_min) / out.omega_mean;
   double drift = 0.0;
   for (double e : out.energy) drift = std::max(drift, std::fabs(e - out.energy.front()));

@@ -37,7 +37,6 @@ void expectFreeRunAgrees(const Mechanism& m, IntegratorKind kind, double accurac
   options.integrator = kind;
   options.accuracy = accuracy;
   options.gravity = gravity;
-  options.samples_per_revolution = 360;
   const simbody_models::FreeRunResult s = simbody_models::simulateFreeRun(m, w0, options);
   const analytic::FreeRun a = analytic::calcFreeRun(m, w0, gravity);
   const double tol = multiple * accuracy * w0;

@@ -482,8 +482,7 @@ TableSet integratorPareto(const Mechanism& base, bool quick) {
       simbody_models::FreeRunOptions options;
       options.integrator = kind;
       options.accuracy = accuracy;
-      options.samples_per_revolution = 360;
-      char name[64];
+          char name[64];
       std::snprintf(name, sizeof name, "%s %.0e", simbody_models::toString(kind).c_str(), accuracy);
       runs.push_back({options, name});
     }

@@ -21,14 +21,13 @@ std::string toString(IntegratorKind kind);  ///< "RungeKuttaMerson", "CPodes", "
 struct FreeRunOptions {
   IntegratorKind integrator = IntegratorKind::kRungeKuttaMerson;
   double accuracy = 1e-10;            ///< the integrator's relative accuracy (Integrator::setAccuracy)
-  int revolutions = 2;                ///< how far to integrate
-  int samples_per_revolution = 720;   ///< reporting points (TimeStepper::stepTo) per nominal revolution
+  int revolutions = 2;                ///< how far to integrate; every internal step is recorded
   bool gravity = true;
 };
 
 struct FreeRunResult {
-  std::vector<double> time, phi, phi_dot, energy;  ///< samples [s, rad, rad/s, J] (phi unwrapped, energy KE + PE)
-  double omega_min = 0.0, omega_max = 0.0;          ///< [rad/s] over the first revolution (refined between samples)
+  std::vector<double> time, phi, phi_dot, energy;  ///< at every internal step [s, rad, rad/s, J] (phi unwrapped, KE + PE)
+  double omega_min = 0.0, omega_max = 0.0;          ///< [rad/s] over the first revolution (Hermite cubics between steps)
   double omega_mean = 0.0;                          ///< [rad/s] 2 pi / time of the first revolution
   double delta = 0.0;                               ///< (omega_max - omega_min) / omega_mean
   double energy_drift_per_revolution = 0.0;         ///< max |E(t) - E(0)| / E(0) over the run, per revolution
