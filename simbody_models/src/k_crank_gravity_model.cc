@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "crank_motion.h"
+#include "model_support.h"
 #include "crankcheck/scene/scene_file.h"
 
 #ifdef NDEBUG
@@ -95,15 +95,8 @@ class KCrankGravityModel::Impl {
     state_.updU() = 0;
     state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Time);
     try {
-      system_.projectQ(state_, tolerance_);
-      // As KCrankModel: one forced Newton step lands on roundoff when projectQ stopped early.
-      if (maxAbs(state_.getQErr()) > 8.0 * std::numeric_limits<double>::epsilon() * (m_.rod.length + m_.crank.radius)) {
-        SimTK::Vector no_error_estimate;
-        SimTK::ProjectOptions polish(tolerance_);
-        polish.setOption(SimTK::ProjectOptions::ForceProjection);
-        SimTK::ProjectResults results;
-        system_.projectQ(state_, no_error_estimate, polish, results);
-      }
+      projectPositions(system_, state_, tolerance_,
+                       8.0 * std::numeric_limits<double>::epsilon() * (m_.rod.length + m_.crank.radius));
     } catch (const std::exception& e) {
       error_ = e.what();
       return false;
@@ -141,22 +134,12 @@ class KCrankGravityModel::Impl {
     state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Position);
     system_.projectU(state_, tolerance_);
     system_.realize(state_, SimTK::Stage::Velocity);
-    const SimTK::Vector_<SimTK::SpatialVec>& gravity_forces = gravity_.getBodyForces(state_);
-    double power = 0.0;
-    for (SimTK::MobilizedBodyIndex b(1); b < matter_.getNumBodies(); ++b) {
-      const SimTK::SpatialVec& velocity = matter_.getMobilizedBody(b).getBodyVelocity(state_);
-      power += SimTK::dot(gravity_forces[b][0], velocity[0]) + SimTK::dot(gravity_forces[b][1], velocity[1]);
-    }
+    const double power = calcGravityPower(matter_, gravity_, state_);
     drive_->omega = 0.0;
     return -power;
   }
 
  private:
-  static double maxAbs(const SimTK::Vector& v) {
-    double result = 0.0;
-    for (int i = 0; i < v.size(); ++i) result = std::max(result, std::abs(v[i]));
-    return result;
-  }
 
   Mechanism m_;
   double tolerance_ = 0.0;

@@ -12,7 +12,7 @@
 #include <utility>
 
 #include "crankcheck/scene/scene_file.h"
-#include "crank_motion.h"
+#include "model_support.h"
 
 #ifdef NDEBUG
 #error "Simbody code must not be compiled with NDEBUG: Debian's Simbody was built without it (SIMBODY-NOTES.md)"
@@ -42,7 +42,6 @@ class KCrankModel::Impl {
 
  private:
   BodyKinematics bodyKinematics(const SimTK::MobilizedBody& body) const;
-  double maxAbs(const SimTK::Vector& v) const;
   void setReferenceGuess();
 
   Mechanism m_;
@@ -183,17 +182,8 @@ void KCrankModel::Impl::assemble(double phi) {
   state_.updU() = 0;
   state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Time);
 
-  auto project = [&]() {
-    system_.projectQ(state_, projection_tolerance_);  // prescribes crank q = phi, projects the rest
-    // projectQ stops as soon as the RMS error is below tolerance * 0.1, which can leave 1e-13 m. One more
-    // forced Newton step from there lands on roundoff (errors ~1e-17 m) for the cost of one iteration.
-    if (maxAbs(state_.getQErr()) <= polish_threshold_) return;
-    SimTK::Vector no_error_estimate;
-    SimTK::ProjectOptions polish(projection_tolerance_);
-    polish.setOption(SimTK::ProjectOptions::ForceProjection);
-    SimTK::ProjectResults results;
-    system_.projectQ(state_, no_error_estimate, polish, results);
-  };
+  // Prescribes crank q = phi and projects the rest, to roundoff (model_support.h).
+  auto project = [&]() { projectPositions(system_, state_, projection_tolerance_, polish_threshold_); };
   auto physical = [&]() {
     for (const auto& piston : pistons_)
       if (!(piston.getQ(state_) > 0.0)) return false;
@@ -237,11 +227,6 @@ double KCrankModel::Impl::driveTorque() const {
   return -crank_.getOneTau(state_, SimTK::MobilizerUIndex(0));
 }
 
-double KCrankModel::Impl::maxAbs(const SimTK::Vector& v) const {
-  double result = 0.0;
-  for (int i = 0; i < v.size(); ++i) result = std::max(result, std::abs(v[i]));
-  return result;
-}
 
 BodyKinematics KCrankModel::Impl::bodyKinematics(const SimTK::MobilizedBody& body) const {
   BodyKinematics b;
@@ -261,7 +246,7 @@ Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
   ev.phi = phi;
 
   assemble(phi);
-  const double position_error = maxAbs(state_.getQErr());
+  const double position_error = calcMaxAbs(state_.getQErr());
 
   // Static pass (omega = 0): the holding torque is Q, route 1.
   solveMotion(0.0);
@@ -320,7 +305,7 @@ Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
     d.potential_energy = system_.calcPotentialEnergy(state_);
     d.crankshaft = bodyKinematics(crank_);
     d.position_constraint_error = position_error;
-    d.velocity_constraint_error = maxAbs(state_.getUErr());
+    d.velocity_constraint_error = calcMaxAbs(state_.getUErr());
     d.cylinders.resize(k_);
     for (int j = 0; j < k_; ++j) {
       CylinderDiagnostics& c = d.cylinders[j];
@@ -366,13 +351,7 @@ double KCrankModel::Impl::virtualPowerQ(double phi) {
   state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Position);
   system_.projectU(state_, projection_tolerance_);
   system_.realize(state_, SimTK::Stage::Velocity);
-  const SimTK::Vector_<SimTK::SpatialVec>& gravity_forces = gravity_.getBodyForces(state_);
-  double power = 0.0;
-  for (SimTK::MobilizedBodyIndex b(1); b < matter_.getNumBodies(); ++b) {
-    const SimTK::SpatialVec& force = gravity_forces[b];  // moment about and force at the body origin
-    const SimTK::SpatialVec& velocity = matter_.getMobilizedBody(b).getBodyVelocity(state_);  // w, v_origin
-    power += SimTK::dot(force[0], velocity[0]) + SimTK::dot(force[1], velocity[1]);
-  }
+  const double power = calcGravityPower(matter_, gravity_, state_);
   // Power of gravity = -dV/dt = -Q dphi/dt with dphi/dt = 1.
   return -power;
 }

@@ -1,9 +1,11 @@
 #pragma once
-// Internal to simbody_models: the prescribed crank motion shared by the full and the reduced model.
+// Internal to simbody_models: what the full and the reduced model share (the prescribed crank motion, the
+// position projection, gravity's power).
 // Include only from Simbody translation units (never compiled with NDEBUG).
 
 #include <Simbody.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -50,6 +52,40 @@ Vec2 toVec2(const SimTK::Vec3& v) { return {v[0], v[1]}; }
 /// Angle difference reduced to (-pi, pi].
 double wrappedDifference(double a, double b) {
   return std::remainder(a - b, 2.0 * SimTK::Pi);
+}
+
+/// max |v_i|
+inline double calcMaxAbs(const SimTK::Vector& v) {
+  double result = 0.0;
+  for (int i = 0; i < v.size(); ++i) result = std::max(result, std::abs(v[i]));
+  return result;
+}
+
+/// projectQ to `tolerance`, then, if the largest constraint error is still above `polish_threshold` (projectQ stops
+/// as soon as the RMS error is below 0.1 tolerance, up to 1e-13 m), one forced Newton step, which lands on roundoff.
+/// @throws what projectQ throws.
+inline void projectPositions(const SimTK::MultibodySystem& system, SimTK::State& state, double tolerance,
+                             double polish_threshold) {
+  system.projectQ(state, tolerance);
+  if (calcMaxAbs(state.getQErr()) <= polish_threshold) return;
+  SimTK::Vector no_error_estimate;
+  SimTK::ProjectOptions polish(tolerance);
+  polish.setOption(SimTK::ProjectOptions::ForceProjection);
+  SimTK::ProjectResults results;
+  system.projectQ(state, no_error_estimate, polish, results);
+}
+
+/// Gravity's power on every body at the state's velocities (realized through Stage::Velocity). At unit crank speed
+/// it is -dV/dphi = -Q.
+inline double calcGravityPower(const SimTK::SimbodyMatterSubsystem& matter, const SimTK::Force::Gravity& gravity,
+                               const SimTK::State& state) {
+  const SimTK::Vector_<SimTK::SpatialVec>& forces = gravity.getBodyForces(state);  // moment about, force at the origin
+  double power = 0.0;
+  for (SimTK::MobilizedBodyIndex b(1); b < matter.getNumBodies(); ++b) {
+    const SimTK::SpatialVec& velocity = matter.getMobilizedBody(b).getBodyVelocity(state);  // w, v of the origin
+    power += SimTK::dot(forces[b][0], velocity[0]) + SimTK::dot(forces[b][1], velocity[1]);
+  }
+  return power;
 }
 
 }  // namespace
