@@ -140,7 +140,6 @@ class KCrankGravityModel::Impl {
   }
 
  private:
-
   Mechanism m_;
   double tolerance_ = 0.0;
   std::shared_ptr<CrankDrive> drive_ = std::make_shared<CrankDrive>();
