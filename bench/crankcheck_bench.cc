@@ -155,7 +155,7 @@ void BM_SimbodyPotentialEnergy(benchmark::State& state) {
   int i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(model.calcPotentialEnergy(nextAngle(i)));
 }
-BENCHMARK(BM_SimbodyPotentialEnergy)->Arg(1)->Arg(4)->Arg(12)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SimbodyPotentialEnergy)->Arg(1)->Arg(2)->Arg(4)->Arg(6)->Arg(12)->Unit(benchmark::kMicrosecond);
 
 // The reduced model (two-mass rods, one distance constraint per cylinder) for the same U and Q.
 void BM_SimbodyReducedHoldingTorque(benchmark::State& state) {
@@ -177,7 +177,7 @@ void BM_SimbodyReducedPotentialEnergy(benchmark::State& state) {
   int i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(model.calcPotentialEnergy(nextAngle(i)));
 }
-BENCHMARK(BM_SimbodyReducedPotentialEnergy)->Arg(1)->Arg(4)->Arg(12)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SimbodyReducedPotentialEnergy)->Arg(1)->Arg(2)->Arg(4)->Arg(6)->Arg(12)->Unit(benchmark::kMicrosecond);
 
 // The whole default campaign of `crankcheck validate`, every task in turn on one thread (the command itself spreads
 // them over --jobs threads). Timing tasks are skipped: they would measure themselves.
