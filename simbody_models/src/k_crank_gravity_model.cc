@@ -20,13 +20,7 @@ namespace crankcheck::simbody_models {
 class KCrankGravityModel::Impl {
  public:
   Impl(const Mechanism& m, ModelOptions options) : m_(m) {
-    try {
-      validateMechanism(m_, m_.name.empty() ? std::string("mechanism") : m_.name);
-    } catch (const SceneError& error) {
-      throw std::invalid_argument(std::string("KCrankGravityModel: invalid mechanism: ") + error.what());
-    }
-    if (!(std::isfinite(options.projection_tolerance) && options.projection_tolerance > 0.0))
-      throw std::invalid_argument("KCrankGravityModel: projection_tolerance must be finite and > 0");
+    checkModelInputs(m_, options, "KCrankGravityModel");
     const double r = m_.crank.radius, l = m_.rod.length, z = m_.rod.com_from_wrist_pin;
     const double wrist_mass = m_.piston.mass + m_.rod.mass * (l - z) / l;   // rod mass whose first moment...
     const double crank_pin_mass = m_.rod.mass * z / l;                      // ...about A equals the rod's

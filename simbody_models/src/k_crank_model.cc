@@ -70,13 +70,7 @@ class KCrankModel::Impl {
 };
 
 KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), options_(options) {
-  try {
-    validateMechanism(m_, m_.name.empty() ? std::string("mechanism") : m_.name);
-  } catch (const SceneError& error) {
-    throw std::invalid_argument(std::string("KCrankModel: invalid mechanism: ") + error.what());
-  }
-  if (!(std::isfinite(options_.projection_tolerance) && options_.projection_tolerance > 0.0))
-    throw std::invalid_argument("KCrankModel: projection_tolerance must be finite and > 0");
+  checkModelInputs(m_, options_, "KCrankModel");
 
   // Simbody's rod pin and the pistons' sliders are free mobilities whose accelerations come from the mass
   // matrix: a rod without mass or without inertia about its wrist pin makes it singular (the answers were NaN).

@@ -9,9 +9,12 @@
 #include <cmath>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "crankcheck/scene/evaluation.h"
+#include "crankcheck/scene/scene_file.h"
+#include "crankcheck/simbody_models/k_crank_model.h"
 
 namespace crankcheck::simbody_models {
 namespace {
@@ -52,6 +55,17 @@ Vec2 toVec2(const SimTK::Vec3& v) { return {v[0], v[1]}; }
 /// Angle difference reduced to (-pi, pi].
 double wrappedDifference(double a, double b) {
   return std::remainder(a - b, 2.0 * SimTK::Pi);
+}
+
+/// The checks every model makes of its inputs. @throws std::invalid_argument naming `who` and the rule.
+inline void checkModelInputs(const Mechanism& m, const ModelOptions& options, const std::string& who) {
+  try {
+    validateMechanism(m, m.name.empty() ? std::string("mechanism") : m.name);
+  } catch (const SceneError& error) {
+    throw std::invalid_argument(who + ": invalid mechanism: " + error.what());
+  }
+  if (!(std::isfinite(options.projection_tolerance) && options.projection_tolerance > 0.0))
+    throw std::invalid_argument(who + ": projection_tolerance must be finite and > 0");
 }
 
 /// max |v_i|

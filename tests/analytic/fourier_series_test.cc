@@ -86,7 +86,9 @@ TEST(LambdaSeries, PrintedTableEqualsExactRationalsRoundedExceptOneMisprint) {
       if (n == 2 && power == 9) {
         EXPECT_EQ(calcLambdaSeriesCoefficient(2, 9).numerator, 735);
         EXPECT_EQ(calcLambdaSeriesCoefficient(2, 9).denominator, 32768);
-        EXPECT_NEAR(printed - exact, 1.58e-6, 0.01e-6);  // the size of the misprint, 2 units of the 6th decimal
+        // A misprint, not a rounding: more than half a unit of the sixth decimal away from the exact value.
+        EXPECT_EQ(printed, 0.022432);
+        EXPECT_GT(std::fabs(printed - exact), 0.5e-6);
       } else {
         EXPECT_TRUE(isClose(printed, rounded, 1e-12)) << "exact " << exact;  // decimal transcription, not arithmetic
       }
