@@ -100,6 +100,43 @@ void BM_BatchQUniformGrid(benchmark::State& state) {
 }
 BENCHMARK(BM_BatchQUniformGrid)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
 
+// U, kinematics and reactions over the same batch: no dedicated kernel, the scalar functions in a loop.
+void BM_BatchUScalarLoop(benchmark::State& state) {
+  const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
+  const std::vector<double> phi = randomAngles();
+  std::vector<double> U(kBatch);
+  for (auto _ : state) {
+    for (size_t i = 0; i < kBatch; ++i) U[i] = analytic::calcPotentialEnergy(m, phi[i]);
+    benchmark::DoNotOptimize(U.data());
+  }
+  setPerAngle(state);
+}
+BENCHMARK(BM_BatchUScalarLoop)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+
+void BM_BatchKinematicsScalarLoop(benchmark::State& state) {
+  const Mechanism m = benchMechanism(1);
+  const std::vector<double> phi = randomAngles();
+  std::vector<double> a(kBatch);
+  for (auto _ : state) {
+    for (size_t i = 0; i < kBatch; ++i) a[i] = analytic::calcPistonKinematics(m, phi[i]).a_p;
+    benchmark::DoNotOptimize(a.data());
+  }
+  setPerAngle(state);
+}
+BENCHMARK(BM_BatchKinematicsScalarLoop)->Unit(benchmark::kMillisecond);
+
+void BM_BatchReactionsScalarLoop(benchmark::State& state) {
+  const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
+  const std::vector<double> phi = randomAngles();
+  std::vector<double> tau(kBatch);
+  for (auto _ : state) {
+    for (size_t i = 0; i < kBatch; ++i) tau[i] = analytic::calcReactions(m, phi[i]).drive_torque;
+    benchmark::DoNotOptimize(tau.data());
+  }
+  setPerAngle(state);
+}
+BENCHMARK(BM_BatchReactionsScalarLoop)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+
 void BM_AnalyticQ(benchmark::State& state) {
   const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
   int i = 0;
