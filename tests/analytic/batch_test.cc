@@ -23,9 +23,7 @@ class BatchTest : public ::testing::TestWithParam<CaseSpec> {};
 // the scalar sin(phi + alpha_j)), and the rest is the same arithmetic: 8 eps of the energy scale, k throws summed.
 TEST_P(BatchTest, ArbitraryAnglesMatchScalar) {
   for (double lambda : testing::sweepLambdas()) {
-    CaseSpec spec = GetParam();
-    spec.lambda = lambda;
-    const Mechanism m = testing::makeMechanism(spec);
+    const Mechanism m = testing::makeMechanism(GetParam(), lambda);
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> angle(-20.0, 20.0);
     std::vector<double> phi(1000), Q(1000);
@@ -42,9 +40,7 @@ TEST_P(BatchTest, ArbitraryAnglesMatchScalar) {
 // 1/(1 - lambda^2) (the radical's derivative), and so does the effect of that drift: the bound carries the factor.
 TEST_P(BatchTest, UniformGridMatchesScalarWithin1em13) {
   for (double lambda : testing::sweepLambdas()) {
-    CaseSpec spec = GetParam();
-    spec.lambda = lambda;
-    const Mechanism m = testing::makeMechanism(spec);
+    const Mechanism m = testing::makeMechanism(GetParam(), lambda);
     const double phi0 = -1.3, step = 2 * M_PI / 997;
     std::vector<double> Q(5000);
     calcGravityTorqueOnGrid(m, phi0, step, Q);

@@ -19,11 +19,7 @@ using testing::kEps;
 
 class GravityTorqueTest : public ::testing::TestWithParam<CaseSpec> {
  protected:
-  Mechanism mechanismAt(double lambda) const {
-    CaseSpec spec = GetParam();
-    spec.lambda = lambda;
-    return testing::makeMechanism(spec);
-  }
+  Mechanism mechanismAt(double lambda) const { return testing::makeMechanism(GetParam(), lambda); }
 };
 
 // Five-point central difference of U with h = 1e-3: truncation h^4/30 |U^(5)|, and |U^(5)| <= 32 E (1 - lambda^2)^(-9/2)

@@ -20,11 +20,7 @@ using testing::kEps;
 
 class MotionTest : public ::testing::TestWithParam<CaseSpec> {
  protected:
-  Mechanism mechanismAt(double lambda) const {
-    CaseSpec spec = GetParam();
-    spec.lambda = lambda;
-    return testing::makeMechanism(spec);
-  }
+  Mechanism mechanismAt(double lambda) const { return testing::makeMechanism(GetParam(), lambda); }
 };
 
 // The two-mass rod with Delta_I has the rod's mass, first moment and inertia about the wrist pin, hence the same

@@ -50,6 +50,11 @@ Mechanism makeMechanism(const CaseSpec& spec) {
   return m;
 }
 
+Mechanism makeMechanism(CaseSpec spec, double lambda) {
+  spec.lambda = lambda;
+  return makeMechanism(spec);
+}
+
 namespace {
 std::string numberTag(double x, int decimals) {
   char buffer[64];

@@ -37,6 +37,8 @@ struct CaseSpec {
 /// r = 0.05 m, l = r / lambda, m_o = 0.43 kg, m_k = 0.61 kg with z_k = 0.3 l (off centre) and
 /// I_o = m_k z_k^2 + m_k (0.27 l)^2, m_s = 1.7 kg at r_s = 0.4 r, m_p = 1.3 kg at r_p = 0.8 r, g = 9.80665.
 Mechanism makeMechanism(const CaseSpec& spec);
+/// The same case at another crank ratio (what parametrized tests that loop over lambda build).
+Mechanism makeMechanism(CaseSpec spec, double lambda);
 
 /// e.g. "k4_four_lambda0p30_gamma90_3000rpm" (gamma -90 -> "gammam90", double-acting adds "_double" after the stroke).
 std::string caseName(const CaseSpec& spec);
