@@ -1,5 +1,6 @@
 #include "eval_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -7,14 +8,13 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "json_output.h"
-#include "usage_error.h"
+#include "crankcheck/validation/errors.h"
 
 namespace crankcheck::app {
 
 void addEvalOptions(CLI::App& command, EvalOptions& options) {
   command.add_option("scene", options.scene_path, "Scene file (TOML), see docs/SCENE-FORMAT.md")->required();
   command.add_option("--phi-deg", options.phi_deg, "Crank angles of cylinder 0 in degrees, comma separated")
-      ->delimiter(',')
       ->capture_default_str();
   command.add_option("--engine", options.engine, "Which engine computes the results")
       ->check(CLI::IsMember({"analytic", "simbody", "both"}))
@@ -24,15 +24,39 @@ void addEvalOptions(CLI::App& command, EvalOptions& options) {
       ->capture_default_str();
 }
 
+std::vector<double> parseAngleList(const std::string& text, const std::string& flag) {
+  if (text.empty()) throw UsageError(flag + ": empty; give at least one angle, e.g. " + flag + " 0,90");
+  std::vector<double> angles;
+  size_t begin = 0;
+  for (int item = 1;; ++item) {
+    const size_t end = std::min(text.find(',', begin), text.size());
+    const std::string field = text.substr(begin, end - begin);
+    const std::string where = flag + ": item " + std::to_string(item) + " of \"" + text + "\"";
+    if (field.empty()) throw UsageError(where + ": empty (nothing is assumed in its place)");
+    size_t used = 0;
+    double value = 0.0;
+    try {
+      value = std::stod(field, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != field.size()) throw UsageError(where + ": \"" + field + "\" is not a number");
+    if (!std::isfinite(value)) throw UsageError(where + ": must be a finite number of degrees");
+    angles.push_back(value);
+    if (end == text.size()) break;
+    begin = end + 1;
+  }
+  return angles;
+}
+
 std::string runEval(const EvalOptions& options) {
+  const std::vector<double> angles_deg = parseAngleList(options.phi_deg, "--phi-deg");
   Mechanism m;
   try {
     m = loadSceneFile(options.scene_path);
   } catch (const SceneError& e) {
     throw UsageError(e.what());
   }
-  for (double phi : options.phi_deg)
-    if (!std::isfinite(phi)) throw UsageError("--phi-deg: angles must be finite numbers");
   const bool use_analytic = options.engine != "simbody";
   const bool use_simbody = options.engine != "analytic";
   std::unique_ptr<simbody_models::KCrankModel> model;
@@ -47,7 +71,7 @@ std::string runEval(const EvalOptions& options) {
   // One row per angle and engine; for --engine both the analytic row comes first.
   std::vector<Evaluation> results;
   std::vector<double> results_phi_deg;  // the user's angle of each result, printed as given
-  for (double phi_deg : options.phi_deg) {
+  for (double phi_deg : angles_deg) {
     const double phi = radiansFromDegrees(phi_deg);
     if (use_analytic) {
       results.push_back(analytic::calcEvaluation(m, phi));

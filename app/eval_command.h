@@ -10,10 +10,15 @@ namespace crankcheck::app {
 
 struct EvalOptions {
   std::string scene_path;
-  std::vector<double> phi_deg{0.0, 90.0, 180.0, 270.0};
+  std::string phi_deg = "0,90,180,270";  ///< comma-separated degrees, parsed by parseAngleList
   std::string engine = "analytic";
   std::string format = "table";
 };
+
+/// Parses a comma-separated list of finite angles in degrees ("0,37.5,-90"). An empty list, an empty item
+/// ("0,,90"), a non-number or a non-finite value is refused: nothing is ever substituted.
+/// @throws UsageError "FLAG: rule" naming the bad item.
+std::vector<double> parseAngleList(const std::string& text, const std::string& flag);
 
 void addEvalOptions(CLI::App& command, EvalOptions& options);
 

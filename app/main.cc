@@ -1,18 +1,48 @@
 // crankcheck: the command-line front end. Verbs live in their own files; this one parses flags (CLI11) and
-// maps user errors to one message on stderr and exit status 2.
+// maps every failure to one message on stderr and its exit status (kExitStatus below, README "Exit status").
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <new>
 
 #include "eval_command.h"
 #include "motion_command.h"
 #include "validate_command.h"
-#include "usage_error.h"
+#include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/output_folder.h"
+
+namespace {
+
+constexpr const char* kExitStatus =
+    "Exit status (the same for every command):\n"
+    "  0  every comparison agrees (eval, motion: the results were printed)\n"
+    "  1  a comparison that should hold failed\n"
+    "  2  bad input or usage: a bad scene, flag or output folder; nothing was written\n"
+    "  3  the environment failed: a tool missing (gnuplot), a disk full, a write refused\n"
+    "  128+N  interrupted by signal N (SIGINT 130, SIGTERM 143); the partial output was removed\n"
+    "Output folders (--out): crankcheck creates a folder, or replaces one that is empty or holds a report it wrote\n"
+    "itself (crankcheck-manifest.json); any other folder, a file or a symbolic link is refused with status 2.";
+
+// One line for a CLI11 parse error, in the form "crankcheck: --flag: rule" where CLI11 names the flag.
+std::string parseErrorMessage(const CLI::ParseError& e) {
+  std::string message = e.what();
+  const std::string extras = "The following argument was not expected: ";
+  const std::string extras_plural = "The following arguments were not expected: ";
+  for (const std::string& prefix : {extras, extras_plural})
+    if (message.rfind(prefix, 0) == 0) return message.substr(prefix.size()) + ": unknown flag or argument";
+  for (char& c : message)
+    if (c == '\n') c = ' ';
+  return message;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"crankcheck: validates slider-crank and k-crank formulas against an independent Simbody model"};
-  app.set_version_flag("--version", "crankcheck 0.1.0");
+  app.set_version_flag("--version", std::string("crankcheck ") + crankcheck::validation::getCrankcheckVersion());
+  app.footer(kExitStatus);
   app.require_subcommand(1);
 
   crankcheck::app::EvalOptions eval;
@@ -41,7 +71,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {  // --help, --version
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "crankcheck: " << e.what() << "\n" << "Run 'crankcheck --help' for usage.\n";
+    std::cerr << "crankcheck: " << parseErrorMessage(e) << " (see crankcheck --help)\n";
     return 2;
   }
 
@@ -52,12 +82,22 @@ int main(int argc, char** argv) {
     if (eval_cmd->parsed()) output = crankcheck::app::runEval(eval);
     if (motion_cmd->parsed()) output = crankcheck::app::runMotion(motion);
     std::fwrite(output.data(), 1, output.size(), stdout);  // only complete results are ever printed
+    if (std::fflush(stdout) != 0) throw crankcheck::EnvironmentError("stdout: cannot write the results");
     return 0;
-  } catch (const crankcheck::app::UsageError& e) {
+  } catch (const crankcheck::UsageError& e) {
     std::cerr << "crankcheck: " << e.what() << "\n";
     return 2;
-  } catch (const std::exception& e) {  // not the user's fault: a failure of the harness or its tools
-    std::cerr << "crankcheck: error: " << e.what() << "\n";
-    return 1;
+  } catch (const crankcheck::EnvironmentError& e) {
+    std::cerr << "crankcheck: " << e.what() << "\n";
+    return 3;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << "crankcheck: " << e.what() << "\n";
+    return 3;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "crankcheck: out of memory\n";
+    return 3;
+  } catch (const std::exception& e) {  // not the user's input: the harness itself could not complete
+    std::cerr << "crankcheck: could not complete: " << e.what() << "\n";
+    return 3;
   }
 }

@@ -7,7 +7,7 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/simbody_models/free_run.h"
 #include "json_output.h"
-#include "usage_error.h"
+#include "crankcheck/validation/errors.h"
 
 namespace crankcheck::app {
 

@@ -14,8 +14,10 @@
 
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/report.h"
-#include "usage_error.h"
+#include "crankcheck/validation/errors.h"
+#include "interrupt.h"
 
 namespace crankcheck::app {
 namespace fs = std::filesystem;
@@ -25,7 +27,8 @@ using validation::Task;
 void addValidateOptions(CLI::App& command, ValidateOptions& options) {
   command.add_option("scenes", options.scene_paths,
                      "Scene files (TOML) to cross-check; none: the built-in default campaign");
-  command.add_option("--out", options.out, "Report folder (replaced atomically when the run completes)")
+  command.add_option("--out", options.out, "Report folder: created, or replaced when the run completes if it is empty or a report crankcheck wrote; any "
+                     "other folder or file is refused")
       ->capture_default_str();
   command.add_flag("--quick", options.quick, "A fast smoke run: fewer lambdas, angles and methods");
   command.add_option("--jobs", options.jobs, "Worker threads (default: one per core)")->check(CLI::Range(1, 1024));
@@ -36,33 +39,10 @@ void addValidateOptions(CLI::App& command, ValidateOptions& options) {
 void addMergeOptions(CLI::App& command, MergeOptions& options) {
   command.add_option("shards", options.shard_dirs, "Shard folders written by 'crankcheck validate --shard I/N'")
       ->required();
-  command.add_option("--out", options.out, "Report folder")->capture_default_str();
+  command.add_option("--out", options.out, "Report folder (the same rule as validate --out)")->capture_default_str();
 }
 
 namespace {
-
-// Removes a staging folder unless it was installed.
-class StagingGuard {
- public:
-  explicit StagingGuard(fs::path path) : path_(std::move(path)) {}
-  ~StagingGuard() {
-    std::error_code ec;
-    if (!path_.empty()) fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-  void release() { path_.clear(); }
-
- private:
-  fs::path path_;
-};
-
-fs::path stage(const std::string& out) {
-  try {
-    return validation::createStagingDirectory(out);
-  } catch (const std::exception& e) {
-    throw UsageError("--out " + std::string(e.what()));
-  }
-}
 
 // Runs the tasks, those that measure time alone after the others; shows progress when stderr is a terminal.
 TableSet runTasks(const std::vector<Task>& tasks, int jobs) {
@@ -105,22 +85,25 @@ TableSet runTasks(const std::vector<Task>& tasks, int jobs) {
   return merged;
 }
 
-int reportAndInstall(const TableSet& tables, const validation::ReportInfo& info, StagingGuard& staging,
-                     const std::string& out) {
-  validation::renderReport(tables, info, staging.path());
-  validation::installDirectory(staging.path(), out);
-  staging.release();
+bool allPass(const TableSet& tables) {
   const std::vector<validation::SummaryRow> summary = validation::summarize(tables);
-  const bool pass = std::all_of(summary.begin(), summary.end(), [](const auto& s) { return s.pass; });
-  std::cout << validation::formatSummary(summary) << "\n"
+  return std::all_of(summary.begin(), summary.end(), [](const auto& s) { return s.pass; });
+}
+
+int reportAndInstall(const TableSet& tables, validation::ReportInfo& info, validation::OutputFolder& out) {
+  validation::renderReport(tables, info, out.getStaging());
+  out.install("report");
+  const bool pass = allPass(tables);
+  std::cout << validation::formatSummary(validation::summarize(tables)) << "\n"
             << (pass ? "All comparisons agree." : "SOME COMPARISONS FAIL (see the summary).") << "\n"
-            << "Report: " << (fs::path(out) / "index.md").string() << " (also index.html)\n";
+            << "Report: " << (out.getTarget() / "index.md").string() << " (also index.html)\n";
   return pass ? 0 : 1;
 }
 
 }  // namespace
 
 int runValidate(const ValidateOptions& options) {
+  // Everything that can be checked is checked before the campaign: scenes, flags, the output folder, gnuplot.
   validation::CampaignOptions campaign;
   campaign.quick = options.quick;
   std::set<std::string> names;
@@ -141,10 +124,15 @@ int runValidate(const ValidateOptions& options) {
     char extra = 0;
     if (std::sscanf(options.shard.c_str(), "%d/%d%c", &shard_index, &shard_count, &extra) != 2 || shard_count < 1 ||
         shard_index < 0 || shard_index >= shard_count)
-      throw UsageError("--shard " + options.shard + ": expected I/N with 0 <= I < N, e.g. --shard 0/4");
+      throw UsageError("--shard: " + options.shard + ": expected I/N with 0 <= I < N, e.g. --shard 0/4");
   }
+  const bool shard = shard_count > 1;
   const int jobs = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
-  StagingGuard staging(stage(options.out));
+  validation::OutputFolder out(options.out, "--out");
+  validation::ReportInfo info;
+  if (!shard) info.gnuplot_version = validation::checkGnuplot();  // a shard draws no figures
+  InterruptGuard interrupt(out);
+  out.createStaging();
 
   const std::vector<Task> all = validation::buildCampaign(campaign);
   std::vector<Task> mine;
@@ -158,27 +146,24 @@ int runValidate(const ValidateOptions& options) {
     std::cerr << "crankcheck: " << e.what() << "\n";
     return 1;
   }
-  validation::ReportInfo info;
   info.quick = options.quick;
   info.jobs = jobs;
   info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  if (shard_count > 1) {
+  if (shard) {
     validation::sortTables(tables);
-    validation::writeTables(tables, staging.path());
+    validation::writeTables(tables, out.getStaging());
     validation::ShardManifest manifest{shard_index, shard_count, options.quick, {}, static_cast<int>(all.size())};
     for (const Mechanism& m : campaign.scenes) manifest.scenes.push_back(m.name);
-    validation::writeShardManifest(manifest, staging.path());
-    validation::installDirectory(staging.path(), options.out);
-    staging.release();
-    const auto summary = validation::summarize(tables);
-    const bool pass = std::all_of(summary.begin(), summary.end(), [](const auto& s) { return s.pass; });
+    validation::writeShardManifest(manifest, out.getStaging());
+    out.install("shard");
+    const bool pass = allPass(tables);
     std::cout << "Shard " << shard_index << "/" << shard_count << " (" << mine.size() << " of " << all.size()
               << " tasks) written to " << options.out << (pass ? "" : "; SOME COMPARISONS FAIL")
               << ". Merge the shards with: crankcheck report merge SHARD_DIR... --out DIR\n";
     return pass ? 0 : 1;
   }
-  return reportAndInstall(tables, info, staging, options.out);
+  return reportAndInstall(tables, info, out);
 }
 
 int runMerge(const MergeOptions& options) {
@@ -197,16 +182,20 @@ int runMerge(const MergeOptions& options) {
     if (i == 0) first = manifest;
     if (manifest.count != first.count || manifest.quick != first.quick || manifest.scenes != first.scenes ||
         manifest.tasks != first.tasks)
-      throw UsageError(dir + ": shard of a different campaign than " + options.shard_dirs[0]);
-    if (!seen.insert(manifest.index).second) throw UsageError(dir + ": shard " + std::to_string(manifest.index) + " given twice");
+      throw UsageError(quotePath(dir) + ": shard of a different campaign than " + quotePath(options.shard_dirs[0]));
+    if (!seen.insert(manifest.index).second)
+      throw UsageError(quotePath(dir) + ": shard " + std::to_string(manifest.index) + " given twice");
   }
   if (static_cast<int>(seen.size()) != first.count)
     throw UsageError("shards: " + std::to_string(seen.size()) + " of " + std::to_string(first.count) + " given; all are needed");
-  StagingGuard staging(stage(options.out));
+  validation::OutputFolder out(options.out, "--out");
   validation::ReportInfo info;
+  info.gnuplot_version = validation::checkGnuplot();
   info.quick = first.quick;
   info.shards = first.count;
-  return reportAndInstall(tables, info, staging, options.out);
+  InterruptGuard interrupt(out);
+  out.createStaging();
+  return reportAndInstall(tables, info, out);
 }
 
 }  // namespace crankcheck::app

@@ -10,10 +10,36 @@
 namespace crankcheck {
 namespace {
 
-// Largest magnitude accepted for any number in a scene: far beyond any machine (1e6 m, 1e6 kg, 1e6 rpm),
-// small enough that products of a few values cannot overflow.
-constexpr double kMaxMagnitude = 1e6;
+// The limits on scene and mechanism values, one per unit, each with its reason (docs/SCENE-FORMAT.md, "Limits",
+// states the same table). `text` is how a refusal names the limit. validateMechanism applies them, so a scene and a
+// programmatically built Mechanism obey the same rules; the reader only checks angles in degrees (as typed) as well.
+struct Limit {
+  double value;
+  const char* text;
+};
+// Lengths [m]: 1000 km is beyond any machine; the tiny-lambda stress case lambda = 1e-6 on a 0.2 m crank needs 2e5 m.
+constexpr Limit kMaxLength{1e6, "1e6 m (1000 km)"};
+// Positive lengths (r, l) [m]: below a micrometre there is no machine, and scales built from r^2 and r^3 would
+// approach the bottom of double's normal range when combined with tiny masses.
+constexpr Limit kMinPositiveLength{1e-6, "1e-6 m (a micrometre)"};
+// Masses [kg]: 1000 t is beyond the heaviest marine crank train per cylinder.
+constexpr Limit kMaxMass{1e6, "1e6 kg (1000 t)"};
+// Nonzero masses [kg]: below a microgram there is no real part, and every force scale would underflow relative to
+// the rounding of the weights. Exactly 0 stays accepted (a massless part is a real modelling choice).
+constexpr Limit kMinNonzeroMass{1e-9, "1e-9 kg (a microgram)"};
+// Inertias [kg m^2]: the largest accepted mass on the longest accepted length, 1e6 kg x (1e6 m)^2.
+constexpr Limit kMaxInertia{kMaxMass.value * kMaxLength.value * kMaxLength.value, "1e18 kg m^2 (1e6 kg at 1e6 m)"};
+// Speed [rpm]: four orders above the fastest reciprocating machines; keeps omega^2 r and the inertia forces
+// m omega^2 r of the largest accepted machine far inside double's range: 1e6 kg x (1.05e5 rad/s)^2 x 1e6 m = 1e22 N.
+constexpr Limit kMaxSpeedRpm{1e6, "1e6 rpm"};
+// Gravity [m/s^2]: 1e5 g, beyond any centrifuge test rig.
+constexpr Limit kMaxGravity{1e6, "1e6 m/s^2 (1e5 g)"};
+// Angles [deg], in magnitude: at 1e6 deg the spacing of doubles is 1.2e-10 deg, so the angle still means what was
+// typed to better than 1e-9 deg; larger values lose the fraction of a degree.
+constexpr Limit kMaxAngleDeg{1e6, "1e6 deg"};
+// Cylinders: 1..64, more than any engine built; keeps the per-cylinder work and output bounded.
 constexpr int kMaxCylinders = 64;
+static_assert(kMaxInertia.value == 1e18);
 
 std::string formatNumber(double x) {
   std::ostringstream s;
@@ -112,9 +138,7 @@ class TableReader {
       fail(source_, key_name, "must be a number");
     }
     if (!std::isfinite(x)) fail(source_, key_name, "must be finite (got " + formatNumber(x) + ")");
-    if (std::fabs(x) > kMaxMagnitude)
-      fail(source_, key_name, "magnitude must be at most 1e6 (got " + formatNumber(x) + ")");
-    return x;
+    return x;  // each unit's limits: validateMechanism (angles in degrees also: requireAngleDegrees)
   }
 
   std::string name_;
@@ -123,6 +147,13 @@ class TableReader {
   const toml::table* table_ = nullptr;
 };
 
+// Refuses an angle typed in degrees beyond kMaxAngleDeg, before it is converted, so the message shows it as typed.
+void requireAngleDegrees(double degrees, const std::string& source, const std::string& key) {
+  if (std::fabs(degrees) > kMaxAngleDeg.value)
+    fail(source, key, std::string("magnitude must be at most ") + kMaxAngleDeg.text + " (got " + formatNumber(degrees) +
+                          ")");
+}
+
 }  // namespace
 
 void validateMechanism(const Mechanism& m, const std::string& source) {
@@ -130,41 +161,77 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
     if (!ok) fail(source, key, rule + " (got " + formatNumber(got) + ")");
   };
   const auto finite = [](double x) { return std::isfinite(x); };
+  const auto atMost = [](const Limit& limit) { return std::string("must be at most ") + limit.text; };
+  const auto requireFinite = [&](double x, const std::string& key) { require(finite(x), key, "must be finite", x); };
+  // Lengths that may be 0 (a point at the centre) and lengths that must be positive.
+  const auto requireLength = [&](double x, const std::string& key) {
+    requireFinite(x, key);
+    require(x >= 0, key, "must be >= 0", x);
+    require(x <= kMaxLength.value, key, atMost(kMaxLength), x);
+  };
+  const auto requirePositiveLength = [&](double x, const std::string& key) {
+    requireFinite(x, key);
+    require(x >= kMinPositiveLength.value, key, std::string("must be at least ") + kMinPositiveLength.text, x);
+    require(x <= kMaxLength.value, key, atMost(kMaxLength), x);
+  };
+  const auto requireMass = [&](double x, const std::string& key) {
+    requireFinite(x, key);
+    require(x >= 0, key, "must be >= 0", x);
+    require(x == 0 || x >= kMinNonzeroMass.value, key, std::string("must be 0 or at least ") + kMinNonzeroMass.text, x);
+    require(x <= kMaxMass.value, key, atMost(kMaxMass), x);
+  };
+  const auto requireAngle = [&](double radians, const std::string& key) {
+    requireFinite(radians, key);
+    // The same limit in radians; a scene's angles were already checked in degrees as typed (requireAngleDegrees).
+    require(std::fabs(radians) <= radiansFromDegrees(kMaxAngleDeg.value), key,
+            std::string("magnitude must be at most ") + kMaxAngleDeg.text, degreesFromRadians(radians));
+  };
+
   require(m.engine.cylinders >= 1 && m.engine.cylinders <= kMaxCylinders, "[engine].cylinders",
           "must be between 1 and 64", m.engine.cylinders);
   require(static_cast<int>(m.engine.crank_angles.size()) == m.engine.cylinders, "[engine].crank_angles_deg",
           "must have one angle per cylinder", static_cast<double>(m.engine.crank_angles.size()));
-  for (double a : m.engine.crank_angles) require(finite(a), "[engine].crank_angles_deg", "must be finite", a);
-  require(finite(m.engine.cylinder_angle), "[engine].cylinder_angle_deg", "must be finite",
-          m.engine.cylinder_angle);
-  require(finite(m.engine.speed) && m.engine.speed >= 0, "[engine].speed_rpm", "must be >= 0", m.speed_rpm);
-  require(finite(m.engine.gravity) && m.engine.gravity >= 0, "[engine].gravity", "must be >= 0",
-          m.engine.gravity);
-  require(finite(m.crank.radius) && m.crank.radius > 0, "[crank].radius", "must be > 0", m.crank.radius);
-  require(finite(m.crank.mass) && m.crank.mass >= 0, "[crank].mass", "must be >= 0", m.crank.mass);
-  require(finite(m.crank.com_radius) && m.crank.com_radius >= 0, "[crank].com_radius", "must be >= 0",
-          m.crank.com_radius);
-  require(finite(m.crank.counterweight_mass) && m.crank.counterweight_mass >= 0, "[crank].counterweight_mass",
-          "must be >= 0", m.crank.counterweight_mass);
-  require(finite(m.crank.counterweight_radius) && m.crank.counterweight_radius >= 0,
-          "[crank].counterweight_radius", "must be >= 0", m.crank.counterweight_radius);
-  require(finite(m.rod.length) && m.rod.length > 0, "[rod].length", "must be > 0", m.rod.length);
+  for (size_t i = 0; i < m.engine.crank_angles.size(); ++i)
+    requireAngle(m.engine.crank_angles[i], "[engine].crank_angles_deg[" + std::to_string(i) + "]");
+  requireAngle(m.engine.cylinder_angle, "[engine].cylinder_angle_deg");
+  // The speed is checked in rpm, the unit of the limit: the scene's value as typed when it is the one omega came
+  // from, else omega converted.
+  const double rpm = m.speed_rpm * (M_PI / 30.0) == m.engine.speed ? m.speed_rpm : m.engine.speed * (30.0 / M_PI);
+  require(finite(m.engine.speed), "[engine].speed_rpm", "must be finite", rpm);
+  require(rpm >= 0, "[engine].speed_rpm", "must be >= 0", rpm);
+  require(rpm <= kMaxSpeedRpm.value, "[engine].speed_rpm", atMost(kMaxSpeedRpm), rpm);
+  requireFinite(m.engine.gravity, "[engine].gravity");
+  require(m.engine.gravity >= 0, "[engine].gravity", "must be >= 0", m.engine.gravity);
+  require(m.engine.gravity <= kMaxGravity.value, "[engine].gravity", atMost(kMaxGravity), m.engine.gravity);
+
+  requirePositiveLength(m.crank.radius, "[crank].radius");
+  requireMass(m.crank.mass, "[crank].mass");
+  requireLength(m.crank.com_radius, "[crank].com_radius");
+  requireMass(m.crank.counterweight_mass, "[crank].counterweight_mass");
+  requireLength(m.crank.counterweight_radius, "[crank].counterweight_radius");
+
+  requirePositiveLength(m.rod.length, "[rod].length");
   require(m.crank.radius < m.rod.length, "[crank].radius",
           "lambda = r / l must be < 1 (rod length " + formatNumber(m.rod.length) + " m)",
           m.crank.radius / m.rod.length);
-  require(finite(m.rod.mass) && m.rod.mass >= 0, "[rod].mass", "must be >= 0", m.rod.mass);
+  requireMass(m.rod.mass, "[rod].mass");
   require(finite(m.rod.com_from_wrist_pin) && m.rod.com_from_wrist_pin >= 0 &&
               m.rod.com_from_wrist_pin <= m.rod.length,
           "[rod].com_from_wrist_pin", "must lie on the rod, 0 <= z_k <= l", m.rod.com_from_wrist_pin);
   const double inertia_of_point_mass = m.rod.mass * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
-  require(finite(m.rod.inertia_about_wrist_pin) && m.rod.inertia_about_wrist_pin >= inertia_of_point_mass,
-          "[rod].inertia_about_wrist_pin",
+  requireFinite(m.rod.inertia_about_wrist_pin, "[rod].inertia_about_wrist_pin");
+  require(m.rod.inertia_about_wrist_pin <= kMaxInertia.value, "[rod].inertia_about_wrist_pin", atMost(kMaxInertia),
+          m.rod.inertia_about_wrist_pin);
+  require(m.rod.inertia_about_wrist_pin >= inertia_of_point_mass, "[rod].inertia_about_wrist_pin",
           "must be >= m_k z_k^2 = " + formatNumber(inertia_of_point_mass) + " kg m^2",
           m.rod.inertia_about_wrist_pin);
-  require(finite(m.piston.mass) && m.piston.mass >= 0, "[piston].mass", "must be >= 0", m.piston.mass);
-  if (m.flywheel_inertia)
-    require(finite(*m.flywheel_inertia) && *m.flywheel_inertia > 0, "[flywheel].inertia", "must be > 0",
-            *m.flywheel_inertia);
+
+  requireMass(m.piston.mass, "[piston].mass");
+  if (m.flywheel_inertia) {
+    requireFinite(*m.flywheel_inertia, "[flywheel].inertia");
+    require(*m.flywheel_inertia > 0, "[flywheel].inertia", "must be > 0", *m.flywheel_inertia);
+    require(*m.flywheel_inertia <= kMaxInertia.value, "[flywheel].inertia", atMost(kMaxInertia), *m.flywheel_inertia);
+  }
 }
 
 Mechanism parseScene(std::string_view text, const std::string& source) {
@@ -204,12 +271,17 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
       fail(source, engine.key("crank_angles_deg"),
            "must have one angle per cylinder: " + std::to_string(cylinders) + " expected, got " +
                std::to_string(angles->size()));
-    for (double degrees : *angles) m.engine.crank_angles.push_back(radiansFromDegrees(degrees));
+    for (size_t i = 0; i < angles->size(); ++i) {
+      requireAngleDegrees((*angles)[i], source, engine.key("crank_angles_deg") + "[" + std::to_string(i) + "]");
+      m.engine.crank_angles.push_back(radiansFromDegrees((*angles)[i]));
+    }
     m.engine.explicit_crank_angles = true;
   } else {
     m.engine.crank_angles = calcPhaseAngles(m.engine.cylinders, m.engine.cycle, m.engine.acting);
   }
-  m.engine.cylinder_angle = radiansFromDegrees(engine.number("cylinder_angle_deg"));
+  const double cylinder_angle_deg = engine.number("cylinder_angle_deg");
+  requireAngleDegrees(cylinder_angle_deg, source, engine.key("cylinder_angle_deg"));
+  m.engine.cylinder_angle = radiansFromDegrees(cylinder_angle_deg);
   m.speed_rpm = engine.number("speed_rpm");
   m.engine.speed = m.speed_rpm * (M_PI / 30.0);
   m.engine.gravity = engine.number("gravity", 9.80665);

@@ -12,18 +12,15 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
+#include "run_cli.h"
 
 namespace crankcheck {
 namespace {
 
-struct RunResult {
-  int exit_status = -1;
-  std::string out, err;
-};
+using RunResult = validation::ProgramResult;
 
 std::string readFile(const std::filesystem::path& path) {
   std::ifstream in(path);
@@ -32,20 +29,12 @@ std::string readFile(const std::filesystem::path& path) {
   return s.str();
 }
 
-// Runs the CLI with `args` (already shell-quoted), capturing stdout and stderr.
+// Runs the CLI with the arguments of `args` (split at spaces; no argument here holds one), without a shell.
 RunResult run(const std::string& args) {
-  const auto dir = std::filesystem::temp_directory_path();
-  const auto out = dir / ("crankcheck_cli_out_" + std::to_string(::getpid()));
-  const auto err = dir / ("crankcheck_cli_err_" + std::to_string(::getpid()));
-  const std::string command = std::string(CRANKCHECK_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(command.c_str());
-  RunResult r;
-  r.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = readFile(out);
-  r.err = readFile(err);
-  std::filesystem::remove(out);
-  std::filesystem::remove(err);
-  return r;
+  std::vector<std::string> argv;
+  std::stringstream words(args);
+  for (std::string word; words >> word;) argv.push_back(word);
+  return testing::runCrankcheck(argv);
 }
 
 std::vector<std::filesystem::path> exampleScenes() {
@@ -108,34 +97,50 @@ TEST(Cli, TableIsTheDefaultFormat) {
 
 struct BadRun {
   std::string name;
-  std::string args;
-  std::string expected;  // in the message
+  std::vector<std::string> args;  // "SCENES" stands for the example scenes' folder
+  std::string expected;           // in the message
 };
 
 class CliBadInputTest : public ::testing::TestWithParam<BadRun> {};
 
 TEST_P(CliBadInputTest, ExitsWithStatus2AndOneMessage) {
   const BadRun& bad = GetParam();
-  const std::string scenes = CRANKCHECK_SCENES_DIR;
-  std::string args = bad.args;
-  for (size_t at; (at = args.find("SCENES")) != std::string::npos;) args.replace(at, 6, scenes);
-  const RunResult r = run(args);
+  std::vector<std::string> args = bad.args;
+  for (std::string& arg : args)
+    if (arg.rfind("SCENES", 0) == 0) arg.replace(0, 6, CRANKCHECK_SCENES_DIR);
+  const RunResult r = testing::runCrankcheck(args);
   EXPECT_EQ(r.exit_status, 2) << r.err;
   EXPECT_EQ(r.out, "") << "no partial output";
   EXPECT_NE(r.err.find(bad.expected), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.rfind("crankcheck: ", 0), 0u) << "one form: crankcheck: FILE: KEY: rule or crankcheck: --flag: rule";
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
 }
+
+const std::string kSingle = "SCENES/single_cylinder.toml";
 
 INSTANTIATE_TEST_SUITE_P(
     Refusals, CliBadInputTest,
-    ::testing::Values(BadRun{"missing_scene_file", "eval SCENES/no_such_scene.toml", "no_such_scene.toml: file"},
-                      BadRun{"bad_angle_list", "eval SCENES/single_cylinder.toml --phi-deg 0,abc", "--phi-deg"},
-                      BadRun{"bad_engine", "eval SCENES/single_cylinder.toml --engine maple", "--engine"},
-                      BadRun{"bad_format", "eval SCENES/single_cylinder.toml --format xml", "--format"},
-                      BadRun{"unknown_flag", "eval SCENES/single_cylinder.toml --frobnicate", "--frobnicate"},
-                      BadRun{"no_verb", "", "subcommand"},
-                      BadRun{"no_scene", "eval", "scene"},
-                      BadRun{"nan_angle", "eval SCENES/single_cylinder.toml --phi-deg nan", "--phi-deg"}),
+    ::testing::Values(BadRun{"missing_scene_file", {"eval", "SCENES/no_such_scene.toml"}, "no_such_scene.toml: file"},
+                      BadRun{"bad_angle_list", {"eval", kSingle, "--phi-deg", "0,abc"}, "--phi-deg: item 2"},
+                      BadRun{"empty_angle_list", {"eval", kSingle, "--phi-deg", ""}, "--phi-deg: empty"},
+                      BadRun{"empty_angle_item", {"eval", kSingle, "--phi-deg", "0,,90"}, "--phi-deg: item 2 of \"0,,90\": empty"},
+                      BadRun{"trailing_comma", {"eval", kSingle, "--phi-deg", "0,"}, "--phi-deg: item 2"},
+                      BadRun{"bad_engine", {"eval", kSingle, "--engine", "maple"}, "--engine"},
+                      BadRun{"bad_format", {"eval", kSingle, "--format", "xml"}, "--format"},
+                      BadRun{"unknown_flag", {"eval", kSingle, "--frobnicate"}, "crankcheck: --frobnicate: unknown flag"},
+                      BadRun{"no_verb", {}, "subcommand"},
+                      BadRun{"no_scene", {"eval"}, "scene"},
+                      BadRun{"nan_angle", {"eval", kSingle, "--phi-deg", "nan"}, "--phi-deg: item 1 of \"nan\": must be a finite"}),
     [](const auto& info) { return info.param.name; });
+
+// Every command lists the exit statuses in its help, the same four codes.
+TEST(Cli, HelpListsTheExitStatuses) {
+  const RunResult r = testing::runCrankcheck({"--help"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  for (const char* line : {"0  every comparison agrees", "1  a comparison that should hold failed",
+                           "2  bad input or usage", "3  the environment failed", "crankcheck-manifest.json"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << " in\n" << r.out;
+}
 
 // `crankcheck motion` on every example scene: both engines' free run, close to each other (RungeKuttaMerson at
 // 1e-10: 1e3 x accuracy relative, the gate's free-run tolerance).

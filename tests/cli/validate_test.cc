@@ -9,8 +9,9 @@
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 #include <unistd.h>
+
+#include "run_cli.h"
 
 namespace crankcheck {
 namespace {
@@ -23,10 +24,7 @@ std::string readFile(const fs::path& path) {
   return s.str();
 }
 
-struct RunResult {
-  int exit_status = -1;
-  std::string out, err;
-};
+using RunResult = validation::ProgramResult;
 
 class ValidateTest : public ::testing::Test {
  protected:
@@ -38,16 +36,12 @@ class ValidateTest : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  RunResult run(const std::string& args, const std::string& env = "") {
-    const fs::path out = dir_ / "stdout", err = dir_ / "stderr";
-    const std::string command =
-        env + " " + std::string(CRANKCHECK_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
-    const int status = std::system(command.c_str());
-    RunResult r;
-    r.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = readFile(out);
-    r.err = readFile(err);
-    return r;
+  // Runs the CLI with the arguments of `args` (split at spaces; no argument here holds one), without a shell.
+  RunResult run(const std::string& args, const std::vector<std::string>& env = {}) {
+    std::vector<std::string> argv;
+    std::stringstream words(args);
+    for (std::string word; words >> word;) argv.push_back(word);
+    return testing::runCrankcheck(argv, env);
   }
 
   fs::path dir_;
@@ -83,7 +77,7 @@ TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   EXPECT_NE(speed.find("simbody_tol_1e-12,"), std::string::npos) << speed;
   // Nothing but the report next to it: no staging folder left behind.
   for (const auto& entry : fs::directory_iterator(dir_))
-    EXPECT_EQ(entry.path().filename().string().find(".report.partial"), std::string::npos) << entry.path();
+    EXPECT_EQ(entry.path().filename().string().find("partial"), std::string::npos) << entry.path();
 }
 
 // Two shards merged give the same data as one run (timings excepted: they are measurements).
@@ -114,8 +108,8 @@ TEST_F(ValidateTest, FailedRunNeverReplacesAGoodReport) {
   const fs::path report = dir_ / "report";
   ASSERT_EQ(run("validate --quick --out " + report.string()).exit_status, 0);
   const std::string before = readFile(report / "index.md");
-  const RunResult failed = run("validate --quick --out " + report.string(), "CRANKCHECK_REPORTS_DIR=/nonexistent");
-  EXPECT_EQ(failed.exit_status, 1);
+  const RunResult failed = run("validate --quick --out " + report.string(), {"CRANKCHECK_REPORTS_DIR=/nonexistent"});
+  EXPECT_EQ(failed.exit_status, 3) << "a missing tool is the environment's failure";
   EXPECT_NE(failed.err.find("gnuplot script not found"), std::string::npos) << failed.err;
   EXPECT_EQ(readFile(report / "index.md"), before);
   for (const auto& entry : fs::directory_iterator(dir_))
@@ -124,12 +118,12 @@ TEST_F(ValidateTest, FailedRunNeverReplacesAGoodReport) {
 
 TEST_F(ValidateTest, BadInputIsRefusedWithStatus2) {
   const RunResult bad_out = run("validate --quick --out /proc/crankcheck/report");
-  EXPECT_EQ(bad_out.exit_status, 2);
-  EXPECT_NE(bad_out.err.find("--out /proc/crankcheck/report"), std::string::npos) << bad_out.err;
+  EXPECT_EQ(bad_out.exit_status, 3) << "a folder that cannot be created: a write refused";
+  EXPECT_NE(bad_out.err.find("--out: \"/proc/crankcheck\": cannot create the folder"), std::string::npos) << bad_out.err;
   EXPECT_EQ(bad_out.out, "");
   const RunResult bad_shard = run("validate --quick --shard 2/2 --out " + (dir_ / "x").string());
   EXPECT_EQ(bad_shard.exit_status, 2);
-  EXPECT_NE(bad_shard.err.find("--shard 2/2"), std::string::npos) << bad_shard.err;
+  EXPECT_NE(bad_shard.err.find("--shard: 2/2"), std::string::npos) << bad_shard.err;
   const RunResult bad_scene = run("validate " + (dir_ / "missing.toml").string() + " --out " + (dir_ / "x").string());
   EXPECT_EQ(bad_scene.exit_status, 2);
   EXPECT_NE(bad_scene.err.find("missing.toml: file"), std::string::npos) << bad_scene.err;

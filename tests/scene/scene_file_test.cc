@@ -131,10 +131,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"bad_acting", "cycle = \"four-stroke\"", "cycle = \"four-stroke\"\nacting = \"triple\"", "[engine].acting", "single"},
         BadScene{"lambda_one", "radius = 0.05", "radius = 0.2", "[crank].radius", "lambda = r / l must be < 1"},
         BadScene{"negative_mass", "mass = 0.4", "mass = -0.4", "[piston].mass", "must be >= 0"},
-        BadScene{"zero_length", "length = 0.2", "length = 0.0", "[rod].length", "must be > 0"},
+        BadScene{"zero_length", "length = 0.2", "length = 0.0", "[rod].length", "must be at least 1e-6 m"},
         BadScene{"nan", "mass = 0.5", "mass = nan", "[rod].mass", "must be finite"},
         BadScene{"inf", "radius = 0.05", "radius = inf", "[crank].radius", "must be finite"},
-        BadScene{"huge", "mass = 1.0", "mass = 1e300", "[crank].mass", "at most 1e6"},
+        BadScene{"huge", "mass = 1.0", "mass = 1e300", "[crank].mass", "must be at most 1e6 kg (1000 t)"},
         BadScene{"inertia_below_point_mass", "inertia_about_wrist_pin = 0.012", "inertia_about_wrist_pin = 0.009",
                  "[rod].inertia_about_wrist_pin", "must be >= m_k z_k^2"},
         BadScene{"com_beyond_rod", "com_from_wrist_pin = 0.14", "com_from_wrist_pin = 0.25", "[rod].com_from_wrist_pin",
@@ -149,6 +149,207 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"flywheel_zero", "mass = 0.4", "mass = 0.4\n[flywheel]\ninertia = 0", "[flywheel].inertia", "must be > 0"},
         BadScene{"table_is_value", "", "engine = 3\n", "[engine]", "must be a table"}),
     [](const auto& info) { return info.param.name; });
+
+// The limits of each unit (docs/SCENE-FORMAT.md, "Limits"): a value just beyond each is refused with a message
+// that names the file, the key, the limit and the value. kLimitScene is kGoodScene with every key written out, so
+// that each edit below changes exactly one value.
+const char* kLimitScene = R"(
+[engine]
+cylinders = 2
+cycle = "four-stroke"
+crank_angles_deg = [0, 90]
+cylinder_angle_deg = 90
+speed_rpm = 3000
+gravity = 9.80665
+[crank]
+radius = 0.05
+mass = 1.0
+com_radius = 0.02
+counterweight_mass = 0.8
+counterweight_radius = 0.04
+[rod]
+length = 0.2
+mass = 0.5
+com_from_wrist_pin = 0.14
+inertia_about_wrist_pin = 0.012
+[piston]
+mass = 0.4
+[flywheel]
+inertia = 0.1
+)";
+
+std::string withLine(const char* scene, const std::string& find, const std::string& replace) {
+  std::string text = scene;
+  const size_t at = text.find(find);
+  if (at == std::string::npos) throw std::logic_error("test setup: line not found: " + find);
+  return text.replace(at, find.size(), replace);
+}
+
+struct BeyondLimit {
+  std::string name;
+  std::string find;     // a line of kLimitScene
+  std::string replace;  // the same key just beyond its limit (a large rod where the limit needs one)
+  std::string message;  // expected after "scenes/limit.toml: "
+};
+
+class BeyondLimitTest : public ::testing::TestWithParam<BeyondLimit> {};
+
+TEST_P(BeyondLimitTest, IsRefusedNamingFileKeyAndLimit) {
+  const BeyondLimit& c = GetParam();
+  try {
+    parseScene(withLine(kLimitScene, c.find, c.replace), "scenes/limit.toml");
+    FAIL() << "accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), "scenes/limit.toml: " + c.message);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Limits, BeyondLimitTest,
+    ::testing::Values(
+        // lengths [m]: at most 1e6 m; r and l at least 1e-6 m; r_s and r_p may be 0
+        BeyondLimit{"rod_length_above_1e6_m", "length = 0.2\nmass = 0.5\ncom_from_wrist_pin = 0.14",
+                    "length = 1.000001e6\nmass = 0.5\ncom_from_wrist_pin = 0.14",
+                    "[rod].length: must be at most 1e6 m (1000 km) (got 1000001)"},
+        BeyondLimit{"com_radius_above_1e6_m", "com_radius = 0.02", "com_radius = 1.000001e6",
+                    "[crank].com_radius: must be at most 1e6 m (1000 km) (got 1000001)"},
+        BeyondLimit{"counterweight_radius_above_1e6_m", "counterweight_radius = 0.04",
+                    "counterweight_radius = 1.000001e6",
+                    "[crank].counterweight_radius: must be at most 1e6 m (1000 km) (got 1000001)"},
+        BeyondLimit{"crank_radius_below_a_micrometre", "radius = 0.05", "radius = 9.99e-7",
+                    "[crank].radius: must be at least 1e-6 m (a micrometre) (got 9.9900000000000009e-07)"},
+        BeyondLimit{"rod_length_below_a_micrometre",
+                    "length = 0.2\nmass = 0.5\ncom_from_wrist_pin = 0.14\ninertia_about_wrist_pin = 0.012",
+                    "length = 9.99e-7\nmass = 0.5\ncom_from_wrist_pin = 0\ninertia_about_wrist_pin = 0",
+                    "[rod].length: must be at least 1e-6 m (a micrometre) (got 9.9900000000000009e-07)"},
+        // masses [kg]: 0, or from a microgram to 1e6 kg
+        BeyondLimit{"crank_mass_above_1e6_kg", "mass = 1.0", "mass = 1.000001e6",
+                    "[crank].mass: must be at most 1e6 kg (1000 t) (got 1000001)"},
+        BeyondLimit{"counterweight_mass_above_1e6_kg", "counterweight_mass = 0.8", "counterweight_mass = 1.000001e6",
+                    "[crank].counterweight_mass: must be at most 1e6 kg (1000 t) (got 1000001)"},
+        BeyondLimit{"rod_mass_above_1e6_kg", "mass = 0.5\ncom_from_wrist_pin = 0.14\ninertia_about_wrist_pin = 0.012",
+                    "mass = 1.000001e6\ncom_from_wrist_pin = 0\ninertia_about_wrist_pin = 0",
+                    "[rod].mass: must be at most 1e6 kg (1000 t) (got 1000001)"},
+        BeyondLimit{"piston_mass_above_1e6_kg", "mass = 0.4", "mass = 1.000001e6",
+                    "[piston].mass: must be at most 1e6 kg (1000 t) (got 1000001)"},
+        BeyondLimit{"piston_mass_below_a_microgram", "mass = 0.4", "mass = 9.99e-10",
+                    "[piston].mass: must be 0 or at least 1e-9 kg (a microgram) (got 9.9899999999999996e-10)"},
+        BeyondLimit{"counterweight_mass_below_a_microgram", "counterweight_mass = 0.8", "counterweight_mass = 1e-12",
+                    "[crank].counterweight_mass: must be 0 or at least 1e-9 kg (a microgram) "
+                    "(got 9.9999999999999998e-13)"},
+        // inertias [kg m^2]: at most 1e18 (1e6 kg at 1e6 m)
+        BeyondLimit{"rod_inertia_above_1e18",
+                    "length = 0.2\nmass = 0.5\ncom_from_wrist_pin = 0.14\ninertia_about_wrist_pin = 0.012",
+                    "length = 1e6\nmass = 1e6\ncom_from_wrist_pin = 1e6\ninertia_about_wrist_pin = 1.000001e18",
+                    "[rod].inertia_about_wrist_pin: must be at most 1e18 kg m^2 (1e6 kg at 1e6 m) (got 1.000001e+18)"},
+        BeyondLimit{"flywheel_inertia_above_1e18", "inertia = 0.1", "inertia = 2e18",
+                    "[flywheel].inertia: must be at most 1e18 kg m^2 (1e6 kg at 1e6 m) (got 2e+18)"},
+        // speed, gravity, angles
+        BeyondLimit{"speed_above_1e6_rpm", "speed_rpm = 3000", "speed_rpm = 1.000001e6",
+                    "[engine].speed_rpm: must be at most 1e6 rpm (got 1000001)"},
+        BeyondLimit{"gravity_above_1e5_g", "gravity = 9.80665", "gravity = 1.000001e6",
+                    "[engine].gravity: must be at most 1e6 m/s^2 (1e5 g) (got 1000001)"},
+        BeyondLimit{"cylinder_angle_above_1e6_deg", "cylinder_angle_deg = 90", "cylinder_angle_deg = -1.000001e6",
+                    "[engine].cylinder_angle_deg: magnitude must be at most 1e6 deg (got -1000001)"},
+        BeyondLimit{"crank_angle_above_1e6_deg", "crank_angles_deg = [0, 90]", "crank_angles_deg = [0, 1.000001e6]",
+                    "[engine].crank_angles_deg[1]: magnitude must be at most 1e6 deg (got 1000001)"}),
+    [](const auto& info) { return info.param.name; });
+
+// Each limit itself is accepted: every length, mass, inertia, speed, gravity and angle at its bound at once.
+TEST(SceneLimits, ValuesAtTheLimitsAreAccepted) {
+  std::string text = withLine(kLimitScene,
+                              "length = 0.2\nmass = 0.5\ncom_from_wrist_pin = 0.14\ninertia_about_wrist_pin = 0.012",
+                              "length = 1e6\nmass = 1e6\ncom_from_wrist_pin = 1e6\ninertia_about_wrist_pin = 1e18");
+  text = withLine(text.c_str(), "radius = 0.05", "radius = 1e-6");
+  text = withLine(text.c_str(), "com_radius = 0.02", "com_radius = 1e6");
+  text = withLine(text.c_str(), "counterweight_mass = 0.8\ncounterweight_radius = 0.04",
+                  "counterweight_mass = 1e-9\ncounterweight_radius = 1e6");
+  text = withLine(text.c_str(), "[piston]\nmass = 0.4", "[piston]\nmass = 1e6");
+  text = withLine(text.c_str(), "inertia = 0.1", "inertia = 1e18");
+  text = withLine(text.c_str(), "speed_rpm = 3000", "speed_rpm = 1e6");
+  text = withLine(text.c_str(), "gravity = 9.80665", "gravity = 1e6");
+  text = withLine(text.c_str(), "cylinder_angle_deg = 90", "cylinder_angle_deg = -1e6");
+  text = withLine(text.c_str(), "crank_angles_deg = [0, 90]", "crank_angles_deg = [1e6, -1e6]");
+  const Mechanism m = parseScene(text, "limits.toml");
+  EXPECT_EQ(m.rod.inertia_about_wrist_pin, 1e18);
+  EXPECT_EQ(m.crank.radius, 1e-6);
+  EXPECT_EQ(m.crank.counterweight_mass, 1e-9);
+  EXPECT_EQ(m.speed_rpm, 1e6);
+  // Zero masses and zero radii stay accepted (a massless part, a point at the centre).
+  std::string zeros = withLine(kLimitScene,
+                               "mass = 1.0\ncom_radius = 0.02\ncounterweight_mass = 0.8\ncounterweight_radius = 0.04",
+                               "mass = 0\ncom_radius = 0\ncounterweight_mass = 0\ncounterweight_radius = 0");
+  zeros = withLine(zeros.c_str(), "[piston]\nmass = 0.4", "[piston]\nmass = 0");
+  EXPECT_NO_THROW(parseScene(zeros, "zeros.toml"));
+}
+
+// A large two-stroke marine engine: 2 m crank, 12 m rod of 33 t with I_o = 2.5e6 kg m^2 about its wrist pin, and a
+// ship's shafting and propeller of 5e6 kg m^2 on the flywheel. The old single cap of 1e6 refused it.
+TEST(SceneLimits, MarineRodIsAccepted) {
+  std::string text = withLine(kLimitScene, "radius = 0.05", "radius = 2");
+  text = withLine(text.c_str(), "length = 0.2\nmass = 0.5\ncom_from_wrist_pin = 0.14\ninertia_about_wrist_pin = 0.012",
+                  "length = 12\nmass = 33000\ncom_from_wrist_pin = 8\ninertia_about_wrist_pin = 2.5e6");
+  text = withLine(text.c_str(), "inertia = 0.1", "inertia = 5e6");
+  text = withLine(text.c_str(), "speed_rpm = 3000", "speed_rpm = 80");
+  const Mechanism m = parseScene(text, "marine.toml");
+  EXPECT_EQ(m.rod.inertia_about_wrist_pin, 2.5e6);
+  EXPECT_EQ(m.flywheel_inertia.value_or(0.0), 5e6);
+  EXPECT_EQ(m.rod.mass, 33000.0);
+}
+
+// The tiny-lambda stress case: lambda = 1e-6 on a 0.2 m crank, a 200 km rod of 1 kg with its centre of mass at its
+// middle and I_o = 1.4e10 kg m^2 (a uniform rod would have l^2 / 3 = 1.33e10; >= m_k z_k^2 = 1e10).
+TEST(SceneLimits, TinyLambdaIsAccepted) {
+  std::string text = withLine(kLimitScene, "radius = 0.05", "radius = 0.2");
+  text = withLine(text.c_str(), "length = 0.2\nmass = 0.5\ncom_from_wrist_pin = 0.14\ninertia_about_wrist_pin = 0.012",
+                  "length = 2e5\nmass = 1\ncom_from_wrist_pin = 1e5\ninertia_about_wrist_pin = 1.4e10");
+  const Mechanism m = parseScene(text, "tiny_lambda.toml");
+  EXPECT_DOUBLE_EQ(calcCrankRatio(m), 1e-6);
+  EXPECT_EQ(m.rod.inertia_about_wrist_pin, 1.4e10);
+}
+
+// Integers for float keys stay accepted, at any accepted magnitude.
+TEST(SceneLimits, IntegersForFloatKeysAreAccepted) {
+  std::string text = withLine(kLimitScene, "inertia = 0.1", "inertia = 1000000000000000000");
+  text = withLine(text.c_str(), "speed_rpm = 3000", "speed_rpm = 1000000");
+  const Mechanism m = parseScene(text, "integers.toml");
+  EXPECT_EQ(m.flywheel_inertia.value_or(0.0), 1e18);
+  EXPECT_EQ(m.speed_rpm, 1e6);
+}
+
+// A programmatically built Mechanism obeys the same limits as a scene (validateMechanism applies them), with the
+// limit checked in the unit of the rule: the speed in rpm, angles in degrees.
+TEST(SceneLimits, BuiltMechanismsObeyTheSameLimits) {
+  const Mechanism good = parseScene(kLimitScene, "good.toml");
+  EXPECT_NO_THROW(validateMechanism(good, "built"));
+  const auto message = [](const Mechanism& m) {
+    try {
+      validateMechanism(m, "built");
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  Mechanism fast = good;
+  fast.speed_rpm = 0;  // not set by whoever built it: the limit is checked on omega
+  fast.engine.speed = 2e6 * (M_PI / 30.0);
+  EXPECT_EQ(message(fast).rfind("built: [engine].speed_rpm: must be at most 1e6 rpm (got ", 0), 0u)
+      << message(fast);
+  Mechanism turned = good;
+  turned.engine.cylinder_angle = radiansFromDegrees(-2e6);
+  EXPECT_EQ(message(turned).rfind("built: [engine].cylinder_angle_deg: magnitude must be at most 1e6 deg (got ", 0), 0u)
+      << message(turned);
+  Mechanism heavy = good;
+  heavy.piston.mass = 2e6;
+  EXPECT_EQ(message(heavy), "built: [piston].mass: must be at most 1e6 kg (1000 t) (got 2000000)");
+  Mechanism tiny = good;
+  tiny.crank.mass = 1e-12;
+  EXPECT_EQ(message(tiny),
+            "built: [crank].mass: must be 0 or at least 1e-9 kg (a microgram) (got 9.9999999999999998e-13)");
+  Mechanism nan_angle = good;
+  nan_angle.engine.crank_angles[1] = std::nan("");
+  EXPECT_EQ(message(nan_angle), "built: [engine].crank_angles_deg[1]: must be finite (got nan)");
+}
 
 // Inputs the fuzzer (fuzz/scene_fuzzer.cc, scripts/fuzz.sh) found or that guard what it checks: each must give a
 // valid scene or a SceneError, never another exception or a crash.

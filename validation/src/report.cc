@@ -1,9 +1,5 @@
 #include "crankcheck/validation/report.h"
 
-#include <fcntl.h>
-#include <stdio.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,6 +13,9 @@
 #include <stdexcept>
 
 #include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/output_folder.h"
+#include "crankcheck/validation/process.h"
 
 #ifndef CRANKCHECK_REPORTS_DIR
 #error "CRANKCHECK_REPORTS_DIR (the folder of the gnuplot scripts) must be defined by the build"
@@ -83,48 +82,91 @@ std::string formatSummary(const std::vector<SummaryRow>& summary) {
   return out.str();
 }
 
-void writeTables(const TableSet& tables, const fs::path& dir) {
-  fs::create_directories(dir / "data");
-  for (const auto& [name, table] : tables) {
-    std::ofstream out(dir / "data" / (name + ".csv"));
-    for (size_t i = 0; i < table.columns.size(); ++i) out << (i ? "," : "") << table.columns[i];
-    out << "\n";
-    for (const auto& row : table.rows) {
-      for (size_t i = 0; i < row.size(); ++i) {
-        if (row[i].find_first_of(",\n") != std::string::npos)
-          throw std::logic_error("table " + name + ": a field contains a comma or newline: " + row[i]);
-        out << (i ? "," : "") << row[i];
-      }
-      out << "\n";
+namespace {
+
+// RFC 4180: a field with a comma, a double quote or a line break is quoted, its quotes doubled. Only scene names
+// (file names) can hold such characters; the numbers and names the figures read never do.
+std::string csvField(const std::string& field) {
+  if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
+  std::string out = "\"";
+  for (char c : field) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+// Splits CSV text into records of fields (RFC 4180). @throws std::runtime_error on an unterminated quote.
+std::vector<std::vector<std::string>> parseCsv(const std::string& text, const std::string& source) {
+  std::vector<std::vector<std::string>> records;
+  std::vector<std::string> record;
+  std::string field;
+  bool quoted = false, any = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') field += '"', ++i;
+      else if (c == '"') quoted = false;
+      else field += c;
+    } else if (c == '"') {
+      quoted = any = true;
+    } else if (c == ',') {
+      record.push_back(std::move(field));
+      field.clear();
+      any = true;
+    } else if (c == '\n') {
+      record.push_back(std::move(field));
+      field.clear();
+      records.push_back(std::move(record));
+      record.clear();
+      any = false;
+    } else if (c != '\r') {
+      field += c;
+      any = true;
     }
-    if (!out) throw std::runtime_error("cannot write " + (dir / "data" / (name + ".csv")).string());
+  }
+  if (quoted) throw std::runtime_error(source + ": a quoted field is not closed");
+  if (any) {
+    record.push_back(std::move(field));
+    records.push_back(std::move(record));
+  }
+  return records;
+}
+
+}  // namespace
+
+void writeTables(const TableSet& tables, const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::create_directory(dir / "data", ec) && ec)
+    throw EnvironmentError(quotePath(dir / "data") + ": cannot create the folder: " + ec.message());
+  for (const auto& [name, table] : tables) {
+    std::string text;
+    for (size_t i = 0; i < table.columns.size(); ++i) text += (i ? "," : "") + csvField(table.columns[i]);
+    text += "\n";
+    for (const auto& row : table.rows) {
+      for (size_t i = 0; i < row.size(); ++i) text += (i ? "," : "") + csvField(row[i]);
+      text += "\n";
+    }
+    writeNewFile(dir / "data" / (name + ".csv"), text);
   }
 }
 
 TableSet readTables(const fs::path& dir) {
   TableSet tables;
-  if (!fs::is_directory(dir / "data")) throw std::runtime_error(dir.string() + ": no data/ folder (not a crankcheck report or shard)");
+  if (!fs::is_directory(dir / "data"))
+    throw std::runtime_error(quotePath(dir) + ": no data/ folder (not a crankcheck report or shard)");
   for (const auto& entry : fs::directory_iterator(dir / "data")) {
     if (entry.path().extension() != ".csv") continue;
-    std::ifstream in(entry.path());
-    std::string line;
+    std::ifstream in(entry.path(), std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string source = quotePath(entry.path());
+    std::vector<std::vector<std::string>> records = parseCsv(text.str(), source);
+    if (records.empty()) throw std::runtime_error(source + ": empty table");
     Table table;
-    auto split = [](const std::string& s) {
-      std::vector<std::string> fields;
-      std::stringstream ss(s);
-      std::string field;
-      while (std::getline(ss, field, ',')) fields.push_back(field);
-      if (!s.empty() && s.back() == ',') fields.push_back("");
-      return fields;
-    };
-    if (!std::getline(in, line)) throw std::runtime_error(entry.path().string() + ": empty table");
-    table.columns = split(line);
-    while (std::getline(in, line)) {
-      std::vector<std::string> row = split(line);
-      if (row.size() != table.columns.size())
-        throw std::runtime_error(entry.path().string() + ": a row has " + std::to_string(row.size()) + " fields, the header " +
+    table.columns = std::move(records.front());
+    for (size_t i = 1; i < records.size(); ++i) {
+      if (records[i].size() != table.columns.size())
+        throw std::runtime_error(source + ": a row has " + std::to_string(records[i].size()) + " fields, the header " +
                                  std::to_string(table.columns.size()));
-      table.rows.push_back(std::move(row));
+      table.rows.push_back(std::move(records[i]));
     }
     tables[entry.path().stem().string()] = std::move(table);
   }
@@ -150,6 +192,7 @@ std::string escapeHtml(const std::string& s) {
     if (c == '<') out += "&lt;";
     else if (c == '>') out += "&gt;";
     else if (c == '&') out += "&amp;";
+    else if (c == '"') out += "&quot;";
     else out += c;
   }
   return out;
@@ -157,7 +200,7 @@ std::string escapeHtml(const std::string& s) {
 
 std::string escapeMarkdownCell(const std::string& s) {
   std::string out;
-  for (char c : s) out += (c == '|') ? std::string("\\|") : std::string(1, c);
+  for (char c : s) out += (c == '|') ? std::string("\\|") : (c == '\n' || c == '\r') ? std::string(" ") : std::string(1, c);
   return out;
 }
 
@@ -223,36 +266,19 @@ std::string toHtml(const std::vector<Block>& blocks, const std::string& title) {
   return html.str();
 }
 
-std::string runAndCapture(const std::string& command) {
-  std::string out;
-  if (FILE* pipe = ::popen(command.c_str(), "r")) {
-    char buffer[256];
-    while (std::fgets(buffer, sizeof buffer, pipe)) out += buffer;
-    ::pclose(pipe);
-  }
-  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  return out;
-}
-
 fs::path scriptsDir() {
   if (const char* env = std::getenv("CRANKCHECK_REPORTS_DIR")) return env;
   return CRANKCHECK_REPORTS_DIR;
 }
 
+// gnuplot runs in the report folder with a fixed command line: no path of the user's is ever part of a gnuplot
+// command (the scripts read data/NAME.csv and write NAME.svg, NAME.png relative to it), and no shell is involved.
 void plot(const std::string& name, const fs::path& dir) {
-  const fs::path script = scriptsDir() / (name + ".gp");
-  if (!fs::exists(script)) throw std::runtime_error("gnuplot script not found: " + script.string());
-  const fs::path log = dir / ("." + name + ".gnuplot.log");
-  const std::string command = "gnuplot -e \"in_dir='" + (dir / "data").string() + "'; out_dir='" + dir.string() +
-                              "'\" '" + script.string() + "' >'" + log.string() + "' 2>&1";
-  const int status = std::system(command.c_str());
-  if (status != 0 || !fs::exists(dir / (name + ".svg")) || !fs::exists(dir / (name + ".png"))) {
-    std::ifstream in(log);
-    std::stringstream s;
-    s << in.rdbuf();
-    throw std::runtime_error("gnuplot failed on " + script.string() + ":\n" + s.str());
-  }
-  fs::remove(log);
+  const fs::path script = fs::absolute(scriptsDir() / (name + ".gp"));
+  if (!fs::is_regular_file(script)) throw EnvironmentError("gnuplot script not found: " + quotePath(script));
+  const ProgramResult r = runProgram({{"gnuplot", "-e", "in_dir='data'; out_dir='.'", script.string()}, dir});
+  if (r.exit_status != 0 || !fs::exists(dir / (name + ".svg")) || !fs::exists(dir / (name + ".png")))
+    throw EnvironmentError("gnuplot failed on " + quotePath(script) + ":\n" + r.out + r.err);
 }
 
 std::vector<std::vector<std::string>> tableRows(const TableSet& tables, const std::string& name,
@@ -287,8 +313,6 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   TableSet tables = input;
   sortTables(tables);
   writeTables(tables, dir);
-  if (runAndCapture("command -v gnuplot").empty())
-    throw std::runtime_error("gnuplot is not installed (Debian package gnuplot-nox; ./run.sh installs it)");
 
   struct Figure {
     std::string name, heading, caption;
@@ -326,8 +350,8 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   std::vector<Block> doc;
   doc.push_back({Block::kHeading, info.title, {}, {}, "#"});
   std::ostringstream meta;
-  meta << "Generated " << today() << " by crankcheck 0.1.0 with Simbody " << simbody_models::getSimbodyVersion()
-       << ", compiler " << __VERSION__ << ", " << runAndCapture("gnuplot --version") << ". Campaign: "
+  meta << "Generated " << today() << " by crankcheck " << getCrankcheckVersion() << " with Simbody " << simbody_models::getSimbodyVersion()
+       << ", compiler " << __VERSION__ << ", " << info.gnuplot_version << ". Campaign: "
        << (info.quick ? "quick" : "full") << ", " << info.jobs << " job(s)" << (info.shards > 1 ? ", merged from " + std::to_string(info.shards) + " shards" : "")
        << (info.seconds > 0 ? ", " + shortNumber(info.seconds, 3) + " s" : "") << ".";
   doc.push_back({Block::kParagraph, meta.str()});
@@ -348,11 +372,15 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
                  "Each scene is cross-checked at its own lambda and, in the full campaign, with the rod lengthened or "
                  "shortened to lambda = 0.1, 0.2, 0.3, 0.4, 0.6, 0.9. The first scene is the base of the figures. SI units."});
   doc.push_back({Block::kTable, "",
-                 {"scene", "family", "k", "cycle", "gamma [deg]", "rpm", "r", "l", "lambda", "m_o", "m_k", "z_k", "I_o", "m_s", "r_s", "m_p", "r_p"},
+                 {"scene", "family", "k", "cycle", "gamma [deg]", "rpm", "r", "l", "lambda", "m_o", "m_k", "z_k", "I_o", "m_s", "r_s", "m_p", "r_p", "g", "I_w"},
                  tableRows(tables, "scenes",
                            {"scene", "family", "cylinders", "cycle", "gamma_deg", "speed_rpm", "r", "l", "lambda", "m_o", "m_k", "z_k",
-                            "I_o", "m_s", "r_s", "m_p", "r_p"},
-                           {false, false, false, false, true, true, true, true, true, true, true, true, true, true, true, true, true})});
+                            "I_o", "m_s", "r_s", "m_p", "r_p", "g", "I_w"},
+                           {false, false, false, false, true, true, true, true, true, true, true, true, true, true, true, true, true, true, true})});
+  doc.push_back({Block::kParagraph,
+                 "g is the scene's gravity (9.80665 m/s^2 where the scene file does not give one); I_w is the flywheel "
+                 "inertia, empty where the scene has none."});
+  for (const auto& note : tableRows(tables, "notes", {"note"})) doc.push_back({Block::kParagraph, note[0]});
 
   for (const Figure& f : figures) {
     const std::string& name = f.name;
@@ -384,19 +412,19 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   doc.push_back({Block::kParagraph, "Details and the tests that assert each entry: docs/ERRATA.md. Data of every table and "
                                     "figure: data/*.csv."});
 
-  std::ofstream(dir / "index.md") << toMarkdown(doc);
-  std::ofstream(dir / "index.html") << toHtml(doc, info.title);
+  writeNewFile(dir / "index.md", toMarkdown(doc));
+  writeNewFile(dir / "index.html", toHtml(doc, info.title));
 }
 
 void writeShardManifest(const ShardManifest& manifest, const fs::path& dir) {
   nlohmann::json j = {{"crankcheck_shard", 1},     {"index", manifest.index}, {"count", manifest.count},
                       {"quick", manifest.quick},   {"scenes", manifest.scenes}, {"tasks", manifest.tasks}};
-  std::ofstream(dir / "shard.json") << j.dump(2) << "\n";
+  writeNewFile(dir / "shard.json", j.dump(2) + "\n");
 }
 
 ShardManifest readShardManifest(const fs::path& dir) {
   std::ifstream in(dir / "shard.json");
-  if (!in) throw std::runtime_error(dir.string() + ": no shard.json (not a shard written by crankcheck validate --shard)");
+  if (!in) throw std::runtime_error(quotePath(dir) + ": no shard.json (not a shard written by crankcheck validate --shard)");
   try {
     const nlohmann::json j = nlohmann::json::parse(in);
     ShardManifest m;
@@ -407,33 +435,20 @@ ShardManifest readShardManifest(const fs::path& dir) {
     m.tasks = j.at("tasks").get<int>();
     return m;
   } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error((dir / "shard.json").string() + ": malformed: " + e.what());
+    throw std::runtime_error(quotePath(dir / "shard.json") + ": malformed: " + e.what());
   }
 }
 
-fs::path createStagingDirectory(const fs::path& target) {
-  const fs::path absolute = fs::absolute(target);
-  const fs::path parent = absolute.parent_path();
-  std::error_code ec;
-  fs::create_directories(parent, ec);
-  if (ec) throw std::runtime_error(target.string() + ": cannot create its parent folder: " + ec.message());
-  const fs::path staging = parent / ("." + absolute.filename().string() + ".partial-" + std::to_string(::getpid()));
-  fs::remove_all(staging, ec);
-  if (!fs::create_directory(staging, ec) || ec)
-    throw std::runtime_error(target.string() + ": cannot write there: " + (ec ? ec.message() : "exists"));
-  return staging;
-}
-
-void installDirectory(const fs::path& staging, const fs::path& target) {
-  const fs::path absolute = fs::absolute(target);
-  if (fs::exists(absolute)) {
-    // Swap the two directories in one step (Linux renameat2), then remove the old report.
-    if (::renameat2(AT_FDCWD, staging.c_str(), AT_FDCWD, absolute.c_str(), RENAME_EXCHANGE) != 0)
-      throw std::runtime_error(target.string() + ": cannot replace the previous report: " + std::strerror(errno));
-    fs::remove_all(staging);
-  } else {
-    fs::rename(staging, absolute);
-  }
+std::string checkGnuplot() {
+  if (findProgram("gnuplot").empty())
+    throw EnvironmentError("gnuplot: not found on PATH; the report's figures need it (Debian package gnuplot-nox, "
+                           "which ./run.sh installs)");
+  const ProgramResult r = runProgram({{"gnuplot", "--version"}});
+  std::string version = r.out;
+  while (!version.empty() && (version.back() == '\n' || version.back() == '\r')) version.pop_back();
+  if (r.exit_status != 0 || version.empty())
+    throw EnvironmentError("gnuplot: 'gnuplot --version' failed: " + r.err);
+  return version;
 }
 
 }  // namespace crankcheck::validation

@@ -11,7 +11,9 @@
 ///   gravity_significance  cycle,k,max_abs_Q,ratio_to_k1,max_inertia_torque,ratio_to_inertia,simbody_max_abs_Q
 ///   norton_fig13_8        crank_angle_deg,x_exact,x_two_term,v_exact,v_two_term,a_exact,a_two_term
 ///   errata                item,printed,holds,max_abs_difference,scale,relative_difference
-///   scenes                family,cylinders,cycle,acting,gamma_deg,speed_rpm,r,l,lambda,m_o,m_k,z_k,I_o,m_s,r_s,m_p,r_p
+///   scenes                family,scene,cylinders,cycle,acting,gamma_deg,speed_rpm,r,l,lambda,m_o,m_k,z_k,I_o,m_s,r_s,
+///                         m_p,r_p,g,I_w (I_w empty: the scene has no flywheel)
+///   notes                 note (what the campaign left out, and why; only when there is something to say)
 
 #include <functional>
 #include <map>
@@ -22,7 +24,8 @@
 
 namespace crankcheck::validation {
 
-/// One table of the report: a header and rows of already formatted fields (numbers as %.17g, no commas).
+/// One table of the report: a header and rows of already formatted fields (numbers as %.17g; a name may hold any
+/// character, the CSV writer quotes it).
 struct Table {
   std::vector<std::string> columns;
   std::vector<std::vector<std::string>> rows;

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The report of a validation campaign: CSV data, gnuplot figures (reports/*.gp), a Markdown index and the same
-/// index as HTML; shards and their merge; atomic installation into the output directory.
+/// index as HTML; shards and their merge. Where and how it is written safely: output_folder.h.
 
 #include <filesystem>
 #include <string>
@@ -32,16 +32,22 @@ struct ReportInfo {
   int shards = 1;
   double seconds = 0.0;          ///< wall time of the campaign
   int jobs = 1;
+  std::string gnuplot_version;   ///< from checkGnuplot()
 };
 
-/// Writes tables as CSV files into dir/data.
+/// Finds gnuplot on PATH and asks its version: the check made before a campaign that ends in figures (well under
+/// a second). @return gnuplot's version line. @throws EnvironmentError when gnuplot is missing or does not run.
+std::string checkGnuplot();
+
+/// Writes tables as CSV files (RFC 4180) into dir/data, which must not exist yet. @throws EnvironmentError when a
+/// file cannot be written.
 void writeTables(const TableSet& tables, const std::filesystem::path& dir);
 /// Reads every dir/data/*.csv. @throws std::runtime_error on a missing or malformed file.
 TableSet readTables(const std::filesystem::path& dir);
 
 /// Renders the complete report into `dir` (which must exist and be empty): data/*.csv, figures (*.svg, *.png) made
 /// by gnuplot from reports/*.gp, index.md and index.html.
-/// @throws std::runtime_error if gnuplot is missing or fails.
+/// gnuplot runs in `dir` without a shell. @throws EnvironmentError if gnuplot fails or a file cannot be written.
 void renderReport(const TableSet& tables, const ReportInfo& info, const std::filesystem::path& dir);
 
 /// A shard's manifest (shard.json): which part of which campaign the directory holds.
@@ -54,13 +60,5 @@ struct ShardManifest {
 void writeShardManifest(const ShardManifest& manifest, const std::filesystem::path& dir);
 /// @throws std::runtime_error if dir/shard.json is missing or malformed.
 ShardManifest readShardManifest(const std::filesystem::path& dir);
-
-/// Creates an empty staging directory next to `target` (same file system, so that installation is a rename).
-/// @throws std::runtime_error naming `target` if it cannot be created.
-std::filesystem::path createStagingDirectory(const std::filesystem::path& target);
-
-/// Replaces `target` with the completed `staging` directory: a reader sees either the old complete report or the
-/// new complete one, never a half-written one.
-void installDirectory(const std::filesystem::path& staging, const std::filesystem::path& target);
 
 }  // namespace crankcheck::validation

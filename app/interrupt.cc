@@ -1,0 +1,63 @@
+#include "interrupt.h"
+
+#include <pthread.h>
+#include <signal.h>
+#include <string.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
+#include <thread>
+
+#include "crankcheck/validation/process.h"
+
+namespace crankcheck::app {
+namespace {
+
+std::mutex g_mutex;
+validation::OutputFolder* g_folder = nullptr;  // guarded by g_mutex
+
+sigset_t interruptSignals() {
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGINT);
+  sigaddset(&set, SIGTERM);
+  return set;
+}
+
+void watch() {
+  const sigset_t set = interruptSignals();
+  int signal_number = 0;
+  while (sigwait(&set, &signal_number) != 0) {
+  }
+  validation::killRunningPrograms();
+  {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    if (g_folder != nullptr) g_folder->abandon();
+    std::fprintf(stderr, "\ncrankcheck: interrupted by %s; the partial output was removed, the previous report is as it was\n",
+                 signal_number == SIGINT ? "SIGINT" : "SIGTERM");
+    std::fflush(stderr);
+    std::_Exit(128 + signal_number);  // with the lock held: no install starts after this point
+  }
+}
+
+}  // namespace
+
+InterruptGuard::InterruptGuard(validation::OutputFolder& folder) {
+  static const bool started = [] {
+    const sigset_t set = interruptSignals();
+    pthread_sigmask(SIG_BLOCK, &set, nullptr);
+    std::thread(watch).detach();
+    return true;
+  }();
+  (void)started;
+  std::lock_guard<std::mutex> lock(g_mutex);
+  g_folder = &folder;
+}
+
+InterruptGuard::~InterruptGuard() {
+  std::lock_guard<std::mutex> lock(g_mutex);
+  g_folder = nullptr;
+}
+
+}  // namespace crankcheck::app

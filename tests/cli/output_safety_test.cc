@@ -1,0 +1,248 @@
+// crankcheck is safe to point anywhere (issue 10): it never deletes or overwrites what it did not write, starts
+// no shell, checks before it works, exits with one status per meaning, and cleans up when it is interrupted.
+// Every test compares the disk before and after, byte for byte.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <algorithm>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "run_cli.h"
+
+namespace crankcheck {
+namespace {
+namespace fs = std::filesystem;
+using validation::ProgramResult;
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void writeFile(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+// Everything under `dir`: relative path -> file content, "<folder>" or "<link to TARGET>". No link is followed.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> out;
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it) {
+    const std::string rel = it->path().lexically_relative(dir).string();
+    if (it->is_symlink()) out[rel] = "<link to " + fs::read_symlink(it->path()).string() + ">";
+    else if (it->is_directory()) out[rel] = "<folder>";
+    else out[rel] = readFile(it->path());
+  }
+  return out;
+}
+
+size_t lines(const std::string& s) { return static_cast<size_t>(std::count(s.begin(), s.end(), '\n')); }
+
+class OutputSafetyTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string(info->test_suite_name()) + "_" + info->name();
+    for (char& c : name)
+      if (c == '/') c = '_';
+    dir_ = fs::temp_directory_path() / ("crankcheck_safety_" + std::to_string(::getpid()) + "_" + name);
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // A refusal: status 2, one line in the form "crankcheck: --flag: ...", nothing on stdout, the disk unchanged.
+  void expectRefused(const std::vector<std::string>& args, const std::string& expected) {
+    const auto before = snapshot(dir_);
+    const ProgramResult r = testing::runCrankcheck(args);
+    EXPECT_EQ(r.exit_status, 2) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("crankcheck: --out: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+    EXPECT_EQ(snapshot(dir_), before) << "nothing changed on disk";
+  }
+
+  // A shard of the quick campaign (no figures: about 2 s) written to `out`.
+  ProgramResult writeShard(const fs::path& out, const std::string& which = "0/2") {
+    return testing::runCrankcheck({"validate", "--quick", "--shard", which, "--out", out.string()});
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(OutputSafetyTest, RefusesAFolderHoldingAUsersFile) {
+  fs::create_directories(dir_ / "thesis");
+  writeFile(dir_ / "thesis/thesis.tex", "\\documentclass{article}\n");
+  expectRefused({"validate", "--quick", "--out", (dir_ / "thesis").string()}, "\"thesis.tex\", which crankcheck did not write");
+  // The same folder given as "." from inside it (a user's working folder), and with a trailing slash.
+  const ProgramResult dot = testing::runCrankcheck({"validate", "--quick", "--out", "."}, {}, dir_ / "thesis");
+  EXPECT_EQ(dot.exit_status, 2) << dot.err;
+  expectRefused({"validate", "--quick", "--out", (dir_ / "thesis").string() + "/"}, "thesis.tex");
+}
+
+TEST_F(OutputSafetyTest, RefusesAPlainFileAndASymbolicLink) {
+  writeFile(dir_ / "notes.txt", "mine\n");
+  expectRefused({"validate", "--quick", "--out", (dir_ / "notes.txt").string()}, "is a file, not a folder");
+  fs::create_directories(dir_ / "elsewhere");
+  fs::create_directory_symlink(dir_ / "elsewhere", dir_ / "link");
+  expectRefused({"validate", "--quick", "--out", (dir_ / "link").string()}, "is a symbolic link");
+  expectRefused({"validate", "--quick", "--out", (dir_ / "notes.txt/report").string()}, "a part of the path is a file");
+}
+
+// A folder that looks like a report but holds one more file (or a link) is not crankcheck's alone: refused.
+TEST_F(OutputSafetyTest, ReplacesOnlyAReportItWroteItself) {
+  const fs::path shard = dir_ / "shard";
+  ASSERT_EQ(writeShard(shard).exit_status, 0);
+  const std::string manifest = readFile(shard / "crankcheck-manifest.json");
+  EXPECT_NE(manifest.find("\"tool\": \"crankcheck\""), std::string::npos) << manifest;
+  EXPECT_NE(manifest.find("\"data/crosscheck.csv\""), std::string::npos) << manifest;
+  // Its own report is replaced: a second run succeeds and leaves nothing beside it.
+  ASSERT_EQ(writeShard(shard).exit_status, 0);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
+  // A user's file inside it, or a link, makes it the user's.
+  writeFile(shard / "data/my_notes.txt", "mine\n");
+  expectRefused({"validate", "--quick", "--shard", "0/2", "--out", shard.string()}, "\"data/my_notes.txt\"");
+  fs::remove(shard / "data/my_notes.txt");
+  fs::create_symlink("/etc/passwd", shard / "index.md");
+  expectRefused({"validate", "--quick", "--shard", "0/2", "--out", shard.string()}, "\"index.md\"");
+  fs::remove(shard / "index.md");
+  // `report merge --out` follows the same rule.
+  ASSERT_EQ(writeShard(dir_ / "shard1", "1/2").exit_status, 0);
+  fs::create_directories(dir_ / "mine");
+  writeFile(dir_ / "mine/data.csv", "1,2\n");
+  expectRefused({"report", "merge", shard.string(), (dir_ / "shard1").string(), "--out", (dir_ / "mine").string()},
+                "\"data.csv\"");
+}
+
+TEST_F(OutputSafetyTest, AnEmptyFolderIsUsed) {
+  fs::create_directories(dir_ / "empty");
+  const ProgramResult r = writeShard(dir_ / "empty");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "empty/crankcheck-manifest.json"));
+}
+
+// A missing gnuplot is found before the campaign: the full campaign takes about 20 s, the refusal comes at once
+// (2 s is 100 x crankcheck's start-up, and a tenth of the campaign), with status 3 and nothing written.
+TEST_F(OutputSafetyTest, MissingGnuplotIsFoundBeforeAnyWork) {
+  fs::create_directories(dir_ / "bin");  // PATH holds only this empty folder
+  const auto start = std::chrono::steady_clock::now();
+  const ProgramResult r = testing::runCrankcheck({"validate", "--out", (dir_ / "report").string()},
+                                                 {"PATH=" + (dir_ / "bin").string()});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.exit_status, 3) << r.err;
+  EXPECT_NE(r.err.find("crankcheck: gnuplot: not found on PATH"), std::string::npos) << r.err;
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_LT(seconds, 2.0);
+  EXPECT_EQ(snapshot(dir_), (std::map<std::string, std::string>{{"bin", "<folder>"}}));
+}
+
+// A write that fails (here: the file-size limit, which refuses writes as a full disk does, even to root) is the
+// environment's failure: status 3, the file named, the previous report as it was, no partial folder left.
+TEST_F(OutputSafetyTest, AFailedWriteIsStatus3AndKeepsThePreviousReport) {
+  const fs::path shard = dir_ / "shard";
+  ASSERT_EQ(writeShard(shard).exit_status, 0);
+  const auto before = snapshot(dir_);
+  rlimit old_limit{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old_limit), 0);
+  const rlimit small{1024, old_limit.rlim_max};  // every table of a shard is larger than 1 KiB
+  auto old_handler = ::signal(SIGXFSZ, SIG_IGN);  // the write then fails with EFBIG instead of killing
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  const ProgramResult r = writeShard(shard);
+  ::setrlimit(RLIMIT_FSIZE, &old_limit);
+  ::signal(SIGXFSZ, old_handler);
+  EXPECT_EQ(r.exit_status, 3) << r.err;
+  EXPECT_NE(r.err.find(": cannot write: File too large"), std::string::npos) << r.err;
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_EQ(snapshot(dir_), before);
+}
+
+// SIGINT and SIGTERM in the middle of a run: status 128 + the signal, the previous report as it was, the partial
+// folder removed. The previous report is a folder crankcheck's manifest marks as its own.
+class InterruptTest : public OutputSafetyTest, public ::testing::WithParamInterface<int> {};
+
+TEST_P(InterruptTest, LeavesThePreviousReportAsItWas) {
+  const fs::path report = dir_ / "report";
+  fs::create_directories(report);
+  writeFile(report / "index.md", "the previous report\n");
+  writeFile(report / "crankcheck-manifest.json",
+            R"({"tool": "crankcheck", "version": "0.1.0", "kind": "report", "files": ["index.md"]})");
+  const auto before = snapshot(dir_);
+  validation::RunningProgram run = testing::startCrankcheck({"validate", "--quick", "--out", report.string()});
+  // Mid-run: the staging folder exists (the campaign has started); the quick campaign takes about 3 s more.
+  bool staged = false;
+  for (int i = 0; i < 500 && !staged; ++i) {
+    for (const auto& entry : fs::directory_iterator(dir_))
+      staged = staged || entry.path().filename().string().find(".crankcheck-partial-") != std::string::npos;
+    if (!staged) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(staged) << "the run never started";
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_EQ(::kill(run.pid(), GetParam()), 0);
+  const ProgramResult r = run.wait();
+  EXPECT_EQ(r.exit_status, 128 + GetParam()) << r.err;
+  EXPECT_NE(r.err.find("interrupted"), std::string::npos) << r.err;
+  EXPECT_EQ(snapshot(dir_), before);
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, InterruptTest, ::testing::Values(SIGINT, SIGTERM),
+                         [](const auto& info) { return info.param == SIGINT ? "SIGINT" : "SIGTERM"; });
+
+// Paths that a shell would interpret work as they are, as the output folder and as a scene file, and nothing
+// else is created anywhere (the run's working folder stays empty: `$(touch owned)` ran nothing).
+struct OddName {
+  const char* test_name;
+  const char* name;
+};
+void PrintTo(const OddName& odd, std::ostream* os) { *os << odd.test_name; }  // a stable ctest name
+
+class OddPathTest : public OutputSafetyTest, public ::testing::WithParamInterface<OddName> {};
+
+TEST_P(OddPathTest, WorksAsOutputFolderAndScenePath) {
+  const std::string name = GetParam().name;
+  const fs::path scene = dir_ / (name + ".toml"), out = dir_ / (name + " report");
+  fs::copy_file(fs::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml", scene);
+  fs::create_directories(dir_ / "cwd");
+  const ProgramResult r =
+      testing::runCrankcheck({"validate", "--quick", scene.string(), "--out", out.string()}, {}, dir_ / "cwd");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_GT(fs::file_size(out / "index.html"), 1000u);
+  EXPECT_GT(fs::file_size(out / "harmonics.png"), 1000u);
+  EXPECT_NE(readFile(out / "index.md").find("Scenes"), std::string::npos);
+  // The scene's name (its file name) is in the data, quoted as CSV requires where it holds a comma, quote or newline.
+  const std::string scenes_csv = readFile(out / "data/scenes.csv");
+  const bool quoted = std::string(name).find_first_of(",\"\n") != std::string::npos;
+  std::string expected = name;
+  if (quoted) {
+    expected.clear();
+    for (char c : std::string(name)) expected += c == '"' ? std::string("\"\"") : std::string(1, c);
+    expected = "\"" + expected + "\"";
+  }
+  EXPECT_NE(scenes_csv.find("," + expected + ","), std::string::npos) << scenes_csv;
+  std::set<std::string> entries;
+  for (const auto& entry : fs::directory_iterator(dir_)) entries.insert(entry.path().filename().string());
+  EXPECT_EQ(entries, (std::set<std::string>{"cwd", name + ".toml", name + " report"}));
+  EXPECT_TRUE(fs::is_empty(dir_ / "cwd"));
+  EXPECT_FALSE(fs::exists(fs::path(CRANKCHECK_SCENES_DIR) / "owned"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Paths, OddPathTest,
+    ::testing::Values(OddName{"space", "my scene"}, OddName{"single_quote", "it's"},
+                      OddName{"double_quote", "say \"hi\""}, OddName{"command_substitution", "x'$(touch owned)'"},
+                      OddName{"backticks", "a`touch owned`b"}, OddName{"semicolon", "a; touch owned"},
+                      OddName{"newline", "two\nlines"}, OddName{"comma", "a,b"},
+                      OddName{"non_ascii", "Zylinderkopf_\xC3\xA4\xC3\xB6\xC3\xBC_\xE6\x9B\xB2\xE8\xBD\xB4"}),
+    [](const auto& info) { return std::string(info.param.test_name); });
+
+}  // namespace
+}  // namespace crankcheck

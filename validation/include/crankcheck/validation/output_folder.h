@@ -1,0 +1,79 @@
+#pragma once
+/// @file
+/// The folders crankcheck writes (a report, a shard) and the rule that keeps a user's files safe:
+///
+///   `--out DIR` may be replaced only when DIR does not exist, is an empty folder, or is a folder that crankcheck
+///   itself wrote: it holds the marker crankcheck-manifest.json (tool name, version, kind) and nothing but the files
+///   that manifest lists. Anything else at DIR (a folder with a user's file in it, a plain file, a symbolic link)
+///   is refused before any work starts, and nothing on disk is changed.
+///
+/// A run writes into a fresh staging folder beside DIR (same file system), then installs it in one step (a
+/// rename, or an exchange of the two folders); only then is the old report removed, file by file as its manifest
+/// lists them. A failed or interrupted run removes its staging folder and leaves DIR as it was. Every file is
+/// created with O_EXCL | O_NOFOLLOW inside the staging folder: no symbolic link is followed, no file overwritten.
+
+#include <filesystem>
+#include <mutex>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace crankcheck::validation {
+
+/// The marker every folder crankcheck writes carries.
+inline constexpr const char* kManifestName = "crankcheck-manifest.json";
+
+/// crankcheck's version, from the project's `project(VERSION)` in CMake.
+const char* getCrankcheckVersion();
+
+/// Checks `--out` against the rule above without touching the disk.
+/// @throws UsageError "FLAG: PATH: rule" when the rule refuses it.
+void checkOutputFolder(const std::filesystem::path& target, const std::string& flag);
+
+/// Creates `path` (which must not exist) and writes `content` into it: O_CREAT | O_EXCL | O_NOFOLLOW, every byte
+/// checked, closed with its error checked.
+/// @throws EnvironmentError "PATH: cannot write: reason" (disk full, write refused, ...).
+void writeNewFile(const std::filesystem::path& path, std::string_view content);
+
+/// An output folder being written: checked on construction, staged, installed or abandoned.
+class OutputFolder {
+ public:
+  /// Checks the rule (checkOutputFolder); creates nothing yet.
+  /// @throws UsageError as checkOutputFolder.
+  OutputFolder(std::filesystem::path target, std::string flag);
+  /// Abandons the staging folder unless it was installed.
+  ~OutputFolder();
+  OutputFolder(const OutputFolder&) = delete;
+  OutputFolder& operator=(const OutputFolder&) = delete;
+
+  /// Creates the missing parent folders of the target and an empty staging folder beside it.
+  /// @throws EnvironmentError when they cannot be created (a write refused, a full disk).
+  /// @throws UsageError when a parent of the target is not a folder.
+  void createStaging();
+  /// The staging folder, where the caller writes (empty before createStaging).
+  const std::filesystem::path& getStaging() const { return staging_; }
+  const std::filesystem::path& getTarget() const { return target_; }
+
+  /// Writes the manifest (`kind`: "report" or "shard"; it lists every file under the staging folder), checks the
+  /// rule on the target once more, and puts the staging folder in the target's place; then removes the previous
+  /// report crankcheck wrote there. @throws UsageError if the target changed meanwhile so that the rule refuses it;
+  /// EnvironmentError if the swap fails (the target is then as it was).
+  void install(const std::string& kind);
+
+  /// Removes the staging folder (and the parents createStaging made) if not installed; finishes removing the
+  /// previous report if installed. Safe to call from another thread (an interrupt) at any time, and more than once.
+  void abandon();
+
+ private:
+  void removeOld(const std::filesystem::path& old_folder);
+
+  std::mutex mutex_;
+  std::filesystem::path target_;
+  std::string flag_;
+  std::filesystem::path staging_;
+  std::vector<std::filesystem::path> created_parents_;  // made by createStaging, deepest last
+  std::filesystem::path old_;                           // the previous report after the swap, until removed
+  bool installed_ = false;
+};
+
+}  // namespace crankcheck::validation

@@ -1,0 +1,64 @@
+#pragma once
+/// @file
+/// Starting external programs (gnuplot) without a shell: the program gets its arguments as a vector, so no
+/// character of a path (quotes, `$(...)`, backticks, semicolons, newlines) is ever interpreted.
+
+#include <sys/types.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace crankcheck::validation {
+
+/// What to start.
+struct ProgramCall {
+  std::vector<std::string> argv;          ///< argv[0]: a path with a '/', or a name looked up on PATH
+  std::filesystem::path working_dir = {}; ///< the child's working folder; empty: the caller's
+  /// Changes to the child's environment: "NAME=VALUE" sets NAME, "NAME" alone removes it.
+  std::vector<std::string> environment = {};
+};
+
+/// How a program ended, and what it printed.
+struct ProgramResult {
+  int exit_status = -1;  ///< the exit status, or -1 when a signal ended it
+  int signal = 0;        ///< the signal that ended it, or 0
+  std::string out, err;  ///< everything it wrote to stdout and stderr
+};
+
+/// The full path of the executable file `name` on PATH (or `name` itself when it contains a '/' and is
+/// executable); empty when there is none. Reads only the file system: takes microseconds.
+std::filesystem::path findProgram(const std::string& name);
+
+/// A program started by startProgram: wait() collects its output and its end.
+class RunningProgram {
+ public:
+  RunningProgram(pid_t pid, int out_fd, int err_fd) : pid_(pid), out_fd_(out_fd), err_fd_(err_fd) {}
+  RunningProgram(RunningProgram&& other) noexcept;
+  RunningProgram(const RunningProgram&) = delete;
+  RunningProgram& operator=(const RunningProgram&) = delete;
+  RunningProgram& operator=(RunningProgram&&) = delete;
+  /// Waits for the program if wait() was not called (its output is discarded).
+  ~RunningProgram();
+
+  pid_t pid() const { return pid_; }
+  /// Reads stdout and stderr until the program closes them, then waits for it to end.
+  ProgramResult wait();
+
+ private:
+  pid_t pid_ = -1;
+  int out_fd_ = -1, err_fd_ = -1;
+};
+
+/// Starts a program with posix_spawn: stdin is /dev/null, stdout and stderr are captured, the signal mask and the
+/// dispositions of SIGINT, SIGTERM and SIGPIPE are reset to the defaults whatever the caller's are.
+/// @throws EnvironmentError naming the program when it is not found or cannot be started.
+RunningProgram startProgram(const ProgramCall& call);
+
+/// startProgram, then wait. While it runs the child is listed for killRunningPrograms().
+ProgramResult runProgram(const ProgramCall& call);
+
+/// Sends SIGKILL to every program that runProgram is waiting for (used when crankcheck is interrupted).
+void killRunningPrograms();
+
+}  // namespace crankcheck::validation
