@@ -378,8 +378,9 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
                             "I_o", "m_s", "r_s", "m_p", "r_p", "g", "I_w"},
                            {false, false, false, false, true, true, true, true, true, true, true, true, true, true, true, true, true, true, true})});
   doc.push_back({Block::kParagraph,
-                 "g is the scene's gravity (9.80665 m/s^2 where the scene file does not give one); I_w is the flywheel "
-                 "inertia, empty where the scene has none."});
+                 "Every value used is shown. Where a scene file leaves a key out, crankcheck uses the default of "
+                 "docs/SCENE-FORMAT.md: g = 9.80665 m/s^2, single acting, no counterweight (m_p = 0), throw angles from "
+                 "eqs (8)-(11). I_w is the flywheel inertia, empty where the scene has none."});
   for (const auto& note : tableRows(tables, "notes", {"note"})) doc.push_back({Block::kParagraph, note[0]});
 
   for (const Figure& f : figures) {

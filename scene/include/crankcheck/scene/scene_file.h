@@ -27,8 +27,9 @@ Mechanism loadSceneFile(const std::filesystem::path& path);
 /// @throws SceneError as loadSceneFile.
 Mechanism parseScene(std::string_view toml_text, const std::string& source_name);
 
-/// Checks the physical rules a mechanism must obey (finite values; positive lengths; non-negative masses;
-/// lambda < 1; 0 <= z_k <= l; I_o >= m_k z_k^2; crank angle count = k; ...).
+/// Checks the physical rules a mechanism must obey, each limit with its own unit and reason (docs/SCENE-FORMAT.md,
+/// "Limits"): finite values; lengths, masses, inertias, speed, gravity and angles within their limits;
+/// lambda < 1; 0 <= z_k <= l; I_o >= m_k z_k^2; crank angle count = k.
 /// @throws SceneError with "SOURCE: KEY: rule" for the first rule broken.
 void validateMechanism(const Mechanism& m, const std::string& source_name);
 
