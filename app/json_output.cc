@@ -82,6 +82,8 @@ nlohmann::ordered_json sceneToJson(const Mechanism& m) {
       {"crank_angles", m.engine.crank_angles},
       {"explicit_crank_angles", m.engine.explicit_crank_angles},
       {"cylinder_angle", m.engine.cylinder_angle},
+      {"bank_angles", m.engine.bank_angles},
+      {"axial_positions", m.engine.axial_positions},
       {"speed", m.engine.speed},
       {"gravity", m.engine.gravity},
   };
@@ -101,7 +103,7 @@ nlohmann::ordered_json sceneToJson(const Mechanism& m) {
   return j;
 }
 
-nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg) {
+nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, bool moment_xy_defined) {
   nlohmann::ordered_json j;
   j["engine"] = ev.engine;
   j["phi_deg"] = phi_deg;
@@ -109,6 +111,12 @@ nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg) {
   j["Q"] = ev.Q;
   j["drive_torque"] = ev.drive_torque;
   j["bearing_force"] = vec(ev.bearing_force);
+  j["shaking_force"] = vec(ev.shaking_force);
+  // Without axial positions the X and Y moments are not defined: null, never 0.
+  j["shaking_moment"] = nlohmann::ordered_json::array(
+      {moment_xy_defined ? nlohmann::ordered_json(ev.shaking_moment[0]) : nlohmann::ordered_json(nullptr),
+       moment_xy_defined ? nlohmann::ordered_json(ev.shaking_moment[1]) : nlohmann::ordered_json(nullptr),
+       ev.shaking_moment[2]});
   nlohmann::ordered_json cylinders = nlohmann::ordered_json::array();
   for (const CylinderEvaluation& c : ev.cylinders) {
     cylinders.push_back({{"x_p", c.x_p},
@@ -139,6 +147,14 @@ std::string formatTable(const Mechanism& m, const std::string& scene_path, const
                   "bearing_force = (%.12g, %.12g) N\n",
                   ev.engine.c_str(), phi_deg[i], ev.U + 0.0, ev.Q, ev.drive_torque, ev.bearing_force[0],
                   ev.bearing_force[1]);
+    out << line;
+    if (hasAxialPositions(m))
+      std::snprintf(line, sizeof line, "          shaking_force = (%.12g, %.12g) N   shaking_moment = (%.12g, %.12g, %.12g) N m\n",
+                    ev.shaking_force[0], ev.shaking_force[1], ev.shaking_moment[0], ev.shaking_moment[1],
+                    ev.shaking_moment[2]);
+    else
+      std::snprintf(line, sizeof line, "          shaking_force = (%.12g, %.12g) N   shaking_moment = (-, -, %.12g) N m\n",
+                    ev.shaking_force[0], ev.shaking_force[1], ev.shaking_moment[2]);
     out << line;
     std::snprintf(line, sizeof line, "  %3s %15s %15s %15s %33s %33s %15s\n", "cyl", "x_p [m]", "v_p [m/s]",
                   "a_p [m/s^2]", "crank_pin_force (X, Y) [N]", "wrist_pin_force (X, Y) [N]", "wall_force [N]");

@@ -36,6 +36,8 @@ struct Kernel {
 };
 
 Kernel makeKernel(const Mechanism& m) {
+  if (!isSingleBank(m))
+    throw std::invalid_argument("calcGravityTorqueBatch: the batch kernel is for one bank of cylinders (one gamma)");
   const GravityCoefficients g = calcGravityCoefficients(m);
   Kernel k{g.U1, g.U2, m.crank.radius / m.rod.length, std::cos(m.engine.cylinder_angle),
            std::sin(m.engine.cylinder_angle), {}};

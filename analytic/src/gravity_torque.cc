@@ -20,9 +20,10 @@ std::vector<double> lambdaCoefficients(double lambda, int order, LambdaSource so
 struct Eq14Coefficients {
   double N, N1, N2;
 };
-Eq14Coefficients calcEq14Coefficients(const Mechanism& m, Eq5Form form) {
+// Cylinder j's, in its own bank gamma_j (one value for an inline engine).
+Eq14Coefficients calcEq14Coefficients(const Mechanism& m, Eq5Form form, int j = 0) {
   const auto [U1, U2] = calcGravityCoefficients(m, form);
-  const SinCos gamma = calcSinCos(m.engine.cylinder_angle);
+  const SinCos gamma = calcSinCos(getBankAngle(m, j));
   return {U2 * gamma.cos, -U1 * gamma.sin, -U2 * gamma.sin};
 }
 
@@ -53,10 +54,10 @@ SinCos sumOverThrows(const Mechanism& m, int n) {
 double calcGravityTorque(const Mechanism& m, double phi, Eq5Form form) {
   const auto [U1, U2] = calcGravityCoefficients(m, form);
   const double lambda = m.crank.radius / m.rod.length;
-  const SinCos gamma = calcSinCos(m.engine.cylinder_angle);
   double Q = 0.0;
-  for (double alpha : m.engine.crank_angles) {
-    const SinCos theta = calcThrowSinCos(phi, alpha);
+  for (int j = 0; j < m.engine.cylinders; ++j) {
+    const SinCos gamma = calcSinCos(getBankAngle(m, j));
+    const SinCos theta = calcThrowSinCos(phi, m.engine.crank_angles[j]);
     const double root = std::sqrt((1.0 - lambda * theta.sin) * (1.0 + lambda * theta.sin));
     // Stanczak eq (13); lambda sin 2theta / (2 root) written as lambda sin cos / root.
     Q += U2 * (theta.cos * gamma.cos - theta.sin * gamma.sin) -
@@ -67,10 +68,11 @@ double calcGravityTorque(const Mechanism& m, double phi, Eq5Form form) {
 
 double calcGravityTorqueFourier(const Mechanism& m, double phi, int order, LambdaSource source, Eq5Form form) {
   if (order < 1) throw std::invalid_argument("calcGravityTorqueFourier: order must be >= 1");
-  const auto [N, N1, N2] = calcEq14Coefficients(m, form);
   const std::vector<double> big_lambda = lambdaCoefficients(m.crank.radius / m.rod.length, order, source);
   double Q = 0.0;
-  for (double alpha : m.engine.crank_angles) {
+  for (int j = 0; j < m.engine.cylinders; ++j) {
+    const double alpha = m.engine.crank_angles[j];
+    const auto [N, N1, N2] = calcEq14Coefficients(m, form, j);
     const SinCos theta = calcThrowSinCos(phi, alpha);
     Q += N * theta.cos + (N1 + N2) * theta.sin;  // Stanczak eq (14), W_1 = N1 + N2
     for (int n = 2; n <= order; n += 2) Q += N1 * big_lambda[n] * calcThrowSinCos(n * phi, n * alpha).sin;
@@ -81,6 +83,8 @@ double calcGravityTorqueFourier(const Mechanism& m, double phi, int order, Lambd
 std::vector<TorqueHarmonic> calcGravityTorqueHarmonics(const Mechanism& m, int order, LambdaSource source,
                                                        Eq5Form form) {
   if (order < 1) throw std::invalid_argument("calcGravityTorqueHarmonics: order must be >= 1");
+  if (!isSingleBank(m))
+    throw std::invalid_argument("calcGravityTorqueHarmonics: eqs (16)-(18) are for one bank of cylinders");
   const auto [N, N1, N2] = calcEq14Coefficients(m, form);
   const std::vector<double> big_lambda = lambdaCoefficients(m.crank.radius / m.rod.length, order, source);
   std::vector<int> orders;

@@ -46,6 +46,27 @@ RodKinematics calcRodKinematics(const Mechanism& m, const SinCos& theta) {
   return k;
 }
 
+CylinderMotion calcCylinderMotion(const Mechanism& m, int j, double phi) {
+  const double r = m.crank.radius, w = m.engine.speed, mu = m.rod.com_from_wrist_pin / m.rod.length;
+  CylinderMotion c;
+  c.gamma = calcSinCos(getBankAngle(m, j));
+  c.theta = calcThrowSinCos(phi, m.engine.crank_angles.at(static_cast<size_t>(j)));
+  c.z = getAxialPosition(m, j);
+  c.piston = calcPistonKinematics(m, c.theta);
+  c.rod = calcRodKinematics(m, c.theta);
+  c.psi_ddot = -c.rod.beta_ddot;  // the rod turns about +Z by -beta
+  const double B[2] = {r * c.theta.cos, r * c.theta.sin};
+  for (int i = 0; i < 2; ++i) {
+    c.p_OA[i] = i == 0 ? c.piston.x_p : 0.0;
+    c.p_OB[i] = B[i];
+    c.p_OG[i] = c.p_OA[i] + mu * (B[i] - c.p_OA[i]);
+    c.a_A[i] = i == 0 ? c.piston.a_p : 0.0;
+    c.a_B[i] = -w * w * B[i];  // the crank pin turns at constant omega
+    c.a_G[i] = (1.0 - mu) * c.a_A[i] + mu * c.a_B[i];
+  }
+  return c;
+}
+
 PistonKinematics calcPistonKinematicsNorton(const Mechanism& m, double theta) {
   const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed;
   const auto [s1, c1] = calcSinCos(theta);

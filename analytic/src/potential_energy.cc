@@ -22,11 +22,12 @@ GravityCoefficients calcGravityCoefficients(const Mechanism& m, Eq5Form form) {
 double calcPotentialEnergy(const Mechanism& m, double phi, Eq5Form form) {
   const auto [U1, U2] = calcGravityCoefficients(m, form);
   const double lambda = m.crank.radius / m.rod.length;
-  const SinCos gamma = calcSinCos(m.engine.cylinder_angle);
   const SinCos half = calcSinCos(0.5 * phi);
   const double sin_phi = 2.0 * half.sin * half.cos;
   double U = 0.0;
-  for (double alpha : m.engine.crank_angles) {
+  for (int j = 0; j < m.engine.cylinders; ++j) {
+    const double alpha = m.engine.crank_angles[j];
+    const SinCos gamma = calcSinCos(getBankAngle(m, j));  // eq (3) per cylinder: each in its own bank
     // x = alpha + phi/2, the mean of the two crank angles theta = alpha + phi and alpha.
     const SinCos a = calcSinCos(alpha);
     const SinCos x = addAngles(a, half);              // angle addition: no rounding of alpha + phi/2

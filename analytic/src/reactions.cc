@@ -6,6 +6,7 @@
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/potential_energy.h"
+#include "crankcheck/analytic/shaking.h"
 
 namespace crankcheck::analytic {
 namespace {
@@ -23,33 +24,28 @@ double cross(P2 a, P2 b) { return a.e * b.n - a.n * b.e; }
 }  // namespace
 
 Reactions calcReactions(const Mechanism& m, double phi) {
-  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed, g = m.engine.gravity;
+  const double r = m.crank.radius, w = m.engine.speed, g = m.engine.gravity;
   const double m_o = m.piston.mass, m_k = m.rod.mass, I_o = m.rod.inertia_about_wrist_pin;
   const double m_s = m.crank.mass, m_p = m.crank.counterweight_mass;
-  const double mu = m.rod.com_from_wrist_pin / l;
-  const SinCos gamma = calcSinCos(m.engine.cylinder_angle);
-  // Global (X, Y) of e and n, and gravity (0, -g) in the cylinder frame.
-  const Vec2 e_W{gamma.cos, gamma.sin}, n_W{-gamma.sin, gamma.cos};
-  const P2 g_C{-g * gamma.sin, -g * gamma.cos};
-  const auto toGlobal = [&](P2 v) { return Vec2{v.e * e_W[0] + v.n * n_W[0], v.e * e_W[1] + v.n * n_W[1]}; };
 
   Reactions out;
-  for (double alpha : m.engine.crank_angles) {
-    const SinCos t = calcThrowSinCos(phi, alpha);
-    const PistonKinematics piston = calcPistonKinematics(m, t);
-    const RodKinematics rod = calcRodKinematics(m, t);
-    const double psi_ddot = -rod.beta_ddot;  // the rod turns about +Z by -beta (kinematics.h)
+  for (int j = 0; j < m.engine.cylinders; ++j) {
+    const CylinderMotion c = calcCylinderMotion(m, j, phi);
+    // Global (X, Y) of e_j and n_j, and gravity (0, -g) in cylinder j's frame.
+    const SinCos gamma = c.gamma;
+    const Vec2 e_W{gamma.cos, gamma.sin}, n_W{-gamma.sin, gamma.cos};
+    const P2 g_C{-g * gamma.sin, -g * gamma.cos};
+    const auto toGlobal = [&](P2 v) { return Vec2{v.e * e_W[0] + v.n * n_W[0], v.e * e_W[1] + v.n * n_W[1]}; };
 
-    const P2 p_OA{piston.x_p, 0.0}, p_OB{r * t.cos, r * t.sin};
-    const P2 p_AB = p_OB - p_OA, p_AG = mu * p_AB;
-    const P2 a_A{piston.a_p, 0.0}, a_B = (-w * w) * p_OB;
-    const P2 a_G = (1.0 - mu) * a_A + mu * a_B;
+    const P2 p_OA{c.p_OA[0], c.p_OA[1]}, p_OB{c.p_OB[0], c.p_OB[1]}, p_OG{c.p_OG[0], c.p_OG[1]};
+    const P2 p_AB = p_OB - p_OA, p_AG = p_OG - p_OA;
+    const P2 a_A{c.a_A[0], c.a_A[1]}, a_G{c.a_G[0], c.a_G[1]};
 
     // Piston along e gives F_A.e; rod moments about A give F_A.n (see the header).
     P2 F_A;
-    F_A.e = m_o * (piston.a_p - g_C.e);
+    F_A.e = m_o * (a_A.e - g_C.e);
     const P2 rod_net = m_k * (a_G - g_C);  // F_B - F_A
-    const double moment = I_o * psi_ddot + cross(p_AG, m_k * a_A) - cross(p_AG, m_k * g_C) - cross(p_AB, rod_net);
+    const double moment = I_o * c.psi_ddot + cross(p_AG, m_k * a_A) - cross(p_AG, m_k * g_C) - cross(p_AB, rod_net);
     // moment = (B - A) x F_A = p_AB.e F_A.n - p_AB.n F_A.e
     F_A.n = (moment + p_AB.n * F_A.e) / p_AB.e;
     const P2 F_B = rod_net + F_A;
@@ -78,6 +74,9 @@ Evaluation calcEvaluation(const Mechanism& m, double phi) {
   const Reactions reactions = calcReactions(m, phi);
   ev.drive_torque = reactions.drive_torque;
   ev.bearing_force = reactions.bearing_force;
+  const Shaking shaking = calcShaking(m, phi);
+  ev.shaking_force = shaking.force;
+  ev.shaking_moment = shaking.moment;
   for (size_t j = 0; j < m.engine.crank_angles.size(); ++j) {
     const PistonKinematics k = calcPistonKinematics(m, calcThrowSinCos(phi, m.engine.crank_angles[j]));
     CylinderEvaluation c;

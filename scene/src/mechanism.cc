@@ -8,6 +8,26 @@ namespace crankcheck {
 
 double calcCrankRatio(const Mechanism& m) { return m.crank.radius / m.rod.length; }
 
+double getBankAngle(const Mechanism& m, int j) {
+  return m.engine.bank_angles.empty() ? m.engine.cylinder_angle : m.engine.bank_angles.at(static_cast<size_t>(j));
+}
+
+double getThrowAngle(const Mechanism& m, int j) {
+  return getBankAngle(m, j) + m.engine.crank_angles.at(static_cast<size_t>(j));
+}
+
+double getAxialPosition(const Mechanism& m, int j) {
+  return m.engine.axial_positions.empty() ? 0.0 : m.engine.axial_positions.at(static_cast<size_t>(j));
+}
+
+bool isSingleBank(const Mechanism& m) {
+  for (double gamma : m.engine.bank_angles)
+    if (gamma != m.engine.cylinder_angle) return false;
+  return true;
+}
+
+bool hasAxialPositions(const Mechanism& m) { return !m.engine.axial_positions.empty(); }
+
 PhaseTurns calcPhaseTurns(int cylinders, Cycle cycle, Acting acting) {
   if (cylinders < 1) throw std::invalid_argument("calcPhaseTurns: cylinders must be >= 1");
   // alpha_j / (2 pi) = (T / 2 pi) j / k, eqs (8)-(11). In units of 1/(2k) turn: T/(2 pi) = 1 or 2, halved

@@ -58,26 +58,25 @@ class TableReader {
   // Refuses unknown keys first, so that a misspelt key is reported as such, not as a missing one.
   TableReader(const toml::table& root, std::string name, std::string source, bool required,
               std::set<std::string> allowed)
-      : name_(std::move(name)), source_(std::move(source)), allowed_(std::move(allowed)) {
-    const toml::node* node = root.get(name_);
+      : prefix_("[" + name + "]"), source_(std::move(source)), allowed_(std::move(allowed)) {
+    const toml::node* node = root.get(name);
     if (node == nullptr) {
-      if (required) fail(source_, "[" + name_ + "]", "missing table");
+      if (required) fail(source_, prefix_, "missing table");
       return;
     }
     table_ = node->as_table();
-    if (table_ == nullptr) fail(source_, "[" + name_ + "]", "must be a table");
-    for (const auto& [k, v] : *table_) {
-      const std::string key_name(k.str());
-      if (!allowed_.contains(key_name)) {
-        std::string list;
-        for (const std::string& a : allowed_) list += (list.empty() ? "" : ", ") + a;
-        fail(source_, key(key_name), "unknown key (allowed: " + list + ")");
-      }
-    }
+    if (table_ == nullptr) fail(source_, prefix_, "must be a table");
+    refuseUnknownKeys();
+  }
+
+  // One table of an array of tables, named in messages as `prefix` (e.g. "cylinder[2]").
+  TableReader(const toml::table& table, std::string prefix, std::string source, std::set<std::string> allowed)
+      : prefix_(std::move(prefix)), source_(std::move(source)), allowed_(std::move(allowed)), table_(&table) {
+    refuseUnknownKeys();
   }
 
   bool present() const { return table_ != nullptr; }
-  std::string key(const std::string& k) const { return "[" + name_ + "]." + k; }
+  std::string key(const std::string& k) const { return prefix_ + "." + k; }
 
   const toml::node* find(const std::string& k) {
     if (!allowed_.contains(k)) throw std::logic_error("scene reader: key not in the allowed list: " + k);
@@ -141,7 +140,18 @@ class TableReader {
     return x;  // each unit's limits: validateMechanism (angles in degrees also: requireAngleDegrees)
   }
 
-  std::string name_;
+  void refuseUnknownKeys() const {
+    for (const auto& [k, v] : *table_) {
+      const std::string key_name(k.str());
+      if (!allowed_.contains(key_name)) {
+        std::string list;
+        for (const std::string& a : allowed_) list += (list.empty() ? "" : ", ") + a;
+        fail(source_, key(key_name), "unknown key (allowed: " + list + ")");
+      }
+    }
+  }
+
+  std::string prefix_;
   std::string source_;
   std::set<std::string> allowed_;
   const toml::table* table_ = nullptr;
@@ -194,6 +204,19 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
   for (size_t i = 0; i < m.engine.crank_angles.size(); ++i)
     requireAngle(m.engine.crank_angles[i], "[engine].crank_angles_deg[" + std::to_string(i) + "]");
   requireAngle(m.engine.cylinder_angle, "[engine].cylinder_angle_deg");
+  const size_t k = static_cast<size_t>(std::max(m.engine.cylinders, 0));
+  require(m.engine.bank_angles.empty() || m.engine.bank_angles.size() == k, "[[cylinder]]",
+          "must give every cylinder a bank angle", static_cast<double>(m.engine.bank_angles.size()));
+  for (size_t i = 0; i < m.engine.bank_angles.size(); ++i)
+    requireAngle(m.engine.bank_angles[i], "cylinder[" + std::to_string(i) + "].bank_angle_deg");
+  require(m.engine.axial_positions.empty() || m.engine.axial_positions.size() == k, "[[cylinder]]",
+          "must give every cylinder an axial position", static_cast<double>(m.engine.axial_positions.size()));
+  for (size_t i = 0; i < m.engine.axial_positions.size(); ++i) {
+    const std::string key = "cylinder[" + std::to_string(i) + "].axial_position";
+    requireFinite(m.engine.axial_positions[i], key);
+    require(std::fabs(m.engine.axial_positions[i]) <= kMaxLength.value, key,
+            "magnitude " + atMost(kMaxLength), m.engine.axial_positions[i]);
+  }
   // The speed is checked in rpm, the unit of the limit: the scene's value as typed when it is the one omega came
   // from, else omega converted.
   const double rpm = m.speed_rpm * (M_PI / 30.0) == m.engine.speed ? m.speed_rpm : m.engine.speed * (30.0 / M_PI);
@@ -243,18 +266,41 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
     fail(source, "line " + std::to_string(where.line) + ", column " + std::to_string(where.column),
          "not valid TOML: " + std::string(e.description()));
   }
-  static const std::set<std::string> kTables = {"engine", "crank", "rod", "piston", "flywheel"};
+  static const std::set<std::string> kTables = {"engine", "crank", "rod", "piston", "flywheel", "cylinder"};
   for (const auto& [k, v] : root) {
     const std::string name(k.str());
-    if (!kTables.contains(name)) fail(source, name, "unknown key (tables: engine, crank, rod, piston, flywheel)");
+    if (!kTables.contains(name))
+      fail(source, name, "unknown key (tables: engine, crank, rod, piston, flywheel, [[cylinder]])");
   }
 
   Mechanism m;
   m.name = std::filesystem::path(source).stem().string();
 
+  // [[cylinder]]: one table per cylinder (a layout); without it, one bank of engine.cylinders.
+  const toml::array* layout = nullptr;
+  if (const toml::node* node = root.get("cylinder")) {
+    layout = node->as_array();
+    if (layout == nullptr || !layout->is_array_of_tables())
+      fail(source, "[[cylinder]]", "must be an array of tables, one [[cylinder]] per cylinder");
+    if (layout->empty() || static_cast<long long>(layout->size()) > kMaxCylinders)
+      fail(source, "[[cylinder]]", "must have between 1 and 64 tables (got " + std::to_string(layout->size()) + ")");
+  }
+
   TableReader engine(root, "engine", source, true,
-                     {"cylinders", "cycle", "acting", "crank_angles_deg", "cylinder_angle_deg", "speed_rpm", "gravity"});
-  const long long cylinders = engine.integer("cylinders");
+                     {"cylinders", "cycle", "acting", "crank_angles_deg", "cylinder_angle_deg", "cylinder_spacing",
+                      "speed_rpm", "gravity"});
+  long long cylinders = 0;
+  if (layout != nullptr) {
+    cylinders = static_cast<long long>(layout->size());
+    if (engine.find("cylinders") != nullptr && engine.integer("cylinders") != cylinders)
+      fail(source, engine.key("cylinders"),
+           "must equal the number of [[cylinder]] tables (" + std::to_string(cylinders) + "), or be left out");
+    for (const char* key : {"cylinder_angle_deg", "crank_angles_deg", "cylinder_spacing"})
+      if (engine.find(key) != nullptr)
+        fail(source, engine.key(key), "must be absent when [[cylinder]] tables place each cylinder");
+  } else {
+    cylinders = engine.integer("cylinders");
+  }
   if (cylinders < 1 || cylinders > kMaxCylinders)
     fail(source, engine.key("cylinders"), "must be between 1 and 64 (got " + std::to_string(cylinders) + ")");
   m.engine.cylinders = static_cast<int>(cylinders);
@@ -266,22 +312,56 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
   if (acting == "single") m.engine.acting = Acting::kSingle;
   else if (acting == "double") m.engine.acting = Acting::kDouble;
   else fail(source, engine.key("acting"), "must be \"single\" or \"double\" (got \"" + acting + "\")");
-  if (auto angles = engine.optionalNumberArray("crank_angles_deg")) {
-    if (static_cast<long long>(angles->size()) != cylinders)
-      fail(source, engine.key("crank_angles_deg"),
-           "must have one angle per cylinder: " + std::to_string(cylinders) + " expected, got " +
-               std::to_string(angles->size()));
-    for (size_t i = 0; i < angles->size(); ++i) {
-      requireAngleDegrees((*angles)[i], source, engine.key("crank_angles_deg") + "[" + std::to_string(i) + "]");
-      m.engine.crank_angles.push_back(radiansFromDegrees((*angles)[i]));
+
+  if (layout != nullptr) {
+    // theta_j = phi + beta_j - gamma_j: alpha_j is the throw angle minus the bank angle (CONVENTIONS, "Layouts").
+    size_t with_axial = 0;
+    for (size_t j = 0; j < layout->size(); ++j) {
+      TableReader cylinder(*layout->get(j)->as_table(), "cylinder[" + std::to_string(j) + "]", source,
+                           {"bank_angle_deg", "throw_angle_deg", "axial_position"});
+      const double bank_deg = cylinder.number("bank_angle_deg");
+      const double throw_deg = cylinder.number("throw_angle_deg");
+      requireAngleDegrees(bank_deg, source, cylinder.key("bank_angle_deg"));
+      requireAngleDegrees(throw_deg, source, cylinder.key("throw_angle_deg"));
+      m.engine.bank_angles.push_back(radiansFromDegrees(bank_deg));
+      m.engine.crank_angles.push_back(radiansFromDegrees(throw_deg - bank_deg));
+      if (const auto z = cylinder.optionalNumber("axial_position")) {
+        m.engine.axial_positions.push_back(*z);
+        ++with_axial;
+      } else {
+        m.engine.axial_positions.push_back(0.0);
+      }
+      if (with_axial != 0 && with_axial != j + 1)
+        fail(source, cylinder.key("axial_position"), "give it for every cylinder or for none");
     }
+    if (with_axial == 0) m.engine.axial_positions.clear();
     m.engine.explicit_crank_angles = true;
+    m.engine.cylinder_angle = m.engine.bank_angles.front();
   } else {
-    m.engine.crank_angles = calcPhaseAngles(m.engine.cylinders, m.engine.cycle, m.engine.acting);
+    if (auto angles = engine.optionalNumberArray("crank_angles_deg")) {
+      if (static_cast<long long>(angles->size()) != cylinders)
+        fail(source, engine.key("crank_angles_deg"),
+             "must have one angle per cylinder: " + std::to_string(cylinders) + " expected, got " +
+                 std::to_string(angles->size()));
+      for (size_t i = 0; i < angles->size(); ++i) {
+        requireAngleDegrees((*angles)[i], source, engine.key("crank_angles_deg") + "[" + std::to_string(i) + "]");
+        m.engine.crank_angles.push_back(radiansFromDegrees((*angles)[i]));
+      }
+      m.engine.explicit_crank_angles = true;
+    } else {
+      m.engine.crank_angles = calcPhaseAngles(m.engine.cylinders, m.engine.cycle, m.engine.acting);
+    }
+    const double cylinder_angle_deg = engine.number("cylinder_angle_deg");
+    requireAngleDegrees(cylinder_angle_deg, source, engine.key("cylinder_angle_deg"));
+    m.engine.cylinder_angle = radiansFromDegrees(cylinder_angle_deg);
+    if (const auto spacing = engine.optionalNumber("cylinder_spacing")) {
+      if (!(std::fabs(*spacing) * static_cast<double>(cylinders - 1) <= kMaxLength.value))
+        fail(source, engine.key("cylinder_spacing"),
+             std::string("must keep every cylinder within ") + kMaxLength.text + " of the first (got " +
+                 formatNumber(*spacing) + ")");
+      for (long long j = 0; j < cylinders; ++j) m.engine.axial_positions.push_back(static_cast<double>(j) * *spacing);
+    }
   }
-  const double cylinder_angle_deg = engine.number("cylinder_angle_deg");
-  requireAngleDegrees(cylinder_angle_deg, source, engine.key("cylinder_angle_deg"));
-  m.engine.cylinder_angle = radiansFromDegrees(cylinder_angle_deg);
   m.speed_rpm = engine.number("speed_rpm");
   m.engine.speed = m.speed_rpm * (M_PI / 30.0);
   m.engine.gravity = engine.number("gravity", 9.80665);

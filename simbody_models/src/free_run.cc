@@ -83,6 +83,8 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOp
     throw std::invalid_argument(std::string("simulateFreeRun: invalid mechanism: ") + error.what());
   }
   if (!(omega0 > 0.0)) throw std::invalid_argument("simulateFreeRun: the release speed must be > 0");
+  if (!isSingleBank(m))
+    throw std::invalid_argument("simulateFreeRun: the free run is built for one bank of cylinders (one gamma)");
   if (!m.flywheel_inertia) throw std::invalid_argument("simulateFreeRun: the scene needs [flywheel].inertia");
   if (!(m.rod.mass > 0.0 && m.rod.inertia_about_wrist_pin > 0.0))
     throw std::invalid_argument("simulateFreeRun: the Simbody model needs a rod with mass and inertia");

@@ -42,13 +42,15 @@ class KCrankModel::Impl {
 
  private:
   BodyKinematics bodyKinematics(const SimTK::MobilizedBody& body) const;
+  /// (dH_O/dt, dP/dt) of one body from Simbody's own accelerations and mass properties, at Acceleration stage.
+  SimTK::SpatialVec momentumRate(const SimTK::MobilizedBody& body) const;
   void setReferenceGuess();
 
   Mechanism m_;
   ModelOptions options_;
   int k_ = 0;
-  SimTK::Vec3 e_;  // cylinder axis, global
-  SimTK::Vec3 n_;  // e turned +90 degrees
+  std::vector<SimTK::Vec3> e_;  // cylinder j's axis, global
+  std::vector<SimTK::Vec3> n_;  // e_j turned +90 degrees about Z
 
   std::shared_ptr<CrankDrive> drive_ = std::make_shared<CrankDrive>();
   SimTK::MultibodySystem system_;
@@ -80,9 +82,14 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
         "rod makes Simbody's mass matrix singular)");
 
   k_ = m_.engine.cylinders;
+  // The crankshaft's mobilizer frame is turned by gamma_0 (cylinder 0's bank), so the pin angle q is phi: cylinder
+  // j's crank pin then sits at beta_j - gamma_0 in the body (alpha_j for an inline engine).
   const double gamma = m_.engine.cylinder_angle;
-  e_ = SimTK::Vec3(std::cos(gamma), std::sin(gamma), 0.0);
-  n_ = SimTK::Vec3(-std::sin(gamma), std::cos(gamma), 0.0);
+  for (int j = 0; j < k_; ++j) {
+    const double gamma_j = getBankAngle(m_, j);
+    e_.emplace_back(std::cos(gamma_j), std::sin(gamma_j), 0.0);
+    n_.emplace_back(-std::sin(gamma_j), std::cos(gamma_j), 0.0);
+  }
   const double r = m_.crank.radius;
   const double l = m_.rod.length;
   polish_threshold_ = 8.0 * std::numeric_limits<double>::epsilon() * (l + r);
@@ -95,17 +102,16 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
     // Gravity (0, -g): Simbody's potential energy has zero height at the Ground origin O.
     gravity_ = SimTK::Force::Gravity(forces_, matter_, SimTK::UnitVec3(0, -1, 0), m_.engine.gravity);
 
-    // Crankshaft. Its mobilizer frame F on Ground is turned by gamma about Z, so the pin angle q is the crank
-    // angle phi of throw 0 (theta = 0: crank pin on +e). Throw j's crank line points at alpha_j in the body.
+    // Crankshaft, a 3D body: throw j's point masses and crank pin lie in the plane z = z_j of its cylinder.
     SimTK::Real crank_mass = 0.0;
     SimTK::Vec3 first_moment(0);
     SimTK::Inertia crank_inertia(0);  // about the body origin O
     for (int j = 0; j < k_; ++j) {
-      const double alpha = m_.engine.crank_angles[j];
-      const SimTK::Vec3 u(std::cos(alpha), std::sin(alpha), 0.0);
-      crank_pins_in_crank_.push_back(r * u);
-      const SimTK::Vec3 p_s = m_.crank.com_radius * u;
-      const SimTK::Vec3 p_p = -m_.crank.counterweight_radius * u;
+      const double pin_angle = (getBankAngle(m_, j) - gamma) + m_.engine.crank_angles[j];
+      const SimTK::Vec3 u(std::cos(pin_angle), std::sin(pin_angle), 0.0), z(0.0, 0.0, getAxialPosition(m_, j));
+      crank_pins_in_crank_.push_back(r * u + z);
+      const SimTK::Vec3 p_s = m_.crank.com_radius * u + z;
+      const SimTK::Vec3 p_p = -m_.crank.counterweight_radius * u + z;
       crank_mass += m_.crank.mass + m_.crank.counterweight_mass;
       first_moment += m_.crank.mass * p_s + m_.crank.counterweight_mass * p_p;
       crank_inertia += SimTK::Inertia(p_s, m_.crank.mass) + SimTK::Inertia(p_p, m_.crank.counterweight_mass);
@@ -133,9 +139,10 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
     SimTK::Body::Rigid piston_body(SimTK::MassProperties(m_.piston.mass, SimTK::Vec3(0), SimTK::Inertia(0)));
 
     for (int j = 0; j < k_; ++j) {
-      // Piston: slider along the x axis of F = Ground turned by gamma, so q = x_p along +e from O.
-      pistons_.emplace_back(matter_.Ground(), SimTK::Transform(cylinder_rotation, SimTK::Vec3(0)), piston_body,
-                            SimTK::Transform());
+      // Piston: slider along the x axis of F = Ground turned by gamma_j and moved to z_j, so q = x_p along +e_j.
+      const SimTK::Transform X_GF(SimTK::Rotation(getBankAngle(m_, j), SimTK::ZAxis),
+                                  SimTK::Vec3(0.0, 0.0, getAxialPosition(m_, j)));
+      pistons_.emplace_back(matter_.Ground(), X_GF, piston_body, SimTK::Transform());
       rods_.emplace_back(pistons_.back(), SimTK::Transform(), rod_body, SimTK::Transform());
       // Loop closure: the rod's big end on the line through B_j parallel to Z (2 equations, planar).
       SimTK::Constraint::PointOnLine(crank_, SimTK::UnitVec3(SimTK::ZAxis), crank_pins_in_crank_[j], rods_.back(),
@@ -222,6 +229,20 @@ double KCrankModel::Impl::driveTorque() const {
 }
 
 
+SimTK::SpatialVec KCrankModel::Impl::momentumRate(const SimTK::MobilizedBody& body) const {
+  const SimTK::MassProperties& mp = body.getBodyMassProperties(state_);
+  const SimTK::Rotation& R_GB = body.getBodyRotation(state_);
+  const SimTK::Vec3 p_GC = body.findStationLocationInGround(state_, mp.getMassCenter());
+  const SimTK::Vec3 a_GC = body.findStationAccelerationInGround(state_, mp.getMassCenter());
+  const SimTK::Vec3& w = body.getBodyAngularVelocity(state_);
+  const SimTK::Vec3& w_dot = body.getBodyAngularAcceleration(state_);
+  // Central inertia re-expressed in Ground: I_G = R_GB I_B R_BG.
+  const SimTK::Inertia I_C = mp.calcCentralInertia().reexpress(~R_GB);
+  const SimTK::Vec3 force = mp.getMass() * a_GC;
+  const SimTK::Vec3 moment = SimTK::cross(p_GC, force) + I_C * w_dot + SimTK::cross(w, I_C * w);
+  return SimTK::SpatialVec(moment, force);
+}
+
 BodyKinematics KCrankModel::Impl::bodyKinematics(const SimTK::MobilizedBody& body) const {
   BodyKinematics b;
   const SimTK::MassProperties& mp = body.getBodyMassProperties(state_);
@@ -278,8 +299,16 @@ Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
     const SimTK::Vec3 piston_on_rod = reactions[rod.getMobilizedBodyIndex()][1];
     c.wrist_pin_force = toVec2(-piston_on_rod);
     const SimTK::Vec3 frame_on_piston = reactions[piston.getMobilizedBodyIndex()][1];
-    c.wall_force = SimTK::dot(frame_on_piston, n_);
+    c.wall_force = SimTK::dot(frame_on_piston, n_[j]);
   }
+
+  // Shaking force and moment, -dP/dt and -dH_O/dt of every moving body, from Simbody's own body accelerations
+  // (the accelerations are those of the prescribed constant-speed motion, with or without gravity).
+  SimTK::SpatialVec rate(SimTK::Vec3(0), SimTK::Vec3(0));
+  rate += momentumRate(crank_);
+  for (int j = 0; j < k_; ++j) rate += momentumRate(pistons_[j]) + momentumRate(rods_[j]);
+  ev.shaking_force = {-rate[1][0], -rate[1][1]};
+  ev.shaking_moment = {-rate[0][0], -rate[0][1], -rate[0][2]};
 
   bool finite = std::isfinite(ev.U) && std::isfinite(ev.Q) && std::isfinite(ev.drive_torque) &&
                 std::isfinite(ev.bearing_force[0]) && std::isfinite(ev.bearing_force[1]);

@@ -38,6 +38,9 @@ Scales calcScales(const Mechanism& m) {
   s.acceleration = calcAccelerationScale(m);
   s.force = calcForceScale(m);
   s.torque = calcTorqueScale(m);
+  double z_max = 0.0;
+  for (int j = 0; j < m.engine.cylinders; ++j) z_max = std::max(z_max, std::fabs(getAxialPosition(m, j)));
+  s.moment = s.force * (l + r + z_max);
   s.conditioning = stiff * (l + r) / r;
   s.closure = std::sqrt(stiff);
   return s;
@@ -52,8 +55,12 @@ std::vector<Comparison> compareEvaluations(const Mechanism& m, const Evaluation&
   out.push_back({"U", -1, a.U, s.U, sc.simbody_energy, 1.0});
   out.push_back({"Q", -1, a.Q, s.Q, sc.energy, sc.conditioning});
   out.push_back({"drive_torque", -1, a.drive_torque, s.drive_torque, sc.torque, sc.conditioning});
-  for (int i = 0; i < 2; ++i)
+  for (int i = 0; i < 2; ++i) {
     out.push_back({"bearing_force", -1, a.bearing_force[i], s.bearing_force[i], sc.force, sc.conditioning});
+    out.push_back({"shaking_force", -1, a.shaking_force[i], s.shaking_force[i], sc.force, sc.conditioning});
+  }
+  for (int i = 0; i < 3; ++i)
+    out.push_back({"shaking_moment", -1, a.shaking_moment[i], s.shaking_moment[i], sc.moment, sc.conditioning});
   const size_t k = std::min(a.cylinders.size(), s.cylinders.size());
   for (size_t j = 0; j < k; ++j) {
     const CylinderEvaluation &ca = a.cylinders[j], &cs = s.cylinders[j];

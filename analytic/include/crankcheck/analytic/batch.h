@@ -16,6 +16,7 @@
 namespace crankcheck::analytic {
 
 /// Q [N m] at each angle phi[i] [rad]. @throws std::invalid_argument if the spans differ in size.
+/// @throws std::invalid_argument if the cylinders are not in one bank (isSingleBank) or the spans differ in size.
 void calcGravityTorqueBatch(const Mechanism& m, std::span<const double> phi, std::span<double> Q);
 
 /// Q [N m] on the uniform grid phi_i = phi0 + i step, i = 0 .. Q.size() - 1. sin and cos of phi_i come from the

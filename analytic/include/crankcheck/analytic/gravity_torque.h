@@ -40,7 +40,7 @@ struct TorqueHarmonic {
 /// Q = sum_n Re/Im(e^{i n phi} S_n) times (N, W_n). Only n = 1 and even n <= order can appear (eq 14). For
 /// phase angles of eqs (8)-(11) only the surviving harmonics (findSurvivingHarmonics) are returned; for
 /// explicit crank angles every n = 1, 2, 4, ... <= order is returned with its numerically summed S_n.
-/// @throws std::invalid_argument if order < 1.
+/// @throws std::invalid_argument if order < 1, or if the cylinders are not in one bank (isSingleBank).
 std::vector<TorqueHarmonic> calcGravityTorqueHarmonics(const Mechanism& m, int order,
                                                        LambdaSource source = LambdaSource::kExact,
                                                        Eq5Form form = Eq5Form::kDerived);

@@ -29,6 +29,22 @@ struct RodKinematics {
   double beta_ddot = 0.0;  ///< [rad/s^2]
 };
 
+/// The moving points of cylinder j at crank angle phi, in its own cylinder frame (e_j, n_j) (a planar frame in the
+/// plane z = z_j, right-handed about +Z, so planar cross products equal global ones): wrist pin A, crank pin B, the
+/// rod's centre of mass G, their accelerations at constant omega, and the rod's angular acceleration.
+struct CylinderMotion {
+  SinCos gamma;                ///< bank angle gamma_j: e_j = (cos, sin), n_j = (-sin, cos) in global X, Y
+  SinCos theta;                ///< theta_j = phi + alpha_j
+  double z = 0.0;              ///< [m] z_j
+  PistonKinematics piston;     ///< x_p, v_p, a_p, j_p along e_j
+  RodKinematics rod;           ///< beta and its derivatives
+  double p_OA[2], p_OB[2], p_OG[2];  ///< [m] (e, n) components
+  double a_A[2], a_B[2], a_G[2];     ///< [m/s^2] (e, n) components
+  double psi_ddot = 0.0;       ///< [rad/s^2] the rod's angular acceleration about +Z (= -beta_ddot)
+};
+/// @throws std::out_of_range if j is not a cylinder of m.
+CylinderMotion calcCylinderMotion(const Mechanism& m, int j, double phi);
+
 /// Exact piston kinematics (Norton 13.1d and its derivatives; closed forms, no series).
 PistonKinematics calcPistonKinematics(const Mechanism& m, double theta);
 /// The same from sin and cos of theta (e.g. calcThrowSinCos(phi, alpha_j)).

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Joint reactions of the k-crank inline mechanism at constant crank speed with gravity: Newton-Euler of piston
+/// Joint reactions of the k-crank mechanism (any layout: each cylinder in its own bank gamma_j and plane z_j) at constant crank speed with gravity: Newton-Euler of piston
 /// (a particle), rod (a rigid body with its true inertia I_o about the wrist pin) and crank throw, per cylinder.
 /// Names and signs: CONVENTIONS.md ("force ON b FROM a", global X, Y components).
 ///
@@ -38,7 +38,7 @@ struct Reactions {
 Reactions calcReactions(const Mechanism& m, double phi);
 
 /// Everything the analytic engine reports at phi, in the struct both engines share (engine = "analytic"):
-/// U (eq 12), Q (eq 13), exact piston kinematics and calcReactions.
+/// U (eq 12), Q (eq 13), exact piston kinematics, calcReactions and calcShaking, each cylinder in its own bank.
 Evaluation calcEvaluation(const Mechanism& m, double phi);
 
 }  // namespace crankcheck::analytic

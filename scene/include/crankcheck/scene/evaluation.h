@@ -31,6 +31,13 @@ struct Evaluation {
   double Q = 0.0;               ///< [N m] dU/dphi
   double drive_torque = 0.0;    ///< [N m] about +Z, keeps omega constant (= Q when omega = 0)
   Vec2 bearing_force{};         ///< [N] frame on crankshaft at O, all throws
+  /// [N] the force the moving parts exert on the frame with gravity and gas off: -dP/dt, P the momentum of
+  /// pistons, rods and crank throws (Norton's shaking force).
+  Vec2 shaking_force{};
+  /// [N m] -dH_O/dt about O (crank centre, z = 0), gravity and gas off, global X, Y, Z. Z is the rocking torque;
+  /// X and Y come from axial spacing and are meaningful only when the scene places the cylinders along the shaft
+  /// (hasAxialPositions); the CLI prints them as null otherwise.
+  std::array<double, 3> shaking_moment{};
   std::vector<CylinderEvaluation> cylinders;
 };
 

@@ -1,6 +1,8 @@
 #pragma once
 /// @file
-/// The plain description of a k-crank inline mechanism that both engines (analytic and Simbody) are built from.
+/// The plain description of a k-crank mechanism that both engines (analytic and Simbody) are built from: an inline
+/// engine (one bank, the paper's and Norton's subject) or any layout of cylinders around one crankshaft (V, W,
+/// opposed, radial; cylinders spaced along the shaft), ../shared/CONVENTIONS.md "Layouts".
 /// Symbols, frames and signs follow ../shared/CONVENTIONS.md and docs/CONVENTIONS-crankcheck.md.
 /// Everything here is in SI units (m, kg, s, rad); degrees exist only in scene files and CLI flags.
 
@@ -21,11 +23,19 @@ struct EngineParams {
   int cylinders = 1;                         ///< k, number of cylinders (= crank throws), >= 1
   Cycle cycle = Cycle::kFourStroke;
   Acting acting = Acting::kSingle;
-  /// alpha_j [rad], j = 0..k-1: crank angle of throw j relative to throw 0. Either the phase angles of
-  /// eqs (8)-(11) (see calcPhaseAngles) or the scene's explicit crank_angles_deg.
+  /// alpha_j [rad], j = 0..k-1: crank angle of cylinder j measured from its own outer dead centre when
+  /// cylinder 0 is at phi = 0, so theta_j = phi + alpha_j. Inline: the phase angles of eqs (8)-(11) (see
+  /// calcPhaseAngles) or the scene's explicit crank_angles_deg. Layout ([[cylinder]]): alpha_j = beta_j - gamma_j,
+  /// the throw angle minus the bank angle.
   std::vector<double> crank_angles;
   bool explicit_crank_angles = false;        ///< true when crank_angles came from the scene, not eqs (8)-(11)
-  double cylinder_angle = 0.0;               ///< gamma [rad], cylinder axis above the horizontal
+  double cylinder_angle = 0.0;               ///< gamma [rad], cylinder axis above the horizontal (layout: gamma_0)
+  /// gamma_j [rad] per cylinder, the direction of its axis from +X (CCW). Empty: one bank, every cylinder at
+  /// cylinder_angle. Read it through getBankAngle.
+  std::vector<double> bank_angles;
+  /// z_j [m] per cylinder along the crankshaft (+Z). Empty: every cylinder in the plane z = 0 (the planar model:
+  /// the shaking moment's X and Y parts are then not defined). Read it through getAxialPosition.
+  std::vector<double> axial_positions;
   double speed = 0.0;                        ///< omega [rad/s], constant crank speed (0 = static)
   double gravity = 9.80665;                  ///< g [m/s^2], acting along -Y
 };
@@ -65,6 +75,18 @@ struct Mechanism {
 
 /// lambda = r / l, the crank ratio.
 double calcCrankRatio(const Mechanism& m);
+
+/// gamma_j [rad], the bank angle of cylinder j: bank_angles[j], or cylinder_angle for one bank.
+double getBankAngle(const Mechanism& m, int j);
+/// beta_j = gamma_j + alpha_j [rad], the angle of cylinder j's crank pin on the shaft (at phi = 0, from +X).
+double getThrowAngle(const Mechanism& m, int j);
+/// z_j [m], the axial position of cylinder j: axial_positions[j], or 0 when the scene gives none.
+double getAxialPosition(const Mechanism& m, int j);
+/// True when every cylinder lies in one bank (gamma_j = cylinder_angle for all j): the inline engine the
+/// paper's series (eqs 14-18) and the reduced and free-run Simbody models are written for.
+bool isSingleBank(const Mechanism& m);
+/// True when the scene placed the cylinders along the shaft (axial_position or cylinder_spacing).
+bool hasAxialPositions(const Mechanism& m);
 
 /// Phase angles alpha_j = (T / k) j of eqs (8)-(11), j = 0..k-1, in radians, each reduced to [0, 2 pi).
 /// T = 2 pi (two-stroke) or 4 pi (four-stroke); double-acting halves T / k. Angles that are exact multiples

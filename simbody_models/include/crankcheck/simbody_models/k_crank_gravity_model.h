@@ -20,7 +20,8 @@ namespace crankcheck::simbody_models {
 
 class KCrankGravityModel {  // one per thread; one System reused across angles, warm-started
  public:
-  /// @throws std::invalid_argument for an invalid mechanism, a tolerance not > 0, or a piston with no mass
+  /// @throws std::invalid_argument for an invalid mechanism, cylinders not in one bank, a tolerance not > 0, or a
+  ///         piston with no mass
   ///         (m_o + m_k (l - z_k)/l = 0 makes the slider's mass matrix singular); std::runtime_error if Simbody fails.
   explicit KCrankGravityModel(const Mechanism& m, ModelOptions options = {});
   ~KCrankGravityModel();

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The k-crank inline mechanism of ../shared/CONVENTIONS.md built as a Simbody multibody system: the second,
+/// The k-crank mechanism of ../shared/CONVENTIONS.md (any layout) built as a Simbody multibody system: the second,
 /// independent engine of crankcheck. Simbody assembles the positions, solves the velocities and computes the
 /// accelerations and reactions itself; no closed-form kinematics is used anywhere in this library, and it never
 /// includes the analytic library.
@@ -10,16 +10,19 @@
 /// NDEBUG, and SimTK's operators clash with Eigen).
 ///
 /// The model (one degree of freedom, no redundant constraint equations):
-///  - crankshaft: MobilizedBody::Pin from Ground about +Z at O, carrying every throw's point masses (m_s at r_s on
-///    the crank line, m_p at r_p opposite) and nothing else (no nominal inertia is needed: its motion is
+///  - crankshaft: MobilizedBody::Pin from Ground about +Z at O, a 3D body carrying every throw's point masses (m_s
+///    at r_s on the crank line, m_p at r_p opposite, in the plane z_j of the throw's cylinder) and nothing else (no nominal inertia is needed: its motion is
 ///    prescribed). Its angle is prescribed by a position-level Motion: q = phi, qdot = omega, qdotdot = 0
 ///    (constant crank speed).
-///  - piston j: MobilizedBody::Slider from Ground along e, a particle of mass m_o at the wrist pin A_j.
+///  - piston j: MobilizedBody::Slider from Ground along e_j (its own bank gamma_j, in the plane z = z_j), a
+///    particle of mass m_o at the wrist pin A_j.
 ///  - rod j: MobilizedBody::Pin on piston j at A_j; mass m_k, centre of mass on the rod axis at z_k from A_j,
 ///    inertia I_o about A_j (Z axis).
 ///  - loop closure j: Constraint::PointOnLine, the rod's big-end point on the Z-parallel line through the crank
 ///    pin B_j of the crankshaft (2 equations).
 ///  - gravity: Force::Gravity, (0, -g).
+/// Shaking force and moment: -dP/dt and -dH_O/dt summed over the bodies from Simbody's own body accelerations,
+/// angular velocities and mass properties (m a_C, p_C x m a_C + I_C w_dot + w x I_C w).
 
 #include <memory>
 #include <string>
@@ -91,7 +94,7 @@ class KCrankModel {
 
   /// Everything at crank angle phi [rad] and the scene's omega [rad/s], engine = "simbody":
   /// U [J] (= V(phi) - V(0)), Q [N m] (static holding torque route, as calcHoldingTorque), drive_torque [N m],
-  /// bearing_force [N], and per cylinder x_p [m], v_p [m/s], a_p [m/s^2], crank_pin_force [N],
+  /// bearing_force [N], shaking_force [N], shaking_moment [N m], and per cylinder x_p [m], v_p [m/s], a_p [m/s^2], crank_pin_force [N],
   /// wrist_pin_force [N], wall_force [N]. Signs and frames: CONVENTIONS.md.
   /// @throws std::invalid_argument if phi is not finite.
   /// @throws std::runtime_error if Simbody cannot assemble the mechanism at phi or returns non-finite values.

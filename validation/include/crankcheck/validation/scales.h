@@ -37,6 +37,9 @@ struct Scales {
   double acceleration = 0.0;      ///< calcAccelerationScale [m/s^2]
   double force = 0.0;             ///< calcForceScale [N]
   double torque = 0.0;            ///< calcTorqueScale [N m]
+  /// [N m] shaking moment: force scale times (l + r + max |z_j|), the largest moment arm of a moving part about O
+  /// (in the plane up to l + r, along the shaft up to |z_j|).
+  double moment = 0.0;
   /// 1 / (1 - lambda^2) for the loop's condition near lambda = 1, times (l + r) / r because Simbody holds the rod
   /// in absolute coordinates (its rounding relative to crank-scale quantities grows like 1 / lambda).
   double conditioning = 1.0;

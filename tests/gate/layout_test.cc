@@ -1,0 +1,93 @@
+// The gate over engine layouts (issue 12): every layout of the balance table (V, W-less V12, boxer, radial, inline
+// with its textbook crank), standing, lying and hanging, at rest and at speed: the analytic engine against Simbody
+// for every quantity, the shaking force and moment included. Same rule as the inline gate (validation/scales.h):
+// |a - b| <= 64 eps x scale x conditioning; the shaking moment's scale is the force scale times the largest
+// moment arm, l + r + max |z_j| (a moving part's position about O).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "../support/cases.h"
+#include "crankcheck/analytic/reactions.h"
+#include "crankcheck/analytic/shaking.h"
+#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/layouts.h"
+#include "crankcheck/validation/scales.h"
+
+namespace crankcheck {
+namespace {
+
+struct LayoutCase {
+  validation::Layout layout;
+  double rotation_deg = 0.0;
+};
+std::string caseName(const LayoutCase& c) {
+  return c.layout.name + (c.rotation_deg == 0.0 ? "_standing" : c.rotation_deg == 90.0 ? "_lying" : "_hanging");
+}
+void PrintTo(const LayoutCase& c, std::ostream* os) { *os << caseName(c); }
+
+// The passenger-car parts of the gate's cases (tests/support/cases.h) at lambda 0.3, 6000 rpm.
+Mechanism parts() { return testing::makeMechanism(testing::CaseSpec{1, Cycle::kFourStroke, Acting::kSingle, 0.3, 90.0, 6000.0}); }
+
+class LayoutGateTest : public ::testing::TestWithParam<LayoutCase> {};
+
+TEST_P(LayoutGateTest, EveryQuantityAgrees) {
+  for (double rpm : {6000.0, 0.0}) {
+    Mechanism m = validation::makeLayoutMechanism(GetParam().layout, parts(), GetParam().rotation_deg);
+    m.speed_rpm = rpm;
+    m.engine.speed = rpm * (M_PI / 30.0);
+    simbody_models::KCrankModel model(m);
+    for (double phi_deg : testing::sweepPhisDeg()) {
+      SCOPED_TRACE(caseName(GetParam()) + " at " + std::to_string(rpm) + " rpm, phi_deg " + std::to_string(phi_deg));
+      const double phi = radiansFromDegrees(phi_deg);
+      const Evaluation a = analytic::calcEvaluation(m, phi), s = model.evaluate(phi);
+      ASSERT_EQ(a.cylinders.size(), s.cylinders.size());
+      for (const validation::Comparison& c : validation::compareEvaluations(m, a, s))
+        EXPECT_TRUE(c.agrees()) << c.quantity << (c.cylinder >= 0 ? " of cylinder " + std::to_string(c.cylinder) : "")
+                                << ": analytic " << c.a << ", simbody " << c.b << ", |difference| " << c.error()
+                                << " > tol " << c.tolerance();
+      if (rpm == 0.0) {  // at rest nothing accelerates: no shaking at all, exactly, in the closed form
+        EXPECT_EQ(a.shaking_force[0], 0.0);
+        EXPECT_EQ(a.shaking_force[1], 0.0);
+        for (double moment : a.shaking_moment) EXPECT_EQ(moment, 0.0);
+      }
+    }
+  }
+}
+
+std::vector<LayoutCase> layoutCases() {
+  std::vector<LayoutCase> cases;
+  for (const validation::Layout& layout : validation::getBalanceLayouts())
+    for (double rotation : {0.0, 90.0, 180.0}) cases.push_back({layout, rotation});
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(Gate, LayoutGateTest, ::testing::ValuesIn(layoutCases()),
+                         [](const auto& info) { return caseName(info.param); });
+
+// A layout whose cylinders share one bank and one plane is the inline engine: the general code paths give the
+// inline answers (the V8's left bank alone against the same four cylinders described inline).
+TEST(LayoutGate, OneBankLayoutIsTheInlineEngine) {
+  Mechanism inline4 = parts();
+  inline4.engine.cylinders = 4;
+  inline4.engine.explicit_crank_angles = true;
+  inline4.engine.crank_angles = {0.0, M_PI, M_PI, 0.0};
+  validation::Layout one_bank{"one_bank", "", {{90.0, 90.0, 0.0}, {90.0, 270.0, 0.0}, {90.0, 270.0, 0.0}, {90.0, 90.0, 0.0}}};
+  const Mechanism layout = validation::makeLayoutMechanism(one_bank, parts());
+  for (double phi_deg : testing::sweepPhisDeg()) {
+    const double phi = radiansFromDegrees(phi_deg);
+    const Evaluation a = analytic::calcEvaluation(inline4, phi), b = analytic::calcEvaluation(layout, phi);
+    // The same operations on the same numbers: equal to rounding of the angle arithmetic (4 eps of each scale).
+    const validation::Scales sc = validation::calcScales(inline4);
+    EXPECT_TRUE(testing::isClose(a.Q, b.Q, 4 * validation::kEps * sc.energy));
+    EXPECT_TRUE(testing::isClose(a.drive_torque, b.drive_torque, 4 * validation::kEps * sc.torque));
+    EXPECT_TRUE(testing::isClose(a.shaking_force[1], b.shaking_force[1], 4 * validation::kEps * sc.force));
+    EXPECT_TRUE(testing::isClose(a.shaking_moment[2], b.shaking_moment[2], 4 * validation::kEps * sc.moment));
+  }
+}
+
+}  // namespace
+}  // namespace crankcheck

@@ -1,0 +1,38 @@
+#pragma once
+/// @file
+/// The engine layouts of the balance table and of the gate's layout sweep: inline 1-6, 8, 12; V6 at 60 and 90
+/// degrees; V8 cross-plane and flat-plane; V12; boxer 4 and 6; a 45 degree V-twin; a five-cylinder radial. Each is
+/// built on one passenger-car cylinder (the campaign's base parts), with its textbook crank arrangement, its
+/// cylinders spaced along the shaft (throws 0.1 m apart, the two cylinders of a shared pin 0.02 m apart), and
+/// turned as a whole by `rotation_deg` (0: as built, V bisectors and inline banks vertical; 90: lying; 180: hanging).
+/// Angles follow ../shared/CONVENTIONS.md "Layouts": bank gamma_j, throw beta_j, theta_j = phi + beta_j - gamma_j.
+
+#include <string>
+#include <vector>
+
+#include "crankcheck/scene/mechanism.h"
+
+namespace crankcheck::validation {
+
+/// One cylinder of a layout, in degrees and metres as a scene file gives it.
+struct CylinderPlace {
+  double bank_deg = 90.0;
+  double throw_deg = 0.0;
+  double axial_position = 0.0;
+};
+
+/// A named layout.
+struct Layout {
+  std::string name;              ///< e.g. "V8_cross_plane"
+  std::string description;       ///< e.g. "V8, 90 deg, cross-plane crank (throws 0, 90, 270, 180)"
+  std::vector<CylinderPlace> cylinders;
+};
+
+/// Every layout of the balance table, as built (rotation 0).
+std::vector<Layout> getBalanceLayouts();
+
+/// The mechanism of `layout` turned by rotation_deg, on `parts` (its crank, rod, piston, flywheel, speed and gravity;
+/// its engine layout is replaced), named "<layout>_rot<deg>". Four-stroke.
+Mechanism makeLayoutMechanism(const Layout& layout, const Mechanism& parts, double rotation_deg = 0.0);
+
+}  // namespace crankcheck::validation
