@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "crankcheck/scene/scene_file.h"
+#include "model_support.h"
 
 #ifdef NDEBUG
 #error "Simbody code must not be compiled with NDEBUG: Debian's Simbody was built without it (SIMBODY-NOTES.md)"
@@ -83,50 +84,22 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOp
     throw std::invalid_argument(std::string("simulateFreeRun: invalid mechanism: ") + error.what());
   }
   if (!(omega0 > 0.0)) throw std::invalid_argument("simulateFreeRun: the release speed must be > 0");
-  if (!isSingleBank(m))
-    throw std::invalid_argument("simulateFreeRun: the free run is built for one bank of cylinders (one gamma)");
   if (!m.flywheel_inertia) throw std::invalid_argument("simulateFreeRun: the scene needs [flywheel].inertia");
   if (!(m.rod.mass > 0.0 && m.rod.inertia_about_wrist_pin > 0.0))
     throw std::invalid_argument("simulateFreeRun: the Simbody model needs a rod with mass and inertia");
 
-  const double r = m.crank.radius, l = m.rod.length, gamma = m.engine.cylinder_angle;
+  const double r = m.crank.radius, l = m.rod.length;
   SimTK::MultibodySystem system;
   SimTK::SimbodyMatterSubsystem matter(system);
   SimTK::GeneralForceSubsystem forces(system);
   SimTK::Force::Gravity gravity(forces, matter, SimTK::UnitVec3(0, -1, 0), options.gravity ? m.engine.gravity : 0.0);
-
-  // Crankshaft: throws' point masses plus the shaft and flywheel, a disk of polar inertia I_w about Z.
+  // The mechanism as KCrankModel builds it (every layout), the crankshaft also carrying the shaft and flywheel: a
+  // disk of polar inertia I_w about Z.
   const double I_w = *m.flywheel_inertia;
-  SimTK::Real crank_mass = 0.0;
-  SimTK::Vec3 first_moment(0);
-  SimTK::Inertia inertia(0.5 * I_w, 0.5 * I_w, I_w);
-  std::vector<SimTK::Vec3> pins;
-  for (double alpha : m.engine.crank_angles) {
-    const SimTK::Vec3 u(std::cos(alpha), std::sin(alpha), 0.0);
-    pins.push_back(r * u);
-    const SimTK::Vec3 p_s = m.crank.com_radius * u, p_p = -m.crank.counterweight_radius * u;
-    crank_mass += m.crank.mass + m.crank.counterweight_mass;
-    first_moment += m.crank.mass * p_s + m.crank.counterweight_mass * p_p;
-    inertia += SimTK::Inertia(p_s, m.crank.mass) + SimTK::Inertia(p_p, m.crank.counterweight_mass);
-  }
-  const SimTK::Rotation cylinder_rotation(gamma, SimTK::ZAxis);
-  SimTK::MobilizedBody::Pin crank(
-      matter.Ground(), SimTK::Transform(cylinder_rotation, SimTK::Vec3(0)),
-      SimTK::Body::Rigid(SimTK::MassProperties(crank_mass, crank_mass > 0 ? first_moment / crank_mass : SimTK::Vec3(0), inertia)),
-      SimTK::Transform());
-  // Pistons on sliders, rods on pins at the wrist pin, loop closure at the crank pin (as KCrankModel).
-  const double z = m.rod.com_from_wrist_pin, central = std::max(0.0, m.rod.inertia_about_wrist_pin - m.rod.mass * z * z);
-  const SimTK::Vec3 rod_com(-z, 0, 0);
-  const SimTK::Body::Rigid rod_body(
-      SimTK::MassProperties(m.rod.mass, rod_com, SimTK::Inertia(0.0, central, central) + SimTK::Inertia(rod_com, m.rod.mass)));
-  const SimTK::Body::Rigid piston_body(SimTK::MassProperties(m.piston.mass, SimTK::Vec3(0), SimTK::Inertia(0)));
-  std::vector<SimTK::MobilizedBody::Slider> pistons;
-  std::vector<SimTK::MobilizedBody::Pin> rods;
-  for (const SimTK::Vec3& pin : pins) {
-    pistons.emplace_back(matter.Ground(), SimTK::Transform(cylinder_rotation, SimTK::Vec3(0)), piston_body, SimTK::Transform());
-    rods.emplace_back(pistons.back(), SimTK::Transform(), rod_body, SimTK::Transform());
-    SimTK::Constraint::PointOnLine(crank, SimTK::UnitVec3(SimTK::ZAxis), pin, rods.back(), SimTK::Vec3(-l, 0, 0));
-  }
+  MechanismBodies bodies = buildMechanismBodies(matter, m, SimTK::Inertia(0.5 * I_w, 0.5 * I_w, I_w));
+  SimTK::MobilizedBody::Pin& crank = bodies.crank;
+  const std::vector<SimTK::MobilizedBody::Slider>& pistons = bodies.pistons;
+  const std::vector<SimTK::MobilizedBody::Pin>& rods = bodies.rods;
   system.realizeTopology();
   SimTK::State state = system.getDefaultState();
 

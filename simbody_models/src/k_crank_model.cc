@@ -82,9 +82,6 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
         "rod makes Simbody's mass matrix singular)");
 
   k_ = m_.engine.cylinders;
-  // The crankshaft's mobilizer frame is turned by gamma_0 (cylinder 0's bank), so the pin angle q is phi: cylinder
-  // j's crank pin then sits at beta_j - gamma_0 in the body (alpha_j for an inline engine).
-  const double gamma = m_.engine.cylinder_angle;
   for (int j = 0; j < k_; ++j) {
     const double gamma_j = getBankAngle(m_, j);
     e_.emplace_back(std::cos(gamma_j), std::sin(gamma_j), 0.0);
@@ -102,52 +99,13 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
     // Gravity (0, -g): Simbody's potential energy has zero height at the Ground origin O.
     gravity_ = SimTK::Force::Gravity(forces_, matter_, SimTK::UnitVec3(0, -1, 0), m_.engine.gravity);
 
-    // Crankshaft, a 3D body: throw j's point masses and crank pin lie in the plane z = z_j of its cylinder.
-    SimTK::Real crank_mass = 0.0;
-    SimTK::Vec3 first_moment(0);
-    SimTK::Inertia crank_inertia(0);  // about the body origin O
-    for (int j = 0; j < k_; ++j) {
-      const double pin_angle = (getBankAngle(m_, j) - gamma) + m_.engine.crank_angles[j];
-      const SimTK::Vec3 u(std::cos(pin_angle), std::sin(pin_angle), 0.0), z(0.0, 0.0, getAxialPosition(m_, j));
-      crank_pins_in_crank_.push_back(r * u + z);
-      const SimTK::Vec3 p_s = m_.crank.com_radius * u + z;
-      const SimTK::Vec3 p_p = -m_.crank.counterweight_radius * u + z;
-      crank_mass += m_.crank.mass + m_.crank.counterweight_mass;
-      first_moment += m_.crank.mass * p_s + m_.crank.counterweight_mass * p_p;
-      crank_inertia += SimTK::Inertia(p_s, m_.crank.mass) + SimTK::Inertia(p_p, m_.crank.counterweight_mass);
-    }
-    // No nominal inertia: the crank's motion is prescribed, so Simbody never divides by its inertia (a crankshaft
-    // without any mass works).
-    const SimTK::Body::Rigid crank_body(SimTK::MassProperties(
-        crank_mass, crank_mass > 0.0 ? first_moment / crank_mass : SimTK::Vec3(0), crank_inertia));
-    const SimTK::Rotation cylinder_rotation(gamma, SimTK::ZAxis);
-    crank_ = SimTK::MobilizedBody::Pin(matter_.Ground(), SimTK::Transform(cylinder_rotation, SimTK::Vec3(0)),
-                                       crank_body, SimTK::Transform());
+    MechanismBodies bodies = buildMechanismBodies(matter_, m_);
+    crank_ = bodies.crank;
     SimTK::Motion::Custom(crank_, new CrankMotion(drive_));
-
-    // Rod body frame = its mobilizer frame M, origin at the wrist pin A. At rod pin angle 0 the rod points
-    // along -x of the piston frame (from A toward O): big end at (-l, 0, 0), centre of mass at (-z_k, 0, 0).
-    rod_big_end_in_rod_ = SimTK::Vec3(-l, 0, 0);
-    const double z_k = m_.rod.com_from_wrist_pin;
-    const double m_k = m_.rod.mass;
-    // Central inertia about Z (and about the in-plane axis normal to the rod); zero about the rod axis.
-    const double rod_central = std::max(0.0, m_.rod.inertia_about_wrist_pin - m_k * z_k * z_k);
-    const SimTK::Vec3 rod_com(-z_k, 0, 0);
-    SimTK::Body::Rigid rod_body(SimTK::MassProperties(
-        m_k, rod_com,
-        SimTK::Inertia(0.0, rod_central, rod_central) + SimTK::Inertia(rod_com, m_k)));
-    SimTK::Body::Rigid piston_body(SimTK::MassProperties(m_.piston.mass, SimTK::Vec3(0), SimTK::Inertia(0)));
-
-    for (int j = 0; j < k_; ++j) {
-      // Piston: slider along the x axis of F = Ground turned by gamma_j and moved to z_j, so q = x_p along +e_j.
-      const SimTK::Transform X_GF(SimTK::Rotation(getBankAngle(m_, j), SimTK::ZAxis),
-                                  SimTK::Vec3(0.0, 0.0, getAxialPosition(m_, j)));
-      pistons_.emplace_back(matter_.Ground(), X_GF, piston_body, SimTK::Transform());
-      rods_.emplace_back(pistons_.back(), SimTK::Transform(), rod_body, SimTK::Transform());
-      // Loop closure: the rod's big end on the line through B_j parallel to Z (2 equations, planar).
-      SimTK::Constraint::PointOnLine(crank_, SimTK::UnitVec3(SimTK::ZAxis), crank_pins_in_crank_[j], rods_.back(),
-                                     rod_big_end_in_rod_);
-    }
+    pistons_ = std::move(bodies.pistons);
+    rods_ = std::move(bodies.rods);
+    crank_pins_in_crank_ = std::move(bodies.crank_pins_in_crank);
+    rod_big_end_in_rod_ = bodies.rod_big_end_in_rod;
 
     system_.realizeTopology();
     state_ = system_.getDefaultState();

@@ -1,6 +1,6 @@
 #pragma once
-// Internal to simbody_models: what the full and the reduced model share (the prescribed crank motion, the
-// position projection, gravity's power).
+// Internal to simbody_models: what the models share (the mechanism's bodies, built once for the full model and the
+// free run; the prescribed crank motion; the position projection; gravity's power).
 // Include only from Simbody translation units (never compiled with NDEBUG).
 
 #include <Simbody.h>
@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/scene_file.h"
@@ -51,6 +52,66 @@ class CrankMotion : public SimTK::Motion::Custom::Implementation {
 };
 
 Vec2 toVec2(const SimTK::Vec3& v) { return {v[0], v[1]}; }
+
+/// The mobilized bodies of the mechanism (k_crank_model.h describes them) and the stations of its loop closures.
+struct MechanismBodies {
+  SimTK::MobilizedBody::Pin crank;
+  std::vector<SimTK::MobilizedBody::Slider> pistons;
+  std::vector<SimTK::MobilizedBody::Pin> rods;
+  std::vector<SimTK::Vec3> crank_pins_in_crank;  // B_j in the crankshaft body frame
+  SimTK::Vec3 rod_big_end_in_rod;                // B in the rod body frame
+};
+
+/// Builds the crankshaft (a 3D body: throw j's point masses and crank pin in the plane z_j of its cylinder, plus
+/// `shaft_inertia` about O, e.g. the flywheel), one piston per cylinder on a slider along its own bank e_j in the
+/// plane z_j, one rod per piston on a pin at the wrist pin, and the loop closures (Constraint::PointOnLine). The
+/// crankshaft's mobilizer frame is turned by gamma_0 (cylinder 0's bank), so its pin angle q is phi; cylinder j's
+/// crank pin sits at beta_j - gamma_0 in the body (alpha_j for an inline engine). Every layout, one construction.
+MechanismBodies buildMechanismBodies(SimTK::SimbodyMatterSubsystem& matter, const Mechanism& m,
+                                     const SimTK::Inertia& shaft_inertia = SimTK::Inertia(0)) {
+  MechanismBodies b;
+  const int k = m.engine.cylinders;
+  const double r = m.crank.radius, l = m.rod.length, gamma = m.engine.cylinder_angle;
+  SimTK::Real crank_mass = 0.0;
+  SimTK::Vec3 first_moment(0);
+  SimTK::Inertia crank_inertia = shaft_inertia;  // about the body origin O
+  for (int j = 0; j < k; ++j) {
+    const double pin_angle = (getBankAngle(m, j) - gamma) + m.engine.crank_angles[j];
+    const SimTK::Vec3 u(std::cos(pin_angle), std::sin(pin_angle), 0.0), z(0.0, 0.0, getAxialPosition(m, j));
+    b.crank_pins_in_crank.push_back(r * u + z);
+    const SimTK::Vec3 p_s = m.crank.com_radius * u + z;
+    const SimTK::Vec3 p_p = -m.crank.counterweight_radius * u + z;
+    crank_mass += m.crank.mass + m.crank.counterweight_mass;
+    first_moment += m.crank.mass * p_s + m.crank.counterweight_mass * p_p;
+    crank_inertia += SimTK::Inertia(p_s, m.crank.mass) + SimTK::Inertia(p_p, m.crank.counterweight_mass);
+  }
+  // A prescribed crank needs no nominal inertia: Simbody never divides by it (a crankshaft without mass works).
+  const SimTK::Body::Rigid crank_body(SimTK::MassProperties(
+      crank_mass, crank_mass > 0.0 ? first_moment / crank_mass : SimTK::Vec3(0), crank_inertia));
+  b.crank = SimTK::MobilizedBody::Pin(matter.Ground(), SimTK::Transform(SimTK::Rotation(gamma, SimTK::ZAxis), SimTK::Vec3(0)),
+                                      crank_body, SimTK::Transform());
+
+  // Rod body frame = its mobilizer frame M, origin at the wrist pin A. At rod pin angle 0 the rod points along -x
+  // of the piston frame (from A toward O): big end at (-l, 0, 0), centre of mass at (-z_k, 0, 0); central inertia
+  // about Z (and about the in-plane axis normal to the rod), zero about the rod axis.
+  b.rod_big_end_in_rod = SimTK::Vec3(-l, 0, 0);
+  const double z_k = m.rod.com_from_wrist_pin, m_k = m.rod.mass;
+  const double rod_central = std::max(0.0, m.rod.inertia_about_wrist_pin - m_k * z_k * z_k);
+  const SimTK::Vec3 rod_com(-z_k, 0, 0);
+  const SimTK::Body::Rigid rod_body(
+      SimTK::MassProperties(m_k, rod_com, SimTK::Inertia(0.0, rod_central, rod_central) + SimTK::Inertia(rod_com, m_k)));
+  const SimTK::Body::Rigid piston_body(SimTK::MassProperties(m.piston.mass, SimTK::Vec3(0), SimTK::Inertia(0)));
+  for (int j = 0; j < k; ++j) {
+    // Piston: slider along the x axis of F = Ground turned by gamma_j and moved to z_j, so q = x_p along +e_j.
+    const SimTK::Transform X_GF(SimTK::Rotation(getBankAngle(m, j), SimTK::ZAxis), SimTK::Vec3(0.0, 0.0, getAxialPosition(m, j)));
+    b.pistons.emplace_back(matter.Ground(), X_GF, piston_body, SimTK::Transform());
+    b.rods.emplace_back(b.pistons.back(), SimTK::Transform(), rod_body, SimTK::Transform());
+    // Loop closure: the rod's big end on the line through B_j parallel to Z (2 equations, planar).
+    SimTK::Constraint::PointOnLine(b.crank, SimTK::UnitVec3(SimTK::ZAxis), b.crank_pins_in_crank[j], b.rods.back(),
+                                   b.rod_big_end_in_rod);
+  }
+  return b;
+}
 
 /// Angle difference reduced to (-pi, pi].
 double wrappedDifference(double a, double b) {

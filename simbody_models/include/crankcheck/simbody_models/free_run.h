@@ -34,8 +34,7 @@ struct FreeRunResult {
   int steps = 0;                                    ///< integrator steps taken
 };
 
-/// @throws std::invalid_argument if omega0 <= 0, the scene has no flywheel inertia, the cylinders are not in one
-///         bank (isSingleBank), or the rod is massless;
+/// @throws std::invalid_argument if omega0 <= 0, the scene has no flywheel inertia, or the rod is massless;
 ///         std::runtime_error if Simbody fails or the crank does not complete the revolutions.
 FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOptions& options = {});
 
