@@ -134,11 +134,23 @@ std::string formatTable(const Mechanism& m, const std::string& scene_path, const
                         const std::vector<double>& phi_deg) {
   std::ostringstream out;
   char line[512];
-  std::snprintf(line, sizeof line,
-                "scene %s: k = %d, %s, %s-acting, gamma = %.6g deg, %.6g rpm, lambda = %.6g, g = %.6g m/s^2\n",
-                scene_path.c_str(), m.engine.cylinders, toString(m.engine.cycle).c_str(),
-                toString(m.engine.acting).c_str(), degreesFromRadians(m.engine.cylinder_angle), m.speed_rpm,
-                calcCrankRatio(m), m.engine.gravity);
+  std::string banks;  // one bank: its gamma; a layout: every cylinder's bank and throw
+  char part[96];
+  if (isSingleBank(m)) {
+    std::snprintf(part, sizeof part, "gamma = %.6g deg", degreesFromRadians(m.engine.cylinder_angle));
+    banks = part;
+  } else {
+    banks = "(bank, throw) deg =";
+    for (int j = 0; j < m.engine.cylinders; ++j) {
+      std::snprintf(part, sizeof part, " (%.6g, %.6g)", degreesFromRadians(getBankAngle(m, j)),
+                    degreesFromRadians(getThrowAngle(m, j)));
+      banks += part;
+    }
+  }
+  out << "scene " << scene_path << ": k = " << m.engine.cylinders << ", " << toString(m.engine.cycle) << ", "
+      << toString(m.engine.acting) << "-acting, " << banks;
+  std::snprintf(line, sizeof line, ", %.6g rpm, lambda = %.6g, g = %.6g m/s^2\n", m.speed_rpm, calcCrankRatio(m),
+                m.engine.gravity);
   out << line;
   for (size_t i = 0; i < results.size(); ++i) {
     const Evaluation& ev = results[i];
@@ -150,11 +162,11 @@ std::string formatTable(const Mechanism& m, const std::string& scene_path, const
     out << line;
     if (hasAxialPositions(m))
       std::snprintf(line, sizeof line, "          shaking_force = (%.12g, %.12g) N   shaking_moment = (%.12g, %.12g, %.12g) N m\n",
-                    ev.shaking_force[0], ev.shaking_force[1], ev.shaking_moment[0], ev.shaking_moment[1],
-                    ev.shaking_moment[2]);
+                    ev.shaking_force[0] + 0.0, ev.shaking_force[1] + 0.0, ev.shaking_moment[0] + 0.0,
+                    ev.shaking_moment[1] + 0.0, ev.shaking_moment[2] + 0.0);
     else
       std::snprintf(line, sizeof line, "          shaking_force = (%.12g, %.12g) N   shaking_moment = (-, -, %.12g) N m\n",
-                    ev.shaking_force[0], ev.shaking_force[1], ev.shaking_moment[2]);
+                    ev.shaking_force[0] + 0.0, ev.shaking_force[1] + 0.0, ev.shaking_moment[2] + 0.0);
     out << line;
     std::snprintf(line, sizeof line, "  %3s %15s %15s %15s %33s %33s %15s\n", "cyl", "x_p [m]", "v_p [m/s]",
                   "a_p [m/s^2]", "crank_pin_force (X, Y) [N]", "wrist_pin_force (X, Y) [N]", "wall_force [N]");

@@ -147,7 +147,103 @@ INSTANTIATE_TEST_SUITE_P(
                  "[crank].counterweight_radius", "missing key"},
         BadScene{"negative_speed", "speed_rpm = 3000", "speed_rpm = -3000", "[engine].speed_rpm", "must be >= 0"},
         BadScene{"flywheel_zero", "mass = 0.4", "mass = 0.4\n[flywheel]\ninertia = 0", "[flywheel].inertia", "must be > 0"},
-        BadScene{"table_is_value", "", "engine = 3\n", "[engine]", "must be a table"}),
+        BadScene{"table_is_value", "", "engine = 3\n", "[engine]", "must be a table"},
+        BadScene{"spacing_too_long", "cylinders = 2", "cylinders = 2\ncylinder_spacing = 2e6", "[engine].cylinder_spacing",
+                 "within 1e6 m"}),
+    [](const auto& info) { return info.param.name; });
+
+// ---------------------------------------------------------------------------------------------------------------
+// Layouts: [[cylinder]] tables (docs/SCENE-FORMAT.md, "Layouts").
+
+const char* kLayoutScene = R"(
+[engine]
+cycle = "four-stroke"
+speed_rpm = 3000
+[[cylinder]]
+bank_angle_deg = 135
+throw_angle_deg = 90
+axial_position = 0.0
+[[cylinder]]
+bank_angle_deg = 45
+throw_angle_deg = 90
+axial_position = 0.02
+[crank]
+radius = 0.05
+mass = 1.0
+com_radius = 0.02
+[rod]
+length = 0.2
+mass = 0.5
+com_from_wrist_pin = 0.14
+inertia_about_wrist_pin = 0.012
+[piston]
+mass = 0.4
+)";
+
+// theta_j = phi + beta_j - gamma_j: alpha_j = throw - bank, exact in degrees; each cylinder in its own bank.
+TEST(SceneLayout, CylinderTablesGiveBanksThrowsAndAxialPositions) {
+  const Mechanism m = parseScene(kLayoutScene, "v2.toml");
+  ASSERT_EQ(m.engine.cylinders, 2);
+  EXPECT_EQ(m.engine.bank_angles, (std::vector<double>{radiansFromDegrees(135), radiansFromDegrees(45)}));
+  EXPECT_EQ(m.engine.crank_angles, (std::vector<double>{radiansFromDegrees(-45), radiansFromDegrees(45)}));
+  EXPECT_EQ(m.engine.axial_positions, (std::vector<double>{0.0, 0.02}));
+  EXPECT_EQ(m.engine.cylinder_angle, radiansFromDegrees(135));
+  EXPECT_FALSE(isSingleBank(m));
+  EXPECT_TRUE(hasAxialPositions(m));
+  EXPECT_EQ(getThrowAngle(m, 1), radiansFromDegrees(45) + radiansFromDegrees(45));
+}
+
+TEST(SceneLayout, InlineSpacingPlacesCylindersAlongTheShaft) {
+  std::string text = kGoodScene;
+  text.replace(text.find("cylinders = 2"), 13, "cylinders = 2\ncylinder_spacing = 0.09");
+  const Mechanism m = parseScene(text, "inline2.toml");
+  EXPECT_EQ(m.engine.axial_positions, (std::vector<double>{0.0, 0.09}));
+  EXPECT_TRUE(isSingleBank(m));
+  EXPECT_FALSE(hasAxialPositions(parseScene(kGoodScene, "inline2.toml")));
+}
+
+class BadLayoutTest : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadLayoutTest, IsRefusedWithFileKeyAndRule) {
+  const BadScene& bad = GetParam();
+  std::string text = kLayoutScene;
+  const size_t at = text.find(bad.find);
+  ASSERT_NE(at, std::string::npos) << bad.find;
+  text.replace(at, bad.find.size(), bad.replace);
+  try {
+    parseScene(text, "scenes/v2.toml");
+    FAIL() << "accepted";
+  } catch (const SceneError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("scenes/v2.toml: ", 0), 0u) << message;
+    EXPECT_NE(message.find(bad.key), std::string::npos) << message;
+    EXPECT_NE(message.find(bad.rule), std::string::npos) << message;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Rules, BadLayoutTest,
+    ::testing::Values(
+        BadScene{"count_differs", "cycle = \"four-stroke\"", "cycle = \"four-stroke\"\ncylinders = 3", "[engine].cylinders",
+                 "must equal the number of [[cylinder]] tables (2)"},
+        BadScene{"gamma_with_layout", "cycle = \"four-stroke\"", "cycle = \"four-stroke\"\ncylinder_angle_deg = 90",
+                 "[engine].cylinder_angle_deg", "must be absent"},
+        BadScene{"angles_with_layout", "cycle = \"four-stroke\"", "cycle = \"four-stroke\"\ncrank_angles_deg = [0, 0]",
+                 "[engine].crank_angles_deg", "must be absent"},
+        BadScene{"spacing_with_layout", "cycle = \"four-stroke\"", "cycle = \"four-stroke\"\ncylinder_spacing = 0.1",
+                 "[engine].cylinder_spacing", "must be absent"},
+        BadScene{"missing_bank", "bank_angle_deg = 45\n", "", "cylinder[1].bank_angle_deg", "missing key"},
+        BadScene{"missing_throw", "throw_angle_deg = 90\naxial_position = 0.02", "axial_position = 0.02",
+                 "cylinder[1].throw_angle_deg", "missing key"},
+        BadScene{"axial_for_some", "axial_position = 0.02\n", "", "cylinder[1].axial_position", "every cylinder or for none"},
+        BadScene{"unknown_cylinder_key", "throw_angle_deg = 90\naxial_position = 0.0",
+                 "throw_angle_deg = 90\naxial_position = 0.0\nfiring_deg = 0", "cylinder[0].firing_deg", "unknown key"},
+        BadScene{"bank_too_large", "bank_angle_deg = 45", "bank_angle_deg = 2e6", "cylinder[1].bank_angle_deg",
+                 "at most 1e6 deg"},
+        BadScene{"axial_too_far", "axial_position = 0.02", "axial_position = 2e6", "cylinder[1].axial_position",
+                 "1e6 m"},
+        BadScene{"single_table", "[[cylinder]]\nbank_angle_deg = 45", "[cylinder2]\nbank_angle_deg = 45", "cylinder2",
+                 "unknown key"}),
     [](const auto& info) { return info.param.name; });
 
 // The limits of each unit (docs/SCENE-FORMAT.md, "Limits"): a value just beyond each is refused with a message
