@@ -16,12 +16,12 @@ void checkArguments(double lambda, int order, const char* who) {
 // Enough terms for q^{2n} to fall below 1e-17 relative even at lambda = 1 - 1e-12 (q^2 ~ 1 - 6e-6).
 constexpr int kMaxTerms = 20'000'000;
 
-// sum_{n >= 0} b_n b_{n+m} q^{2n+m} / scale, with b_n = binomial(1/2, n) and q^m / scale evaluated as one power so
-// that a tiny lambda does not underflow the leading factor.
-double sumBinomialProducts(double q, int m, double q_m) {
-  // b_m by the recurrence b_{n+1} = b_n (1/2 - n) / (n + 1).
+// sum_{n >= 0} b_n b_{n+m} q^{2n+m} / scale, with b_n = binomial(p, n) (p = 1/2: the radical; p = -1/2: its
+// inverse) and q^m / scale evaluated as one power so that a tiny lambda does not underflow the leading factor.
+double sumBinomialProducts(double q, int m, double q_m, double p = 0.5) {
+  // b_m by the recurrence b_{n+1} = b_n (p - n) / (n + 1).
   double b_m = 1.0;
-  for (int n = 0; n < m; ++n) b_m *= (0.5 - n) / (n + 1);
+  for (int n = 0; n < m; ++n) b_m *= (p - n) / (n + 1);
   double b_n = 1.0, b_nm = b_m, q2n = 1.0;
   double sum = 0.0;
   const double q2 = q * q;
@@ -29,8 +29,8 @@ double sumBinomialProducts(double q, int m, double q_m) {
     const double term = b_n * b_nm * q2n;
     sum += term;
     if (std::fabs(term) <= 0.25 * std::numeric_limits<double>::epsilon() * std::fabs(sum) || q2n == 0.0) break;
-    b_n *= (0.5 - n) / (n + 1);
-    b_nm *= (0.5 - (n + m)) / (n + m + 1);
+    b_n *= (p - n) / (n + 1);
+    b_nm *= (p - (n + m)) / (n + m + 1);
     q2n *= q2;
   }
   return sum * q_m;
@@ -51,6 +51,21 @@ std::vector<double> calcRadicalFourierCoefficients(double lambda, int order) {
     a[n] = 2.0 * sqrt_c * sumBinomialProducts(q, m, std::pow(q, m));
   }
   return a;
+}
+
+std::vector<double> calcInverseRadicalFourierCoefficients(double lambda, int order) {
+  checkArguments(lambda, order, "calcInverseRadicalFourierCoefficients");
+  std::vector<double> b(order + 1, 0.0);
+  const double root = std::sqrt((1.0 - lambda) * (1.0 + lambda));
+  const double t = lambda / (1.0 + root);
+  const double q = t * t;
+  const double inverse_sqrt_c = 2.0 / (1.0 + root);  // c^(-1/2)
+  b[0] = inverse_sqrt_c * sumBinomialProducts(q, 0, 1.0, -0.5);
+  for (int n = 2; n <= order; n += 2) {
+    const int m = n / 2;
+    b[n] = 2.0 * inverse_sqrt_c * sumBinomialProducts(q, m, std::pow(q, m), -0.5);
+  }
+  return b;
 }
 
 std::vector<double> calcLambdaCoefficients(double lambda, int order) {

@@ -1,5 +1,12 @@
 #include "crankcheck/analytic/shaking.h"
 
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "crankcheck/analytic/exact_trig.h"
+#include "crankcheck/analytic/fourier_series.h"
 #include "crankcheck/analytic/kinematics.h"
 
 namespace crankcheck::analytic {
@@ -32,6 +39,138 @@ Shaking calcShaking(const Mechanism& m, double phi) {
   Shaking s;
   s.force = {-P_dot[0], -P_dot[1]};
   s.moment = {-H_dot[0], -H_dot[1], -H_dot[2]};
+  return s;
+}
+
+}  // namespace crankcheck::analytic
+
+namespace crankcheck::analytic {
+
+double ShakingHarmonic::calcForceAmplitude() const {
+  // As complex numbers X + iY: F(phi) = c cos + s sin = F+ e^{i phi n} + F- e^{-i phi n} with
+  // F+ = (c - i s) / 2, F- = (c + i s) / 2 (c, s complex): the ellipse's semi-major axis is |F+| + |F-|.
+  const double cr = force_cos[0], ci = force_cos[1], sr = force_sin[0], si = force_sin[1];
+  const double forward = 0.5 * std::hypot(cr + si, ci - sr), backward = 0.5 * std::hypot(cr - si, ci + sr);
+  return forward + backward;
+}
+
+double ShakingHarmonic::calcMomentAmplitude(int axis) const {
+  return std::hypot(moment_cos.at(static_cast<size_t>(axis)), moment_sin.at(static_cast<size_t>(axis)));
+}
+
+std::vector<ShakingHarmonic> calcShakingHarmonics(const Mechanism& m, int order) {
+  if (order < 1) throw std::invalid_argument("calcShakingHarmonics: order must be >= 1");
+  const double r = m.crank.radius, l = m.rod.length, lambda = r / l, w2 = m.engine.speed * m.engine.speed;
+  const double m_o = m.piston.mass, m_k = m.rod.mass, mu = m.rod.com_from_wrist_pin / l;
+  const double I_G = m.rod.inertia_about_wrist_pin - m_k * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
+  const double M_t = (m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius) / r;
+  const std::vector<double> A = calcRadicalFourierCoefficients(lambda, order + 2);
+  const std::vector<double> B = calcInverseRadicalFourierCoefficients(lambda, order + 2);
+
+  // Per-cylinder series in theta (index h = 0..order): e-force cosines, n-force sines, Z-moment sines.
+  std::vector<double> f_e(order + 1, 0.0), f_n(order + 1, 0.0), m_z(order + 1, 0.0);
+  f_e[1] = -w2 * (m_o + m_k + M_t) * r;
+  f_n[1] = -w2 * (mu * m_k + M_t) * r;
+  for (int h = 2; h <= order; h += 2) f_e[h] = -w2 * (m_o + (1.0 - mu) * m_k) * l * h * h * A[h];
+  // -(p_OG x m_k a_G) = K sin(theta) sum_h (1 - h^2) A_h cos(h theta); sin cos(h .) = (sin((h+1) .) - sin((h-1) .)) / 2.
+  const double K = m_k * (1.0 - mu) * mu * r * l * w2;
+  m_z[1] += K * A[0];
+  for (int h = 2; h <= order + 1; h += 2) {
+    const double c = 0.5 * K * (1.0 - h * h) * A[h];
+    if (h + 1 <= order) m_z[h + 1] += c;
+    m_z[h - 1] -= c;
+  }
+  // -I_G psi_ddot = -I_G omega^2 sum_h h C_h sin(h theta), C_h the cosine series of beta'.
+  for (int h = 1; h <= order; h += 2) {
+    const double C = h == 1 ? lambda * (B[0] + 0.5 * B[2]) : 0.5 * lambda * (B[h - 1] + B[h + 1]);
+    m_z[h] -= I_G * w2 * h * C;
+  }
+
+  std::vector<ShakingHarmonic> out;
+  for (int n = 1; n <= order; ++n) {
+    ShakingHarmonic s;
+    s.n = n;
+    for (int j = 0; j < m.engine.cylinders; ++j) {
+      const SinCos gamma = calcSinCos(getBankAngle(m, j));
+      const SinCos phase = calcSinCos(n * m.engine.crank_angles[j]);  // n alpha_j
+      const double z = getAxialPosition(m, j);
+      // m a (the mass times acceleration sums) in the cylinder frame: cos(n phi) and sin(n phi) parts.
+      //   f_e cos(n theta) = f_e (cos n phi cos n alpha - sin n phi sin n alpha); f_n sin theta = f_n (sin phi cos alpha + cos phi sin alpha)
+      const double e_cos = f_e[n] * phase.cos, e_sin = -f_e[n] * phase.sin;
+      const double n_cos = n == 1 ? f_n[1] * phase.sin : 0.0, n_sin = n == 1 ? f_n[1] * phase.cos : 0.0;
+      const double X_cos = e_cos * gamma.cos - n_cos * gamma.sin, Y_cos = e_cos * gamma.sin + n_cos * gamma.cos;
+      const double X_sin = e_sin * gamma.cos - n_sin * gamma.sin, Y_sin = e_sin * gamma.sin + n_sin * gamma.cos;
+      // F_s = -sum m a; M_X = z (m a)_Y, M_Y = -z (m a)_X (calcShaking); m_z is already the moment, negated.
+      s.force_cos[0] -= X_cos;
+      s.force_cos[1] -= Y_cos;
+      s.force_sin[0] -= X_sin;
+      s.force_sin[1] -= Y_sin;
+      s.moment_cos[0] += z * Y_cos;
+      s.moment_sin[0] += z * Y_sin;
+      s.moment_cos[1] -= z * X_cos;
+      s.moment_sin[1] -= z * X_sin;
+      // m_z sin(n theta) = m_z (sin n phi cos n alpha + cos n phi sin n alpha)
+      s.moment_cos[2] += m_z[n] * phase.sin;
+      s.moment_sin[2] += m_z[n] * phase.cos;
+    }
+    out.push_back(s);
+  }
+  return out;
+}
+
+bool isZeroSumOfRootsOfUnity(const std::vector<long long>& degrees, const std::vector<long long>& weights) {
+  if (degrees.size() != weights.size()) throw std::invalid_argument("isZeroSumOfRootsOfUnity: spans differ in length");
+  // Coefficient of x^k, k = 0..359, grouped by k mod 12 into polynomials in y = x^12 of degree < 30.
+  Int128 poly[12][30] = {};
+  for (size_t j = 0; j < degrees.size(); ++j) {
+    const long long k = ((degrees[j] % 360) + 360) % 360;
+    poly[k % 12][k / 12] += weights[j];
+  }
+  static constexpr int kPhi30[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1};  // coefficients of y^0 .. y^8
+  for (auto& p : poly) {
+    for (int top = 29; top >= 8; --top) {  // long division by the monic Phi_30
+      const Int128 c = p[top];
+      if (c == 0) continue;
+      for (int t = 0; t <= 8; ++t) p[top - 8 + t] -= c * kPhi30[t];
+    }
+    for (int t = 0; t < 8; ++t)
+      if (p[t] != 0) return false;
+  }
+  return true;
+}
+
+namespace {
+
+// x in whole units of `unit` (degrees: 1; nanometres: 1e-9), if it is one to rounding of the conversion.
+bool toWhole(double x, double unit, long long& out) {
+  const double scaled = x / unit, rounded = std::nearbyint(scaled);
+  if (!(std::fabs(scaled - rounded) <= 1e-6 * std::max(1.0, std::fabs(scaled))) || std::fabs(rounded) > 1e15) return false;
+  out = static_cast<long long>(rounded);
+  return true;
+}
+
+}  // namespace
+
+HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n) {
+  HarmonicSymmetry s;
+  const int k = m.engine.cylinders;
+  std::vector<long long> gamma(k), beta(k), z(k), ones(k, 1);
+  for (int j = 0; j < k; ++j) {
+    if (!toWhole(degreesFromRadians(getBankAngle(m, j)), 1.0, gamma[j]) ||
+        !toWhole(degreesFromRadians(getBankAngle(m, j)) + degreesFromRadians(m.engine.crank_angles[j]), 1.0, beta[j]) ||
+        !toWhole(getAxialPosition(m, j), 1e-9, z[j]))
+      return s;
+  }
+  std::vector<long long> forward(k), backward(k), alpha(k);
+  for (int j = 0; j < k; ++j) {
+    forward[j] = n * beta[j] - (n - 1) * gamma[j];
+    backward[j] = (n + 1) * gamma[j] - n * beta[j];
+    alpha[j] = n * (beta[j] - gamma[j]);
+  }
+  s.decided = true;
+  s.force_cancels = isZeroSumOfRootsOfUnity(forward, ones) && isZeroSumOfRootsOfUnity(backward, ones);
+  s.moment_xy_cancels = isZeroSumOfRootsOfUnity(forward, z) && isZeroSumOfRootsOfUnity(backward, z);
+  s.moment_z_cancels = isZeroSumOfRootsOfUnity(alpha, ones);
   return s;
 }
 

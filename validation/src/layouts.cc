@@ -61,6 +61,14 @@ std::vector<Layout> getBalanceLayouts() {
   Layout radial{"radial5", "five-cylinder radial, every rod on one crank pin (no master rod), banks 72 deg apart", {}};
   for (int j = 0; j < 5; ++j) radial.cylinders.push_back({90.0 + 72.0 * j, 0.0, 0.0});
   layouts.push_back(radial);
+  // The crank centre O at the middle of the engine (mean z = 0): the shaking moment about O is then the couple
+  // the balance tables speak of, not that couple plus z x the free force.
+  for (Layout& layout : layouts) {
+    double mean = 0.0;
+    for (const CylinderPlace& c : layout.cylinders) mean += c.axial_position;
+    mean /= static_cast<double>(layout.cylinders.size());
+    for (CylinderPlace& c : layout.cylinders) c.axial_position = std::round((c.axial_position - mean) * 1e9) / 1e9;
+  }
   return layouts;
 }
 

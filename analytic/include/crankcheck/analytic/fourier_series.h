@@ -22,6 +22,13 @@ namespace crankcheck::analytic {
 /// @throws std::invalid_argument unless 0 <= lambda < 1 and order >= 0.
 std::vector<double> calcRadicalFourierCoefficients(double lambda, int order);
 
+/// B_0, ..., B_order of the inverse radical, 1 / sqrt(1 - lambda^2 sin^2 theta) = B_0 + sum_{m >= 1} B_{2m} cos(2 m theta)
+/// (odd ones are zero), from the same closed form with b_n = binomial(-1/2, n) and c^(-1/2):
+/// B_0 = c^(-1/2) sum_n b_n^2 q^{2n}, B_{2m} = 2 c^(-1/2) sum_n b_n b_{n+m} q^{2n+m}. The rod's angular velocity per
+/// radian of crank, beta' = lambda cos(theta) / sqrt(1 - lambda^2 sin^2 theta), is a cosine series built from them
+/// (shaking.h). @throws std::invalid_argument unless 0 <= lambda < 1 and order >= 0.
+std::vector<double> calcInverseRadicalFourierCoefficients(double lambda, int order);
+
 /// Lambda_0 .. Lambda_order (odd and zero entries are zero) from the closed form: Lambda_n = n A_n / lambda
 /// (for lambda = 0 the limit: Lambda_2 = lambda/2 -> 0, all zero).
 /// @throws std::invalid_argument unless 0 <= lambda < 1 and order >= 0.

@@ -12,6 +12,7 @@
 /// masses turn on circles: their p x m a has no Z part, but off the plane z = 0 it gives the rotating couple.
 
 #include <array>
+#include <vector>
 
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
@@ -25,5 +26,54 @@ struct Shaking {
 
 /// F_s and M_s at crank angle phi [rad] and the scene's omega; gravity and gas do not enter.
 Shaking calcShaking(const Mechanism& m, double phi);
+
+}  // namespace crankcheck::analytic
+
+namespace crankcheck::analytic {
+
+/// Harmonic n of the shaking force and moment at constant speed:
+///   F_s(phi) = sum_n force_cos cos(n phi) + force_sin sin(n phi), the same for each component of M_s.
+struct ShakingHarmonic {
+  int n = 0;
+  Vec2 force_cos{}, force_sin{};                     ///< [N] X, Y
+  std::array<double, 3> moment_cos{}, moment_sin{};  ///< [N m] X, Y, Z about O
+  /// [N] the largest |F_n(phi)| over the turn: the force of one harmonic traces an ellipse, this is its semi-major
+  /// axis (the sum of the magnitudes of its forward- and backward-turning parts).
+  double calcForceAmplitude() const;
+  /// [N m] hypot(cos, sin) of moment component `axis` (0: X, 1: Y, 2: Z).
+  double calcMomentAmplitude(int axis) const;
+};
+
+/// Harmonics n = 1..order of F_s and M_s in closed form, per cylinder, from the exact Fourier coefficients A_n of
+/// the radical and B_n of its inverse (fourier_series.h), each cylinder at its own phase theta_j = phi + alpha_j, in
+/// its own bank and plane. In cylinder j's frame (mu = z_k / l, M_t = (m_s r_s - m_p r_p) / r, I_G = I_o - m_k z_k^2):
+///   force along e:  -omega^2 [ (m_o + m_k + M_t) r cos(theta) + (m_o + (1 - mu) m_k) l sum_h h^2 A_h cos(h theta) ]
+///   force along n:  -omega^2 (mu m_k + M_t) r sin(theta)
+///   moment about Z: m_k (1 - mu) mu r l omega^2 sin(theta) sum_h (1 - h^2) A_h cos(h theta)
+///                   - I_G omega^2 sum_h h C_h sin(h theta),  C_1 = lambda (B_0 + B_2 / 2), C_h = lambda (B_{h-1} + B_{h+1}) / 2
+/// (the mass times acceleration of piston, rod and throw; the rod's angular velocity per radian of crank is
+/// sum_h C_h cos(h theta)), negated; the X and Y moments are z_j times the force's Y and -X parts.
+/// @throws std::invalid_argument if order < 1.
+std::vector<ShakingHarmonic> calcShakingHarmonics(const Mechanism& m, int order);
+
+/// Which parts of harmonic n vanish exactly because of the layout's symmetry, whatever the masses: with every bank
+/// and throw angle a whole number of degrees and every axial position a whole number of nanometres, the sums over
+/// the cylinders that carry harmonic n are sums of 360th roots of unity with integer weights, decided exactly:
+///   force:           sum_j e^{i (n beta_j - (n - 1) gamma_j)} = 0 and sum_j e^{i ((n + 1) gamma_j - n beta_j)} = 0
+///                    (the forward- and backward-turning parts);
+///   moment X and Y:  the same sums weighted by z_j;
+///   moment Z:        sum_j e^{i n alpha_j} = 0.
+struct HarmonicSymmetry {
+  bool decided = false;  ///< false when an angle is not a whole degree or a position not a whole nanometre
+  bool force_cancels = false, moment_xy_cancels = false, moment_z_cancels = false;
+};
+HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n);
+
+/// Exactly whether sum_j weights[j] e^{2 pi i degrees[j] / 360} = 0 (integer degrees, any sign; integer weights).
+/// Since the 360th cyclotomic polynomial is Phi_30(x^12) and 1, z, ..., z^11 are a basis of Q(z) over Q(z^12), the
+/// sum is zero exactly when, for each residue r mod 12, the polynomial of the terms with degrees = r (mod 12) in
+/// y = x^12 is divisible by Phi_30(y) = y^8 + y^7 - y^5 - y^4 - y^3 + y + 1 (integer arithmetic throughout).
+/// @throws std::invalid_argument if the spans differ in length.
+bool isZeroSumOfRootsOfUnity(const std::vector<long long>& degrees, const std::vector<long long>& weights);
 
 }  // namespace crankcheck::analytic

@@ -3,7 +3,8 @@
 /// The engine layouts of the balance table and of the gate's layout sweep: inline 1-6, 8, 12; V6 at 60 and 90
 /// degrees; V8 cross-plane and flat-plane; V12; boxer 4 and 6; a 45 degree V-twin; a five-cylinder radial. Each is
 /// built on one passenger-car cylinder (the campaign's base parts), with its textbook crank arrangement, its
-/// cylinders spaced along the shaft (throws 0.1 m apart, the two cylinders of a shared pin 0.02 m apart), and
+/// cylinders spaced along the shaft (throws 0.1 m apart, the two cylinders of a shared pin 0.02 m apart; the crank
+/// centre O at the middle, so that moments about O are the couples of the balance tables), and
 /// turned as a whole by `rotation_deg` (0: as built, V bisectors and inline banks vertical; 90: lying; 180: hanging).
 /// Angles follow ../shared/CONVENTIONS.md "Layouts": bank gamma_j, throw beta_j, theta_j = phi + beta_j - gamma_j.
 

@@ -1,0 +1,177 @@
+// Shaking force and moment in closed form (analytic/shaking.h), against what they did not come from: their
+// harmonics summed back (the Fourier coefficients against the time functions, two different closed forms), the
+// product identity of the radical and its inverse, a DFT of the inverse radical, sums of roots of unity of known
+// value, and the textbook balance of the classic layouts.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <vector>
+
+#include "../support/cases.h"
+#include "crankcheck/analytic/fourier_series.h"
+#include "crankcheck/analytic/shaking.h"
+#include "crankcheck/validation/layouts.h"
+#include "crankcheck/validation/scales.h"
+
+namespace crankcheck {
+namespace {
+
+using validation::kEps;
+
+// sqrt(1 - lambda^2 sin^2) x (1 / sqrt(1 - lambda^2 sin^2)) = 1: the product of the two cosine series (a
+// convolution of their coefficients) has constant term 1 and no harmonics. Tolerance: each coefficient is summed to
+// eps relative and the inverse radical is at most 1 / sqrt(1 - lambda^2); the convolution adds up to `order`
+// products whose sum of magnitudes stays below 2 / sqrt(1 - lambda^2): 64 eps times that.
+TEST(InverseRadical, TimesTheRadicalIsOne) {
+  for (double lambda : {1e-6, 0.05, 0.3, 0.6, 0.9, 0.999}) {
+    SCOPED_TRACE(lambda);
+    const int order = lambda > 0.95 ? 3000 : 300;
+    const std::vector<double> a = analytic::calcRadicalFourierCoefficients(lambda, order);
+    const std::vector<double> b = analytic::calcInverseRadicalFourierCoefficients(lambda, order);
+    const int M = order / 2;
+    auto A = [&](int m) { return m <= M ? a[2 * m] : 0.0; };
+    auto B = [&](int m) { return m <= M ? b[2 * m] : 0.0; };
+    const double tol = 64 * kEps * 2.0 / std::sqrt((1 - lambda) * (1 + lambda));
+    for (int p = 0; p <= 6; ++p) {
+      // coefficient of cos(2 p theta) in the product
+      double c = 0.0;
+      if (p == 0) {
+        c = A(0) * B(0);
+        for (int m = 1; m <= M; ++m) c += 0.5 * A(m) * B(m);
+      } else {
+        c = A(0) * B(p) + A(p) * B(0);
+        for (int m = 1; m < p; ++m) c += 0.5 * A(m) * B(p - m);
+        for (int m = 1; m + p <= M; ++m) c += 0.5 * (A(m) * B(m + p) + A(m + p) * B(m));
+      }
+      EXPECT_TRUE(testing::isClose(c, p == 0 ? 1.0 : 0.0, tol)) << "harmonic " << 2 * p;
+    }
+  }
+}
+
+// The coefficients against a DFT of the function itself over N = 4096 points (aliasing below q^2048: nothing).
+// Rounding of the plain sum: (N - 1) eps times the sum of magnitudes, times 2 / N: 2 N eps max|f|.
+TEST(InverseRadical, AgreesWithADftOfTheFunction) {
+  constexpr int N = 4096;
+  for (double lambda : {0.05, 0.3, 0.9}) {
+    SCOPED_TRACE(lambda);
+    const std::vector<double> b = analytic::calcInverseRadicalFourierCoefficients(lambda, 12);
+    const double f_max = 1.0 / std::sqrt((1 - lambda) * (1 + lambda));
+    for (int n = 0; n <= 12; ++n) {
+      double sum = 0.0;
+      for (int i = 0; i < N; ++i) {
+        const double theta = 2.0 * M_PI * i / N, s = std::sin(theta);
+        sum += std::cos(n * theta) / std::sqrt(1.0 - lambda * lambda * s * s);
+      }
+      const double dft = (n == 0 ? 1.0 : 2.0) * sum / N;
+      EXPECT_TRUE(testing::isClose(b[n], dft, 2.0 * N * kEps * f_max)) << "B_" << n;
+    }
+  }
+}
+
+// Known sums of 360th roots of unity: full cosets of d-th roots vanish, partial ones do not; the exact answer
+// agrees with the size of the floating-point sum.
+TEST(RootsOfUnity, KnownSums) {
+  struct Sum {
+    std::vector<long long> degrees, weights;
+    bool zero;
+  };
+  const std::vector<Sum> sums = {
+      {{0, 120, 240}, {1, 1, 1}, true},          {{0, 90}, {1, 1}, false},
+      {{0, 72, 144, 216, 288}, {1, 1, 1, 1, 1}, true}, {{0, 180}, {2, 2}, true},
+      {{0, 180}, {2, 3}, false},                 {{0, 60, 120}, {1, 1, 1}, false},
+      {{1, 181}, {7, 7}, true},                  {{0, 40, 80, 120, 160, 200, 240, 280, 320}, {1, 1, 1, 1, 1, 1, 1, 1, 1}, true},
+      {{0, 45}, {1, 1}, false},                  {{-120, 0, 120}, {3, 3, 3}, true},
+      {{0, 180, 0, 120, 240}, {1, 1, 1, 1, 1}, true},  // a 2-coset plus a 3-coset
+      {{60, 180, 300, 90, 270}, {5, 5, 5, 2, 2}, true},
+      {{0, 72, 144, 216}, {1, 1, 1, 1}, false},  {{10, 130, 250}, {150000000, 150000000, 150000000}, true},
+      {{0, 120, 240}, {1, 1, 2}, false},
+  };
+  for (const Sum& s : sums) {
+    std::complex<double> value = 0.0;
+    for (size_t j = 0; j < s.degrees.size(); ++j)
+      value += static_cast<double>(s.weights[j]) * std::polar(1.0, s.degrees[j] * M_PI / 180.0);
+    double scale = 0.0;
+    for (long long w : s.weights) scale += std::fabs(static_cast<double>(w));
+    EXPECT_EQ(analytic::isZeroSumOfRootsOfUnity(s.degrees, s.weights), s.zero) << "sum " << value;
+    if (s.zero) EXPECT_LT(std::abs(value), 64 * kEps * scale);
+    else EXPECT_GT(std::abs(value), 1e-3 * scale);
+  }
+}
+
+// The layouts at 6000 rpm on the gate's parts.
+Mechanism layoutMechanism(const std::string& name) {
+  for (const validation::Layout& layout : validation::getBalanceLayouts())
+    if (layout.name == name)
+      return validation::makeLayoutMechanism(
+          layout, testing::makeMechanism(testing::CaseSpec{1, Cycle::kFourStroke, Acting::kSingle, 0.3, 90.0, 6000.0}));
+  throw std::logic_error("no layout " + name);
+}
+
+// The harmonics (closed-form Fourier coefficients) summed back to order 60 equal the closed-form time functions
+// of calcShaking at every angle: truncation below lambda^60 (nothing at lambda = 0.3), rounding of 60 terms each
+// below the scale: 64 eps times the force scale, and the moment scale for moments.
+TEST(ShakingHarmonics, SumToTheShakingForceAndMoment) {
+  for (const validation::Layout& layout : validation::getBalanceLayouts()) {
+    SCOPED_TRACE(layout.name);
+    const Mechanism m = layoutMechanism(layout.name);
+    const validation::Scales sc = validation::calcScales(m);
+    const std::vector<analytic::ShakingHarmonic> harmonics = analytic::calcShakingHarmonics(m, 60);
+    for (double phi_deg : testing::sweepPhisDeg()) {
+      const double phi = radiansFromDegrees(phi_deg);
+      const analytic::Shaking direct = analytic::calcShaking(m, phi);
+      double F[2] = {0, 0}, M[3] = {0, 0, 0};
+      for (const analytic::ShakingHarmonic& h : harmonics) {
+        const double c = std::cos(h.n * phi), s = std::sin(h.n * phi);
+        for (int i = 0; i < 2; ++i) F[i] += h.force_cos[i] * c + h.force_sin[i] * s;
+        for (int i = 0; i < 3; ++i) M[i] += h.moment_cos[i] * c + h.moment_sin[i] * s;
+      }
+      for (int i = 0; i < 2; ++i) EXPECT_TRUE(testing::isClose(F[i], direct.force[i], 64 * kEps * sc.force)) << phi_deg;
+      for (int i = 0; i < 3; ++i) EXPECT_TRUE(testing::isClose(M[i], direct.moment[i], 64 * kEps * sc.moment)) << phi_deg;
+    }
+  }
+}
+
+// The textbook balance of the classic layouts (e.g. Norton ch. 14; Taylor, The Internal-Combustion Engine in Theory
+// and Practice, vol. 2, ch. 8): which primary (n = 1) and secondary (n = 2) forces and couples vanish by symmetry.
+// The exact finder must say so, and where it says "cancels" the closed-form amplitude is rounding.
+TEST(ShakingHarmonics, TextbookSymmetriesOfTheClassicLayouts) {
+  struct Expect {
+    const char* layout;
+    bool F1, F2, M1, M2;  // cancels
+  };
+  const Expect table[] = {
+      {"inline3", true, true, false, false},         {"inline4", true, false, true, true},
+      {"inline6", true, true, true, true},           {"inline8", true, true, true, true},
+      {"V8_cross_plane", true, true, false, true},
+      // The tables put both cylinders of a pin in one plane; here they sit 0.02 m apart, so the two banks' secondary
+      // forces (which do not cancel in a flat-plane V8) act 0.02 m apart: a secondary couple the tables do not have.
+      {"V8_flat_plane", true, false, true, false},
+      {"V12_60", true, true, true, true},            {"boxer4", true, true, true, false},
+      {"boxer6", true, true, true, true},            {"radial5", false, true, true, true},
+      {"inline2", true, false, false, true},
+  };
+  for (const Expect& e : table) {
+    SCOPED_TRACE(e.layout);
+    const Mechanism m = layoutMechanism(e.layout);
+    const validation::Scales sc = validation::calcScales(m);
+    const auto harmonics = analytic::calcShakingHarmonics(m, 2);
+    const bool expected_force[2] = {e.F1, e.F2}, expected_moment[2] = {e.M1, e.M2};
+    for (int n = 1; n <= 2; ++n) {
+      const analytic::HarmonicSymmetry s = analytic::findHarmonicSymmetry(m, n);
+      ASSERT_TRUE(s.decided);
+      EXPECT_EQ(s.force_cancels, expected_force[n - 1]) << "force, n = " << n;
+      EXPECT_EQ(s.moment_xy_cancels, expected_moment[n - 1]) << "couple, n = " << n;
+      const analytic::ShakingHarmonic& h = harmonics[n - 1];
+      if (s.force_cancels) EXPECT_LT(h.calcForceAmplitude(), 64 * kEps * sc.force) << n;
+      else EXPECT_GT(h.calcForceAmplitude(), 1e-6 * sc.force) << n;
+      const double couple = std::hypot(h.calcMomentAmplitude(0), h.calcMomentAmplitude(1));
+      if (s.moment_xy_cancels) EXPECT_LT(couple, 64 * kEps * sc.moment) << n;
+      else EXPECT_GT(couple, 1e-6 * sc.moment) << n;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace crankcheck
