@@ -7,6 +7,7 @@
 #include <iostream>
 #include <new>
 
+#include "balance_command.h"
 #include "eval_command.h"
 #include "motion_command.h"
 #include "validate_command.h"
@@ -55,6 +56,11 @@ int main(int argc, char** argv) {
       "motion", "The free run under gravity: speed fluctuation delta with and without gravity, analytic and Simbody");
   crankcheck::app::addMotionOptions(*motion_cmd, motion);
 
+  crankcheck::app::BalanceOptions balance;
+  CLI::App* balance_cmd = app.add_subcommand(
+      "balance", "Shaking force and moment harmonic by harmonic: closed form and Simbody, what vanishes by symmetry");
+  crankcheck::app::addBalanceOptions(*balance_cmd, balance);
+
   crankcheck::app::ValidateOptions validate;
   CLI::App* validate_cmd = app.add_subcommand(
       "validate", "The main job: cross-check both engines over a campaign and write the report (figures, CSV, index)");
@@ -81,6 +87,7 @@ int main(int argc, char** argv) {
     std::string output;
     if (eval_cmd->parsed()) output = crankcheck::app::runEval(eval);
     if (motion_cmd->parsed()) output = crankcheck::app::runMotion(motion);
+    if (balance_cmd->parsed()) output = crankcheck::app::runBalance(balance);
     std::fwrite(output.data(), 1, output.size(), stdout);  // only complete results are ever printed
     if (std::fflush(stdout) != 0) throw crankcheck::EnvironmentError("stdout: cannot write the results");
     return 0;

@@ -1,6 +1,7 @@
 #include "crankcheck/analytic/shaking.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -118,13 +119,24 @@ std::vector<ShakingHarmonic> calcShakingHarmonics(const Mechanism& m, int order)
   return out;
 }
 
-bool isZeroSumOfRootsOfUnity(const std::vector<long long>& degrees, const std::vector<long long>& weights) {
-  if (degrees.size() != weights.size()) throw std::invalid_argument("isZeroSumOfRootsOfUnity: spans differ in length");
-  // Coefficient of x^k, k = 0..359, grouped by k mod 12 into polynomials in y = x^12 of degree < 30.
-  Int128 poly[12][30] = {};
-  for (size_t j = 0; j < degrees.size(); ++j) {
-    const long long k = ((degrees[j] % 360) + 360) % 360;
-    poly[k % 12][k / 12] += weights[j];
+bool isZeroSumOfRootsOfUnity(const std::vector<long long>& exponents, const std::vector<long long>& weights,
+                             long long parts_per_turn) {
+  if (exponents.size() != weights.size()) throw std::invalid_argument("isZeroSumOfRootsOfUnity: spans differ in length");
+  // N = 2^a 3^b 5^c (a, b, c >= 1) has radical 30, so Phi_N(x) = Phi_30(x^(N / 30)), and 1, z, ..., z^(N/30 - 1)
+  // are a basis of Q(z) over Q(z^(N/30)).
+  long long rest = parts_per_turn;
+  for (long long p : {2, 3, 5}) {
+    if (rest % p != 0) rest = -1;
+    while (rest > 0 && rest % p == 0) rest /= p;
+  }
+  if (rest != 1 || parts_per_turn > 100000)
+    throw std::invalid_argument("isZeroSumOfRootsOfUnity: parts_per_turn must be 2^a 3^b 5^c with a, b, c >= 1");
+  const long long M = parts_per_turn / 30;
+  // Coefficient of x^k, k = 0..N-1, grouped by k mod M into polynomials in y = x^M of degree < 30.
+  std::vector<std::array<Int128, 30>> poly(static_cast<size_t>(M), std::array<Int128, 30>{});
+  for (size_t j = 0; j < exponents.size(); ++j) {
+    const long long k = ((exponents[j] % parts_per_turn) + parts_per_turn) % parts_per_turn;
+    poly[static_cast<size_t>(k % M)][static_cast<size_t>(k / M)] += weights[j];
   }
   static constexpr int kPhi30[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1};  // coefficients of y^0 .. y^8
   for (auto& p : poly) {
@@ -152,12 +164,15 @@ bool toWhole(double x, double unit, long long& out) {
 }  // namespace
 
 HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n) {
+  // Angles in eighths of a degree (a V of 45 degrees has banks at 90 +- 22.5), one turn = 2880 parts.
+  constexpr long long kTurn = 2880;
   HarmonicSymmetry s;
   const int k = m.engine.cylinders;
   std::vector<long long> gamma(k), beta(k), z(k), ones(k, 1);
   for (int j = 0; j < k; ++j) {
-    if (!toWhole(degreesFromRadians(getBankAngle(m, j)), 1.0, gamma[j]) ||
-        !toWhole(degreesFromRadians(getBankAngle(m, j)) + degreesFromRadians(m.engine.crank_angles[j]), 1.0, beta[j]) ||
+    const double gamma_deg = degreesFromRadians(getBankAngle(m, j));
+    if (!toWhole(gamma_deg, 0.125, gamma[j]) ||
+        !toWhole(gamma_deg + degreesFromRadians(m.engine.crank_angles[j]), 0.125, beta[j]) ||
         !toWhole(getAxialPosition(m, j), 1e-9, z[j]))
       return s;
   }
@@ -168,9 +183,9 @@ HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n) {
     alpha[j] = n * (beta[j] - gamma[j]);
   }
   s.decided = true;
-  s.force_cancels = isZeroSumOfRootsOfUnity(forward, ones) && isZeroSumOfRootsOfUnity(backward, ones);
-  s.moment_xy_cancels = isZeroSumOfRootsOfUnity(forward, z) && isZeroSumOfRootsOfUnity(backward, z);
-  s.moment_z_cancels = isZeroSumOfRootsOfUnity(alpha, ones);
+  s.force_cancels = isZeroSumOfRootsOfUnity(forward, ones, kTurn) && isZeroSumOfRootsOfUnity(backward, ones, kTurn);
+  s.moment_xy_cancels = isZeroSumOfRootsOfUnity(forward, z, kTurn) && isZeroSumOfRootsOfUnity(backward, z, kTurn);
+  s.moment_z_cancels = isZeroSumOfRootsOfUnity(alpha, ones, kTurn);
   return s;
 }
 

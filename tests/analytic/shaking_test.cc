@@ -88,6 +88,12 @@ TEST(RootsOfUnity, KnownSums) {
       {{0, 72, 144, 216}, {1, 1, 1, 1}, false},  {{10, 130, 250}, {150000000, 150000000, 150000000}, true},
       {{0, 120, 240}, {1, 1, 2}, false},
   };
+  // Eighths of a degree (2880 parts per turn): the 16th roots (22.5 degrees = 180 parts) vanish, a 45 degree V's
+  // two banks (112.5 and 67.5 degrees) do not.
+  EXPECT_TRUE(analytic::isZeroSumOfRootsOfUnity({0, 180, 360, 540, 720, 900, 1080, 1260, 1440, 1620, 1800, 1980, 2160,
+                                                 2340, 2520, 2700}, std::vector<long long>(16, 1), 2880));
+  EXPECT_FALSE(analytic::isZeroSumOfRootsOfUnity({900, 540}, {1, 1}, 2880));
+  EXPECT_THROW(analytic::isZeroSumOfRootsOfUnity({0}, {1}, 7), std::invalid_argument);
   for (const Sum& s : sums) {
     std::complex<double> value = 0.0;
     for (size_t j = 0; j < s.degrees.size(); ++j)

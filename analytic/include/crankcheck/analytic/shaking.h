@@ -57,23 +57,26 @@ struct ShakingHarmonic {
 std::vector<ShakingHarmonic> calcShakingHarmonics(const Mechanism& m, int order);
 
 /// Which parts of harmonic n vanish exactly because of the layout's symmetry, whatever the masses: with every bank
-/// and throw angle a whole number of degrees and every axial position a whole number of nanometres, the sums over
-/// the cylinders that carry harmonic n are sums of 360th roots of unity with integer weights, decided exactly:
+/// and throw angle a whole number of eighths of a degree and every axial position a whole number of nanometres, the
+/// sums over the cylinders that carry harmonic n are sums of 2880th roots of unity with integer weights, decided
+/// exactly (isZeroSumOfRootsOfUnity):
 ///   force:           sum_j e^{i (n beta_j - (n - 1) gamma_j)} = 0 and sum_j e^{i ((n + 1) gamma_j - n beta_j)} = 0
 ///                    (the forward- and backward-turning parts);
 ///   moment X and Y:  the same sums weighted by z_j;
 ///   moment Z:        sum_j e^{i n alpha_j} = 0.
 struct HarmonicSymmetry {
-  bool decided = false;  ///< false when an angle is not a whole degree or a position not a whole nanometre
+  bool decided = false;  ///< false when an angle is not a whole 1/8 degree or a position not a whole nanometre
   bool force_cancels = false, moment_xy_cancels = false, moment_z_cancels = false;
 };
 HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n);
 
-/// Exactly whether sum_j weights[j] e^{2 pi i degrees[j] / 360} = 0 (integer degrees, any sign; integer weights).
-/// Since the 360th cyclotomic polynomial is Phi_30(x^12) and 1, z, ..., z^11 are a basis of Q(z) over Q(z^12), the
-/// sum is zero exactly when, for each residue r mod 12, the polynomial of the terms with degrees = r (mod 12) in
-/// y = x^12 is divisible by Phi_30(y) = y^8 + y^7 - y^5 - y^4 - y^3 + y + 1 (integer arithmetic throughout).
-/// @throws std::invalid_argument if the spans differ in length.
-bool isZeroSumOfRootsOfUnity(const std::vector<long long>& degrees, const std::vector<long long>& weights);
+/// Exactly whether sum_j weights[j] e^{2 pi i exponents[j] / parts_per_turn} = 0 (integer exponents of any sign,
+/// integer weights), for parts_per_turn = 2^a 3^b 5^c with a, b, c >= 1 (360: degrees; 2880: eighths of a degree).
+/// Such an N has radical 30, so its cyclotomic polynomial is Phi_30(x^(N/30)) and 1, z, ..., z^(N/30 - 1) are a basis
+/// of Q(z) over Q(z^(N/30)): the sum is zero exactly when, for each residue r mod N/30, the polynomial of the terms
+/// with exponent = r (mod N/30) in y = x^(N/30) is divisible by Phi_30(y) = y^8 + y^7 - y^5 - y^4 - y^3 + y + 1.
+/// Integer arithmetic throughout. @throws std::invalid_argument if the spans differ in length or N is not such.
+bool isZeroSumOfRootsOfUnity(const std::vector<long long>& exponents, const std::vector<long long>& weights,
+                             long long parts_per_turn = 360);
 
 }  // namespace crankcheck::analytic

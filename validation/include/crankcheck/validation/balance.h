@@ -1,0 +1,28 @@
+#pragma once
+/// @file
+/// Balance: the shaking force and moment harmonic by harmonic, from both engines. The analytic engine gives each
+/// harmonic in closed form (analytic/shaking.h: calcShakingHarmonics) and decides exactly which vanish by symmetry
+/// (findHarmonicSymmetry); Simbody's harmonics come from a DFT of its own shaking force and moment over one
+/// revolution (KCrankModel::evaluate at `samples` equally spaced crank angles).
+
+#include <vector>
+
+#include "crankcheck/analytic/shaking.h"
+#include "crankcheck/scene/mechanism.h"
+
+namespace crankcheck::validation {
+
+struct BalanceRow {
+  int n = 0;
+  analytic::ShakingHarmonic analytic;   ///< closed form
+  analytic::ShakingHarmonic simbody;    ///< DFT of Simbody's F_s and M_s
+  analytic::HarmonicSymmetry symmetry;  ///< what vanishes exactly by the layout's symmetry
+};
+
+/// Harmonics 1..order of both engines. `samples` = 0 chooses max(64, 4 order) angles per revolution: the DFT then
+/// folds harmonic samples - n onto n, whose size is below lambda^(samples - n) times the primary (nothing at engine
+/// crank ratios; the README states the bound).
+/// @throws std::invalid_argument if order < 1 or samples is not 0 and below 2 order + 1; what KCrankModel throws.
+std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples = 0);
+
+}  // namespace crankcheck::validation
