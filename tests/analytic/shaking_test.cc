@@ -7,6 +7,8 @@
 
 #include <cmath>
 #include <complex>
+#include <optional>
+#include <set>
 #include <vector>
 
 #include "../support/cases.h"
@@ -139,36 +141,32 @@ TEST(ShakingHarmonics, SumToTheShakingForceAndMoment) {
   }
 }
 
-// The textbook balance of the classic layouts (e.g. Norton ch. 14; Taylor, The Internal-Combustion Engine in Theory
-// and Practice, vol. 2, ch. 8): which primary (n = 1) and secondary (n = 2) forces and couples vanish by symmetry.
-// The exact finder must say so, and where it says "cancels" the closed-form amplitude is rounding.
+// The textbook balance of the classic layouts (validation/layouts.h holds the tables' claims): which primary (n = 1)
+// and secondary (n = 2) forces and couples vanish by symmetry. The exact finder must agree with the tables except
+// where this geometry differs from theirs (named below), and where it says "vanishes" the closed-form amplitude is
+// rounding, where it says "does not" the amplitude is physical.
 TEST(ShakingHarmonics, TextbookSymmetriesOfTheClassicLayouts) {
-  struct Expect {
-    const char* layout;
-    bool F1, F2, M1, M2;  // cancels
-  };
-  const Expect table[] = {
-      {"inline3", true, true, false, false},         {"inline4", true, false, true, true},
-      {"inline6", true, true, true, true},           {"inline8", true, true, true, true},
-      {"V8_cross_plane", true, true, false, true},
-      // The tables put both cylinders of a pin in one plane; here they sit 0.02 m apart, so the two banks' secondary
-      // forces (which do not cancel in a flat-plane V8) act 0.02 m apart: a secondary couple the tables do not have.
-      {"V8_flat_plane", true, false, true, false},
-      {"V12_60", true, true, true, true},            {"boxer4", true, true, true, false},
-      {"boxer6", true, true, true, true},            {"radial5", false, true, true, true},
-      {"inline2", true, false, false, true},
-  };
-  for (const Expect& e : table) {
-    SCOPED_TRACE(e.layout);
-    const Mechanism m = layoutMechanism(e.layout);
+  // The tables put both cylinders of a pin in one plane; here they sit 0.02 m apart, so in a flat-plane V8 the two
+  // banks' secondary forces (which do not cancel) act 0.02 m apart: a secondary couple the tables do not have.
+  const std::set<std::string> expected_differences = {"V8_flat_plane M2"};
+  int compared = 0;
+  for (const validation::Layout& layout : validation::getBalanceLayouts()) {
+    SCOPED_TRACE(layout.name);
+    const Mechanism m = layoutMechanism(layout.name);
     const validation::Scales sc = validation::calcScales(m);
     const auto harmonics = analytic::calcShakingHarmonics(m, 2);
-    const bool expected_force[2] = {e.F1, e.F2}, expected_moment[2] = {e.M1, e.M2};
+    const std::optional<bool> claims[2][2] = {{layout.textbook.F1, layout.textbook.F2}, {layout.textbook.M1, layout.textbook.M2}};
     for (int n = 1; n <= 2; ++n) {
       const analytic::HarmonicSymmetry s = analytic::findHarmonicSymmetry(m, n);
       ASSERT_TRUE(s.decided);
-      EXPECT_EQ(s.force_cancels, expected_force[n - 1]) << "force, n = " << n;
-      EXPECT_EQ(s.moment_xy_cancels, expected_moment[n - 1]) << "couple, n = " << n;
+      const bool found[2] = {s.force_cancels, s.moment_xy_cancels};
+      for (int part = 0; part < 2; ++part) {
+        const std::string what = layout.name + (part == 0 ? " F" : " M") + std::to_string(n);
+        if (!claims[part][n - 1]) continue;
+        ++compared;
+        if (expected_differences.count(what)) EXPECT_NE(found[part], *claims[part][n - 1]) << what;
+        else EXPECT_EQ(found[part], *claims[part][n - 1]) << what;
+      }
       const analytic::ShakingHarmonic& h = harmonics[n - 1];
       if (s.force_cancels) EXPECT_LT(h.calcForceAmplitude(), 64 * kEps * sc.force) << n;
       else EXPECT_GT(h.calcForceAmplitude(), 1e-6 * sc.force) << n;
@@ -177,6 +175,7 @@ TEST(ShakingHarmonics, TextbookSymmetriesOfTheClassicLayouts) {
       else EXPECT_GT(couple, 1e-6 * sc.moment) << n;
     }
   }
+  EXPECT_GE(compared, 60);
 }
 
 }  // namespace

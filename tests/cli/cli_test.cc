@@ -133,6 +133,36 @@ INSTANTIATE_TEST_SUITE_P(
                       BadRun{"nan_angle", {"eval", kSingle, "--phi-deg", "nan"}, "--phi-deg: item 1 of \"nan\": must be a finite"}),
     [](const auto& info) { return info.param.name; });
 
+// `crankcheck balance`: both engines per harmonic; what vanishes by symmetry is 0 with its reason; without axial
+// positions the X and Y moments are null, never 0.
+TEST(Cli, BalanceJson) {
+  const std::string scenes = CRANKCHECK_SCENES_DIR;
+  const RunResult r = testing::runCrankcheck({"balance", scenes + "/inline4_four_stroke.toml", "--order", "4", "--format", "json"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc["harmonics"].size(), 4u);
+  const auto& primary = doc["harmonics"][0];
+  EXPECT_EQ(primary["n"], 1);
+  EXPECT_EQ(primary["vanishes_by_symmetry"]["force"], true);
+  EXPECT_EQ(primary["analytic"]["shaking_force"]["amplitude"].get<double>(), 0.0);
+  EXPECT_NE(primary["reason"].get<std::string>().find("throws' phases cancel"), std::string::npos);
+  EXPECT_TRUE(primary["analytic"]["shaking_moment"]["X"].is_null());
+  EXPECT_TRUE(primary["vanishes_by_symmetry"]["moment_xy"].is_null());
+  const auto& secondary = doc["harmonics"][1];
+  EXPECT_EQ(secondary["vanishes_by_symmetry"]["force"], false);
+  const double a = secondary["analytic"]["shaking_force"]["amplitude"].get<double>();
+  const double s = secondary["simbody"]["shaking_force"]["amplitude"].get<double>();
+  EXPECT_GT(a, 1000.0);
+  EXPECT_LE(std::fabs(a - s), 1e-9 * a);  // the gate bounds this at 128 eps x scale x conditioning
+  // With axial positions, the couples are numbers.
+  const RunResult v8 = testing::runCrankcheck({"balance", scenes + "/v8_cross_plane.toml", "--order", "2", "--format", "json"});
+  ASSERT_EQ(v8.exit_status, 0) << v8.err;
+  EXPECT_TRUE(nlohmann::json::parse(v8.out)["harmonics"][0]["analytic"]["shaking_moment"]["X"]["amplitude"].is_number());
+  const RunResult bad = testing::runCrankcheck({"balance", scenes + "/v8_cross_plane.toml", "--order", "0"});
+  EXPECT_EQ(bad.exit_status, 2);
+  EXPECT_NE(bad.err.find("--order"), std::string::npos) << bad.err;
+}
+
 // Every command lists the exit statuses in its help, the same four codes.
 TEST(Cli, HelpListsTheExitStatuses) {
   const RunResult r = testing::runCrankcheck({"--help"});

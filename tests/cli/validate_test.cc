@@ -48,9 +48,10 @@ class ValidateTest : public ::testing::Test {
 };
 
 const char* kFigures[] = {"error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance", "norton_fig13_8",
-                          "delta_vs_k", "integrator_pareto"};
+                          "delta_vs_k", "integrator_pareto", "balance_harmonics"};
 const char* kTables[] = {"crosscheck", "error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance",
-                         "norton_fig13_8", "errata", "scenes", "delta_vs_k", "integrator_pareto"};
+                         "norton_fig13_8", "errata", "scenes", "delta_vs_k", "integrator_pareto", "balance",
+                         "balance_harmonics"};
 
 TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   const fs::path report = dir_ / "report";

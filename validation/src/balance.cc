@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/layouts.h"
+#include "crankcheck/validation/scales.h"
 
 namespace crankcheck::validation {
 
@@ -43,6 +46,51 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples) 
     rows.push_back(row);
   }
   return rows;
+}
+
+TableSet calcBalanceTables(const Mechanism& parts) {
+  constexpr int kOrder = 8;
+  Table summary, harmonics;
+  summary.columns = {"layout", "description", "part", "textbook", "vanishes_exactly", "analytic_amplitude",
+                     "simbody_amplitude", "relative_amplitude", "verdict"};
+  harmonics.columns = {"layout_index", "layout", "n", "force_relative", "couple_relative", "rocking_relative",
+                       "force_vanishes", "couple_vanishes"};
+  Mechanism base = parts;
+  base.speed_rpm = 6000.0;
+  base.engine.speed = 6000.0 * (M_PI / 30.0);
+  const std::vector<Layout> layouts = getBalanceLayouts();
+  for (size_t index = 0; index < layouts.size(); ++index) {
+    const Layout& layout = layouts[index];
+    const Mechanism m = makeLayoutMechanism(layout, base);
+    const Scales sc = calcScales(m);
+    const std::vector<BalanceRow> rows = calcBalance(m, kOrder);
+    for (const BalanceRow& row : rows) {
+      const analytic::HarmonicSymmetry& s = row.symmetry;
+      const double force = s.force_cancels ? 0.0 : row.analytic.calcForceAmplitude();
+      const double couple = s.moment_xy_cancels ? 0.0
+                                                : std::hypot(row.analytic.calcMomentAmplitude(0), row.analytic.calcMomentAmplitude(1));
+      const double rocking = s.moment_z_cancels ? 0.0 : row.analytic.calcMomentAmplitude(2);
+      harmonics.rows.push_back({std::to_string(index), layout.name, std::to_string(row.n), formatNumber(force / sc.force),
+                                formatNumber(couple / sc.moment), formatNumber(rocking / sc.moment),
+                                s.force_cancels ? "1" : "0", s.moment_xy_cancels ? "1" : "0"});
+      if (row.n > 2) continue;
+      const std::optional<bool> claims[2] = {row.n == 1 ? layout.textbook.F1 : layout.textbook.F2,
+                                             row.n == 1 ? layout.textbook.M1 : layout.textbook.M2};
+      for (int part = 0; part < 2; ++part) {
+        const bool vanishes = part == 0 ? s.force_cancels : s.moment_xy_cancels;
+        const double analytic = part == 0 ? force : couple;
+        const double simbody = part == 0 ? row.simbody.calcForceAmplitude()
+                                         : std::hypot(row.simbody.calcMomentAmplitude(0), row.simbody.calcMomentAmplitude(1));
+        const std::optional<bool>& claim = claims[part];
+        summary.rows.push_back({layout.name, layout.description, (part == 0 ? "F" : "M") + std::to_string(row.n),
+                                !claim ? "no claim" : *claim ? "vanishes" : "does not vanish", vanishes ? "yes" : "no",
+                                formatNumber(analytic), formatNumber(simbody),
+                                formatNumber(analytic / (part == 0 ? sc.force : sc.moment)),
+                                !claim ? "-" : *claim == vanishes ? "agrees" : "DIFFERS"});
+      }
+    }
+  }
+  return {{"balance", summary}, {"balance_harmonics", harmonics}};
 }
 
 }  // namespace crankcheck::validation

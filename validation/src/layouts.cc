@@ -10,14 +10,14 @@ constexpr double kPairOffset = 0.02;    // [m] between the two cylinders of a sh
 
 // One bank at 90 deg, one cylinder per throw.
 Layout inlineLayout(const std::string& name, const std::string& description, const std::vector<double>& throws) {
-  Layout layout{name, description, {}};
+  Layout layout{name, description, {}, {}};
   for (size_t i = 0; i < throws.size(); ++i) layout.cylinders.push_back({90.0, throws[i], kThrowSpacing * i});
   return layout;
 }
 
 // Two banks at 90 +- v/2 (left first on each pin), each pin shared by one cylinder of each bank.
 Layout vLayout(const std::string& name, const std::string& description, double v_deg, const std::vector<double>& throws) {
-  Layout layout{name, description, {}};
+  Layout layout{name, description, {}, {}};
   for (size_t i = 0; i < throws.size(); ++i) {
     layout.cylinders.push_back({90.0 + 0.5 * v_deg, throws[i], kThrowSpacing * i});
     layout.cylinders.push_back({90.0 - 0.5 * v_deg, throws[i], kThrowSpacing * i + kPairOffset});
@@ -28,7 +28,7 @@ Layout vLayout(const std::string& name, const std::string& description, double v
 // Opposed banks at 0 and 180 deg; each opposed pair on throws 180 deg apart (the pistons meet their outer dead
 // centres together), each cylinder on its own throw.
 Layout boxerLayout(const std::string& name, const std::string& description, const std::vector<double>& throws) {
-  Layout layout{name, description, {}};
+  Layout layout{name, description, {}, {}};
   for (size_t i = 0; i < throws.size(); ++i) {
     layout.cylinders.push_back({0.0, throws[i], kThrowSpacing * (2 * i)});
     layout.cylinders.push_back({180.0, throws[i] + 180.0, kThrowSpacing * (2 * i + 1)});
@@ -39,6 +39,8 @@ Layout boxerLayout(const std::string& name, const std::string& description, cons
 }  // namespace
 
 std::vector<Layout> getBalanceLayouts() {
+  // Textbook claims {F1, F2, M1, M2}: true = vanishes.
+  const TextbookBalance all{true, true, true, true};
   std::vector<Layout> layouts = {
       inlineLayout("inline1", "single cylinder", {0}),
       inlineLayout("inline2", "inline twin, throws 0, 180", {0, 180}),
@@ -58,8 +60,26 @@ std::vector<Layout> getBalanceLayouts() {
       boxerLayout("boxer6", "boxer six, opposed pairs on throws 0/180, 120/300, 240/60", {0, 120, 240}),
       vLayout("V_twin_45", "V-twin, 45 deg, one shared pin", 45.0, {0}),
   };
-  Layout radial{"radial5", "five-cylinder radial, every rod on one crank pin (no master rod), banks 72 deg apart", {}};
+  const TextbookBalance claims[] = {
+      {false, false, true, true},   // inline1: one plane, no couple
+      {true, false, false, true},   // inline2
+      {true, true, false, false},   // inline3
+      {true, false, true, true},    // inline4
+      {true, true, false, false},   // inline5
+      all, all, all,                // inline6, inline8, inline12
+      {true, true, false, false},   // V6_60
+      {true, true, false, false},   // V6_90
+      {true, true, false, true},    // V8_cross_plane: a rotating primary couple (for counterweights)
+      {true, false, true, true},    // V8_flat_plane: a horizontal secondary force
+      all,                          // V12_60
+      {true, true, true, false},    // boxer4: a secondary rocking couple
+      all,                          // boxer6
+      {false, false, {}, {}},       // V_twin_45
+  };
+  for (size_t i = 0; i < layouts.size(); ++i) layouts[i].textbook = claims[i];
+  Layout radial{"radial5", "five-cylinder radial, every rod on one crank pin (no master rod), banks 72 deg apart", {}, {}};
   for (int j = 0; j < 5; ++j) radial.cylinders.push_back({90.0 + 72.0 * j, 0.0, 0.0});
+  radial.textbook = {false, true, true, true};  // a rotating primary force of constant size (for a counterweight)
   layouts.push_back(radial);
   // The crank centre O at the middle of the engine (mean z = 0): the shaking moment about O is then the couple
   // the balance tables speak of, not that couple plus z x the free force.

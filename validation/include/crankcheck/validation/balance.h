@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "crankcheck/analytic/shaking.h"
+#include "crankcheck/validation/campaign.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::validation {
@@ -24,5 +25,16 @@ struct BalanceRow {
 /// crank ratios; the README states the bound).
 /// @throws std::invalid_argument if order < 1 or samples is not 0 and below 2 order + 1; what KCrankModel throws.
 std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples = 0);
+
+/// The report's balance tables for every layout of layouts.h, built on `parts` (its crank, rod and piston) at
+/// 6000 rpm, harmonics 1..8 from both engines:
+///   balance            layout,description,part,textbook,vanishes_exactly,analytic_amplitude,simbody_amplitude,
+///                      relative_amplitude,verdict
+///                      (part F1, F2: primary and secondary force [N]; M1, M2: couples about X, Y [N m]; textbook
+///                      "vanishes" | "does not vanish" | "no claim"; relative to the force or moment scale of
+///                      scales.h; verdict "agrees" | "DIFFERS" | "-")
+///   balance_harmonics  layout_index,layout,n,force_relative,couple_relative,rocking_relative,force_vanishes,
+///                      couple_vanishes (amplitudes relative to the force and moment scales; exact zeros as 0)
+TableSet calcBalanceTables(const Mechanism& parts);
 
 }  // namespace crankcheck::validation
