@@ -48,7 +48,7 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples) 
   return rows;
 }
 
-TableSet calcBalanceTables(const Mechanism& parts) {
+TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>& scenes) {
   constexpr int kOrder = 8;
   Table summary, harmonics;
   summary.columns = {"layout", "description", "part", "textbook", "vanishes_exactly", "analytic_amplitude",
@@ -58,10 +58,16 @@ TableSet calcBalanceTables(const Mechanism& parts) {
   Mechanism base = parts;
   base.speed_rpm = 6000.0;
   base.engine.speed = 6000.0 * (M_PI / 30.0);
-  const std::vector<Layout> layouts = getBalanceLayouts();
+  std::vector<Layout> layouts = getBalanceLayouts();
+  std::vector<Mechanism> mechanisms;
+  for (const Layout& layout : layouts) mechanisms.push_back(makeLayoutMechanism(layout, base));
+  for (const Mechanism& scene : scenes) {
+    layouts.push_back({scene.name, "scene " + scene.name, {}, {}});  // a user's scene: no textbook claim
+    mechanisms.push_back(scene);
+  }
   for (size_t index = 0; index < layouts.size(); ++index) {
     const Layout& layout = layouts[index];
-    const Mechanism m = makeLayoutMechanism(layout, base);
+    const Mechanism& m = mechanisms[index];
     const Scales sc = calcScales(m);
     const std::vector<BalanceRow> rows = calcBalance(m, kOrder);
     for (const BalanceRow& row : rows) {
@@ -73,7 +79,7 @@ TableSet calcBalanceTables(const Mechanism& parts) {
       harmonics.rows.push_back({std::to_string(index), layout.name, std::to_string(row.n), formatNumber(force / sc.force),
                                 formatNumber(couple / sc.moment), formatNumber(rocking / sc.moment),
                                 s.force_cancels ? "1" : "0", s.moment_xy_cancels ? "1" : "0"});
-      if (row.n > 2) continue;
+      if (row.n > 2 || index >= mechanisms.size() - scenes.size()) continue;  // the summary: the balance layouts
       const std::optional<bool> claims[2] = {row.n == 1 ? layout.textbook.F1 : layout.textbook.F2,
                                              row.n == 1 ? layout.textbook.M1 : layout.textbook.M2};
       for (int part = 0; part < 2; ++part) {

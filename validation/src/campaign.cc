@@ -663,7 +663,7 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   }
   if (!notes.rows.empty()) tasks.push_back({"notes", false, [notes] { return TableSet{{"notes", notes}}; }});
   tasks.push_back({"norton_fig13_8", false, [base] { return nortonFigure(base); }});
-  tasks.push_back({"balance", false, [first] { return calcBalanceTables(first); }});
+  tasks.push_back({"balance", false, [first, user = options.scenes] { return calcBalanceTables(first, user); }});
   tasks.push_back({"errata", false, [base, quick] { return errata(base, quick); }});
   tasks.push_back({"speed_vs_error", true, [base, quick] { return speedVsError(base, quick); }});
   return tasks;

@@ -394,7 +394,8 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
        "simulated revolution (one Google Benchmark run) against the relative error of delta and the energy drift per "
        "revolution, the analytic energy integral as reference"},
       {"balance_harmonics", "9. Balance of engine layouts",
-       "The shaking force and the couple about X and Y of every layout of the balance table, harmonics 1-8, relative "
+       "The shaking force and the couple about X and Y of every layout of the balance table (and of the campaign's "
+       "own scenes, below the layouts, when scene files were given), harmonics 1-8, relative "
        "to the force and moment scales: closed form from the exact Fourier coefficients (Simbody's DFT agrees, see the "
        "summary); white with a dot where the harmonic vanishes exactly by the layout's symmetry"},
   };

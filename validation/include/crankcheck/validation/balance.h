@@ -27,7 +27,8 @@ struct BalanceRow {
 std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples = 0);
 
 /// The report's balance tables for every layout of layouts.h, built on `parts` (its crank, rod and piston) at
-/// 6000 rpm, harmonics 1..8 from both engines:
+/// 6000 rpm, and for each of `scenes` as it is (the user's scenes: harmonics only, no textbook claim), harmonics 1..8
+/// from both engines:
 ///   balance            layout,description,part,textbook,vanishes_exactly,analytic_amplitude,simbody_amplitude,
 ///                      relative_amplitude,verdict
 ///                      (part F1, F2: primary and secondary force [N]; M1, M2: couples about X, Y [N m]; textbook
@@ -35,6 +36,6 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples =
 ///                      scales.h; verdict "agrees" | "DIFFERS" | "-")
 ///   balance_harmonics  layout_index,layout,n,force_relative,couple_relative,rocking_relative,force_vanishes,
 ///                      couple_vanishes (amplitudes relative to the force and moment scales; exact zeros as 0)
-TableSet calcBalanceTables(const Mechanism& parts);
+TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>& scenes = {});
 
 }  // namespace crankcheck::validation
