@@ -67,14 +67,14 @@ do for [fmt in "svg png"] {
     set xlabel "harmonic n" font ",10" offset 0, 0.5
 
     set title "shaking force F_s" font ",11"
-    set lmargin at screen 0.13
-    set rmargin at screen 0.50
+    set lmargin at screen 0.19
+    set rmargin at screen 0.53
     unset colorbox
     if (ndata > 0) { eval "plot " . cells(4, 7) } else { set label 5 "no rows in the CSV" at graph 0.5, graph 0.5 center front; plot NaN notitle }
 
     set title "couple about X and Y (about the engine's middle)" font ",11"
-    set lmargin at screen 0.53
-    set rmargin at screen 0.90
+    set lmargin at screen 0.555
+    set rmargin at screen 0.895
     unset ytics
     set colorbox
     if (ndata > 0) { eval "plot " . cells(5, 8) } else { plot NaN notitle }
