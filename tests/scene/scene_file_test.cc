@@ -12,12 +12,8 @@
 namespace crankcheck {
 namespace {
 
-const char* kGoodScene = R"(
-[engine]
-cylinders = 2
-cycle = "four-stroke"
-cylinder_angle_deg = 90
-speed_rpm = 3000
+// The parts every test scene shares; the scenes below differ in [engine] and [[cylinder]].
+const std::string kParts = R"(
 [crank]
 radius = 0.05
 mass = 1.0
@@ -30,6 +26,14 @@ inertia_about_wrist_pin = 0.012
 [piston]
 mass = 0.4
 )";
+
+const std::string kGoodScene = R"(
+[engine]
+cylinders = 2
+cycle = "four-stroke"
+cylinder_angle_deg = 90
+speed_rpm = 3000
+)" + kParts;
 
 TEST(SceneFile, EveryExampleSceneLoads) {
   int count = 0;
@@ -89,29 +93,31 @@ struct BadScene {
   std::string rule;     // expected in the message
 };
 
-std::string applyEdit(const BadScene& bad) {
+std::string applyEdit(const BadScene& bad, const std::string& base = kGoodScene) {
   if (bad.find.empty()) return bad.replace;
-  std::string text = kGoodScene;
+  std::string text = base;
   const size_t at = text.find(bad.find);
   if (at == std::string::npos) throw std::logic_error("test setup: line not found: " + bad.find);
   return text.replace(at, bad.find.size(), bad.replace);
 }
 
-class BadSceneTest : public ::testing::TestWithParam<BadScene> {};
-
-TEST_P(BadSceneTest, IsRefusedWithFileKeyAndRule) {
-  const BadScene& bad = GetParam();
+// The scene is refused with one line "SOURCE: KEY: rule".
+void expectRefused(const std::string& text, const std::string& source, const BadScene& bad) {
   try {
-    parseScene(applyEdit(bad), "scenes/bad.toml");
+    parseScene(text, source);
     FAIL() << "accepted";
   } catch (const SceneError& e) {
     const std::string message = e.what();
-    EXPECT_EQ(message.rfind("scenes/bad.toml: ", 0), 0u) << message;
+    EXPECT_EQ(message.rfind(source + ": ", 0), 0u) << message;
     EXPECT_NE(message.find(bad.key), std::string::npos) << message;
     EXPECT_NE(message.find(bad.rule), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
   }
 }
+
+class BadSceneTest : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadSceneTest, IsRefusedWithFileKeyAndRule) { expectRefused(applyEdit(GetParam()), "scenes/bad.toml", GetParam()); }
 
 INSTANTIATE_TEST_SUITE_P(
     Rules, BadSceneTest,
@@ -155,7 +161,7 @@ INSTANTIATE_TEST_SUITE_P(
 // ---------------------------------------------------------------------------------------------------------------
 // Layouts: [[cylinder]] tables (docs/SCENE-FORMAT.md, "Layouts").
 
-const char* kLayoutScene = R"(
+const std::string kLayoutScene = R"(
 [engine]
 cycle = "four-stroke"
 speed_rpm = 3000
@@ -167,18 +173,7 @@ axial_position = 0.0
 bank_angle_deg = 45
 throw_angle_deg = 90
 axial_position = 0.02
-[crank]
-radius = 0.05
-mass = 1.0
-com_radius = 0.02
-[rod]
-length = 0.2
-mass = 0.5
-com_from_wrist_pin = 0.14
-inertia_about_wrist_pin = 0.012
-[piston]
-mass = 0.4
-)";
+)" + kParts;
 
 // theta_j = phi + beta_j - gamma_j: alpha_j = throw - bank, exact in degrees; each cylinder in its own bank.
 TEST(SceneLayout, CylinderTablesGiveBanksThrowsAndAxialPositions) {
@@ -205,20 +200,7 @@ TEST(SceneLayout, InlineSpacingPlacesCylindersAlongTheShaft) {
 class BadLayoutTest : public ::testing::TestWithParam<BadScene> {};
 
 TEST_P(BadLayoutTest, IsRefusedWithFileKeyAndRule) {
-  const BadScene& bad = GetParam();
-  std::string text = kLayoutScene;
-  const size_t at = text.find(bad.find);
-  ASSERT_NE(at, std::string::npos) << bad.find;
-  text.replace(at, bad.find.size(), bad.replace);
-  try {
-    parseScene(text, "scenes/v2.toml");
-    FAIL() << "accepted";
-  } catch (const SceneError& e) {
-    const std::string message = e.what();
-    EXPECT_EQ(message.rfind("scenes/v2.toml: ", 0), 0u) << message;
-    EXPECT_NE(message.find(bad.key), std::string::npos) << message;
-    EXPECT_NE(message.find(bad.rule), std::string::npos) << message;
-  }
+  expectRefused(applyEdit(GetParam(), kLayoutScene), "scenes/v2.toml", GetParam());
 }
 
 INSTANTIATE_TEST_SUITE_P(
