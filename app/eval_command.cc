@@ -92,7 +92,7 @@ std::string runEval(const EvalOptions& options) {
   nlohmann::ordered_json doc;
   doc["scene"] = sceneToJson(m);
   doc["results"] = nlohmann::ordered_json::array();
-  for (size_t i = 0; i < results.size(); ++i) doc["results"].push_back(evaluationToJson(results[i], results_phi_deg[i], hasAxialPositions(m)));
+  for (size_t i = 0; i < results.size(); ++i) doc["results"].push_back(evaluationToJson(results[i], results_phi_deg[i], m));
   return dumpJson(doc);
 }
 

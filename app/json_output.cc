@@ -97,13 +97,19 @@ nlohmann::ordered_json sceneToJson(const Mechanism& m) {
               {"com_from_wrist_pin", m.rod.com_from_wrist_pin},
               {"inertia_about_wrist_pin", m.rod.inertia_about_wrist_pin}};
   j["piston"] = {{"mass", m.piston.mass}};
+  if (m.gas) {
+    j["gas"] = {{"bore", m.gas->bore}, {"cycle_angles", m.gas->cycle_angles}, {"pressures", m.gas->pressures},
+                {"cycle", m.gas->cycle}};
+    j["engine"]["firing_angles"] = m.firing_angles;
+  }
   j["flywheel"] = m.flywheel_inertia ? nlohmann::ordered_json{{"inertia", *m.flywheel_inertia}} : nlohmann::ordered_json(nullptr);
   j["lambda"] = calcCrankRatio(m);
   j["units"] = "SI: m, kg, s, rad, N, N m, J";
   return j;
 }
 
-nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, bool moment_xy_defined) {
+nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, const Mechanism& m) {
+  const bool moment_xy_defined = hasAxialPositions(m);
   nlohmann::ordered_json j;
   j["engine"] = ev.engine;
   j["phi_deg"] = phi_deg;
@@ -119,12 +125,14 @@ nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, bo
        ev.shaking_moment[2]});
   nlohmann::ordered_json cylinders = nlohmann::ordered_json::array();
   for (const CylinderEvaluation& c : ev.cylinders) {
-    cylinders.push_back({{"x_p", c.x_p},
-                         {"v_p", c.v_p},
-                         {"a_p", c.a_p},
-                         {"crank_pin_force", vec(c.crank_pin_force)},
-                         {"wrist_pin_force", vec(c.wrist_pin_force)},
-                         {"wall_force", c.wall_force}});
+    nlohmann::ordered_json cylinder = {{"x_p", c.x_p},
+                                       {"v_p", c.v_p},
+                                       {"a_p", c.a_p},
+                                       {"crank_pin_force", vec(c.crank_pin_force)},
+                                       {"wrist_pin_force", vec(c.wrist_pin_force)},
+                                       {"wall_force", c.wall_force}};
+    if (m.gas) cylinder["gas_force"] = c.gas_force;  // absent without [gas]
+    cylinders.push_back(cylinder);
   }
   j["cylinders"] = cylinders;
   return j;
@@ -168,8 +176,9 @@ std::string formatTable(const Mechanism& m, const std::string& scene_path, const
       std::snprintf(line, sizeof line, "          shaking_force = (%.12g, %.12g) N   shaking_moment = (-, -, %.12g) N m\n",
                     ev.shaking_force[0] + 0.0, ev.shaking_force[1] + 0.0, ev.shaking_moment[2] + 0.0);
     out << line;
-    std::snprintf(line, sizeof line, "  %3s %15s %15s %15s %33s %33s %15s\n", "cyl", "x_p [m]", "v_p [m/s]",
-                  "a_p [m/s^2]", "crank_pin_force (X, Y) [N]", "wrist_pin_force (X, Y) [N]", "wall_force [N]");
+    std::snprintf(line, sizeof line, "  %3s %15s %15s %15s %33s %33s %15s%s\n", "cyl", "x_p [m]", "v_p [m/s]",
+                  "a_p [m/s^2]", "crank_pin_force (X, Y) [N]", "wrist_pin_force (X, Y) [N]", "wall_force [N]",
+                  m.gas ? "  gas_force [N]" : "");
     out << line;
     for (size_t j = 0; j < ev.cylinders.size(); ++j) {
       const CylinderEvaluation& c = ev.cylinders[j];
@@ -177,6 +186,11 @@ std::string formatTable(const Mechanism& m, const std::string& scene_path, const
                     c.v_p, c.a_p, c.crank_pin_force[0], c.crank_pin_force[1], c.wrist_pin_force[0],
                     c.wrist_pin_force[1], c.wall_force);
       out << line;
+      if (m.gas) {
+        out.seekp(-1, std::ios_base::cur);  // the gas force on the same line
+        std::snprintf(line, sizeof line, " %14.9g\n", c.gas_force);
+        out << line;
+      }
     }
   }
   return out.str();

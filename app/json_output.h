@@ -18,9 +18,9 @@ nlohmann::ordered_json sceneToJson(const Mechanism& m);
 
 /// One engine's result at one angle (phi_deg as the user gave it): {"engine", "phi_deg", "U", "Q", "drive_torque", "bearing_force",
 /// "cylinders": [{"x_p", "v_p", "a_p", "crank_pin_force", "wrist_pin_force", "wall_force"}]}.
-/// `moment_xy_defined`: the scene places its cylinders along the shaft, so shaking_moment's X and Y are printed
-/// (otherwise null).
-nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, bool moment_xy_defined);
+/// One result of `eval` for scene `m`: shaking_moment's X and Y are printed only when the scene places its cylinders
+/// along the shaft (otherwise null); each cylinder's gas_force only when the scene has [gas].
+nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, const Mechanism& m);
 
 /// Pretty JSON text (2-space indent) with numbers as %.17g; integers stay integers.
 std::string dumpJson(const nlohmann::ordered_json& document);

@@ -41,9 +41,10 @@ Reactions calcReactions(const Mechanism& m, double phi) {
     const P2 p_AB = p_OB - p_OA, p_AG = p_OG - p_OA;
     const P2 a_A{c.a_A[0], c.a_A[1]}, a_G{c.a_G[0], c.a_G[1]};
 
-    // Piston along e gives F_A.e; rod moments about A give F_A.n (see the header).
+    // Piston along e gives F_A.e (the gas pushes it toward the crank with F_gas); rod moments about A give F_A.n.
+    const double F_gas = calcGasForce(m, j, phi);
     P2 F_A;
-    F_A.e = m_o * (a_A.e - g_C.e);
+    F_A.e = m_o * (a_A.e - g_C.e) + F_gas;
     const P2 rod_net = m_k * (a_G - g_C);  // F_B - F_A
     const double moment = I_o * c.psi_ddot + cross(p_AG, m_k * a_A) - cross(p_AG, m_k * g_C) - cross(p_AB, rod_net);
     // moment = (B - A) x F_A = p_AB.e F_A.n - p_AB.n F_A.e
@@ -86,6 +87,7 @@ Evaluation calcEvaluation(const Mechanism& m, double phi) {
     c.crank_pin_force = reactions.cylinders[j].crank_pin_force;
     c.wrist_pin_force = reactions.cylinders[j].wrist_pin_force;
     c.wall_force = reactions.cylinders[j].wall_force;
+    c.gas_force = calcGasForce(m, static_cast<int>(j), phi);
     ev.cylinders.push_back(c);
   }
   return ev;

@@ -28,6 +28,11 @@ bool isSingleBank(const Mechanism& m) {
 
 bool hasAxialPositions(const Mechanism& m) { return !m.engine.axial_positions.empty(); }
 
+double calcGasForce(const Mechanism& m, int j, double phi) {
+  if (!m.gas) return 0.0;
+  return calcGasPressure(*m.gas, phi - m.firing_angles.at(static_cast<size_t>(j))) * calcBoreArea(*m.gas);
+}
+
 PhaseTurns calcPhaseTurns(int cylinders, Cycle cycle, Acting acting) {
   if (cylinders < 1) throw std::invalid_argument("calcPhaseTurns: cylinders must be >= 1");
   // alpha_j / (2 pi) = (T / 2 pi) j / k, eqs (8)-(11). In units of 1/(2k) turn: T/(2 pi) = 1 or 2, halved

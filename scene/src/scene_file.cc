@@ -37,6 +37,10 @@ constexpr Limit kMaxGravity{1e6, "1e6 m/s^2 (1e5 g)"};
 // Angles [deg], in magnitude: at 1e6 deg the spacing of doubles is 1.2e-10 deg, so the angle still means what was
 // typed to better than 1e-9 deg; larger values lose the fraction of a degree.
 constexpr Limit kMaxAngleDeg{1e6, "1e6 deg"};
+// Gas pressure [Pa], gauge: at least -101325 Pa (below that there is no pressure at all) and at most 1e9 Pa (10 kbar,
+// four times the peak of the most highly charged diesels).
+constexpr Limit kMinGaugePressure{-101325.0, "-101325 Pa (no pressure at all)"};
+constexpr Limit kMaxGaugePressure{1e9, "1e9 Pa (10 kbar)"};
 // Cylinders: 1..64, more than any engine built; keeps the per-cylinder work and output bounded.
 constexpr int kMaxCylinders = 64;
 static_assert(kMaxInertia.value == 1e18);
@@ -250,6 +254,32 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
           m.rod.inertia_about_wrist_pin);
 
   requireMass(m.piston.mass, "[piston].mass");
+  if (m.gas) {
+    const GasParams& g = *m.gas;
+    requirePositiveLength(g.bore, "[gas].bore");
+    require(m.engine.acting == Acting::kSingle, "[gas]", "is modelled for single-acting cylinders only",
+            m.engine.acting == Acting::kSingle ? 1.0 : 2.0);
+    require(!g.cycle_angles.empty() && g.cycle_angles.size() == g.pressures.size(), "[gas].pressure_pa",
+            "must have one pressure per cycle angle", static_cast<double>(g.pressures.size()));
+    for (size_t i = 0; i < g.pressures.size(); ++i) {
+      const std::string key = "[gas].pressure_pa[" + std::to_string(i) + "]";
+      requireFinite(g.pressures[i], key);
+      require(g.pressures[i] >= kMinGaugePressure.value, key, std::string("must be at least ") + kMinGaugePressure.text,
+              g.pressures[i]);
+      require(g.pressures[i] <= kMaxGaugePressure.value, key, atMost(kMaxGaugePressure), g.pressures[i]);
+    }
+    require(m.firing_angles.size() == k, "[gas]", "needs a firing angle for every cylinder",
+            static_cast<double>(m.firing_angles.size()));
+    for (size_t i = 0; i < m.firing_angles.size() && i < m.engine.crank_angles.size(); ++i) {
+      // At its firing angle the cylinder must be at its outer dead centre: theta = firing + alpha_j = 0 (mod 360).
+      const double theta = std::remainder(m.firing_angles[i] + m.engine.crank_angles[i], 2.0 * M_PI);
+      require(std::fabs(theta) <= 1e-9,
+              m.engine.bank_angles.empty() ? "[gas].firing_order" : "cylinder[" + std::to_string(i) + "].firing_angle_deg",
+              "cylinder " + std::to_string(i) + " is not at its outer dead centre at its firing angle (its own crank angle theta is " +
+                  formatNumber(degreesFromRadians(theta)) + " deg)",
+              degreesFromRadians(m.firing_angles[i]));
+    }
+  }
   if (m.flywheel_inertia) {
     requireFinite(*m.flywheel_inertia, "[flywheel].inertia");
     require(*m.flywheel_inertia > 0, "[flywheel].inertia", "must be > 0", *m.flywheel_inertia);
@@ -266,12 +296,13 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
     fail(source, "line " + std::to_string(where.line) + ", column " + std::to_string(where.column),
          "not valid TOML: " + std::string(e.description()));
   }
-  static const std::set<std::string> kTables = {"engine", "crank", "rod", "piston", "flywheel", "cylinder"};
+  static const std::set<std::string> kTables = {"engine", "crank", "rod", "piston", "flywheel", "gas", "cylinder"};
   for (const auto& [k, v] : root) {
     const std::string name(k.str());
     if (!kTables.contains(name))
-      fail(source, name, "unknown key (tables: engine, crank, rod, piston, flywheel, [[cylinder]])");
+      fail(source, name, "unknown key (tables: engine, crank, rod, piston, flywheel, gas, [[cylinder]])");
   }
+  const bool has_gas = root.get("gas") != nullptr;
 
   Mechanism m;
   m.name = std::filesystem::path(source).stem().string();
@@ -318,7 +349,7 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
     size_t with_axial = 0;
     for (size_t j = 0; j < layout->size(); ++j) {
       TableReader cylinder(*layout->get(j)->as_table(), "cylinder[" + std::to_string(j) + "]", source,
-                           {"bank_angle_deg", "throw_angle_deg", "axial_position"});
+                           {"bank_angle_deg", "throw_angle_deg", "axial_position", "firing_angle_deg"});
       const double bank_deg = cylinder.number("bank_angle_deg");
       const double throw_deg = cylinder.number("throw_angle_deg");
       requireAngleDegrees(bank_deg, source, cylinder.key("bank_angle_deg"));
@@ -333,6 +364,13 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
       }
       if (with_axial != 0 && with_axial != j + 1)
         fail(source, cylinder.key("axial_position"), "give it for every cylinder or for none");
+      if (has_gas) {
+        const double firing_deg = cylinder.number("firing_angle_deg");
+        requireAngleDegrees(firing_deg, source, cylinder.key("firing_angle_deg"));
+        m.firing_angles.push_back(radiansFromDegrees(firing_deg));
+      } else if (cylinder.find("firing_angle_deg") != nullptr) {
+        fail(source, cylinder.key("firing_angle_deg"), "belongs with a [gas] table (the scene has none)");
+      }
     }
     if (with_axial == 0) m.engine.axial_positions.clear();
     m.engine.explicit_crank_angles = true;
@@ -387,6 +425,52 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
 
   TableReader flywheel(root, "flywheel", source, false, {"inertia"});
   if (flywheel.present()) m.flywheel_inertia = flywheel.number("inertia");
+
+  TableReader gas(root, "gas", source, false, {"bore", "cycle_angle_deg", "pressure_pa", "firing_order"});
+  if (gas.present()) {
+    GasParams g;
+    g.cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
+    g.bore = gas.number("bore");
+    const auto angles = gas.optionalNumberArray("cycle_angle_deg");
+    const auto pressures = gas.optionalNumberArray("pressure_pa");
+    if (!angles) fail(source, gas.key("cycle_angle_deg"), "missing key");
+    if (!pressures) fail(source, gas.key("pressure_pa"), "missing key");
+    if (angles->size() != pressures->size())
+      fail(source, gas.key("pressure_pa"), "must have one pressure per cycle angle: " + std::to_string(angles->size()) +
+                                               " expected, got " + std::to_string(pressures->size()));
+    const double cycle_deg = m.engine.cycle == Cycle::kFourStroke ? 720.0 : 360.0;
+    for (size_t i = 0; i < angles->size(); ++i) {
+      const std::string key = gas.key("cycle_angle_deg") + "[" + std::to_string(i) + "]";
+      const double a = (*angles)[i];
+      if (i == 0 && a != 0.0) fail(source, key, "must be 0: the table starts at the firing outer dead centre (got " + formatNumber(a) + ")");
+      if (i > 0 && !(a > (*angles)[i - 1]))
+        fail(source, key, "must be strictly increasing (got " + formatNumber(a) + " after " + formatNumber((*angles)[i - 1]) + ")");
+      if (!(a < cycle_deg))
+        fail(source, key, "must be below the cycle's " + formatNumber(cycle_deg) + " degrees (got " + formatNumber(a) + ")");
+      g.cycle_angles.push_back(radiansFromDegrees(a));
+    }
+    g.pressures = *pressures;
+    m.gas = g;
+    if (layout == nullptr) {
+      // An inline engine: firing_order lists the cylinders in firing order, evenly spaced over the cycle.
+      const toml::node* order = gas.find("firing_order");
+      if (order == nullptr) fail(source, gas.key("firing_order"), "missing key (an inline scene gives the firing order)");
+      const toml::array* list = order->as_array();
+      if (list == nullptr || list->size() != static_cast<size_t>(cylinders))
+        fail(source, gas.key("firing_order"), "must list each of the " + std::to_string(cylinders) + " cylinders once");
+      m.firing_angles.assign(static_cast<size_t>(cylinders), -1.0);
+      for (size_t i = 0; i < list->size(); ++i) {
+        const toml::node* item = list->get(i);
+        const long long j = item->is_integer() ? item->as_integer()->get() : -1;
+        if (j < 0 || j >= cylinders || m.firing_angles[static_cast<size_t>(j)] >= 0.0)
+          fail(source, gas.key("firing_order") + "[" + std::to_string(i) + "]",
+               "must be a cylinder index 0.." + std::to_string(cylinders - 1) + ", each once");
+        m.firing_angles[static_cast<size_t>(j)] = radiansFromDegrees(cycle_deg * static_cast<double>(i) / static_cast<double>(cylinders));
+      }
+    } else if (gas.find("firing_order") != nullptr) {
+      fail(source, gas.key("firing_order"), "must be absent when [[cylinder]] tables give each firing_angle_deg");
+    }
+  }
 
   validateMechanism(m, source);
   return m;

@@ -106,6 +106,7 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
     rods_ = std::move(bodies.rods);
     crank_pins_in_crank_ = std::move(bodies.crank_pins_in_crank);
     rod_big_end_in_rod_ = bodies.rod_big_end_in_rod;
+    if (m_.gas) SimTK::Force::Custom(forces_, new GasForce(m_, drive_, matter_, crank_, pistons_));
 
     system_.realizeTopology();
     state_ = system_.getDefaultState();
@@ -221,8 +222,10 @@ Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
   assemble(phi);
   const double position_error = calcMaxAbs(state_.getQErr());
 
-  // Static pass (omega = 0): the holding torque is Q, route 1.
+  // Static pass (omega = 0, gas off): the holding torque is Q, route 1.
+  drive_->gas = false;
   solveMotion(0.0);
+  drive_->gas = true;
   ev.U = system_.calcPotentialEnergy(state_) - reference_potential_;
   ev.Q = driveTorque();
 
@@ -258,6 +261,7 @@ Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
     c.wrist_pin_force = toVec2(-piston_on_rod);
     const SimTK::Vec3 frame_on_piston = reactions[piston.getMobilizedBodyIndex()][1];
     c.wall_force = SimTK::dot(frame_on_piston, n_[j]);
+    c.gas_force = calcGasForce(m_, j, crank_.getQ(state_));  // the input, at Simbody's crank angle
   }
 
   // Shaking force and moment, -dP/dt and -dH_O/dt of every moving body, from Simbody's own body accelerations
@@ -321,7 +325,9 @@ double KCrankModel::Impl::kineticEnergy(double phi) {
 
 double KCrankModel::Impl::holdingTorque(double phi) {
   assemble(phi);
+  drive_->gas = false;  // Q is gravity's alone
   solveMotion(0.0);
+  drive_->gas = true;
   return driveTorque();
 }
 

@@ -24,6 +24,7 @@ namespace {
 struct CrankDrive {
   double phi = 0.0;
   double omega = 0.0;
+  bool gas = true;  ///< whether GasForce applies the scene's gas force (off for the static holding torque Q)
 };
 
 /// Position-level prescribed motion of the crank: q = phi, qdot = omega, qdotdot = 0. The values live in a
@@ -52,6 +53,35 @@ class CrankMotion : public SimTK::Motion::Custom::Implementation {
 };
 
 Vec2 toVec2(const SimTK::Vec3& v) { return {v[0], v[1]}; }
+
+/// The gas force on every piston (scene/gas.h, an input both engines apply alike): -p A e_j at the wrist pin, with p
+/// taken at the crank angle the crank mobilizer has in the state (q = phi). A station force on the piston body, so
+/// the slider's reaction stays the wall's; the equal force on the cylinder head stays in the frame.
+class GasForce : public SimTK::Force::Custom::Implementation {
+ public:
+  GasForce(const Mechanism& m, std::shared_ptr<const CrankDrive> drive, const SimTK::SimbodyMatterSubsystem& matter,
+           const SimTK::MobilizedBody::Pin& crank, const std::vector<SimTK::MobilizedBody::Slider>& pistons)
+      : m_(m), drive_(std::move(drive)), matter_(matter), crank_(crank), pistons_(pistons) {}
+  void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                 SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector&) const override {
+    if (!drive_->gas) return;
+    const double phi = crank_.getQ(state);
+    for (size_t j = 0; j < pistons_.size(); ++j) {
+      const double gamma_j = getBankAngle(m_, static_cast<int>(j));
+      const SimTK::Vec3 e_j(std::cos(gamma_j), std::sin(gamma_j), 0.0);
+      matter_.addInStationForce(state, pistons_[j].getMobilizedBodyIndex(), SimTK::Vec3(0),
+                                -calcGasForce(m_, static_cast<int>(j), phi) * e_j, body_forces);
+    }
+  }
+  SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0.0; }  // not conservative
+
+ private:
+  Mechanism m_;
+  std::shared_ptr<const CrankDrive> drive_;
+  const SimTK::SimbodyMatterSubsystem& matter_;
+  SimTK::MobilizedBody::Pin crank_;
+  std::vector<SimTK::MobilizedBody::Slider> pistons_;
+};
 
 /// The mobilized bodies of the mechanism (k_crank_model.h describes them) and the stations of its loop closures.
 struct MechanismBodies {

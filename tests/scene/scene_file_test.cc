@@ -464,3 +464,77 @@ TEST(SceneFile, UnreadableAndBinaryFilesAreRefused) {
 
 }  // namespace
 }  // namespace crankcheck
+
+// ---------------------------------------------------------------------------------------------------------------
+// Gas: the [gas] table (docs/SCENE-FORMAT.md, "Gas pressure").
+
+namespace crankcheck {
+namespace {
+
+const std::string kGasScene = kGoodScene + R"(
+[gas]
+bore = 0.08
+cycle_angle_deg = [0, 90, 360]
+pressure_pa = [4.0e6, 1.0e6, 0.0]
+firing_order = [1, 0]
+)";
+
+// Piecewise linear between the points, from the last point to the cycle's end back to the first value, periodic:
+// values worked out by hand (exact in binary: the breakpoints and pressures are chosen so).
+TEST(Gas, PressureIsPiecewiseLinearAndPeriodic) {
+  const Mechanism m = parseScene(kGasScene, "gas.toml");
+  ASSERT_TRUE(m.gas.has_value());
+  const GasParams& g = *m.gas;
+  EXPECT_EQ(g.cycle, 4.0 * M_PI);
+  auto at = [&](double deg) { return calcGasPressure(g, radiansFromDegrees(deg)); };
+  EXPECT_EQ(at(0), 4.0e6);
+  EXPECT_EQ(at(90), 1.0e6);
+  EXPECT_NEAR(at(45), 2.5e6, 1e-9 * 4e6);
+  EXPECT_NEAR(at(225), 0.5e6, 1e-9 * 4e6);   // halfway from 90 (1e6) to 360 (0)
+  EXPECT_NEAR(at(540), 2.0e6, 1e-9 * 4e6);   // halfway from 360 (0) to 720, where it meets 4e6 again
+  EXPECT_NEAR(at(720 + 45), at(45), 1e-9 * 4e6);
+  EXPECT_NEAR(at(-675), at(45), 1e-9 * 4e6);
+  EXPECT_NEAR(calcBoreArea(g), M_PI * 0.0016, 1e-15);
+  // firing_order [1, 0]: cylinder 1 fires at 0, cylinder 0 at 360 (every 720 / 2 degrees); both are at their outer
+  // dead centre there (phase angles 0 and 360 -> 0 of eq 10).
+  EXPECT_EQ(m.firing_angles, (std::vector<double>{radiansFromDegrees(360), 0.0}));
+  EXPECT_NEAR(calcGasForce(m, 1, radiansFromDegrees(45)), 2.5e6 * calcBoreArea(g), 1e-9 * 4e6 * calcBoreArea(g));
+  EXPECT_EQ(calcGasForce(parseScene(kGoodScene, "no_gas.toml"), 0, 0.3), 0.0);
+}
+
+class BadGasTest : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadGasTest, IsRefusedWithFileKeyAndRule) {
+  expectRefused(applyEdit(GetParam(), kGasScene), "scenes/gas.toml", GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Rules, BadGasTest,
+    ::testing::Values(
+        BadScene{"unsorted", "cycle_angle_deg = [0, 90, 360]", "cycle_angle_deg = [0, 360, 90]", "[gas].cycle_angle_deg[2]",
+                 "strictly increasing"},
+        BadScene{"first_not_zero", "cycle_angle_deg = [0, 90, 360]", "cycle_angle_deg = [10, 90, 360]",
+                 "[gas].cycle_angle_deg[0]", "must be 0"},
+        BadScene{"beyond_cycle", "cycle_angle_deg = [0, 90, 360]", "cycle_angle_deg = [0, 90, 720]",
+                 "[gas].cycle_angle_deg[2]", "below the cycle's 720"},
+        BadScene{"lengths_differ", "pressure_pa = [4.0e6, 1.0e6, 0.0]", "pressure_pa = [4.0e6, 1.0e6]", "[gas].pressure_pa",
+                 "one pressure per cycle angle"},
+        BadScene{"below_vacuum", "pressure_pa = [4.0e6, 1.0e6, 0.0]", "pressure_pa = [4.0e6, 1.0e6, -2e5]",
+                 "[gas].pressure_pa[2]", "at least -101325 Pa"},
+        BadScene{"no_firing_order", "firing_order = [1, 0]", "", "[gas].firing_order", "missing key"},
+        BadScene{"order_repeats", "firing_order = [1, 0]", "firing_order = [1, 1]", "[gas].firing_order[1]", "each once"},
+        BadScene{"not_at_dead_centre", "cylinder_angle_deg = 90", "cylinder_angle_deg = 90\ncrank_angles_deg = [0, 90]",
+                 "[gas].firing_order", "not at its outer dead centre"},
+        BadScene{"double_acting", "cycle = \"four-stroke\"", "cycle = \"four-stroke\"\nacting = \"double\"", "[gas]",
+                 "single-acting"},
+        BadScene{"no_bore", "bore = 0.08\n", "", "[gas].bore", "missing key"}),
+    [](const auto& info) { return info.param.name; });
+
+TEST(Gas, FiringAngleBelongsWithAGasTable) {
+  std::string text = kLayoutScene;
+  text.replace(text.find("axial_position = 0.0"), 20, "axial_position = 0.0\nfiring_angle_deg = 0");
+  expectRefused(text, "scenes/v2.toml", BadScene{"", "", "", "cylinder[0].firing_angle_deg", "belongs with a [gas] table"});
+}
+
+}  // namespace
+}  // namespace crankcheck

@@ -14,7 +14,12 @@ double calcEnergyScale(const Mechanism& m) {
 double calcAccelerationScale(const Mechanism& m) {
   const double lambda = m.crank.radius / m.rod.length;
   const double w = m.engine.speed;
-  return m.engine.gravity + m.crank.radius * w * w * (1.0 + std::pow((1.0 - lambda) * (1.0 + lambda), -1.5));
+  // Simbody finds accelerations from the forces it balances: with gas, the largest gas force over the masses it
+  // pushes sets the size of its rounding (a_p at rest is 0 exactly in the closed form, rounding of that in Simbody).
+  double gas = 0.0;
+  if (m.gas && m.piston.mass + m.rod.mass > 0.0)
+    for (double p : m.gas->pressures) gas = std::max(gas, std::fabs(p) * calcBoreArea(*m.gas) / (m.piston.mass + m.rod.mass));
+  return m.engine.gravity + gas + m.crank.radius * w * w * (1.0 + std::pow((1.0 - lambda) * (1.0 + lambda), -1.5));
 }
 
 double calcForceScale(const Mechanism& m) {
@@ -73,6 +78,7 @@ std::vector<Comparison> compareEvaluations(const Mechanism& m, const Evaluation&
       out.push_back({"wrist_pin_force", c, ca.wrist_pin_force[i], cs.wrist_pin_force[i], sc.force, sc.conditioning});
     }
     out.push_back({"wall_force", c, ca.wall_force, cs.wall_force, sc.force, sc.conditioning});
+    if (m.gas) out.push_back({"gas_force", c, ca.gas_force, cs.gas_force, sc.force, 1.0});
   }
   return out;
 }

@@ -6,7 +6,7 @@
 ///
 /// Per cylinder, in the cylinder frame (e, n), with F_A = wrist_pin_force, F_B = crank_pin_force, G the rod's
 /// centre of mass (a fixed fraction z_k / l of the way from A to B), psi the rod's angle about +Z:
-///   piston, along e:      m_o a_p = F_A.e + m_o g.e
+///   piston, along e:      m_o a_p = F_A.e + m_o g.e - F_gas   (F_gas = p A toward the crank, gas.h)
 ///   piston, along n:      0 = F_A.n + N_w + m_o g.n
 ///   rod, forces:          m_k a_G = F_B - F_A + m_k g
 ///   rod, moments about A: I_o psi_ddot + m_k (G - A) x a_A = (B - A) x F_B + (G - A) x m_k g

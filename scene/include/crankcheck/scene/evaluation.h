@@ -21,6 +21,7 @@ struct CylinderEvaluation {
   Vec2 crank_pin_force{};       ///< [N] crank on rod j at its crank pin B_j
   Vec2 wrist_pin_force{};       ///< [N] rod on piston j at its wrist pin A_j
   double wall_force = 0.0;      ///< [N] N_w: the wall pushes piston j with N_w n
+  double gas_force = 0.0;       ///< [N] p A on piston j, positive toward the crank (0 without [gas])
 };
 
 /// Whole-mechanism quantities at crank angle phi (of cylinder 0) and the scene's constant speed omega.

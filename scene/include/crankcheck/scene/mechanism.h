@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "crankcheck/scene/gas.h"
+
 namespace crankcheck {
 
 /// Working cycle: sets the cycle period T of eq (8): 2 pi (two-stroke) or 4 pi (four-stroke).
@@ -70,6 +72,10 @@ struct Mechanism {
   RodParams rod;
   PistonParams piston;
   std::optional<double> flywheel_inertia;    ///< I_w [kg m^2], only for dimensionless output
+  std::optional<GasParams> gas;              ///< the scene's [gas] table; none: no gas force
+  /// firing_j [rad] per cylinder (with gas): the crank angle phi at which cylinder j is at its firing outer dead
+  /// centre, in [0, cycle). The pressure on piston j is calcGasPressure(gas, phi - firing_j).
+  std::vector<double> firing_angles;
   double speed_rpm = 0.0;                    ///< the scene's speed as given, for display
 };
 
@@ -87,6 +93,8 @@ double getAxialPosition(const Mechanism& m, int j);
 bool isSingleBank(const Mechanism& m);
 /// True when the scene placed the cylinders along the shaft (axial_position or cylinder_spacing).
 bool hasAxialPositions(const Mechanism& m);
+/// [N] the gas force p A on piston j at crank angle phi [rad], positive toward the crank; 0 without gas.
+double calcGasForce(const Mechanism& m, int j, double phi);
 
 /// Phase angles alpha_j = (T / k) j of eqs (8)-(11), j = 0..k-1, in radians, each reduced to [0, 2 pi).
 /// T = 2 pi (two-stroke) or 4 pi (four-stroke); double-acting halves T / k. Angles that are exact multiples

@@ -21,9 +21,11 @@ constexpr double kAgreementMultiple = 64.0;
 
 /// Energy scale [J] for U and Q: k g (r (m_o + m_k) + m_s r_s + m_p r_p).
 double calcEnergyScale(const Mechanism& m);
-/// Acceleration scale [m/s^2]: g + r omega^2 (1 + (1 - lambda^2)^(-3/2)).
+/// Acceleration scale [m/s^2]: g + r omega^2 (1 + (1 - lambda^2)^(-3/2)), plus max |p| A_bore / (m_o + m_k) with
+/// [gas] (the acceleration the largest gas force would give the parts it pushes).
 double calcAccelerationScale(const Mechanism& m);
-/// Force scale [N]: k (m_o + m_k + I_o / l^2 + m_s + m_p) times the acceleration scale.
+/// Force scale [N]: k (m_o + m_k + I_o / l^2 + m_s + m_p) times the acceleration scale (with [gas] this exceeds k
+/// times the largest gas force).
 double calcForceScale(const Mechanism& m);
 /// Torque scale [N m]: force scale times max(r, r_s, r_p).
 double calcTorqueScale(const Mechanism& m);
