@@ -7,6 +7,7 @@
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/scales.h"
 #include "json_output.h"
 #include "crankcheck/validation/errors.h"
 
@@ -22,6 +23,9 @@ void addEvalOptions(CLI::App& command, EvalOptions& options) {
   command.add_option("--format", options.format, "Output format")
       ->check(CLI::IsMember({"table", "json"}))
       ->capture_default_str();
+  command.add_flag("--split", options.split,
+                   "Also the drive torque as gas_torque + inertia_torque + gravity_torque, each engine run with the other "
+                   "loads off; exit status 1 if the parts do not add up to the whole");
 }
 
 std::vector<double> parseAngleList(const std::string& text, const std::string& flag) {
@@ -49,7 +53,25 @@ std::vector<double> parseAngleList(const std::string& text, const std::string& f
   return angles;
 }
 
-std::string runEval(const EvalOptions& options) {
+namespace {
+
+// The drive torque split into its parts, by one engine at one angle: each part is the drive torque of the same
+// engine with the other loads off (withLoads); the parts must add up to the whole (the equations are linear in the
+// loads at a given motion).
+struct TorqueSplit {
+  double gas = 0.0, inertia = 0.0, gravity = 0.0, whole = 0.0, tolerance = 0.0;
+  double sum() const { return gas + inertia + gravity; }
+  bool holds() const { return std::fabs(sum() - whole) <= tolerance; }
+};
+
+// The three load cases of the split, in the order gas, inertia, gravity.
+std::vector<Mechanism> splitCases(const Mechanism& m) {
+  return {withLoads(m, true, false, false), withLoads(m, false, true, false), withLoads(m, false, false, true)};
+}
+
+}  // namespace
+
+EvalOutput runEval(const EvalOptions& options) {
   const std::vector<double> angles_deg = parseAngleList(options.phi_deg, "--phi-deg");
   Mechanism m;
   try {
@@ -60,26 +82,39 @@ std::string runEval(const EvalOptions& options) {
   const bool use_analytic = options.engine != "simbody";
   const bool use_simbody = options.engine != "analytic";
   std::unique_ptr<simbody_models::KCrankModel> model;
+  std::vector<std::unique_ptr<simbody_models::KCrankModel>> split_models;  // gas, inertia, gravity
   if (use_simbody) {
     try {
       model = std::make_unique<simbody_models::KCrankModel>(m);
+      if (options.split)
+        for (const Mechanism& c : splitCases(m)) split_models.push_back(std::make_unique<simbody_models::KCrankModel>(c));
     } catch (const std::invalid_argument& e) {
       throw UsageError(options.scene_path + ": --engine " + options.engine + ": " + e.what());
     }
   }
+  const validation::Scales scales = validation::calcScales(m);
+  const double split_tolerance = validation::kAgreementMultiple * validation::kEps * scales.torque * scales.conditioning;
+  const std::vector<Mechanism> cases = options.split ? splitCases(m) : std::vector<Mechanism>{};
 
   // One row per angle and engine; for --engine both the analytic row comes first.
   std::vector<Evaluation> results;
   std::vector<double> results_phi_deg;  // the user's angle of each result, printed as given
+  std::vector<TorqueSplit> splits;
   for (double phi_deg : angles_deg) {
     const double phi = radiansFromDegrees(phi_deg);
     if (use_analytic) {
       results.push_back(analytic::calcEvaluation(m, phi));
       results_phi_deg.push_back(phi_deg);
+      if (options.split)
+        splits.push_back({analytic::calcReactions(cases[0], phi).drive_torque, analytic::calcReactions(cases[1], phi).drive_torque,
+                          analytic::calcReactions(cases[2], phi).drive_torque, results.back().drive_torque, split_tolerance});
     }
     if (use_simbody) {
       try {
         results.push_back(model->evaluate(phi));
+        if (options.split)
+          splits.push_back({split_models[0]->evaluate(phi).drive_torque, split_models[1]->evaluate(phi).drive_torque,
+                            split_models[2]->evaluate(phi).drive_torque, results.back().drive_torque, split_tolerance});
       } catch (const std::runtime_error& e) {
         throw UsageError(options.scene_path + ": --engine " + options.engine + ": Simbody could not evaluate phi = " +
                          std::to_string(phi_deg) + " deg: " + e.what());
@@ -87,13 +122,39 @@ std::string runEval(const EvalOptions& options) {
       results_phi_deg.push_back(phi_deg);
     }
   }
+  const bool holds = std::all_of(splits.begin(), splits.end(), [](const TorqueSplit& t) { return t.holds(); });
 
-  if (options.format == "table") return formatTable(m, options.scene_path, results, results_phi_deg);
+  if (options.format == "table") {
+    std::string text = formatTable(m, options.scene_path, results, results_phi_deg);
+    if (options.split) {
+      char line[320];
+      std::snprintf(line, sizeof line, "\ndrive torque split [N m]: each part by the same engine with the other loads off\n%-9s %12s %16s %16s %16s %16s %16s  %s\n",
+                    "engine", "phi [deg]", "gas_torque", "inertia_torque", "gravity_torque", "sum", "drive_torque", "sum = whole");
+      text += line;
+      for (size_t i = 0; i < splits.size(); ++i) {
+        const TorqueSplit& t = splits[i];
+        std::snprintf(line, sizeof line, "%-9s %12.10g %16.9g %16.9g %16.9g %16.9g %16.9g  %s (|difference| %.2e, tol %.2e)\n",
+                      results[i].engine.c_str(), results_phi_deg[i], t.gas + 0.0, t.inertia + 0.0, t.gravity + 0.0, t.sum() + 0.0,
+                      t.whole, t.holds() ? "holds" : "FAILS", std::fabs(t.sum() - t.whole), t.tolerance);
+        text += line;
+      }
+    }
+    return {text, holds};
+  }
   nlohmann::ordered_json doc;
   doc["scene"] = sceneToJson(m);
   doc["results"] = nlohmann::ordered_json::array();
-  for (size_t i = 0; i < results.size(); ++i) doc["results"].push_back(evaluationToJson(results[i], results_phi_deg[i], m));
-  return dumpJson(doc);
+  for (size_t i = 0; i < results.size(); ++i) {
+    nlohmann::ordered_json r = evaluationToJson(results[i], results_phi_deg[i], m);
+    if (options.split) {
+      const TorqueSplit& t = splits[i];
+      r["split"] = {{"gas_torque", t.gas}, {"inertia_torque", t.inertia}, {"gravity_torque", t.gravity},
+                    {"sum", t.sum()}, {"sum_minus_drive_torque", t.sum() - t.whole}, {"tolerance", t.tolerance},
+                    {"holds", t.holds()}};
+    }
+    doc["results"].push_back(r);
+  }
+  return {dumpJson(doc), holds};
 }
 
 }  // namespace crankcheck::app

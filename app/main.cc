@@ -85,12 +85,17 @@ int main(int argc, char** argv) {
     if (validate_cmd->parsed()) return crankcheck::app::runValidate(validate);
     if (merge_cmd->parsed()) return crankcheck::app::runMerge(merge);
     std::string output;
-    if (eval_cmd->parsed()) output = crankcheck::app::runEval(eval);
+    bool checks_hold = true;  // eval --split checks that its parts add up to the whole
+    if (eval_cmd->parsed()) {
+      const crankcheck::app::EvalOutput result = crankcheck::app::runEval(eval);
+      output = result.text;
+      checks_hold = result.checks_hold;
+    }
     if (motion_cmd->parsed()) output = crankcheck::app::runMotion(motion);
     if (balance_cmd->parsed()) output = crankcheck::app::runBalance(balance);
     std::fwrite(output.data(), 1, output.size(), stdout);  // only complete results are ever printed
     if (std::fflush(stdout) != 0) throw crankcheck::EnvironmentError("stdout: cannot write the results");
-    return 0;
+    return checks_hold ? 0 : 1;
   } catch (const crankcheck::UsageError& e) {
     std::cerr << "crankcheck: " << e.what() << "\n";
     return 2;

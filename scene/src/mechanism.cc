@@ -28,6 +28,17 @@ bool isSingleBank(const Mechanism& m) {
 
 bool hasAxialPositions(const Mechanism& m) { return !m.engine.axial_positions.empty(); }
 
+Mechanism withLoads(const Mechanism& m, bool gas, bool inertia, bool gravity) {
+  Mechanism out = m;
+  if (!gas) {
+    out.gas.reset();
+    out.firing_angles.clear();
+  }
+  if (!inertia) out.engine.speed = out.speed_rpm = 0.0;
+  if (!gravity) out.engine.gravity = 0.0;
+  return out;
+}
+
 double calcGasForce(const Mechanism& m, int j, double phi) {
   if (!m.gas) return 0.0;
   return calcGasPressure(*m.gas, phi - m.firing_angles.at(static_cast<size_t>(j))) * calcBoreArea(*m.gas);

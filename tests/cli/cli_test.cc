@@ -163,6 +163,30 @@ TEST(Cli, BalanceJson) {
   EXPECT_NE(bad.err.find("--order"), std::string::npos) << bad.err;
 }
 
+// eval --split: the drive torque as gas + inertia + gravity by each engine, adding up to the whole.
+TEST(Cli, EvalSplitAddsUp) {
+  const std::string scene = std::string(CRANKCHECK_SCENES_DIR) + "/inline4_four_stroke.toml";
+  const RunResult r = testing::runCrankcheck({"eval", scene, "--phi-deg", "15,200", "--engine", "both", "--split", "--format", "json"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc["results"].size(), 4u);
+  for (const auto& result : doc["results"]) {
+    const auto& split = result["split"];
+    EXPECT_TRUE(split["holds"].get<bool>());
+    const double sum = split["gas_torque"].get<double>() + split["inertia_torque"].get<double>() + split["gravity_torque"].get<double>();
+    EXPECT_LE(std::fabs(sum - result["drive_torque"].get<double>()), split["tolerance"].get<double>());
+    // At 15 degrees cylinder 0 has just fired: its gas drives the shaft, so the shaft must take torque out.
+    if (result["phi_deg"] == 15) EXPECT_LT(split["gas_torque"].get<double>(), 0.0);
+    EXPECT_GT(result["cylinders"][0]["gas_force"].get<double>(), -101325.0 * 0.006);
+  }
+  // Without [gas], no gas_force key and a zero gas part.
+  const RunResult no_gas = testing::runCrankcheck({"eval", std::string(CRANKCHECK_SCENES_DIR) + "/single_cylinder.toml", "--split", "--format", "json"});
+  ASSERT_EQ(no_gas.exit_status, 0) << no_gas.err;
+  const nlohmann::json plain = nlohmann::json::parse(no_gas.out);
+  EXPECT_FALSE(plain["results"][0]["cylinders"][0].contains("gas_force"));
+  EXPECT_EQ(plain["results"][0]["split"]["gas_torque"].get<double>(), 0.0);
+}
+
 // Every command lists the exit statuses in its help, the same four codes.
 TEST(Cli, HelpListsTheExitStatuses) {
   const RunResult r = testing::runCrankcheck({"--help"});

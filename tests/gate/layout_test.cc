@@ -92,6 +92,35 @@ std::vector<LayoutCase> layoutCases() {
 INSTANTIATE_TEST_SUITE_P(Gate, LayoutGateTest, ::testing::ValuesIn(layoutCases()),
                          [](const auto& info) { return caseName(info.param); });
 
+// The drive torque split into gas, inertia and gravity parts (eval --split): each part by one engine with the other
+// loads off. The parts agree between the engines, and in each engine they add up to the whole: the equations are
+// linear in the loads at a given motion, so the sum differs from the whole by rounding of the drive torque only
+// (the gate's 64 eps x torque scale x conditioning).
+TEST_P(LayoutGateTest, DriveTorqueSplitsIntoGasInertiaAndGravity) {
+  const Mechanism m = withGas(validation::makeLayoutMechanism(GetParam().layout, parts(), GetParam().rotation_deg));
+  const validation::Scales sc = validation::calcScales(m);
+  const double tol = validation::kAgreementMultiple * validation::kEps * sc.torque * sc.conditioning;
+  const Mechanism cases[3] = {withLoads(m, true, false, false), withLoads(m, false, true, false), withLoads(m, false, false, true)};
+  simbody_models::KCrankModel whole(m), gas(cases[0]), inertia(cases[1]), gravity(cases[2]);
+  simbody_models::KCrankModel* models[3] = {&gas, &inertia, &gravity};
+  for (double phi_deg : {0.0, 17.0, 133.0, 222.5, 300.0, 400.0, 700.0}) {
+    SCOPED_TRACE(caseName(GetParam()) + " phi_deg " + std::to_string(phi_deg));
+    const double phi = radiansFromDegrees(phi_deg);
+    double sum_a = 0.0, sum_s = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double a = analytic::calcReactions(cases[i], phi).drive_torque, s = models[i]->evaluate(phi).drive_torque;
+      EXPECT_TRUE(testing::isClose(a, s, tol)) << "part " << i;
+      sum_a += a;
+      sum_s += s;
+    }
+    EXPECT_TRUE(testing::isClose(sum_a, analytic::calcReactions(m, phi).drive_torque, tol));
+    EXPECT_TRUE(testing::isClose(sum_s, whole.evaluate(phi).drive_torque, tol));
+    // The gravity part at rest is Q (CONVENTIONS: the static holding torque).
+    EXPECT_TRUE(testing::isClose(analytic::calcReactions(cases[2], phi).drive_torque, analytic::calcEvaluation(m, phi).Q,
+                                 validation::kAgreementMultiple * validation::kEps * sc.energy * sc.conditioning));
+  }
+}
+
 // Balance: the closed-form harmonics against a DFT of Simbody's shaking force and moment (64 angles, harmonics 1..8),
 // for every layout of the balance table. Each DFT coefficient is (2 / N) sum of N samples, each within the gate's
 // 64 eps x scale x conditioning of the closed form: the coefficients agree within twice that. Aliasing folds

@@ -93,6 +93,10 @@ double getAxialPosition(const Mechanism& m, int j);
 bool isSingleBank(const Mechanism& m);
 /// True when the scene placed the cylinders along the shaft (axial_position or cylinder_spacing).
 bool hasAxialPositions(const Mechanism& m);
+/// The same mechanism with only some of its loads (for the split of the drive torque into its parts): without gas
+/// the [gas] table is dropped, without inertia the speed is 0, without gravity g is 0.
+Mechanism withLoads(const Mechanism& m, bool gas, bool inertia, bool gravity);
+
 /// [N] the gas force p A on piston j at crank angle phi [rad], positive toward the crank; 0 without gas.
 double calcGasForce(const Mechanism& m, int j, double phi);
 
