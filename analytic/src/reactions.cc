@@ -23,9 +23,12 @@ double cross(P2 a, P2 b) { return a.e * b.n - a.n * b.e; }
 
 }  // namespace
 
-Reactions calcReactions(const Mechanism& m, double phi) {
+Reactions calcReactions(const Mechanism& m, double phi, RodInertiaForm rod) {
   const double r = m.crank.radius, w = m.engine.speed, g = m.engine.gravity;
-  const double m_o = m.piston.mass, m_k = m.rod.mass, I_o = m.rod.inertia_about_wrist_pin;
+  const double m_o = m.piston.mass, m_k = m.rod.mass;
+  // The rod's inertia about the wrist pin A: the two point masses give m_k3 l^2 = m_k z_k l; Delta_I makes up the rest.
+  const double I_o = rod == RodInertiaForm::kTwoMassWithoutDeltaI ? m_k * m.rod.com_from_wrist_pin * m.rod.length
+                                                                   : m.rod.inertia_about_wrist_pin;
   const double m_s = m.crank.mass, m_p = m.crank.counterweight_mass;
 
   Reactions out;

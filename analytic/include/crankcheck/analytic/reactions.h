@@ -17,6 +17,7 @@
 
 #include <vector>
 
+#include "crankcheck/analytic/motion.h"
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
 
@@ -34,8 +35,12 @@ struct Reactions {
   std::vector<CylinderReactions> cylinders;
 };
 
-/// Reactions at crank angle phi [rad] and the scene's omega (m.engine.speed).
-Reactions calcReactions(const Mechanism& m, double phi);
+/// Reactions at crank angle phi [rad] and the scene's omega (m.engine.speed), with the rod as `rod` models it:
+/// the rigid rod (kTrueInertia); the paper's two-mass rod with Delta_I (m_k1 at A, m_k3 at B, Delta_I = I_o - l z_k m_k
+/// turning with the rod: the same mass, first moment and inertia about A, so the same reactions); or the common
+/// two-mass rod without Delta_I, a body of mass m_k with its centre of mass at G and inertia m_k3 l^2 = m_k z_k l
+/// about A, which engine programs use and which is wrong by Delta_I psi_ddot in the rod's moment balance.
+Reactions calcReactions(const Mechanism& m, double phi, RodInertiaForm rod = RodInertiaForm::kTrueInertia);
 
 /// Everything the analytic engine reports at phi, in the struct both engines share (engine = "analytic"):
 /// U (eq 12), Q (eq 13), exact piston kinematics, calcReactions and calcShaking, each cylinder in its own bank.
