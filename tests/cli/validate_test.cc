@@ -48,10 +48,10 @@ class ValidateTest : public ::testing::Test {
 };
 
 const char* kFigures[] = {"error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance", "norton_fig13_8",
-                          "delta_vs_k", "integrator_pareto", "balance_harmonics"};
+                          "delta_vs_k", "integrator_pareto", "balance_harmonics", "torque_split", "rod_models"};
 const char* kTables[] = {"crosscheck", "error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance",
                          "norton_fig13_8", "errata", "scenes", "delta_vs_k", "integrator_pareto", "balance",
-                         "balance_harmonics"};
+                         "balance_harmonics", "torque_split", "gravity_share", "rod_models"};
 
 TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   const fs::path report = dir_ / "report";

@@ -18,6 +18,7 @@
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/balance.h"
+#include "crankcheck/validation/engine_loads.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/timing.h"
 
@@ -664,6 +665,12 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   if (!notes.rows.empty()) tasks.push_back({"notes", false, [notes] { return TableSet{{"notes", notes}}; }});
   tasks.push_back({"norton_fig13_8", false, [base] { return nortonFigure(base); }});
   tasks.push_back({"balance", false, [first, user = options.scenes] { return calcBalanceTables(first, user); }});
+  // The working torque (gas, inertia, gravity) and the two-mass rod, on the base scene's parts and the marine engine.
+  Mechanism marine;
+  for (const Mechanism& m : buildDefaultScenes())
+    if (m.name.rfind("marine", 0) == 0) marine = m;
+  tasks.push_back({"torque_split", false, [base, marine] { return calcTorqueSplitTables(base, marine); }});
+  tasks.push_back({"rod_models", false, [base, marine] { return calcRodModelTables(base, marine); }});
   tasks.push_back({"errata", false, [base, quick] { return errata(base, quick); }});
   tasks.push_back({"speed_vs_error", true, [base, quick] { return speedVsError(base, quick); }});
   return tasks;

@@ -1,0 +1,111 @@
+# torque_split.gp -- the drive torque of a running engine and its gas, inertia and gravity parts; gravity's share.
+#
+#   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/torque_split.gp
+#
+# Reads  in_dir/torque_split.csv    engine,phi_deg,drive_torque,gas_torque,inertia_torque,gravity_torque,
+#                                   simbody_drive_torque
+#        in_dir/gravity_share.csv   cycle,k,speed_rpm,mean_abs_drive_torque,mean_abs_gravity_torque,share,resolved
+# Writes out_dir/torque_split.svg and out_dir/torque_split.png
+#
+# Left and middle: the drive torque over one working cycle of the car inline four (engine "car_inline4_6000rpm") and
+# of the marine two-stroke ("marine_inline6_two_stroke"), with its parts (analytic) and Simbody's whole drive torque
+# as dots. Right: gravity's share of the mean absolute drive torque against k, one line per speed and stroke (log
+# axis; rows with resolved = 0, gravity torques below double precision, are left out). Rows may come in any order;
+# an engine or stroke without rows leaves its panel or line out.
+
+if (!exists("in_dir"))  in_dir  = "."
+if (!exists("out_dir")) out_dir = "."
+name = "torque_split"
+file = in_dir . "/" . name . ".csv"
+share = in_dir . "/gravity_share.csv"
+
+reset
+set encoding utf8
+set datafile separator ","
+nlines = 0
+stats file using (nlines = nlines + 1, 1) nooutput
+if (nlines == 0) { print "error: " . file . " is missing or empty (not even a header line)"; exit status 1 }
+nshare = 0
+stats share using (nshare = nshare + 1, 1) nooutput
+if (nshare == 0) { print "error: " . share . " is missing or empty (not even a header line)"; exit status 1 }
+
+array ENG[2] = ["car_inline4_6000rpm", "marine_inline6_two_stroke"]
+array TITLE[2] = ["car inline four, four-stroke, 6000 rpm", "marine inline six, two-stroke, 105 rpm"]
+array N[2]
+do for [e = 1:2] {
+    N[e] = 0
+    if (nlines > 1) { stats file skip 1 using (strcol(1) eq ENG[e] ? N[e] = N[e] + 1 : 0, 0) nooutput }
+}
+sel(e, c) = (strcol(1) eq ENG[e]) ? column(c) : NaN
+pos(x) = (x > 0 && x == x) ? x : NaN
+
+if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) { pngterm = "pngcairo" } else { pngterm = "png" }
+do for [fmt in "svg png"] {
+    if (fmt eq "svg") {
+        set terminal svg size 900,560 enhanced font "DejaVu Sans,10" background rgb "white"
+    } else {
+        if (pngterm eq "pngcairo") {
+            set terminal pngcairo size 900,560 enhanced font "DejaVu Sans,10" background rgb "white"
+        } else {
+            set terminal png size 900,560 enhanced font "DejaVuSans,10" background rgb "white"
+        }
+    }
+    set output out_dir . "/" . name . "." . fmt
+    set multiplot title "The drive torque of a running engine: gas, inertia and gravity (Simbody's whole as dots)" font ",12"
+    set tmargin at screen 0.86
+    set bmargin at screen 0.22
+    do for [e = 1:2] {
+        set lmargin at screen (e == 1 ? 0.07 : 0.38)
+        set rmargin at screen (e == 1 ? 0.33 : 0.64)
+        set title TITLE[e] font ",10"
+        set xlabel "crank angle φ [deg]" font ",9"
+        set ylabel (e == 1 ? "torque the shaft must receive [N m]" : "") font ",9"
+        set xrange [0:(e == 1 ? 720 : 360)]
+        set xtics 0, (e == 1 ? 180 : 90) font ",8"
+        set ytics autofreq font ",8"
+        set format y "%.0s%c"
+        set key at screen 0.36, screen 0.07 center center horizontal samplen 1.5 font ",9"
+        unset label 5
+        if (N[e] == 0) {
+            set label 5 "no rows in the CSV" at graph 0.5, graph 0.5 center front
+            set xrange [0:1]
+            set yrange [0:1]
+            plot NaN notitle
+            set autoscale xy
+        } else { if (e == 1) {
+            plot file skip 1 using 2:(sel(e, 4)) smooth unique with lines lw 1.5 lc rgb "#d62728" title "gas", \
+                 file skip 1 using 2:(sel(e, 5)) smooth unique with lines lw 1.5 lc rgb "#1f77b4" title "inertia", \
+                 file skip 1 using 2:(sel(e, 6)) smooth unique with lines lw 2 lc rgb "#2ca02c" title "gravity", \
+                 file skip 1 using 2:(sel(e, 3)) smooth unique with lines lw 2 lc rgb "black" title "drive torque (analytic)", \
+                 file skip 1 every 4 using 2:(sel(e, 7)) with points pt 7 ps 0.35 lc rgb "#777777" title "Simbody"
+        } else {
+            unset key
+            plot file skip 1 using 2:(sel(e, 4)) smooth unique with lines lw 1.5 lc rgb "#d62728" notitle, \
+                 file skip 1 using 2:(sel(e, 5)) smooth unique with lines lw 1.5 lc rgb "#1f77b4" notitle, \
+                 file skip 1 using 2:(sel(e, 6)) smooth unique with lines lw 2 lc rgb "#2ca02c" notitle, \
+                 file skip 1 using 2:(sel(e, 3)) smooth unique with lines lw 2 lc rgb "black" notitle, \
+                 file skip 1 every 4 using 2:(sel(e, 7)) with points pt 7 ps 0.35 lc rgb "#777777" notitle
+        } }
+    }
+    set lmargin at screen 0.72
+    set rmargin at screen 0.98
+    set title "gravity's share of mean |drive torque|" font ",10"
+    set xlabel "cylinders k" font ",9"
+    set ylabel ""
+    set logscale y
+    set format y "10^{%L}"
+    set datafile missing NaN  # rows of other speeds are skipped, the line goes on
+    set xrange [0.5:12.5]
+    set xtics 1, 1, 12 font ",8"
+    set key at screen 0.85, screen 0.07 center center maxrows 4 samplen 1.2 font ",8"
+    plot for [rpm in "600 6000"] share skip 1 using 2:((strcol(1) eq "four-stroke" && column(3) == rpm + 0 && column(7) == 1) ? pos($6) : NaN) \
+             with linespoints pt 7 ps 0.5 lw 1.5 title "four-stroke " . rpm . " rpm", \
+         for [rpm in "600 6000"] share skip 1 using 2:((strcol(1) eq "two-stroke" && column(3) == rpm + 0 && column(7) == 1) ? pos($6) : NaN) \
+             with linespoints pt 6 ps 0.5 lw 1.5 dt 2 title "two-stroke " . rpm . " rpm"
+    unset logscale y
+    set datafile missing
+    set format y "%g"
+    set autoscale x
+    unset multiplot
+    unset output
+}
