@@ -143,11 +143,22 @@ TEST(RodModelGate, TwoMassRodIsExactOnlyWithDeltaIOrWhenItVanishes) {
       double worst_without = 0.0, worst_with = 0.0;
       for (double phi_deg : testing::sweepPhisDeg()) {
         const double phi = radiansFromDegrees(phi_deg);
-        const double simbody = model.evaluate(phi).drive_torque;
-        worst_without = std::max(worst_without,
-                                 std::fabs(analytic::calcReactions(m, phi, RodInertiaForm::kTwoMassWithoutDeltaI).drive_torque - simbody));
-        worst_with = std::max(worst_with,
-                              std::fabs(analytic::calcReactions(m, phi, RodInertiaForm::kTwoMassWithDeltaI).drive_torque - simbody));
+        const Evaluation s = model.evaluate(phi);
+        const analytic::Reactions without = analytic::calcReactions(m, phi, RodInertiaForm::kTwoMassWithoutDeltaI);
+        const analytic::Reactions with = analytic::calcReactions(m, phi, RodInertiaForm::kTwoMassWithDeltaI);
+        worst_without = std::max(worst_without, std::fabs(without.drive_torque - s.drive_torque));
+        worst_with = std::max(worst_with, std::fabs(with.drive_torque - s.drive_torque));
+        // With Delta_I every reaction is the rigid rod's too (the paper's reduction, checked the same way).
+        const double force_tol = validation::kAgreementMultiple * validation::kEps * sc.force * sc.conditioning;
+        for (int i = 0; i < 2; ++i) {
+          EXPECT_TRUE(testing::isClose(with.bearing_force[i], s.bearing_force[i], force_tol));
+          for (size_t j = 0; j < s.cylinders.size(); ++j) {
+            EXPECT_TRUE(testing::isClose(with.cylinders[j].crank_pin_force[i], s.cylinders[j].crank_pin_force[i], force_tol));
+            EXPECT_TRUE(testing::isClose(with.cylinders[j].wrist_pin_force[i], s.cylinders[j].wrist_pin_force[i], force_tol));
+          }
+        }
+        for (size_t j = 0; j < s.cylinders.size(); ++j)
+          EXPECT_TRUE(testing::isClose(with.cylinders[j].wall_force, s.cylinders[j].wall_force, force_tol));
       }
       EXPECT_LE(worst_with, tol) << "with Delta_I the two-mass rod is the rigid rod";
       if (f == 1.0) EXPECT_LE(worst_without, tol) << "Delta_I = 0: nothing to drop";
