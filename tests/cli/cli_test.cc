@@ -100,6 +100,7 @@ struct BadRun {
   std::vector<std::string> args;  // "SCENES" stands for the example scenes' folder
   std::string expected;           // in the message
 };
+void PrintTo(const BadRun& c, std::ostream* os) { *os << c.name; }  // stable, readable ctest names
 
 class CliBadInputTest : public ::testing::TestWithParam<BadRun> {};
 

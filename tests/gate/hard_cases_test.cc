@@ -36,6 +36,7 @@ struct ScaleCase {
   std::string name;
   double length_factor, mass_factor, gravity;
 };
+void PrintTo(const ScaleCase& c, std::ostream* os) { *os << c.name; }  // stable, readable ctest names
 
 class GateScalesTest : public ::testing::TestWithParam<ScaleCase> {};
 

@@ -22,6 +22,7 @@ struct MotionCase {
   testing::CaseSpec spec;
   double flywheel;
 };
+void PrintTo(const MotionCase& c, std::ostream* os) { *os << c.name; }  // stable, readable ctest names
 
 class FreeRunGateTest : public ::testing::TestWithParam<MotionCase> {};
 

@@ -93,6 +93,7 @@ struct BadScene {
   std::string rule;     // expected in the message
   const std::string* base = nullptr;  // the scene edited: kGoodScene when null
 };
+void PrintTo(const BadScene& c, std::ostream* os) { *os << c.name; }  // stable, readable ctest names
 
 std::string applyEdit(const BadScene& bad, const std::string& base = kGoodScene) {
   if (bad.find.empty()) return bad.replace;
@@ -267,6 +268,7 @@ struct BeyondLimit {
   std::string replace;  // the same key just beyond its limit (a large rod where the limit needs one)
   std::string message;  // expected after "scenes/limit.toml: "
 };
+void PrintTo(const BeyondLimit& c, std::ostream* os) { *os << c.name; }  // stable, readable ctest names
 
 class BeyondLimitTest : public ::testing::TestWithParam<BeyondLimit> {};
 

@@ -82,6 +82,8 @@ struct Case {
   double gamma_deg = 90.0;
   double omega = 0.0;
 };
+std::string caseName(const Case& c);
+void PrintTo(const Case& c, std::ostream* os) { *os << caseName(c); }  // stable, readable ctest names
 
 Mechanism makeMechanism(const Case& c) {
   Mechanism m;
