@@ -116,6 +116,11 @@ nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, co
   j["U"] = ev.U;
   j["Q"] = ev.Q;
   j["drive_torque"] = ev.drive_torque;
+  // The paper's dimensionless values (divided by I_w omega^2): only with a flywheel and a speed.
+  const bool dimensionless = m.flywheel_inertia && m.engine.speed > 0.0;
+  const double unit = dimensionless ? *m.flywheel_inertia * m.engine.speed * m.engine.speed : 1.0;
+  j["U_star"] = dimensionless ? nlohmann::ordered_json(ev.U / unit) : nlohmann::ordered_json(nullptr);
+  j["Q_star"] = dimensionless ? nlohmann::ordered_json(ev.Q / unit) : nlohmann::ordered_json(nullptr);
   j["bearing_force"] = vec(ev.bearing_force);
   j["shaking_force"] = vec(ev.shaking_force);
   // Without axial positions the X and Y moments are not defined: null, never 0.
@@ -132,6 +137,9 @@ nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, co
                                        {"wrist_pin_force", vec(c.wrist_pin_force)},
                                        {"wall_force", c.wall_force}};
     if (m.gas) cylinder["gas_force"] = c.gas_force;  // absent without [gas]
+    cylinder["rod_angle"] = c.rod_angle;
+    cylinder["rod_omega"] = c.rod_omega;
+    cylinder["rod_alpha"] = c.rod_alpha;
     cylinders.push_back(cylinder);
   }
   j["cylinders"] = cylinders;

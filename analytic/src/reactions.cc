@@ -91,6 +91,10 @@ Evaluation calcEvaluation(const Mechanism& m, double phi) {
     c.wrist_pin_force = reactions.cylinders[j].wrist_pin_force;
     c.wall_force = reactions.cylinders[j].wall_force;
     c.gas_force = calcGasForce(m, static_cast<int>(j), phi);
+    const RodKinematics rod = calcRodKinematics(m, calcThrowSinCos(phi, m.engine.crank_angles[j]));
+    c.rod_angle = rod.beta;
+    c.rod_omega = rod.beta_dot;
+    c.rod_alpha = rod.beta_ddot;
     ev.cylinders.push_back(c);
   }
   return ev;

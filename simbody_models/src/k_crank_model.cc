@@ -262,6 +262,10 @@ Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
     const SimTK::Vec3 frame_on_piston = reactions[piston.getMobilizedBodyIndex()][1];
     c.wall_force = SimTK::dot(frame_on_piston, n_[j]);
     c.gas_force = calcGasForce(m_, j, crank_.getQ(state_));  // the input, at Simbody's crank angle
+    // The rod's pin angle q turns the rod from pointing at O (-e): B - A = l (-cos q, -sin q), so beta = -q.
+    c.rod_angle = -rod.getQ(state_);
+    c.rod_omega = -rod.getU(state_);
+    c.rod_alpha = -rod.getUDot(state_);
   }
 
   // Shaking force and moment, -dP/dt and -dH_O/dt of every moving body, from Simbody's own body accelerations

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <unistd.h>
 
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
@@ -162,6 +163,35 @@ TEST(Cli, BalanceJson) {
   const RunResult bad = testing::runCrankcheck({"balance", scenes + "/v8_cross_plane.toml", "--order", "0"});
   EXPECT_EQ(bad.exit_status, 2);
   EXPECT_NE(bad.err.find("--order"), std::string::npos) << bad.err;
+}
+
+// The paper's dimensionless U* and Q* (null without a flywheel), and the rod's swing, from both engines.
+TEST(Cli, DimensionlessValuesAndRodSwing) {
+  const std::string scenes = CRANKCHECK_SCENES_DIR;
+  const RunResult r = testing::runCrankcheck({"eval", scenes + "/single_cylinder.toml", "--phi-deg", "37", "--engine", "both", "--format", "json"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  const double I_w = doc["scene"]["flywheel"]["inertia"].get<double>(), w = doc["scene"]["engine"]["speed"].get<double>();
+  for (const auto& result : doc["results"]) {
+    // U* = U / (I_w omega^2) exactly as the division of the printed numbers (one rounding: 1 ulp).
+    EXPECT_NEAR(result["U_star"].get<double>(), result["U"].get<double>() / (I_w * w * w), 1e-15 * std::fabs(result["U_star"].get<double>()));
+    const auto& c = result["cylinders"][0];
+    // sin beta = lambda sin theta at theta = 37 degrees (single cylinder: theta = phi).
+    EXPECT_NEAR(std::sin(c["rod_angle"].get<double>()), doc["scene"]["lambda"].get<double>() * std::sin(37.0 * M_PI / 180.0), 1e-14);
+    EXPECT_TRUE(c["rod_omega"].is_number());
+    EXPECT_TRUE(c["rod_alpha"].is_number());
+  }
+  // Without [flywheel] there is no I_w: null, never a number.
+  const auto path = std::filesystem::temp_directory_path() / ("crankcheck_cli_no_flywheel_" + std::to_string(::getpid()) + ".toml");
+  {
+    std::string text = readFile(std::filesystem::path(scenes) / "single_cylinder.toml");
+    std::ofstream(path) << text.substr(0, text.find("[flywheel]"));
+  }
+  const RunResult plain = testing::runCrankcheck({"eval", path.string(), "--format", "json"});
+  std::filesystem::remove(path);
+  ASSERT_EQ(plain.exit_status, 0) << plain.err;
+  EXPECT_TRUE(nlohmann::json::parse(plain.out)["results"][0]["U_star"].is_null());
+  EXPECT_TRUE(nlohmann::json::parse(plain.out)["results"][0]["Q_star"].is_null());
 }
 
 // eval --split: the drive torque as gas + inertia + gravity by each engine, adding up to the whole.

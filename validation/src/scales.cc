@@ -79,6 +79,11 @@ std::vector<Comparison> compareEvaluations(const Mechanism& m, const Evaluation&
     }
     out.push_back({"wall_force", c, ca.wall_force, cs.wall_force, sc.force, sc.conditioning});
     if (m.gas) out.push_back({"gas_force", c, ca.gas_force, cs.gas_force, sc.force, 1.0});
+    // The rod's swing: an angle [rad] (as x_p, through the loop closure), and the relative velocity and
+    // acceleration of its ends over its length.
+    out.push_back({"rod_angle", c, ca.rod_angle, cs.rod_angle, 1.0, sc.closure});
+    out.push_back({"rod_omega", c, ca.rod_omega, cs.rod_omega, sc.velocity / m.rod.length, sc.conditioning});
+    out.push_back({"rod_alpha", c, ca.rod_alpha, cs.rod_alpha, sc.acceleration / m.rod.length, sc.conditioning});
   }
   return out;
 }

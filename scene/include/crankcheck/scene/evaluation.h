@@ -22,6 +22,10 @@ struct CylinderEvaluation {
   Vec2 wrist_pin_force{};       ///< [N] rod on piston j at its wrist pin A_j
   double wall_force = 0.0;      ///< [N] N_w: the wall pushes piston j with N_w n
   double gas_force = 0.0;       ///< [N] p A on piston j, positive toward the crank (0 without [gas])
+  /// The rod's angle beta to the cylinder axis (sin beta = lambda sin theta; the rod from the wrist pin to the crank
+  /// pin is l (-cos beta e + sin beta n)) [rad] and its time derivatives [rad/s, rad/s^2]. The rod body turns about +Z
+  /// at -rod_omega.
+  double rod_angle = 0.0, rod_omega = 0.0, rod_alpha = 0.0;
 };
 
 /// Whole-mechanism quantities at crank angle phi (of cylinder 0) and the scene's constant speed omega.
