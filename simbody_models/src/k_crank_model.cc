@@ -262,8 +262,9 @@ Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
     const SimTK::Vec3 frame_on_piston = reactions[piston.getMobilizedBodyIndex()][1];
     c.wall_force = SimTK::dot(frame_on_piston, n_[j]);
     c.gas_force = calcGasForce(m_, j, crank_.getQ(state_));  // the input, at Simbody's crank angle
-    // The rod's pin angle q turns the rod from pointing at O (-e): B - A = l (-cos q, -sin q), so beta = -q.
-    c.rod_angle = -rod.getQ(state_);
+    // The rod's pin angle q turns the rod from pointing at O (-e): B - A = l (-cos q, -sin q), so beta = -q, reduced
+    // to (-pi, pi] (the pin's q may have gathered whole turns during assembly).
+    c.rod_angle = wrappedDifference(-rod.getQ(state_), 0.0);
     c.rod_omega = -rod.getU(state_);
     c.rod_alpha = -rod.getUDot(state_);
   }
