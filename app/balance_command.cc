@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/errors.h"
 #include "json_output.h"
+#include "scene_input.h"
 
 namespace crankcheck::app {
 
@@ -65,12 +65,7 @@ nlohmann::ordered_json harmonicToJson(const analytic::ShakingHarmonic& h, bool a
 }  // namespace
 
 std::string runBalance(const BalanceOptions& options) {
-  Mechanism m;
-  try {
-    m = loadSceneFile(options.scene_path);
-  } catch (const SceneError& e) {
-    throw UsageError(e.what());
-  }
+  const Mechanism m = loadScene(options.scene_path);
   std::vector<validation::BalanceRow> rows;
   try {
     rows = validation::calcBalance(m, options.order);

@@ -5,10 +5,10 @@
 #include <memory>
 
 #include "crankcheck/analytic/reactions.h"
-#include "crankcheck/scene/scene_file.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/scales.h"
 #include "json_output.h"
+#include "scene_input.h"
 #include "crankcheck/validation/errors.h"
 
 namespace crankcheck::app {
@@ -73,12 +73,7 @@ std::vector<Mechanism> splitCases(const Mechanism& m) {
 
 EvalOutput runEval(const EvalOptions& options) {
   const std::vector<double> angles_deg = parseAngleList(options.phi_deg, "--phi-deg");
-  Mechanism m;
-  try {
-    m = loadSceneFile(options.scene_path);
-  } catch (const SceneError& e) {
-    throw UsageError(e.what());
-  }
+  const Mechanism m = loadScene(options.scene_path);
   const bool use_analytic = options.engine != "simbody";
   const bool use_simbody = options.engine != "analytic";
   std::unique_ptr<simbody_models::KCrankModel> model;

@@ -4,9 +4,9 @@
 #include <stdexcept>
 
 #include "crankcheck/analytic/motion.h"
-#include "crankcheck/scene/scene_file.h"
 #include "crankcheck/simbody_models/free_run.h"
 #include "json_output.h"
+#include "scene_input.h"
 #include "crankcheck/validation/errors.h"
 
 namespace crankcheck::app {
@@ -39,12 +39,7 @@ nlohmann::ordered_json toJson(const EngineResult& r) {
 }  // namespace
 
 std::string runMotion(const MotionOptions& options) {
-  Mechanism m;
-  try {
-    m = loadSceneFile(options.scene_path);
-  } catch (const SceneError& e) {
-    throw UsageError(e.what());
-  }
+  const Mechanism m = loadScene(options.scene_path);
   if (!m.flywheel_inertia)
     throw UsageError(options.scene_path + ": [flywheel].inertia: missing key (the free run needs the flywheel inertia)");
   if (!(m.engine.speed > 0.0))

@@ -12,12 +12,12 @@
 #include <set>
 #include <thread>
 
-#include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/report.h"
 #include "crankcheck/validation/errors.h"
 #include "interrupt.h"
+#include "scene_input.h"
 
 namespace crankcheck::app {
 namespace fs = std::filesystem;
@@ -108,11 +108,7 @@ int runValidate(const ValidateOptions& options) {
   campaign.quick = options.quick;
   std::set<std::string> names;
   for (const std::string& path : options.scene_paths) {
-    try {
-      campaign.scenes.push_back(loadSceneFile(path));
-    } catch (const SceneError& e) {
-      throw UsageError(e.what());
-    }
+    campaign.scenes.push_back(loadScene(path));
     if (!names.insert(campaign.scenes.back().name).second)
       throw UsageError(path + ": a scene named " + campaign.scenes.back().name + " is given twice");
     const Mechanism& m = campaign.scenes.back();

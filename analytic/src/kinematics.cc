@@ -67,6 +67,12 @@ CylinderMotion calcCylinderMotion(const Mechanism& m, int j, double phi) {
   return c;
 }
 
+std::vector<CylinderMotion> calcCylinderMotions(const Mechanism& m, double phi) {
+  std::vector<CylinderMotion> motions;
+  for (int j = 0; j < m.engine.cylinders; ++j) motions.push_back(calcCylinderMotion(m, j, phi));
+  return motions;
+}
+
 PistonKinematics calcPistonKinematicsNorton(const Mechanism& m, double theta) {
   const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed;
   const auto [s1, c1] = calcSinCos(theta);

@@ -24,6 +24,10 @@ double cross(P2 a, P2 b) { return a.e * b.n - a.n * b.e; }
 }  // namespace
 
 Reactions calcReactions(const Mechanism& m, double phi, RodInertiaForm rod) {
+  return calcReactions(m, phi, calcCylinderMotions(m, phi), rod);
+}
+
+Reactions calcReactions(const Mechanism& m, double phi, const std::vector<CylinderMotion>& motions, RodInertiaForm rod) {
   const double r = m.crank.radius, w = m.engine.speed, g = m.engine.gravity;
   const double m_o = m.piston.mass, m_k = m.rod.mass;
   // The rod's inertia about the wrist pin A: the two point masses give m_k3 l^2 = m_k z_k l; Delta_I makes up the rest.
@@ -33,7 +37,7 @@ Reactions calcReactions(const Mechanism& m, double phi, RodInertiaForm rod) {
 
   Reactions out;
   for (int j = 0; j < m.engine.cylinders; ++j) {
-    const CylinderMotion c = calcCylinderMotion(m, j, phi);
+    const CylinderMotion& c = motions[static_cast<size_t>(j)];
     // Global (X, Y) of e_j and n_j, and gravity (0, -g) in cylinder j's frame.
     const SinCos gamma = c.gamma;
     const Vec2 e_W{gamma.cos, gamma.sin}, n_W{-gamma.sin, gamma.cos};
@@ -75,26 +79,27 @@ Evaluation calcEvaluation(const Mechanism& m, double phi) {
   ev.phi = phi;
   ev.U = calcPotentialEnergy(m, phi);
   ev.Q = calcGravityTorque(m, phi);
-  const Reactions reactions = calcReactions(m, phi);
+  // Every cylinder's motion once: the reactions, the shaking and the kinematics below all read it.
+  const std::vector<CylinderMotion> motions = calcCylinderMotions(m, phi);
+  const Reactions reactions = calcReactions(m, phi, motions);
   ev.drive_torque = reactions.drive_torque;
   ev.bearing_force = reactions.bearing_force;
-  const Shaking shaking = calcShaking(m, phi);
+  const Shaking shaking = calcShaking(m, motions);
   ev.shaking_force = shaking.force;
   ev.shaking_moment = shaking.moment;
-  for (size_t j = 0; j < m.engine.crank_angles.size(); ++j) {
-    const PistonKinematics k = calcPistonKinematics(m, calcThrowSinCos(phi, m.engine.crank_angles[j]));
+  for (size_t j = 0; j < motions.size(); ++j) {
+    const CylinderMotion& motion = motions[j];
     CylinderEvaluation c;
-    c.x_p = k.x_p;
-    c.v_p = k.v_p;
-    c.a_p = k.a_p;
+    c.x_p = motion.piston.x_p;
+    c.v_p = motion.piston.v_p;
+    c.a_p = motion.piston.a_p;
     c.crank_pin_force = reactions.cylinders[j].crank_pin_force;
     c.wrist_pin_force = reactions.cylinders[j].wrist_pin_force;
     c.wall_force = reactions.cylinders[j].wall_force;
     c.gas_force = calcGasForce(m, static_cast<int>(j), phi);
-    const RodKinematics rod = calcRodKinematics(m, calcThrowSinCos(phi, m.engine.crank_angles[j]));
-    c.rod_angle = rod.beta;
-    c.rod_omega = rod.beta_dot;
-    c.rod_alpha = rod.beta_ddot;
+    c.rod_angle = motion.rod.beta;
+    c.rod_omega = motion.rod.beta_dot;
+    c.rod_alpha = motion.rod.beta_ddot;
     ev.cylinders.push_back(c);
   }
   return ev;

@@ -12,14 +12,15 @@
 
 namespace crankcheck::analytic {
 
-Shaking calcShaking(const Mechanism& m, double phi) {
+Shaking calcShaking(const Mechanism& m, double phi) { return calcShaking(m, calcCylinderMotions(m, phi)); }
+
+Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motions) {
   const double r = m.crank.radius, w = m.engine.speed;
   const double m_o = m.piston.mass, m_k = m.rod.mass;
   const double I_G = m.rod.inertia_about_wrist_pin - m_k * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
   const double throw_first_moment = m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius;
   double P_dot[2] = {0.0, 0.0}, H_dot[3] = {0.0, 0.0, 0.0};
-  for (int j = 0; j < m.engine.cylinders; ++j) {
-    const CylinderMotion c = calcCylinderMotion(m, j, phi);
+  for (const CylinderMotion& c : motions) {
     // m a of the piston, the rod and the throw (m_s at r_s, m_p at -r_p on the crank line: a = -omega^2 p), and
     // p x m a about O, all in cylinder j's frame (planar cross products are the same in every rotated frame).
     const double piston[2] = {m_o * c.a_A[0], m_o * c.a_A[1]};

@@ -49,17 +49,6 @@ size_t lines(const std::string& s) { return static_cast<size_t>(std::count(s.beg
 
 class OutputSafetyTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = std::string(info->test_suite_name()) + "_" + info->name();
-    for (char& c : name)
-      if (c == '/') c = '_';
-    dir_ = fs::temp_directory_path() / ("crankcheck_safety_" + std::to_string(::getpid()) + "_" + name);
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // A refusal: status 2, one line in the form "crankcheck: --flag: ...", nothing on stdout, the disk unchanged.
   void expectRefused(const std::vector<std::string>& args, const std::string& expected) {
     const auto before = snapshot(dir_);
@@ -77,7 +66,8 @@ class OutputSafetyTest : public ::testing::Test {
     return testing::runCrankcheck({"validate", "--quick", "--shard", which, "--out", out.string()});
   }
 
-  fs::path dir_;
+  testing::FreshFolder folder_;  // made for this test alone, removed with what the test wrote
+  const fs::path dir_ = folder_.path();
 };
 
 TEST_F(OutputSafetyTest, RefusesAFolderHoldingAUsersFile) {

@@ -28,13 +28,6 @@ using RunResult = validation::ProgramResult;
 
 class ValidateTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("crankcheck_validate_test_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
   // Runs the CLI with the arguments of `args` (split at spaces; no argument here holds one), without a shell.
   RunResult run(const std::string& args, const std::vector<std::string>& env = {}) {
@@ -44,7 +37,8 @@ class ValidateTest : public ::testing::Test {
     return testing::runCrankcheck(argv, env);
   }
 
-  fs::path dir_;
+  testing::FreshFolder folder_;
+  const fs::path dir_ = folder_.path();
 };
 
 const char* kFigures[] = {"error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance", "norton_fig13_8",

@@ -3,8 +3,12 @@
 /// Runs the crankcheck program as a user would, without a shell (an argument vector: paths with quotes, `$(...)`
 /// or newlines are passed as they are). The including target defines CRANKCHECK_BINARY.
 
+#include <stdlib.h>
+
 #include <filesystem>
+#include <stdexcept>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "crankcheck/validation/process.h"
@@ -31,5 +35,30 @@ inline validation::RunningProgram startCrankcheck(const std::vector<std::string>
   call.argv.insert(call.argv.end(), args.begin(), args.end());
   return validation::startProgram(call);
 }
+
+}  // namespace crankcheck::testing
+
+namespace crankcheck::testing {
+
+/// A folder made fresh for one test (mkdtemp under the system's temporary folder, so it never existed before) and
+/// removed with everything in it when the test ends: only what the test and the program under test wrote.
+class FreshFolder {
+ public:
+  FreshFolder() {
+    std::string name = (std::filesystem::temp_directory_path() / "crankcheck_test_XXXXXX").string();
+    if (::mkdtemp(name.data()) == nullptr) throw std::runtime_error("mkdtemp failed under " + name);
+    path_ = name;
+  }
+  ~FreshFolder() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  FreshFolder(const FreshFolder&) = delete;
+  FreshFolder& operator=(const FreshFolder&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
 
 }  // namespace crankcheck::testing

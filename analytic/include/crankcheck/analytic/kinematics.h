@@ -7,6 +7,8 @@
 /// centre O along the cylinder axis e (CONVENTIONS.md): x_p = r cos(theta) + l sqrt(1 - lambda^2 sin^2 theta).
 /// Time derivatives are at the scene's constant omega = m.engine.speed: v_p = omega dx_p/dtheta, etc.
 
+#include <vector>
+
 #include "crankcheck/analytic/exact_trig.h"
 #include "crankcheck/scene/mechanism.h"
 
@@ -44,6 +46,8 @@ struct CylinderMotion {
 };
 /// @throws std::out_of_range if j is not a cylinder of m.
 CylinderMotion calcCylinderMotion(const Mechanism& m, int j, double phi);
+/// calcCylinderMotion of every cylinder, in order: computed once where several quantities need it (calcEvaluation).
+std::vector<CylinderMotion> calcCylinderMotions(const Mechanism& m, double phi);
 
 /// Exact piston kinematics (Norton 13.1d and its derivatives; closed forms, no series).
 PistonKinematics calcPistonKinematics(const Mechanism& m, double theta);

@@ -17,6 +17,7 @@
 
 #include <vector>
 
+#include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
@@ -41,6 +42,9 @@ struct Reactions {
 /// two-mass rod without Delta_I, a body of mass m_k with its centre of mass at G and inertia m_k3 l^2 = m_k z_k l
 /// about A, which engine programs use and which is wrong by Delta_I psi_ddot in the rod's moment balance.
 Reactions calcReactions(const Mechanism& m, double phi, RodInertiaForm rod = RodInertiaForm::kTrueInertia);
+/// The same from every cylinder's motion at phi (calcCylinderMotions), when it is already at hand.
+Reactions calcReactions(const Mechanism& m, double phi, const std::vector<CylinderMotion>& motions,
+                        RodInertiaForm rod = RodInertiaForm::kTrueInertia);
 
 /// Everything the analytic engine reports at phi, in the struct both engines share (engine = "analytic"):
 /// U (eq 12), Q (eq 13), exact piston kinematics, calcReactions and calcShaking, each cylinder in its own bank.

@@ -14,6 +14,7 @@
 #include <array>
 #include <vector>
 
+#include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
 
@@ -26,6 +27,8 @@ struct Shaking {
 
 /// F_s and M_s at crank angle phi [rad] and the scene's omega; gravity and gas do not enter.
 Shaking calcShaking(const Mechanism& m, double phi);
+/// The same from every cylinder's motion at one angle (calcCylinderMotions), when it is already at hand.
+Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motions);
 
 }  // namespace crankcheck::analytic
 
