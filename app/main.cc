@@ -10,6 +10,7 @@
 #include "balance_command.h"
 #include "eval_command.h"
 #include "motion_command.h"
+#include "grade_command.h"
 #include "validate_command.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/output_folder.h"
@@ -66,14 +67,22 @@ int main(int argc, char** argv) {
       "validate", "The main job: cross-check both engines over a campaign and write the report (figures, CSV, index)");
   crankcheck::app::addValidateOptions(*validate_cmd, validate);
 
+  crankcheck::app::GradeOptions grade;
+  CLI::App* grade_cmd = app.add_subcommand(
+      "grade", "Grade your own program's values against both engines: crankcheck grade [SCENE...] -- PROGRAM [ARG...]");
+  crankcheck::app::addGradeOptions(*grade_cmd, grade);
+
   crankcheck::app::MergeOptions merge;
   CLI::App* report_cmd = app.add_subcommand("report", "Work with reports");
   report_cmd->require_subcommand(1);
   CLI::App* merge_cmd = report_cmd->add_subcommand("merge", "Merge shards of 'validate --shard I/N' into one report");
   crankcheck::app::addMergeOptions(*merge_cmd, merge);
 
+  // `grade ... -- PROGRAM ARG...`: the program's words never reach CLI11 (they are not crankcheck's).
+  std::vector<std::string> args = crankcheck::app::splitGradeProgram(argc, argv, grade.program);
   try {
-    app.parse(argc, argv);
+    std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);  // CLI11 takes them in reverse, without argv[0]
+    app.parse(reversed);
   } catch (const CLI::Success& e) {  // --help, --version
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
@@ -84,6 +93,7 @@ int main(int argc, char** argv) {
   try {
     if (validate_cmd->parsed()) return crankcheck::app::runValidate(validate);
     if (merge_cmd->parsed()) return crankcheck::app::runMerge(merge);
+    if (grade_cmd->parsed()) return crankcheck::app::runGrade(grade);
     std::string output;
     bool checks_hold = true;  // eval --split checks that its parts add up to the whole
     if (eval_cmd->parsed()) {

@@ -1,20 +1,22 @@
-# Build type and flags for every target of the project.
+# Build type and warnings of crankcheck's own targets. Nothing here writes a cache variable: a project that adds
+# crankcheck with add_subdirectory keeps its own flags.
 #
-# CMake's Release flags contain -DNDEBUG. A translation unit that includes Simbody headers must never see
-# NDEBUG (Debian's libSimTK* were built without it; SimTK::State changes layout and realizeTopology()
-# crashes). We therefore set the per-configuration flags ourselves.
-if(NOT CMAKE_BUILD_TYPE AND NOT CMAKE_CONFIGURATION_TYPES)
-  set(CMAKE_BUILD_TYPE Release CACHE STRING "Build type" FORCE)
+# Release is the default build type when crankcheck is the top-level project (a normal variable, so that
+# -DCMAKE_BUILD_TYPE=... on the command line still wins). CMake's Release flags contain -DNDEBUG; the rule that
+# Simbody translation units never see NDEBUG (Debian's libSimTK* were built without it, SimTK::State changes
+# layout under it: ../shared/SIMBODY-NOTES.md) is a property of the one target that includes Simbody headers,
+# crankcheck_simbody_models (simbody_models/CMakeLists.txt: -UNDEBUG after the configuration's flags; its sources
+# #error if NDEBUG is defined, so the rule cannot be broken silently).
+if(PROJECT_IS_TOP_LEVEL AND NOT CMAKE_BUILD_TYPE AND NOT CMAKE_CONFIGURATION_TYPES)
+  set(CMAKE_BUILD_TYPE Release)
 endif()
-set(CMAKE_CXX_FLAGS_RELEASE "-O2" CACHE STRING "Release flags (no NDEBUG, see SIMBODY-NOTES.md)" FORCE)
-set(CMAKE_CXX_FLAGS_RELWITHDEBINFO "-O2 -g" CACHE STRING "RelWithDebInfo flags (no NDEBUG)" FORCE)
-set(CMAKE_CXX_FLAGS_DEBUG "-O0 -g" CACHE STRING "Debug flags" FORCE)
 
+# Directory-scoped (crankcheck's subdirectories only).
 add_compile_options(-Wall -Wextra -Wpedantic)
 
-# AddressSanitizer and UndefinedBehaviorSanitizer for every target (scripts/sanitize.sh, build-asan/). Still no
-# NDEBUG. Simbody's own libraries are not instrumented; our code and the Simbody templates it instantiates are.
-option(CRANKCHECK_SANITIZE "Build with -fsanitize=address,undefined" OFF)
+# AddressSanitizer and UndefinedBehaviorSanitizer for every target of crankcheck (scripts/sanitize.sh,
+# build-asan/). Simbody's own libraries are not instrumented; our code and the Simbody templates it instantiates are.
+option(CRANKCHECK_SANITIZE "Build crankcheck with -fsanitize=address,undefined" OFF)
 if(CRANKCHECK_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
   add_link_options(-fsanitize=address,undefined)

@@ -21,6 +21,7 @@
 #include "crankcheck/validation/engine_loads.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/timing.h"
+#include "crankcheck/validation/variants.h"
 
 namespace crankcheck::validation {
 
@@ -91,54 +92,6 @@ Mechanism makeScene(const std::string& name, int k, Cycle cycle, double gamma_de
   m.piston.mass = 0.35;
   m.flywheel_inertia = 0.15;
   return m;
-}
-
-std::string gammaTag(double gamma_deg) {
-  return "gamma" + std::string(gamma_deg < 0 ? "m" : "") + std::to_string(static_cast<int>(std::fabs(gamma_deg)));
-}
-
-// The same mechanism with crank ratio lambda: the rod is lengthened or shortened (r fixed), its centre of mass
-// stays at the same fraction of its length and its radius of gyration scales with it.
-Mechanism withLambda(const Mechanism& base, double lambda) {
-  Mechanism m = base;
-  const double scale = (base.crank.radius / lambda) / base.rod.length;
-  m.rod.length = base.crank.radius / lambda;
-  m.rod.com_from_wrist_pin = base.rod.com_from_wrist_pin * scale;
-  m.rod.inertia_about_wrist_pin = base.rod.inertia_about_wrist_pin * scale * scale;
-  return m;
-}
-
-Mechanism withCylinders(const Mechanism& base, int k, Cycle cycle) {
-  Mechanism m = base;
-  m.engine.cylinders = k;
-  m.engine.cycle = cycle;
-  m.engine.acting = Acting::kSingle;
-  m.engine.explicit_crank_angles = false;
-  m.engine.crank_angles = calcPhaseAngles(k, cycle, Acting::kSingle);
-  m.engine.bank_angles.clear();      // one bank, at cylinder_angle
-  m.engine.axial_positions.clear();  // in one plane
-  return m;
-}
-
-Mechanism withSpeed(const Mechanism& base, double rpm) {
-  Mechanism m = base;
-  m.speed_rpm = rpm;
-  m.engine.speed = rpm * (M_PI / 30.0);
-  return m;
-}
-
-// The same engine turned as a whole so that cylinder 0's bank is at gamma (every bank turns with it).
-Mechanism withGamma(const Mechanism& base, double gamma_deg) {
-  Mechanism m = base;
-  m.engine.cylinder_angle = radiansFromDegrees(gamma_deg);
-  for (double& bank : m.engine.bank_angles) bank += m.engine.cylinder_angle - base.engine.cylinder_angle;
-  return m;
-}
-
-std::vector<double> anglesDeg(double step) {
-  std::vector<double> v;
-  for (double a = 0.0; a < 360.0 - 1e-9; a += step) v.push_back(a);
-  return v;
 }
 
 double lambdaOf(const Mechanism& m) { return calcCrankRatio(m); }

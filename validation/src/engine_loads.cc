@@ -1,4 +1,5 @@
 #include "crankcheck/validation/engine_loads.h"
+#include "crankcheck/validation/variants.h"
 
 #include <algorithm>
 #include <cmath>
@@ -44,26 +45,8 @@ namespace {
 
 std::string num(double x) { return formatNumber(x); }
 
-Mechanism withSpeed(Mechanism m, double rpm) {
-  m.speed_rpm = rpm;
-  m.engine.speed = rpm * (M_PI / 30.0);
-  return m;
-}
-
-// An inline engine of k cylinders on m's parts, standing, with eqs (8)-(11)'s phases.
-Mechanism inlineOf(Mechanism m, int k, Cycle cycle) {
-  m.engine.cylinders = k;
-  m.engine.cycle = cycle;
-  m.engine.acting = Acting::kSingle;
-  m.engine.explicit_crank_angles = false;
-  m.engine.crank_angles = calcPhaseAngles(k, cycle, Acting::kSingle);
-  m.engine.cylinder_angle = radiansFromDegrees(90.0);
-  m.engine.bank_angles.clear();
-  m.engine.axial_positions.clear();
-  m.gas.reset();
-  m.firing_angles.clear();
-  return m;
-}
+// An inline engine of k cylinders on m's parts, standing, with eqs (8)-(11)'s phases, without gas.
+Mechanism inlineOf(const Mechanism& m, int k, Cycle cycle) { return withGamma(withCylinders(m, k, cycle), 90.0); }
 
 struct Parts {
   double drive, gas, inertia, gravity;

@@ -8,7 +8,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <pthread.h>
+
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -90,55 +94,141 @@ struct Pipe {
 
 fs::path findProgram(const std::string& name) { return findOnPath(name, pathSetting({})); }
 
+RunningProgram::RunningProgram(pid_t pid, int out_fd, int err_fd, int in_fd, const ProgramCall* call)
+    : pid_(pid), out_fd_(out_fd), err_fd_(err_fd), in_fd_(in_fd) {
+  if (call != nullptr) {
+    if (call->input) input_ = *call->input;
+    timeout_seconds_ = call->timeout_seconds;
+    output_limit_ = call->output_limit;
+  }
+}
+
 RunningProgram::RunningProgram(RunningProgram&& other) noexcept
-    : pid_(other.pid_), out_fd_(other.out_fd_), err_fd_(other.err_fd_) {
+    : pid_(other.pid_), out_fd_(other.out_fd_), err_fd_(other.err_fd_), in_fd_(other.in_fd_),
+      input_(std::move(other.input_)), timeout_seconds_(other.timeout_seconds_), output_limit_(other.output_limit_) {
   other.pid_ = -1;
-  other.out_fd_ = other.err_fd_ = -1;
+  other.out_fd_ = other.err_fd_ = other.in_fd_ = -1;
 }
 
 RunningProgram::~RunningProgram() {
   if (pid_ > 0) wait();
 }
 
+namespace {
+
+// write() to a pipe whose reader is gone raises SIGPIPE; block it in this thread around the write and consume a
+// SIGPIPE the write left pending, so the caller sees EPIPE and nothing else (the signal is per thread here).
+ssize_t writeWithoutSigpipe(int fd, const char* data, size_t size) {
+  sigset_t pipe_only, old_mask;
+  sigemptyset(&pipe_only);
+  sigaddset(&pipe_only, SIGPIPE);
+  sigset_t pending;
+  sigpending(&pending);
+  const bool was_pending = sigismember(&pending, SIGPIPE) == 1;
+  pthread_sigmask(SIG_BLOCK, &pipe_only, &old_mask);
+  const ssize_t written = ::write(fd, data, size);
+  const int saved_errno = errno;
+  if (written < 0 && saved_errno == EPIPE && !was_pending) {
+    const timespec zero{0, 0};
+    while (sigtimedwait(&pipe_only, nullptr, &zero) < 0 && errno == EINTR) {
+    }
+  }
+  pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
+  errno = saved_errno;
+  return written;
+}
+
+}  // namespace
+
 ProgramResult RunningProgram::wait() {
+  using Clock = std::chrono::steady_clock;
   ProgramResult result;
-  struct Stream {
-    int& fd;
-    std::string& text;
+  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                           std::chrono::duration<double>(timeout_seconds_));
+  size_t input_done = 0;
+  if (in_fd_ >= 0 && input_.empty()) {
+    ::close(in_fd_);
+    in_fd_ = -1;
+  }
+  bool killed = false;
+  auto killGroup = [&] {
+    if (!killed) ::kill(-pid_, SIGKILL);
+    killed = true;
   };
-  Stream streams[2] = {{out_fd_, result.out}, {err_fd_, result.err}};
-  char buffer[4096];
-  while (out_fd_ >= 0 || err_fd_ >= 0) {
-    pollfd fds[2];
+  char buffer[65536];
+  while (out_fd_ >= 0 || err_fd_ >= 0 || in_fd_ >= 0) {
+    pollfd fds[3];
     nfds_t n = 0;
-    for (const Stream& s : streams)
-      if (s.fd >= 0) fds[n++] = {s.fd, POLLIN, 0};
-    if (::poll(fds, n, -1) < 0) {
+    if (out_fd_ >= 0) fds[n++] = {out_fd_, POLLIN, 0};
+    if (err_fd_ >= 0) fds[n++] = {err_fd_, POLLIN, 0};
+    if (in_fd_ >= 0) fds[n++] = {in_fd_, POLLOUT, 0};
+    int wait_ms = -1;
+    if (timeout_seconds_ > 0.0 && !killed) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+      if (left <= 0) {
+        result.timed_out = true;
+        killGroup();
+        // The pipes may stay open in a grandchild that escaped the group: stop reading them.
+        break;
+      }
+      wait_ms = static_cast<int>(std::min<long long>(left, 1000));
+    }
+    const int ready = ::poll(fds, n, wait_ms);
+    if (ready < 0) {
       if (errno == EINTR) continue;
       break;
     }
     for (nfds_t i = 0; i < n; ++i) {
       if (fds[i].revents == 0) continue;
-      for (Stream& s : streams) {
-        if (s.fd != fds[i].fd) continue;
-        const ssize_t got = ::read(s.fd, buffer, sizeof buffer);
-        if (got > 0) {
-          s.text.append(buffer, static_cast<size_t>(got));
-        } else if (got == 0 || errno != EINTR) {
-          ::close(s.fd);
-          s.fd = -1;
+      if (fds[i].fd == in_fd_) {
+        const ssize_t put = writeWithoutSigpipe(in_fd_, input_.data() + input_done, input_.size() - input_done);
+        if (put > 0) input_done += static_cast<size_t>(put);
+        if ((put < 0 && errno != EINTR && errno != EAGAIN) || input_done == input_.size()) {
+          if (input_done < input_.size()) result.input_refused = true;
+          ::close(in_fd_);
+          in_fd_ = -1;
         }
+        continue;
+      }
+      const bool is_out = fds[i].fd == out_fd_;
+      int& fd = is_out ? out_fd_ : err_fd_;
+      std::string& text = is_out ? result.out : result.err;
+      const ssize_t got = ::read(fd, buffer, sizeof buffer);
+      if (got > 0) {
+        text.append(buffer, static_cast<size_t>(got));
+        if (is_out && output_limit_ > 0 && text.size() > output_limit_) {
+          text.resize(output_limit_);
+          result.output_limit_exceeded = true;
+          killGroup();
+          ::close(fd);
+          fd = -1;
+        }
+      } else if (got == 0 || errno != EINTR) {
+        ::close(fd);
+        fd = -1;
       }
     }
   }
-  for (int* fd : {&out_fd_, &err_fd_})
+  for (int* fd : {&out_fd_, &err_fd_, &in_fd_})
     if (*fd >= 0) {
       ::close(*fd);
       *fd = -1;
     }
   int status = 0;
-  while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+  // A program that closed its output but does not end is still held to the timeout.
+  while (timeout_seconds_ > 0.0 && !killed) {
+    const pid_t done = ::waitpid(pid_, &status, WNOHANG);
+    if (done == pid_ || (done < 0 && errno != EINTR)) break;
+    if (Clock::now() >= deadline) {
+      result.timed_out = true;
+      killGroup();
+      break;
+    }
+    ::usleep(2000);
   }
+  if (killed || timeout_seconds_ <= 0.0)
+    while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
   {
     std::lock_guard<std::mutex> lock(runningMutex());
     runningPids().erase(pid_);
@@ -155,15 +245,17 @@ RunningProgram startProgram(const ProgramCall& call) {
   if (program.empty())
     throw EnvironmentError(call.argv[0] + ": not found (no executable of that name on PATH)");
 
-  Pipe out, err;
-  if (::pipe2(out.fd, O_CLOEXEC) != 0 || ::pipe2(err.fd, O_CLOEXEC) != 0)
+  Pipe out, err, in;
+  if (::pipe2(out.fd, O_CLOEXEC) != 0 || ::pipe2(err.fd, O_CLOEXEC) != 0 ||
+      (call.input && ::pipe2(in.fd, O_CLOEXEC) != 0))
     throw EnvironmentError(call.argv[0] + ": cannot create a pipe: " + std::strerror(errno));
 
   posix_spawn_file_actions_t actions;
   posix_spawnattr_t attributes;
   posix_spawn_file_actions_init(&actions);
   posix_spawnattr_init(&attributes);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  if (call.input) posix_spawn_file_actions_adddup2(&actions, in.fd[0], STDIN_FILENO);
+  else posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
   posix_spawn_file_actions_adddup2(&actions, out.fd[1], STDOUT_FILENO);
   posix_spawn_file_actions_adddup2(&actions, err.fd[1], STDERR_FILENO);
   if (!call.working_dir.empty()) posix_spawn_file_actions_addchdir_np(&actions, call.working_dir.c_str());
@@ -173,7 +265,8 @@ RunningProgram startProgram(const ProgramCall& call) {
   for (int s : {SIGINT, SIGTERM, SIGPIPE}) sigaddset(&defaults, s);
   posix_spawnattr_setsigmask(&attributes, &none);
   posix_spawnattr_setsigdefault(&attributes, &defaults);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+  posix_spawnattr_setpgroup(&attributes, 0);  // a group of its own: a timeout kills whatever it started too
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETPGROUP);
 
   std::vector<char*> argv;
   for (const std::string& a : call.argv) argv.push_back(const_cast<char*>(a.c_str()));
@@ -196,8 +289,13 @@ RunningProgram startProgram(const ProgramCall& call) {
   ::close(out.fd[1]);
   ::close(err.fd[1]);
   out.fd[1] = err.fd[1] = -1;
-  RunningProgram running(pid, out.fd[0], err.fd[0]);
-  out.fd[0] = err.fd[0] = -1;
+  if (call.input) {
+    ::close(in.fd[0]);
+    in.fd[0] = -1;
+    ::fcntl(in.fd[1], F_SETFL, ::fcntl(in.fd[1], F_GETFL) | O_NONBLOCK);
+  }
+  RunningProgram running(pid, out.fd[0], err.fd[0], in.fd[1], &call);
+  out.fd[0] = err.fd[0] = in.fd[1] = -1;
   return running;
 }
 
@@ -205,7 +303,7 @@ ProgramResult runProgram(const ProgramCall& call) { return startProgram(call).wa
 
 void killRunningPrograms() {
   std::lock_guard<std::mutex> lock(runningMutex());
-  for (pid_t pid : runningPids()) ::kill(pid, SIGKILL);
+  for (pid_t pid : runningPids()) ::kill(-pid, SIGKILL);  // each runs in a process group of its own
 }
 
 }  // namespace crankcheck::validation

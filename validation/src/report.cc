@@ -14,12 +14,10 @@
 
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/install_paths.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/process.h"
 
-#ifndef CRANKCHECK_REPORTS_DIR
-#error "CRANKCHECK_REPORTS_DIR (the folder of the gnuplot scripts) must be defined by the build"
-#endif
 
 namespace crankcheck::validation {
 namespace fs = std::filesystem;
@@ -266,10 +264,7 @@ std::string toHtml(const std::vector<Block>& blocks, const std::string& title) {
   return html.str();
 }
 
-fs::path scriptsDir() {
-  if (const char* env = std::getenv("CRANKCHECK_REPORTS_DIR")) return env;
-  return CRANKCHECK_REPORTS_DIR;
-}
+fs::path scriptsDir() { return findReportsDir(); }
 
 // gnuplot runs in the report folder with a fixed command line: no path of the user's is ever part of a gnuplot
 // command (the scripts read data/NAME.csv and write NAME.svg, NAME.png relative to it), and no shell is involved.

@@ -1,11 +1,13 @@
 #pragma once
 /// @file
-/// Starting external programs (gnuplot) without a shell: the program gets its arguments as a vector, so no
-/// character of a path (quotes, `$(...)`, backticks, semicolons, newlines) is ever interpreted.
+/// Starting external programs (gnuplot, a graded program) without a shell: the program gets its arguments as a
+/// vector, so no character of a path (quotes, `$(...)`, backticks, semicolons, newlines) is ever interpreted.
 
 #include <sys/types.h>
 
+#include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,13 +19,22 @@ struct ProgramCall {
   std::filesystem::path working_dir = {}; ///< the child's working folder; empty: the caller's
   /// Changes to the child's environment: "NAME=VALUE" sets NAME, "NAME" alone removes it.
   std::vector<std::string> environment = {};
+  /// What the program reads on stdin (written through a pipe, then closed); none: stdin is /dev/null.
+  std::optional<std::string> input = std::nullopt;
+  /// [s] The program (and every process of its process group) is killed with SIGKILL after this long; 0: no limit.
+  double timeout_seconds = 0.0;
+  /// [bytes] The program is killed with SIGKILL when its stdout grows past this; 0: no limit.
+  size_t output_limit = 0;
 };
 
 /// How a program ended, and what it printed.
 struct ProgramResult {
   int exit_status = -1;  ///< the exit status, or -1 when a signal ended it
   int signal = 0;        ///< the signal that ended it, or 0
-  std::string out, err;  ///< everything it wrote to stdout and stderr
+  std::string out, err;  ///< everything it wrote to stdout and stderr (stdout cut at the call's output_limit)
+  bool timed_out = false;              ///< killed at the call's timeout_seconds
+  bool output_limit_exceeded = false;  ///< killed because stdout passed the call's output_limit
+  bool input_refused = false;          ///< it closed its stdin (or ended) before reading all of the input
 };
 
 /// The full path of the executable file `name` on PATH (or `name` itself when it contains a '/' and is
@@ -33,7 +44,7 @@ std::filesystem::path findProgram(const std::string& name);
 /// A program started by startProgram: wait() collects its output and its end.
 class RunningProgram {
  public:
-  RunningProgram(pid_t pid, int out_fd, int err_fd) : pid_(pid), out_fd_(out_fd), err_fd_(err_fd) {}
+  RunningProgram(pid_t pid, int out_fd, int err_fd, int in_fd = -1, const ProgramCall* call = nullptr);
   RunningProgram(RunningProgram&& other) noexcept;
   RunningProgram(const RunningProgram&) = delete;
   RunningProgram& operator=(const RunningProgram&) = delete;
@@ -42,16 +53,21 @@ class RunningProgram {
   ~RunningProgram();
 
   pid_t pid() const { return pid_; }
-  /// Reads stdout and stderr until the program closes them, then waits for it to end.
+  /// Writes the call's input, reads stdout and stderr until the program closes them (or the call's timeout or
+  /// output limit ends it: SIGKILL to its process group), then waits for it to end.
   ProgramResult wait();
 
  private:
   pid_t pid_ = -1;
-  int out_fd_ = -1, err_fd_ = -1;
+  int out_fd_ = -1, err_fd_ = -1, in_fd_ = -1;
+  std::string input_;
+  double timeout_seconds_ = 0.0;
+  size_t output_limit_ = 0;
 };
 
-/// Starts a program with posix_spawn: stdin is /dev/null, stdout and stderr are captured, the signal mask and the
-/// dispositions of SIGINT, SIGTERM and SIGPIPE are reset to the defaults whatever the caller's are.
+/// Starts a program with posix_spawn in a process group of its own: stdin is the call's input or /dev/null, stdout
+/// and stderr are captured, the signal mask and the dispositions of SIGINT, SIGTERM and SIGPIPE are reset to the
+/// defaults whatever the caller's are. Writing the input never raises SIGPIPE in the caller.
 /// @throws EnvironmentError naming the program when it is not found or cannot be started.
 RunningProgram startProgram(const ProgramCall& call);
 

@@ -1,0 +1,114 @@
+#include "grade_command.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <set>
+#include <thread>
+
+#include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/grade.h"
+#include "crankcheck/validation/output_folder.h"
+#include "crankcheck/validation/process.h"
+#include "crankcheck/validation/report.h"
+#include "interrupt.h"
+#include "scene_input.h"
+
+namespace crankcheck::app {
+
+void addGradeOptions(CLI::App& command, GradeOptions& options) {
+  command.add_option("scene", options.scene_paths,
+                     "Scene files (TOML) to grade on; none: the built-in campaign (validate's scenes)");
+  command.add_option("--out", options.out, "Report folder (replaced only if missing, empty or written by crankcheck)")
+      ->capture_default_str();
+  command.add_flag("--quick", options.quick, "Fewer lambdas and angles (seconds, not minutes)");
+  command.add_flag("--batch", options.batch,
+                   "Start the program once per job and send it every request, one JSON per line; it answers one "
+                   "JSON per line, in order");
+  command.add_option("--jobs", options.jobs, "Programs run at once (default: one per core)")
+      ->check(CLI::Range(1, 256));
+  command.add_option("--timeout", options.timeout_seconds, "Seconds the program may take per request")
+      ->check(CLI::Range(0.001, 1e6))
+      ->capture_default_str();
+  command.footer(
+      "The program follows `--`: crankcheck grade [SCENE...] [options] -- PROGRAM [ARG...]. It is started without a "
+      "shell, reads one JSON request on stdin and writes one JSON response on stdout (README, \"Grade your own "
+      "code\"). Exit status 0: every value it provided agrees with both engines; 1: some do not (or none was "
+      "provided); 3: it could not be run, crashed, timed out or broke the protocol.");
+}
+
+std::vector<std::string> splitGradeProgram(int argc, char** argv, std::vector<std::string>& program) {
+  std::vector<std::string> args(argv, argv + argc);
+  size_t grade = 1;
+  while (grade < args.size() && !args[grade].empty() && args[grade][0] == '-') ++grade;  // global flags
+  if (grade >= args.size() || args[grade] != "grade") return args;
+  for (size_t i = grade + 1; i < args.size(); ++i)
+    if (args[i] == "--") {
+      program.assign(args.begin() + static_cast<long>(i) + 1, args.end());
+      args.resize(i);
+      break;
+    }
+  return args;
+}
+
+int runGrade(const GradeOptions& options) {
+  // Everything that can be checked is checked before the first request: the program, the scenes, the output
+  // folder, gnuplot.
+  if (options.program.empty())
+    throw UsageError("grade: no program given; put it after `--`: crankcheck grade [SCENE...] -- PROGRAM [ARG...]");
+  if (validation::findProgram(options.program.front()).empty())
+    throw EnvironmentError(options.program.front() + ": cannot be run (not found, or not an executable file; a name "
+                           "without '/' is looked up on PATH)");
+  std::vector<Mechanism> scenes;
+  std::set<std::string> names;
+  for (const std::string& path : options.scene_paths) {
+    scenes.push_back(loadScene(path));
+    if (!names.insert(scenes.back().name).second) throw UsageError(path + ": a scene named " + scenes.back().name + " is given twice");
+    const Mechanism& m = scenes.back();
+    if (!(m.rod.mass > 0 && m.rod.inertia_about_wrist_pin > 0))
+      throw UsageError(path + ": [rod].mass and [rod].inertia_about_wrist_pin must be > 0 for the Simbody engine");
+  }
+  const int jobs = options.jobs > 0 ? options.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  validation::OutputFolder out(options.out, "--out");
+  validation::GradeReportInfo info;
+  info.gnuplot_version = validation::checkGnuplot();
+  const std::vector<validation::GradeCase> cases = validation::buildGradeCases(scenes, options.quick);
+  InterruptGuard interrupt(out);
+  out.createStaging();
+
+  validation::GradeProgram program;
+  program.argv = options.program;
+  program.timeout_seconds = options.timeout_seconds;
+  program.batch = options.batch;
+  const bool show_progress = ::isatty(STDERR_FILENO);
+  const auto start = std::chrono::steady_clock::now();
+  const validation::TableSet tables = validation::runGrade(cases, program, jobs, [&](size_t done, size_t total) {
+    if (show_progress) std::fprintf(stderr, "\r\033[Kgrade: %zu of %zu cases", done, total);
+  });
+  if (show_progress) std::fprintf(stderr, "\r\033[K");
+  info.program = options.program;
+  info.quick = options.quick;
+  info.batch = options.batch;
+  info.jobs = jobs;
+  info.timeout_seconds = options.timeout_seconds;
+  info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  validation::renderGradeReport(tables, cases, info, out.getStaging());
+  out.install("report");
+
+  const int status = validation::findGradeExitStatus(tables);
+  const validation::Table& summary = tables.at("grade_summary");
+  std::printf("%-16s %18s %14s %14s  %s\n", "quantity", "provided / asked", "vs Simbody", "vs analytic", "verdict");
+  for (const auto& row : summary.rows)
+    std::printf("%-16s %18s %14s %14s  %s\n", row[0].c_str(), (row[2] + " / " + row[1]).c_str(),
+                row[3].empty() ? "-" : row[3].substr(0, 9).c_str(), row[4].empty() ? "-" : row[4].substr(0, 9).c_str(),
+                row[9].c_str());
+  std::printf("%s\nReport: %s (also index.html)\n",
+              status == 0 ? "Every provided value agrees with both engines."
+                          : "SOME VALUES DISAGREE, or none was provided (see the report's failing cases).",
+              (out.getTarget() / "index.md").string().c_str());
+  return status;
+}
+
+}  // namespace crankcheck::app

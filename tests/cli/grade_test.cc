@@ -1,0 +1,150 @@
+// `crankcheck grade` as a user runs it: the two example programs (one must pass, one must fail where the report
+// says), and programs that misbehave (exit status 3, one clear line, never a hang).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "run_cli.h"
+#include "crankcheck/validation/report.h"
+
+#if !defined(CRANKCHECK_FAKE_PROGRAM) || !defined(CRANKCHECK_GRADE_EXAMPLES_DIR) || !defined(CRANKCHECK_ANALYTIC_PROGRAM)
+#error "the build defines CRANKCHECK_FAKE_PROGRAM, CRANKCHECK_GRADE_EXAMPLES_DIR and CRANKCHECK_ANALYTIC_PROGRAM"
+#endif
+
+namespace crankcheck {
+namespace {
+namespace fs = std::filesystem;
+using testing::FreshFolder;
+using testing::runCrankcheck;
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The verdict column of the summary for `quantity`, "" when absent.
+std::string verdictOf(const validation::TableSet& tables, const std::string& quantity) {
+  for (const auto& row : tables.at("grade_summary").rows)
+    if (row[0] == quantity) return row.back();
+  return "";
+}
+
+TEST(GradeTest, NortonsTwoTermFailsOnPistonMotionAndTheReportShowsWhere) {
+  FreshFolder dir;
+  const fs::path out = dir.path() / "report";
+  // --batch: one Python process per job (the per-request mode is the C++ example's test).
+  const auto r = runCrankcheck({"grade", "--quick", "--batch", "--out", out.string(), "--", "/usr/bin/python3",
+                                CRANKCHECK_GRADE_EXAMPLES_DIR "/norton_two_term.py"});
+  ASSERT_EQ(r.exit_status, 1) << r.out << r.err;
+  const validation::TableSet tables = validation::readTables(out);
+  for (const char* q : {"x_p", "v_p", "a_p"}) EXPECT_EQ(verdictOf(tables, q), "FAIL") << q;
+  for (const char* q : {"U", "Q", "drive_torque", "crank_pin_force", "rod_angle"}) EXPECT_EQ(verdictOf(tables, q), "not provided") << q;
+  // Where: the two-term form drops the lambda^3 terms, so its a_p error is largest at the largest lambda of the
+  // campaign (0.9 in --quick), and grows with lambda.
+  double error_low = 0.0, error_high = 0.0;
+  for (const auto& row : tables.at("grade_error_vs_lambda").rows)
+    if (row[0] == "a_p") {
+      const double lambda = std::stod(row[1]), error = std::stod(row[2]);
+      if (lambda < 0.35) error_low = std::max(error_low, error);
+      if (lambda > 0.85) error_high = std::max(error_high, error);
+    }
+  EXPECT_GT(error_high, 10.0 * error_low);
+  for (const auto& row : tables.at("grade_summary").rows)
+    if (row[0] == "a_p") EXPECT_NE(row[6].find("lambda0p9"), std::string::npos) << row[6];
+  // The report's failing cases reproduce: the scene file is there and crankcheck eval accepts it.
+  const std::string index = readFile(out / "index.md");
+  EXPECT_NE(index.find("crankcheck eval cases/"), std::string::npos);
+  const auto& failure = tables.at("grade_failures").rows.front();
+  const auto eval = runCrankcheck({"eval", (out / "cases" / (failure[0] + ".toml")).string(), "--phi-deg", failure[5],
+                                   "--engine", "both", "--format", "json"});
+  EXPECT_EQ(eval.exit_status, 0) << eval.err;
+  EXPECT_TRUE(fs::exists(out / "grade_error_vs_lambda.png"));
+  EXPECT_NE(readFile(out / "index.html").find("<html lang=\"en\">"), std::string::npos);
+}
+
+TEST(GradeTest, TheAnalyticLibraryPassesWithEveryQuantityProvided) {
+  FreshFolder dir;
+  const fs::path out = dir.path() / "report";
+  const auto r = runCrankcheck({"grade", "--quick", "--batch", "--jobs", "2", "--out", out.string(), "--", CRANKCHECK_ANALYTIC_PROGRAM});
+  ASSERT_EQ(r.exit_status, 0) << r.out << r.err;
+  const validation::TableSet tables = validation::readTables(out);
+  for (const auto& row : tables.at("grade_summary").rows) {
+    EXPECT_EQ(row.back(), "pass") << row[0];
+    EXPECT_EQ(row[1], row[2]) << row[0] << ": every value asked was provided";
+  }
+  EXPECT_TRUE(tables.at("grade_failures").rows.empty());
+}
+
+struct Misbehaviour {
+  std::string mode;
+  std::string expected;  // a part of the one-line message
+};
+void PrintTo(const Misbehaviour& m, std::ostream* os) { *os << m.mode; }
+
+class GradeMisbehaviourTest : public ::testing::TestWithParam<Misbehaviour> {};
+
+TEST_P(GradeMisbehaviourTest, ExitStatus3WithOneClearLine) {
+  FreshFolder dir;
+  const fs::path out = dir.path() / "report";
+  // 5 s per request: enough for 64 MiB through a pipe on a loaded machine, short enough for the hang.
+  const auto r = runCrankcheck({"grade", "--quick", "--timeout", "5", "--out", out.string(), "--", CRANKCHECK_FAKE_PROGRAM,
+                                GetParam().mode});
+  EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find(GetParam().expected), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+  EXPECT_FALSE(fs::exists(out)) << "no partial report";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Grade, GradeMisbehaviourTest,
+    ::testing::Values(Misbehaviour{"silent", "no response on stdout"},
+                      Misbehaviour{"garbage", "is not JSON"},
+                      Misbehaviour{"no-results", "must be an object {\"results\""},
+                      Misbehaviour{"wrong-count", "expected 8 results"},
+                      Misbehaviour{"nan", "is not JSON"},
+                      Misbehaviour{"string", "must be a number or null"},
+                      Misbehaviour{"crash", "ended by signal 6"},
+                      Misbehaviour{"exit7", "exited with status 7; its stderr: \"something went wrong"},
+                      Misbehaviour{"hang", "no complete answer within 5 s"},
+                      Misbehaviour{"huge", "bytes to stdout (killed)"}),
+    [](const ::testing::TestParamInfo<Misbehaviour>& info) {
+      std::string name = info.param.mode;
+      for (char& c : name)
+        if (c == '-') c = '_';
+      return name;
+    });
+
+TEST(GradeTest, NothingProvidedIsNeitherRightNorWrong) {
+  FreshFolder dir;
+  const fs::path out = dir.path() / "report";
+  const auto r = runCrankcheck({"grade", "--quick", "--out", out.string(), "--", CRANKCHECK_FAKE_PROGRAM, "nothing-provided"});
+  EXPECT_EQ(r.exit_status, 1) << "nothing provided is not a pass: " << r.out << r.err;
+  const validation::TableSet tables = validation::readTables(out);
+  for (const auto& row : tables.at("grade_summary").rows) {
+    EXPECT_EQ(row.back(), "not provided") << row[0];
+    EXPECT_EQ(row[2], "0") << row[0];
+  }
+}
+
+TEST(GradeTest, UsageErrorsAndMissingProgramsAreRefusedBeforeAnyWork) {
+  FreshFolder dir;
+  const fs::path out = dir.path() / "report";
+  const auto none = runCrankcheck({"grade", "--quick", "--out", out.string()});
+  EXPECT_EQ(none.exit_status, 2) << none.err;
+  EXPECT_NE(none.err.find("no program given"), std::string::npos) << none.err;
+  const auto missing = runCrankcheck({"grade", "--quick", "--out", out.string(), "--", "/nonexistent/program"});
+  EXPECT_EQ(missing.exit_status, 3) << missing.err;
+  EXPECT_NE(missing.err.find("/nonexistent/program: cannot be run"), std::string::npos) << missing.err;
+  const auto bad_timeout = runCrankcheck({"grade", "--timeout", "0", "--", CRANKCHECK_FAKE_PROGRAM, "silent"});
+  EXPECT_EQ(bad_timeout.exit_status, 2) << bad_timeout.err;
+  EXPECT_NE(bad_timeout.err.find("--timeout"), std::string::npos) << bad_timeout.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace crankcheck

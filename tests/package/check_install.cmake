@@ -1,0 +1,66 @@
+# The CMake package as a user meets it (issue 11): run by ctest as
+#   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DVERSION=... -P check_install.cmake
+# 1. `cmake --install BUILD_DIR --prefix WORK_DIR/prefix`;
+# 2. examples/consumer configured against that prefix (find_package(crankcheck 0.2)), built, both programs run;
+# 3. the same with COMPONENTS analytic while Simbody cannot be found (the analytic library needs no Simbody);
+# 4. the installed CLI: its --version is the project's, and `validate --quick` draws the figures with the gnuplot
+#    scripts it finds relative to itself (the build's install prefix is not WORK_DIR/prefix, so no compiled-in
+#    path can be what found them);
+# 5. examples/consumer configured with add_subdirectory(SOURCE_DIR) (ALIAS targets, no tests of crankcheck's own).
+# Every step stops the test with the step's output on failure. Commands are run without a shell.
+cmake_minimum_required(VERSION 3.25)
+foreach(v BUILD_DIR SOURCE_DIR WORK_DIR VERSION)
+  if(NOT DEFINED ${v})
+    message(FATAL_ERROR "check_install.cmake: -D${v}=... is required")
+  endif()
+endforeach()
+
+function(run what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${rc}):\n${ARGN}\n${out}\n${err}")
+  endif()
+  set(run_output "${out}" PARENT_SCOPE)
+  message(STATUS "${what}: ok")
+endfunction()
+
+file(REMOVE_RECURSE ${WORK_DIR})   # the test's own folder in the build tree
+file(MAKE_DIRECTORY ${WORK_DIR})
+set(prefix ${WORK_DIR}/prefix)
+set(consumer ${SOURCE_DIR}/examples/consumer)
+
+run("install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+foreach(f lib/cmake/crankcheck/crankcheckConfig.cmake lib/cmake/crankcheck/crankcheckConfigVersion.cmake
+          include/crankcheck/analytic/gravity_torque.h bin/crankcheck share/crankcheck/reports/error_vs_lambda.gp)
+  if(NOT EXISTS ${prefix}/${f})
+    message(FATAL_ERROR "install: ${prefix}/${f} is missing")
+  endif()
+endforeach()
+
+run("consumer: configure" ${CMAKE_COMMAND} -S ${consumer} -B ${WORK_DIR}/consumer -DCMAKE_PREFIX_PATH=${prefix}
+    -DCMAKE_BUILD_TYPE=Release)
+run("consumer: build" ${CMAKE_COMMAND} --build ${WORK_DIR}/consumer -j2)
+run("consumer: gravity_torque_check" ${WORK_DIR}/consumer/gravity_torque_check)
+run("consumer: engines_agree" ${WORK_DIR}/consumer/engines_agree)
+
+run("analytic-only consumer: configure without Simbody" ${CMAKE_COMMAND} -S ${consumer} -B ${WORK_DIR}/analytic_only
+    -DCMAKE_PREFIX_PATH=${prefix} -DANALYTIC_ONLY=ON -DCMAKE_DISABLE_FIND_PACKAGE_Simbody=ON
+    -DCMAKE_BUILD_TYPE=Release)
+run("analytic-only consumer: build" ${CMAKE_COMMAND} --build ${WORK_DIR}/analytic_only -j2)
+run("analytic-only consumer: run" ${WORK_DIR}/analytic_only/gravity_torque_check)
+
+run("installed CLI: --version" ${prefix}/bin/crankcheck --version)
+if(NOT run_output MATCHES "crankcheck ${VERSION}")
+  message(FATAL_ERROR "installed CLI: --version printed '${run_output}', expected crankcheck ${VERSION}")
+endif()
+run("installed CLI: validate --quick" ${CMAKE_COMMAND} -E env --unset=CRANKCHECK_REPORTS_DIR
+    ${prefix}/bin/crankcheck validate --quick --out ${WORK_DIR}/report)
+if(NOT EXISTS ${WORK_DIR}/report/error_vs_lambda.png)
+  message(FATAL_ERROR "installed CLI: the report has no figures")
+endif()
+
+run("add_subdirectory consumer: configure" ${CMAKE_COMMAND} -S ${consumer} -B ${WORK_DIR}/from_source
+    -DCRANKCHECK_SOURCE_DIR=${SOURCE_DIR})
+if(EXISTS ${WORK_DIR}/from_source/crankcheck/tests)
+  message(FATAL_ERROR "add_subdirectory consumer: crankcheck's own tests were configured in a consumer's build")
+endif()

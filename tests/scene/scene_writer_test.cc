@@ -1,0 +1,100 @@
+// formatSceneToml: the scene text of a Mechanism reads back (parseScene) as the same mechanism. Lengths, masses,
+// speeds and pressures exactly (shortest round-trip decimal forms); angles through degrees, within the rounding of
+// one conversion each way.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "crankcheck/scene/scene_file.h"
+#include "crankcheck/scene/scene_writer.h"
+#include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/layouts.h"
+
+#ifndef CRANKCHECK_SCENES_DIR
+#error "CRANKCHECK_SCENES_DIR must be defined by the build"
+#endif
+
+namespace crankcheck {
+namespace {
+
+// radians -> degrees -> radians: two roundings of at most half an ulp each, and the conversions' own products;
+// 4 eps relative (plus 4 eps absolute around 0, where the angle's value is 0 or 2 pi's rounding) bounds them.
+void expectSameAngle(double a, double b, const std::string& what) {
+  EXPECT_LE(std::fabs(a - b), 4 * 2.220446049250313e-16 * std::max(1.0, std::fabs(a))) << what << ": " << a << " vs " << b;
+}
+
+void expectSameMechanism(const Mechanism& a, const Mechanism& b) {
+  const int k = a.engine.cylinders;
+  ASSERT_EQ(b.engine.cylinders, k);
+  EXPECT_EQ(a.engine.cycle, b.engine.cycle);
+  EXPECT_EQ(a.engine.acting, b.engine.acting);
+  for (int j = 0; j < k; ++j) {
+    expectSameAngle(getBankAngle(a, j), getBankAngle(b, j), "bank " + std::to_string(j));
+    expectSameAngle(getThrowAngle(a, j), getThrowAngle(b, j), "throw " + std::to_string(j));
+    expectSameAngle(a.engine.crank_angles[j], b.engine.crank_angles[j], "alpha " + std::to_string(j));
+    EXPECT_EQ(getAxialPosition(a, j), getAxialPosition(b, j));
+  }
+  EXPECT_EQ(hasAxialPositions(a), hasAxialPositions(b));
+  EXPECT_EQ(a.engine.speed, b.engine.speed);
+  EXPECT_EQ(a.engine.gravity, b.engine.gravity);
+  EXPECT_EQ(a.crank.radius, b.crank.radius);
+  EXPECT_EQ(a.crank.mass, b.crank.mass);
+  EXPECT_EQ(a.crank.com_radius, b.crank.com_radius);
+  EXPECT_EQ(a.crank.counterweight_mass, b.crank.counterweight_mass);
+  EXPECT_EQ(a.crank.counterweight_radius, b.crank.counterweight_radius);
+  EXPECT_EQ(a.rod.length, b.rod.length);
+  EXPECT_EQ(a.rod.mass, b.rod.mass);
+  EXPECT_EQ(a.rod.com_from_wrist_pin, b.rod.com_from_wrist_pin);
+  EXPECT_EQ(a.rod.inertia_about_wrist_pin, b.rod.inertia_about_wrist_pin);
+  EXPECT_EQ(a.piston.mass, b.piston.mass);
+  EXPECT_EQ(a.flywheel_inertia, b.flywheel_inertia);
+  ASSERT_EQ(a.gas.has_value(), b.gas.has_value());
+  if (a.gas) {
+    EXPECT_EQ(a.gas->bore, b.gas->bore);
+    EXPECT_EQ(a.gas->pressures, b.gas->pressures);
+    ASSERT_EQ(a.gas->cycle_angles.size(), b.gas->cycle_angles.size());
+    for (size_t i = 0; i < a.gas->cycle_angles.size(); ++i)
+      expectSameAngle(a.gas->cycle_angles[i], b.gas->cycle_angles[i], "gas angle");
+    for (int j = 0; j < k; ++j) expectSameAngle(a.firing_angles[j], b.firing_angles[j], "firing");
+  }
+}
+
+TEST(SceneWriterTest, EveryExampleSceneReadsBackAsItself) {
+  int n = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(CRANKCHECK_SCENES_DIR)) {
+    if (entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(entry.path().string());
+    const Mechanism m = loadSceneFile(entry.path());
+    expectSameMechanism(m, parseScene(formatSceneToml(m), "written"));
+    ++n;
+  }
+  EXPECT_GE(n, 7);
+}
+
+TEST(SceneWriterTest, BuiltInScenesAndLayoutsReadBackAsThemselves) {
+  for (const Mechanism& m : validation::buildDefaultScenes()) {
+    SCOPED_TRACE(m.name);
+    expectSameMechanism(m, parseScene(formatSceneToml(m), "written"));
+  }
+  const Mechanism parts = validation::buildDefaultScenes().front();
+  for (const validation::Layout& layout : validation::getBalanceLayouts())
+    for (double rotation : {0.0, 37.0}) {
+      SCOPED_TRACE(layout.name);
+      const Mechanism m = validation::makeLayoutMechanism(layout, parts, rotation);
+      expectSameMechanism(m, parseScene(formatSceneToml(m), "written"));
+    }
+}
+
+TEST(SceneWriterTest, ShortestNumbersReadBackExactly) {
+  for (double x : {0.1, -0.35, 1e-6, 0.29655172413793102, 6000.0, 9.80665, 1.0 / 3.0, 5e-324, 1.7976931348623157e308}) {
+    const std::string text = formatShortest(x);
+    EXPECT_EQ(std::strtod(text.c_str(), nullptr), x) << text;  // strtod: stod refuses subnormals
+  }
+  EXPECT_EQ(formatShortest(-0.35), "-0.35");
+  EXPECT_EQ(formatShortest(3000.0), "3000.0");
+}
+
+}  // namespace
+}  // namespace crankcheck

@@ -1,0 +1,24 @@
+#pragma once
+/// @file
+/// The scene and the results of one engine at one angle as JSON objects: what `crankcheck eval --format json`
+/// prints, what `crankcheck grade` sends a graded program and reads back from it. SI units; names as in
+/// ../shared/CONVENTIONS.md.
+
+#include <nlohmann/json.hpp>
+
+#include "crankcheck/scene/evaluation.h"
+#include "crankcheck/scene/mechanism.h"
+
+namespace crankcheck::validation {
+
+/// The parsed scene in SI units, plus lambda.
+nlohmann::ordered_json sceneToJson(const Mechanism& m);
+
+/// One engine's result at one angle (phi_deg as the user gave it): {"engine", "phi_deg", "U", "Q", "drive_torque",
+/// "U_star", "Q_star", "bearing_force", "shaking_force", "shaking_moment", "cylinders": [{"x_p", "v_p", "a_p",
+/// "crank_pin_force", "wrist_pin_force", "wall_force", "gas_force", "rod_angle", "rod_omega", "rod_alpha"}]}.
+/// shaking_moment's X and Y are numbers only when the scene places its cylinders along the shaft (otherwise null);
+/// each cylinder's gas_force is present only when the scene has [gas].
+nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, const Mechanism& m);
+
+}  // namespace crankcheck::validation

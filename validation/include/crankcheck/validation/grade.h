@@ -1,0 +1,99 @@
+#pragma once
+/// @file
+/// `crankcheck grade`: anyone's implementation of these formulas, in any language, judged the way the gate judges
+/// the analytic engine. crankcheck starts the user's program (never through a shell), sends it one JSON request
+/// per case on stdin and reads one JSON response from its stdout; each value the program provides is compared with
+/// Simbody's and with the analytic engine's by the gate's rule (scales.h: |a - b| <= 64 eps scale conditioning,
+/// compareEvaluations, the same code path as the gate).
+///
+/// Protocol 1 (README, "Grade your own code"):
+///   request   {"protocol": 1, "case": ID, "scene": {...as eval's "scene"...}, "scene_toml": "...a scene file crankcheck
+///             accepts...", "phi_deg": [...], "quantities": ["U", "Q", ...]}
+///   response  {"results": [...one object per angle, in order, as eval's "results" without "engine"...]}
+/// A value left out, or null, is "not provided": reported as such, never as wrong, never as right. Anything else
+/// that is not the protocol (not JSON, the wrong number of results, a string where a number belongs, a number
+/// that is not finite, a result for another angle) ends the grade with exit status 3 and the first offending line.
+/// With `batch`, one program gets every request of its share of the cases, one per line, and answers one response
+/// per line in the same order.
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "crankcheck/scene/evaluation.h"
+#include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/campaign.h"
+
+namespace crankcheck::validation {
+
+/// The quantities a program is asked for, with eval's JSON names (gas_force only for scenes with [gas]).
+const std::vector<std::string>& getGradeQuantities();
+
+/// One request: a scene at one speed and its crank angles.
+struct GradeCase {
+  std::string id;          ///< unique, [A-Za-z0-9_] only: the file stem of its scene in the report
+  std::string family;      ///< the scene it comes from
+  Mechanism mechanism;     ///< parsed back from scene_toml: the file and the references are the same mechanism
+  std::string scene_toml;  ///< formatSceneToml
+  std::vector<double> phi_deg;
+};
+
+/// The campaign of a grade: every scene (the built-in ones when `scenes` is empty) at its own lambda and at
+/// lambda 0.1, 0.2, 0.3, 0.4, 0.6, 0.9 (quick: 0.9), at its speed and at rest, every 15 degrees (quick: 45); the
+/// built-in campaign adds the gate's sweep (k = 1..12, both strokes, 11 lambdas up to 0.999, 5 bank angles, the
+/// gate's angles) unless quick.
+std::vector<GradeCase> buildGradeCases(const std::vector<Mechanism>& scenes, bool quick);
+
+/// The request of one case as one line of JSON (no newline inside; none at the end).
+std::string makeGradeRequest(const GradeCase& c);
+
+/// How to run the graded program.
+struct GradeProgram {
+  std::vector<std::string> argv;          ///< the program and its arguments (argv[0]: a path or a name on PATH)
+  double timeout_seconds = 60.0;          ///< [s] per request (batch: per request times the requests sent)
+  size_t output_limit = size_t{64} << 20; ///< [bytes] of stdout per request (batch: times the requests)
+  bool batch = false;
+};
+
+/// The program's answer for one case: its values as Evaluations (one per angle), NaN where not provided, and
+/// shaking_moment X, Y NaN when the scene has no axial positions (not defined, so never graded).
+/// @throws EnvironmentError "PROGRAM: case ID: what is wrong: first offending line" when the response is not the
+/// protocol.
+std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string& response, const std::string& program);
+
+/// Runs the program on `cases` (several programs at once with jobs > 1; batch: one program per job) and grades
+/// every answer. `progress(done, total)` is called after each case. Tables (reports/README.md):
+///   grade_summary         quantity,asked,provided,worst_rel_error_simbody,worst_rel_error_analytic,tolerance_rel,
+///                         where_case,where_phi_deg,where_speed_rpm,verdict
+///   grade_error_vs_lambda quantity,lambda,program_max_rel_error,analytic_max_rel_error
+///   grade_failures        case,family,lambda,quantity,cylinder,phi_deg,speed_rpm,program_value,simbody_value,
+///                         analytic_value,rel_error,tolerance_rel
+/// @throws EnvironmentError when the program cannot be started, crashes, exits with a non-zero status, times out,
+/// writes more than the output limit or answers something that is not the protocol (exit status 3).
+TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& program, int jobs,
+                  const std::function<void(size_t, size_t)>& progress = {});
+
+/// What the report says about the run.
+struct GradeReportInfo {
+  std::vector<std::string> program;  ///< the graded command line
+  bool quick = false, batch = false;
+  int jobs = 1;
+  double seconds = 0.0;              ///< wall time of the grade
+  double timeout_seconds = 0.0;
+  std::string gnuplot_version;
+};
+
+/// Renders the grade's report into `dir` (which must exist and be empty): data/*.csv, the figure
+/// grade_error_vs_lambda (when a quantity was provided), cases/ID.toml for every failing case (so that the
+/// report's one-line `crankcheck eval` commands reproduce them), index.md and index.html.
+/// @throws EnvironmentError if gnuplot fails or a file cannot be written.
+void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cases, const GradeReportInfo& info,
+                       const std::filesystem::path& dir);
+
+/// Verdict of a grade: 0 when every provided value agrees with both engines and at least one was provided, 1
+/// otherwise.
+int findGradeExitStatus(const TableSet& tables);
+
+}  // namespace crankcheck::validation

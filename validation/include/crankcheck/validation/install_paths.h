@@ -1,0 +1,22 @@
+#pragma once
+/// @file
+/// Where crankcheck finds the files it ships beside its program: the gnuplot scripts of the report's figures.
+///
+/// The build tree and the install tree have the same layout, PREFIX/bin/crankcheck and
+/// PREFIX/share/crankcheck/reports/*.gp (the build tree links share/crankcheck/reports to the sources' reports/),
+/// so the program finds its scripts relative to itself, wherever the tree was installed or moved.
+
+#include <filesystem>
+
+namespace crankcheck::validation {
+
+/// The folder of the gnuplot scripts, the first of:
+///  1. the environment variable CRANKCHECK_REPORTS_DIR, when set (used as it is, even if it does not exist, so
+///     that a wrong setting is reported instead of silently replaced);
+///  2. ../share/crankcheck/reports relative to the running program's folder (/proc/self/exe), when it exists;
+///  3. the folder `cmake --install` put them in for the configured prefix, when it exists (a program of the user's
+///     that links crankcheck::validation from an install tree).
+/// @throws EnvironmentError naming the places looked at when none exists.
+std::filesystem::path findReportsDir();
+
+}  // namespace crankcheck::validation

@@ -1,0 +1,42 @@
+#pragma once
+/// @file
+/// A report page: Markdown (index.md, as written) and the same page as HTML (index.html), rendered from that
+/// Markdown by cmark-gfm (GitHub's tables), with a table of contents, `lang`, a title and inline style: it works
+/// offline, opened from the folder.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace crankcheck::validation {
+
+class ReportDocument {
+ public:
+  explicit ReportDocument(std::string title);
+
+  /// A heading (level 2 or 3 go into the table of contents; the title is level 1).
+  void addHeading(int level, const std::string& text);
+  /// A paragraph of Markdown (inline code, emphasis, links).
+  void addParagraph(const std::string& markdown);
+  /// A table; every cell is escaped (a '|' or a newline in a cell cannot break the table).
+  void addTable(const std::vector<std::string>& columns, const std::vector<std::vector<std::string>>& rows);
+  /// The figure NAME.png (a link to NAME.svg) with its caption and a link to data/NAME.csv.
+  void addFigure(const std::string& name, const std::string& caption);
+
+  std::string toMarkdown() const;
+  /// The Markdown rendered by cmark-gfm inside a complete HTML page. @throws std::runtime_error if cmark-gfm fails.
+  std::string toHtml() const;
+
+ private:
+  std::string title_;
+  std::string body_;
+  std::vector<std::pair<int, std::string>> headings_;
+};
+
+/// Draws figure NAME: runs gnuplot on reports/NAME.gp (findReportsDir) in `dir` without a shell; the script reads
+/// data/NAME.csv and writes NAME.svg and NAME.png. `definitions` are extra gnuplot -e assignments made by the caller
+/// from its own fixed names (never from user input).
+/// @throws EnvironmentError if the script is missing or gnuplot fails.
+void drawFigure(const std::string& name, const std::filesystem::path& dir, const std::string& definitions = "");
+
+}  // namespace crankcheck::validation

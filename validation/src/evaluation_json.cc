@@ -1,0 +1,84 @@
+#include "crankcheck/validation/evaluation_json.h"
+
+namespace crankcheck::validation {
+namespace {
+
+nlohmann::ordered_json vec(const Vec2& v) { return nlohmann::ordered_json::array({v[0], v[1]}); }
+
+}  // namespace
+
+nlohmann::ordered_json sceneToJson(const Mechanism& m) {
+  nlohmann::ordered_json j;
+  j["name"] = m.name;
+  j["engine"] = {
+      {"cylinders", m.engine.cylinders},
+      {"cycle", toString(m.engine.cycle)},
+      {"acting", toString(m.engine.acting)},
+      {"crank_angles", m.engine.crank_angles},
+      {"explicit_crank_angles", m.engine.explicit_crank_angles},
+      {"cylinder_angle", m.engine.cylinder_angle},
+      {"bank_angles", m.engine.bank_angles},
+      {"axial_positions", m.engine.axial_positions},
+      {"speed", m.engine.speed},
+      {"gravity", m.engine.gravity},
+  };
+  j["crank"] = {{"radius", m.crank.radius},
+                {"mass", m.crank.mass},
+                {"com_radius", m.crank.com_radius},
+                {"counterweight_mass", m.crank.counterweight_mass},
+                {"counterweight_radius", m.crank.counterweight_radius}};
+  j["rod"] = {{"length", m.rod.length},
+              {"mass", m.rod.mass},
+              {"com_from_wrist_pin", m.rod.com_from_wrist_pin},
+              {"inertia_about_wrist_pin", m.rod.inertia_about_wrist_pin}};
+  j["piston"] = {{"mass", m.piston.mass}};
+  if (m.gas) {
+    j["gas"] = {{"bore", m.gas->bore}, {"cycle_angles", m.gas->cycle_angles}, {"pressures", m.gas->pressures},
+                {"cycle", m.gas->cycle}};
+    j["engine"]["firing_angles"] = m.firing_angles;
+  }
+  j["flywheel"] = m.flywheel_inertia ? nlohmann::ordered_json{{"inertia", *m.flywheel_inertia}} : nlohmann::ordered_json(nullptr);
+  j["lambda"] = calcCrankRatio(m);
+  j["units"] = "SI: m, kg, s, rad, N, N m, J";
+  return j;
+}
+
+nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, const Mechanism& m) {
+  const bool moment_xy_defined = hasAxialPositions(m);
+  nlohmann::ordered_json j;
+  j["engine"] = ev.engine;
+  j["phi_deg"] = phi_deg;
+  j["U"] = ev.U;
+  j["Q"] = ev.Q;
+  j["drive_torque"] = ev.drive_torque;
+  // The paper's dimensionless values (divided by I_w omega^2): only with a flywheel and a speed.
+  const bool dimensionless = m.flywheel_inertia && m.engine.speed > 0.0;
+  const double unit = dimensionless ? *m.flywheel_inertia * m.engine.speed * m.engine.speed : 1.0;
+  j["U_star"] = dimensionless ? nlohmann::ordered_json(ev.U / unit) : nlohmann::ordered_json(nullptr);
+  j["Q_star"] = dimensionless ? nlohmann::ordered_json(ev.Q / unit) : nlohmann::ordered_json(nullptr);
+  j["bearing_force"] = vec(ev.bearing_force);
+  j["shaking_force"] = vec(ev.shaking_force);
+  // Without axial positions the X and Y moments are not defined: null, never 0.
+  j["shaking_moment"] = nlohmann::ordered_json::array(
+      {moment_xy_defined ? nlohmann::ordered_json(ev.shaking_moment[0]) : nlohmann::ordered_json(nullptr),
+       moment_xy_defined ? nlohmann::ordered_json(ev.shaking_moment[1]) : nlohmann::ordered_json(nullptr),
+       ev.shaking_moment[2]});
+  nlohmann::ordered_json cylinders = nlohmann::ordered_json::array();
+  for (const CylinderEvaluation& c : ev.cylinders) {
+    nlohmann::ordered_json cylinder = {{"x_p", c.x_p},
+                                       {"v_p", c.v_p},
+                                       {"a_p", c.a_p},
+                                       {"crank_pin_force", vec(c.crank_pin_force)},
+                                       {"wrist_pin_force", vec(c.wrist_pin_force)},
+                                       {"wall_force", c.wall_force}};
+    if (m.gas) cylinder["gas_force"] = c.gas_force;  // absent without [gas]
+    cylinder["rod_angle"] = c.rod_angle;
+    cylinder["rod_omega"] = c.rod_omega;
+    cylinder["rod_alpha"] = c.rod_alpha;
+    cylinders.push_back(cylinder);
+  }
+  j["cylinders"] = cylinders;
+  return j;
+}
+
+}  // namespace crankcheck::validation

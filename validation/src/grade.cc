@@ -1,0 +1,486 @@
+#include "crankcheck/validation/grade.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <thread>
+
+#include "crankcheck/analytic/reactions.h"
+#include "crankcheck/scene/scene_file.h"
+#include "crankcheck/scene/scene_writer.h"
+#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/evaluation_json.h"
+#include "crankcheck/validation/process.h"
+#include "crankcheck/validation/scales.h"
+#include "crankcheck/validation/variants.h"
+
+namespace crankcheck::validation {
+
+const std::vector<std::string>& getGradeQuantities() {
+  static const std::vector<std::string> quantities = {
+      "U",   "Q",   "drive_torque",    "bearing_force",   "shaking_force", "shaking_moment", "x_p",       "v_p",
+      "a_p", "crank_pin_force", "wrist_pin_force", "wall_force", "gas_force", "rod_angle", "rod_omega", "rod_alpha"};
+  return quantities;
+}
+
+namespace {
+
+using Json = nlohmann::json;
+
+// "0.3" -> "0p3", "-90" -> "m90": a number in a case id.
+std::string numberTag(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", x);
+  std::string text = buffer;
+  for (char& c : text) {
+    if (c == '.') c = 'p';
+    if (c == '-') c = 'm';
+    if (c == '+') c = '_';
+  }
+  return text;
+}
+
+std::string safeStem(const std::string& name) {
+  std::string out;
+  for (char c : name) out += std::isalnum(static_cast<unsigned char>(c)) || c == '_' ? c : '_';
+  return out.empty() ? std::string("scene") : out;
+}
+
+double lambdaOf(const Mechanism& m) { return calcCrankRatio(m); }
+
+// The case as the file says it: the scene text, and the mechanism parsed back from it.
+GradeCase makeCase(const std::string& family, const std::string& id, const Mechanism& m, const std::vector<double>& angles) {
+  GradeCase c;
+  c.id = id;
+  c.family = family;
+  c.scene_toml = formatSceneToml(m);
+  c.mechanism = parseScene(c.scene_toml, id);
+  c.mechanism.name = id;
+  c.phi_deg = angles;
+  return c;
+}
+
+// The first line of `text` that holds byte `at` (or the first line), at most 160 characters, for a message.
+std::string quoteLine(const std::string& text, size_t at = 0) {
+  at = std::min(at, text.empty() ? size_t{0} : text.size() - 1);
+  size_t begin = text.rfind('\n', at == 0 ? 0 : at - (text[at] == '\n' ? 1 : 0));
+  begin = begin == std::string::npos || begin > at ? 0 : begin + 1;
+  if (at == 0) begin = 0;
+  size_t end = text.find('\n', begin);
+  if (end == std::string::npos) end = text.size();
+  std::string line = text.substr(begin, std::min<size_t>(end - begin, 160));
+  const size_t line_number = static_cast<size_t>(std::count(text.begin(), text.begin() + static_cast<long>(begin), '\n')) + 1;
+  if (end - begin > 160) line += "...";
+  return "line " + std::to_string(line_number) + ": \"" + line + "\"";
+}
+
+}  // namespace
+
+std::vector<GradeCase> buildGradeCases(const std::vector<Mechanism>& scenes, bool quick) {
+  const std::vector<Mechanism> families = scenes.empty() ? buildDefaultScenes() : scenes;
+  const std::vector<double> sweep = quick ? std::vector<double>{0.9} : std::vector<double>{0.1, 0.2, 0.3, 0.4, 0.6, 0.9};
+  const std::vector<double> angles = anglesDeg(quick ? 45.0 : 15.0);
+  std::vector<GradeCase> cases;
+  std::set<std::string> ids;
+  auto add = [&](const std::string& family, std::string id, const Mechanism& m, const std::vector<double>& phis) {
+    id = safeStem(id);
+    std::string unique = id;
+    for (int n = 2; ids.count(unique); ++n) unique = id + "_" + std::to_string(n);
+    ids.insert(unique);
+    cases.push_back(makeCase(family, unique, m, phis));
+  };
+  for (const Mechanism& base : families) {
+    std::vector<double> lambdas = {lambdaOf(base)};
+    for (double lambda : sweep)
+      if (std::fabs(lambda - lambdaOf(base)) > 1e-3) lambdas.push_back(lambda);
+    for (double lambda : lambdas)
+      for (double rpm : base.speed_rpm > 0.0 ? std::vector<double>{base.speed_rpm, 0.0} : std::vector<double>{0.0}) {
+        const Mechanism m = withSpeed(withLambda(base, lambda), rpm);
+        add(base.name, base.name + "_lambda" + numberTag(lambda) + "_" + numberTag(rpm) + "rpm", m, angles);
+      }
+  }
+  if (scenes.empty() && !quick) {
+    // The gate's sweep, as validate runs it (campaign.cc): its base is the first built-in scene.
+    const Mechanism& base = families.front();
+    const std::vector<double> lambdas = {1e-6, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.9, 0.999};
+    const std::vector<double> gammas = {0.0, 180.0, 90.0, -90.0, 37.0};
+    const std::vector<double> gate_angles = {0.0, 17.0, 45.0, 90.0, 133.0, 180.0, 222.5, 270.0, 300.0, 359.0, -60.0};
+    for (int k = 1; k <= 12; ++k)
+      for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke}) {
+        const bool two = cycle == Cycle::kTwoStroke;
+        const std::string family = std::string("gate sweep ") + (two ? "two" : "four") + "-stroke (k = 1..12)";
+        const double rpm_run = two ? 3000.0 : 6000.0;
+        for (double lambda : lambdas)
+          for (double gamma : gammas)
+            for (double rpm : {rpm_run, 0.0}) {
+              const Mechanism m = withSpeed(withGamma(withLambda(withCylinders(base, k, cycle), lambda), gamma), rpm);
+              add(family,
+                  "k" + std::to_string(k) + (two ? "_two_" : "_four_") + gammaTag(gamma) + "_lambda" + numberTag(lambda) +
+                      "_" + numberTag(rpm) + "rpm",
+                  m, gate_angles);
+            }
+      }
+  }
+  return cases;
+}
+
+std::string makeGradeRequest(const GradeCase& c) {
+  nlohmann::ordered_json request;
+  request["protocol"] = 1;
+  request["case"] = c.id;
+  request["scene"] = sceneToJson(c.mechanism);
+  request["scene_toml"] = c.scene_toml;
+  request["phi_deg"] = c.phi_deg;
+  nlohmann::ordered_json quantities = nlohmann::ordered_json::array();
+  for (const std::string& q : getGradeQuantities())
+    if (q != "gas_force" || c.mechanism.gas) quantities.push_back(q);
+  request["quantities"] = quantities;
+  return request.dump();  // one line: strings escape their newlines
+}
+
+std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string& response, const std::string& program) {
+  const std::string where = program + ": case " + c.id + ": ";
+  auto fail = [&](const std::string& what, size_t at = 0) -> void {
+    throw EnvironmentError(where + what + "; " + (response.empty() ? std::string("no output at all") : quoteLine(response, at)));
+  };
+  if (response.find_first_not_of(" \t\r\n") == std::string::npos) fail("no response on stdout");
+  Json doc;
+  try {
+    doc = Json::parse(response);
+  } catch (const Json::parse_error& e) {
+    fail(std::string("the response is not JSON (") + e.what() + ")", e.byte > 0 ? e.byte - 1 : 0);
+  }
+  if (!doc.is_object() || !doc.contains("results") || !doc["results"].is_array())
+    fail("the response must be an object {\"results\": [...]}");
+  const Json& results = doc["results"];
+  if (results.size() != c.phi_deg.size())
+    fail("expected " + std::to_string(c.phi_deg.size()) + " results (one per angle of phi_deg), got " +
+         std::to_string(results.size()));
+  const int k = c.mechanism.engine.cylinders;
+  const double kNotProvided = std::nan("");
+  std::vector<Evaluation> out;
+  for (size_t i = 0; i < results.size(); ++i) {
+    const Json& r = results[i];
+    const std::string at = "results[" + std::to_string(i) + "]";
+    if (!r.is_object() && !r.is_null()) fail(at + " must be an object or null");
+    // A number, or null / absent for "not provided"; anything else is not the protocol.
+    auto number = [&](const Json& parent, const std::string& key, const std::string& path) -> double {
+      if (!parent.is_object() || !parent.contains(key) || parent[key].is_null()) return kNotProvided;
+      const Json& v = parent[key];
+      if (!v.is_number()) fail(path + "." + key + " must be a number or null");
+      const double x = v.get<double>();
+      if (!std::isfinite(x)) fail(path + "." + key + " is not a finite number");
+      return x;
+    };
+    auto vector = [&](const Json& parent, const std::string& key, const std::string& path, double* into, size_t n) {
+      for (size_t e = 0; e < n; ++e) into[e] = kNotProvided;
+      if (!parent.is_object() || !parent.contains(key) || parent[key].is_null()) return;
+      const Json& v = parent[key];
+      if (!v.is_array() || v.size() != n) fail(path + "." + key + " must be an array of " + std::to_string(n) + " numbers (or null)");
+      for (size_t e = 0; e < n; ++e) {
+        if (v[e].is_null()) continue;
+        if (!v[e].is_number()) fail(path + "." + key + "[" + std::to_string(e) + "] must be a number or null");
+        into[e] = v[e].get<double>();
+        if (!std::isfinite(into[e])) fail(path + "." + key + "[" + std::to_string(e) + "] is not a finite number");
+      }
+    };
+    if (r.is_object() && r.contains("phi_deg") && !r["phi_deg"].is_null()) {
+      const double phi = number(r, "phi_deg", at);
+      if (std::fabs(phi - c.phi_deg[i]) > 1e-9 * std::max(1.0, std::fabs(c.phi_deg[i])))
+        fail(at + ".phi_deg is " + formatNumber(phi) + ", the request's angle " + std::to_string(i) + " is " +
+             formatNumber(c.phi_deg[i]) + " (results must come in the request's order)");
+    }
+    Evaluation e;
+    e.engine = "program";
+    e.phi = radiansFromDegrees(c.phi_deg[i]);
+    e.U = number(r, "U", at);
+    e.Q = number(r, "Q", at);
+    e.drive_torque = number(r, "drive_torque", at);
+    vector(r, "bearing_force", at, e.bearing_force.data(), 2);
+    vector(r, "shaking_force", at, e.shaking_force.data(), 2);
+    vector(r, "shaking_moment", at, e.shaking_moment.data(), 3);
+    if (!hasAxialPositions(c.mechanism)) e.shaking_moment[0] = e.shaking_moment[1] = kNotProvided;  // not defined
+    e.cylinders.assign(static_cast<size_t>(k), CylinderEvaluation{});
+    for (CylinderEvaluation& cyl : e.cylinders) {
+      cyl.x_p = cyl.v_p = cyl.a_p = cyl.wall_force = cyl.gas_force = kNotProvided;
+      cyl.rod_angle = cyl.rod_omega = cyl.rod_alpha = kNotProvided;
+      cyl.crank_pin_force = cyl.wrist_pin_force = {kNotProvided, kNotProvided};
+    }
+    if (r.is_object() && r.contains("cylinders") && !r["cylinders"].is_null()) {
+      const Json& cylinders = r["cylinders"];
+      if (!cylinders.is_array() || cylinders.size() > static_cast<size_t>(k))
+        fail(at + ".cylinders must be an array of at most " + std::to_string(k) + " objects (one per cylinder, in order)");
+      for (size_t j = 0; j < cylinders.size(); ++j) {
+        const Json& cj = cylinders[j];
+        if (cj.is_null()) continue;
+        const std::string cat = at + ".cylinders[" + std::to_string(j) + "]";
+        if (!cj.is_object()) fail(cat + " must be an object or null");
+        CylinderEvaluation& cyl = e.cylinders[j];
+        cyl.x_p = number(cj, "x_p", cat);
+        cyl.v_p = number(cj, "v_p", cat);
+        cyl.a_p = number(cj, "a_p", cat);
+        vector(cj, "crank_pin_force", cat, cyl.crank_pin_force.data(), 2);
+        vector(cj, "wrist_pin_force", cat, cyl.wrist_pin_force.data(), 2);
+        cyl.wall_force = number(cj, "wall_force", cat);
+        cyl.gas_force = c.mechanism.gas ? number(cj, "gas_force", cat) : kNotProvided;
+        cyl.rod_angle = number(cj, "rod_angle", cat);
+        cyl.rod_omega = number(cj, "rod_omega", cat);
+        cyl.rod_alpha = number(cj, "rod_alpha", cat);
+      }
+    }
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+namespace {
+
+// What a grade found for one quantity over every case.
+struct QuantityGrade {
+  long long asked = 0, provided = 0;
+  bool pass = true;
+  double worst_ratio = -1.0;  // max over references of error / tolerance
+  double worst_rel_simbody = 0.0, worst_rel_analytic = 0.0, tolerance_rel = 0.0;
+  std::string where_case;
+  double where_phi_deg = 0.0, where_rpm = 0.0;
+};
+
+struct LambdaError {
+  double program = 0.0, analytic = 0.0;
+  bool provided = false;
+};
+
+struct Failure {
+  std::vector<std::string> row;
+  double ratio = 0.0;
+};
+
+// Everything one thread found; merged at the end.
+struct GradeState {
+  std::map<std::string, QuantityGrade> quantities;
+  std::map<std::pair<std::string, double>, LambdaError> by_lambda;  // (quantity, lambda)
+  std::map<std::string, Failure> failures;                          // the worst failure per case, quantity, cylinder
+};
+
+void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, GradeState& state) {
+  const Mechanism& m = c.mechanism;
+  simbody_models::KCrankModel model(m);
+  const double lambda = lambdaOf(m);
+  for (size_t i = 0; i < c.phi_deg.size(); ++i) {
+    const double phi = radiansFromDegrees(c.phi_deg[i]);
+    const Evaluation a = analytic::calcEvaluation(m, phi);
+    const Evaluation s = model.evaluate(phi);
+    const std::vector<Comparison> vs_simbody = compareEvaluations(m, program[i], s);
+    const std::vector<Comparison> vs_analytic = compareEvaluations(m, program[i], a);
+    const std::vector<Comparison> own = compareEvaluations(m, a, s);  // the analytic engine's own error
+    int moment_component = 0;
+    for (size_t n = 0; n < vs_simbody.size(); ++n) {
+      const Comparison& cs = vs_simbody[n];
+      const Comparison& ca = vs_analytic[n];
+      // shaking_moment X and Y without axial positions are not defined: not asked, never graded.
+      const bool defined =
+          cs.quantity != "shaking_moment" || moment_component++ == 2 || hasAxialPositions(m);
+      QuantityGrade& q = state.quantities[cs.quantity];
+      LambdaError& le = state.by_lambda[{cs.quantity, lambda}];
+      le.analytic = std::max(le.analytic, own[n].error() / own[n].scale);
+      if (!defined) continue;
+      ++q.asked;
+      if (std::isnan(cs.a)) continue;  // not provided
+      ++q.provided;
+      le.provided = true;
+      const double rel_s = cs.error() / cs.scale, rel_a = ca.error() / ca.scale;
+      le.program = std::max(le.program, rel_s);
+      const double ratio = std::max(cs.error() / cs.tolerance(), ca.error() / ca.tolerance());
+      const bool agrees = cs.agrees() && ca.agrees();
+      q.pass = q.pass && agrees;
+      if (ratio > q.worst_ratio) {
+        q.worst_ratio = ratio;
+        q.worst_rel_simbody = rel_s;
+        q.worst_rel_analytic = rel_a;
+        q.tolerance_rel = cs.tolerance() / cs.scale;
+        q.where_case = c.id;
+        q.where_phi_deg = c.phi_deg[i];
+        q.where_rpm = m.speed_rpm;
+      }
+      if (!agrees) {
+        const std::string key = c.id + "\n" + cs.quantity + "\n" + std::to_string(cs.cylinder);
+        Failure& f = state.failures[key];
+        if (ratio > f.ratio) {
+          f.ratio = ratio;
+          f.row = {c.id, c.family, formatNumber(lambda), cs.quantity, cs.cylinder < 0 ? std::string() : std::to_string(cs.cylinder),
+                   formatNumber(c.phi_deg[i]), formatNumber(m.speed_rpm), formatNumber(cs.a), formatNumber(cs.b),
+                   formatNumber(ca.b), formatNumber(rel_s), formatNumber(cs.tolerance() / cs.scale)};
+        }
+      }
+    }
+  }
+}
+
+void mergeInto(GradeState& into, const GradeState& from) {
+  for (const auto& [name, q] : from.quantities) {
+    QuantityGrade& t = into.quantities[name];
+    t.asked += q.asked;
+    t.provided += q.provided;
+    t.pass = t.pass && q.pass;
+    if (q.worst_ratio > t.worst_ratio) {
+      const long long asked = t.asked, provided = t.provided;
+      const bool pass = t.pass;
+      t = q;
+      t.asked = asked;
+      t.provided = provided;
+      t.pass = pass;
+    }
+  }
+  for (const auto& [key, e] : from.by_lambda) {
+    LambdaError& t = into.by_lambda[key];
+    t.program = std::max(t.program, e.program);
+    t.analytic = std::max(t.analytic, e.analytic);
+    t.provided = t.provided || e.provided;
+  }
+  for (const auto& [key, f] : from.failures)
+    if (f.ratio > into.failures[key].ratio) into.failures[key] = f;
+}
+
+std::string describeSignal(int signal) {
+  const char* name = ::strsignal(signal);
+  return "signal " + std::to_string(signal) + (name ? std::string(" (") + name + ")" : std::string());
+}
+
+// Runs the program on `input`; returns its stdout. @throws EnvironmentError on anything but a clean exit.
+std::string runOnce(const GradeProgram& program, const std::string& input, size_t requests, const std::string& what) {
+  ProgramCall call{program.argv};
+  call.input = input;
+  call.timeout_seconds = program.timeout_seconds * static_cast<double>(requests);
+  call.output_limit = program.output_limit * requests;
+  const ProgramResult r = runProgram(call);
+  const std::string name = program.argv.front();
+  auto stderrLine = [&] {
+    const std::string err = r.err.substr(0, r.err.find('\n')).substr(0, 200);
+    return err.empty() ? std::string() : "; its stderr: \"" + err + "\"";
+  };
+  if (r.timed_out)
+    throw EnvironmentError(name + ": " + what + ": no complete answer within " + formatNumber(call.timeout_seconds) +
+                           " s (killed; --timeout sets the time per request)");
+  if (r.output_limit_exceeded)
+    throw EnvironmentError(name + ": " + what + ": wrote more than " + std::to_string(call.output_limit) +
+                           " bytes to stdout (killed)");
+  if (r.signal != 0) throw EnvironmentError(name + ": " + what + ": ended by " + describeSignal(r.signal) + stderrLine());
+  if (r.exit_status != 0)
+    throw EnvironmentError(name + ": " + what + ": exited with status " + std::to_string(r.exit_status) + stderrLine());
+  return r.out;
+}
+
+}  // namespace
+
+TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& program, int jobs,
+                  const std::function<void(size_t, size_t)>& progress) {
+  if (program.argv.empty()) throw UsageError("grade: no program given (crankcheck grade [SCENE...] -- PROGRAM [ARG...])");
+  jobs = std::max(1, std::min<int>(jobs, static_cast<int>(std::max<size_t>(cases.size(), 1))));
+  const std::string name = program.argv.front();
+  std::vector<GradeState> states(static_cast<size_t>(jobs));
+  std::atomic<size_t> next{0}, done{0};
+  std::atomic<bool> stop{false};
+  std::mutex error_mutex, progress_mutex;
+  std::exception_ptr error;
+  auto report = [&] {
+    const size_t d = ++done;
+    if (progress) {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      progress(d, cases.size());
+    }
+  };
+  auto worker = [&](int job) {
+    try {
+      GradeState& state = states[static_cast<size_t>(job)];
+      if (program.batch) {
+        // One program for this job's share: cases job, job + jobs, ...; one request per line, one response per line.
+        std::vector<size_t> mine;
+        for (size_t i = static_cast<size_t>(job); i < cases.size(); i += static_cast<size_t>(jobs)) mine.push_back(i);
+        if (mine.empty()) return;
+        std::string input;
+        for (size_t i : mine) input += makeGradeRequest(cases[i]) + "\n";
+        const std::string out = runOnce(program, input, mine.size(), "batch of " + std::to_string(mine.size()) + " requests");
+        std::vector<std::string> lines;
+        size_t begin = 0;
+        while (begin < out.size()) {
+          size_t end = out.find('\n', begin);
+          if (end == std::string::npos) end = out.size();
+          if (out.find_first_not_of(" \t\r", begin) < end) lines.push_back(out.substr(begin, end - begin));
+          begin = end + 1;
+        }
+        if (lines.size() != mine.size())
+          throw EnvironmentError(name + ": --batch: expected " + std::to_string(mine.size()) + " response lines (one per request), got " +
+                                 std::to_string(lines.size()) + (lines.empty() ? std::string() : "; " + quoteLine(out)));
+        for (size_t n = 0; n < mine.size() && !stop; ++n) {
+          gradeCase(cases[mine[n]], parseGradeResponse(cases[mine[n]], lines[n], name), state);
+          report();
+        }
+        return;
+      }
+      for (size_t i = next++; i < cases.size() && !stop; i = next++) {
+        const GradeCase& c = cases[i];
+        const std::string out = runOnce(program, makeGradeRequest(c) + "\n", 1, "case " + c.id);
+        gradeCase(c, parseGradeResponse(c, out, name), state);
+        report();
+      }
+    } catch (...) {
+      stop = true;
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 1; j < jobs; ++j) threads.emplace_back(worker, j);
+  worker(0);
+  for (std::thread& t : threads) t.join();
+  if (error) std::rethrow_exception(error);
+
+  GradeState all;
+  for (const GradeState& s : states) mergeInto(all, s);
+  TableSet tables;
+  Table& summary = tables["grade_summary"];
+  summary.columns = {"quantity", "asked", "provided", "worst_rel_error_simbody", "worst_rel_error_analytic", "tolerance_rel",
+                     "where_case", "where_phi_deg", "where_speed_rpm", "verdict"};
+  for (const std::string& quantity : getGradeQuantities()) {
+    const auto it = all.quantities.find(quantity);
+    if (it == all.quantities.end() || it->second.asked == 0) continue;
+    const QuantityGrade& q = it->second;
+    const bool any = q.provided > 0;
+    summary.rows.push_back({quantity, std::to_string(q.asked), std::to_string(q.provided),
+                            any ? formatNumber(q.worst_rel_simbody) : "", any ? formatNumber(q.worst_rel_analytic) : "",
+                            any ? formatNumber(q.tolerance_rel) : "", any ? q.where_case : "",
+                            any ? formatNumber(q.where_phi_deg) : "", any ? formatNumber(q.where_rpm) : "",
+                            !any ? "not provided" : q.pass ? "pass" : "FAIL"});
+  }
+  Table& by_lambda = tables["grade_error_vs_lambda"];
+  by_lambda.columns = {"quantity", "lambda", "program_max_rel_error", "analytic_max_rel_error"};
+  for (const auto& [key, e] : all.by_lambda)
+    if (e.provided)
+      by_lambda.rows.push_back({key.first, formatNumber(key.second), formatNumber(e.program), formatNumber(e.analytic)});
+  Table& failures = tables["grade_failures"];
+  failures.columns = {"case", "family", "lambda", "quantity", "cylinder", "phi_deg", "speed_rpm", "program_value",
+                      "simbody_value", "analytic_value", "rel_error", "tolerance_rel"};
+  for (const auto& [key, f] : all.failures) failures.rows.push_back(f.row);
+  return tables;
+}
+
+int findGradeExitStatus(const TableSet& tables) {
+  const auto it = tables.find("grade_summary");
+  if (it == tables.end()) return 1;
+  bool any = false;
+  for (const auto& row : it->second.rows) {
+    if (row.back() == "FAIL") return 1;
+    any = any || row.back() == "pass";
+  }
+  return any ? 0 : 1;
+}
+
+}  // namespace crankcheck::validation

@@ -1,0 +1,135 @@
+// The report of `crankcheck grade` (grade.h): the same machinery as validate's (CSV data, gnuplot figures, Markdown
+// and HTML), its own page.
+#include <algorithm>
+#include <cstdio>
+#include <ctime>
+#include <map>
+#include <set>
+
+#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/grade.h"
+#include "crankcheck/validation/output_folder.h"
+#include "crankcheck/validation/report.h"
+#include "crankcheck/validation/report_document.h"
+
+namespace crankcheck::validation {
+namespace fs = std::filesystem;
+
+namespace {
+
+size_t columnOf(const Table& t, const std::string& name) {
+  return static_cast<size_t>(std::find(t.columns.begin(), t.columns.end(), name) - t.columns.begin());
+}
+
+std::string shortNumber(const std::string& text) {
+  if (text.empty()) return text;
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.2g", std::strtod(text.c_str(), nullptr));
+  return buffer;
+}
+
+// An argument as a POSIX shell would need it quoted to be read back as the same word (for the commands the report
+// prints for the user to copy; crankcheck itself never runs them through a shell).
+std::string shellWord(const std::string& word) {
+  if (!word.empty() && word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-./=:,+") ==
+                           std::string::npos)
+    return word;
+  std::string out = "'";
+  for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string today() {
+  const std::time_t now = std::time(nullptr);
+  char buffer[32];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%d", std::gmtime(&now));
+  return buffer;
+}
+
+}  // namespace
+
+void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cases, const GradeReportInfo& info,
+                       const fs::path& dir) {
+  writeTables(tables, dir);
+  const Table& summary = tables.at("grade_summary");
+  const Table& failures = tables.at("grade_failures");
+
+  std::string command;
+  for (const std::string& word : info.program) command += (command.empty() ? "" : " ") + shellWord(word);
+  ReportDocument doc("crankcheck grade report");
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "crankcheck %s, Simbody %s, %s; %zu cases%s, %d job%s%s, %.1f s, timeout %.3g s per request.",
+                getCrankcheckVersion(), simbody_models::getSimbodyVersion().c_str(), today().c_str(), cases.size(),
+                info.quick ? " (--quick)" : "", info.jobs, info.jobs == 1 ? "" : "s", info.batch ? ", --batch" : "",
+                info.seconds, info.timeout_seconds);
+  doc.addParagraph("Graded program: `" + command + "`\n\n" + line);
+  doc.addParagraph(
+      "Each value the program provided is compared with Simbody's and with the analytic engine's by the gate's rule: "
+      "|program - reference| <= 64 eps x scale x conditioning (docs/CONVENTIONS-crankcheck.md, \"Tolerances\"). A "
+      "quantity passes when every provided value agrees with both engines. What the program left out (or sent as "
+      "null) is *not provided*: never counted as wrong, never as right.");
+
+  doc.addHeading(2, "Summary per quantity");
+  const size_t verdict = columnOf(summary, "verdict");
+  std::vector<std::vector<std::string>> rows;
+  int passed = 0, failed = 0, absent = 0;
+  for (const auto& row : summary.rows) {
+    const std::string& v = row[verdict];
+    (v == "pass" ? passed : v == "FAIL" ? failed : absent)++;
+    rows.push_back({row[0], row[2] + " / " + row[1], shortNumber(row[3]), shortNumber(row[4]), shortNumber(row[5]),
+                    row[6].empty() ? "" : row[6] + " at " + row[7] + " deg", v == "FAIL" ? "**FAIL**" : v});
+  }
+  doc.addParagraph(std::to_string(passed) + " quantities pass, " + std::to_string(failed) + " fail, " +
+                   std::to_string(absent) + " not provided.");
+  doc.addTable({"quantity", "provided / asked", "worst error vs Simbody [scale]", "worst error vs analytic [scale]",
+                "tolerance [scale]", "where (case, crank angle)", "verdict"},
+               rows);
+
+  if (!tables.at("grade_error_vs_lambda").rows.empty()) {
+    doc.addHeading(2, "Error against lambda");
+    std::set<std::string> provided;
+    for (const auto& row : tables.at("grade_error_vs_lambda").rows) provided.insert(row[0]);
+    std::string list;
+    for (const std::string& q : provided) list += (list.empty() ? "" : " ") + q;
+    drawFigure("grade_error_vs_lambda", dir, "quantities='" + list + "'");
+    doc.addFigure("grade_error_vs_lambda",
+                  "The program's largest error against Simbody over each lambda, per quantity, relative to the "
+                  "quantity's scale, beside the analytic engine's own largest error against Simbody (black) and the "
+                  "gate's tolerance 64 eps x the conditioning 1 / (1 - lambda^2) x (l + r) / r (dashed)");
+  }
+
+  doc.addHeading(2, "Failing cases");
+  if (failures.rows.empty()) {
+    doc.addParagraph("None.");
+  } else {
+    // Every failing case's scene file, so that each line below reproduces it.
+    fs::create_directory(dir / "cases");
+    std::map<std::string, const GradeCase*> by_id;
+    for (const GradeCase& c : cases) by_id[c.id] = &c;
+    std::set<std::string> written;
+    std::vector<std::vector<std::string>> worst = failures.rows;
+    const size_t rel = columnOf(failures, "rel_error");
+    std::stable_sort(worst.begin(), worst.end(), [rel](const auto& a, const auto& b) {
+      return std::strtod(a[rel].c_str(), nullptr) > std::strtod(b[rel].c_str(), nullptr);
+    });
+    for (const auto& row : failures.rows)
+      if (written.insert(row[0]).second && by_id.count(row[0]))
+        writeNewFile(dir / "cases" / (row[0] + ".toml"), by_id[row[0]]->scene_toml);
+    const size_t shown = std::min<size_t>(worst.size(), 40);
+    doc.addParagraph(std::to_string(failures.rows.size()) + " (case, quantity, cylinder) failed; the " + std::to_string(shown) +
+                     " largest errors are below, all in [data/grade_failures.csv](data/grade_failures.csv). Each "
+                     "command, run in this folder, shows both engines' values at that case and angle.");
+    std::vector<std::vector<std::string>> table;
+    for (size_t i = 0; i < shown; ++i) {
+      const auto& r = worst[i];
+      table.push_back({r[0], r[3] + (r[4].empty() ? "" : " [" + r[4] + "]"), r[5], r[7], r[8], shortNumber(r[10]),
+                       "`crankcheck eval cases/" + r[0] + ".toml --phi-deg " + r[5] + " --engine both`"});
+    }
+    doc.addTable({"case", "quantity [cylinder]", "phi [deg]", "program", "Simbody", "error [scale]", "reproduce"}, table);
+  }
+  writeNewFile(dir / "index.md", doc.toMarkdown());
+  writeNewFile(dir / "index.html", doc.toHtml());
+}
+
+}  // namespace crankcheck::validation

@@ -1,0 +1,129 @@
+#include "crankcheck/validation/report_document.h"
+
+#include <cmark-gfm-core-extensions.h>
+#include <cmark-gfm.h>
+
+#include <cstdlib>
+#include <memory>
+#include <stdexcept>
+
+#include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/install_paths.h"
+#include "crankcheck/validation/process.h"
+
+namespace crankcheck::validation {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string escapeCell(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (c == '|') out += "\\|";
+    else if (c == '\n' || c == '\r') out += ' ';
+    else out += c;
+  }
+  return out;
+}
+
+std::string escapeHtml(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// cmark-gfm with GitHub's table extension: Markdown to an HTML fragment. Raw HTML in the Markdown is not passed
+// through (CMARK_OPT_DEFAULT is safe): the report's text comes from data, some of it the user's.
+std::string renderMarkdown(const std::string& markdown) {
+  cmark_gfm_core_extensions_ensure_registered();
+  std::unique_ptr<cmark_parser, void (*)(cmark_parser*)> parser(cmark_parser_new(CMARK_OPT_DEFAULT), cmark_parser_free);
+  if (!parser) throw std::runtime_error("cmark-gfm: cannot create a parser");
+  for (const char* name : {"table", "autolink"})
+    if (cmark_syntax_extension* extension = cmark_find_syntax_extension(name))
+      cmark_parser_attach_syntax_extension(parser.get(), extension);
+  cmark_parser_feed(parser.get(), markdown.data(), markdown.size());
+  std::unique_ptr<cmark_node, void (*)(cmark_node*)> document(cmark_parser_finish(parser.get()), cmark_node_free);
+  if (!document) throw std::runtime_error("cmark-gfm: cannot parse the report's Markdown");
+  char* html = cmark_render_html(document.get(), CMARK_OPT_DEFAULT, cmark_parser_get_syntax_extensions(parser.get()));
+  std::string out(html);
+  std::free(html);
+  return out;
+}
+
+}  // namespace
+
+ReportDocument::ReportDocument(std::string title) : title_(std::move(title)) { body_ = "# " + title_ + "\n\n"; }
+
+void ReportDocument::addHeading(int level, const std::string& text) {
+  body_ += std::string(static_cast<size_t>(level), '#') + " " + text + "\n\n";
+  headings_.push_back({level, text});
+}
+
+void ReportDocument::addParagraph(const std::string& markdown) { body_ += markdown + "\n\n"; }
+
+void ReportDocument::addTable(const std::vector<std::string>& columns, const std::vector<std::vector<std::string>>& rows) {
+  std::string line = "|", rule = "|";
+  for (const std::string& c : columns) {
+    line += " " + escapeCell(c) + " |";
+    rule += "---|";
+  }
+  body_ += line + "\n" + rule + "\n";
+  for (const auto& row : rows) {
+    line = "|";
+    for (size_t i = 0; i < columns.size(); ++i) line += " " + escapeCell(i < row.size() ? row[i] : std::string()) + " |";
+    body_ += line + "\n";
+  }
+  body_ += "\n";
+}
+
+void ReportDocument::addFigure(const std::string& name, const std::string& caption) {
+  body_ += "[![" + escapeCell(caption) + "](" + name + ".png)](" + name + ".svg)\n\n*" + caption + "* ([SVG](" + name +
+           ".svg), [CSV](data/" + name + ".csv))\n\n";
+}
+
+std::string ReportDocument::toMarkdown() const { return body_; }
+
+std::string ReportDocument::toHtml() const {
+  std::string fragment = renderMarkdown(body_);
+  // Anchors on the level-2 and level-3 headings, in order, for the table of contents.
+  std::string toc = "<nav><h2>Contents</h2><ul>\n";
+  size_t search = 0;
+  for (size_t n = 0; n < headings_.size(); ++n) {
+    const std::string tag = "<h" + std::to_string(headings_[n].first) + ">";
+    const size_t at = fragment.find(tag, search);
+    if (at == std::string::npos) break;
+    const std::string id = "part" + std::to_string(n + 1);
+    fragment.insert(at + tag.size() - 1, " id=\"" + id + "\"");
+    search = at + tag.size();
+    toc += std::string(headings_[n].first == 3 ? "<li class=\"sub\">" : "<li>") + "<a href=\"#" + id + "\">" +
+           escapeHtml(headings_[n].second) + "</a></li>\n";
+  }
+  toc += "</ul></nav>\n";
+  // The title heading stays first; the contents follow it.
+  const size_t title_end = fragment.find("</h1>");
+  if (title_end != std::string::npos) fragment.insert(title_end + 5, "\n" + toc);
+  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escapeHtml(title_) +
+         "</title>\n<style>\nbody{font-family:sans-serif;max-width:72em;margin:2em auto;padding:0 1em;line-height:1.4}\n"
+         "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:.2em .5em}\n"
+         "img{max-width:100%}code{background:#f4f4f4}nav li.sub{margin-left:1.5em}\n</style>\n</head>\n<body>\n" +
+         fragment + "</body>\n</html>\n";
+}
+
+void drawFigure(const std::string& name, const fs::path& dir, const std::string& definitions) {
+  const fs::path script = fs::absolute(findReportsDir() / (name + ".gp"));
+  if (!fs::is_regular_file(script)) throw EnvironmentError("gnuplot script not found: " + quotePath(script));
+  const ProgramResult r =
+      runProgram({{"gnuplot", "-e", "in_dir='data'; out_dir='.'; " + definitions, script.string()}, dir});
+  if (r.exit_status != 0 || !fs::exists(dir / (name + ".svg")) || !fs::exists(dir / (name + ".png")))
+    throw EnvironmentError("gnuplot failed on " + quotePath(script) + ":\n" + r.out + r.err);
+}
+
+}  // namespace crankcheck::validation
