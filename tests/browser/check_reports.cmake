@@ -1,0 +1,20 @@
+# The reports as a reader opens them (issue 11, label `browser`): a quick validate report and a quick grade report,
+# each opened in headless Chromium by check_report.py (console errors, images that did not load, lang, title,
+# table of contents; the screenshots stay in WORK_DIR). Run by ctest as
+#   cmake -DCRANKCHECK=... -DGRADE_PROGRAM=... -DCHROMIUM=... -DPYTHON=... -DWORK_DIR=... -P check_reports.cmake
+cmake_minimum_required(VERSION 3.25)
+function(run what)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${what} failed (${rc}):\n${out}\n${err}")
+  endif()
+  message(STATUS "${what}: ${out}")
+endfunction()
+file(REMOVE_RECURSE ${WORK_DIR})  # the test's own folder in the build tree
+file(MAKE_DIRECTORY ${WORK_DIR})
+run("validate --quick" ${CRANKCHECK} validate --quick --out ${WORK_DIR}/validate)
+run("validate report in Chromium" ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/check_report.py ${CHROMIUM} ${WORK_DIR}/validate
+    ${WORK_DIR}/validate_report.png)
+run("grade --quick" ${CRANKCHECK} grade --quick --batch --out ${WORK_DIR}/grade -- ${GRADE_PROGRAM})
+run("grade report in Chromium" ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/check_report.py ${CHROMIUM} ${WORK_DIR}/grade
+    ${WORK_DIR}/grade_report.png)
