@@ -3,6 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <complex>
 #include <cstdio>
@@ -27,8 +28,8 @@ namespace crankcheck::validation {
 
 std::string formatNumber(double x) {
   char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", x + 0.0);
-  return buffer;
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, x + 0.0).ptr;  // shortest round-trip; -0 as 0
+  return std::string(buffer, end);
 }
 
 void appendTables(TableSet& into, const TableSet& from) {

@@ -24,7 +24,7 @@
 
 namespace crankcheck::validation {
 
-/// One table of the report: a header and rows of already formatted fields (numbers as %.17g; a name may hold any
+/// One table of the report: a header and rows of already formatted fields (numbers by formatNumber; a name may hold any
 /// character, the CSV writer quotes it).
 struct Table {
   std::vector<std::string> columns;
@@ -60,7 +60,7 @@ std::vector<Mechanism> buildDefaultScenes();
 /// figure. With options.scenes the first scene is the base of the lambda sweeps and figures.
 std::vector<Task> buildCampaign(const CampaignOptions& options);
 
-/// %.17g
+/// x in its shortest form that reads back to the same double (std::to_chars): 0.1, not 0.10000000000000001.
 std::string formatNumber(double x);
 
 }  // namespace crankcheck::validation
