@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <iostream>
 #include <set>
@@ -99,11 +100,16 @@ int runGrade(const GradeOptions& options) {
 
   const int status = validation::findGradeExitStatus(tables);
   const validation::Table& summary = tables.at("grade_summary");
-  std::printf("%-16s %18s %14s %14s  %s\n", "quantity", "provided / asked", "vs Simbody", "vs analytic", "verdict");
+  std::printf("%-16s %18s %14s %14s  %s\n", "quantity", "provided / asked", "vs Simbody [-]", "vs analytic [-]", "verdict");
+  auto brief = [](const std::string& number) {
+    if (number.empty()) return std::string("-");
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2g", std::strtod(number.c_str(), nullptr));
+    return std::string(text);
+  };
   for (const auto& row : summary.rows)
-    std::printf("%-16s %18s %14s %14s  %s\n", row[0].c_str(), (row[2] + " / " + row[1]).c_str(),
-                row[3].empty() ? "-" : row[3].substr(0, 9).c_str(), row[4].empty() ? "-" : row[4].substr(0, 9).c_str(),
-                row[9].c_str());
+    std::printf("%-16s %18s %14s %14s  %s\n", row[0].c_str(), (row[2] + " / " + row[1]).c_str(), brief(row[3]).c_str(),
+                brief(row[4]).c_str(), row[9].c_str());
   std::printf("%s\nReport: %s (also index.html)\n",
               status == 0 ? "Every provided value agrees with both engines."
                           : "SOME VALUES DISAGREE, or none was provided (see the report's failing cases).",
