@@ -1,6 +1,6 @@
 # `cmake --install build --prefix P`: the libraries and their headers, the crankcheck CLI, the gnuplot scripts of
 # the report, and the CMake package (P/lib/cmake/crankcheck/crankcheckConfig.cmake) with its targets:
-#   crankcheck::scene, crankcheck::analytic                     (need only toml++)
+#   crankcheck::scene, crankcheck::analytic                     (need toml++ and Eigen)
 #   crankcheck::simbody_models, crankcheck::validation,
 #   crankcheck::crankcheck (the CLI, an imported executable)    (need Simbody, Google Benchmark, nlohmann-json)
 # Two export sets, so that a consumer of the analytic library does not need Simbody installed.

@@ -55,15 +55,12 @@ CylinderMotion calcCylinderMotion(const Mechanism& m, int j, double phi) {
   c.piston = calcPistonKinematics(m, c.theta);
   c.rod = calcRodKinematics(m, c.theta);
   c.psi_ddot = -c.rod.beta_ddot;  // the rod turns about +Z by -beta
-  const double B[2] = {r * c.theta.cos, r * c.theta.sin};
-  for (int i = 0; i < 2; ++i) {
-    c.p_OA[i] = i == 0 ? c.piston.x_p : 0.0;
-    c.p_OB[i] = B[i];
-    c.p_OG[i] = c.p_OA[i] + mu * (B[i] - c.p_OA[i]);
-    c.a_A[i] = i == 0 ? c.piston.a_p : 0.0;
-    c.a_B[i] = -w * w * B[i];  // the crank pin turns at constant omega
-    c.a_G[i] = (1.0 - mu) * c.a_A[i] + mu * c.a_B[i];
-  }
+  c.p_OA = {c.piston.x_p, 0.0};
+  c.p_OB = {r * c.theta.cos, r * c.theta.sin};
+  c.p_OG = c.p_OA + mu * (c.p_OB - c.p_OA);
+  c.a_A = {c.piston.a_p, 0.0};
+  c.a_B = -w * w * c.p_OB;  // the crank pin turns at constant omega
+  c.a_G = (1.0 - mu) * c.a_A + mu * c.a_B;
   return c;
 }
 

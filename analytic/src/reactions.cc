@@ -1,5 +1,6 @@
 #include "crankcheck/analytic/reactions.h"
 
+#include <Eigen/Core>
 #include <cmath>
 
 #include "crankcheck/analytic/exact_trig.h"
@@ -11,15 +12,16 @@
 namespace crankcheck::analytic {
 namespace {
 
-// Planar vectors in the cylinder frame (e, n); the frame is right-handed, so cross products are the same
-// as in (X, Y).
-struct P2 {
-  double e = 0.0, n = 0.0;
-};
-P2 operator+(P2 a, P2 b) { return {a.e + b.e, a.n + b.n}; }
-P2 operator-(P2 a, P2 b) { return {a.e - b.e, a.n - b.n}; }
-P2 operator*(double s, P2 a) { return {s * a.e, s * a.n}; }
-double cross(P2 a, P2 b) { return a.e * b.n - a.n * b.e; }
+using Eigen::Vector2d;
+
+// The Z component of a x b for planar vectors (in the cylinder frame (e, n), right-handed like (X, Y), so the same
+// as in global coordinates).
+double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// The reactions are computed with Eigen vectors; the results are stored as the plain Vec2 (std::array) of
+// scene/evaluation.h, the type both engines fill: Simbody's translation units include it, and SimTK's catch-all
+// operators clash with Eigen's (../shared/SIMBODY-NOTES.md).
+Vec2 toVec2(const Vector2d& v) { return {v.x(), v.y()}; }
 
 }  // namespace
 
@@ -38,36 +40,37 @@ Reactions calcReactions(const Mechanism& m, double phi, const std::vector<Cylind
   Reactions out;
   for (int j = 0; j < m.engine.cylinders; ++j) {
     const CylinderMotion& c = motions[static_cast<size_t>(j)];
-    // Global (X, Y) of e_j and n_j, and gravity (0, -g) in cylinder j's frame.
+    // R_WC: cylinder frame (e_j, n_j) to global (X, Y); gravity (0, -g) in cylinder j's frame.
     const SinCos gamma = c.gamma;
-    const Vec2 e_W{gamma.cos, gamma.sin}, n_W{-gamma.sin, gamma.cos};
-    const P2 g_C{-g * gamma.sin, -g * gamma.cos};
-    const auto toGlobal = [&](P2 v) { return Vec2{v.e * e_W[0] + v.n * n_W[0], v.e * e_W[1] + v.n * n_W[1]}; };
+    Eigen::Matrix2d R_WC;
+    R_WC << gamma.cos, -gamma.sin, gamma.sin, gamma.cos;
+    const Vector2d g_C{-g * gamma.sin, -g * gamma.cos};
 
-    const P2 p_OA{c.p_OA[0], c.p_OA[1]}, p_OB{c.p_OB[0], c.p_OB[1]}, p_OG{c.p_OG[0], c.p_OG[1]};
-    const P2 p_AB = p_OB - p_OA, p_AG = p_OG - p_OA;
-    const P2 a_A{c.a_A[0], c.a_A[1]}, a_G{c.a_G[0], c.a_G[1]};
+    const Vector2d& p_OA = c.p_OA;
+    const Vector2d& p_OB = c.p_OB;
+    const Vector2d p_AB = p_OB - p_OA, p_AG = c.p_OG - p_OA;
+    const Vector2d& a_A = c.a_A;
 
     // Piston along e gives F_A.e (the gas pushes it toward the crank with F_gas); rod moments about A give F_A.n.
     const double F_gas = calcGasForce(m, j, phi);
-    P2 F_A;
-    F_A.e = m_o * (a_A.e - g_C.e) + F_gas;
-    const P2 rod_net = m_k * (a_G - g_C);  // F_B - F_A
+    Vector2d F_A;
+    F_A.x() = m_o * (a_A.x() - g_C.x()) + F_gas;
+    const Vector2d rod_net = m_k * (c.a_G - g_C);  // F_B - F_A
     const double moment = I_o * c.psi_ddot + cross(p_AG, m_k * a_A) - cross(p_AG, m_k * g_C) - cross(p_AB, rod_net);
     // moment = (B - A) x F_A = p_AB.e F_A.n - p_AB.n F_A.e
-    F_A.n = (moment + p_AB.n * F_A.e) / p_AB.e;
-    const P2 F_B = rod_net + F_A;
-    const double N_w = -F_A.n - m_o * g_C.n;
+    F_A.y() = (moment + p_AB.y() * F_A.x()) / p_AB.x();
+    const Vector2d F_B = rod_net + F_A;
+    const double N_w = -F_A.y() - m_o * g_C.y();
 
-    const P2 p_OS = (m.crank.com_radius / r) * p_OB;
-    const P2 p_OC = (-m.crank.counterweight_radius / r) * p_OB;
-    const P2 F_O = m_s * ((-w * w) * p_OS - g_C) + m_p * ((-w * w) * p_OC - g_C) + F_B;
+    const Vector2d p_OS = (m.crank.com_radius / r) * p_OB;
+    const Vector2d p_OC = (-m.crank.counterweight_radius / r) * p_OB;
+    const Vector2d F_O = m_s * ((-w * w) * p_OS - g_C) + m_p * ((-w * w) * p_OC - g_C) + F_B;
     const double tau = cross(p_OB, F_B) - cross(p_OS, m_s * g_C) - cross(p_OC, m_p * g_C);
 
-    out.cylinders.push_back({toGlobal(F_B), toGlobal(F_A), N_w});
-    const Vec2 F_O_W = toGlobal(F_O);
-    out.bearing_force[0] += F_O_W[0];
-    out.bearing_force[1] += F_O_W[1];
+    out.cylinders.push_back({toVec2(R_WC * F_B), toVec2(R_WC * F_A), N_w});
+    const Vector2d F_O_W = R_WC * F_O;
+    out.bearing_force[0] += F_O_W.x();
+    out.bearing_force[1] += F_O_W.y();
     out.drive_torque += tau;
   }
   return out;

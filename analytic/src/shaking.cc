@@ -1,5 +1,6 @@
 #include "crankcheck/analytic/shaking.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -19,28 +20,26 @@ Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motio
   const double m_o = m.piston.mass, m_k = m.rod.mass;
   const double I_G = m.rod.inertia_about_wrist_pin - m_k * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
   const double throw_first_moment = m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius;
-  double P_dot[2] = {0.0, 0.0}, H_dot[3] = {0.0, 0.0, 0.0};
+  // dP/dt and dH_O/dt of the moving parts, global X, Y, Z (Eigen vectors; the result is stored in the plain arrays
+  // of scene/evaluation.h that both engines fill, see reactions.cc).
+  Eigen::Vector3d P_dot = Eigen::Vector3d::Zero(), H_dot = Eigen::Vector3d::Zero();
   for (const CylinderMotion& c : motions) {
     // m a of the piston, the rod and the throw (m_s at r_s, m_p at -r_p on the crank line: a = -omega^2 p), and
     // p x m a about O, all in cylinder j's frame (planar cross products are the same in every rotated frame).
-    const double piston[2] = {m_o * c.a_A[0], m_o * c.a_A[1]};
-    const double rod[2] = {m_k * c.a_G[0], m_k * c.a_G[1]};
-    const double crank[2] = {-w * w * throw_first_moment / r * c.p_OB[0], -w * w * throw_first_moment / r * c.p_OB[1]};
-    const double f_C[2] = {piston[0] + rod[0] + crank[0], piston[1] + rod[1] + crank[1]};
-    const double moment_Z = (c.p_OA[0] * piston[1] - c.p_OA[1] * piston[0]) + (c.p_OG[0] * rod[1] - c.p_OG[1] * rod[0]) +
+    const Eigen::Vector2d piston = m_o * c.a_A, rod = m_k * c.a_G;
+    const Eigen::Vector2d crank = (-w * w * throw_first_moment / r) * c.p_OB;
+    const Eigen::Vector2d f_C = piston + rod + crank;
+    const double moment_Z = (c.p_OA.x() * piston.y() - c.p_OA.y() * piston.x()) +
+                            (c.p_OG.x() * rod.y() - c.p_OG.y() * rod.x()) +
                             I_G * c.psi_ddot;  // the throw's p x m a is parallel: no Z part
-    // To global X, Y: e = (cos gamma, sin gamma), n = (-sin gamma, cos gamma).
-    const double f_X = f_C[0] * c.gamma.cos - f_C[1] * c.gamma.sin;
-    const double f_Y = f_C[0] * c.gamma.sin + f_C[1] * c.gamma.cos;
-    P_dot[0] += f_X;
-    P_dot[1] += f_Y;
-    H_dot[0] += -c.z * f_Y;
-    H_dot[1] += c.z * f_X;
-    H_dot[2] += moment_Z;
+    // To global X, Y: e = (cos gamma, sin gamma), n = (-sin gamma, cos gamma); the force acts in the plane z = z_j.
+    const Eigen::Vector3d f_W{f_C.x() * c.gamma.cos - f_C.y() * c.gamma.sin, f_C.x() * c.gamma.sin + f_C.y() * c.gamma.cos, 0.0};
+    P_dot += f_W;
+    H_dot += Eigen::Vector3d{0.0, 0.0, c.z}.cross(f_W) + Eigen::Vector3d{0.0, 0.0, moment_Z};
   }
   Shaking s;
-  s.force = {-P_dot[0], -P_dot[1]};
-  s.moment = {-H_dot[0], -H_dot[1], -H_dot[2]};
+  s.force = {-P_dot.x(), -P_dot.y()};
+  s.moment = {-H_dot.x(), -H_dot.y(), -H_dot.z()};
   return s;
 }
 

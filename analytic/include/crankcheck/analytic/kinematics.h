@@ -7,6 +7,7 @@
 /// centre O along the cylinder axis e (CONVENTIONS.md): x_p = r cos(theta) + l sqrt(1 - lambda^2 sin^2 theta).
 /// Time derivatives are at the scene's constant omega = m.engine.speed: v_p = omega dx_p/dtheta, etc.
 
+#include <Eigen/Core>
 #include <vector>
 
 #include "crankcheck/analytic/exact_trig.h"
@@ -40,8 +41,8 @@ struct CylinderMotion {
   double z = 0.0;              ///< [m] z_j
   PistonKinematics piston;     ///< x_p, v_p, a_p, j_p along e_j
   RodKinematics rod;           ///< beta and its derivatives
-  double p_OA[2], p_OB[2], p_OG[2];  ///< [m] (e, n) components
-  double a_A[2], a_B[2], a_G[2];     ///< [m/s^2] (e, n) components
+  Eigen::Vector2d p_OA, p_OB, p_OG;  ///< [m] (e, n) components
+  Eigen::Vector2d a_A, a_B, a_G;     ///< [m/s^2] (e, n) components
   double psi_ddot = 0.0;       ///< [rad/s^2] the rod's angular acceleration about +Z (= -beta_ddot)
 };
 /// @throws std::out_of_range if j is not a cylinder of m.
