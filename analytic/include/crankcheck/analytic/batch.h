@@ -4,22 +4,28 @@
 /// scalar closed forms (calcGravityTorque, calcPotentialEnergy, calcPistonKinematics, calcReactions, calcShaking) and
 /// the arithmetic arranged for SIMD throughput. What a sweep over millions of (k, lambda, gamma, phi) points calls.
 ///
-/// Vectors and dispatch: the kernels are written once with Highway and compiled for AVX-512 (8 doubles), AVX2 (4),
-/// SSE4 and SSSE3 (2) and a portable baseline (EMU128, plain C++ on 2 lanes); at the first call Highway picks the
-/// widest the CPU has, so one binary runs on any x86-64. sin and cos of vectors come from SLEEF 3.5 (the 1-ulp
-/// `_u10` functions for the chosen width); the baseline uses the C library's sin and cos. getBatchTargetName() says
-/// which path runs.
+/// Vectors and dispatch: the kernels are written once with Highway 1.0 and compiled for AVX-512 ("AVX3", 8 doubles),
+/// AVX2 (4), SSE4 and SSSE3 (2) and the portable baseline ("SCALAR", plain C++, one lane); at the first call Highway
+/// picks the widest the CPU has, so one binary runs on any x86-64. sin and cos of vectors come from SLEEF 3.5 (the
+/// 1-ulp `_u10` sincos for the chosen width); the baseline uses the C library's sin and cos. getBatchTargetName()
+/// says which path runs.
 ///
-/// Arguments: every finite angle. SLEEF's u10 sin and cos reduce the argument exactly over the whole double range
+/// Arguments: every finite angle. SLEEF's u10 sincos reduces the argument exactly over the whole double range
 /// (measured against glibc: within 0.5 eps up to |phi| = 1e300), so no range is refused. An angle that is NaN or
-/// infinite makes the kernel throw std::invalid_argument after the pass (the outputs are then unspecified).
+/// infinite makes the kernel throw std::invalid_argument after the pass (the outputs are then unspecified); on a grid,
+/// phi0, step and the last angle are checked before anything is written.
 ///
-/// Accuracy (tests/analytic/batch_test.cc, against the scalar functions angle by angle): within 4 eps times the
-/// quantity's physical scale (validation/scales.h) on arbitrary angles, times the conditioning 1/(1 - lambda^2)^2 that
-/// the radical's derivatives bring near lambda = 1. Each throw's angle is phi rotated by alpha_j (addAngles) and the
+/// Accuracy (tests/analytic/batch_test.cc, against the scalar functions angle by angle, on every angle the benchmark
+/// times, on both the widest and the baseline path): within 4 eps times the quantity's physical scale
+/// (validation/scales.h), times 1/(1 - lambda^2) near lambda = 1 (measured: at most 1.5 eps x scale for lambda <= 0.9,
+/// 13 for Q at lambda = 0.999). Each throw's angle is phi rotated by alpha_j (addAngles, as calcThrowSinCos) and the
 /// remaining arithmetic is the scalar functions', operation for operation, so the difference is what the vector
-/// sin/cos and the skipped snapping of quarter turns (exact_trig.h) leave. On a uniform grid sin and cos come from an
-/// angle-addition recurrence re-anchored with an exact sincos every 16 vectors: within 1e-13 of the scale.
+/// sin/cos leave. The kernels do not snap quarter turns: the scalar calcSinCos returns exact values for angles within
+/// 2 ulp of a multiple of pi/2 (exact_trig.h), which moves its sin and cos by up to 2 eps |phi| there, so inside those
+/// windows (measure zero; reached by random angles with probability ~1e-15) the two differ by up to that much.
+/// On a uniform grid, sin and cos come from rotating each lane by Lanes() steps, re-anchored with an exact sincos of
+/// the doubles phi0 + i step every 16 vectors: within 1e-13 of the scale (times 1/(1 - lambda^2)) for |phi| up to a
+/// few hundred radians, beyond which the rounding of the scalar reference's own angle phi0 + i step dominates.
 ///
 /// Layout: structure of arrays. Every output is one std::span<double> per quantity (per cylinder where the quantity is
 /// per cylinder) with one entry per angle: the same size as phi, or, on a grid, the size that sets the number of
@@ -105,7 +111,7 @@ void calcShakingBatch(const Mechanism& m, std::span<const double> phi, const Sha
 void calcShakingOnGrid(const Mechanism& m, double phi0, double step, const ShakingSpans& out);
 
 /// The instruction set the batch kernels run on in this process: "AVX3" (AVX-512), "AVX2", "SSE4", "SSSE3" or
-/// "EMU128" (the portable baseline). Tests force the baseline with hwy::SetSupportedTargetsForTest(HWY_EMU128).
+/// "SCALAR" (the portable baseline). Tests force the baseline with hwy::SetSupportedTargetsForTest(HWY_SCALAR).
 const char* getBatchTargetName();
 
 }  // namespace crankcheck::analytic
