@@ -17,6 +17,7 @@
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/analytic/reactions.h"
+#include "crankcheck/simbody_models/grid_sweep.h"
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/campaign.h"
@@ -366,6 +367,26 @@ void BM_SimbodyReducedPotentialEnergy(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(model.calcPotentialEnergy(nextAngle(i)));
 }
 BENCHMARK(BM_SimbodyReducedPotentialEnergy)->Arg(1)->Arg(2)->Arg(4)->Arg(6)->Arg(12)->Unit(benchmark::kMicrosecond);
+
+// Simbody's Q and U over a uniform grid of one turn in half degrees (720 angles; every phase angle of the bench
+// mechanisms is a whole number of steps) by superposing one-cylinder models (grid_sweep.h), per angle. The model is
+// built inside the timed region, as a sweep would.
+constexpr size_t kSimbodyGrid = 720;
+void BM_SimbodyGridHoldingTorque(benchmark::State& state) {
+  const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(simbody_models::calcHoldingTorqueOnGrid(m, 0.0, 2.0 * M_PI / kSimbodyGrid, kSimbodyGrid));
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(kSimbodyGrid));
+}
+BENCHMARK(BM_SimbodyGridHoldingTorque)->Arg(1)->Arg(4)->Arg(12)->Unit(benchmark::kMillisecond);
+
+void BM_SimbodyGridPotentialEnergy(benchmark::State& state) {
+  const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(simbody_models::calcPotentialEnergyOnGrid(m, 0.0, 2.0 * M_PI / kSimbodyGrid, kSimbodyGrid));
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(kSimbodyGrid));
+}
+BENCHMARK(BM_SimbodyGridPotentialEnergy)->Arg(1)->Arg(12)->Unit(benchmark::kMillisecond);
 
 // The whole default campaign of `crankcheck validate`, every task in turn on one thread (the command itself spreads
 // them over --jobs threads). Timing tasks are skipped: they would measure themselves.
