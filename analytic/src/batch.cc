@@ -1,9 +1,11 @@
 // The batch kernels (batch.h), written once with Highway and compiled for every x86 target by foreach_target.h:
 // this file is included once per target; the parts outside HWY_NAMESPACE are guarded to appear once.
 //
-// Each kernel mirrors its scalar closed form operation for operation (same constants, same order of the
-// additions and multiplications, no fused multiply-adds), so that the batch and scalar values differ only by what
-// the vector sin/cos leave: the accuracy tests compare them angle by angle.
+// The kinematics, Q, U and the shaking mirror their scalar closed forms operation for operation (same constants, same
+// order of the additions and multiplications, no fused multiply-adds), so that the batch and scalar values differ
+// only by what the vector sin/cos leave. The reactions' Newton-Euler part is the same equations with the throw's terms
+// gathered (they are linear in the crank pin's position) and fused multiply-adds, a quarter fewer operations: a few
+// roundings of the force scale apart. The accuracy tests compare every output angle by angle.
 
 #ifndef CRANKCHECK_ANALYTIC_BATCH_SHARED
 #define CRANKCHECK_ANALYTIC_BATCH_SHARED
@@ -60,7 +62,6 @@ struct Params {
   double U1 = 0.0, U2 = 0.0;
   double mu = 0.0;                         // z_k / l
   double m_o = 0.0, m_k = 0.0, I_o = 0.0, I_G = 0.0, m_s = 0.0, m_p = 0.0;
-  double rs_over_r = 0.0, rp_over_r = 0.0;  // r_s / r, -r_p / r
   double throw_first_moment = 0.0;          // m_s r_s - m_p r_p
   bool gas = false;
   std::vector<Cylinder> cylinders;
@@ -340,8 +341,9 @@ bool reactions(const Params& p, Source& source, size_t n, const ReactionPointers
   const D d;
   const size_t N = hn::Lanes(d);
   const MotionConstants k(d, p);
-  const V m_o = hn::Set(d, p.m_o), m_k = hn::Set(d, p.m_k), I_o = hn::Set(d, p.I_o), m_s = hn::Set(d, p.m_s),
-          m_p = hn::Set(d, p.m_p), rs_over_r = hn::Set(d, p.rs_over_r), rp_over_r = hn::Set(d, p.rp_over_r);
+  const V m_o = hn::Set(d, p.m_o), m_k = hn::Set(d, p.m_k), I_o = hn::Set(d, p.I_o);
+  const double throw_moment = p.throw_first_moment / p.r;  // (m_s r_s - m_p r_p) / r
+  const V throw_inertia = hn::Set(d, -p.w * p.w * throw_moment);
   const bool per_cylinder = !out.cylinders.empty();
   for (size_t i = 0; i < n; i += N) {
     const size_t count = std::min(N, n - i);
@@ -369,31 +371,30 @@ bool reactions(const Params& p, Source& source, size_t n, const ReactionPointers
       }
       const V RN_e = m_k * (o.aG_e - gCe), RN_n = m_k * (o.aG_n - gCn);  // F_B - F_A
       // Rod moments about A: I_o psi_ddot + (G - A) x m_k a_A - (G - A) x m_k g - (B - A) x (F_B - F_A)
-      const V moment = I_o * o.psi_ddot + hn::Neg(AG_n * (m_k * o.a_p)) -
-                       (AG_e * hn::Set(d, p.m_k * gCn_s) - AG_n * hn::Set(d, p.m_k * gCe_s)) -
-                       (AB_e * RN_n - AB_n * RN_e);
-      const V FA_n = (moment + AB_n * FA_e) / AB_e;
+      const V moment = hn::NegMulAdd(AG_n, m_k * o.a_p, I_o * o.psi_ddot) -
+                       hn::MulSub(AG_e, hn::Set(d, p.m_k * gCn_s), AG_n * hn::Set(d, p.m_k * gCe_s)) -
+                       hn::MulSub(AB_e, RN_n, AB_n * RN_e);
+      const V FA_n = hn::MulAdd(AB_n, FA_e, moment) / AB_e;
       const V FB_e = RN_e + FA_e, FB_n = RN_n + FA_n;
-      // Crank throw: bearing force and moment about O.
-      const V OS_e = rs_over_r * o.B_e, OS_n = rs_over_r * o.B_n;
-      const V OC_e = rp_over_r * o.B_e, OC_n = rp_over_r * o.B_n;
-      const V FO_e = m_s * (k.minus_w2 * OS_e - gCe) + m_p * (k.minus_w2 * OC_e - gCe) + FB_e;
-      const V FO_n = m_s * (k.minus_w2 * OS_n - gCn) + m_p * (k.minus_w2 * OC_n - gCn) + FB_n;
-      const V tau = (o.B_e * FB_n - o.B_n * FB_e) -
-                    (OS_e * hn::Set(d, p.m_s * gCn_s) - OS_n * hn::Set(d, p.m_s * gCe_s)) -
-                    (OC_e * hn::Set(d, p.m_p * gCn_s) - OC_n * hn::Set(d, p.m_p * gCe_s));
+      // Crank throw (m_s at r_s, m_p at -r_p on the crank line, turning at omega), linear in B:
+      //   F_O = F_B + (m_s r_s - m_p r_p) / r (-omega^2) B - (m_s + m_p) g,
+      //   tau = B x F_B - (m_s r_s - m_p r_p) / r B x g.
+      const V FO_e = hn::MulAdd(throw_inertia, o.B_e, FB_e + hn::Set(d, -(p.m_s + p.m_p) * gCe_s));
+      const V FO_n = hn::MulAdd(throw_inertia, o.B_n, FB_n + hn::Set(d, -(p.m_s + p.m_p) * gCn_s));
+      const V tau = hn::MulSub(o.B_e, FB_n - hn::Set(d, throw_moment * gCn_s),
+                               o.B_n * (FB_e - hn::Set(d, throw_moment * gCe_s)));
       // e = (cos gamma, sin gamma), n = (-sin gamma, cos gamma) in X, Y
       const V minus_gs = hn::Set(d, -cyl.sin_gamma);
       if (per_cylinder) {
         const std::array<double*, 5>& o_j = out.cylinders[j];
-        StoreTail(d, FB_e * gc + FB_n * minus_gs, o_j[0] + i, count);
-        StoreTail(d, FB_e * gs + FB_n * gc, o_j[1] + i, count);
-        StoreTail(d, FA_e * gc + FA_n * minus_gs, o_j[2] + i, count);
-        StoreTail(d, FA_e * gs + FA_n * gc, o_j[3] + i, count);
-        StoreTail(d, hn::Neg(FA_n) - m_o * gCn, o_j[4] + i, count);
+        StoreTail(d, hn::MulAdd(FB_e, gc, FB_n * minus_gs), o_j[0] + i, count);
+        StoreTail(d, hn::MulAdd(FB_e, gs, FB_n * gc), o_j[1] + i, count);
+        StoreTail(d, hn::MulAdd(FA_e, gc, FA_n * minus_gs), o_j[2] + i, count);
+        StoreTail(d, hn::MulAdd(FA_e, gs, FA_n * gc), o_j[3] + i, count);
+        StoreTail(d, hn::Set(d, -p.m_o * gCn_s) - FA_n, o_j[4] + i, count);
       }
-      FO_X = FO_X + (FO_e * gc + FO_n * minus_gs);
-      FO_Y = FO_Y + (FO_e * gs + FO_n * gc);
+      FO_X = FO_X + hn::MulAdd(FO_e, gc, FO_n * minus_gs);
+      FO_Y = FO_Y + hn::MulAdd(FO_e, gs, FO_n * gc);
       tau_sum = tau_sum + tau;
     }
     StoreTail(d, tau_sum, out.tau + i, count);
@@ -505,8 +506,6 @@ Params makeParams(const Mechanism& m, RodInertiaForm rod = RodInertiaForm::kTrue
   p.I_G = m.rod.inertia_about_wrist_pin - p.m_k * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
   p.m_s = m.crank.mass;
   p.m_p = m.crank.counterweight_mass;
-  p.rs_over_r = m.crank.com_radius / p.r;
-  p.rp_over_r = -m.crank.counterweight_radius / p.r;
   p.throw_first_moment = m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius;
   p.gas = m.gas.has_value();
   if (m.engine.crank_angles.size() != static_cast<size_t>(m.engine.cylinders))
