@@ -2,8 +2,8 @@
 // this file is included once per target; the parts outside HWY_NAMESPACE are guarded to appear once.
 //
 // The kinematics, Q, U and the shaking mirror their scalar closed forms operation for operation (same constants, same
-// order of the additions and multiplications, no fused multiply-adds), so that the batch and scalar values differ
-// only by what the vector sin/cos leave. The reactions' Newton-Euler part is the same equations with the throw's terms
+// order of the additions and multiplications; GCC fuses multiply-adds where the instruction set has them, as C++
+// allows), so that the batch and scalar values differ by little more than what the vector sin/cos leave. The reactions' Newton-Euler part is the same equations with the throw's terms
 // gathered (they are linear in the crank pin's position) and fused multiply-adds, a quarter fewer operations: a few
 // roundings of the force scale apart. The accuracy tests compare every output angle by angle.
 

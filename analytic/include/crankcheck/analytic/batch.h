@@ -19,9 +19,10 @@
 /// times, on both the widest and the baseline path): within 4 eps times the quantity's physical scale
 /// (validation/scales.h), times 1/(1 - lambda^2) near lambda = 1 (measured: at most 1.5 eps x scale for lambda <= 0.9,
 /// 13 for Q at lambda = 0.999). Each throw's angle is phi rotated by alpha_j (addAngles, as calcThrowSinCos) and the
-/// remaining arithmetic is the scalar functions', operation for operation (the reactions gather the throw's terms
-/// and fuse multiply-adds: a few roundings apart), so the difference is mostly what the vector sin/cos leave. The kernels do not snap quarter turns: the scalar calcSinCos returns exact values for angles within
-/// 2 ulp of a multiple of pi/2 (exact_trig.h), which moves its sin and cos by up to 2 eps |phi| there, so inside those
+/// remaining arithmetic is the scalar functions' in the same order (with multiply-adds fused where the CPU has FMA;
+/// the reactions also gather the throw's terms), so the difference is mostly what the vector sin/cos leave. The
+/// kernels do not snap quarter turns: the scalar calcSinCos returns exact values for angles within 2 ulp of a multiple
+/// of pi/2 (exact_trig.h), which moves its sin and cos by up to 2 eps |phi| there, so inside those
 /// windows (measure zero; reached by random angles with probability ~1e-15) the two differ by up to that much.
 /// On a uniform grid, sin and cos come from rotating each lane by Lanes() steps, re-anchored with an exact sincos of
 /// the doubles phi0 + i step every 16 vectors: within 1e-13 of the scale (times 1/(1 - lambda^2)) for |phi| up to a
