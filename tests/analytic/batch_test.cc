@@ -4,8 +4,9 @@
 // differences elsewhere (tests/gate, tests/analytic/*_test.cc).
 //
 // Tolerances are eps times the quantity's physical scale (validation/scales.h: energy for U and Q, l + r for x_p, the
-// velocity, acceleration, force, torque and moment scales). Why 4: the kernels repeat the scalar arithmetic operation
-// for operation; what differs is sin and cos of phi (SLEEF's vector u10 against glibc: measured within 0.5 eps of each
+// velocity, acceleration, force, torque and moment scales). Why 4: the kernels repeat the scalar arithmetic in the
+// same order (the reactions with the throw's terms gathered, multiply-adds fused where the CPU has FMA: a few
+// roundings); what differs most is sin and cos of phi (SLEEF's vector u10 against glibc: measured within 0.5 eps of each
 // other) and the exact zeros of quarter turns that only the scalar function snaps to. A difference of one rounding
 // in sin or cos moves a quantity by at most its derivative with respect to sin and cos, which every scale bounds
 // (they are sums of the magnitudes of the terms) except for the radical's growth near lambda = 1: the derivative of
