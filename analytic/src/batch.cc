@@ -10,8 +10,6 @@
 #ifndef CRANKCHECK_ANALYTIC_BATCH_SHARED
 #define CRANKCHECK_ANALYTIC_BATCH_SHARED
 
-#include <immintrin.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -24,6 +22,8 @@
 #include "crankcheck/analytic/exact_trig.h"
 #include "crankcheck/analytic/potential_energy.h"
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
 // SLEEF 3.5's vector sincos with a 1-ulp bound. sleef.h declares each only when the translation unit is compiled for
 // its instruction set (e.g. -mavx512f); here each is called from code compiled for that set by Highway's target
 // attributes, so they are declared by hand with SLEEF's own types (a struct of two vectors).
@@ -42,6 +42,7 @@ CrankcheckSleefD4x2 Sleef_sincosd4_u10avx2(__m256d);
 CrankcheckSleefD2x2 Sleef_sincosd2_u10sse4(__m128d);
 CrankcheckSleefD2x2 Sleef_sincosd2_u10sse2(__m128d);
 }
+#endif  // x86: elsewhere every target takes sin and cos from the C library, lane by lane
 
 namespace crankcheck::analytic::batch_detail {
 
