@@ -3,16 +3,21 @@
 //   build/bin/crankcheck_bench [--benchmark_format=json]
 
 #include <benchmark/benchmark.h>
+#include <immintrin.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <vector>
 
+#include "bench_cases.h"
 #include "crankcheck/analytic/batch.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/analytic/reactions.h"
+#include "crankcheck/simbody_models/grid_sweep.h"
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/campaign.h"
@@ -20,19 +25,7 @@
 namespace crankcheck {
 namespace {
 
-// The same mechanism family as the tests: r = 0.05 m, lambda = 0.3, rod centre of mass off the middle.
-Mechanism benchMechanism(int k) {
-  Mechanism m;
-  m.engine.cylinders = k;
-  m.engine.cycle = Cycle::kFourStroke;
-  m.engine.crank_angles = calcPhaseAngles(k, m.engine.cycle, m.engine.acting);
-  m.engine.cylinder_angle = radiansFromDegrees(90.0);
-  m.engine.speed = 4500.0 * M_PI / 30.0;
-  m.crank = {0.05, 1.7, 0.02, 1.3, 0.04};
-  m.rod = {0.05 / 0.3, 0.61, 0.05, 0.61 * (0.05 * 0.05 + 0.045 * 0.045)};
-  m.piston.mass = 0.43;
-  return m;
-}
+using bench::benchMechanism;
 
 // A stream of crank angles that the compiler cannot fold: one turn in 1024 steps, then again.
 double nextAngle(int& i) { return 2.0 * M_PI * ((i++) & 1023) / 1024.0; }
@@ -46,16 +39,10 @@ void BM_BareSinCosSqrt(benchmark::State& state) {  // the floor of any closed fo
 }
 BENCHMARK(BM_BareSinCosSqrt);
 
-// Batches of 1e6 angles: items_per_second counts angles (ns per angle = 1e9 / items_per_second).
-constexpr size_t kBatch = 1'000'000;
-
-std::vector<double> randomAngles() {
-  std::mt19937_64 rng(42);
-  std::uniform_real_distribution<double> angle(-10.0, 10.0);
-  std::vector<double> phi(kBatch);
-  for (double& p : phi) p = angle(rng);
-  return phi;
-}
+// Batches of 1e6 angles (bench_cases.h, the same the accuracy tests check): items_per_second counts angles
+// (ns per angle = 1e9 / items_per_second).
+using bench::kBatch;
+std::vector<double> randomAngles() { return bench::benchAngles(); }
 
 void setPerAngle(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(kBatch));
@@ -77,28 +64,193 @@ void BM_BatchBareSinCosSqrt(benchmark::State& state) {
 }
 BENCHMARK(BM_BatchBareSinCosSqrt)->Unit(benchmark::kMillisecond);
 
-void BM_BatchQArbitraryAngles(benchmark::State& state) {
-  const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
-  const std::vector<double> phi = randomAngles();
-  std::vector<double> Q(kBatch);
-  for (auto _ : state) {
-    analytic::calcGravityTorqueBatch(m, phi, Q);
-    benchmark::DoNotOptimize(Q.data());
-  }
-  setPerAngle(state);
-}
-BENCHMARK(BM_BatchQArbitraryAngles)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+// ---- The batch kernels (batch.h), arbitrary angles and the uniform grid, k = range(0).
 
-void BM_BatchQUniformGrid(benchmark::State& state) {
-  const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
-  std::vector<double> Q(kBatch);
+// Every output array of the kernels, allocated once per benchmark.
+struct Outputs {
+  std::vector<double> Q, tau, F_X, F_Y, shake[5];
+  std::vector<std::vector<double>> kin[3], cyl[5];
+  std::vector<analytic::PistonKinematicsSpans> kinematics;
+  std::vector<analytic::CylinderReactionsSpans> cylinders;
+  explicit Outputs(int k) {
+    for (auto* v : {&Q, &tau, &F_X, &F_Y, &shake[0], &shake[1], &shake[2], &shake[3], &shake[4]}) v->assign(kBatch, 0.0);
+    for (auto& v : kin) v.assign(static_cast<size_t>(k), std::vector<double>(kBatch, 0.0));
+    for (auto& v : cyl) v.assign(static_cast<size_t>(k), std::vector<double>(kBatch, 0.0));
+    for (int j = 0; j < k; ++j) {
+      kinematics.push_back({kin[0][j], kin[1][j], kin[2][j]});
+      cylinders.push_back({cyl[0][j], cyl[1][j], cyl[2][j], cyl[3][j], cyl[4][j]});
+    }
+  }
+  analytic::ReactionsSpans reactions(bool per_cylinder) {
+    return {tau, F_X, F_Y, per_cylinder ? std::span<const analytic::CylinderReactionsSpans>(cylinders)
+                                        : std::span<const analytic::CylinderReactionsSpans>()};
+  }
+  analytic::ShakingSpans shaking() { return {shake[0], shake[1], shake[2], shake[3], shake[4]}; }
+};
+
+enum Quantity { kQ, kU, kKinematics, kReactions, kReactionTotals, kShaking };
+
+// One batch of kBatch angles: arbitrary (phi != nullptr) or the grid.
+void runKernel(Quantity q, const Mechanism& m, const std::vector<double>* phi, Outputs& o) {
+  using namespace analytic;
+  const double phi0 = bench::kGridPhi0, step = bench::kGridStep;
+  switch (q) {
+    case kQ: phi ? calcGravityTorqueBatch(m, *phi, o.Q) : calcGravityTorqueOnGrid(m, phi0, step, o.Q); break;
+    case kU: phi ? calcPotentialEnergyBatch(m, *phi, o.Q) : calcPotentialEnergyOnGrid(m, phi0, step, o.Q); break;
+    case kKinematics:
+      phi ? calcPistonKinematicsBatch(m, *phi, o.kinematics) : calcPistonKinematicsOnGrid(m, phi0, step, o.kinematics);
+      break;
+    case kReactions:
+    case kReactionTotals:
+      phi ? calcReactionsBatch(m, *phi, o.reactions(q == kReactions))
+          : calcReactionsOnGrid(m, phi0, step, o.reactions(q == kReactions));
+      break;
+    case kShaking: phi ? calcShakingBatch(m, *phi, o.shaking()) : calcShakingOnGrid(m, phi0, step, o.shaking()); break;
+  }
+}
+
+template <Quantity q, bool grid>
+void BM_Kernel(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0));
+  const Mechanism m = benchMechanism(k);
+  const std::vector<double> phi = randomAngles();
+  Outputs o(k);
   for (auto _ : state) {
-    analytic::calcGravityTorqueOnGrid(m, 0.0, 2.0 * M_PI / 3600.0, Q);
-    benchmark::DoNotOptimize(Q.data());
+    runKernel(q, m, grid ? nullptr : &phi, o);
+    benchmark::ClobberMemory();
+  }
+  setPerAngle(state);
+  state.SetLabel(analytic::getBatchTargetName());
+}
+// Q (eq 13), U (eq 12), x_p, v_p, a_p of every cylinder, the reactions (5 per cylinder) with the drive torque and
+// bearing force, the same totals alone, the shaking force and moment (5).
+BENCHMARK(BM_Kernel<kQ, false>)->Name("BM_BatchQ")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Kernel<kU, false>)->Name("BM_BatchU")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Kernel<kKinematics, false>)->Name("BM_BatchKinematics")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Kernel<kReactions, false>)->Name("BM_BatchReactions")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Kernel<kReactionTotals, false>)->Name("BM_BatchReactionTotals")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Kernel<kShaking, false>)->Name("BM_BatchShaking")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Kernel<kQ, true>)->Name("BM_GridQ")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Kernel<kU, true>)->Name("BM_GridU")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Kernel<kKinematics, true>)->Name("BM_GridKinematics")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Kernel<kReactions, true>)->Name("BM_GridReactions")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Kernel<kReactionTotals, true>)->Name("BM_GridReactionTotals")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Kernel<kShaking, true>)->Name("BM_GridShaking")->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+
+// ---- The machine's limits for the same data.
+
+// Memory: read the 8-byte angle and write range(0) 8-byte outputs per angle, as the kernels do, with no arithmetic
+// (memcpy of the input into each output, in blocks that stay in L1 so the input is read from memory once).
+// Outputs per angle: Q, U 1; kinematics 3k; reactions 3 + 5k; reaction totals 3; shaking 5.
+void BM_MemoryFloor(benchmark::State& state) {
+  const size_t outputs = static_cast<size_t>(state.range(0));
+  const std::vector<double> phi = randomAngles();
+  std::vector<std::vector<double>> out(outputs, std::vector<double>(kBatch));
+  constexpr size_t kBlock = 2048;
+  for (auto _ : state) {
+    for (size_t start = 0; start < kBatch; start += kBlock) {
+      const size_t n = std::min(kBlock, kBatch - start);
+      for (auto& o : out) std::memcpy(o.data() + start, phi.data() + start, n * sizeof(double));
+    }
+    benchmark::ClobberMemory();
+  }
+  setPerAngle(state);
+  state.counters["bytes_per_angle"] = static_cast<double>(8 * (1 + outputs));
+}
+BENCHMARK(BM_MemoryFloor)->Arg(1)->Arg(3)->Arg(5)->Arg(8)->Arg(12)->Arg(23)->Unit(benchmark::kMillisecond);
+
+// The vector units' peak on this CPU (AVX-512, 8 doubles per instruction): independent chains, no memory. Items are
+// doubles (lanes) per second. Skipped on a CPU without AVX-512F.
+extern "C" {
+struct BenchSleefD8x2 {
+  __m512d x, y;
+};
+BenchSleefD8x2 Sleef_sincosd8_u10avx512f(__m512d);
+}
+
+constexpr int kChains = 12;
+constexpr int kPeakIterations = 1 << 16;
+volatile double g_opaque_one = 1.0;  // start values the compiler cannot fold the loops over
+
+__attribute__((target("avx512f"))) double runFmaPeak() {
+  __m512d acc[kChains];
+  for (int c = 0; c < kChains; ++c) acc[c] = _mm512_set1_pd(g_opaque_one + c * 1e-3);
+  const __m512d a = _mm512_set1_pd(0.999999), b = _mm512_set1_pd(1e-7);
+  for (int i = 0; i < kPeakIterations; ++i)
+    for (int c = 0; c < kChains; ++c) acc[c] = _mm512_fmadd_pd(acc[c], a, b);
+  __m512d sum = acc[0];
+  for (int c = 1; c < kChains; ++c) sum = _mm512_add_pd(sum, acc[c]);
+  return _mm512_reduce_add_pd(sum);
+}
+__attribute__((target("avx512f"))) double runSqrtPeak() {
+  __m512d x[kChains];
+  for (int c = 0; c < kChains; ++c) x[c] = _mm512_set1_pd(g_opaque_one + 1.0 + c);
+  for (int i = 0; i < kPeakIterations; ++i)
+    for (int c = 0; c < kChains; ++c) x[c] = _mm512_sqrt_pd(x[c]);  // converges to 1, stays normal
+  __m512d sum = x[0];
+  for (int c = 1; c < kChains; ++c) sum = _mm512_add_pd(sum, x[c]);
+  return _mm512_reduce_add_pd(sum);
+}
+__attribute__((target("avx512f"))) double runDivPeak() {
+  __m512d x[kChains];
+  for (int c = 0; c < kChains; ++c) x[c] = _mm512_set1_pd(g_opaque_one + 1.0 + c);
+  const __m512d one = _mm512_set1_pd(g_opaque_one);
+  for (int i = 0; i < kPeakIterations; ++i)
+    for (int c = 0; c < kChains; ++c) x[c] = _mm512_div_pd(one, x[c]);  // x, 1/x, x, ...
+  __m512d sum = x[0];
+  for (int c = 1; c < kChains; ++c) sum = _mm512_add_pd(sum, x[c]);
+  return _mm512_reduce_add_pd(sum);
+}
+// SLEEF's sincos alone, 8 lanes, from registers: the vector floor of one sin and one cos.
+__attribute__((target("avx512f"))) double runSinCosPeak() {
+  __m512d x = _mm512_mul_pd(_mm512_set1_pd(g_opaque_one), _mm512_set_pd(0.1, 0.7, 1.3, 1.9, 2.5, 3.1, 3.7, 4.3));
+  __m512d sum = _mm512_setzero_pd();
+  const __m512d step = _mm512_set1_pd(1e-3);
+  for (int i = 0; i < kPeakIterations / 16; ++i) {
+    const BenchSleefD8x2 sc = Sleef_sincosd8_u10avx512f(x);
+    sum = _mm512_add_pd(sum, _mm512_add_pd(sc.x, sc.y));
+    x = _mm512_add_pd(x, step);
+  }
+  return _mm512_reduce_add_pd(sum);
+}
+
+template <double (*kRun)(), int kLanesPerIteration>
+void BM_VectorPeak(benchmark::State& state) {
+  if (!__builtin_cpu_supports("avx512f")) {
+    state.SkipWithError("no AVX-512F");
+    return;
+  }
+  for (auto _ : state) benchmark::DoNotOptimize(kRun());
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * kLanesPerIteration);
+}
+BENCHMARK(BM_VectorPeak<runFmaPeak, kPeakIterations * kChains * 8>)->Name("BM_VectorPeakFma");
+BENCHMARK(BM_VectorPeak<runSqrtPeak, kPeakIterations * kChains * 8>)->Name("BM_VectorPeakSqrt");
+BENCHMARK(BM_VectorPeak<runDivPeak, kPeakIterations * kChains * 8>)->Name("BM_VectorPeakDiv");
+BENCHMARK(BM_VectorPeak<runSinCosPeak, kPeakIterations / 16 * 8>)->Name("BM_VectorPeakSinCos");
+
+// The vector counterpart of the bare loop: one SLEEF sincos and one sqrt per angle over the same 1e6 angles.
+__attribute__((target("avx512f"))) void runBareSimd(const double* phi, double* out, size_t n) {
+  const __m512d one = _mm512_set1_pd(1.0), l2 = _mm512_set1_pd(0.09);
+  for (size_t i = 0; i + 8 <= n; i += 8) {
+    const BenchSleefD8x2 sc = Sleef_sincosd8_u10avx512f(_mm512_loadu_pd(phi + i));
+    const __m512d root = _mm512_sqrt_pd(_mm512_sub_pd(one, _mm512_mul_pd(l2, _mm512_mul_pd(sc.x, sc.x))));
+    _mm512_storeu_pd(out + i, _mm512_add_pd(sc.y, root));
+  }
+}
+void BM_BatchBareSinCosSqrtSimd(benchmark::State& state) {
+  if (!__builtin_cpu_supports("avx512f")) {
+    state.SkipWithError("no AVX-512F");
+    return;
+  }
+  const std::vector<double> phi = randomAngles();
+  std::vector<double> out(kBatch);
+  for (auto _ : state) {
+    runBareSimd(phi.data(), out.data(), kBatch);
+    benchmark::ClobberMemory();
   }
   setPerAngle(state);
 }
-BENCHMARK(BM_BatchQUniformGrid)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BatchBareSinCosSqrtSimd)->Unit(benchmark::kMillisecond);
 
 // U, kinematics and reactions over the same batch: no dedicated kernel, the scalar functions in a loop.
 void BM_BatchUScalarLoop(benchmark::State& state) {
@@ -215,6 +367,26 @@ void BM_SimbodyReducedPotentialEnergy(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(model.calcPotentialEnergy(nextAngle(i)));
 }
 BENCHMARK(BM_SimbodyReducedPotentialEnergy)->Arg(1)->Arg(2)->Arg(4)->Arg(6)->Arg(12)->Unit(benchmark::kMicrosecond);
+
+// Simbody's Q and U over a uniform grid of one turn in half degrees (720 angles; every phase angle of the bench
+// mechanisms is a whole number of steps) by superposing one-cylinder models (grid_sweep.h), per angle. The model is
+// built inside the timed region, as a sweep would.
+constexpr size_t kSimbodyGrid = 720;
+void BM_SimbodyGridHoldingTorque(benchmark::State& state) {
+  const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(simbody_models::calcHoldingTorqueOnGrid(m, 0.0, 2.0 * M_PI / kSimbodyGrid, kSimbodyGrid));
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(kSimbodyGrid));
+}
+BENCHMARK(BM_SimbodyGridHoldingTorque)->Arg(1)->Arg(4)->Arg(12)->Unit(benchmark::kMillisecond);
+
+void BM_SimbodyGridPotentialEnergy(benchmark::State& state) {
+  const Mechanism m = benchMechanism(static_cast<int>(state.range(0)));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(simbody_models::calcPotentialEnergyOnGrid(m, 0.0, 2.0 * M_PI / kSimbodyGrid, kSimbodyGrid));
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(kSimbodyGrid));
+}
+BENCHMARK(BM_SimbodyGridPotentialEnergy)->Arg(1)->Arg(12)->Unit(benchmark::kMillisecond);
 
 // The whole default campaign of `crankcheck validate`, every task in turn on one thread (the command itself spreads
 // them over --jobs threads). Timing tasks are skipped: they would measure themselves.

@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(g++ cmake make pkg-config libeigen3-dev libsimbody-dev libcli11-dev libtomlplusplus-dev
-          nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
+          nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox libhwy-dev libsleef-dev
           libcmark-gfm-dev libcmark-gfm-extensions-dev python3)
 missing=()
 for p in "${packages[@]}"; do
