@@ -6,6 +6,8 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <stdexcept>
 
 #include "crankcheck/analytic/fourier_series.h"
@@ -14,6 +16,7 @@
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/analytic/reactions.h"
+#include "crankcheck/scene/scene_file.h"
 #include "crankcheck/simbody_models/free_run.h"
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
@@ -22,6 +25,10 @@
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/timing.h"
+
+#ifndef CRANKCHECK_SCENES_DIR
+#error "CRANKCHECK_SCENES_DIR (the example scenes) must be defined by the build"
+#endif
 
 namespace crankcheck::validation {
 
@@ -631,7 +638,7 @@ TableSet deltaVsK(const Mechanism& base, Cycle cycle, bool quick) {
   Table t;
   t.columns = {"cycle", "k", "speed_rpm", "delta_gravity", "delta_no_gravity", "delta_due_to_gravity"};
   for (int k = 1; k <= 12; ++k)
-    for (double rpm : quick ? std::vector<double>{300.0, 3000.0} : std::vector<double>{60.0, 300.0, 1500.0, 6000.0}) {
+    for (double rpm : quick ? std::vector<double>{300.0, 6000.0} : std::vector<double>{60.0, 300.0, 1500.0, 6000.0}) {
       const Mechanism m = withSpeed(withGamma(withCylinders(base, k, cycle), 90.0), rpm);
       double with = std::nan(""), without = std::nan("");
       try {
@@ -759,6 +766,19 @@ std::string familyOf(const Mechanism& m) {
   return n;
 }
 
+std::vector<Mechanism> loadExampleScenes() {
+  const char* env = std::getenv("CRANKCHECK_SCENES_DIR");
+  const std::filesystem::path dir = env ? env : CRANKCHECK_SCENES_DIR;
+  std::vector<std::filesystem::path> files;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
+    if (entry.path().extension() == ".toml") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  std::vector<Mechanism> scenes;
+  for (const auto& file : files) scenes.push_back(loadSceneFile(file));
+  return scenes;
+}
+
 std::vector<Task> buildCampaign(const CampaignOptions& options) {
   const bool quick = options.quick;
   const std::vector<Mechanism> scenes = options.scenes.empty() ? buildDefaultScenes() : options.scenes;
@@ -852,6 +872,12 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
     if (m.name.rfind("marine", 0) == 0) marine = m;
   tasks.push_back({"torque_split", false, [base, marine] { return calcTorqueSplitTables(base, marine); }});
   tasks.push_back({"rod_models", false, [base, marine] { return calcRodModelTables(base, marine); }});
+  // Pin loads as polar diagrams: the user's scenes, or the example scenes (scenes/*.toml) in the default campaign.
+  std::vector<Mechanism> pin_scenes = options.scenes;
+  if (pin_scenes.empty()) pin_scenes = loadExampleScenes();
+  for (size_t i = 0; i < pin_scenes.size(); ++i)
+    tasks.push_back({"pin_load_polar " + pin_scenes[i].name, false,
+                     [m = pin_scenes[i], i] { return calcPinLoadTables({m}, static_cast<int>(i)); }});
   tasks.push_back({"errata", false, [base] { return errata(base); }});
   tasks.push_back({"speed_vs_error", true, [base, quick] { return speedVsError(base, quick); }});
   return tasks;

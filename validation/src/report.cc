@@ -563,6 +563,11 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
        "The largest drive-torque error over the turn of the two-mass rod (m_k1 at the wrist pin, m_k3 at the crank "
        "pin) against Simbody's rigid rod, relative to the torque scale, against lambda and against Delta_I / I_G, for "
        "the car and the marine engine; dashed: the paper's two-mass rod with Delta_I, exact to rounding"},
+      {"pin_load_polar", "12. Pin loads over a working cycle (polar diagrams)",
+       "The crank-pin force of cylinder 0 (crank on rod, in the crank's own frame: x radial outward along the throw, y "
+       "tangential in the direction of rotation) and the main-bearing force (frame on the crankshaft at O, all throws, "
+       "frame X, Y) over one working cycle at each scene's speed with its gas and gravity, as the tip of the force "
+       "vector (after Norton's Program ENGINE); analytic lines, Simbody dots"},
   };
   for (const Figure& f : figures)
     if (tables.count(f.name)) plot(f.name, dir);
@@ -607,8 +612,9 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
 
   for (const Figure& f : figures) {
     const std::string& name = f.name;
-    if (!tables.count(name) || name == "balance_harmonics" || name == "torque_split" || name == "rod_models")
-      continue;  // parts 9-11 follow the errata
+    if (!tables.count(name) || name == "balance_harmonics" || name == "torque_split" || name == "rod_models" ||
+        name == "pin_load_polar")
+      continue;  // parts 9-12 follow the errata
     doc.push_back({Block::kHeading, f.heading});
     doc.push_back({Block::kFigure, f.caption, {}, {}, name});
     if (name == "integrator_pareto")
@@ -641,9 +647,17 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   for (const Figure& f : figures) {
     if (!tables.count(f.name)) continue;
     if (f.name == "balance_harmonics") addBalancePart(doc, tables, f.heading, f.caption);
-    if (f.name == "torque_split" || f.name == "rod_models") {
+    if (f.name == "torque_split" || f.name == "rod_models" || f.name == "pin_load_polar") {
       doc.push_back({Block::kHeading, f.heading});
       doc.push_back({Block::kFigure, f.caption, {}, {}, f.name});
+    }
+    if (f.name == "pin_load_polar") {
+      doc.push_back({Block::kParagraph,
+                     "The largest force over the cycle, each engine (2 degree samples refined by Brent's method), and the "
+                     "largest difference of the two engines over the samples relative to the force scale:"});
+      doc.push_back({Block::kTable, "", {"scene", "engine", "force", "max |F| [N]", "max |analytic - Simbody| / force scale"},
+                     tableRows(tables, "pin_load_polar_summary", {"scene", "engine", "force", "max_magnitude", "max_difference_rel"},
+                               {false, false, false, true, true})});
     }
   }
 

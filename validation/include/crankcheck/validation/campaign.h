@@ -56,6 +56,11 @@ struct Task {
 /// an inline four at gamma 0, 180, -90, a marine-size and a small-engine scale.
 std::vector<Mechanism> buildDefaultScenes();
 
+/// The example scenes, scenes/*.toml (the folder CRANKCHECK_SCENES_DIR, from the environment or the build), sorted by
+/// file name: the scenes of report part pin_load_polar in the default campaign. @throws SceneError if one
+/// does not load.
+std::vector<Mechanism> loadExampleScenes();
+
 /// The campaign: cross-checks of every family over lambda (its own and 0.1 .. 0.9), and the data of every report
 /// figure. With options.scenes the first scene is the base of the lambda sweeps and figures.
 std::vector<Task> buildCampaign(const CampaignOptions& options);
