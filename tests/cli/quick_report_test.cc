@@ -141,7 +141,7 @@ void checkSameConclusions(const fs::path& folder) {
     std::string out;
     std::stringstream lines(index);
     for (std::string line; std::getline(lines, line);)
-      if (line.find("holds") != std::string::npos || line.rfind("Eq (", 0) == 0 || line.rfind("Section 7", 0) == 0)
+      if (line.find("hold") != std::string::npos || line.rfind("Eq (", 0) == 0 || line.rfind("Section 7", 0) == 0)
         out += line + "\n";
     return out;
   };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <tuple>
 
 #include "crankcheck/analytic/motion.h"
@@ -178,20 +179,25 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
     };
     const double scale = calcScales(m).force;
     double worst_pin = 0.0, worst_bearing = 0.0;
-    for (double d = 0.0; d < degreesFromRadians(cycle) - 1e-9; d += 2.0) {
-      const double phi = radiansFromDegrees(d);
+    const int samples = static_cast<int>(std::lround(degreesFromRadians(cycle) / 2.0));  // 2 degree steps
+    std::map<std::string, std::vector<double>> magnitudes;  // engine + force -> |F| at the samples
+    for (int i = 0; i < samples; ++i) {
+      const double d = 2.0 * i, phi = radiansFromDegrees(d);
       const Evaluation a = analytic::calcEvaluation(m, phi), s = model.evaluate(phi);
       for (const Evaluation* e : {&a, &s}) {
         const auto [radial, tangential] = crankFrame(*e);
-        polar.rows.push_back({std::to_string(first_index + static_cast<int>(index)), e == &a ? "analytic" : "simbody", num(d),
+        const std::string engine = e == &a ? "analytic" : "simbody";
+        polar.rows.push_back({std::to_string(first_index + static_cast<int>(index)), engine, num(d),
                               num(radial), num(tangential), num(e->bearing_force[0]), num(e->bearing_force[1]), m.name});
+        magnitudes[engine + " crank_pin"].push_back(std::hypot(e->cylinders[0].crank_pin_force[0], e->cylinders[0].crank_pin_force[1]));
+        magnitudes[engine + " bearing"].push_back(std::hypot(e->bearing_force[0], e->bearing_force[1]));
       }
       worst_pin = std::max(worst_pin, std::hypot(a.cylinders[0].crank_pin_force[0] - s.cylinders[0].crank_pin_force[0],
                                                   a.cylinders[0].crank_pin_force[1] - s.cylinders[0].crank_pin_force[1]));
       worst_bearing = std::max(worst_bearing, std::hypot(a.bearing_force[0] - s.bearing_force[0], a.bearing_force[1] - s.bearing_force[1]));
     }
-    // The largest |force| over the working cycle, each engine alike: 2 degree samples refined by Brent's method (the
-    // cycle mapped onto [0, 2 pi) for findMaxAbsOverTurn).
+    // The largest |force| over the working cycle, each engine alike: the 2 degree samples, the best two refined by
+    // Brent's method (the cycle mapped onto [0, 2 pi) for findMaxAbsOverTurn).
     for (const char* engine : {"analytic", "simbody"})
       for (const char* force : {"crank_pin", "bearing"}) {
         const bool is_analytic = std::string(engine) == "analytic", is_pin = std::string(force) == "crank_pin";
@@ -201,7 +207,7 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
           const Vec2& F = is_pin ? e.cylinders[0].crank_pin_force : e.bearing_force;
           return std::hypot(F[0], F[1]);
         };
-        const TurnMaximum best = findMaxAbsOverTurn(magnitude, static_cast<int>(std::lround(degreesFromRadians(cycle) / 2.0)));
+        const TurnMaximum best = findMaxAbsOverTurn(magnitude, magnitudes[std::string(engine) + " " + force], 2);
         summary.rows.push_back({m.name, engine, force, num(best.value), num(degreesFromRadians(best.phi * cycle / (2.0 * M_PI))),
                                 num((is_pin ? worst_pin : worst_bearing) / scale)});
       }

@@ -59,9 +59,18 @@ TurnMaximum refineMaxAbs(const std::function<double(double)>& f, double a, doubl
 TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, int samples, int refinements) {
   if (samples < 3) throw std::invalid_argument("findMaxAbsOverTurn: samples must be >= 3");
   if (refinements < 0) throw std::invalid_argument("findMaxAbsOverTurn: refinements must be >= 0");
+  std::vector<double> y(samples);
+  for (int i = 0; i < samples; ++i) y[i] = f(2.0 * M_PI * i / samples);
+  return findMaxAbsOverTurn(f, y, refinements);
+}
+
+TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, const std::vector<double>& values, int refinements) {
+  const int samples = static_cast<int>(values.size());
+  if (samples < 3) throw std::invalid_argument("findMaxAbsOverTurn: samples must be >= 3");
+  if (refinements < 0) throw std::invalid_argument("findMaxAbsOverTurn: refinements must be >= 0");
   const double h = 2.0 * M_PI / samples;
   std::vector<double> y(samples);
-  for (int i = 0; i < samples; ++i) y[i] = std::fabs(f(i * h));
+  for (int i = 0; i < samples; ++i) y[i] = std::fabs(values[i]);
   TurnMaximum best{y[0], 0.0};
   std::vector<int> peaks;
   for (int i = 0; i < samples; ++i) {

@@ -632,7 +632,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
     if (name == "gravity_significance") {
       doc.push_back({Block::kParagraph,
                      "max |Q| is the maximum over the turn of Q's exact harmonics (no cancellation, so it is exact however "
-                     "small); Simbody's is found on the same grid (8 samples per period of the first surviving harmonic) "
+                     "small); Simbody's is found on the same grid (6 samples per period of the first surviving harmonic, at least 48) "
                      "and refined the same way (Brent's method). Where Simbody's max |Q| is below its rounding bound (64 eps "
                      "of the energy scale) it shows only that |Q| is below the bound: 'Simbody resolves' = no, and the "
                      "figure draws the bound as an arrow down."});

@@ -6,6 +6,7 @@
 /// report is found this way, for both engines alike (report parts 1, 2, 4, 8, 11).
 
 #include <functional>
+#include <vector>
 
 namespace crankcheck::validation {
 
@@ -22,6 +23,11 @@ struct TurnMaximum {
 /// at least 3 samples per period of the highest harmonic that matters. Costs samples + about 30 x refinements
 /// evaluations of f. @throws std::invalid_argument if samples < 3 or refinements < 0.
 TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, int samples, int refinements = 4);
+
+/// The same from samples already taken: values[i] = f(2 pi i / values.size()) (at least 3), so that a caller that
+/// needs the samples anyway (a table over the turn) evaluates f only for the refinement.
+TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, const std::vector<double>& values,
+                               int refinements = 4);
 
 /// max |f| over [a, b] by Brent's method (f unimodal in |f| there), never below max(|f(a)|, |f(b)|).
 TurnMaximum refineMaxAbs(const std::function<double(double)>& f, double a, double b, double tolerance = 1e-10);
