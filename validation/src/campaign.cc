@@ -879,7 +879,7 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   if (pin_scenes.empty()) pin_scenes = loadExampleScenes();
   for (size_t i = 0; i < pin_scenes.size(); ++i)
     tasks.push_back({"pin_load_polar " + pin_scenes[i].name, false,
-                     [m = pin_scenes[i], i] { return calcPinLoadTables({m}, static_cast<int>(i)); }});
+                     [m = pin_scenes[i], i, quick] { return calcPinLoadTables({m}, static_cast<int>(i), quick ? 4.0 : 2.0); }});
   tasks.push_back({"errata", false, [base] { return errata(base); }});
   tasks.push_back({"speed_vs_error", true, [base, quick] { return speedVsError(base, quick); }});
   return tasks;

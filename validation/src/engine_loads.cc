@@ -163,7 +163,7 @@ TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine) {
   return {{"rod_models", t}};
 }
 
-TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index) {
+TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index, double step_deg) {
   Table polar, summary;
   polar.columns = {"scene_index", "engine", "phi_deg", "crank_pin_radial", "crank_pin_tangential", "bearing_x", "bearing_y", "scene"};
   summary.columns = {"scene", "engine", "force", "max_magnitude", "phi_deg_at_max", "max_difference_rel"};
@@ -179,10 +179,10 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
     };
     const double scale = calcScales(m).force;
     double worst_pin = 0.0, worst_bearing = 0.0;
-    const int samples = static_cast<int>(std::lround(degreesFromRadians(cycle) / 2.0));  // 2 degree steps
+    const int samples = static_cast<int>(std::lround(degreesFromRadians(cycle) / step_deg));
     std::map<std::string, std::vector<double>> magnitudes;  // engine + force -> |F| at the samples
     for (int i = 0; i < samples; ++i) {
-      const double d = 2.0 * i, phi = radiansFromDegrees(d);
+      const double d = step_deg * i, phi = radiansFromDegrees(d);
       const Evaluation a = analytic::calcEvaluation(m, phi), s = model.evaluate(phi);
       for (const Evaluation* e : {&a, &s}) {
         const auto [radial, tangential] = crankFrame(*e);
@@ -196,7 +196,7 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
                                                   a.cylinders[0].crank_pin_force[1] - s.cylinders[0].crank_pin_force[1]));
       worst_bearing = std::max(worst_bearing, std::hypot(a.bearing_force[0] - s.bearing_force[0], a.bearing_force[1] - s.bearing_force[1]));
     }
-    // The largest |force| over the working cycle, each engine alike: the 2 degree samples, the best two refined by
+    // The largest |force| over the working cycle, each engine alike: the samples, the best two refined by
     // Brent's method (the cycle mapped onto [0, 2 pi) for findMaxAbsOverTurn).
     for (const char* engine : {"analytic", "simbody"})
       for (const char* force : {"crank_pin", "bearing"}) {

@@ -653,7 +653,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
     }
     if (f.name == "pin_load_polar") {
       doc.push_back({Block::kParagraph,
-                     "The largest force over the cycle, each engine (2 degree samples refined by Brent's method), and the "
+                     "The largest force over the cycle, each engine (the samples, the best two refined by Brent's method), and the "
                      "largest difference of the two engines over the samples relative to the force scale:"});
       doc.push_back({Block::kTable, "", {"scene", "engine", "force", "max |F| [N]", "max |analytic - Simbody| / force scale"},
                      tableRows(tables, "pin_load_polar_summary", {"scene", "engine", "force", "max_magnitude", "max_difference_rel"},
