@@ -1,5 +1,5 @@
 # `cmake --install build --prefix P`: the libraries and their headers, the crankcheck CLI, the gnuplot scripts of
-# the report, and the CMake package (P/lib/cmake/crankcheck/crankcheckConfig.cmake) with its targets:
+# the report, the example scenes, and the CMake package (P/lib/cmake/crankcheck/crankcheckConfig.cmake) with its targets:
 #   crankcheck::scene, crankcheck::analytic                     (need toml++ and Eigen)
 #   crankcheck::simbody_models, crankcheck::validation,
 #   crankcheck::crankcheck (the CLI, an imported executable)    (need Simbody, Google Benchmark, nlohmann-json)
@@ -16,8 +16,10 @@ install(TARGETS crankcheck_simbody_models crankcheck_validation crankcheck EXPOR
 foreach(part scene analytic simbody_models validation)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${part}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/reports/ DESTINATION ${CRANKCHECK_REPORTS_INSTALL_DIR}
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/reports/ DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/reports
         FILES_MATCHING PATTERN "*.gp" PATTERN "*.md")
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/scenes
+        FILES_MATCHING PATTERN "*.toml")
 
 install(EXPORT crankcheckCoreTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
 install(EXPORT crankcheckSimbodyTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})

@@ -137,7 +137,7 @@ do for [fmt in "svg png"] {
     }
     set output out_dir . "/" . name . "." . fmt
     set multiplot title "Largest relative error over a crank revolution against the crank ratio λ" font ",13"
-    set label 9 "0 shown at 10^{-17} (below double precision)" at screen 0.5, screen 0.03 center font ",9" tc rgb "#444444"
+    set label 9 "0 and values below 10^{-17} drawn at 10^{-17} (below double precision)" at screen 0.5, screen 0.03 center font ",9" tc rgb "#444444"
 
     set title "piston kinematics" font ",11" offset 0, 0.6
     set ylabel "max relative error (dimensionless)"

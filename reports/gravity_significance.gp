@@ -2,14 +2,17 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/gravity_significance.gp
 #
-# Reads  in_dir/gravity_significance.csv   cycle,k,max_abs_Q,ratio_to_k1,max_inertia_torque,ratio_to_inertia
+# Reads  in_dir/gravity_significance.csv   cycle,k,max_abs_Q,ratio_to_k1,max_inertia_torque,ratio_to_inertia,
+#        simbody_max_abs_Q,resolved,first_order,simbody_bound,simbody_ratio_to_k1 (columns 7-11 optional)
 # Writes out_dir/gravity_significance.svg and out_dir/gravity_significance.png
 #
 # Per cycle (two-stroke blue, four-stroke orange) two lines against k = 1..12 on a log y axis:
 # ratio_to_k1 (solid, filled points) = max|Q| relative to the same cycle's k = 1, and
 # ratio_to_inertia (dashed, open points) = max|Q| relative to the largest inertia torque.
-# Zeros (and anything below 1e-17) are drawn at 1e-17. k = 7, 9, 11 are shaded. Rows may come in
-# any order; an absent cycle or column simply has no line.
+# Simbody's max |Q| relative to its k = 1 (column 11) is drawn as a cross where Simbody resolves it
+# (column 8 "yes") and as an arrow down from its rounding bound where it does not ("no"): an upper bound,
+# not a value. Values below 1e-17 are drawn at 1e-17. k = 7, 9, 11 are shaded. Rows may come in any
+# order; an absent cycle or column simply has no line.
 
 if (!exists("in_dir"))  in_dir  = "."
 if (!exists("out_dir")) out_dir = "."
@@ -63,6 +66,24 @@ do for [p = 1:2] {
         }
     }
 }
+# Simbody: resolved values as crosses, bounds as arrows down (one decade long) ending in a down triangle.
+has11 = 0
+if (ndata > 0) { stats file skip 1 using (has11 = (has11 || fin(column(11))), 0) nooutput }
+if (has11) {
+    do for [p = 1:2] {
+        eval sprintf("set table $R%d separator comma", p)
+        plot file skip 1 using 2:(clamp(column(11))) with table if (strcol(1) eq CYC[p] && strcol(8) eq "yes" && fin(column(11)))
+        unset table
+        eval sprintf("set table $B%d separator comma", p)
+        plot file skip 1 using 2:(clamp(column(11))) with table if (strcol(1) eq CYC[p] && strcol(8) ne "yes" && fin(column(11)))
+        unset table
+        eval sprintf("nr = |$R%d|; nb = |$B%d|", p, p)
+        if (nr > 0) { cmd = cmd . sprintf("$R%d using 1:2 with points pt 2 ps 1.8 lw 2 lc rgb '%s' title 'Simbody, %s (resolved)', ", p, (p == 1 ? "#0b3d91" : "#a34a00"), CYC[p]) }
+        if (nb > 0) {
+            cmd = cmd . sprintf("$B%d using 1:2:(0):($2 * 0.1 - $2) with vectors head filled size screen 0.008,25 lw 1.5 lc rgb '%s' title 'Simbody, %s: below rounding (upper bound)', ", p, (p == 1 ? "#0b3d91" : "#a34a00"), CYC[p])
+        }
+    }
+}
 cmd = (cmd eq "") ? "NaN notitle" : cmd[1:strlen(cmd) - 2]
 
 # ---- axes ---------------------------------------------------------------------------------------
@@ -81,9 +102,9 @@ do for [k in "7 9 11"] {
     set object rectangle from first k - 0.4, graph 0 to first k + 0.4, graph 1 fillcolor rgb "#fff2b3" fillstyle solid 1.0 noborder behind
 }
 set label 1 "shaded: k = 7, 9, 11 (the paper: gravity negligible, first surviving order 2k)" at graph 0.99, graph 0.97 right font ",9" tc rgb "#555555"
-if (ymin <= floor) { set label 2 "0 shown at 10^{-17} (below double precision)" at graph 0.01, first floor left offset 0, 0.6 font ",9" tc rgb "#444444" }
-set bmargin at screen 0.19
-set key at screen 0.5, screen 0.06 center center horizontal maxrows 2 reverse Left samplen 3 font ",10" box lc rgb "#bbbbbb"
+if (ymin <= floor) { set label 2 "values below 10^{-17} drawn at 10^{-17}" at graph 0.01, first floor left offset 0, 0.6 font ",9" tc rgb "#444444" }
+set bmargin at screen 0.27
+set key at screen 0.5, screen 0.085 center center horizontal maxcols 2 maxrows 4 width -8 reverse Left samplen 3 font ",9" box lc rgb "#bbbbbb"
 
 if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) { pngterm = "pngcairo" } else { pngterm = "png" }
 

@@ -42,10 +42,12 @@ class ValidateTest : public ::testing::Test {
 };
 
 const char* kFigures[] = {"error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance", "norton_fig13_8",
-                          "delta_vs_k", "integrator_pareto", "balance_harmonics", "torque_split", "rod_models"};
+                          "delta_vs_k", "integrator_pareto", "balance_harmonics", "torque_split", "rod_models",
+                          "pin_load_polar"};
 const char* kTables[] = {"crosscheck", "error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance",
                          "norton_fig13_8", "errata", "scenes", "delta_vs_k", "integrator_pareto", "balance",
-                         "balance_harmonics", "torque_split", "gravity_share", "rod_models"};
+                         "balance_harmonics", "torque_split", "gravity_share", "rod_models", "eq5_layouts",
+                         "eq15_coefficients", "eq15_engines", "pin_load_polar", "pin_load_polar_summary"};
 
 TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   const fs::path report = dir_ / "report";
@@ -65,9 +67,9 @@ TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   EXPECT_NE(index.find("Errata"), std::string::npos);
   EXPECT_NE(index.find("Simbody 3.7"), std::string::npos);
   EXPECT_NE(readFile(report / "index.html").find("<img src=\"harmonics.png\""), std::string::npos);
-  EXPECT_EQ(readFile(report / "data/error_vs_lambda.csv").rfind("quantity,method,lambda,max_abs_error,max_rel_error\n", 0), 0u);
+  EXPECT_EQ(readFile(report / "data/error_vs_lambda.csv").rfind("quantity,method,lambda,max_abs_error,max_rel_error,resolved\n", 0), 0u);
   const std::string speed = readFile(report / "data/speed_vs_error.csv");
-  EXPECT_EQ(speed.rfind("method,ns_per_eval,max_rel_error\n", 0), 0u);
+  EXPECT_EQ(speed.rfind("method,ns_per_eval,max_rel_error,resolved\n", 0), 0u);
   EXPECT_GE(std::count(speed.begin(), speed.end(), '\n'), 6) << "every method timed:\n" << speed;
   EXPECT_NE(speed.find("simbody_tol_1e-12,"), std::string::npos) << speed;
   // Nothing but the report next to it: no staging folder left behind.

@@ -31,7 +31,8 @@ set(consumer ${SOURCE_DIR}/examples/consumer)
 
 run("install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 foreach(f lib/cmake/crankcheck/crankcheckConfig.cmake lib/cmake/crankcheck/crankcheckConfigVersion.cmake
-          include/crankcheck/analytic/gravity_torque.h bin/crankcheck share/crankcheck/reports/error_vs_lambda.gp)
+          include/crankcheck/analytic/gravity_torque.h bin/crankcheck share/crankcheck/reports/error_vs_lambda.gp
+          share/crankcheck/scenes/single_cylinder.toml)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "install: ${prefix}/${f} is missing")
   endif()
@@ -53,7 +54,7 @@ run("installed CLI: --version" ${prefix}/bin/crankcheck --version)
 if(NOT run_output MATCHES "crankcheck ${VERSION}")
   message(FATAL_ERROR "installed CLI: --version printed '${run_output}', expected crankcheck ${VERSION}")
 endif()
-run("installed CLI: validate --quick" ${CMAKE_COMMAND} -E env --unset=CRANKCHECK_REPORTS_DIR
+run("installed CLI: validate --quick" ${CMAKE_COMMAND} -E env --unset=CRANKCHECK_REPORTS_DIR --unset=CRANKCHECK_SCENES_DIR
     ${prefix}/bin/crankcheck validate --quick --out ${WORK_DIR}/report)
 if(NOT EXISTS ${WORK_DIR}/report/error_vs_lambda.png)
   message(FATAL_ERROR "installed CLI: the report has no figures")

@@ -1,31 +1,41 @@
 #include "crankcheck/validation/install_paths.h"
 
 #include <cstdlib>
+#include <string>
 #include <system_error>
 
 #include "crankcheck/validation/errors.h"
 
-#if !defined(CRANKCHECK_REPORTS_RELATIVE_DIR) || !defined(CRANKCHECK_REPORTS_INSTALLED_DIR)
-#error "CRANKCHECK_REPORTS_RELATIVE_DIR and CRANKCHECK_REPORTS_INSTALLED_DIR must be defined by the build"
+#if !defined(CRANKCHECK_DATA_RELATIVE_DIR) || !defined(CRANKCHECK_DATA_INSTALLED_DIR)
+#error "CRANKCHECK_DATA_RELATIVE_DIR and CRANKCHECK_DATA_INSTALLED_DIR must be defined by the build"
 #endif
 
 namespace crankcheck::validation {
 namespace fs = std::filesystem;
 
-fs::path findReportsDir() {
-  if (const char* env = std::getenv("CRANKCHECK_REPORTS_DIR")) return env;
+namespace {
+
+// share/crankcheck/NAME beside the program, or where the install put it; the environment variable first.
+fs::path findDataDir(const std::string& name, const char* variable, const std::string& what) {
+  if (const char* env = std::getenv(variable)) return env;
   std::error_code ec;
   const fs::path program = fs::read_symlink("/proc/self/exe", ec);
   fs::path beside_program;
   if (!ec) {
-    beside_program = program.parent_path().parent_path() / CRANKCHECK_REPORTS_RELATIVE_DIR;
+    beside_program = program.parent_path().parent_path() / CRANKCHECK_DATA_RELATIVE_DIR / name;
     if (fs::is_directory(beside_program, ec)) return beside_program;
   }
-  const fs::path installed = CRANKCHECK_REPORTS_INSTALLED_DIR;
+  const fs::path installed = fs::path(CRANKCHECK_DATA_INSTALLED_DIR) / name;
   if (fs::is_directory(installed, ec)) return installed;
-  throw EnvironmentError("the gnuplot scripts of the report were not found in " +
+  throw EnvironmentError(what + " were not found in " +
                          (beside_program.empty() ? std::string() : quotePath(beside_program) + " or ") +
-                         quotePath(installed) + " (set CRANKCHECK_REPORTS_DIR to their folder)");
+                         quotePath(installed) + " (set " + variable + " to their folder)");
 }
+
+}  // namespace
+
+fs::path findReportsDir() { return findDataDir("reports", "CRANKCHECK_REPORTS_DIR", "the gnuplot scripts of the report"); }
+
+fs::path findScenesDir() { return findDataDir("scenes", "CRANKCHECK_SCENES_DIR", "the example scenes"); }
 
 }  // namespace crankcheck::validation

@@ -3,14 +3,23 @@
 /// The validation campaign behind `crankcheck validate`: a list of independent tasks (so that they can run on
 /// several threads or be cut into shards), each producing rows of the report's tables.
 ///
+/// Every maximum over a turn is found so that it does not depend on the grid (extremum.h: the exact harmonics or
+/// Brent's method on the best samples), on the same grid in the quick and the full campaign; `resolved` = 0 marks a
+/// number at rounding level (a bound, not a measured maximum).
+///
 /// Tables (CSV stems, columns in docs of reports/README.md):
 ///   crosscheck            family,case,lambda,quantity,worst_rel_error,where_phi_deg,where_speed_rpm,tolerance_rel,pass
-///   error_vs_lambda       quantity,method,lambda,max_abs_error,max_rel_error
-///   speed_vs_error        method,ns_per_eval,max_rel_error
+///   error_vs_lambda       quantity,method,lambda,max_abs_error,max_rel_error,resolved
+///   speed_vs_error        method,ns_per_eval,max_rel_error,resolved
 ///   harmonics             cycle,k,n,simbody_amplitude,analytic_amplitude,paper_nonzero
-///   gravity_significance  cycle,k,max_abs_Q,ratio_to_k1,max_inertia_torque,ratio_to_inertia,simbody_max_abs_Q
+///   gravity_significance  cycle,k,max_abs_Q,ratio_to_k1,max_inertia_torque,ratio_to_inertia,simbody_max_abs_Q,resolved,
+///                         first_order,simbody_bound,simbody_ratio_to_k1,paper_negligible
 ///   norton_fig13_8        crank_angle_deg,x_exact,x_two_term,v_exact,v_two_term,a_exact,a_two_term
-///   errata                item,printed,holds,max_abs_difference,scale,relative_difference
+///   errata                item,printed,holds,measure,value,verdict
+///   eq5_layouts           cycle,k,gamma_deg,max_abs_Q,max_abs_Q_printed,ratio_of_maxima,max_error_rel
+///   eq15_coefficients     n,lambda,printed,exact,relative_error
+///   eq15_engines          cycle,k,lambda,first_order,max_abs_Q,max_abs_Q_printed,ratio_of_maxima,max_error_rel
+///   pin_load_polar, pin_load_polar_summary, torque_split, gravity_share, rod_models: engine_loads.h
 ///   scenes                family,scene,cylinders,cycle,acting,gamma_deg,speed_rpm,r,l,lambda,m_o,m_k,z_k,I_o,m_s,r_s,
 ///                         m_p,r_p,g,I_w (I_w empty: the scene has no flywheel)
 ///   notes                 note (what the campaign left out, and why; only when there is something to say)
@@ -55,6 +64,11 @@ struct Task {
 /// The built-in scenes: a single cylinder (gamma 90, 0, 180, -90), inline 2, 3, 4, 6, 8, 12 in both strokes,
 /// an inline four at gamma 0, 180, -90, a marine-size and a small-engine scale.
 std::vector<Mechanism> buildDefaultScenes();
+
+/// The example scenes, scenes/*.toml (the folder findScenesDir finds: install_paths.h), sorted by
+/// file name: the scenes of report part pin_load_polar in the default campaign. @throws SceneError if one
+/// does not load.
+std::vector<Mechanism> loadExampleScenes();
 
 /// The campaign: cross-checks of every family over lambda (its own and 0.1 .. 0.9), and the data of every report
 /// figure. With options.scenes the first scene is the base of the lambda sweeps and figures.

@@ -28,11 +28,25 @@ Mechanism withGasAtDeadCentres(const Mechanism& m, const GasParams& gas);
 ///                  gravity torque is below 64 eps of the energy scale (rounding, not a torque)
 TableSet calcTorqueSplitTables(const Mechanism& car, const Mechanism& marine);
 
-///   rod_models     engine,variable,x,two_mass_error,two_mass_delta_I_error
-///                  the largest |drive torque of the two-mass rod - Simbody's rigid rod| over the turn, relative to the
+///   rod_models     engine,variable,x,two_mass_error,two_mass_delta_I_error,two_mass_delta_I_resolved
+///                  the largest |drive torque of the two-mass rod - Simbody's rigid rod| over the turn (refined,
+///                  extremum.h; with Delta_I rounding: resolved 0 marks the number as a bound), relative to the
 ///                  torque scale, without and with the paper's Delta_I, against lambda (variable "lambda") and
 ///                  against Delta_I / I_G (variable "delta_I_over_I_G", the rod's central inertia changed) for `car`
 ///                  and `marine` at their speeds
 TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine);
+
+///   pin_load_polar          scene_index,engine,phi_deg,crank_pin_radial,crank_pin_tangential,bearing_x,bearing_y,scene
+///                           over one working cycle (step_deg steps) at the scene's speed, with its gas and gravity:
+///                           the crank-pin force (crank on rod 0 at its crank pin) in the crank's own frame (radial:
+///                           outward along the throw of cylinder 0, tangential: 90 degrees ahead of it, the direction
+///                           of rotation), and the main-bearing force (frame on the crankshaft at O, all throws) in the
+///                           frame's X, Y: Norton's polar diagrams (Program ENGINE), analytic and Simbody [N]
+///   pin_load_polar_summary  scene,engine,force,max_magnitude,phi_deg_at_max,max_difference_rel
+///                           the largest |force| over the cycle (refined, extremum.h) of each engine, and the largest
+///                           |analytic - Simbody| over the samples relative to the force scale
+/// scene_index counts from first_index (so that scenes computed one per task keep their places); step_deg is the
+/// sampling step (the campaign: 2 degrees, 4 with --quick; the maxima are refined, so they do not depend on it).
+TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index = 0, double step_deg = 2.0);
 
 }  // namespace crankcheck::validation

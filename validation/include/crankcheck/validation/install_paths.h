@@ -1,10 +1,11 @@
 #pragma once
 /// @file
-/// Where crankcheck finds the files it ships beside its program: the gnuplot scripts of the report's figures.
+/// Where crankcheck finds the files it ships beside its program: the gnuplot scripts of the report's figures and
+/// the example scenes (report part pin_load_polar).
 ///
-/// The build tree and the install tree have the same layout, PREFIX/bin/crankcheck and
-/// PREFIX/share/crankcheck/reports/*.gp (the build tree links share/crankcheck/reports to the sources' reports/),
-/// so the program finds its scripts relative to itself, wherever the tree was installed or moved.
+/// The build tree and the install tree have the same layout, PREFIX/bin/crankcheck beside
+/// PREFIX/share/crankcheck/{reports,scenes} (the build tree links them to the sources' reports/ and scenes/), so the
+/// program finds them relative to itself, wherever the tree was installed or moved.
 
 #include <filesystem>
 
@@ -18,5 +19,9 @@ namespace crankcheck::validation {
 ///     that links crankcheck::validation from an install tree).
 /// @throws EnvironmentError naming the places looked at when none exists.
 std::filesystem::path findReportsDir();
+
+/// The folder of the example scenes: as findReportsDir, with CRANKCHECK_SCENES_DIR and share/crankcheck/scenes.
+/// @throws EnvironmentError naming the places looked at when none exists.
+std::filesystem::path findScenesDir();
 
 }  // namespace crankcheck::validation

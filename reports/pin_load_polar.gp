@@ -1,0 +1,77 @@
+# pin_load_polar.gp -- the crank-pin and main-bearing forces over a working cycle as polar diagrams (after Norton's
+# Program ENGINE), one panel per scene, both engines.
+#
+#   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/pin_load_polar.gp
+#
+# Reads  in_dir/pin_load_polar.csv   scene_index,engine,phi_deg,crank_pin_radial,crank_pin_tangential,bearing_x,
+#                                    bearing_y,scene
+# Writes out_dir/pin_load_polar.svg and out_dir/pin_load_polar.png
+#
+# Panel i (scene_index i, from 0) draws the tip of the force vector over the cycle: the crank-pin force of cylinder 0
+# in the crank's own frame (x: radial, outward along the throw; y: tangential, the direction of rotation) in blue,
+# the main-bearing force in the frame's X, Y in red; analytic as lines, Simbody (engine "simbody") as dots. Equal
+# axes, in N (SI prefixes: k, M). The scene's name (last column, so that a name with a comma cannot shift the numbers) is the panel's
+# title. At most 8 panels (2 rows); rows may come in any order within a scene's engine (sorted by phi_deg).
+
+if (!exists("in_dir"))  in_dir  = "."
+if (!exists("out_dir")) out_dir = "."
+name = "pin_load_polar"
+file = in_dir . "/" . name . ".csv"
+
+reset
+set encoding utf8
+set datafile separator ","
+nlines = 0
+stats file using (nlines = nlines + 1, 1) nooutput
+if (nlines == 0) { print "error: " . file . " is missing or empty (not even a header line)"; exit status 1 }
+nscenes = 0
+if (nlines > 1) { stats file skip 1 using (nscenes = (column(1) + 1 > nscenes ? column(1) + 1 : nscenes), 0) nooutput }
+nscenes = int(nscenes)
+npanels = nscenes > 8 ? 8 : nscenes
+array TITLE[8]
+do for [i = 1:8] { TITLE[i] = sprintf("scene %d", i) }
+if (nscenes > 0) { stats file skip 1 using (column(1) < 8 ? TITLE[int(column(1)) + 1] = strcol(8) : 0, 0) nooutput }
+sel(i, eng, c) = (int(column(1)) == i && strcol(2) eq eng) ? column(c) : NaN
+
+if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) { pngterm = "pngcairo" } else { pngterm = "png" }
+cols = npanels > 4 ? int((npanels + 1) / 2) : (npanels > 0 ? npanels : 1)
+rows = npanels > 4 ? 2 : 1
+do for [fmt in "svg png"] {
+    if (fmt eq "svg") {
+        set terminal svg size 900,560 enhanced font "DejaVu Sans,10" background rgb "white"
+    } else {
+        if (pngterm eq "pngcairo") {
+            set terminal pngcairo size 900,560 enhanced font "DejaVu Sans,10" background rgb "white"
+        } else {
+            set terminal png size 900,560 enhanced font "DejaVuSans,10" background rgb "white"
+        }
+    }
+    set output out_dir . "/" . name . "." . fmt
+    set multiplot layout rows, cols title "Pin loads over a working cycle [N]: crank pin in the crank's frame (blue), main bearing (red); Simbody as dots" font ",11" margins 0.05, 0.98, 0.12, 0.9 spacing 0.06, 0.1
+    set size ratio -1
+    set grid lc rgb "#e0e0e0"
+    set xtics font ",7" rotate by 45 right
+    set ytics font ",7"
+    set format x "%.1s%c"
+    set format y "%.1s%c"
+    set xzeroaxis lc rgb "#999999"
+    set yzeroaxis lc rgb "#999999"
+    if (npanels == 0) {
+        set label 5 "no rows in the CSV" at graph 0.5, graph 0.5 center front
+        plot [0:1] [0:1] NaN notitle
+    }
+    do for [p = 1:npanels] {
+        i = p - 1
+        set title TITLE[p] noenhanced font ",9"
+        # The key goes beside the last panel (in the empty slot of an odd count), or below the panels.
+        if (p == 1) {
+            if (npanels % 2 == 1 && npanels > 4) { set key at screen 0.985, screen 0.3 right center vertical font ",9" samplen 2 } else { set key at screen 0.5, screen 0.03 center center horizontal font ",9" samplen 2 }
+        } else { unset key }
+        plot file skip 1 using (sel(i, "analytic", 4)):(sel(i, "analytic", 5)) with lines lw 1.5 lc rgb "#1f77b4" title "crank pin (analytic)", \
+             file skip 1 every 3 using (sel(i, "simbody", 4)):(sel(i, "simbody", 5)) with points pt 7 ps 0.3 lc rgb "#0b3d91" title "crank pin (Simbody)", \
+             file skip 1 using (sel(i, "analytic", 6)):(sel(i, "analytic", 7)) with lines lw 1.5 lc rgb "#d62728" title "main bearing (analytic)", \
+             file skip 1 every 3 using (sel(i, "simbody", 6)):(sel(i, "simbody", 7)) with points pt 7 ps 0.3 lc rgb "#7f0000" title "main bearing (Simbody)"
+    }
+    unset multiplot
+    unset output
+}

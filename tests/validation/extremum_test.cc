@@ -1,0 +1,52 @@
+// findMaxAbsOverTurn against maxima known in closed form: the result must not depend on the grid once the grid has
+// a sample on the hump that holds the maximum.
+
+#include "crankcheck/validation/extremum.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace crankcheck::validation {
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// a sin(n phi + c) + b: max |f| = |a| + |b| (b same sign side), at phi = (pi/2 - c)/n + 2 pi j / n.
+TEST(ExtremumTest, SingleHarmonicMaximumIsExactOnEveryGrid) {
+  for (int samples : {12, 13, 36, 72, 360})
+    for (double c : {0.0, 0.1, 0.77}) {
+      const auto f = [c](double phi) { return 0.3 * std::sin(2.0 * phi + c) + 0.05; };
+      const TurnMaximum m = findMaxAbsOverTurn(f, samples);
+      // A smooth maximum refined to 1e-10 rad: its value is exact to rounding (f'' h^2 / 2 = 1e-21); 4 eps of 0.35.
+      EXPECT_NEAR(m.value, 0.35, 4 * kEps * 0.35) << samples << " samples, c = " << c;
+      EXPECT_NEAR(std::fabs(f(m.phi)), m.value, 0.0);
+    }
+}
+
+// Two harmonics: f = sin phi + 0.3 sin 3 phi has max 2 sqrt(0.9)^3 / ... found in closed form by its derivative:
+// f' = cos phi + 0.9 cos 3phi = 0 with cos 3phi = 4 c^3 - 3 c: 3.6 c^3 - 1.7 c = 0, c^2 = 1.7 / 3.6.
+TEST(ExtremumTest, TwoHarmonicMaximumMatchesTheDerivativesRoot) {
+  const double c = std::sqrt(1.7 / 3.6), s = std::sqrt(1.0 - c * c);
+  const double expected = s + 0.3 * (3.0 * s - 4.0 * s * s * s);  // sin 3phi = 3 s - 4 s^3
+  for (int samples : {9, 24, 72, 1000}) {
+    const TurnMaximum m = findMaxAbsOverTurn([](double phi) { return std::sin(phi) + 0.3 * std::sin(3.0 * phi); }, samples);
+    EXPECT_NEAR(m.value, expected, 4 * kEps * expected) << samples;
+  }
+}
+
+// The trap: a 30 degree grid lands on every zero of sin 6phi. With 3 or more samples per period (18, 36 and
+// 72 per turn) the maximum is found.
+TEST(ExtremumTest, GridOnTheZerosIsAvoidedByThreeSamplesPerPeriod) {
+  const auto f = [](double phi) { return 7.3e-6 * std::sin(6.0 * phi); };
+  for (int samples : {18, 36, 72}) EXPECT_NEAR(findMaxAbsOverTurn(f, samples).value, 7.3e-6, 4 * kEps * 7.3e-6) << samples;
+}
+
+TEST(ExtremumTest, BadArgumentsAreRefused) {
+  EXPECT_THROW(findMaxAbsOverTurn([](double) { return 1.0; }, 2), std::invalid_argument);
+  EXPECT_THROW(findMaxAbsOverTurn([](double) { return 1.0; }, 10, -1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace crankcheck::validation

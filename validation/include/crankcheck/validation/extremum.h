@@ -1,0 +1,35 @@
+#pragma once
+/// @file
+/// The largest value of a periodic function over one crank turn, found so that it does not depend on the sampling
+/// grid: the function is sampled at evenly spaced angles, and the best sampled local maxima are refined by Brent's
+/// method (golden section with parabolic steps) on the two grid cells around each. Every "max over a turn" of the
+/// report is found this way, for both engines alike (report parts 1, 2, 4, 8, 11).
+
+#include <functional>
+#include <vector>
+
+namespace crankcheck::validation {
+
+/// A maximum over a turn.
+struct TurnMaximum {
+  double value = 0.0;  ///< the largest |f| found (>= every sample)
+  double phi = 0.0;    ///< [rad] where, in [0, 2 pi)
+};
+
+/// max over phi in [0, 2 pi) of |f(phi)|, f 2 pi periodic. `samples` (>= 3) evenly spaced angles, then each of the
+/// `refinements` largest sampled local maxima of |f| is refined by Brent's method on [phi_{i-1}, phi_{i+1}] to an
+/// angle tolerance of 1e-10 rad (for a smooth maximum the value is then exact to rounding). The result does not
+/// depend on the grid as long as the grid puts at least one sample on the hump that holds the maximum, i.e. has
+/// at least 3 samples per period of the highest harmonic that matters. Costs samples + about 30 x refinements
+/// evaluations of f. @throws std::invalid_argument if samples < 3 or refinements < 0.
+TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, int samples, int refinements = 4);
+
+/// The same from samples already taken: values[i] = f(2 pi i / values.size()) (at least 3), so that a caller that
+/// needs the samples anyway (a table over the turn) evaluates f only for the refinement.
+TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, const std::vector<double>& values,
+                               int refinements = 4);
+
+/// max |f| over [a, b] by Brent's method (f unimodal in |f| there), never below max(|f(a)|, |f(b)|).
+TurnMaximum refineMaxAbs(const std::function<double(double)>& f, double a, double b, double tolerance = 1e-10);
+
+}  // namespace crankcheck::validation
