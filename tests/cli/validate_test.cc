@@ -67,9 +67,11 @@ TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   EXPECT_NE(index.find("Errata"), std::string::npos);
   EXPECT_NE(index.find("Simbody 3.7"), std::string::npos);
   EXPECT_NE(readFile(report / "index.html").find("<img src=\"harmonics.png\""), std::string::npos);
-  EXPECT_EQ(readFile(report / "data/error_vs_lambda.csv").rfind("quantity,method,lambda,max_abs_error,max_rel_error,resolved\n", 0), 0u);
+  // Every header names its unit (text columns stay bare).
+  EXPECT_EQ(readFile(report / "data/error_vs_lambda.csv")
+                .rfind("quantity,method,lambda [-],max_abs_error [SI],max_rel_error [-],resolved\n", 0), 0u);
   const std::string speed = readFile(report / "data/speed_vs_error.csv");
-  EXPECT_EQ(speed.rfind("method,ns_per_eval,max_rel_error,resolved\n", 0), 0u);
+  EXPECT_EQ(speed.rfind("method,ns_per_eval [ns],max_rel_error [-],resolved\n", 0), 0u);
   EXPECT_GE(std::count(speed.begin(), speed.end(), '\n'), 6) << "every method timed:\n" << speed;
   EXPECT_NE(speed.find("simbody_tol_1e-12,"), std::string::npos) << speed;
   // Nothing but the report next to it: no staging folder left behind.

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "crankcheck/analytic/batch.h"
 #include "crankcheck/analytic/fourier_series.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/kinematics.h"
@@ -19,6 +20,7 @@
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/simbody_models/free_run.h"
+#include "crankcheck/simbody_models/grid_sweep.h"
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/balance.h"
@@ -344,6 +346,54 @@ TableSet speedVsError(const Mechanism& base, bool quick) {
       benchmark::DoNotOptimize(method.eval(phi));
     });
   }
+  // The same methods where they also have a batch form (issue 14): the SIMD kernels on arbitrary angles and on a
+  // uniform grid (batch.h), and Simbody over a grid by superposing one-cylinder models (grid_sweep.h). Each call
+  // evaluates a whole batch; the table gives ns per angle.
+  constexpr size_t kBatch = 4096;
+  const size_t simbody_grid = quick ? 72 : 360;
+  auto batch_angles = std::make_shared<std::vector<double>>(kBatch);
+  for (size_t i = 0; i < kBatch; ++i)  // the same turn, not a grid: each angle nudged off the sample
+    (*batch_angles)[i] = angles[i % angles.size()] + 1e-3 * static_cast<double>(i / angles.size());
+  auto batch_out = std::make_shared<std::vector<double>>(kBatch);
+  const double grid_step = 2.0 * M_PI / static_cast<double>(kBatch);
+  struct BatchMethod {
+    std::string name;
+    size_t angles_per_call;
+    std::function<void()> run;  // fills *batch_out (Simbody: its own grid)
+  };
+  const std::vector<BatchMethod> batch_methods = {
+      {"exact_closed_form_batch", kBatch, [m, batch_angles, batch_out] {
+         analytic::calcGravityTorqueBatch(m, *batch_angles, *batch_out);
+         benchmark::DoNotOptimize(batch_out->data());
+       }},
+      {"exact_closed_form_grid", kBatch, [m, batch_out, grid_step] {
+         analytic::calcGravityTorqueOnGrid(m, 0.0, grid_step, *batch_out);
+         benchmark::DoNotOptimize(batch_out->data());
+       }},
+      {"simbody_grid_superposition", simbody_grid, [m, simbody_grid] {
+         benchmark::DoNotOptimize(simbody_models::calcHoldingTorqueOnGrid(m, 0.0, 2.0 * M_PI / static_cast<double>(simbody_grid), simbody_grid));
+       }},
+  };
+  {
+    // Their errors: the kernels against the scalar closed form (rounding: a bound), Simbody's sums against it.
+    std::vector<double> batch(kBatch), grid(kBatch);
+    analytic::calcGravityTorqueBatch(m, *batch_angles, batch);
+    analytic::calcGravityTorqueOnGrid(m, 0.0, grid_step, grid);
+    double worst_batch = 0.0, worst_grid = 0.0, worst_sweep = 0.0;
+    for (size_t i = 0; i < kBatch; ++i) {
+      worst_batch = std::max(worst_batch, std::fabs(batch[i] - analytic::calcGravityTorque(m, (*batch_angles)[i])));
+      worst_grid = std::max(worst_grid, std::fabs(grid[i] - analytic::calcGravityTorque(m, static_cast<double>(i) * grid_step)));
+    }
+    const std::vector<double> sweep =
+        simbody_models::calcHoldingTorqueOnGrid(m, 0.0, 2.0 * M_PI / static_cast<double>(simbody_grid), simbody_grid);
+    for (size_t i = 0; i < simbody_grid; ++i)
+      worst_sweep = std::max(worst_sweep, std::fabs(sweep[i] - analytic::calcGravityTorque(m, 2.0 * M_PI * static_cast<double>(i) /
+                                                                                               static_cast<double>(simbody_grid))));
+    errors["exact_closed_form_batch"] = {worst_batch / E, false};
+    errors["exact_closed_form_grid"] = {worst_grid / E, false};
+    errors["simbody_grid_superposition"] = {worst_sweep / E, resolvedToOnePercent(worst_sweep / E, calcScales(m).conditioning)};
+  }
+  for (const BatchMethod& b : batch_methods) timed.emplace_back(b.name, b.run);
   const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, quick ? 0.01 : 0.05);
   Table t;
   t.columns = {"method", "ns_per_eval", "max_rel_error", "resolved"};
@@ -351,6 +401,12 @@ TableSet speedVsError(const Mechanism& base, bool quick) {
     const auto it = ns.find(method.name);
     if (it != ns.end())
       t.rows.push_back({method.name, num(it->second), num(errors[method.name].first), errors[method.name].second ? "1" : "0"});
+  }
+  for (const BatchMethod& b : batch_methods) {
+    const auto it = ns.find(b.name);
+    if (it != ns.end())
+      t.rows.push_back({b.name, num(it->second / static_cast<double>(b.angles_per_call)), num(errors[b.name].first),
+                        errors[b.name].second ? "1" : "0"});
   }
   return {{"speed_vs_error", t}};
 }

@@ -14,7 +14,7 @@
 
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/errors.h"
-#include "crankcheck/validation/install_paths.h"
+#include "crankcheck/validation/report_document.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/process.h"
 
@@ -136,7 +136,11 @@ void writeTables(const TableSet& tables, const fs::path& dir) {
     throw EnvironmentError(quotePath(dir / "data") + ": cannot create the folder: " + ec.message());
   for (const auto& [name, table] : tables) {
     std::string text;
-    for (size_t i = 0; i < table.columns.size(); ++i) text += (i ? "," : "") + csvField(table.columns[i]);
+    // Each header names its unit: "max_rel_error [-]", "ns_per_eval [ns]"; a text column stays bare.
+    for (size_t i = 0; i < table.columns.size(); ++i) {
+      const std::string unit = getColumnUnit(name, table.columns[i]);
+      text += (i ? "," : "") + csvField(table.columns[i] + (unit.empty() ? "" : " [" + unit + "]"));
+    }
     text += "\n";
     for (const auto& row : table.rows) {
       for (size_t i = 0; i < row.size(); ++i) text += (i ? "," : "") + csvField(row[i]);
@@ -160,6 +164,7 @@ TableSet readTables(const fs::path& dir) {
     if (records.empty()) throw std::runtime_error(source + ": empty table");
     Table table;
     table.columns = std::move(records.front());
+    for (std::string& column : table.columns) column = column.substr(0, column.find(" ["));  // the name, not the unit
     for (size_t i = 1; i < records.size(); ++i) {
       if (records[i].size() != table.columns.size())
         throw std::runtime_error(source + ": a row has " + std::to_string(records[i].size()) + " fields, the header " +
@@ -184,96 +189,20 @@ struct Block {
   std::string name = {};                       // figure stem (name.png, name.svg, data/name.csv); "#" on the title
 };
 
-std::string escapeHtml(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
-  }
-  return out;
-}
-
-std::string escapeMarkdownCell(const std::string& s) {
-  std::string out;
-  for (char c : s) out += (c == '|') ? std::string("\\|") : (c == '\n' || c == '\r') ? std::string(" ") : std::string(1, c);
-  return out;
-}
-
-std::string toMarkdown(const std::vector<Block>& blocks) {
-  std::ostringstream md;
-  for (const Block& b : blocks) {
-    switch (b.kind) {
-      case Block::kHeading: md << (b.name.empty() ? "## " : b.name + " ") << b.text << "\n\n"; break;
-      case Block::kParagraph: md << b.text << "\n\n"; break;
-      case Block::kTable:
-        md << "|";
-        for (const auto& h : b.header) md << " " << escapeMarkdownCell(h) << " |";
-        md << "\n|";
-        for (size_t i = 0; i < b.header.size(); ++i) md << "---|";
-        md << "\n";
-        for (const auto& row : b.rows) {
-          md << "|";
-          for (const auto& cell : row) md << " " << escapeMarkdownCell(cell) << " |";
-          md << "\n";
-        }
-        md << "\n";
-        break;
-      case Block::kFigure:
-        md << "![" << b.text << "](" << b.name << ".png)\n\n*" << b.text << "* ([SVG](" << b.name << ".svg), [CSV](data/"
-           << b.name << ".csv))\n\n";
-        break;
-    }
-  }
-  return md.str();
-}
-
-std::string toHtml(const std::vector<Block>& blocks, const std::string& title) {
-  std::ostringstream html;
-  html << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << escapeHtml(title)
-       << "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em}"
-          "table{border-collapse:collapse;font-size:90%}td,th{border:1px solid #bbb;padding:2px 6px}"
-          "img{max-width:100%}figcaption{font-style:italic}</style></head><body>\n";
+// The blocks as a ReportDocument: index.md as written, index.html rendered from it by cmark-gfm.
+ReportDocument toDocument(const std::vector<Block>& blocks, const std::string& title) {
+  ReportDocument doc(title);
   for (const Block& b : blocks) {
     switch (b.kind) {
       case Block::kHeading:
-        html << (b.name == "#" ? "<h1>" : "<h2>") << escapeHtml(b.text) << (b.name == "#" ? "</h1>" : "</h2>") << "\n";
+        if (b.name != "#") doc.addHeading(b.name.empty() ? 2 : static_cast<int>(b.name.size()), b.text);  // "#": the title
         break;
-      case Block::kParagraph: html << "<p>" << escapeHtml(b.text) << "</p>\n"; break;
-      case Block::kTable:
-        html << "<table><tr>";
-        for (const auto& h : b.header) html << "<th>" << escapeHtml(h) << "</th>";
-        html << "</tr>\n";
-        for (const auto& row : b.rows) {
-          html << "<tr>";
-          for (const auto& cell : row) html << "<td>" << escapeHtml(cell) << "</td>";
-          html << "</tr>\n";
-        }
-        html << "</table>\n";
-        break;
-      case Block::kFigure:
-        html << "<figure><a href=\"" << b.name << ".svg\"><img src=\"" << b.name << ".png\" alt=\"" << escapeHtml(b.text)
-             << "\"></a><figcaption>" << escapeHtml(b.text) << " (<a href=\"" << b.name << ".svg\">SVG</a>, <a href=\"data/"
-             << b.name << ".csv\">CSV</a>)</figcaption></figure>\n";
-        break;
+      case Block::kParagraph: doc.addParagraph(b.text); break;
+      case Block::kTable: doc.addTable(b.header, b.rows); break;
+      case Block::kFigure: doc.addFigure(b.name, b.text); break;
     }
   }
-  html << "</body></html>\n";
-  return html.str();
-}
-
-fs::path scriptsDir() { return findReportsDir(); }
-
-// gnuplot runs in the report folder with a fixed command line: no path of the user's is ever part of a gnuplot
-// command (the scripts read data/NAME.csv and write NAME.svg, NAME.png relative to it), and no shell is involved.
-void plot(const std::string& name, const fs::path& dir) {
-  const fs::path script = fs::absolute(scriptsDir() / (name + ".gp"));
-  if (!fs::is_regular_file(script)) throw EnvironmentError("gnuplot script not found: " + quotePath(script));
-  const ProgramResult r = runProgram({{"gnuplot", "-e", "in_dir='data'; out_dir='.'", script.string()}, dir});
-  if (r.exit_status != 0 || !fs::exists(dir / (name + ".svg")) || !fs::exists(dir / (name + ".png")))
-    throw EnvironmentError("gnuplot failed on " + quotePath(script) + ":\n" + r.out + r.err);
+  return doc;
 }
 
 std::vector<std::vector<std::string>> tableRows(const TableSet& tables, const std::string& name,
@@ -565,7 +494,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
        "vector (after Norton's Program ENGINE); analytic lines, Simbody dots"},
   };
   for (const Figure& f : figures)
-    if (tables.count(f.name)) plot(f.name, dir);
+    if (tables.count(f.name)) drawFigure(f.name, dir);
 
   const std::vector<SummaryRow> summary = summarize(tables);
   const bool all_pass = std::all_of(summary.begin(), summary.end(), [](const SummaryRow& s) { return s.pass; });
@@ -656,8 +585,9 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
     }
   }
 
-  writeNewFile(dir / "index.md", toMarkdown(doc));
-  writeNewFile(dir / "index.html", toHtml(doc, info.title));
+  const ReportDocument page = toDocument(doc, info.title);
+  writeNewFile(dir / "index.md", page.toMarkdown());
+  writeNewFile(dir / "index.html", page.toHtml());
 }
 
 void writeShardManifest(const ShardManifest& manifest, const fs::path& dir) {

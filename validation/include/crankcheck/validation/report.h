@@ -39,10 +39,15 @@ struct ReportInfo {
 /// a second). @return gnuplot's version line. @throws EnvironmentError when gnuplot is missing or does not run.
 std::string checkGnuplot();
 
-/// Writes tables as CSV files (RFC 4180) into dir/data, which must not exist yet. @throws EnvironmentError when a
-/// file cannot be written.
+/// The unit of a column of table `table` as its CSV header shows it: "" (text), "-" (dimensionless), "N m", ...,
+/// "SI" (the unit of the row's quantity). @throws std::logic_error for a column without one (column_units.cc).
+std::string getColumnUnit(const std::string& table, const std::string& column);
+
+/// Writes tables as CSV files (RFC 4180) into dir/data, which must not exist yet; each header is "name [unit]"
+/// (getColumnUnit). @throws EnvironmentError when a file cannot be written.
 void writeTables(const TableSet& tables, const std::filesystem::path& dir);
-/// Reads every dir/data/*.csv. @throws std::runtime_error on a missing or malformed file.
+/// Reads every dir/data/*.csv; the columns are named without their units. @throws std::runtime_error on a missing or
+/// malformed file.
 TableSet readTables(const std::filesystem::path& dir);
 
 /// Renders the complete report into `dir` (which must exist and be empty): data/*.csv, figures (*.svg, *.png) made
