@@ -88,7 +88,7 @@ EvalOutput runEval(const EvalOptions& options) {
     }
   }
   const validation::Scales scales = validation::calcScales(m);
-  const double split_tolerance = validation::kAgreementMultiple * validation::kEps * scales.torque * scales.conditioning;
+  const double split_tolerance = validation::kAgreementMultiple * validation::kEps * scales.torque * scales.acceleration_conditioning;
   const std::vector<Mechanism> cases = options.split ? splitCases(m) : std::vector<Mechanism>{};
 
   // One row per angle and engine; for --engine both the analytic row comes first.

@@ -104,5 +104,29 @@ TEST(GateHardCases, LambdaNextToOne) {
   }
 }
 
+// Near lambda = 1 the errors peak in narrow windows around theta = 90 and 270 degrees, which the gate's eleven
+// angles miss: a 0.1-degree grid over the whole turn, every quantity, at speed and at rest. This is the test that
+// derived the conditioning (scales.h): U needs the closure factor (with none it failed at lambda = 0.99999 by 1.2 x),
+// Q the full 1 / (1 - lambda^2); the force and torque scales already carry the loop, and their worst error stays
+// below 2e-3 of the tolerance with only the closure factor left in their conditioning.
+TEST(GateHardCases, LambdaNextToOneOnAFineGrid) {
+  for (double lambda : {0.999, 0.9999, 0.99999})
+    for (double rpm : {3000.0, 0.0}) {
+      const Mechanism m = testing::makeMechanism({1, Cycle::kFourStroke, Acting::kSingle, lambda, 90.0, rpm});
+      simbody_models::KCrankModel model(m);
+      double worst = 0.0;
+      std::string where;
+      for (int i = 0; i < 3600; ++i) {
+        const double phi = radiansFromDegrees(0.1 * i);
+        for (const validation::Comparison& c : validation::compareEvaluations(m, analytic::calcEvaluation(m, phi), model.evaluate(phi)))
+          if (c.error() / c.tolerance() > worst) {
+            worst = c.error() / c.tolerance();
+            where = c.quantity + " at phi " + std::to_string(0.1 * i) + " deg";
+          }
+      }
+      EXPECT_LE(worst, 1.0) << "lambda " << lambda << ", " << rpm << " rpm: worst " << where;
+    }
+}
+
 }  // namespace
 }  // namespace crankcheck

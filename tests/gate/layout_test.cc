@@ -102,7 +102,7 @@ INSTANTIATE_TEST_SUITE_P(Gate, LayoutGateTest, ::testing::ValuesIn(layoutCases()
 TEST_P(LayoutGateTest, DriveTorqueSplitsIntoGasInertiaAndGravity) {
   const Mechanism m = withGas(validation::makeLayoutMechanism(GetParam().layout, parts(), GetParam().rotation_deg));
   const validation::Scales sc = validation::calcScales(m);
-  const double tol = validation::kAgreementMultiple * validation::kEps * sc.torque * sc.conditioning;
+  const double tol = validation::kAgreementMultiple * validation::kEps * sc.torque * sc.acceleration_conditioning;
   const Mechanism cases[3] = {withLoads(m, true, false, false), withLoads(m, false, true, false), withLoads(m, false, false, true)};
   simbody_models::KCrankModel whole(m), gas(cases[0]), inertia(cases[1]), gravity(cases[2]);
   simbody_models::KCrankModel* models[3] = {&gas, &inertia, &gravity};
@@ -138,7 +138,7 @@ TEST(RodModelGate, TwoMassRodIsExactOnlyWithDeltaIOrWhenItVanishes) {
     for (double f : {1.0, 2.0}) {
       m.rod.inertia_about_wrist_pin = m_k * z * z + f * two_mass_central;  // I_G = f x the two-mass value
       const validation::Scales sc = validation::calcScales(m);
-      const double tol = validation::kAgreementMultiple * validation::kEps * sc.torque * sc.conditioning;
+      const double tol = validation::kAgreementMultiple * validation::kEps * sc.torque * sc.acceleration_conditioning;
       simbody_models::KCrankModel model(m);
       double worst_without = 0.0, worst_with = 0.0;
       for (double phi_deg : testing::sweepPhisDeg()) {
@@ -149,7 +149,7 @@ TEST(RodModelGate, TwoMassRodIsExactOnlyWithDeltaIOrWhenItVanishes) {
         worst_without = std::max(worst_without, std::fabs(without.drive_torque - s.drive_torque));
         worst_with = std::max(worst_with, std::fabs(with.drive_torque - s.drive_torque));
         // With Delta_I every reaction is the rigid rod's too (the paper's reduction, checked the same way).
-        const double force_tol = validation::kAgreementMultiple * validation::kEps * sc.force * sc.conditioning;
+        const double force_tol = validation::kAgreementMultiple * validation::kEps * sc.force * sc.acceleration_conditioning;
         for (int i = 0; i < 2; ++i) {
           EXPECT_TRUE(testing::isClose(with.bearing_force[i], s.bearing_force[i], force_tol));
           for (size_t j = 0; j < s.cylinders.size(); ++j) {
@@ -177,8 +177,8 @@ class BalanceGateTest : public ::testing::TestWithParam<LayoutCase> {};
 TEST_P(BalanceGateTest, HarmonicsAgreeWithSimbodysDft) {
   const Mechanism m = validation::makeLayoutMechanism(GetParam().layout, parts(), GetParam().rotation_deg);
   const validation::Scales sc = validation::calcScales(m);
-  const double force_tol = 2 * validation::kAgreementMultiple * validation::kEps * sc.force * sc.conditioning;
-  const double moment_tol = 2 * validation::kAgreementMultiple * validation::kEps * sc.moment * sc.conditioning;
+  const double force_tol = 2 * validation::kAgreementMultiple * validation::kEps * sc.force * sc.acceleration_conditioning;
+  const double moment_tol = 2 * validation::kAgreementMultiple * validation::kEps * sc.moment * sc.acceleration_conditioning;
   for (const validation::BalanceRow& row : validation::calcBalance(m, 8, 64)) {
     SCOPED_TRACE("harmonic " + std::to_string(row.n));
     for (int i = 0; i < 2; ++i) {

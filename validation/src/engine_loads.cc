@@ -117,7 +117,7 @@ TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine) {
     };
     const double without = findMaxAbsOverTurn(error(analytic::RodInertiaForm::kTwoMassWithoutDeltaI), 48).value;
     const double with = findMaxAbsOverTurn(error(analytic::RodInertiaForm::kTwoMassWithDeltaI), 48, 0).value;
-    const bool with_resolved = with > 100.0 * kAgreementMultiple * kEps * scales.torque * scales.conditioning;
+    const bool with_resolved = with > 100.0 * kAgreementMultiple * kEps * scales.torque * scales.acceleration_conditioning;
     return std::tuple{without / scales.torque, with / scales.torque, with_resolved};
   };
   for (const auto& [name, base] : {std::pair<std::string, Mechanism>{"car", withSpeed(inlineOf(car, 1, Cycle::kFourStroke), 6000.0)},

@@ -42,10 +42,27 @@ struct Scales {
   /// [N m] shaking moment: force scale times (l + r + max |z_j|), the largest moment arm of a moving part about O
   /// (in the plane up to l + r, along the shaft up to |z_j|).
   double moment = 0.0;
-  /// 1 / (1 - lambda^2) for the loop's condition near lambda = 1, times (l + r) / r because Simbody holds the rod
-  /// in absolute coordinates (its rounding relative to crank-scale quantities grows like 1 / lambda).
+  // The conditioning: how much the loop's rounding is amplified near lambda = 1, beyond what the scale already
+  // carries, counted once per quantity (docs/CONVENTIONS-crankcheck.md, "Tolerances"). Both engines close the loop
+  // through cos(beta) = sqrt(1 - lambda^2 sin^2 theta), whose relative rounding is eps / (1 - lambda^2) at worst;
+  // times (l + r) / r because Simbody holds the rod in absolute coordinates (its rounding relative to crank-scale
+  // quantities grows like 1 / lambda).
+  /// Q (energy scale, which carries no factor of the loop): 1 / (1 - lambda^2) x (l + r) / r. Measured: Q's error
+  /// grows like 1 / (1 - lambda^2) (2e-12 of its peak at lambda = 0.99999).
   double conditioning = 1.0;
-  /// 1 / sqrt(1 - lambda^2): the loop closure's amplification of a position error into x_p.
+  /// Velocities (v_p, the rod's angular velocity): the velocity scale already carries the loop's growth
+  /// (1 - lambda^2)^(-1/2), so only the closure's amplification of a position rounding is left:
+  /// 1 / sqrt(1 - lambda^2) x (l + r) / r.
+  double velocity_conditioning = 1.0;
+  /// Accelerations, forces, torques, moments (scales built on the acceleration scale A = g + gas + r omega^2 (1 +
+  /// (1 - lambda^2)^(-3/2))): each part of A counted once with its own sensitivity. The inertia part's
+  /// (1 - lambda^2)^(-3/2) already carries the loop, so it takes the closure factor; the static loads (gravity, gas)
+  /// carry none, so they take the full 1 / (1 - lambda^2) (a near-singular linkage at rest amplifies its reactions):
+  ///   ((g + gas) / (1 - lambda^2) + r omega^2 (1 + (1 - lambda^2)^(-3/2)) / sqrt(1 - lambda^2)) / A x (l + r) / r.
+  /// (Multiplying the whole of A by 1 / (1 - lambda^2) counted the loop twice at speed: at lambda = 0.99999 the drive
+  /// torque's tolerance was 4e-4 of its peak; now 2e-6.)
+  double acceleration_conditioning = 1.0;
+  /// 1 / sqrt(1 - lambda^2): the loop closure's amplification of a position error into x_p, the rod angle and U.
   double closure = 1.0;
 };
 Scales calcScales(const Mechanism& m);
