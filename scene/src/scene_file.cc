@@ -296,11 +296,29 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
     fail(source, "line " + std::to_string(where.line) + ", column " + std::to_string(where.column),
          "not valid TOML: " + std::string(e.description()));
   }
+  // format_version first: a scene written for a newer format is refused as such, not by the first key it added.
+  if (const toml::node* version = root.get("format_version")) {
+    if (!version->is_integer())
+      fail(source, "format_version", "must be an integer (this crankcheck reads scene format " +
+                                         std::to_string(kSceneFormatVersion) + ")");
+    const long long v = version->as_integer()->get();
+    if (v > kSceneFormatVersion)
+      fail(source, "format_version",
+           "scene format " + std::to_string(v) + " is newer than this crankcheck reads (format " +
+               std::to_string(kSceneFormatVersion) + "): use a newer crankcheck");
+    if (v < 1) fail(source, "format_version", "must be " + std::to_string(kSceneFormatVersion) + " (got " + std::to_string(v) + ")");
+  }
+  for (const char* key : {"name", "description"})
+    if (const toml::node* text = root.get(key); text != nullptr && !text->is_string())
+      fail(source, key, "must be a string");
+  static const std::set<std::string> kTopLevel = {"format_version", "name", "description"};
   static const std::set<std::string> kTables = {"engine", "crank", "rod", "piston", "flywheel", "gas", "cylinder"};
   for (const auto& [k, v] : root) {
     const std::string name(k.str());
-    if (!kTables.contains(name))
-      fail(source, name, "unknown key (tables: engine, crank, rod, piston, flywheel, gas, [[cylinder]])");
+    if (!kTables.contains(name) && !kTopLevel.contains(name))
+      fail(source, name,
+           "unknown key (top level: format_version, name, description; tables: engine, crank, rod, piston, flywheel, "
+           "gas, [[cylinder]])");
   }
   const bool has_gas = root.get("gas") != nullptr;
 
