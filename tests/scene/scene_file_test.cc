@@ -259,6 +259,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "throw_angle_deg = 90\naxial_position = 0.0\nfiring_deg = 0", "cylinder[0].firing_deg", "unknown key", &kLayoutScene},
         BadScene{"bank_too_large", "bank_angle_deg = 45", "bank_angle_deg = 2e6", "cylinder[1].bank_angle_deg",
                  "at most 1e6 deg", &kLayoutScene},
+        BadScene{"throw_far_from_bank", "bank_angle_deg = 45", "bank_angle_deg = -1e6", "cylinder[1].throw_angle_deg",
+                 "throw_angle_deg - bank_angle_deg must be at most 1e6 deg in magnitude (got 1000090)", &kLayoutScene},
         BadScene{"axial_too_far", "axial_position = 0.02", "axial_position = 2e6", "cylinder[1].axial_position",
                  "1e6 m", &kLayoutScene},
         BadScene{"single_table", "[[cylinder]]\nbank_angle_deg = 45", "[cylinder2]\nbank_angle_deg = 45", "cylinder2",
