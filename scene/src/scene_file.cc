@@ -207,9 +207,10 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
           "must have one angle per cylinder", static_cast<double>(m.engine.crank_angles.size()));
   // A layout's alpha_j is its throw angle minus its bank angle: name the cylinder, not a key it does not have.
   for (size_t i = 0; i < m.engine.crank_angles.size(); ++i)
-    requireAngle(m.engine.crank_angles[i], m.engine.bank_angles.empty()
-                                               ? "[engine].crank_angles_deg[" + std::to_string(i) + "]"
-                                               : "cylinder[" + std::to_string(i) + "] (throw_angle_deg - bank_angle_deg)");
+    requireAngle(m.engine.crank_angles[i],
+                 m.engine.bank_angles.empty()
+                     ? "[engine].crank_angles_deg[" + std::to_string(i) + "]"
+                     : "cylinder[" + std::to_string(i) + "] (throw_angle_deg - bank_angle_deg)");
   requireAngle(m.engine.cylinder_angle, "[engine].cylinder_angle_deg");
   const size_t k = static_cast<size_t>(std::max(m.engine.cylinders, 0));
   require(m.engine.bank_angles.empty() || m.engine.bank_angles.size() == k, "[[cylinder]]",
@@ -309,7 +310,9 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
       fail(source, "format_version",
            "scene format " + std::to_string(v) + " is newer than this crankcheck reads (format " +
                std::to_string(kSceneFormatVersion) + "): use a newer crankcheck");
-    if (v < 1) fail(source, "format_version", "must be " + std::to_string(kSceneFormatVersion) + " (got " + std::to_string(v) + ")");
+    if (v < 1)
+      fail(source, "format_version",
+           "must be " + std::to_string(kSceneFormatVersion) + " (got " + std::to_string(v) + ")");
   }
   for (const char* key : {"name", "description"})
     if (const toml::node* text = root.get(key); text != nullptr && !text->is_string())
