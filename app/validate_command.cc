@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -44,9 +45,22 @@ void addMergeOptions(CLI::App& command, MergeOptions& options) {
 
 namespace {
 
-// Runs the tasks, those that measure time alone after the others; shows progress when stderr is a terminal.
+// A duration for the progress line: "42s", "3m07s", "1h05m".
+std::string formatDuration(double seconds) {
+  const long s = std::lround(std::max(0.0, seconds));
+  char text[32];
+  if (s < 60) std::snprintf(text, sizeof text, "%lds", s);
+  else if (s < 3600) std::snprintf(text, sizeof text, "%ldm%02lds", s / 60, s % 60);
+  else std::snprintf(text, sizeof text, "%ldh%02ldm", s / 3600, s % 3600 / 60);
+  return text;
+}
+
+// Runs the tasks, those that measure time alone after the others; shows progress when stderr is a terminal: tasks
+// done, the elapsed time and an estimate of the time left (the mean time per task so far times the tasks left; the
+// tasks differ in cost, so it settles as the run goes on).
 TableSet runTasks(const std::vector<Task>& tasks, int jobs) {
   const bool progress = ::isatty(STDERR_FILENO);
+  const auto start = std::chrono::steady_clock::now();
   std::vector<TableSet> results(tasks.size());
   std::vector<std::string> errors;
   std::mutex mutex;
@@ -61,7 +75,10 @@ TableSet runTasks(const std::vector<Task>& tasks, int jobs) {
     const size_t finished = ++done;
     if (progress) {
       std::lock_guard<std::mutex> lock(mutex);
-      std::fprintf(stderr, "\r\033[K[%3zu/%zu] %s", finished, tasks.size(), tasks[i].id.c_str());
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double left = elapsed / static_cast<double>(finished) * static_cast<double>(tasks.size() - finished);
+      std::fprintf(stderr, "\r\033[K[%3zu/%zu] %s elapsed, about %s left: %s", finished, tasks.size(),
+                   formatDuration(elapsed).c_str(), formatDuration(left).c_str(), tasks[i].id.c_str());
       std::fflush(stderr);
     }
   };

@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(g++ cmake make pkg-config libeigen3-dev libsimbody-dev libcli11-dev libtomlplusplus-dev
           nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox libhwy-dev libsleef-dev
-          libcmark-gfm-dev libcmark-gfm-extensions-dev python3 chromium)
+          libcmark-gfm-dev libcmark-gfm-extensions-dev python3 chromium python3-jsonschema parallel)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -22,7 +22,35 @@ fi
 if [ ! -f build/CMakeCache.txt ]; then
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 fi
-if ! cmake --build build -j"$(nproc)" >build/build.log 2>&1; then
+
+# make's "[ NN%]" lines of the build on stdin, shown on stderr as one updated line with the elapsed time (a terminal)
+# or a line every 10 % (a log, e.g. CI).
+show_progress() {
+  local line pct=0 shown=-10 start=$SECONDS
+  while IFS= read -r line; do
+    [[ $line =~ ^\[\ *([0-9]+)%\] ]] || continue
+    ((BASH_REMATCH[1] > pct)) && pct=${BASH_REMATCH[1]}
+    local t=$((SECONDS - start))
+    if [ -t 2 ]; then
+      printf '\rsetup: building %3d%%, %dm%02ds' "$pct" $((t / 60)) $((t % 60)) >&2
+    elif ((pct >= shown + 10)); then
+      shown=$((pct / 10 * 10))
+      printf 'setup: building %3d%%, %dm%02ds\n' "$pct" $((t / 60)) $((t % 60)) >&2
+    fi
+  done
+  if [ -t 2 ]; then printf '\n' >&2; fi
+}
+
+# The first build (no crankcheck program yet) takes minutes: its progress is shown. A rebuild stays quiet. Both go
+# to build/build.log in full.
+status=0
+if [ ! -x build/bin/crankcheck ]; then
+  echo "setup: first build, several minutes on 2 cores (full output: build/build.log)" >&2
+  cmake --build build -j"$(nproc)" 2>&1 | tee build/build.log | show_progress || status=$?
+else
+  cmake --build build -j"$(nproc)" >build/build.log 2>&1 || status=$?
+fi
+if ((status != 0)); then
   tail -n 60 build/build.log >&2
   echo "setup: build failed (full log: build/build.log)" >&2
   exit 1

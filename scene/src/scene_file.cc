@@ -205,8 +205,12 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
           "must be between 1 and 64", m.engine.cylinders);
   require(static_cast<int>(m.engine.crank_angles.size()) == m.engine.cylinders, "[engine].crank_angles_deg",
           "must have one angle per cylinder", static_cast<double>(m.engine.crank_angles.size()));
+  // A layout's alpha_j is its throw angle minus its bank angle: name the cylinder, not a key it does not have.
   for (size_t i = 0; i < m.engine.crank_angles.size(); ++i)
-    requireAngle(m.engine.crank_angles[i], "[engine].crank_angles_deg[" + std::to_string(i) + "]");
+    requireAngle(m.engine.crank_angles[i],
+                 m.engine.bank_angles.empty()
+                     ? "[engine].crank_angles_deg[" + std::to_string(i) + "]"
+                     : "cylinder[" + std::to_string(i) + "] (throw_angle_deg - bank_angle_deg)");
   requireAngle(m.engine.cylinder_angle, "[engine].cylinder_angle_deg");
   const size_t k = static_cast<size_t>(std::max(m.engine.cylinders, 0));
   require(m.engine.bank_angles.empty() || m.engine.bank_angles.size() == k, "[[cylinder]]",
@@ -296,11 +300,31 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
     fail(source, "line " + std::to_string(where.line) + ", column " + std::to_string(where.column),
          "not valid TOML: " + std::string(e.description()));
   }
+  // format_version first: a scene written for a newer format is refused as such, not by the first key it added.
+  if (const toml::node* version = root.get("format_version")) {
+    if (!version->is_integer())
+      fail(source, "format_version", "must be an integer (this crankcheck reads scene format " +
+                                         std::to_string(kSceneFormatVersion) + ")");
+    const long long v = version->as_integer()->get();
+    if (v > kSceneFormatVersion)
+      fail(source, "format_version",
+           "scene format " + std::to_string(v) + " is newer than this crankcheck reads (format " +
+               std::to_string(kSceneFormatVersion) + "): use a newer crankcheck");
+    if (v < 1)
+      fail(source, "format_version",
+           "must be " + std::to_string(kSceneFormatVersion) + " (got " + std::to_string(v) + ")");
+  }
+  for (const char* key : {"name", "description"})
+    if (const toml::node* text = root.get(key); text != nullptr && !text->is_string())
+      fail(source, key, "must be a string");
+  static const std::set<std::string> kTopLevel = {"format_version", "name", "description"};
   static const std::set<std::string> kTables = {"engine", "crank", "rod", "piston", "flywheel", "gas", "cylinder"};
   for (const auto& [k, v] : root) {
     const std::string name(k.str());
-    if (!kTables.contains(name))
-      fail(source, name, "unknown key (tables: engine, crank, rod, piston, flywheel, gas, [[cylinder]])");
+    if (!kTables.contains(name) && !kTopLevel.contains(name))
+      fail(source, name,
+           "unknown key (top level: format_version, name, description; tables: engine, crank, rod, piston, flywheel, "
+           "gas, [[cylinder]])");
   }
   const bool has_gas = root.get("gas") != nullptr;
 
@@ -354,6 +378,11 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
       const double throw_deg = cylinder.number("throw_angle_deg");
       requireAngleDegrees(bank_deg, source, cylinder.key("bank_angle_deg"));
       requireAngleDegrees(throw_deg, source, cylinder.key("throw_angle_deg"));
+      // alpha_j = beta_j - gamma_j obeys the same limit (validateMechanism); said here in the keys the scene has.
+      if (std::fabs(throw_deg - bank_deg) > kMaxAngleDeg.value)
+        fail(source, cylinder.key("throw_angle_deg"),
+             std::string("throw_angle_deg - bank_angle_deg must be at most ") + kMaxAngleDeg.text +
+                 " in magnitude (got " + formatNumber(throw_deg - bank_deg) + ")");
       m.engine.bank_angles.push_back(radiansFromDegrees(bank_deg));
       m.engine.crank_angles.push_back(radiansFromDegrees(throw_deg - bank_deg));
       if (const auto z = cylinder.optionalNumber("axial_position")) {

@@ -164,6 +164,44 @@ INSTANTIATE_TEST_SUITE_P(
     [](const auto& info) { return info.param.name; });
 
 // ---------------------------------------------------------------------------------------------------------------
+// The top level: format_version, name, description (docs/SCENE-FORMAT.md, "Format version, name, description").
+
+TEST(SceneFormatVersion, VersionOneNameAndDescriptionAreAccepted) {
+  std::string text = kGoodScene;
+  text.replace(text.find("[engine]"), 8,
+               "format_version = 1\nname = \"Twin\"\ndescription = \"\"\"Two cylinders,\nstanding.\"\"\"\n[engine]");
+  const Mechanism m = parseScene(text, "scenes/twin.toml");
+  EXPECT_EQ(m.name, "twin") << "a scene is named by its file's stem; `name` is for people";
+  EXPECT_EQ(m.engine.cylinders, 2);
+  EXPECT_EQ(kSceneFormatVersion, 1);
+}
+
+// A newer format is refused as such (not by the first key it added), with what to do.
+TEST(SceneFormatVersion, NewerVersionIsRefusedBeforeAnythingElse) {
+  std::string text = kGoodScene;
+  text.replace(text.find("[engine]"), 8, "format_version = 2\nmotor = \"electric\"\n[engine]");
+  try {
+    parseScene(text, "scenes/new.toml");
+    FAIL() << "accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), "scenes/new.toml: format_version: scene format 2 is newer than this crankcheck "
+                                     "reads (format 1): use a newer crankcheck");
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    TopLevel, BadSceneTest,
+    ::testing::Values(
+        BadScene{"version_zero", "[engine]", "format_version = 0\n[engine]", "format_version", "must be 1 (got 0)"},
+        BadScene{"version_float", "[engine]", "format_version = 1.0\n[engine]", "format_version", "must be an integer"},
+        BadScene{"version_string", "[engine]", "format_version = \"1\"\n[engine]", "format_version", "must be an integer"},
+        BadScene{"name_number", "[engine]", "name = 4\n[engine]", "name", "must be a string"},
+        BadScene{"description_table", "[engine]", "[description]\ntext = \"x\"\n[engine]", "description",
+                 "must be a string"},
+        BadScene{"unknown_top_level", "[engine]", "title = \"x\"\n[engine]", "title", "unknown key (top level"}),
+    [](const auto& info) { return info.param.name; });
+
+// ---------------------------------------------------------------------------------------------------------------
 // Layouts: [[cylinder]] tables (docs/SCENE-FORMAT.md, "Layouts").
 
 const std::string kLayoutScene = R"(
@@ -221,6 +259,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "throw_angle_deg = 90\naxial_position = 0.0\nfiring_deg = 0", "cylinder[0].firing_deg", "unknown key", &kLayoutScene},
         BadScene{"bank_too_large", "bank_angle_deg = 45", "bank_angle_deg = 2e6", "cylinder[1].bank_angle_deg",
                  "at most 1e6 deg", &kLayoutScene},
+        BadScene{"throw_far_from_bank", "bank_angle_deg = 45", "bank_angle_deg = -1e6", "cylinder[1].throw_angle_deg",
+                 "throw_angle_deg - bank_angle_deg must be at most 1e6 deg in magnitude (got 1000090)", &kLayoutScene},
         BadScene{"axial_too_far", "axial_position = 0.02", "axial_position = 2e6", "cylinder[1].axial_position",
                  "1e6 m", &kLayoutScene},
         BadScene{"single_table", "[[cylinder]]\nbank_angle_deg = 45", "[cylinder2]\nbank_angle_deg = 45", "cylinder2",

@@ -12,13 +12,19 @@
 
 namespace crankcheck {
 
+/// The scene format this crankcheck reads. A scene may say `format_version = 1` at its top; a larger number is
+/// refused with a message asking for a newer crankcheck (no key of a newer format is guessed at).
+inline constexpr int kSceneFormatVersion = 1;
+
 /// A user error in a scene: the message names the file, the key and the rule that was broken.
 class SceneError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
-/// Reads and validates a scene file.
+/// Reads and validates a scene file. Besides the tables, the top level may hold `format_version` (the integer 1),
+/// `name` and `description` (strings for people and editors; a scene is named by its file's stem everywhere in
+/// crankcheck's output, Mechanism::name). The JSON Schema docs/scene.schema.json describes the same format.
 /// @throws SceneError with "FILE: KEY: rule" if the file cannot be read, is not TOML, has an unknown or
 ///         missing key, a value of the wrong type, or breaks a physical rule (see validateMechanism).
 Mechanism loadSceneFile(const std::filesystem::path& path);

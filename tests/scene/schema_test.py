@@ -1,0 +1,487 @@
+#!/usr/bin/python3
+"""The scene schema (docs/scene.schema.json) against crankcheck's scene parser (scene/src/scene_file.cc).
+
+The parser is the authority; the schema is what editors (taplo, Even Better TOML) check scenes with. This test keeps
+the two from drifting apart:
+- every example scene (scenes/*.toml), converted to JSON, is valid against the schema (and the parser accepts it);
+- every key: the keys the parser allows in each table (it lists them when it refuses an unknown key) are exactly
+  the schema's properties of that table;
+- every limit: for each number with a minimum or maximum in the schema, a scene at the bound and one just beyond it
+  (the next double, or the next integer) get the same verdict from the schema and from the parser, so a limit
+  changed on one side only fails here; every bounded key of the schema has such a probe;
+- a set of bad scenes: those the schema refuses are refused by the parser, and those the parser refuses are refused
+  by the schema too, except for the rules the schema cannot express (cross-key rules), which must be listed in the
+  schema's description.
+
+Usage (ctest runs it, label unit): schema_test.py --schema docs/scene.schema.json --scenes scenes
+--parser build/bin/scene_check. The parser is tests/scene/scene_check.cc, started without a shell, once for all
+scenes (NUL-separated on stdin).
+
+TOML to JSON: tables become objects, arrays arrays, integers and floats numbers. NaN and infinity, which JSON lacks,
+become the strings "nan", "inf", "-inf" (so they are not numbers to the schema, as they are not to the parser);
+TOML dates and times become {"toml_datetime": ISO text}.
+"""
+
+import argparse
+import copy
+import datetime
+import json
+import math
+import pathlib
+import subprocess
+import sys
+import tomllib
+import unittest
+
+import jsonschema
+
+ARGS = None
+
+
+# ----------------------------------------------------------------------------------------------------------------
+# TOML <-> JSON
+
+
+def to_json(value):
+    """A TOML value (as tomllib reads it) as the JSON value the schema is checked on."""
+    if isinstance(value, dict):
+        return {k: to_json(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [to_json(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
+    if isinstance(value, (datetime.datetime, datetime.date, datetime.time)):
+        return {"toml_datetime": value.isoformat()}
+    return value
+
+
+def toml_value(value):
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "nan"
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        return repr(value)  # shortest round-trip form, valid TOML (1e-06, 1000000.0000000001, 5e-324)
+    if isinstance(value, str):
+        return json.dumps(value)  # JSON's escapes are TOML basic-string escapes
+    if isinstance(value, list):
+        return "[" + ", ".join(toml_value(v) for v in value) + "]"
+    raise TypeError(f"no TOML form for {value!r}")
+
+
+def dump_toml(scene):
+    """A scene (dict of top-level values, tables and the `cylinder` array of tables) as TOML text."""
+    lines = [f"{k} = {toml_value(v)}" for k, v in scene.items() if not isinstance(v, (dict, list))]
+    for name, value in scene.items():
+        if isinstance(value, dict):
+            lines.append(f"[{name}]")
+            lines += [f"{k} = {toml_value(v)}" for k, v in value.items()]
+        elif isinstance(value, list) and value and all(isinstance(t, dict) for t in value):
+            for table in value:
+                lines.append(f"[[{name}]]")
+                lines += [f"{k} = {toml_value(v)}" for k, v in table.items()]
+        elif isinstance(value, list):
+            lines.insert(0, f"{name} = {toml_value(value)}")
+    return "\n".join(lines) + "\n"
+
+
+# ----------------------------------------------------------------------------------------------------------------
+# Scenes the cases are made from
+
+PARTS = {
+    "crank": {"radius": 0.05, "mass": 1.0, "com_radius": 0.02, "counterweight_mass": 0.9, "counterweight_radius": 0.03},
+    "rod": {"length": 0.2, "mass": 0.5, "com_from_wrist_pin": 0.14, "inertia_about_wrist_pin": 0.012},
+    "piston": {"mass": 0.4},
+    "flywheel": {"inertia": 0.12},
+}
+INLINE = {"engine": {"cylinders": 2, "cycle": "four-stroke", "cylinder_angle_deg": 90, "speed_rpm": 3000}, **PARTS}
+# Two-cylinder four-stroke: the phase angles are 0 and 720 / 2 = 360 degrees, so each cylinder fires at its ODC.
+GAS = {**INLINE, "gas": {"bore": 0.08, "cycle_angle_deg": [0, 30, 360], "pressure_pa": [5e6, 1e6, 0.0],
+                         "firing_order": [0, 1]}}
+# Every key of an inline scene written out.
+INLINE_FULL = {"format_version": 1, "name": "Twin, every key", "description": "Two cylinders,\n\"standing\".",
+               "engine": {"cylinders": 2, "cycle": "four-stroke", "acting": "single", "crank_angles_deg": [0, 360],
+                          "cylinder_angle_deg": 90, "cylinder_spacing": 0.09, "speed_rpm": 3000, "gravity": 9.80665},
+               **PARTS, "gas": GAS["gas"]}
+LAYOUT = {"engine": {"cycle": "four-stroke", "speed_rpm": 3000},
+          "cylinder": [{"bank_angle_deg": 135, "throw_angle_deg": 90, "axial_position": 0.0},
+                       {"bank_angle_deg": 45, "throw_angle_deg": 90, "axial_position": 0.02}], **PARTS}
+# Each cylinder at its outer dead centre at its firing angle: theta_j = phi + throw_j - bank_j = 0.
+LAYOUT_GAS = {"engine": {"cylinders": 2, "cycle": "four-stroke", "speed_rpm": 3000},
+              "cylinder": [{"bank_angle_deg": 135, "throw_angle_deg": 90, "axial_position": 0.0, "firing_angle_deg": 45},
+                           {"bank_angle_deg": 45, "throw_angle_deg": 90, "axial_position": 0.02,
+                            "firing_angle_deg": -45}],
+              **PARTS, "gas": {k: v for k, v in GAS["gas"].items() if k != "firing_order"}}
+
+DELETE = object()
+
+
+def edit(base, *changes):
+    """A copy of `base` with each (path, value) set; value DELETE removes the key. A path is a tuple of keys and
+    indices, e.g. ("cylinder", 0, "bank_angle_deg")."""
+    scene = copy.deepcopy(base)
+    for path, value in changes:
+        node = scene
+        for key in path[:-1]:
+            node = node[key]
+        if value is DELETE:
+            del node[path[-1]]
+        else:
+            node[path[-1]] = copy.deepcopy(value)
+    return scene
+
+
+# ----------------------------------------------------------------------------------------------------------------
+# Cases: (name, TOML text, expectation). Expectations:
+#   "valid"        both accept;
+#   "invalid"      both refuse;
+#   ("parser", R)  the parser refuses, the schema cannot express the rule: R must be listed in its description.
+
+VALID, INVALID = "valid", "invalid"
+
+
+def parser_only(rule):
+    return ("parser", rule)
+
+
+def cases():
+    out = []
+
+    def add(name, scene, expect):
+        out.append((name, scene if isinstance(scene, str) else dump_toml(scene), expect))
+
+    for name, scene in [("inline", INLINE), ("gas", GAS), ("inline_every_key", INLINE_FULL), ("layout", LAYOUT),
+                        ("layout_gas", LAYOUT_GAS)]:
+        add(name, scene, VALID)
+    # Massless parts are real modelling choices; one cylinder may have any spacing (there is no second one).
+    for table in ("crank", "rod", "piston"):
+        add(f"{table}_massless", edit(INLINE, ((table, "mass"), 0)), VALID)
+    add("counterweight_zero_without_radius", edit(INLINE, (("crank", "counterweight_mass"), 0),
+                                                   (("crank", "counterweight_radius"), DELETE)), VALID)
+    add("one_cylinder_any_spacing", edit(INLINE, (("engine", "cylinders"), 1), (("engine", "cylinder_spacing"), 1e300)),
+        VALID)
+    add("layout_without_axial", edit(LAYOUT, (("cylinder", 0, "axial_position"), DELETE),
+                                     (("cylinder", 1, "axial_position"), DELETE)), VALID)
+    add("two_stroke_gas", edit(GAS, (("engine", "cycle"), "two-stroke"), (("gas", "cycle_angle_deg"), [0, 30, 359.5])),
+        VALID)
+    add("double_acting", edit(INLINE, (("engine", "acting"), "double")), VALID)
+
+    # Refused by both: the shape of the file.
+    add("unknown_top_level_key", edit(INLINE, (("title",), "x")), INVALID)
+    add("unknown_table", edit(INLINE, (("pistons",), {"mass": 1.0})), INVALID)
+    for table in ("engine", "crank", "rod", "piston", "flywheel"):
+        add(f"unknown_key_in_{table}", edit(INLINE, ((table, "colour"), "red")), INVALID)
+    add("unknown_key_in_gas", edit(GAS, (("gas", "colour"), "red")), INVALID)
+    add("unknown_key_in_cylinder", edit(LAYOUT, (("cylinder", 1, "firing_deg"), 0)), INVALID)
+    for table in ("engine", "crank", "rod", "piston"):
+        add(f"missing_table_{table}", edit(INLINE, ((table,), DELETE)), INVALID)
+    for table, keys in [("engine", ["cylinders", "cycle", "cylinder_angle_deg", "speed_rpm"]),
+                        ("crank", ["radius", "mass", "com_radius", "counterweight_radius"]),
+                        ("rod", ["length", "mass", "com_from_wrist_pin", "inertia_about_wrist_pin"]),
+                        ("piston", ["mass"]), ("flywheel", ["inertia"])]:
+        for key in keys:
+            add(f"missing_{table}_{key}", edit(INLINE, ((table, key), DELETE)), INVALID)
+    for key in ("bore", "cycle_angle_deg", "pressure_pa", "firing_order"):
+        add(f"missing_gas_{key}", edit(GAS, (("gas", key), DELETE)), INVALID)
+    for key in ("bank_angle_deg", "throw_angle_deg"):
+        add(f"missing_cylinder_{key}", edit(LAYOUT, (("cylinder", 1, key), DELETE)), INVALID)
+    add("missing_firing_angle", edit(LAYOUT_GAS, (("cylinder", 1, "firing_angle_deg"), DELETE)), INVALID)
+    add("table_is_a_value", "engine = 3\n" + dump_toml({k: v for k, v in INLINE.items() if k != "engine"}), INVALID)
+    add("cylinder_single_table", dump_toml({**LAYOUT, "cylinder": LAYOUT["cylinder"][0]}), INVALID)
+    add("cylinder_empty_array", dump_toml(edit(LAYOUT, (("cylinder",), DELETE))) + "cylinder = []\n", INVALID)
+    add("cylinders_65_tables", edit(LAYOUT, (("cylinder",), [{"bank_angle_deg": 90, "throw_angle_deg": 0}] * 65)),
+        INVALID)
+    add("not_toml", "this is = = not toml\n", INVALID)
+
+    # Refused by both: types and enumerations.
+    add("cylinders_string", edit(INLINE, (("engine", "cylinders"), "2")), INVALID)
+    add("cylinders_fraction", edit(INLINE, (("engine", "cylinders"), 2.5)), INVALID)
+    add("radius_string", edit(INLINE, (("crank", "radius"), "5 cm")), INVALID)
+    add("mass_boolean", edit(INLINE, (("piston", "mass"), True)), INVALID)
+    add("mass_array", edit(INLINE, (("piston", "mass"), [0.4])), INVALID)
+    add("cycle_three_stroke", edit(INLINE, (("engine", "cycle"), "three-stroke")), INVALID)
+    add("cycle_number", edit(INLINE, (("engine", "cycle"), 2)), INVALID)
+    add("acting_triple", edit(INLINE, (("engine", "acting"), "triple")), INVALID)
+    add("crank_angle_string", edit(INLINE, (("engine", "crank_angles_deg"), [0, "x"])), INVALID)
+    add("crank_angles_not_array", edit(INLINE, (("engine", "crank_angles_deg"), 90)), INVALID)
+    add("nan", edit(INLINE, (("rod", "mass"), math.nan)), INVALID)
+    add("inf", edit(INLINE, (("crank", "radius"), math.inf)), INVALID)
+    add("nan_spacing", edit(INLINE, (("engine", "cylinder_spacing"), math.nan)), INVALID)
+    add("date", "speed = 1979-05-27\n" + dump_toml(INLINE), INVALID)
+    add("speed_date", dump_toml(INLINE).replace("speed_rpm = 3000", "speed_rpm = 1979-05-27"), INVALID)
+    add("format_version_2", edit(INLINE, (("format_version",), 2)), INVALID)
+    add("format_version_0", edit(INLINE, (("format_version",), 0)), INVALID)
+    add("format_version_string", edit(INLINE, (("format_version",), "1")), INVALID)
+    add("name_number", edit(INLINE, (("name",), 4)), INVALID)
+    add("description_array", edit(INLINE, (("description",), ["a", "b"])), INVALID)
+
+    # Refused by both: rules between keys that the schema expresses (if/then, uniqueItems, prefixItems).
+    add("counterweight_without_radius", edit(INLINE, (("crank", "counterweight_radius"), DELETE)), INVALID)
+    for key, value in [("cylinder_angle_deg", 90), ("crank_angles_deg", [0, 0]), ("cylinder_spacing", 0.1)]:
+        add(f"layout_with_{key}", edit(LAYOUT, (("engine", key), value)), INVALID)
+    add("axial_for_some", edit(LAYOUT, (("cylinder", 1, "axial_position"), DELETE)), INVALID)
+    add("gas_double_acting", edit(GAS, (("engine", "acting"), "double")), INVALID)
+    add("firing_order_with_layout", edit(LAYOUT_GAS, (("gas", "firing_order"), [0, 1])), INVALID)
+    add("firing_angle_without_gas", edit(LAYOUT, (("cylinder", 0, "firing_angle_deg"), 45)), INVALID)
+    add("firing_order_repeats", edit(GAS, (("gas", "firing_order"), [0, 0])), INVALID)
+    add("firing_order_negative", edit(GAS, (("gas", "firing_order"), [0, -1])), INVALID)
+    add("firing_order_fraction", edit(GAS, (("gas", "firing_order"), [0, 1.5])), INVALID)
+    add("cycle_angles_start_late", edit(GAS, (("gas", "cycle_angle_deg"), [5, 30, 360])), INVALID)
+    add("cycle_angles_empty", edit(GAS, (("gas", "cycle_angle_deg"), []), (("gas", "pressure_pa"), [])), INVALID)
+    add("two_stroke_cycle_angle_360", edit(GAS, (("engine", "cycle"), "two-stroke"),
+                                              (("gas", "cycle_angle_deg"), [0, 30, 360])), INVALID)
+
+    # Refused by the parser only: rules the schema cannot express (each listed in the schema's description).
+    add("lambda_one", edit(INLINE, (("crank", "radius"), 0.2)), parser_only("lambda = r / l < 1"))
+    add("com_beyond_rod", edit(INLINE, (("rod", "com_from_wrist_pin"), 0.25)), parser_only("z_k <= l"))
+    add("inertia_below_point_mass", edit(INLINE, (("rod", "inertia_about_wrist_pin"), 0.009)),
+        parser_only("I_o >= m_k z_k^2"))
+    add("crank_angles_wrong_length", edit(INLINE, (("engine", "crank_angles_deg"), [0, 90, 180])),
+        parser_only("crank_angles_deg has one angle per cylinder"))
+    add("layout_count_differs", edit(LAYOUT, (("engine", "cylinders"), 3)),
+        parser_only("[engine].cylinders equals the number of [[cylinder]] tables"))
+    add("firing_order_index_beyond_k", edit(GAS, (("gas", "firing_order"), [0, 2])),
+        parser_only("firing_order lists each cylinder 0..k-1 once"))
+    add("firing_order_too_long", edit(GAS, (("gas", "firing_order"), [0, 1, 2])),
+        parser_only("firing_order lists each cylinder 0..k-1 once"))
+    add("spacing_too_long", edit(INLINE, (("engine", "cylinder_spacing"), 2e6)),
+        parser_only("|cylinder_spacing| (k - 1) <= 1e6 m"))
+    add("cycle_angles_decrease", edit(GAS, (("gas", "cycle_angle_deg"), [0, 30, 20])),
+        parser_only("cycle_angle_deg strictly increasing"))
+    add("pressures_short", edit(GAS, (("gas", "pressure_pa"), [5e6, 1e6])),
+        parser_only("pressure_pa has one pressure per cycle angle"))
+    add("firing_away_from_dead_centre", edit(LAYOUT_GAS, (("cylinder", 1, "firing_angle_deg"), 50)),
+        parser_only("each cylinder at its outer dead centre at its firing angle"))
+    add("throw_far_from_bank", edit(LAYOUT, (("cylinder", 1, "bank_angle_deg"), -1e6)),
+        parser_only("|throw_angle_deg - bank_angle_deg| <= 1e6 deg"))
+    add("cylinders_as_float", edit(INLINE, (("engine", "cylinders"), 2.0)),
+        parser_only("an integer key written as a float"))
+    add("format_version_as_float", edit(INLINE, (("format_version",), 1.0)),
+        parser_only("an integer key written as a float"))
+    return out
+
+
+# ----------------------------------------------------------------------------------------------------------------
+# Limits: every bound of the schema probed against the parser
+
+def probe_scenes():
+    """For each bounded number of the schema (a path with "[]" for array items): a function (value, side) -> the
+    scene with that value where the bound can be reached, side "low" or "high" (the other keys made compatible:
+    e.g. r close to 1e6 needs l = 1e6)."""
+    def at(base, path, *extra):
+        return lambda v, side: edit(base, *extra, (path, v))
+
+    k64 = (("engine", "cylinders"), 64)
+    firing_64 = [0] + list(range(63, 0, -1))  # [0, k-1, ..., 1]: valid for every k and stroke (SCENE-FORMAT.md)
+    big_rod = ((("rod", "length"), 1e6), (("rod", "inertia_about_wrist_pin"), 1e13))
+    return {
+        ("format_version",): at(INLINE, ("format_version",)),
+        ("engine", "cylinders"): at(INLINE, ("engine", "cylinders")),
+        ("engine", "crank_angles_deg", "[]"): at(INLINE, ("engine", "crank_angles_deg", 1),
+                                                  (("engine", "crank_angles_deg"), [0, 0])),
+        ("engine", "cylinder_angle_deg"): at(INLINE, ("engine", "cylinder_angle_deg")),
+        ("engine", "speed_rpm"): at(INLINE, ("engine", "speed_rpm")),
+        ("engine", "gravity"): at(INLINE, ("engine", "gravity")),
+        # r < l <= 1e6: near its upper bound r needs the longest rod.
+        ("crank", "radius"): lambda v, side: edit(INLINE, (("crank", "radius"), v),
+                                                  *(big_rod if side == "high" else ())),
+        ("crank", "mass"): at(INLINE, ("crank", "mass")),
+        ("crank", "com_radius"): at(INLINE, ("crank", "com_radius")),
+        ("crank", "counterweight_mass"): at(INLINE, ("crank", "counterweight_mass")),
+        ("crank", "counterweight_radius"): at(INLINE, ("crank", "counterweight_radius")),
+        # l > r >= 1e-6 and z_k <= l: near its lower bound l needs the smallest crank and z_k = 0.
+        ("rod", "length"): lambda v, side: edit(INLINE, (("rod", "length"), v), *(
+            ((("crank", "radius"), 1e-6), (("rod", "com_from_wrist_pin"), 0)) if side == "low" else ())),
+        # I_o >= m_k z_k^2: with z_k = 0 any mass fits.
+        ("rod", "mass"): at(INLINE, ("rod", "mass"), (("rod", "com_from_wrist_pin"), 0)),
+        ("rod", "com_from_wrist_pin"): lambda v, side: edit(INLINE, (("rod", "com_from_wrist_pin"), v),
+                                                            *(big_rod if side == "high" else ())),
+        ("rod", "inertia_about_wrist_pin"): at(INLINE, ("rod", "inertia_about_wrist_pin"),
+                                               (("rod", "com_from_wrist_pin"), 0)),
+        ("piston", "mass"): at(INLINE, ("piston", "mass")),
+        ("flywheel", "inertia"): at(INLINE, ("flywheel", "inertia")),
+        ("gas", "bore"): at(GAS, ("gas", "bore")),
+        ("gas", "cycle_angle_deg", "[]"): at(GAS, ("gas", "cycle_angle_deg", 2)),
+        ("gas", "pressure_pa", "[]"): at(GAS, ("gas", "pressure_pa", 1)),
+        # Index 0 holds the smallest cylinder (0), index 1 the largest (k - 1 = 63): [0, 63, 62, ..., 1].
+        ("gas", "firing_order", "[]"): lambda v, side: edit(
+            GAS, k64, (("gas", "firing_order"), firing_64), (("gas", "firing_order", 0 if side == "low" else 1), v)),
+        # |throw - bank| <= 1e6 deg as well: the other angle of the cylinder follows, up to the bound.
+        ("cylinder", "[]", "bank_angle_deg"): lambda v, side: edit(
+            LAYOUT, (("cylinder", 0, "throw_angle_deg"), max(-1e6, min(1e6, v))), (("cylinder", 0, "bank_angle_deg"), v)),
+        ("cylinder", "[]", "throw_angle_deg"): lambda v, side: edit(
+            LAYOUT, (("cylinder", 0, "bank_angle_deg"), max(-1e6, min(1e6, v))), (("cylinder", 0, "throw_angle_deg"), v)),
+        ("cylinder", "[]", "axial_position"): at(LAYOUT, ("cylinder", 0, "axial_position")),
+        # At its firing angle F the cylinder must be at its outer dead centre: F + throw - bank = 0 (mod 360).
+        # 1e6 = 2778 x 360 - 80, so throw - bank = 80 at the upper bound and -80 at the lower.
+        ("cylinder", "[]", "firing_angle_deg"): lambda v, side: edit(
+            LAYOUT_GAS, (("cylinder", 0), {"bank_angle_deg": 0, "throw_angle_deg": 80 if side == "high" else -80,
+                                           "axial_position": 0.0, "firing_angle_deg": v})),
+    }
+
+
+def resolve(schema, node):
+    while "$ref" in node:
+        ref = node["$ref"]
+        assert ref.startswith("#/$defs/"), ref
+        merged = {k: v for k, v in node.items() if k != "$ref"}
+        node = {**schema["$defs"][ref[len("#/$defs/"):]], **merged}
+    return node
+
+
+def bounded_numbers(schema, node=None, path=()):
+    """{path: [(keyword, bound, is_integer)]} for every number with a minimum or maximum, through properties,
+    items, $ref and anyOf (the conditionals of allOf are checked by the bad scenes)."""
+    node = resolve(schema, schema if node is None else node)
+    found = {}
+    bounds = [(kw, node[kw]) for kw in ("minimum", "maximum", "exclusiveMinimum", "exclusiveMaximum") if kw in node]
+    if bounds:
+        found.setdefault(path, []).extend((kw, b, node.get("type") == "integer") for kw, b in bounds)
+    for branch in node.get("anyOf", []):
+        for p, b in bounded_numbers(schema, branch, path).items():
+            found.setdefault(p, []).extend(b)
+    for key, sub in node.get("properties", {}).items():
+        found.update(bounded_numbers(schema, sub, path + (key,)))
+    if isinstance(node.get("items"), dict):
+        for p, b in bounded_numbers(schema, node["items"], path + ("[]",)).items():
+            found.setdefault(p, []).extend(b)
+    return found
+
+
+def probe_values(keyword, bound, is_integer):
+    """(value, side, expected verdict): the bound itself and the next value beyond it."""
+    def beyond(direction):
+        return bound + direction if is_integer else math.nextafter(bound, direction * math.inf)
+    return {
+        "minimum": [(bound, "low", VALID), (beyond(-1), "low", INVALID)],
+        "maximum": [(bound, "high", VALID), (beyond(+1), "high", INVALID)],
+        "exclusiveMinimum": [(bound, "low", INVALID), (beyond(+1), "low", VALID)],
+        "exclusiveMaximum": [(bound, "high", INVALID), (beyond(-1), "high", VALID)],
+    }[keyword]
+
+
+# ----------------------------------------------------------------------------------------------------------------
+
+
+def run_parser(texts):
+    """The parser's verdict on each text: ("ok", "") or ("refused", message)."""
+    result = subprocess.run([ARGS.parser], input="\0".join(texts).encode(), capture_output=True, check=False)
+    lines = result.stdout.decode().splitlines()
+    if result.returncode != 0 or len(lines) != len(texts):
+        raise RuntimeError(f"scene_check failed (status {result.returncode}):\n{result.stdout.decode()}"
+                           f"{result.stderr.decode()}")
+    return [tuple((line.split("\t", 1) + [""])[:2]) for line in lines]
+
+
+class SchemaTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.schema = json.loads(pathlib.Path(ARGS.schema).read_text())
+        jsonschema.Draft202012Validator.check_schema(cls.schema)
+        cls.validator = jsonschema.Draft202012Validator(cls.schema)
+
+    def schema_verdict(self, text):
+        try:
+            document = to_json(tomllib.loads(text))
+        except tomllib.TOMLDecodeError:
+            return INVALID, "not TOML"
+        errors = sorted(self.validator.iter_errors(document), key=lambda e: list(e.absolute_path))
+        if errors:
+            return INVALID, "; ".join(f"{'/'.join(map(str, e.absolute_path))}: {e.message}"[:200] for e in errors)
+        return VALID, ""
+
+    def check(self, named_cases):
+        """named_cases: (name, text, expectation); asserts both verdicts."""
+        verdicts = run_parser([text for _, text, _ in named_cases])
+        for (name, text, expect), (parser, message) in zip(named_cases, verdicts):
+            with self.subTest(name):
+                schema, why = self.schema_verdict(text)
+                parser_says = VALID if parser == "ok" else INVALID
+                if isinstance(expect, tuple):
+                    self.assertEqual(parser_says, INVALID, f"the parser accepts:\n{text}")
+                    self.assertEqual(schema, VALID, f"the schema refuses ({why}): move the case to INVALID")
+                    self.assertIn(expect[1], self.schema["description"],
+                                  "a rule the schema cannot express is listed in its description")
+                else:
+                    self.assertEqual(parser_says, expect, f"parser: {message or 'accepts'}\n{text}")
+                    self.assertEqual(schema, expect, f"schema: {why or 'accepts'}\n{text}")
+
+    def test_every_example_scene_is_valid(self):
+        scenes = sorted(pathlib.Path(ARGS.scenes).glob("*.toml"))
+        self.assertGreaterEqual(len(scenes), 5)
+        self.check([(path.name, path.read_text(), VALID) for path in scenes])
+        for path in scenes:
+            with self.subTest(path.name):
+                text = path.read_text()
+                self.assertTrue(text.startswith("#:schema ../docs/scene.schema.json\n"),
+                                "each example scene names the schema for editors (taplo's directive)")
+                self.assertIn("format_version = 1", text)
+
+    def test_parser_and_schema_agree_on_bad_scenes(self):
+        self.check(cases())
+
+    def test_every_limit_agrees(self):
+        bounded = bounded_numbers(self.schema)
+        probes = probe_scenes()
+        self.assertEqual(sorted(bounded), sorted(probes), "every bounded number of the schema has a probe")
+        named = []
+        for path, bounds in sorted(bounded.items()):
+            for keyword, bound, is_integer in bounds:
+                for value, side, expect in probe_values(keyword, bound, is_integer):
+                    named.append((f"{'.'.join(path)} {keyword} {value!r}", dump_toml(probes[path](value, side)), expect))
+        self.assertGreater(len(named), 50)
+        self.check(named)
+
+    def test_keys_are_those_the_parser_allows(self):
+        """The parser lists the allowed keys when it refuses an unknown one: the schema's properties are the same."""
+        def allowed(scene, prefix):
+            ((verdict, message),) = run_parser([dump_toml(scene)])
+            self.assertEqual(verdict, "refused")
+            listed = message.split("(", 1)[1].rstrip(")")
+            self.assertTrue(message.startswith(f"scene.toml: {prefix}"), message)
+            return listed
+        props = self.schema["properties"]
+        for table, base in [("engine", INLINE), ("crank", INLINE), ("rod", INLINE), ("piston", INLINE),
+                            ("flywheel", INLINE), ("gas", GAS)]:
+            with self.subTest(table):
+                listed = allowed(edit(base, ((table, "zz_unknown"), 1)), f"[{table}].zz_unknown")
+                self.assertEqual(sorted(listed.removeprefix("allowed: ").split(", ")),
+                                 sorted(props[table]["properties"]))
+        with self.subTest("cylinder"):
+            listed = allowed(edit(LAYOUT, (("cylinder", 0, "zz_unknown"), 1)), "cylinder[0].zz_unknown")
+            self.assertEqual(sorted(listed.removeprefix("allowed: ").split(", ")),
+                             sorted(props["cylinder"]["items"]["properties"]))
+        with self.subTest("top level"):
+            listed = allowed(edit(INLINE, (("zz_unknown",), 1)), "zz_unknown")
+            top, tables = listed.removeprefix("top level: ").split("; tables: ")
+            names = top.split(", ") + [t.strip("[]") for t in tables.split(", ")]
+            self.assertEqual(sorted(names), sorted(props))
+
+    def test_every_key_has_a_description_with_its_unit_or_values(self):
+        def leaves(node, path):
+            node = resolve(self.schema, node)
+            yield path, node
+            for key, sub in node.get("properties", {}).items():
+                yield from leaves(sub, path + (key,))
+            if isinstance(node.get("items"), dict):
+                yield from leaves(node["items"], path + ("[]",))
+        for path, node in leaves(self.schema, ()):
+            if path and path[-1] != "[]":
+                with self.subTest(".".join(path)):
+                    self.assertIn("description", node)
+                    if node.get("type") == "number":
+                        self.assertRegex(node["description"], r"\[(m|kg|kg m\^2|deg|rpm|m/s\^2|Pa)\]",
+                                         "a number's description gives its unit")
+
+
+if __name__ == "__main__":
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--schema", required=True)
+    parser.add_argument("--scenes", required=True)
+    parser.add_argument("--parser", required=True, help="the scene_check program")
+    ARGS, rest = parser.parse_known_args()
+    unittest.main(argv=[sys.argv[0]] + rest, verbosity=1)
