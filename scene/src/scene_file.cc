@@ -1,5 +1,6 @@
 #include "crankcheck/scene/scene_file.h"
 
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -45,11 +46,10 @@ constexpr Limit kMaxGaugePressure{1e9, "1e9 Pa (10 kbar)"};
 constexpr int kMaxCylinders = 64;
 static_assert(kMaxInertia.value == 1e18);
 
+// x in its shortest form that reads back to the same double (0.1, not 0.10000000000000001), for messages.
 std::string formatNumber(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
+  char buffer[40];
+  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, x).ptr);
 }
 
 [[noreturn]] void fail(const std::string& source, const std::string& key, const std::string& rule) {

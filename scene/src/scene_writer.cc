@@ -68,6 +68,7 @@ std::string formatSceneToml(const Mechanism& m) {
                                : m.engine.speed * (30.0 / M_PI);
   std::ostringstream out;
   out << "# Written by crankcheck (SI units, angles in degrees: docs/SCENE-FORMAT.md).\n";
+  out << "format_version = 1\n\n";
   out << "[engine]\n";
   out << "cylinders = " << k << "\n";
   out << "cycle = \"" << toString(m.engine.cycle) << "\"\n";
