@@ -10,6 +10,10 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <exception>
+#include <thread>
+#include <mutex>
+#include <atomic>
 #include <stdexcept>
 
 #include "crankcheck/simbody_models/k_crank_model.h"
@@ -493,8 +497,28 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
        "frame X, Y) over one working cycle at each scene's speed with its gas and gravity, as the tip of the force "
        "vector (after Norton's Program ENGINE); analytic lines, Simbody dots"},
   };
+  // One gnuplot per figure, up to info.jobs at a time (each writes only its own NAME.svg and NAME.png).
+  std::vector<std::string> to_draw;
   for (const Figure& f : figures)
-    if (tables.count(f.name)) drawFigure(f.name, dir);
+    if (tables.count(f.name)) to_draw.push_back(f.name);
+  std::atomic<size_t> next{0};
+  std::mutex error_mutex;
+  std::exception_ptr error;
+  auto drawer = [&] {
+    for (size_t i = next++; i < to_draw.size(); i = next++) {
+      try {
+        drawFigure(to_draw[i], dir);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> drawers;
+  for (int j = 1; j < std::min<int>(std::max(info.jobs, 1), static_cast<int>(to_draw.size())); ++j) drawers.emplace_back(drawer);
+  drawer();
+  for (std::thread& t : drawers) t.join();
+  if (error) std::rethrow_exception(error);
 
   const std::vector<SummaryRow> summary = summarize(tables);
   const bool all_pass = std::all_of(summary.begin(), summary.end(), [](const SummaryRow& s) { return s.pass; });
