@@ -425,7 +425,7 @@ void addBalancePart(std::vector<Block>& doc, const TableSet& tables, const std::
       if (toDouble(row[force]) > wf.second) wf = {row[n], toDouble(row[force])};
       if (toDouble(row[couple]) > wc.second) wc = {row[n], toDouble(row[couple])};
     }
-    Block beyond{Block::kTable, "", {"layout", "largest force harmonic above 2", "relative", "largest couple harmonic above 2", "relative"}};
+    Block beyond{Block::kTable, "", {"layout", "largest force harmonic above 2", "relative [-]", "largest couple harmonic above 2", "relative [-]"}};
     for (const std::string& name : order) {
       const auto& f = worst_force[name];
       const auto& c = worst_couple[name];
@@ -536,7 +536,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
                  std::string(all_pass ? "Every comparison agrees" : "SOME COMPARISONS FAIL") +
                      " within the gate's rule: |analytic - simbody| <= 64 eps x scale x conditioning "
                      "(docs/CONVENTIONS-crankcheck.md). Errors are relative to the quantity's physical scale."});
-  Block summary_table{Block::kTable, "", {"quantity", "family", "worst error / scale", "where", "tolerance / scale", "result"}};
+  Block summary_table{Block::kTable, "", {"quantity", "family", "worst error / scale [-]", "where", "tolerance / scale [-]", "result"}};
   for (const SummaryRow& s : summary)
     summary_table.rows.push_back({s.quantity, s.family, shortNumber(s.worst_rel_error), s.where, shortNumber(s.tolerance_rel),
                                   s.pass ? "pass" : "FAIL"});
@@ -547,7 +547,8 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
                  "Each scene is cross-checked at its own lambda and, in the full campaign, with the rod lengthened or "
                  "shortened to lambda = 0.1, 0.2, 0.3, 0.4, 0.6, 0.9. The first scene is the base of the figures. SI units."});
   doc.push_back({Block::kTable, "",
-                 {"scene", "family", "k", "cycle", "gamma [deg]", "rpm", "r", "l", "lambda", "m_o", "m_k", "z_k", "I_o", "m_s", "r_s", "m_p", "r_p", "g", "I_w"},
+                 {"scene", "family", "k", "cycle", "gamma [deg]", "speed [rpm]", "r [m]", "l [m]", "lambda [-]", "m_o [kg]", "m_k [kg]",
+                  "z_k [m]", "I_o [kg m^2]", "m_s [kg]", "r_s [m]", "m_p [kg]", "r_p [m]", "g [m/s^2]", "I_w [kg m^2]"},
                  tableRows(tables, "scenes",
                            {"scene", "family", "cylinders", "cycle", "gamma_deg", "speed_rpm", "r", "l", "lambda", "m_o", "m_k", "z_k",
                             "I_o", "m_s", "r_s", "m_p", "r_p", "g", "I_w"},
@@ -566,11 +567,11 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
     doc.push_back({Block::kHeading, f.heading});
     doc.push_back({Block::kFigure, f.caption, {}, {}, name});
     if (name == "integrator_pareto")
-      doc.push_back({Block::kTable, "", {"integrator", "accuracy", "ns per revolution", "delta error", "energy drift", "status"},
+      doc.push_back({Block::kTable, "", {"integrator", "accuracy [-]", "time per revolution [ns]", "delta error [-]", "energy drift [-]", "status"},
                      tableRows(tables, name, {"integrator", "accuracy", "ns_per_revolution", "delta_error", "energy_drift", "status"},
                                {false, true, true, true, true, false})});
     if (name == "speed_vs_error") {
-      doc.push_back({Block::kTable, "", {"method", "ns per evaluation", "max error / energy scale", "resolved"},
+      doc.push_back({Block::kTable, "", {"method", "time per evaluation [ns]", "max error / energy scale [-]", "resolved"},
                      tableRows(tables, name, {"method", "ns_per_eval", "max_rel_error", "resolved"}, {false, true, true, false})});
       doc.push_back({Block::kParagraph,
                      "Each error is the maximum over the turn (the Fourier series' from the exact harmonics they leave "
@@ -584,7 +585,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
                      "and refined the same way (Brent's method). Where Simbody's max |Q| is below its rounding bound (64 eps "
                      "of the energy scale) it shows only that |Q| is below the bound: 'Simbody resolves' = no, and the "
                      "figure draws the bound as an arrow down."});
-      doc.push_back({Block::kTable, "", {"cycle", "k", "first order", "max |Q| [N m]", "/ k = 1", "max inertia torque [N m]", "max |Q| / inertia", "Simbody max |Q|", "Simbody resolves", "rounding bound [N m]"},
+      doc.push_back({Block::kTable, "", {"cycle", "k", "first order", "max |Q| [N m]", "/ k = 1", "max inertia torque [N m]", "max |Q| / inertia", "Simbody max |Q| [N m]", "Simbody resolves", "rounding bound [N m]"},
                      tableRows(tables, name, {"cycle", "k", "first_order", "max_abs_Q", "ratio_to_k1", "max_inertia_torque", "ratio_to_inertia", "simbody_max_abs_Q", "resolved", "simbody_bound"},
                                {false, false, false, true, true, true, true, true, false, true})});
       addGravityClaims(doc, tables);
@@ -603,7 +604,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
       doc.push_back({Block::kParagraph,
                      "The largest force over the cycle, each engine (the samples, the best two refined by Brent's method), and the "
                      "largest difference of the two engines over the samples relative to the force scale:"});
-      doc.push_back({Block::kTable, "", {"scene", "engine", "force", "max |F| [N]", "max |analytic - Simbody| / force scale"},
+      doc.push_back({Block::kTable, "", {"scene", "engine", "force", "max |F| [N]", "max |analytic - Simbody| / force scale [-]"},
                      tableRows(tables, "pin_load_polar_summary", {"scene", "engine", "force", "max_magnitude", "max_difference_rel"},
                                {false, false, false, true, true})});
     }
