@@ -66,7 +66,8 @@ TEST_F(ErrataTest, Eq15CoefficientErrorsMatchADftOfTheExactFunction) {
     EXPECT_NEAR(value("Stanczak eq (15): Lambda_" + std::to_string(n) + " at lambda = 0.4", "printed / exact - 1"), expected, 1e-8)
         << "Lambda_" << n;
   }
-  // The size the issue names: Lambda_12 is 37.5 % low at lambda = 0.4.
+  // The size the issue and docs/ERRATA.md quote, to three digits (37.5 %): within one unit of that last digit (the
+  // exact value is checked to 1e-8 just above; this checks the quoted sentence).
   EXPECT_NEAR(value("Stanczak eq (15): Lambda_12 at lambda = 0.4", "printed / exact - 1"), -0.375, 0.001);
   EXPECT_EQ(value("Stanczak eq (15): printed coefficients", "count printed"), 6 + 5 + 4 + 3 + 2 + 1);
   EXPECT_EQ(value("Stanczak eq (15): printed coefficients", "count equal to the rounded exact value"), 20);
@@ -130,6 +131,9 @@ TEST(GravitySignificanceTest, MaximaMatchADenseGridOfEq13) {
     double dense = 0.0;
     for (int i = 0; i < 36000; ++i) dense = std::max(dense, std::fabs(analytic::calcGravityTorque(m, 2.0 * M_PI * i / 36000.0)));
     const double reported = std::strtod(row[2].c_str(), nullptr);
+    // A 0.01-degree grid misses a harmonic-n maximum by at most (n h)^2 / 8 of it: 2.2e-6 for n <= 24. 1e-4 of the
+    // maximum also covers the report's Brent refinement stopping at its own 1e-10 rad bracket; both far below the
+    // differences between cylinder counts the table is read for (factors of 10 and more).
     EXPECT_NEAR(reported, dense, 1e-4 * dense) << row[0] << " k = " << k;
     ++checked;
   }
