@@ -1,0 +1,642 @@
+// The k-crank mechanism in MuJoCo (Debian libmujoco-dev 2.2.2). The only translation unit of the library that
+// includes MuJoCo. Never includes the analytic library or Simbody: MuJoCo computes the kinematics (mj_kinematics,
+// mj_jacSite, mj_objectAcceleration), the bias forces (mj_rne) and the joint reactions (mj_rnePostConstraint).
+// ../shared/MUJOCO-NOTES.md lists the traps this file avoids.
+#include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "crankcheck/scene/scene_file.h"
+
+namespace crankcheck::mujoco_models {
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr int kMaxNewtonIterations = 100;
+constexpr const char* kFileName = "crankcheck.xml";
+
+// MuJoCo reports errors through a handler that must not return; the default one prints and calls exit(1), and
+// writes MUJOCO_LOG.TXT into the working directory. crankcheck checks every input MuJoCo would refuse before it
+// builds a model, so an error here is MuJoCo's own failure: one line and exit status 3 (internal failure), no log
+// file in the user's folder. Warnings (e.g. a non-finite acceleration, after which MuJoCo resets its data) are not
+// printed (they would corrupt --format json on stdout): every result is checked for finiteness instead.
+[[noreturn]] void onMujocoError(const char* message) {
+  std::fprintf(stderr, "crankcheck: MuJoCo failed: %s\n", message);
+  std::fflush(stderr);
+  std::_Exit(3);
+}
+void onMujocoWarning(const char*) {}
+void installHandlers() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    mju_user_error = onMujocoError;
+    mju_user_warning = onMujocoWarning;
+  });
+}
+
+/// The shortest text that reads back as the same double (MJCF is parsed with strtod-like rules).
+std::string num(double x) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return std::string(buffer, result.ptr);
+}
+std::string vec3(double x, double y, double z) { return num(x) + " " + num(y) + " " + num(z); }
+
+struct PointMass {
+  double mass;
+  std::array<double, 3> p;
+};
+
+/// The crankshaft's point masses (per cylinder: m_s at r_s on its throw, m_p at r_p opposite, in the plane z_j).
+std::vector<PointMass> crankPointMasses(const Mechanism& m) {
+  std::vector<PointMass> points;
+  for (int j = 0; j < m.engine.cylinders; ++j) {
+    const double beta = getThrowAngle(m, j);
+    const double z = getAxialPosition(m, j);
+    const double c = std::cos(beta), s = std::sin(beta);
+    if (m.crank.mass > 0.0) points.push_back({m.crank.mass, {m.crank.com_radius * c, m.crank.com_radius * s, z}});
+    if (m.crank.counterweight_mass > 0.0)
+      points.push_back({m.crank.counterweight_mass, {-m.crank.counterweight_radius * c, -m.crank.counterweight_radius * s, z}});
+  }
+  return points;
+}
+
+/// What MuJoCo would refuse, checked first so that the message names the scene key (MuJoCo's compiler rejects a
+/// body on a joint whose mass or any principal inertia is below mjMINVAL = 1e-15).
+void checkBuildable(const Mechanism& m) {
+  try {
+    validateMechanism(m, m.name.empty() ? std::string("mechanism") : m.name);
+  } catch (const SceneError& error) {
+    throw std::invalid_argument(std::string("invalid mechanism: ") + error.what());
+  }
+  if (!(m.piston.mass >= mjMINVAL))
+    throw std::invalid_argument("piston.mass: MuJoCo cannot build a piston lighter than 1e-15 kg (its bodies on "
+                                "joints need mass > mjMINVAL); the mujoco engines need m_o > 0");
+  if (!(m.rod.mass >= mjMINVAL))
+    throw std::invalid_argument("rod.mass: MuJoCo cannot build a rod lighter than 1e-15 kg; the mujoco engines need "
+                                "m_k > 0");
+  const double rod_inertia_about_com = m.rod.inertia_about_wrist_pin - m.rod.mass * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
+  if (!(rod_inertia_about_com >= mjMINVAL))
+    throw std::invalid_argument("rod.inertia_about_wrist_pin: MuJoCo needs the rod's inertia about its centre of mass, "
+                                "I_o - m_k z_k^2 = " + num(rod_inertia_about_com) + " kg m^2, above 1e-15 kg m^2 (a "
+                                "point-mass rod cannot be built)");
+  double crank_mass = 0.0;
+  for (const PointMass& p : crankPointMasses(m)) crank_mass += p.mass;
+  if (!(crank_mass >= mjMINVAL))
+    throw std::invalid_argument("crank.mass: MuJoCo cannot build a crankshaft without mass (crank.mass and "
+                                "crank.counterweight_mass are both 0; a body on a joint needs mass > 1e-15 kg)");
+}
+
+}  // namespace
+
+std::string toString(Variant variant) {
+  switch (variant) {
+    case Variant::kExact: return "mujoco";
+    case Variant::kSoftDefault: return "mujoco-soft";
+    case Variant::kSoftStiff: return "mujoco-soft-stiff";
+  }
+  return "mujoco";
+}
+
+std::string getMujocoVersion() {
+  const int v = mj_version();  // e.g. 222
+  return std::to_string(v / 100) + "." + std::to_string(v / 10 % 10) + "." + std::to_string(v % 10);
+}
+
+std::string calcMjcf(const Mechanism& m, Variant variant) {
+  checkBuildable(m);
+  const int k = m.engine.cylinders;
+  const double l = m.rod.length, r = m.crank.radius;
+  std::string x;
+  x += "<mujoco model=\"crankcheck\">\n";
+  // Inertias exactly as written: none from geometry, no lower bounds, no rebalancing.
+  x += "  <compiler angle=\"radian\" inertiafromgeom=\"false\" boundmass=\"0\" boundinertia=\"0\" "
+       "balanceinertia=\"false\" settotalmass=\"-1\"/>\n";
+  x += "  <option gravity=\"" + vec3(0.0, -m.engine.gravity, 0.0) + "\" timestep=\"0.002\">\n";
+  // energy: mj_energyPos computes the potential only when enabled
+  x += std::string("    <flag contact=\"disable\" energy=\"enable\"") +
+       (variant == Variant::kExact ? " constraint=\"disable\"" : "") + "/>\n";
+  x += "  </option>\n";
+  if (variant == Variant::kSoftStiff) {
+    // The stiffest the solver accepts: impedance at its ceiling mjMAXIMP = 0.9999, time constant at the refsafe
+    // floor of twice the time step.
+    x += "  <default>\n    <equality solref=\"0.004 1\" solimp=\"0.9999 0.9999 0.001 0.5 2\"/>\n  </default>\n";
+  }
+  x += "  <worldbody>\n";
+
+  // Crankshaft: the first point mass is the crank body's own inertial, with the flywheel I_w as an isotropic inertia
+  // about it (only I_zz ever acts, w x I w = 0 for an isotropic tensor; a nominal m r^2 without a flywheel: it never
+  // acts at a prescribed constant speed); every other point mass is a jointless child body with zero inertia. No
+  // full inertia tensor: MuJoCo would diagonalize it, and its eigen-solver's rounding (1e-12 of the products of
+  // inertia) showed in the V8's shaking moment.
+  const std::vector<PointMass> points = crankPointMasses(m);
+  double mass = 0.0;
+  for (const PointMass& p : points) mass += p.mass;
+  const double rotor = m.flywheel_inertia.value_or(mass * r * r);
+  x += "    <body name=\"crank\" pos=\"0 0 0\">\n";
+  x += "      <joint name=\"crank\" type=\"hinge\" axis=\"0 0 1\" pos=\"0 0 0\"/>\n";
+  x += "      <inertial pos=\"" + vec3(points[0].p[0], points[0].p[1], points[0].p[2]) + "\" mass=\"" + num(points[0].mass) +
+       "\" diaginertia=\"" + vec3(rotor, rotor, rotor) + "\"/>\n";
+  for (size_t i = 1; i < points.size(); ++i)
+    x += "      <body name=\"crank_mass" + std::to_string(i) + "\" pos=\"" + vec3(points[i].p[0], points[i].p[1], points[i].p[2]) +
+         "\"><inertial pos=\"0 0 0\" mass=\"" + num(points[i].mass) + "\" diaginertia=\"0 0 0\"/></body>\n";
+  for (int j = 0; j < k; ++j) {
+    const double beta = getThrowAngle(m, j);
+    x += "      <site name=\"crank_pin" + std::to_string(j) + "\" pos=\"" +
+         vec3(r * std::cos(beta), r * std::sin(beta), getAxialPosition(m, j)) + "\"/>\n";
+  }
+  x += "    </body>\n";
+
+  // Pistons on slides along e_j (origin on the crank axis at z_j: the slide coordinate is x_p), rods on hinges at
+  // the wrist pin pointing along -e_j at hinge angle 0.
+  const double piston_nominal_inertia = m.piston.mass * r * r;
+  const double rod_inertia = m.rod.inertia_about_wrist_pin - m.rod.mass * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
+  for (int j = 0; j < k; ++j) {
+    const std::string J = std::to_string(j);
+    const double gamma = getBankAngle(m, j);
+    const double ex = std::cos(gamma), ey = std::sin(gamma);
+    x += "    <body name=\"piston" + J + "\" pos=\"" + vec3(0.0, 0.0, getAxialPosition(m, j)) + "\">\n";
+    x += "      <joint name=\"slide" + J + "\" type=\"slide\" axis=\"" + vec3(ex, ey, 0.0) + "\" pos=\"0 0 0\"/>\n";
+    x += "      <inertial pos=\"0 0 0\" mass=\"" + num(m.piston.mass) + "\" diaginertia=\"" +
+         vec3(piston_nominal_inertia, piston_nominal_inertia, piston_nominal_inertia) + "\"/>\n";
+    x += "      <body name=\"rod" + J + "\" pos=\"0 0 0\">\n";
+    x += "        <joint name=\"wrist" + J + "\" type=\"hinge\" axis=\"0 0 1\" pos=\"0 0 0\"/>\n";
+    x += "        <inertial pos=\"" + vec3(-m.rod.com_from_wrist_pin * ex, -m.rod.com_from_wrist_pin * ey, 0.0) +
+         "\" mass=\"" + num(m.rod.mass) + "\" diaginertia=\"" + vec3(rod_inertia, rod_inertia, rod_inertia) + "\"/>\n";
+    x += "        <site name=\"big_end" + J + "\" pos=\"" + vec3(-l * ex, -l * ey, 0.0) + "\"/>\n";
+    x += "      </body>\n";
+    x += "    </body>\n";
+  }
+  x += "  </worldbody>\n";
+  x += "  <equality>\n";
+  for (int j = 0; j < k; ++j) {
+    const double gamma = getBankAngle(m, j);
+    x += "    <connect name=\"loop" + std::to_string(j) + "\" body1=\"rod" + std::to_string(j) +
+         "\" body2=\"crank\" anchor=\"" + vec3(-l * std::cos(gamma), -l * std::sin(gamma), 0.0) + "\"/>\n";
+  }
+  x += "  </equality>\n";
+  x += "</mujoco>\n";
+  return x;
+}
+
+namespace {
+
+/// MJCF text -> mjModel through MuJoCo's virtual file system (2.2.2 has no mj_loadXMLString).
+mjModel* loadModel(const std::string& xml) {
+  installHandlers();
+  auto vfs = std::make_unique<mjVFS>();  // large: on the heap
+  mj_defaultVFS(vfs.get());
+  if (mj_makeEmptyFileVFS(vfs.get(), kFileName, static_cast<int>(xml.size())) != 0)
+    throw std::runtime_error("MuJoCo: could not make the in-memory model file");
+  const int index = mj_findFileVFS(vfs.get(), kFileName);
+  std::memcpy(vfs->filedata[index], xml.data(), xml.size());
+  char error[1024] = "";
+  mjModel* model = mj_loadXML(kFileName, vfs.get(), error, sizeof error);
+  mj_deleteVFS(vfs.get());
+  if (!model) throw std::runtime_error(std::string("MuJoCo could not compile the model: ") + error);
+  return model;
+}
+
+struct ModelDeleter {
+  void operator()(mjModel* m) const { mj_deleteModel(m); }
+};
+struct DataDeleter {
+  void operator()(mjData* d) const { mj_deleteData(d); }
+};
+using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
+using DataPtr = std::unique_ptr<mjData, DataDeleter>;
+
+/// Solves the 2 x 2 system [a b; c d] x = (p, q).
+std::array<double, 2> solve2(double a, double b, double c, double d, double p, double q) {
+  const double det = a * d - b * c;
+  return {(p * d - b * q) / det, (a * q - c * p) / det};
+}
+
+std::array<double, 3> cross(const double* a, const double* b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+}  // namespace
+
+class KCrankMujocoModel::Impl {
+ public:
+  Impl(const Mechanism& m, Variant variant);
+
+  Evaluation evaluate(double phi);
+  double potentialEnergy(double phi);
+  double holdingTorque(double phi);
+  double closureError() const { return closure_error_; }
+  const Mechanism& mechanism() const { return m_; }
+  Variant variant() const { return variant_; }
+
+ private:
+  struct Cylinder {
+    int slide_q = 0, slide_v = 0, wrist_q = 0, wrist_v = 0;
+    int piston_body = 0, rod_body = 0, crank_pin_site = 0, big_end_site = 0, equality = 0;
+    double n[3] = {0, 0, 0};  // e_j turned +90 degrees
+    // The loop's Jacobian columns at the closed configuration (rows X, Y): the big end's with respect to the slide
+    // and the wrist hinge, the crank pin's with respect to the crank hinge.
+    double jb_s[2] = {0, 0}, jb_h[2] = {0, 0}, jc[2] = {0, 0};
+  };
+  /// Closes every loop at crank angle phi by Newton's method on the big end's gap (MuJoCo's kinematics and site
+  /// Jacobians); leaves the kinematics and the Jacobian columns of the closed configuration.
+  void close(double phi);
+  /// Dependent speeds for crank speed omega (J v = 0), then MuJoCo's velocity-dependent quantities (mj_comVel).
+  void solveVelocities(double omega);
+  /// Dependent accelerations at zero crank acceleration: J qacc = -(Jdot v), Jdot v from MuJoCo's site
+  /// accelerations at qacc = 0.
+  void solveAccelerations();
+  /// Exact multipliers at the current q, v, qacc: J_dep^T f_j = (M qacc + bias - applied)_dep, then the crank
+  /// torque. `gas` adds the gas forces as applied forces. Returns tau; f_j in forces_.
+  double solveExactForces(double phi, bool gas);
+  /// MuJoCo's soft solver: the crank torque that gives the crank zero acceleration, and the solver's qacc (into
+  /// data_->qacc) and loop forces (into forces_). State q, v copied from data_.
+  double solveSoftForces(double phi, bool gas);
+  /// Joint reactions from the loop forces forces_ and data_->qacc, by mj_rnePostConstraint.
+  void fillReactions(Evaluation& e);
+  /// -dP/dt, -dH_O/dt with gravity off from data_->qacc (MuJoCo's body accelerations).
+  void fillShaking(Evaluation& e);
+  double potential() {
+    mj_energyPos(model_.get(), data_.get());
+    return data_->energy[0];
+  }
+  void checkFinite(const Evaluation& e, double phi) const;
+
+  Mechanism m_;
+  Variant variant_;
+  ModelPtr model_;  // constraint solver off: closure, exact multipliers, reactions
+  DataPtr data_;
+  ModelPtr soft_model_;  // soft variants: MuJoCo's own constraint solver
+  DataPtr soft_data_;
+  int crank_q_ = 0, crank_v_ = 0, crank_body_ = 0;
+  std::vector<Cylinder> cylinders_;
+  std::vector<std::array<double, 2>> forces_;  // f_j: the crank on rod j at its crank pin (crank_pin_force)
+  std::vector<double> jacobian_;               // 3 x nv scratch
+  std::vector<double> rne_;                    // nv scratch
+  double reference_potential_ = 0.0;           // V(0)
+  double closure_error_ = 0.0;
+  double closure_tolerance_ = 0.0;
+  bool closed_ = false;
+  double closed_phi_ = 0.0;
+};
+
+KCrankMujocoModel::Impl::Impl(const Mechanism& m, Variant variant) : m_(m), variant_(variant) {
+  model_.reset(loadModel(calcMjcf(m_, Variant::kExact)));
+  data_.reset(mj_makeData(model_.get()));
+  if (variant_ != Variant::kExact) {
+    soft_model_.reset(loadModel(calcMjcf(m_, variant_)));
+    soft_data_.reset(mj_makeData(soft_model_.get()));
+    // Deterministic results: each solve starts cold, not from the previous call's accelerations.
+    soft_model_->opt.disableflags |= mjDSBL_WARMSTART;
+  }
+  const mjModel* mm = model_.get();
+  const int crank_joint = mj_name2id(mm, mjOBJ_JOINT, "crank");
+  crank_q_ = mm->jnt_qposadr[crank_joint];
+  crank_v_ = mm->jnt_dofadr[crank_joint];
+  crank_body_ = mj_name2id(mm, mjOBJ_BODY, "crank");
+  const int k = m_.engine.cylinders;
+  cylinders_.resize(k);
+  forces_.assign(k, {0.0, 0.0});
+  for (int j = 0; j < k; ++j) {
+    Cylinder& c = cylinders_[j];
+    const std::string J = std::to_string(j);
+    const int slide = mj_name2id(mm, mjOBJ_JOINT, ("slide" + J).c_str());
+    const int wrist = mj_name2id(mm, mjOBJ_JOINT, ("wrist" + J).c_str());
+    c.slide_q = mm->jnt_qposadr[slide];
+    c.slide_v = mm->jnt_dofadr[slide];
+    c.wrist_q = mm->jnt_qposadr[wrist];
+    c.wrist_v = mm->jnt_dofadr[wrist];
+    c.piston_body = mj_name2id(mm, mjOBJ_BODY, ("piston" + J).c_str());
+    c.rod_body = mj_name2id(mm, mjOBJ_BODY, ("rod" + J).c_str());
+    c.crank_pin_site = mj_name2id(mm, mjOBJ_SITE, ("crank_pin" + J).c_str());
+    c.big_end_site = mj_name2id(mm, mjOBJ_SITE, ("big_end" + J).c_str());
+    c.equality = mj_name2id(mm, mjOBJ_EQUALITY, ("loop" + J).c_str());
+    const double gamma = getBankAngle(m_, j);
+    c.n[0] = -std::sin(gamma);
+    c.n[1] = std::cos(gamma);
+    // The connect's anchor on the crank: MuJoCo's compiler put it where the big end is at qpos0 (an open loop);
+    // the crank pin is where it belongs (MUJOCO-NOTES.md).
+    if (soft_model_) {
+      const double beta = getThrowAngle(m_, j);
+      double* data = soft_model_->eq_data + mjNEQDATA * c.equality;
+      data[3] = m_.crank.radius * std::cos(beta);
+      data[4] = m_.crank.radius * std::sin(beta);
+      data[5] = getAxialPosition(m_, j);
+    }
+  }
+  jacobian_.resize(3 * static_cast<size_t>(mm->nv));
+  rne_.resize(static_cast<size_t>(mm->nv));
+  closure_tolerance_ = 4.0 * kEps * (m_.rod.length + m_.crank.radius);
+  close(0.0);
+  reference_potential_ = potential();
+}
+
+void KCrankMujocoModel::Impl::close(double phi) {
+  if (!std::isfinite(phi)) throw std::invalid_argument("KCrankMujocoModel: crank angle phi must be finite");
+  const mjModel* mm = model_.get();
+  mjData* d = data_.get();
+  const double l = m_.rod.length;
+  // Warm start from the previous closure when it is near; otherwise a crude guess that is no solution: the piston at
+  // x = l, the rod along -e (its big end at O). Newton's first step from there puts the piston on the outer branch.
+  const bool warm = closed_ && std::fabs(std::remainder(phi - closed_phi_, 2.0 * M_PI)) <= 1.0;
+  if (!warm) {
+    for (Cylinder& c : cylinders_) {
+      d->qpos[c.slide_q] = l;
+      d->qpos[c.wrist_q] = 0.0;
+    }
+  }
+  d->qpos[crank_q_] = phi;
+  const int nv = mm->nv;
+  for (int iteration = 0;; ++iteration) {
+    mj_kinematics(mm, d);
+    mj_comPos(mm, d);
+    double worst = 0.0;
+    for (Cylinder& c : cylinders_) {
+      const double* b = d->site_xpos + 3 * c.big_end_site;
+      const double* p = d->site_xpos + 3 * c.crank_pin_site;
+      worst = std::max({worst, std::fabs(b[0] - p[0]), std::fabs(b[1] - p[1])});
+    }
+    // Jacobian columns at this configuration (kept: at the closed configuration they are the loop's Jacobian).
+    for (Cylinder& c : cylinders_) {
+      mj_jacSite(mm, d, jacobian_.data(), nullptr, c.big_end_site);
+      c.jb_s[0] = jacobian_[c.slide_v];
+      c.jb_s[1] = jacobian_[nv + c.slide_v];
+      c.jb_h[0] = jacobian_[c.wrist_v];
+      c.jb_h[1] = jacobian_[nv + c.wrist_v];
+      mj_jacSite(mm, d, jacobian_.data(), nullptr, c.crank_pin_site);
+      c.jc[0] = jacobian_[crank_v_];
+      c.jc[1] = jacobian_[nv + crank_v_];
+    }
+    if (worst <= closure_tolerance_) {
+      closure_error_ = worst;
+      break;
+    }
+    if (iteration == kMaxNewtonIterations) {
+      closed_ = false;
+      throw std::runtime_error("MuJoCo: the loop does not close at phi = " + num(phi) + " rad (gap " + num(worst) +
+                               " m after " + std::to_string(kMaxNewtonIterations) + " Newton steps)");
+    }
+    for (Cylinder& c : cylinders_) {
+      const double* b = d->site_xpos + 3 * c.big_end_site;
+      const double* p = d->site_xpos + 3 * c.crank_pin_site;
+      const auto step = solve2(c.jb_s[0], c.jb_h[0], c.jb_s[1], c.jb_h[1], p[0] - b[0], p[1] - b[1]);
+      d->qpos[c.slide_q] += step[0];
+      // The rod hinge stays within (-pi/2, pi/2): the physical branch (piston outside the crank pin). A step that
+      // would leave it goes halfway to the limit instead.
+      const double psi = d->qpos[c.wrist_q];
+      double next = psi + step[1];
+      if (!(std::fabs(next) < M_PI_2)) next = 0.5 * (psi + std::copysign(M_PI_2, step[1]));
+      d->qpos[c.wrist_q] = next;
+    }
+  }
+  closed_ = true;
+  closed_phi_ = phi;
+}
+
+void KCrankMujocoModel::Impl::solveVelocities(double omega) {
+  mjData* d = data_.get();
+  d->qvel[crank_v_] = omega;
+  for (const Cylinder& c : cylinders_) {
+    // J_big_end,dep v_dep = J_crank_pin,crank omega
+    const auto v = solve2(c.jb_s[0], c.jb_h[0], c.jb_s[1], c.jb_h[1], c.jc[0] * omega, c.jc[1] * omega);
+    d->qvel[c.slide_v] = v[0];
+    d->qvel[c.wrist_v] = v[1];
+  }
+  mj_comVel(model_.get(), d);
+}
+
+void KCrankMujocoModel::Impl::solveAccelerations() {
+  const mjModel* mm = model_.get();
+  mjData* d = data_.get();
+  mju_zero(d->qacc, mm->nv);
+  mju_zero(d->xfrc_applied, 6 * mm->nbody);
+  mj_rnePostConstraint(mm, d);  // body accelerations at qacc = 0: velocity terms (and gravity's offset) only
+  for (const Cylinder& c : cylinders_) {
+    double ab[6], ac[6];
+    mj_objectAcceleration(mm, d, mjOBJ_SITE, c.big_end_site, ab, 0);
+    mj_objectAcceleration(mm, d, mjOBJ_SITE, c.crank_pin_site, ac, 0);
+    // Jdot v = a_big_end - a_crank_pin at qacc = 0 (the gravity offset MuJoCo adds to every body cancels)
+    const auto a = solve2(c.jb_s[0], c.jb_h[0], c.jb_s[1], c.jb_h[1], -(ab[3] - ac[3]), -(ab[4] - ac[4]));
+    d->qacc[c.slide_v] = a[0];
+    d->qacc[c.wrist_v] = a[1];
+  }
+  d->qacc[crank_v_] = 0.0;
+}
+
+double KCrankMujocoModel::Impl::solveExactForces(double phi, bool gas) {
+  const mjModel* mm = model_.get();
+  mjData* d = data_.get();
+  mj_rne(mm, d, 1, rne_.data());  // M qacc + bias (gravity, centrifugal, Coriolis)
+  double tau = rne_[crank_v_];
+  for (size_t j = 0; j < cylinders_.size(); ++j) {
+    const Cylinder& c = cylinders_[j];
+    const double applied_slide = gas ? -calcGasForce(m_, static_cast<int>(j), phi) : 0.0;  // -p A along e_j
+    // J_dep^T f = (M qacc + bias - applied)_dep
+    forces_[j] = solve2(c.jb_s[0], c.jb_s[1], c.jb_h[0], c.jb_h[1], rne_[c.slide_v] - applied_slide, rne_[c.wrist_v]);
+    // crank row: M qacc + bias = tau - J_crank_pin^T f
+    tau += c.jc[0] * forces_[j][0] + c.jc[1] * forces_[j][1];
+  }
+  return tau;
+}
+
+double KCrankMujocoModel::Impl::solveSoftForces(double phi, bool gas) {
+  const mjModel* sm = soft_model_.get();
+  mjData* s = soft_data_.get();
+  const mjData* d = data_.get();
+  mju_copy(s->qpos, d->qpos, sm->nq);
+  mju_copy(s->qvel, d->qvel, sm->nv);
+  mju_zero(s->qfrc_applied, sm->nv);
+  for (size_t j = 0; j < cylinders_.size(); ++j)
+    s->qfrc_applied[cylinders_[j].slide_v] = gas ? -calcGasForce(m_, static_cast<int>(j), phi) : 0.0;
+  // The solver's crank acceleration is linear in the crank torque (equality constraints only: one quadratic
+  // problem); two solves give the line, a third the state at the torque where it crosses zero.
+  auto crankAcceleration = [&](double tau) {
+    s->qfrc_applied[crank_v_] = tau;
+    mj_forward(sm, s);
+    return s->qacc[crank_v_];
+  };
+  const double a0 = crankAcceleration(0.0);
+  const double a1 = crankAcceleration(1.0);
+  const double tau = -a0 / (a1 - a0);
+  crankAcceleration(tau);
+  mju_copy(data_->qacc, s->qacc, sm->nv);
+  for (size_t j = 0; j < cylinders_.size(); ++j) forces_[j] = {0.0, 0.0};
+  for (int i = 0; i < s->nefc; ++i) {
+    if (s->efc_type[i] != mjCNSTR_EQUALITY) continue;
+    for (size_t j = 0; j < cylinders_.size(); ++j) {
+      // connect rows: X, Y, Z of (big end - crank pin); the force acts on body1, the rod
+      if (s->efc_id[i] != cylinders_[j].equality) continue;
+      forces_[j] = {s->efc_force[i], s->efc_force[i + 1]};
+      i += 2;
+      break;
+    }
+  }
+  return tau;
+}
+
+void KCrankMujocoModel::Impl::fillReactions(Evaluation& e) {
+  const mjModel* mm = model_.get();
+  mjData* d = data_.get();
+  mju_zero(d->xfrc_applied, 6 * mm->nbody);
+  // The loop forces as body forces (force, torque about the body's centre of mass): f on the rod at its big end,
+  // -f on the crankshaft at the crank pin. Gravity, gas and the crank torque are MuJoCo's own (gravity in cacc, gas
+  // and torque as joint forces: they arrive in the joint reactions).
+  for (size_t j = 0; j < cylinders_.size(); ++j) {
+    const Cylinder& c = cylinders_[j];
+    const double f[3] = {forces_[j][0], forces_[j][1], 0.0};
+    const double minus_f[3] = {-f[0], -f[1], 0.0};
+    const double* b = d->site_xpos + 3 * c.big_end_site;
+    const double* p = d->site_xpos + 3 * c.crank_pin_site;
+    const double* rod_com = d->xipos + 3 * c.rod_body;
+    const double* crank_com = d->xipos + 3 * crank_body_;
+    const double arm_b[3] = {b[0] - rod_com[0], b[1] - rod_com[1], b[2] - rod_com[2]};
+    const double arm_p[3] = {p[0] - crank_com[0], p[1] - crank_com[1], p[2] - crank_com[2]};
+    const auto torque_b = cross(arm_b, f);
+    const auto torque_p = cross(arm_p, minus_f);
+    double* rod = d->xfrc_applied + 6 * c.rod_body;
+    double* crank = d->xfrc_applied + 6 * crank_body_;
+    for (int i = 0; i < 3; ++i) {
+      rod[i] += f[i];
+      rod[3 + i] += torque_b[i];
+      crank[i] += minus_f[i];
+      crank[3 + i] += torque_p[i];
+    }
+  }
+  mj_rnePostConstraint(mm, d);
+  // cfrc_int[b] = (torque, force) on body b's subtree from its parent; the force part is independent of the point.
+  const double* bearing = d->cfrc_int + 6 * crank_body_ + 3;
+  e.bearing_force = {bearing[0], bearing[1]};
+  for (size_t j = 0; j < cylinders_.size(); ++j) {
+    const Cylinder& c = cylinders_[j];
+    CylinderEvaluation& out = e.cylinders[j];
+    out.crank_pin_force = forces_[j];
+    const double* on_rod = d->cfrc_int + 6 * c.rod_body + 3;  // the piston on the rod through the wrist pin
+    out.wrist_pin_force = {-on_rod[0], -on_rod[1]};
+    const double* on_piston = d->cfrc_int + 6 * c.piston_body + 3;  // the frame on the piston through the slide
+    out.wall_force = on_piston[0] * c.n[0] + on_piston[1] * c.n[1];
+  }
+  mju_zero(d->xfrc_applied, 6 * mm->nbody);
+}
+
+void KCrankMujocoModel::Impl::fillShaking(Evaluation& e) {
+  mjModel* mm = model_.get();
+  mjData* d = data_.get();
+  const std::array<double, 3> gravity{mm->opt.gravity[0], mm->opt.gravity[1], mm->opt.gravity[2]};
+  mju_zero(mm->opt.gravity, 3);
+  mju_zero(d->xfrc_applied, 6 * mm->nbody);
+  mj_rnePostConstraint(mm, d);
+  for (int i = 0; i < 3; ++i) mm->opt.gravity[i] = gravity[i];
+  // Each tree's root (the crankshaft, each piston) receives from the frame the rate of change of its tree's momentum
+  // (no external loads now): cfrc_int at the tree's centre of mass c; about O, torque + c x force.
+  double dP[3] = {0, 0, 0}, dH[3] = {0, 0, 0};
+  std::vector<int> roots{crank_body_};
+  for (const Cylinder& c : cylinders_) roots.push_back(c.piston_body);
+  for (int b : roots) {
+    const double* frc = d->cfrc_int + 6 * b;
+    const double* c = d->subtree_com + 3 * mm->body_rootid[b];
+    const auto arm = cross(c, frc + 3);
+    for (int i = 0; i < 3; ++i) {
+      dP[i] += frc[3 + i];
+      dH[i] += frc[i] + arm[i];
+    }
+  }
+  e.shaking_force = {-dP[0], -dP[1]};
+  e.shaking_moment = {-dH[0], -dH[1], -dH[2]};
+}
+
+void KCrankMujocoModel::Impl::checkFinite(const Evaluation& e, double phi) const {
+  bool ok = std::isfinite(e.U) && std::isfinite(e.Q) && std::isfinite(e.drive_torque) &&
+            std::isfinite(e.bearing_force[0]) && std::isfinite(e.bearing_force[1]);
+  for (const CylinderEvaluation& c : e.cylinders)
+    ok = ok && std::isfinite(c.x_p) && std::isfinite(c.v_p) && std::isfinite(c.a_p) && std::isfinite(c.wall_force) &&
+         std::isfinite(c.crank_pin_force[0]) && std::isfinite(c.wrist_pin_force[0]);
+  if (!ok) throw std::runtime_error("MuJoCo returned non-finite values at phi = " + num(phi) + " rad");
+}
+
+double KCrankMujocoModel::Impl::potentialEnergy(double phi) {
+  close(phi);
+  return potential() - reference_potential_;
+}
+
+double KCrankMujocoModel::Impl::holdingTorque(double phi) {
+  close(phi);
+  solveVelocities(0.0);
+  mju_zero(data_->qacc, model_->nv);
+  return variant_ == Variant::kExact ? solveExactForces(phi, false) : solveSoftForces(phi, false);
+}
+
+Evaluation KCrankMujocoModel::Impl::evaluate(double phi) {
+  Evaluation e;
+  e.engine = toString(variant_);
+  e.phi = phi;
+  e.cylinders.resize(cylinders_.size());
+  const bool exact = variant_ == Variant::kExact;
+  const double omega = m_.engine.speed;
+
+  close(phi);
+  e.U = potential() - reference_potential_;
+  // Q: at rest, gravity alone (no gas)
+  e.Q = holdingTorque(phi);
+
+  // At speed: the exact kinematics, then forces by the variant's rule.
+  solveVelocities(omega);
+  solveAccelerations();
+  e.drive_torque = exact ? solveExactForces(phi, true) : solveSoftForces(phi, true);
+  const mjData* d = data_.get();
+  for (size_t j = 0; j < cylinders_.size(); ++j) {
+    const Cylinder& c = cylinders_[j];
+    CylinderEvaluation& out = e.cylinders[j];
+    out.x_p = d->qpos[c.slide_q];
+    out.v_p = d->qvel[c.slide_v];
+    out.a_p = d->qacc[c.slide_v];
+    out.gas_force = calcGasForce(m_, static_cast<int>(j), phi);
+    // the hinge turns the rod from -e toward -n: the rod angle of CONVENTIONS.md is minus the hinge angle
+    out.rod_angle = -d->qpos[c.wrist_q];
+    out.rod_omega = -d->qvel[c.wrist_v];
+    out.rod_alpha = -d->qacc[c.wrist_v];
+  }
+  fillReactions(e);
+
+  // Shaking: gravity and gas off, the same motion.
+  if (exact) {
+    solveAccelerations();
+  } else {
+    mjModel* sm = soft_model_.get();
+    const std::array<double, 3> gravity{sm->opt.gravity[0], sm->opt.gravity[1], sm->opt.gravity[2]};
+    mju_zero(sm->opt.gravity, 3);
+    solveSoftForces(phi, false);
+    for (int i = 0; i < 3; ++i) sm->opt.gravity[i] = gravity[i];
+  }
+  fillShaking(e);
+  checkFinite(e, phi);
+  return e;
+}
+
+KCrankMujocoModel::KCrankMujocoModel(const Mechanism& m, Variant variant) : impl_(std::make_unique<Impl>(m, variant)) {}
+KCrankMujocoModel::~KCrankMujocoModel() = default;
+KCrankMujocoModel::KCrankMujocoModel(KCrankMujocoModel&&) noexcept = default;
+KCrankMujocoModel& KCrankMujocoModel::operator=(KCrankMujocoModel&&) noexcept = default;
+
+Evaluation KCrankMujocoModel::evaluate(double phi) { return impl_->evaluate(phi); }
+double KCrankMujocoModel::calcPotentialEnergy(double phi) { return impl_->potentialEnergy(phi); }
+double KCrankMujocoModel::calcHoldingTorque(double phi) { return impl_->holdingTorque(phi); }
+double KCrankMujocoModel::getLoopClosureError() const { return impl_->closureError(); }
+const Mechanism& KCrankMujocoModel::mechanism() const { return impl_->mechanism(); }
+Variant KCrankMujocoModel::variant() const { return impl_->variant(); }
+
+}  // namespace crankcheck::mujoco_models
