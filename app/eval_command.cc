@@ -4,8 +4,7 @@
 #include <cmath>
 #include <memory>
 
-#include "crankcheck/analytic/reactions.h"
-#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/scales.h"
 #include "json_output.h"
 #include "scene_input.h"
@@ -17,8 +16,12 @@ void addEvalOptions(CLI::App& command, EvalOptions& options) {
   command.add_option("scene", options.scene_path, "Scene file (TOML), see docs/SCENE-FORMAT.md")->required();
   command.add_option("--phi-deg", options.phi_deg, "Crank angles of cylinder 0 in degrees, comma separated")
       ->capture_default_str();
-  command.add_option("--engine", options.engine, "Which engine computes the results")
-      ->check(CLI::IsMember({"analytic", "simbody", "both"}))
+  std::vector<std::string> choices{"both", "all"};
+  for (const Engine& e : validation::listEngines()) choices.push_back(e.name);
+  command.add_option("--engine", options.engine,
+                     "Which engine computes the results: " + validation::joinEngineNames(", ") +
+                         "; both (analytic and simbody) or all")
+      ->check(CLI::IsMember(choices))
       ->capture_default_str();
   command.add_option("--format", options.format, "Output format")
       ->check(CLI::IsMember({"table", "json"}))
@@ -71,48 +74,54 @@ std::vector<Mechanism> splitCases(const Mechanism& m) {
 
 }  // namespace
 
+/// The engines --engine names, in the registry's order ("both": analytic and simbody; "all": every engine).
+std::vector<const Engine*> selectEngines(const std::string& choice) {
+  std::vector<const Engine*> selected;
+  for (const Engine& e : validation::listEngines())
+    if (choice == "all" || e.name == choice || (choice == "both" && (e.name == "analytic" || e.name == "simbody")))
+      selected.push_back(&e);
+  return selected;
+}
+
 EvalOutput runEval(const EvalOptions& options) {
   const std::vector<double> angles_deg = parseAngleList(options.phi_deg, "--phi-deg");
   const Mechanism m = loadScene(options.scene_path);
-  const bool use_analytic = options.engine != "simbody";
-  const bool use_simbody = options.engine != "analytic";
-  std::unique_ptr<simbody_models::KCrankModel> model;
-  std::vector<std::unique_ptr<simbody_models::KCrankModel>> split_models;  // gas, inertia, gravity
-  if (use_simbody) {
+  const std::vector<Mechanism> cases = options.split ? splitCases(m) : std::vector<Mechanism>{};
+  // Every model is built before any angle is evaluated: an engine that cannot build the scene stops the command with
+  // one line (exit status 2) and nothing printed.
+  struct Models {
+    const Engine* engine;
+    std::unique_ptr<EngineModel> whole;
+    std::vector<std::unique_ptr<EngineModel>> split;  // gas, inertia, gravity
+  };
+  std::vector<Models> models;
+  for (const Engine* engine : selectEngines(options.engine)) {
     try {
-      model = std::make_unique<simbody_models::KCrankModel>(m);
-      if (options.split)
-        for (const Mechanism& c : splitCases(m)) split_models.push_back(std::make_unique<simbody_models::KCrankModel>(c));
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(options.scene_path + ": --engine " + options.engine + ": " + e.what());
+      Models built{engine, engine->build(m), {}};
+      for (const Mechanism& c : cases) built.split.push_back(engine->build(c));
+      models.push_back(std::move(built));
+    } catch (const std::exception& e) {
+      throw UsageError(options.scene_path + ": --engine " + engine->name + ": " + e.what());
     }
   }
   const validation::Scales scales = validation::calcScales(m);
   const double split_tolerance = validation::kAgreementMultiple * validation::kEps * scales.torque * scales.acceleration_conditioning;
-  const std::vector<Mechanism> cases = options.split ? splitCases(m) : std::vector<Mechanism>{};
 
-  // One row per angle and engine; for --engine both the analytic row comes first.
+  // One row per angle and engine, the engines in the registry's order (analytic first).
   std::vector<Evaluation> results;
   std::vector<double> results_phi_deg;  // the user's angle of each result, printed as given
   std::vector<TorqueSplit> splits;
   for (double phi_deg : angles_deg) {
     const double phi = radiansFromDegrees(phi_deg);
-    if (use_analytic) {
-      results.push_back(analytic::calcEvaluation(m, phi));
-      results_phi_deg.push_back(phi_deg);
-      if (options.split)
-        splits.push_back({analytic::calcReactions(cases[0], phi).drive_torque, analytic::calcReactions(cases[1], phi).drive_torque,
-                          analytic::calcReactions(cases[2], phi).drive_torque, results.back().drive_torque, split_tolerance});
-    }
-    if (use_simbody) {
+    for (Models& model : models) {
       try {
-        results.push_back(model->evaluate(phi));
+        results.push_back(model.whole->evaluate(phi));
         if (options.split)
-          splits.push_back({split_models[0]->evaluate(phi).drive_torque, split_models[1]->evaluate(phi).drive_torque,
-                            split_models[2]->evaluate(phi).drive_torque, results.back().drive_torque, split_tolerance});
-      } catch (const std::runtime_error& e) {
-        throw UsageError(options.scene_path + ": --engine " + options.engine + ": Simbody could not evaluate phi = " +
-                         std::to_string(phi_deg) + " deg: " + e.what());
+          splits.push_back({model.split[0]->evaluate(phi).drive_torque, model.split[1]->evaluate(phi).drive_torque,
+                            model.split[2]->evaluate(phi).drive_torque, results.back().drive_torque, split_tolerance});
+      } catch (const std::exception& e) {
+        throw UsageError(options.scene_path + ": --engine " + model.engine->name + ": " + model.engine->library +
+                         " could not evaluate phi = " + std::to_string(phi_deg) + " deg: " + e.what());
       }
       results_phi_deg.push_back(phi_deg);
     }
@@ -123,12 +132,12 @@ EvalOutput runEval(const EvalOptions& options) {
     std::string text = formatTable(m, options.scene_path, results, results_phi_deg);
     if (options.split) {
       char line[320];
-      std::snprintf(line, sizeof line, "\ndrive torque split [N m]: each part by the same engine with the other loads off\n%-9s %12s %16s %16s %16s %16s %16s  %s\n",
+      std::snprintf(line, sizeof line, "\ndrive torque split [N m]: each part by the same engine with the other loads off\n%-17s %12s %16s %16s %16s %16s %16s  %s\n",
                     "engine", "phi [deg]", "gas_torque", "inertia_torque", "gravity_torque", "sum", "drive_torque", "sum = whole");
       text += line;
       for (size_t i = 0; i < splits.size(); ++i) {
         const TorqueSplit& t = splits[i];
-        std::snprintf(line, sizeof line, "%-9s %12.10g %16.9g %16.9g %16.9g %16.9g %16.9g  %s (|difference| %.2e, tol %.2e)\n",
+        std::snprintf(line, sizeof line, "%-17s %12.10g %16.9g %16.9g %16.9g %16.9g %16.9g  %s (|difference| %.2e, tol %.2e)\n",
                       results[i].engine.c_str(), results_phi_deg[i], t.gas + 0.0, t.inertia + 0.0, t.gravity + 0.0, t.sum() + 0.0,
                       t.whole, t.holds() ? "holds" : "FAILS", std::fabs(t.sum() - t.whole), t.tolerance);
         text += line;

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// `crankcheck eval SCENE [--phi-deg LIST] [--engine analytic|simbody|both] [--format table|json]`
+/// `crankcheck eval SCENE [--phi-deg LIST] [--engine analytic|simbody|mujoco|mujoco-soft|mujoco-soft-stiff|both|all] [--format table|json]`
 
 #include <CLI/CLI.hpp>
 #include <string>

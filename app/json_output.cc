@@ -36,7 +36,7 @@ std::string formatTable(const Mechanism& m, const std::string& scene_path, const
   for (size_t i = 0; i < results.size(); ++i) {
     const Evaluation& ev = results[i];
     std::snprintf(line, sizeof line,
-                  "\n%-9s phi = %.10g deg   U = %.12g J   Q = %.12g N m   drive_torque = %.12g N m   "
+                  "\n%-17s phi = %.10g deg   U = %.12g J   Q = %.12g N m   drive_torque = %.12g N m   "
                   "bearing_force = (%.12g, %.12g) N\n",
                   ev.engine.c_str(), phi_deg[i], ev.U + 0.0, ev.Q, ev.drive_torque, ev.bearing_force[0],
                   ev.bearing_force[1]);

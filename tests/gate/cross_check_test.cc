@@ -18,6 +18,8 @@
 #include <map>
 #include <filesystem>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include "../support/cases.h"
 #include "crankcheck/analytic/gravity_torque.h"
@@ -27,6 +29,7 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/scales.h"
 
 namespace crankcheck {
@@ -131,6 +134,70 @@ INSTANTIATE_TEST_SUITE_P(Gate, CrossCheckTest, ::testing::ValuesIn(gateCases()),
                          });
 
 // Every example scene, both engines, through the same scene files the CLI reads.
+// The three-way gate: every other exact engine of the registry (MuJoCo's hard multipliers; a fourth engine joins by
+// its registration line) against the analytic engine and against Simbody, over the same sweep, at speed and at rest,
+// by the same rule. Soft engines (gated = false) are measured in the report, never here.
+::testing::AssertionResult agreeEngines(const Comparison& c, const std::string& a, const std::string& b) {
+  if (c.agrees()) return ::testing::AssertionSuccess();
+  char buffer[400];
+  std::snprintf(buffer, sizeof buffer,
+                "%s%s: %s %.17g, %s %.17g, |difference| %.3e > tol %.3e (= %g eps x scale %.3e x conditioning %.3g)",
+                c.quantity.c_str(), c.cylinder >= 0 ? (" of cylinder " + std::to_string(c.cylinder)).c_str() : "",
+                a.c_str(), c.a, b.c_str(), c.b, c.error(), c.tolerance(), kAgreementMultiple, c.scale, c.conditioning);
+  return ::testing::AssertionFailure() << buffer;
+}
+
+/// Builds every gated engine besides analytic and simbody for m.
+std::vector<std::pair<const Engine*, std::unique_ptr<EngineModel>>> buildOtherExactEngines(const Mechanism& m) {
+  std::vector<std::pair<const Engine*, std::unique_ptr<EngineModel>>> models;
+  for (const Engine* engine : validation::listReferenceEngines())
+    if (engine->name != "simbody") models.emplace_back(engine, engine->build(m));
+  return models;
+}
+
+void expectThreeWayAgreement(const Mechanism& m, const std::vector<double>& phis_deg, const std::string& trace) {
+  simbody_models::KCrankModel simbody(m);
+  auto others = buildOtherExactEngines(m);
+  ASSERT_FALSE(others.empty()) << "no third exact engine is registered";
+  for (double phi_deg : phis_deg) {
+    SCOPED_TRACE(trace + " phi_deg " + std::to_string(phi_deg));
+    const double phi = radiansFromDegrees(phi_deg);
+    const Evaluation a = analytic::calcEvaluation(m, phi), s = simbody.evaluate(phi);
+    for (auto& [engine, model] : others) {
+      const Evaluation e = model->evaluate(phi);
+      ASSERT_EQ(a.cylinders.size(), e.cylinders.size());
+      for (const Comparison& c : validation::compareEvaluations(m, a, e)) EXPECT_TRUE(agreeEngines(c, "analytic", engine->name));
+      for (const Comparison& c : validation::compareEvaluations(m, s, e)) EXPECT_TRUE(agreeEngines(c, "simbody", engine->name));
+    }
+  }
+}
+
+class ThreeWayTest : public ::testing::TestWithParam<CaseSpec> {};
+
+TEST_P(ThreeWayTest, EveryExactEngineAgrees) {
+  for (double rpm : {GetParam().rpm, 0.0}) {
+    CaseSpec spec = GetParam();
+    spec.rpm = rpm;
+    expectThreeWayAgreement(testing::makeMechanism(spec), testing::sweepPhisDeg(), testing::caseName(spec));
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Gate, ThreeWayTest, ::testing::ValuesIn(gateCases()),
+                         [](const auto& info) {
+                           const std::string name = testing::caseName(info.param);
+                           return name.substr(0, name.rfind('_'));  // the speed is implied by the stroke
+                         });
+
+TEST(ThreeWayScenes, EveryExampleSceneAgrees) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(CRANKCHECK_SCENES_DIR)) {
+    if (entry.path().extension() != ".toml") continue;
+    expectThreeWayAgreement(loadSceneFile(entry.path()), testing::sweepPhisDeg(), entry.path().filename().string());
+    ++count;
+  }
+  EXPECT_GE(count, 5);
+}
+
 TEST(CrossCheckScenes, EveryExampleSceneAgrees) {
   int count = 0;
   for (const auto& entry : std::filesystem::directory_iterator(CRANKCHECK_SCENES_DIR)) {

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/analytic/shaking.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/layouts.h"
 #include "crankcheck/validation/scales.h"
@@ -54,24 +57,29 @@ Mechanism withGas(Mechanism m) {
 class LayoutGateTest : public ::testing::TestWithParam<LayoutCase> {};
 
 // At speed and at rest, without and with gas (the gas force enters every reaction and the drive torque; the force
-// scale then includes the largest gas force).
+// scale then includes the largest gas force): the analytic engine against every other exact engine (Simbody, MuJoCo).
 TEST_P(LayoutGateTest, EveryQuantityAgrees) {
   for (const auto& [rpm, gas] : {std::pair{6000.0, false}, std::pair{0.0, false}, std::pair{6000.0, true}, std::pair{0.0, true}}) {
     Mechanism m = validation::makeLayoutMechanism(GetParam().layout, parts(), GetParam().rotation_deg);
     if (gas) m = withGas(m);
     m.speed_rpm = rpm;
     m.engine.speed = rpm * (M_PI / 30.0);
-    simbody_models::KCrankModel model(m);
+    // every exact engine besides the analytic one: simbody, mujoco (the registry's references)
+    std::vector<std::pair<const Engine*, std::unique_ptr<EngineModel>>> references;
+    for (const Engine* engine : validation::listReferenceEngines()) references.emplace_back(engine, engine->build(m));
     for (double phi_deg : testing::sweepPhisDeg()) {
       SCOPED_TRACE(caseName(GetParam()) + " at " + std::to_string(rpm) + " rpm" + (gas ? " with gas" : "") + ", phi_deg " +
                    std::to_string(phi_deg));
       const double phi = radiansFromDegrees(phi_deg);
-      const Evaluation a = analytic::calcEvaluation(m, phi), s = model.evaluate(phi);
-      ASSERT_EQ(a.cylinders.size(), s.cylinders.size());
-      for (const validation::Comparison& c : validation::compareEvaluations(m, a, s))
-        EXPECT_TRUE(c.agrees()) << c.quantity << (c.cylinder >= 0 ? " of cylinder " + std::to_string(c.cylinder) : "")
-                                << ": analytic " << c.a << ", simbody " << c.b << ", |difference| " << c.error()
-                                << " > tol " << c.tolerance();
+      const Evaluation a = analytic::calcEvaluation(m, phi);
+      for (auto& [engine, model] : references) {
+        const Evaluation s = model->evaluate(phi);
+        ASSERT_EQ(a.cylinders.size(), s.cylinders.size());
+        for (const validation::Comparison& c : validation::compareEvaluations(m, a, s))
+          EXPECT_TRUE(c.agrees()) << c.quantity << (c.cylinder >= 0 ? " of cylinder " + std::to_string(c.cylinder) : "")
+                                  << ": analytic " << c.a << ", " << engine->name << " " << c.b << ", |difference| "
+                                  << c.error() << " > tol " << c.tolerance();
+      }
       if (gas) {
         for (size_t j = 0; j < a.cylinders.size(); ++j)
           EXPECT_EQ(a.cylinders[j].gas_force, calcGasForce(m, static_cast<int>(j), phi));  // the input, as given

@@ -1,0 +1,14 @@
+#pragma once
+/// @file
+/// Simbody's engine for the harness (crankcheck/scene/engine.h): "simbody", the full KCrankModel (k_crank_model.h).
+/// Gated: it must agree with every other exact engine.
+
+#include <vector>
+
+#include "crankcheck/scene/engine.h"
+
+namespace crankcheck::simbody_models {
+
+std::vector<Engine> describeEngines();
+
+}  // namespace crankcheck::simbody_models
