@@ -11,8 +11,9 @@
 
 namespace crankcheck::validation {
 
-/// One line of the summary: a quantity over one family of cases.
+/// One line of the summary: a quantity over one family of cases, the analytic engine against one exact engine.
 struct SummaryRow {
+  std::string engine;            ///< the engine compared with the analytic one (simbody, mujoco, ...)
   std::string quantity, family;
   double worst_rel_error = 0.0;  ///< worst error / scale over the family
   std::string where;             ///< case, crank angle and speed of the worst
@@ -20,7 +21,8 @@ struct SummaryRow {
   bool pass = true;              ///< every comparison of the family agreed
 };
 
-/// Groups the crosscheck table by (quantity, family).
+/// Groups the crosscheck table by (engine, quantity, family), the gated engines only (soft engines are reported in
+/// part engines, never gated).
 std::vector<SummaryRow> summarize(const TableSet& tables);
 
 /// The summary as a plain-text table for the terminal.
