@@ -1,19 +1,26 @@
 # `cmake --install build --prefix P`: the libraries and their headers, the crankcheck CLI, the gnuplot scripts of
 # the report, the example scenes, and the CMake package (P/lib/cmake/crankcheck/crankcheckConfig.cmake) with its targets:
 #   crankcheck::scene, crankcheck::analytic                     (need toml++ and Eigen)
-#   crankcheck::simbody_models, crankcheck::validation,
-#   crankcheck::crankcheck (the CLI, an imported executable)    (need Simbody, Google Benchmark, nlohmann-json)
-# Two export sets, so that a consumer of the analytic library does not need Simbody installed.
+#   crankcheck::simbody_models                                  (needs Simbody)
+#   crankcheck::mujoco_models                                   (needs MuJoCo, Debian libmujoco-dev)
+#   crankcheck::validation,
+#   crankcheck::crankcheck (the CLI, an imported executable)    (need both engines, Google Benchmark, nlohmann-json)
+# One export set per engine and one for the harness, so that a consumer of the analytic library needs neither Simbody
+# nor MuJoCo installed, and a consumer of one engine not the other.
 include(CMakePackageConfigHelpers)
 
 set(CRANKCHECK_CMAKE_INSTALL_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/crankcheck)
 
 install(TARGETS crankcheck_scene crankcheck_analytic EXPORT crankcheckCoreTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-install(TARGETS crankcheck_simbody_models crankcheck_validation crankcheck EXPORT crankcheckSimbodyTargets
+install(TARGETS crankcheck_simbody_models EXPORT crankcheckSimbodyTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(TARGETS crankcheck_mujoco_models EXPORT crankcheckMujocoTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(TARGETS crankcheck_validation crankcheck EXPORT crankcheckHarnessTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-foreach(part scene analytic simbody_models validation)
+foreach(part scene analytic simbody_models mujoco_models validation)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${part}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/reports/ DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/reports
@@ -23,6 +30,8 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${CRANKCHECK_DATA_IN
 
 install(EXPORT crankcheckCoreTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
 install(EXPORT crankcheckSimbodyTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
+install(EXPORT crankcheckMujocoTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
+install(EXPORT crankcheckHarnessTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/crankcheckConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/crankcheckConfig.cmake
                               INSTALL_DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})

@@ -16,6 +16,7 @@
 
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
+#include "crankcheck/validation/scales.h"
 #include "run_cli.h"
 
 namespace crankcheck {
@@ -70,6 +71,54 @@ TEST(Cli, EvalJsonForEveryExampleSceneWithBothEngines) {
     }
     EXPECT_EQ(doc["results"][2]["phi_deg"].get<double>(), 37.5);
   }
+}
+
+// --engine all: one result per angle and registered engine, in the registry's order, each with every quantity; the
+// exact MuJoCo engine's JSON numbers agree with the analytic engine's by the gate's rule (scales.h).
+TEST(Cli, EvalJsonWithEveryEngine) {
+  const auto scene = std::filesystem::path(CRANKCHECK_SCENES_DIR) / "v8_cross_plane.toml";  // layout, spacing, gas
+  const RunResult r = run("eval " + scene.string() + " --phi-deg 0,37.5 --engine all --format json");
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  const std::vector<std::string> engines = {"analytic", "simbody", "mujoco", "mujoco-soft", "mujoco-soft-stiff"};
+  ASSERT_EQ(doc["results"].size(), 2 * engines.size());
+  for (size_t i = 0; i < doc["results"].size(); ++i) EXPECT_EQ(doc["results"][i]["engine"], engines[i % engines.size()]);
+  const Mechanism m = loadSceneFile(scene);
+  const validation::Scales sc = validation::calcScales(m);
+  for (size_t angle = 0; angle < 2; ++angle) {
+    const auto& a = doc["results"][angle * engines.size()];
+    const auto& mj = doc["results"][angle * engines.size() + 2];
+    const double force_tol = validation::kAgreementMultiple * validation::kEps * sc.force * sc.acceleration_conditioning;
+    const double torque_tol = validation::kAgreementMultiple * validation::kEps * sc.torque * sc.acceleration_conditioning;
+    EXPECT_NEAR(a["drive_torque"].get<double>(), mj["drive_torque"].get<double>(), torque_tol);
+    for (int i = 0; i < 2; ++i)
+      EXPECT_NEAR(a["bearing_force"][i].get<double>(), mj["bearing_force"][i].get<double>(), force_tol);
+    for (size_t j = 0; j < a["cylinders"].size(); ++j)
+      EXPECT_NEAR(a["cylinders"][j]["wall_force"].get<double>(), mj["cylinders"][j]["wall_force"].get<double>(), force_tol);
+  }
+}
+
+// A scene MuJoCo cannot build (a massless piston: MuJoCo refuses bodies on joints below 1e-15 kg) is refused by the
+// mujoco engines with one line naming the file, the engine and the key; the other engines take it.
+TEST(Cli, SceneMujocoCannotBuildIsRefusedWithOneLine) {
+  testing::FreshFolder folder;
+  const auto path = folder.path() / "massless_piston.toml";
+  {
+    std::ofstream out(path);
+    std::string text = readFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml");
+    const size_t at = text.find("[piston]");
+    ASSERT_NE(at, std::string::npos);
+    out << text.substr(0, at) << "[piston]\nmass = 0.0\n" << text.substr(text.find('\n', text.find("mass", at)) + 1);
+  }
+  for (const char* engine : {"mujoco", "mujoco-soft", "all"}) {
+    const RunResult r = run("eval " + path.string() + " --engine " + engine + " --format json");
+    EXPECT_EQ(r.exit_status, 2) << engine;
+    EXPECT_EQ(r.out, "") << "no partial output";
+    EXPECT_NE(r.err.find(path.string() + ": --engine mujoco"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("piston.mass"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_EQ(run("eval " + path.string() + " --engine both --format json").exit_status, 0);
 }
 
 // 17 significant digits round-trip: the printed numbers are the library's doubles, bit for bit.

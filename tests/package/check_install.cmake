@@ -2,7 +2,8 @@
 #   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DVERSION=... -P check_install.cmake
 # 1. `cmake --install BUILD_DIR --prefix WORK_DIR/prefix`;
 # 2. examples/consumer configured against that prefix (find_package(crankcheck 0.2)), built, both programs run;
-# 3. the same with COMPONENTS analytic while Simbody cannot be found (the analytic library needs no Simbody);
+# 3. the same with COMPONENTS analytic while Simbody cannot be found (the analytic library needs no Simbody), and
+#    while MuJoCo cannot be found;
 # 4. the installed CLI: its --version is the project's, and `validate --quick` draws the figures with the gnuplot
 #    scripts it finds relative to itself (the build's install prefix is not WORK_DIR/prefix, so no compiled-in
 #    path can be what found them);
@@ -49,6 +50,10 @@ run("analytic-only consumer: configure without Simbody" ${CMAKE_COMMAND} -S ${co
     -DCMAKE_BUILD_TYPE=Release)
 run("analytic-only consumer: build" ${CMAKE_COMMAND} --build ${WORK_DIR}/analytic_only -j2)
 run("analytic-only consumer: run" ${WORK_DIR}/analytic_only/gravity_torque_check)
+# A consumer that does not want MuJoCo: the same with MuJoCo's package hidden.
+run("consumer without MuJoCo: configure" ${CMAKE_COMMAND} -S ${consumer} -B ${WORK_DIR}/without_mujoco
+    -DCMAKE_PREFIX_PATH=${prefix} -DANALYTIC_ONLY=ON -DCMAKE_DISABLE_FIND_PACKAGE_mujoco=ON -DCMAKE_BUILD_TYPE=Release)
+run("consumer without MuJoCo: build" ${CMAKE_COMMAND} --build ${WORK_DIR}/without_mujoco -j2)
 
 run("installed CLI: --version" ${prefix}/bin/crankcheck --version)
 if(NOT run_output MATCHES "crankcheck ${VERSION}")
