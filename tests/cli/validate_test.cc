@@ -92,7 +92,10 @@ TEST_F(ValidateTest, ShardsMergeIntoTheSameReportAsOneRun) {
                                (dir_ / "merged").string());
   ASSERT_EQ(merged.exit_status, 0) << merged.err;
   for (const char* table : kTables) {
-    if (std::string(table) == "speed_vs_error" || std::string(table) == "integrator_pareto") continue;  // timings
+    const std::string name = table;
+    if (name == "speed_vs_error" || name == "integrator_pareto" || name == "engine_cost" || name == "engines" ||
+        name == "engines_league")
+      continue;  // timings (the errors of part 13 come from crosscheck, compared here)
     EXPECT_EQ(readFile(dir_ / "merged/data" / (std::string(table) + ".csv")),
               readFile(dir_ / "whole/data" / (std::string(table) + ".csv")))
         << table;

@@ -18,7 +18,7 @@ fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
 
 # The timing tables: their ns_per_* columns are measurements (never identical from run to run); the merge keeps them
 # as the shards measured them. Everything else in them is computed and must match.
-timing_tables="speed_vs_error.csv integrator_pareto.csv"
+timing_tables="speed_vs_error.csv integrator_pareto.csv engine_cost.csv engines.csv engines_league.csv"
 drop_timings() {
   awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; ++i) t[i] = ($i ~ /^ns_per_/) }
                     { s = ""; n = 0; for (i = 1; i <= NF; ++i) if (!t[i]) s = s (n++ ? OFS : "") $i; print s }' "$1"

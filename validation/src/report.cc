@@ -450,6 +450,7 @@ void addBalancePart(std::vector<Block>& doc, const TableSet& tables, const std::
 
 void renderReport(const TableSet& input, const ReportInfo& info, const fs::path& dir) {
   TableSet tables = input;
+  sortTables(tables);          // first: the derived tables then do not depend on the order tasks ran in
   deriveEngineTables(tables);  // part 13's table, from the cross-checks of every engine and their costs
   sortTables(tables);
   writeTables(tables, dir);
