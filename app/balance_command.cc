@@ -83,7 +83,7 @@ std::string runBalance(const BalanceOptions& options) {
       nlohmann::ordered_json h;
       h["n"] = row.n;
       h["analytic"] = harmonicToJson(withExactZeros(row.analytic, row.symmetry), axial);
-      h["simbody"] = harmonicToJson(row.simbody, axial);
+      for (const auto& [engine, harmonic] : row.engines) h[engine] = harmonicToJson(harmonic, axial);
       const auto& s = row.symmetry;
       auto decided = [&](bool v) { return s.decided ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
       h["vanishes_by_symmetry"] = {{"force", decided(s.force_cancels)},
@@ -95,23 +95,31 @@ std::string runBalance(const BalanceOptions& options) {
     return dumpJson(doc);
   }
   std::string out = "balance of " + options.scene_path + " at " + std::to_string(m.speed_rpm) +
-                    " rpm: amplitude of each harmonic n (closed form / Simbody DFT); F [N], M [N m] about O\n";
-  char line[512];
-  std::snprintf(line, sizeof line, "%3s %25s %25s %25s %25s  %s\n", "n", "|F_s|", "|M_X|", "|M_Y|", "|M_Z|",
+                    " rpm: amplitude of each harmonic n (closed form / Simbody DFT / MuJoCo DFT); F [N], M [N m] about O\n";
+  char line[640];
+  std::snprintf(line, sizeof line, "%3s %37s %37s %37s %37s  %s\n", "n", "|F_s|", "|M_X|", "|M_Y|", "|M_Z|",
                 "vanishes by symmetry");
   out += line;
-  auto pair = [](double a, double s) {
-    char b[64];
-    std::snprintf(b, sizeof b, "%11.4e / %11.4e", a, s);
-    return std::string(b);
+  // "closed form / engine / engine ..." of one amplitude
+  auto all = [](double closed, const validation::BalanceRow& row, const auto& amplitude) {
+    std::string text;
+    char b[32];
+    std::snprintf(b, sizeof b, "%11.4e", closed);
+    text = b;
+    for (const auto& [engine, harmonic] : row.engines) {
+      std::snprintf(b, sizeof b, " / %11.4e", amplitude(harmonic));
+      text += b;
+    }
+    return text;
   };
   for (const validation::BalanceRow& row : rows) {
     const analytic::ShakingHarmonic a = withExactZeros(row.analytic, row.symmetry);
-    const std::string mx = axial ? pair(a.calcMomentAmplitude(0), row.simbody.calcMomentAmplitude(0)) : "-";
-    const std::string my = axial ? pair(a.calcMomentAmplitude(1), row.simbody.calcMomentAmplitude(1)) : "-";
-    std::snprintf(line, sizeof line, "%3d %25s %25s %25s %25s  %s\n", row.n,
-                  pair(a.calcForceAmplitude(), row.simbody.calcForceAmplitude()).c_str(), mx.c_str(), my.c_str(),
-                  pair(a.calcMomentAmplitude(2), row.simbody.calcMomentAmplitude(2)).c_str(),
+    auto moment = [](int axis) { return [axis](const analytic::ShakingHarmonic& h) { return h.calcMomentAmplitude(axis); }; };
+    const std::string mx = axial ? all(a.calcMomentAmplitude(0), row, moment(0)) : "-";
+    const std::string my = axial ? all(a.calcMomentAmplitude(1), row, moment(1)) : "-";
+    std::snprintf(line, sizeof line, "%3d %37s %37s %37s %37s  %s\n", row.n,
+                  all(a.calcForceAmplitude(), row, [](const analytic::ShakingHarmonic& h) { return h.calcForceAmplitude(); }).c_str(),
+                  mx.c_str(), my.c_str(), all(a.calcMomentAmplitude(2), row, moment(2)).c_str(),
                   reasonOf(row.symmetry, axial).c_str());
     out += line;
   }

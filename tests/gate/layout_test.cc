@@ -175,33 +175,37 @@ TEST(RodModelGate, TwoMassRodIsExactOnlyWithDeltaIOrWhenItVanishes) {
   }
 }
 
-// Balance: the closed-form harmonics against a DFT of Simbody's shaking force and moment (64 angles, harmonics 1..8),
+// Balance: the closed-form harmonics against a DFT of each exact engine's (Simbody's, MuJoCo's) shaking force and moment
+// (64 angles, harmonics 1..8),
 // for every layout of the balance table. Each DFT coefficient is (2 / N) sum of N samples, each within the gate's
 // 64 eps x scale x conditioning of the closed form: the coefficients agree within twice that. Aliasing folds
 // harmonic 64 - n onto n: below lambda^56 = 1e-29 of the primary at lambda = 0.3. Where a harmonic vanishes
-// exactly by symmetry, Simbody's must be rounding too.
+// exactly by symmetry, each engine's must be rounding too.
 class BalanceGateTest : public ::testing::TestWithParam<LayoutCase> {};
 
-TEST_P(BalanceGateTest, HarmonicsAgreeWithSimbodysDft) {
+TEST_P(BalanceGateTest, HarmonicsAgreeWithEachEnginesDft) {
   const Mechanism m = validation::makeLayoutMechanism(GetParam().layout, parts(), GetParam().rotation_deg);
   const validation::Scales sc = validation::calcScales(m);
   const double force_tol = 2 * validation::kAgreementMultiple * validation::kEps * sc.force * sc.acceleration_conditioning;
   const double moment_tol = 2 * validation::kAgreementMultiple * validation::kEps * sc.moment * sc.acceleration_conditioning;
   for (const validation::BalanceRow& row : validation::calcBalance(m, 8, 64)) {
-    SCOPED_TRACE("harmonic " + std::to_string(row.n));
-    for (int i = 0; i < 2; ++i) {
-      EXPECT_TRUE(testing::isClose(row.analytic.force_cos[i], row.simbody.force_cos[i], force_tol));
-      EXPECT_TRUE(testing::isClose(row.analytic.force_sin[i], row.simbody.force_sin[i], force_tol));
+    ASSERT_EQ(row.engines.size(), validation::listReferenceEngines().size());
+    for (const auto& [engine, h] : row.engines) {
+      SCOPED_TRACE(engine + ", harmonic " + std::to_string(row.n));
+      for (int i = 0; i < 2; ++i) {
+        EXPECT_TRUE(testing::isClose(row.analytic.force_cos[i], h.force_cos[i], force_tol));
+        EXPECT_TRUE(testing::isClose(row.analytic.force_sin[i], h.force_sin[i], force_tol));
+      }
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_TRUE(testing::isClose(row.analytic.moment_cos[i], h.moment_cos[i], moment_tol));
+        EXPECT_TRUE(testing::isClose(row.analytic.moment_sin[i], h.moment_sin[i], moment_tol));
+      }
+      ASSERT_TRUE(row.symmetry.decided);
+      if (row.symmetry.force_cancels) EXPECT_LT(h.calcForceAmplitude(), 2 * force_tol);
+      if (row.symmetry.moment_z_cancels) EXPECT_LT(h.calcMomentAmplitude(2), 2 * moment_tol);
+      if (row.symmetry.moment_xy_cancels)
+        EXPECT_LT(std::hypot(h.calcMomentAmplitude(0), h.calcMomentAmplitude(1)), 2 * moment_tol);
     }
-    for (int i = 0; i < 3; ++i) {
-      EXPECT_TRUE(testing::isClose(row.analytic.moment_cos[i], row.simbody.moment_cos[i], moment_tol));
-      EXPECT_TRUE(testing::isClose(row.analytic.moment_sin[i], row.simbody.moment_sin[i], moment_tol));
-    }
-    ASSERT_TRUE(row.symmetry.decided);
-    if (row.symmetry.force_cancels) EXPECT_LT(row.simbody.calcForceAmplitude(), 2 * force_tol);
-    if (row.symmetry.moment_z_cancels) EXPECT_LT(row.simbody.calcMomentAmplitude(2), 2 * moment_tol);
-    if (row.symmetry.moment_xy_cancels)
-      EXPECT_LT(std::hypot(row.simbody.calcMomentAmplitude(0), row.simbody.calcMomentAmplitude(1)), 2 * moment_tol);
   }
 }
 

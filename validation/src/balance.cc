@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
-#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/layouts.h"
 #include "crankcheck/validation/scales.h"
 
@@ -17,30 +18,43 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples) 
   if (samples < 2 * order + 1) throw std::invalid_argument("calcBalance: samples must be >= 2 order + 1");
   const std::vector<analytic::ShakingHarmonic> closed = analytic::calcShakingHarmonics(m, order);
 
-  // Simbody's F_s and M_s over one revolution, at phi_i = 2 pi i / N.
-  simbody_models::KCrankModel model(m);
-  std::vector<Evaluation> values;
-  for (int i = 0; i < samples; ++i) values.push_back(model.evaluate(2.0 * M_PI * i / samples));
+  // Each reference engine's F_s and M_s over one revolution, at phi_i = 2 pi i / N.
+  std::vector<std::pair<std::string, std::vector<Evaluation>>> values;
+  for (const Engine* engine : listReferenceEngines()) {
+    std::unique_ptr<EngineModel> model;
+    try {
+      model = engine->build(m);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("--engine " + engine->name + ": " + e.what());
+    }
+    std::vector<Evaluation> turn;
+    for (int i = 0; i < samples; ++i) turn.push_back(model->evaluate(2.0 * M_PI * i / samples));
+    values.emplace_back(engine->name, std::move(turn));
+  }
 
   std::vector<BalanceRow> rows;
   for (int n = 1; n <= order; ++n) {
     BalanceRow row;
     row.n = n;
     row.analytic = closed[n - 1];
-    row.simbody.n = n;
-    for (int i = 0; i < samples; ++i) {
-      // The DFT: c_n = (2 / N) sum f(phi_i) cos(n phi_i), s_n likewise (n < N / 2). n i mod N keeps the angle exact.
-      const double angle = 2.0 * M_PI * static_cast<double>((static_cast<long long>(n) * i) % samples) / samples;
-      const double c = 2.0 * std::cos(angle) / samples, s = 2.0 * std::sin(angle) / samples;
-      const Evaluation& v = values[i];
-      for (int k = 0; k < 2; ++k) {
-        row.simbody.force_cos[k] += v.shaking_force[k] * c;
-        row.simbody.force_sin[k] += v.shaking_force[k] * s;
+    for (const auto& [name, turn] : values) {
+      analytic::ShakingHarmonic h;
+      h.n = n;
+      for (int i = 0; i < samples; ++i) {
+        // The DFT: c_n = (2 / N) sum f(phi_i) cos(n phi_i), s_n likewise (n < N / 2). n i mod N keeps the angle exact.
+        const double angle = 2.0 * M_PI * static_cast<double>((static_cast<long long>(n) * i) % samples) / samples;
+        const double c = 2.0 * std::cos(angle) / samples, s = 2.0 * std::sin(angle) / samples;
+        const Evaluation& v = turn[i];
+        for (int k = 0; k < 2; ++k) {
+          h.force_cos[k] += v.shaking_force[k] * c;
+          h.force_sin[k] += v.shaking_force[k] * s;
+        }
+        for (int k = 0; k < 3; ++k) {
+          h.moment_cos[k] += v.shaking_moment[k] * c;
+          h.moment_sin[k] += v.shaking_moment[k] * s;
+        }
       }
-      for (int k = 0; k < 3; ++k) {
-        row.simbody.moment_cos[k] += v.shaking_moment[k] * c;
-        row.simbody.moment_sin[k] += v.shaking_moment[k] * s;
-      }
+      row.engines.emplace_back(name, h);
     }
     row.symmetry = analytic::findHarmonicSymmetry(m, n);
     rows.push_back(row);
@@ -48,11 +62,18 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples) 
   return rows;
 }
 
+const analytic::ShakingHarmonic& BalanceRow::of(const std::string& name) const {
+  for (const auto& [engine, harmonic] : engines)
+    if (engine == name) return harmonic;
+  throw std::out_of_range("BalanceRow: no harmonic of engine " + name);
+}
+
 TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>& scenes) {
   constexpr int kOrder = 8;
   Table summary, harmonics;
-  summary.columns = {"layout", "description", "part", "textbook", "vanishes_exactly", "analytic_amplitude",
-                     "simbody_amplitude", "relative_amplitude", "verdict"};
+  summary.columns = {"layout", "description", "part", "textbook", "vanishes_exactly", "analytic_amplitude"};
+  for (const Engine* engine : listReferenceEngines()) summary.columns.push_back(engine->name + "_amplitude");
+  summary.columns.insert(summary.columns.end(), {"relative_amplitude", "verdict"});
   harmonics.columns = {"layout_index", "layout", "n", "force_relative", "couple_relative", "rocking_relative",
                        "force_vanishes", "couple_vanishes"};
   Mechanism base = parts;
@@ -85,14 +106,16 @@ TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>&
       for (int part = 0; part < 2; ++part) {
         const bool vanishes = part == 0 ? s.force_cancels : s.moment_xy_cancels;
         const double analytic = part == 0 ? force : couple;
-        const double simbody = part == 0 ? row.simbody.calcForceAmplitude()
-                                         : std::hypot(row.simbody.calcMomentAmplitude(0), row.simbody.calcMomentAmplitude(1));
         const std::optional<bool>& claim = claims[part];
-        summary.rows.push_back({layout.name, layout.description, (part == 0 ? "F" : "M") + std::to_string(row.n),
-                                !claim ? "no claim" : *claim ? "vanishes" : "does not vanish", vanishes ? "yes" : "no",
-                                formatNumber(analytic), formatNumber(simbody),
-                                formatNumber(analytic / (part == 0 ? sc.force : sc.moment)),
-                                !claim ? "-" : *claim == vanishes ? "agrees" : "DIFFERS"});
+        std::vector<std::string> fields = {layout.name, layout.description, (part == 0 ? "F" : "M") + std::to_string(row.n),
+                                           !claim ? "no claim" : *claim ? "vanishes" : "does not vanish",
+                                           vanishes ? "yes" : "no", formatNumber(analytic)};
+        for (const auto& [name, h] : row.engines)
+          fields.push_back(formatNumber(part == 0 ? h.calcForceAmplitude()
+                                                  : std::hypot(h.calcMomentAmplitude(0), h.calcMomentAmplitude(1))));
+        fields.push_back(formatNumber(analytic / (part == 0 ? sc.force : sc.moment)));
+        fields.push_back(!claim ? "-" : *claim == vanishes ? "agrees" : "DIFFERS");
+        summary.rows.push_back(fields);
       }
     }
   }

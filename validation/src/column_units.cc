@@ -46,7 +46,7 @@ const std::map<std::string, std::string>& columnUnits() {
       {"max_magnitude", "N"},
       // the row says which quantity, and so the unit
       {"max_abs_error", "SI"}, {"program_value", "SI"}, {"simbody_value", "SI"}, {"analytic_value", "SI"},
-      {"balance/simbody_amplitude", "SI"}, {"balance_harmonics/simbody_amplitude", "SI"}, {"x", "SI"},
+      {"balance/simbody_amplitude", "SI"}, {"balance/mujoco_amplitude", "SI"}, {"balance_harmonics/simbody_amplitude", "SI"}, {"x", "SI"},
       {"errata/value", "see measure"},
   };
   return units;

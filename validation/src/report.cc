@@ -402,18 +402,18 @@ void addBalancePart(std::vector<Block>& doc, const TableSet& tables, const std::
                  "the shaft (throws 0.1 m apart, the two cylinders of a shared pin 0.02 m apart, O in the middle). F1, F2: "
                  "primary and secondary shaking force [N]; M1, M2: primary and secondary couple about X and Y [N m]. "
                  "'Vanishes exactly' is decided in integers (sums of roots of unity over the throws), not read off a "
-                 "small number; the amplitudes are the closed form's and Simbody's (a DFT of its own shaking force and "
-                 "moment over one revolution). The textbook column is the claim of the standard balance tables "
+                 "small number; the amplitudes are the closed form's, Simbody's and MuJoCo's (a DFT of each engine's own "
+                 "shaking force and moment over one revolution). The textbook column is the claim of the standard balance tables "
                  "(two-term piston motion, both cylinders of a pin in one plane). A DIFFERS is a finding, not a failure "
                  "of the engines (they agree, see the summary): for example the 0.02 m between the two cylinders of a "
                  "shared pin, which the tables ignore, gives a flat-plane V8 a secondary couple."});
   doc.push_back({Block::kTable, "",
                  {"layout", "part", "textbook", "vanishes exactly", "amplitude (closed form)", "amplitude (Simbody)",
-                  "relative", "verdict"},
+                  "amplitude (MuJoCo)", "relative", "verdict"},
                  tableRows(tables, "balance",
                            {"layout", "part", "textbook", "vanishes_exactly", "analytic_amplitude", "simbody_amplitude",
-                            "relative_amplitude", "verdict"},
-                           {false, false, false, false, true, true, true, false})});
+                            "mujoco_amplitude", "relative_amplitude", "verdict"},
+                           {false, false, false, false, true, true, true, true, false})});
   // Beyond the two-term rules: the largest harmonic above 2 that the exact motion leaves, per layout.
   const auto it = tables.find("balance_harmonics");
   if (it != tables.end()) {

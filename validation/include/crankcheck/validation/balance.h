@@ -1,10 +1,13 @@
 #pragma once
 /// @file
-/// Balance: the shaking force and moment harmonic by harmonic, from both engines. The analytic engine gives each
+/// Balance: the shaking force and moment harmonic by harmonic, from every exact engine. The analytic engine gives each
 /// harmonic in closed form (analytic/shaking.h: calcShakingHarmonics) and decides exactly which vanish by symmetry
-/// (findHarmonicSymmetry); Simbody's harmonics come from a DFT of its own shaking force and moment over one
-/// revolution (KCrankModel::evaluate at `samples` equally spaced crank angles).
+/// (findHarmonicSymmetry); each other exact engine's harmonics (Simbody, MuJoCo: engines.h, listReferenceEngines)
+/// come from a DFT of its own shaking force and moment over one revolution (its evaluate at `samples` equally spaced
+/// crank angles).
 
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "crankcheck/analytic/shaking.h"
@@ -16,21 +19,25 @@ namespace crankcheck::validation {
 struct BalanceRow {
   int n = 0;
   analytic::ShakingHarmonic analytic;   ///< closed form
-  analytic::ShakingHarmonic simbody;    ///< DFT of Simbody's F_s and M_s
+  /// (engine name, DFT of that engine's F_s and M_s) for every reference engine, in the registry's order
+  std::vector<std::pair<std::string, analytic::ShakingHarmonic>> engines;
   analytic::HarmonicSymmetry symmetry;  ///< what vanishes exactly by the layout's symmetry
+  /// The harmonic of engine `name`. @throws std::out_of_range if that engine was not evaluated.
+  const analytic::ShakingHarmonic& of(const std::string& name) const;
 };
 
 /// Harmonics 1..order of both engines. `samples` = 0 chooses max(64, 4 order) angles per revolution: the DFT then
 /// folds harmonic samples - n onto n, whose size is below lambda^(samples - n) times the primary (nothing at engine
 /// crank ratios; the README states the bound).
-/// @throws std::invalid_argument if order < 1 or samples is not 0 and below 2 order + 1; what KCrankModel throws.
+/// @throws std::invalid_argument if order < 1 or samples is not 0 and below 2 order + 1, or an engine cannot build m
+///         (the message names the engine); std::runtime_error if an engine fails.
 std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples = 0);
 
 /// The report's balance tables for every layout of layouts.h, built on `parts` (its crank, rod and piston) at
 /// 6000 rpm, and for each of `scenes` as it is (the user's scenes: harmonics only, no textbook claim), harmonics 1..8
 /// from both engines:
 ///   balance            layout,description,part,textbook,vanishes_exactly,analytic_amplitude,simbody_amplitude,
-///                      relative_amplitude,verdict
+///                      mujoco_amplitude,relative_amplitude,verdict (one <engine>_amplitude per reference engine)
 ///                      (part F1, F2: primary and secondary force [N]; M1, M2: couples about X, Y [N m]; textbook
 ///                      "vanishes" | "does not vanish" | "no claim"; relative to the force or moment scale of
 ///                      scales.h; verdict "agrees" | "DIFFERS" | "-")
