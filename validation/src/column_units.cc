@@ -28,7 +28,7 @@ const std::map<std::string, std::string>& columnUnits() {
       {"ratio_to_inertia", "-"}, {"ratio_to_k1", "-"}, {"rel_error", "-"}, {"relative_amplitude", "-"},
       {"relative_error", "-"}, {"rocking_relative", "-"}, {"scene_index", "-"}, {"share", "-"},
       {"simbody_ratio_to_k1", "-"}, {"tolerance_rel", "-"}, {"two_mass_delta_I_error", "-"}, {"two_mass_error", "-"},
-      {"worst_rel_error", "-"}, {"worst_rel_error_analytic", "-"}, {"worst_rel_error_simbody", "-"},
+      {"worst_rel_error", "-"}, {"worst_rel_error_analytic", "-"}, {"worst_rel_error_simbody", "-"}, {"worst_rel_error_mujoco", "-"},
       {"eq15_coefficients/printed", "-"}, {"exact", "-"},
       // with units
       {"I_o", "kg m^2"}, {"I_w", "kg m^2"}, {"m_k", "kg"}, {"m_o", "kg"}, {"m_p", "kg"}, {"m_s", "kg"},
@@ -45,7 +45,7 @@ const std::map<std::string, std::string>& columnUnits() {
       {"bearing_x", "N"}, {"bearing_y", "N"}, {"crank_pin_radial", "N"}, {"crank_pin_tangential", "N"},
       {"max_magnitude", "N"},
       // the row says which quantity, and so the unit
-      {"max_abs_error", "SI"}, {"program_value", "SI"}, {"simbody_value", "SI"}, {"analytic_value", "SI"},
+      {"max_abs_error", "SI"}, {"program_value", "SI"}, {"simbody_value", "SI"}, {"mujoco_value", "SI"}, {"analytic_value", "SI"},
       {"balance/simbody_amplitude", "SI"}, {"balance/mujoco_amplitude", "SI"}, {"balance_harmonics/simbody_amplitude", "SI"}, {"x", "SI"},
       {"errata/value", "see measure"},
   };

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <exception>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -16,6 +17,7 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/scene/scene_writer.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/evaluation_json.h"
 #include "crankcheck/validation/process.h"
@@ -248,7 +250,7 @@ struct QuantityGrade {
   long long asked = 0, provided = 0;
   bool pass = true;
   double worst_ratio = -1.0;  // max over references of error / tolerance
-  double worst_rel_simbody = 0.0, worst_rel_analytic = 0.0, tolerance_rel = 0.0;
+  double worst_rel_simbody = 0.0, worst_rel_analytic = 0.0, worst_rel_mujoco = 0.0, tolerance_rel = 0.0;
   std::string where_case;
   double where_phi_deg = 0.0, where_rpm = 0.0;
 };
@@ -273,6 +275,8 @@ struct GradeState {
 void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, GradeState& state) {
   const Mechanism& m = c.mechanism;
   simbody_models::KCrankModel model(m);
+  // The third reference: MuJoCo with exact multipliers (engines.h), built like the others from the case's scene.
+  const std::unique_ptr<EngineModel> mujoco = findEngine("mujoco").build(m);
   const double lambda = lambdaOf(m);
   for (size_t i = 0; i < c.phi_deg.size(); ++i) {
     const double phi = radiansFromDegrees(c.phi_deg[i]);
@@ -280,11 +284,13 @@ void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, Grade
     const Evaluation s = model.evaluate(phi);
     const std::vector<Comparison> vs_simbody = compareEvaluations(m, program[i], s);
     const std::vector<Comparison> vs_analytic = compareEvaluations(m, program[i], a);
+    const std::vector<Comparison> vs_mujoco = compareEvaluations(m, program[i], mujoco->evaluate(phi));
     const std::vector<Comparison> own = compareEvaluations(m, a, s);  // the analytic engine's own error
     int moment_component = 0;
     for (size_t n = 0; n < vs_simbody.size(); ++n) {
       const Comparison& cs = vs_simbody[n];
       const Comparison& ca = vs_analytic[n];
+      const Comparison& cm = vs_mujoco[n];
       // shaking_moment X and Y without axial positions are not defined: not asked, never graded.
       const bool defined =
           cs.quantity != "shaking_moment" || moment_component++ == 2 || hasAxialPositions(m);
@@ -296,15 +302,16 @@ void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, Grade
       if (std::isnan(cs.a)) continue;  // not provided
       ++q.provided;
       le.provided = true;
-      const double rel_s = cs.error() / cs.scale, rel_a = ca.error() / ca.scale;
+      const double rel_s = cs.error() / cs.scale, rel_a = ca.error() / ca.scale, rel_m = cm.error() / cm.scale;
       le.program = std::max(le.program, rel_s);
-      const double ratio = std::max(cs.error() / cs.tolerance(), ca.error() / ca.tolerance());
-      const bool agrees = cs.agrees() && ca.agrees();
+      const double ratio = std::max({cs.error() / cs.tolerance(), ca.error() / ca.tolerance(), cm.error() / cm.tolerance()});
+      const bool agrees = cs.agrees() && ca.agrees() && cm.agrees();
       q.pass = q.pass && agrees;
       if (ratio > q.worst_ratio) {
         q.worst_ratio = ratio;
         q.worst_rel_simbody = rel_s;
         q.worst_rel_analytic = rel_a;
+        q.worst_rel_mujoco = rel_m;
         q.tolerance_rel = cs.tolerance() / cs.scale;
         q.where_case = c.id;
         q.where_phi_deg = c.phi_deg[i];
@@ -317,7 +324,7 @@ void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, Grade
           f.ratio = ratio;
           f.row = {c.id, c.family, formatNumber(lambda), cs.quantity, cs.cylinder < 0 ? std::string() : std::to_string(cs.cylinder),
                    formatNumber(c.phi_deg[i]), formatNumber(m.speed_rpm), formatNumber(cs.a), formatNumber(cs.b),
-                   formatNumber(ca.b), formatNumber(rel_s), formatNumber(cs.tolerance() / cs.scale)};
+                   formatNumber(ca.b), formatNumber(rel_s), formatNumber(cs.tolerance() / cs.scale), formatNumber(cm.b)};
         }
       }
     }
@@ -448,7 +455,7 @@ TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& progr
   TableSet tables;
   Table& summary = tables["grade_summary"];
   summary.columns = {"quantity", "asked", "provided", "worst_rel_error_simbody", "worst_rel_error_analytic", "tolerance_rel",
-                     "where_case", "where_phi_deg", "where_speed_rpm", "verdict"};
+                     "where_case", "where_phi_deg", "where_speed_rpm", "worst_rel_error_mujoco", "verdict"};
   for (const std::string& quantity : getGradeQuantities()) {
     const auto it = all.quantities.find(quantity);
     if (it == all.quantities.end() || it->second.asked == 0) continue;
@@ -458,7 +465,7 @@ TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& progr
                             any ? formatNumber(q.worst_rel_simbody) : "", any ? formatNumber(q.worst_rel_analytic) : "",
                             any ? formatNumber(q.tolerance_rel) : "", any ? q.where_case : "",
                             any ? formatNumber(q.where_phi_deg) : "", any ? formatNumber(q.where_rpm) : "",
-                            !any ? "not provided" : q.pass ? "pass" : "FAIL"});
+                            any ? formatNumber(q.worst_rel_mujoco) : "", !any ? "not provided" : q.pass ? "pass" : "FAIL"});
   }
   Table& by_lambda = tables["grade_error_vs_lambda"];
   by_lambda.columns = {"quantity", "lambda", "program_max_rel_error", "analytic_max_rel_error"};
@@ -467,7 +474,7 @@ TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& progr
       by_lambda.rows.push_back({key.first, formatNumber(key.second), formatNumber(e.program), formatNumber(e.analytic)});
   Table& failures = tables["grade_failures"];
   failures.columns = {"case", "family", "lambda", "quantity", "cylinder", "phi_deg", "speed_rpm", "program_value",
-                      "simbody_value", "analytic_value", "rel_error", "tolerance_rel"};
+                      "simbody_value", "analytic_value", "rel_error", "tolerance_rel", "mujoco_value"};
   for (const auto& [key, f] : all.failures) failures.rows.push_back(f.row);
   return tables;
 }

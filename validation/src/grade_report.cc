@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 
+#include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/output_folder.h"
@@ -59,31 +60,34 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
   ReportDocument doc("crankcheck grade report");
   char line[512];
   std::snprintf(line, sizeof line,
-                "crankcheck %s, Simbody %s, %s; %zu cases%s, %d job%s%s, %.1f s, timeout %.3g s per request.",
-                getCrankcheckVersion(), simbody_models::getSimbodyVersion().c_str(), today().c_str(), cases.size(),
+                "crankcheck %s, Simbody %s, MuJoCo %s, %s; %zu cases%s, %d job%s%s, %.1f s, timeout %.3g s per request.",
+                getCrankcheckVersion(), simbody_models::getSimbodyVersion().c_str(),
+                mujoco_models::getMujocoVersion().c_str(), today().c_str(), cases.size(),
                 info.quick ? " (--quick)" : "", info.jobs, info.jobs == 1 ? "" : "s", info.batch ? ", --batch" : "",
                 info.seconds, info.timeout_seconds);
   doc.addParagraph("Graded program: `" + command + "`\n\n" + line);
   doc.addParagraph(
-      "Each value the program provided is compared with Simbody's and with the analytic engine's by the gate's rule: "
-      "|program - reference| <= 64 eps x scale x conditioning (docs/CONVENTIONS-crankcheck.md, \"Tolerances\"). A "
-      "quantity passes when every provided value agrees with both engines. What the program left out (or sent as "
+      "Each value the program provided is compared with Simbody's, the analytic engine's and MuJoCo's (exact "
+      "multipliers) by the gate's rule: |program - reference| <= 64 eps x scale x conditioning "
+      "(docs/CONVENTIONS-crankcheck.md, \"Tolerances\"). A quantity passes when every provided value agrees with all "
+      "three engines. What the program left out (or sent as "
       "null) is *not provided*: never counted as wrong, never as right.");
 
   doc.addHeading(2, "Summary per quantity");
-  const size_t verdict = columnOf(summary, "verdict");
+  const size_t verdict = columnOf(summary, "verdict"), vs_mujoco = columnOf(summary, "worst_rel_error_mujoco");
   std::vector<std::vector<std::string>> rows;
   int passed = 0, failed = 0, absent = 0;
   for (const auto& row : summary.rows) {
     const std::string& v = row[verdict];
     (v == "pass" ? passed : v == "FAIL" ? failed : absent)++;
-    rows.push_back({row[0], row[2] + " / " + row[1], shortNumber(row[3]), shortNumber(row[4]), shortNumber(row[5]),
+    rows.push_back({row[0], row[2] + " / " + row[1], shortNumber(row[3]), shortNumber(row[4]), shortNumber(row[vs_mujoco]),
+                    shortNumber(row[5]),
                     row[6].empty() ? "" : row[6] + " at " + row[7] + " deg", v == "FAIL" ? "**FAIL**" : v});
   }
   doc.addParagraph(std::to_string(passed) + " quantities pass, " + std::to_string(failed) + " fail, " +
                    std::to_string(absent) + " not provided.");
   doc.addTable({"quantity", "provided / asked", "worst error vs Simbody [scale]", "worst error vs analytic [scale]",
-                "tolerance [scale]", "where (case, crank angle)", "verdict"},
+                "worst error vs MuJoCo [scale]", "tolerance [scale]", "where (case, crank angle)", "verdict"},
                rows);
 
   if (!tables.at("grade_error_vs_lambda").rows.empty()) {
@@ -119,12 +123,12 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
     const size_t shown = std::min<size_t>(worst.size(), 40);
     doc.addParagraph(std::to_string(failures.rows.size()) + " (case, quantity, cylinder) failed; the " + std::to_string(shown) +
                      " largest errors are below, all in [data/grade_failures.csv](data/grade_failures.csv). Each "
-                     "command, run in this folder, shows both engines' values at that case and angle.");
+                     "command, run in this folder, shows every engine's values at that case and angle.");
     std::vector<std::vector<std::string>> table;
     for (size_t i = 0; i < shown; ++i) {
       const auto& r = worst[i];
       table.push_back({r[0], r[3] + (r[4].empty() ? "" : " [" + r[4] + "]"), r[5], r[7], r[8], shortNumber(r[10]),
-                       "`crankcheck eval cases/" + r[0] + ".toml --phi-deg " + r[5] + " --engine both`"});
+                       "`crankcheck eval cases/" + r[0] + ".toml --phi-deg " + r[5] + " --engine all`"});
     }
     doc.addTable({"case", "quantity [cylinder]", "phi [deg]", "program", "Simbody", "error [scale]", "reproduce"}, table);
   }

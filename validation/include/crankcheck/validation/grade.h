@@ -66,10 +66,12 @@ std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string
 /// Runs the program on `cases` (several programs at once with jobs > 1; batch: one program per job) and grades
 /// every answer. `progress(done, total)` is called after each case. Tables (reports/README.md):
 ///   grade_summary         quantity,asked,provided,worst_rel_error_simbody,worst_rel_error_analytic,tolerance_rel,
-///                         where_case,where_phi_deg,where_speed_rpm,verdict
+///                         where_case,where_phi_deg,where_speed_rpm,worst_rel_error_mujoco,verdict
 ///   grade_error_vs_lambda quantity,lambda,program_max_rel_error,analytic_max_rel_error
 ///   grade_failures        case,family,lambda,quantity,cylinder,phi_deg,speed_rpm,program_value,simbody_value,
-///                         analytic_value,rel_error,tolerance_rel
+///                         analytic_value,rel_error,tolerance_rel,mujoco_value
+/// Every provided value is compared with three references: Simbody, the analytic engine and MuJoCo (exact
+/// multipliers); it passes when it agrees with all three by the gate's rule.
 /// @throws EnvironmentError when the program cannot be started, crashes, exits with a non-zero status, times out,
 /// writes more than the output limit or answers something that is not the protocol (exit status 3).
 TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& program, int jobs,
@@ -92,7 +94,7 @@ struct GradeReportInfo {
 void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cases, const GradeReportInfo& info,
                        const std::filesystem::path& dir);
 
-/// Verdict of a grade: 0 when every provided value agrees with both engines and at least one was provided, 1
+/// Verdict of a grade: 0 when every provided value agrees with every reference engine and at least one was provided, 1
 /// otherwise.
 int findGradeExitStatus(const TableSet& tables);
 
