@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "crankcheck/analytic/motion.h"
-#include "crankcheck/simbody_models/free_run.h"
+#include "crankcheck/validation/engines.h"
 #include "json_output.h"
 #include "scene_input.h"
 #include "crankcheck/validation/errors.h"
@@ -23,17 +23,33 @@ void addMotionOptions(CLI::App& command, MotionOptions& options) {
   command.add_option("--accuracy", options.accuracy, "Simbody integrator accuracy")
       ->check(CLI::Range(1e-14, 1e-1))
       ->capture_default_str();
+  command.add_option("--mujoco-integrator", options.mujoco_integrator, "MuJoCo integrator (mujoco-soft, mujoco-soft-stiff)")
+      ->check(CLI::IsMember({"RK4", "Euler", "implicit"}))
+      ->capture_default_str();
+  command.add_option("--mujoco-step", options.mujoco_step,
+                     "MuJoCo's fixed time step as a fraction of one revolution at the release speed")
+      ->check(CLI::Range(1e-6, 1e-1))
+      ->capture_default_str();
 }
 
 namespace {
 
 struct EngineResult {
+  std::string engine, integrator;  // integrator "" for the analytic energy integral
   double delta_gravity, delta_no_gravity, omega_min, omega_max, omega_mean;
+  double energy_drift = 0.0;       // per revolution, gravity on (the energy integral has none)
+  int steps = 0;
 };
 
 nlohmann::ordered_json toJson(const EngineResult& r) {
-  return {{"delta_gravity", r.delta_gravity}, {"delta_no_gravity", r.delta_no_gravity}, {"omega_min", r.omega_min},
-          {"omega_max", r.omega_max}, {"omega_mean", r.omega_mean}};
+  nlohmann::ordered_json j = {{"delta_gravity", r.delta_gravity}, {"delta_no_gravity", r.delta_no_gravity},
+                              {"omega_min", r.omega_min}, {"omega_max", r.omega_max}, {"omega_mean", r.omega_mean}};
+  if (!r.integrator.empty()) {
+    j["integrator"] = r.integrator;
+    j["energy_drift_per_revolution"] = r.energy_drift;
+    j["steps"] = r.steps;
+  }
+  return j;
 }
 
 }  // namespace
@@ -45,44 +61,55 @@ std::string runMotion(const MotionOptions& options) {
   if (!(m.engine.speed > 0.0))
     throw UsageError(options.scene_path + ": [engine].speed_rpm: must be > 0 for the free run (the release speed)");
   const double w0 = m.engine.speed;
-  EngineResult a{}, s{};
+  EngineResult a{};
   try {
     const analytic::FreeRun with = analytic::calcFreeRun(m, w0, true), without = analytic::calcFreeRun(m, w0, false);
-    a = {with.delta, without.delta, with.omega_min, with.omega_max, with.omega_mean};
+    a = {"analytic", "", with.delta, without.delta, with.omega_min, with.omega_max, with.omega_mean};
   } catch (const std::domain_error& e) {
     throw UsageError(options.scene_path + ": [engine].speed_rpm: " + e.what());
   }
-  simbody_models::FreeRunOptions run;
-  run.integrator = options.integrator == "CPodes"               ? simbody_models::IntegratorKind::kCPodes
-                   : options.integrator == "SemiExplicitEuler2" ? simbody_models::IntegratorKind::kSemiExplicitEuler2
-                                                                : simbody_models::IntegratorKind::kRungeKuttaMerson;
-  run.accuracy = options.accuracy;
-  try {
-    run.gravity = true;
-    const simbody_models::FreeRunResult with = simbody_models::simulateFreeRun(m, w0, run);
-    run.gravity = false;
-    const simbody_models::FreeRunResult without = simbody_models::simulateFreeRun(m, w0, run);
-    s = {with.delta, without.delta, with.omega_min, with.omega_max, with.omega_mean};
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(options.scene_path + ": " + e.what());
+  // Every engine that simulates (engines.h: Engine::simulate), each with its own integrator and accuracy flags.
+  std::vector<EngineResult> results{a};
+  for (const Engine& engine : validation::listEngines()) {
+    if (!engine.simulate) continue;
+    const bool simbody = engine.name == "simbody";
+    FreeRunSettings run;
+    run.integrator = simbody ? options.integrator : options.mujoco_integrator;
+    run.accuracy = simbody ? options.accuracy : options.mujoco_step;
+    try {
+      run.gravity = true;
+      const FreeRunResult with = engine.simulate(m, w0, run);
+      run.gravity = false;
+      const FreeRunResult without = engine.simulate(m, w0, run);
+      results.push_back({engine.name, run.integrator, with.delta, without.delta, with.omega_min, with.omega_max,
+                         with.omega_mean, with.energy_drift_per_revolution, with.steps});
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(options.scene_path + ": " + engine.name + ": " + e.what());
+    } catch (const std::runtime_error& e) {
+      throw UsageError(options.scene_path + ": " + engine.name + ": " + engine.library + " could not run: " + e.what());
+    }
   }
   if (options.format == "json") {
     nlohmann::ordered_json doc;
-    doc["analytic"] = toJson(a);
-    doc["simbody"] = toJson(s);
+    for (const EngineResult& r : results) doc[r.engine] = toJson(r);
     return dumpJson(doc);
   }
-  char buffer[1024];
+  char buffer[512];
   std::snprintf(buffer, sizeof buffer,
-                "free run of %s released at phi = 0 with %.6g rpm (Simbody: %s, accuracy %.0e)\n"
-                "%-9s %16s %16s %14s %14s %14s\n"
-                "%-9s %16.9e %16.9e %14.9g %14.9g %14.9g\n"
-                "%-9s %16.9e %16.9e %14.9g %14.9g %14.9g\n",
-                options.scene_path.c_str(), m.speed_rpm, options.integrator.c_str(), options.accuracy, "engine",
-                "delta_gravity", "delta_no_gravity", "omega_min", "omega_max", "omega_mean", "analytic",
-                a.delta_gravity, a.delta_no_gravity, a.omega_min, a.omega_max, a.omega_mean, "simbody", s.delta_gravity,
-                s.delta_no_gravity, s.omega_min, s.omega_max, s.omega_mean);
-  return buffer;
+                "free run of %s released at phi = 0 with %.6g rpm (Simbody: %s, accuracy %.0e; MuJoCo: %s, step %.0e "
+                "of a revolution)\n%-18s %16s %16s %14s %14s %14s %14s\n",
+                options.scene_path.c_str(), m.speed_rpm, options.integrator.c_str(), options.accuracy,
+                options.mujoco_integrator.c_str(), options.mujoco_step, "engine", "delta_gravity", "delta_no_gravity",
+                "omega_min", "omega_max", "omega_mean", "energy drift");
+  std::string out = buffer;
+  for (const EngineResult& r : results) {
+    char drift[32] = "-";
+    if (!r.integrator.empty()) std::snprintf(drift, sizeof drift, "%.3e", r.energy_drift);
+    std::snprintf(buffer, sizeof buffer, "%-18s %16.9e %16.9e %14.9g %14.9g %14.9g %14s\n", r.engine.c_str(),
+                  r.delta_gravity, r.delta_no_gravity, r.omega_min, r.omega_max, r.omega_mean, drift);
+    out += buffer;
+  }
+  return out + "(energy drift: max |E(t) - E(0)| / E(0) per revolution, gravity on)\n";
 }
 
 }  // namespace crankcheck::app

@@ -1,7 +1,9 @@
 #pragma once
 /// @file
-/// `crankcheck motion SCENE [--format table|json] [--integrator ...] [--accuracy A]`: the free run under gravity
-/// (released at phi = 0 with the scene's speed, no drive, no load), by the analytic energy integral and by Simbody.
+/// `crankcheck motion SCENE [--format table|json] [--integrator ...] [--accuracy A] [--mujoco-integrator ...]
+/// [--mujoco-step S]`: the free run under gravity
+/// (released at phi = 0 with the scene's speed, no drive, no load), by the analytic energy integral and by every engine
+/// that simulates (Simbody; MuJoCo's soft solver at its default and stiffest settings).
 
 #include <CLI/CLI.hpp>
 #include <string>
@@ -13,6 +15,8 @@ struct MotionOptions {
   std::string format = "table";
   std::string integrator = "RungeKuttaMerson";
   double accuracy = 1e-10;
+  std::string mujoco_integrator = "RK4";
+  double mujoco_step = 1e-3;  ///< MuJoCo's fixed time step as a fraction of a revolution
 };
 
 void addMotionOptions(CLI::App& command, MotionOptions& options);

@@ -21,6 +21,14 @@ Engine describe(Variant variant, bool gated, std::string method) {
   e.method = std::move(method);
   e.gated = gated;
   e.build = [variant](const Mechanism& m) -> std::unique_ptr<EngineModel> { return std::make_unique<Model>(m, variant); };
+  if (variant != Variant::kExact) {  // MuJoCo's integrators step its soft constraints
+    e.integrators = {"RK4", "Euler", "implicit"};
+    e.accuracy_meaning = "the fixed time step as a fraction of one revolution at the release speed, default 1e-3";
+    e.default_accuracy = 1e-3;
+    e.simulate = [variant](const Mechanism& m, double omega0, const FreeRunSettings& settings) {
+      return simulateFreeRun(m, omega0, variant, settings);
+    };
+  }
   return e;
 }
 

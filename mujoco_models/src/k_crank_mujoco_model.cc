@@ -221,6 +221,19 @@ struct DataDeleter {
 using ModelPtr = std::unique_ptr<mjModel, ModelDeleter>;
 using DataPtr = std::unique_ptr<mjData, DataDeleter>;
 
+/// The connect's anchor on the crank: MuJoCo's compiler put it where the big end is at qpos0 (an open loop); the crank
+/// pin is where it belongs (MUJOCO-NOTES.md). Equality j is "loop<j>".
+void setCrankPinAnchors(mjModel* model, const Mechanism& m) {
+  for (int j = 0; j < m.engine.cylinders; ++j) {
+    const int equality = mj_name2id(model, mjOBJ_EQUALITY, ("loop" + std::to_string(j)).c_str());
+    const double beta = getThrowAngle(m, j);
+    double* data = model->eq_data + mjNEQDATA * equality;
+    data[3] = m.crank.radius * std::cos(beta);
+    data[4] = m.crank.radius * std::sin(beta);
+    data[5] = getAxialPosition(m, j);
+  }
+}
+
 /// Solves the 2 x 2 system [a b; c d] x = (p, q).
 std::array<double, 2> solve2(double a, double b, double c, double d, double p, double q) {
   const double det = a * d - b * c;
@@ -241,6 +254,14 @@ class KCrankMujocoModel::Impl {
   double potentialEnergy(double phi);
   double holdingTorque(double phi);
   double closureError() const { return closure_error_; }
+  /// The exactly closed state at crank angle phi and crank speed omega: MuJoCo's qpos and qvel.
+  void calcClosedState(double phi, double omega, std::vector<double>& qpos, std::vector<double>& qvel) {
+    close(phi);
+    solveVelocities(omega);
+    qpos.assign(data_->qpos, data_->qpos + model_->nq);
+    qvel.assign(data_->qvel, data_->qvel + model_->nv);
+  }
+  int crankJoint() const { return crank_q_; }
   const Mechanism& mechanism() const { return m_; }
   Variant variant() const { return variant_; }
 
@@ -329,16 +350,8 @@ KCrankMujocoModel::Impl::Impl(const Mechanism& m, Variant variant) : m_(m), vari
     const double gamma = getBankAngle(m_, j);
     c.n[0] = -std::sin(gamma);
     c.n[1] = std::cos(gamma);
-    // The connect's anchor on the crank: MuJoCo's compiler put it where the big end is at qpos0 (an open loop);
-    // the crank pin is where it belongs (MUJOCO-NOTES.md).
-    if (soft_model_) {
-      const double beta = getThrowAngle(m_, j);
-      double* data = soft_model_->eq_data + mjNEQDATA * c.equality;
-      data[3] = m_.crank.radius * std::cos(beta);
-      data[4] = m_.crank.radius * std::sin(beta);
-      data[5] = getAxialPosition(m_, j);
-    }
   }
+  if (soft_model_) setCrankPinAnchors(soft_model_.get(), m_);
   jacobian_.resize(3 * static_cast<size_t>(mm->nv));
   rne_.resize(static_cast<size_t>(mm->nv));
   closure_tolerance_ = 4.0 * kEps * (m_.rod.length + m_.crank.radius);
@@ -638,5 +651,80 @@ double KCrankMujocoModel::calcHoldingTorque(double phi) { return impl_->holdingT
 double KCrankMujocoModel::getLoopClosureError() const { return impl_->closureError(); }
 const Mechanism& KCrankMujocoModel::mechanism() const { return impl_->mechanism(); }
 Variant KCrankMujocoModel::variant() const { return impl_->variant(); }
+
+
+FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, Variant variant, const FreeRunSettings& settings) {
+  if (variant == Variant::kExact)
+    throw std::invalid_argument("mujoco: no free run in the exact way (MuJoCo's integrators step its soft constraints: "
+                                "use mujoco-soft or mujoco-soft-stiff)");
+  if (!m.flywheel_inertia)
+    throw std::invalid_argument("[flywheel].inertia: missing key (the free run needs the flywheel inertia)");
+  if (!(std::isfinite(omega0) && omega0 > 0.0)) throw std::invalid_argument("the release speed omega0 must be > 0");
+  int integrator = mjINT_RK4;
+  if (settings.integrator == "Euler") integrator = mjINT_EULER;
+  else if (settings.integrator == "implicit") integrator = mjINT_IMPLICIT;
+  else if (settings.integrator != "RK4" && !settings.integrator.empty())
+    throw std::invalid_argument("MuJoCo has no integrator \"" + settings.integrator + "\" (Euler, RK4, implicit)");
+  if (!(settings.accuracy > 0.0 && settings.accuracy <= 0.1))
+    throw std::invalid_argument("MuJoCo's time step must be a fraction of a revolution in (0, 0.1]");
+  if (settings.revolutions < 1) throw std::invalid_argument("the free run needs at least one revolution");
+
+  // The release state, closed exactly (Newton on MuJoCo's kinematics), at phi = 0 with omega0.
+  std::vector<double> qpos, qvel;
+  int crank_q = 0;
+  {
+    KCrankMujocoModel::Impl exact(m, Variant::kExact);
+    exact.calcClosedState(0.0, omega0, qpos, qvel);
+    crank_q = exact.crankJoint();
+  }
+  ModelPtr model(loadModel(calcMjcf(m, variant)));
+  setCrankPinAnchors(model.get(), m);
+  model->opt.integrator = integrator;
+  model->opt.timestep = settings.accuracy * 2.0 * M_PI / omega0;
+  if (!settings.gravity) mju_zero(model->opt.gravity, 3);
+  DataPtr data(mj_makeData(model.get()));
+  mjData* d = data.get();
+  mju_copy(d->qpos, qpos.data(), model->nq);
+  mju_copy(d->qvel, qvel.data(), model->nv);
+  const int crank_v = model->jnt_dofadr[mj_name2id(model.get(), mjOBJ_JOINT, "crank")];
+
+  FreeRunResult r;
+  const double target = 2.0 * M_PI * settings.revolutions;
+  const long long max_steps = static_cast<long long>(20.0 * settings.revolutions / settings.accuracy) + 1000;
+  for (long long step = 0;; ++step) {
+    mj_forward(model.get(), d);  // everything at this state, its energies (mjENBL_ENERGY) among them
+    const double phi = d->qpos[crank_q], w = d->qvel[crank_v], e = d->energy[0] + d->energy[1];
+    if (!(std::isfinite(phi) && std::isfinite(w) && std::isfinite(e)))
+      throw std::runtime_error("MuJoCo's free run became non-finite at t = " + num(d->time) + " s");
+    r.time.push_back(d->time);
+    r.phi.push_back(phi);
+    r.phi_dot.push_back(w);
+    r.energy.push_back(e);
+    if (phi >= target) break;
+    if (step == max_steps)
+      throw std::runtime_error("MuJoCo's free run did not complete " + std::to_string(settings.revolutions) +
+                               " revolutions in " + std::to_string(max_steps) + " steps (phi = " + num(phi) + " rad)");
+    if (integrator == mjINT_EULER) mj_Euler(model.get(), d);
+    else if (integrator == mjINT_RK4) mj_RungeKutta(model.get(), d, 4);
+    else mj_step(model.get(), d);  // the implicit integrator has no function of its own in 2.2.2
+    ++r.steps;
+  }
+  // The first revolution: the time the crank passes 2 pi (linear between the two steps around it: the steps are a
+  // small fraction of a revolution), the extreme speeds at the steps before it.
+  size_t i = 1;
+  while (r.phi[i] < 2.0 * M_PI) ++i;
+  const double t1 = r.time[i - 1] + (2.0 * M_PI - r.phi[i - 1]) / (r.phi[i] - r.phi[i - 1]) * (r.time[i] - r.time[i - 1]);
+  r.omega_min = r.omega_max = r.phi_dot[0];
+  for (size_t s = 0; s <= i; ++s) {
+    r.omega_min = std::min(r.omega_min, r.phi_dot[s]);
+    r.omega_max = std::max(r.omega_max, r.phi_dot[s]);
+  }
+  r.omega_mean = 2.0 * M_PI / t1;
+  r.delta = (r.omega_max - r.omega_min) / r.omega_mean;
+  double drift = 0.0;
+  for (double e : r.energy) drift = std::max(drift, std::fabs(e - r.energy[0]));
+  r.energy_drift_per_revolution = drift / std::fabs(r.energy[0]) / settings.revolutions;
+  return r;
+}
 
 }  // namespace crankcheck::mujoco_models

@@ -8,8 +8,10 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "crankcheck/scene/evaluation.h"
+#include "crankcheck/scene/free_run.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck {
@@ -37,6 +39,14 @@ struct Engine {
   /// @throws std::invalid_argument if the engine cannot build m (the message names the scene key and the rule);
   ///         std::runtime_error if the engine's library fails.
   std::function<std::unique_ptr<EngineModel>(const Mechanism& m)> build;
+
+  /// The free run (`crankcheck motion`), for engines that simulate; empty `integrators`: none.
+  std::vector<std::string> integrators;  ///< the names FreeRunSettings::integrator takes; the first is the default
+  std::string accuracy_meaning;          ///< what FreeRunSettings::accuracy means for this engine, and its default
+  double default_accuracy = 0.0;
+  /// @throws std::invalid_argument for a mechanism without flywheel, omega0 <= 0 or an unknown integrator;
+  ///         std::runtime_error if the run fails or the crank does not complete the revolutions.
+  std::function<FreeRunResult(const Mechanism& m, double omega0, const FreeRunSettings& settings)> simulate;
 };
 
 }  // namespace crankcheck

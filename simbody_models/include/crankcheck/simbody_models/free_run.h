@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "crankcheck/scene/free_run.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::simbody_models {
@@ -25,14 +26,8 @@ struct FreeRunOptions {
   bool gravity = true;
 };
 
-struct FreeRunResult {
-  std::vector<double> time, phi, phi_dot, energy;  ///< at every internal step [s, rad, rad/s, J] (phi unwrapped, KE + PE)
-  double omega_min = 0.0, omega_max = 0.0;          ///< [rad/s] over the first revolution (Hermite cubics between steps)
-  double omega_mean = 0.0;                          ///< [rad/s] 2 pi / time of the first revolution
-  double delta = 0.0;                               ///< (omega_max - omega_min) / omega_mean
-  double energy_drift_per_revolution = 0.0;         ///< max |E(t) - E(0)| / E(0) over the run, per revolution
-  int steps = 0;                                    ///< integrator steps taken
-};
+/// What the run found (crankcheck/scene/free_run.h: the same for every engine's free run).
+using FreeRunResult = ::crankcheck::FreeRunResult;
 
 /// @throws std::invalid_argument if omega0 <= 0, the scene has no flywheel inertia, or the rod is massless;
 ///         std::runtime_error if Simbody fails or the crank does not complete the revolutions.
