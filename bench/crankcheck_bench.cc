@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/engines.h"
 
 namespace crankcheck {
 namespace {
@@ -331,6 +333,21 @@ void BM_SimbodyEvaluate(benchmark::State& state) {  // U, Q (holding torque), re
   for (auto _ : state) benchmark::DoNotOptimize(model.evaluate(nextAngle(i)));
 }
 BENCHMARK(BM_SimbodyEvaluate)->Arg(1)->Arg(2)->Arg(4)->Arg(6)->Arg(12)->Unit(benchmark::kMicrosecond);
+
+// Every registered engine (validation/engines.h) evaluating everything at one angle (U, Q, kinematics, reactions,
+// drive torque, shaking), k = 1 .. 12: one row per engine and k, "which engine, at what cost" (README, "Engines").
+[[maybe_unused]] const bool kEngineBenchmarks = [] {
+  for (const Engine& engine : validation::listEngines())
+    benchmark::RegisterBenchmark(("BM_EngineEvaluate/" + engine.name).c_str(),
+                                 [&engine](benchmark::State& state) {
+                                   const std::unique_ptr<EngineModel> model =
+                                       engine.build(benchMechanism(static_cast<int>(state.range(0))));
+                                   int i = 0;
+                                   for (auto _ : state) benchmark::DoNotOptimize(model->evaluate(nextAngle(i)));
+                                 })
+        ->Arg(1)->Arg(2)->Arg(4)->Arg(6)->Arg(12)->Unit(benchmark::kMicrosecond);
+  return true;
+}();
 
 void BM_SimbodyHoldingTorque(benchmark::State& state) {
   simbody_models::KCrankModel model(benchMechanism(static_cast<int>(state.range(0))));
