@@ -5,12 +5,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "../support/cases.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/scales.h"
 
 namespace crankcheck {
@@ -18,18 +22,28 @@ namespace {
 
 using testing::CaseSpec;
 
-void expectAgreementAt(const Mechanism& m, simbody_models::KCrankModel& model, double phi) {
-  const Evaluation a = analytic::calcEvaluation(m, phi), s = model.evaluate(phi);
-  for (const validation::Comparison& c : validation::compareEvaluations(m, a, s))
-    EXPECT_TRUE(c.agrees()) << c.quantity << " cylinder " << c.cylinder << " at phi " << phi << ": analytic " << c.a
-                            << ", simbody " << c.b << ", |diff| " << c.error() << " > tol " << c.tolerance();
+// Every exact engine besides the analytic one (Simbody, MuJoCo: validation/engines.h), built for one mechanism.
+struct References {
+  explicit References(const Mechanism& m) {
+    for (const Engine* engine : validation::listReferenceEngines()) models.emplace_back(engine, engine->build(m));
+  }
+  std::vector<std::pair<const Engine*, std::unique_ptr<EngineModel>>> models;
+};
+
+void expectAgreementAt(const Mechanism& m, References& references, double phi) {
+  const Evaluation a = analytic::calcEvaluation(m, phi);
+  for (auto& [engine, model] : references.models)
+    for (const validation::Comparison& c : validation::compareEvaluations(m, a, model->evaluate(phi)))
+      EXPECT_TRUE(c.agrees()) << c.quantity << " cylinder " << c.cylinder << " at phi " << phi << ": analytic " << c.a
+                              << ", " << engine->name << " " << c.b << ", |diff| " << c.error() << " > tol "
+                              << c.tolerance();
 }
 
 // Both engines take phi = 1e6 rad through their own sin and cos (libm reduces exactly), so they agree as anywhere.
 TEST(GateHardCases, LargeAndNegativeAngles) {
   const Mechanism m = testing::makeMechanism({4, Cycle::kFourStroke, Acting::kSingle, 0.3, 37.0, 4500.0});
-  simbody_models::KCrankModel model(m);
-  for (double phi : {1e6, -1e6, 12345.678, -720.5, 1e4, -1e-9, 1e-300}) expectAgreementAt(m, model, phi);
+  References references(m);
+  for (double phi : {1e6, -1e6, 12345.678, -720.5, 1e4, -1e-9, 1e-300}) expectAgreementAt(m, references, phi);
 }
 
 struct ScaleCase {
@@ -54,7 +68,8 @@ TEST_P(GateScalesTest, EveryQuantityAgrees) {
     m.piston.mass *= M;
     m.engine.gravity = sc.gravity;
     simbody_models::KCrankModel model(m);
-    for (double phi_deg : testing::sweepPhisDeg()) expectAgreementAt(m, model, radiansFromDegrees(phi_deg));
+    References references(m);
+    for (double phi_deg : testing::sweepPhisDeg()) expectAgreementAt(m, references, radiansFromDegrees(phi_deg));
     if (sc.gravity == 0.0) {
       EXPECT_EQ(model.calcPotentialEnergy(1.0), 0.0);
       EXPECT_EQ(analytic::calcEvaluation(m, 1.0).Q, 0.0);
@@ -78,24 +93,24 @@ TEST(GateHardCases, ExplicitCrankAngles) {
     m.engine.crank_angles.clear();
     for (double d : degrees) m.engine.crank_angles.push_back(radiansFromDegrees(d));
     m.engine.explicit_crank_angles = true;
-    simbody_models::KCrankModel model(m);
-    for (double phi_deg : testing::sweepPhisDeg()) expectAgreementAt(m, model, radiansFromDegrees(phi_deg));
+    References references(m);
+    for (double phi_deg : testing::sweepPhisDeg()) expectAgreementAt(m, references, radiansFromDegrees(phi_deg));
   }
 }
 
 // lambda next to 1: the loop is nearly singular at theta = +-90 degrees (the rod almost perpendicular to the axis).
-// Simbody must agree within the conditioning-scaled tolerance (a refusal fails the test); a wrong branch would show
+// Simbody and MuJoCo must agree within the conditioning-scaled tolerance (a refusal fails the test); a wrong branch would show
 // as a large disagreement in x_p and fail.
 TEST(GateHardCases, LambdaNextToOne) {
   for (double lambda : {0.9999, 0.99999}) {
     const Mechanism m = testing::makeMechanism({1, Cycle::kFourStroke, Acting::kSingle, lambda, 90.0, 3000.0});
-    simbody_models::KCrankModel model(m);
+    References references(m);
     simbody_models::KCrankGravityModel reduced(m);
     for (double phi_deg : {0.0, 45.0, 89.0, 90.0, 91.0, 180.0, 269.0, 270.0, 300.0}) {
       SCOPED_TRACE("lambda " + std::to_string(lambda) + " phi_deg " + std::to_string(phi_deg));
       const double phi = radiansFromDegrees(phi_deg);
-      // Simbody assembles every one of these angles today: a refusal would be a failure of the gate, not a pass.
-      ASSERT_NO_THROW(expectAgreementAt(m, model, phi));
+      // Simbody and MuJoCo close every one of these angles today: a refusal would be a failure of the gate, not a pass.
+      ASSERT_NO_THROW(expectAgreementAt(m, references, phi));
       const validation::Scales sc = validation::calcScales(m);
       const validation::Comparison q{"Q (reduced)", -1, analytic::calcEvaluation(m, phi).Q, reduced.calcHoldingTorque(phi),
                                      sc.energy, sc.conditioning};
@@ -113,16 +128,18 @@ TEST(GateHardCases, LambdaNextToOneOnAFineGrid) {
   for (double lambda : {0.999, 0.9999, 0.99999})
     for (double rpm : {3000.0, 0.0}) {
       const Mechanism m = testing::makeMechanism({1, Cycle::kFourStroke, Acting::kSingle, lambda, 90.0, rpm});
-      simbody_models::KCrankModel model(m);
+      References references(m);
       double worst = 0.0;
       std::string where;
       for (int i = 0; i < 3600; ++i) {
         const double phi = radiansFromDegrees(0.1 * i);
-        for (const validation::Comparison& c : validation::compareEvaluations(m, analytic::calcEvaluation(m, phi), model.evaluate(phi)))
-          if (c.error() / c.tolerance() > worst) {
-            worst = c.error() / c.tolerance();
-            where = c.quantity + " at phi " + std::to_string(0.1 * i) + " deg";
-          }
+        const Evaluation a = analytic::calcEvaluation(m, phi);
+        for (auto& [engine, model] : references.models)
+          for (const validation::Comparison& c : validation::compareEvaluations(m, a, model->evaluate(phi)))
+            if (c.error() / c.tolerance() > worst) {
+              worst = c.error() / c.tolerance();
+              where = engine->name + ": " + c.quantity + " at phi " + std::to_string(0.1 * i) + " deg";
+            }
       }
       EXPECT_LE(worst, 1.0) << "lambda " << lambda << ", " << rpm << " rpm: worst " << where;
     }
