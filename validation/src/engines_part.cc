@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <tuple>
 #include <stdexcept>
 
 #include "crankcheck/validation/engines.h"
@@ -82,10 +83,24 @@ void deriveEngineTables(TableSet& tables) {
     const double r = toDouble(row[rel]);
     if (r > w.rel) w = {r, row[kase], row[lambda], row[phi], row[rpm]};
   };
+  // The analytic engine's own error, case by case: its smaller disagreement with the other exact engines (each of
+  // them is a reference with its own rounding: Simbody's grows like 1 / lambda on a very long rod, MuJoCo's does not).
+  // Only what every other exact engine computes (not Simbody's second route to Q, "Q (virtual power)").
+  struct Nearest {
+    std::vector<std::string> row;
+    size_t engines = 0;
+  };
+  std::map<std::tuple<std::string, std::string, std::string>, Nearest> analytic;  // (family, case, quantity)
+  const size_t family = columnOf(c, "family");
   for (const auto& row : c.rows) {
     note(row[engine], row);
-    if (row[engine] == "simbody") note("analytic", row);  // the analytic engine against Simbody
+    if (!findEngine(row[engine]).gated) continue;
+    Nearest& best = analytic[{row[family], row[kase], row[quantity]}];
+    ++best.engines;
+    if (best.row.empty() || toDouble(row[rel]) < toDouble(best.row[rel])) best.row = row;
   }
+  for (const auto& [key, best] : analytic)
+    if (best.engines == listReferenceEngines().size()) note("analytic", best.row);
   std::map<std::pair<std::string, int>, double> ns;
   const Table& t = cost->second;
   const size_t ce = columnOf(t, "engine"), ck = columnOf(t, "k"), cns = columnOf(t, "ns_per_eval");
@@ -125,7 +140,8 @@ EnginesPart describeEnginesPart(const TableSet& tables) {
   part.caption =
       "Cost per evaluation (every quantity at one crank angle; k = 1 filled, k = 12 open) against the worst error over "
       "every quantity and every cross-checked case of the campaign, relative to the quantity's scale: each engine "
-      "against the analytic engine, the analytic engine against Simbody. Down and left is better";
+      "against the analytic engine, the analytic engine against the nearer of the other exact engines, case by case. "
+      "Down and left is better";
 
   // Per engine: the worst row over its quantities, and its costs.
   struct EngineSummary {
@@ -163,7 +179,7 @@ EnginesPart describeEnginesPart(const TableSet& tables) {
     part.paragraphs.push_back(s + ".");
   }
   // Which engine is cheapest at which accuracy.
-  for (double accuracy : {1e-12, 1e-3}) {
+  for (double accuracy : {1e-9, 1e-3}) {
     std::string best;
     for (const std::string& name : names)
       if (by_engine[name].worst <= accuracy && (best.empty() || by_engine[name].ns1 < by_engine[best].ns1)) best = name;

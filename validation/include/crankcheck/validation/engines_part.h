@@ -11,8 +11,8 @@
 ///                   ns_per_eval_k1,ns_per_eval_k12            derived at rendering: per engine variant and quantity the
 ///                                                             worst error over every cross-checked case of the
 ///                                                             campaign, relative to the quantity's scale, against the
-///                                                             analytic engine (the analytic engine's own row: against
-///                                                             Simbody)
+///                                                             analytic engine (the analytic engine's own row: case by
+///                                                             case against the nearer of the other exact engines)
 ///   engines_league  engine,k,ns_per_eval,worst_rel_error      derived: the figure's points (cost against the worst
 ///                                                             error over all quantities)
 
