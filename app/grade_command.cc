@@ -9,6 +9,7 @@
 #include <set>
 #include <thread>
 
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/output_folder.h"
@@ -67,9 +68,7 @@ int runGrade(const GradeOptions& options) {
   for (const std::string& path : options.scene_paths) {
     scenes.push_back(loadScene(path));
     if (!names.insert(scenes.back().name).second) throw UsageError(path + ": a scene named " + scenes.back().name + " is given twice");
-    const Mechanism& m = scenes.back();
-    if (!(m.rod.mass > 0 && m.rod.inertia_about_wrist_pin > 0))
-      throw UsageError(path + ": [rod].mass and [rod].inertia_about_wrist_pin must be > 0 for the Simbody engine");
+    validation::checkEveryEngineBuilds(scenes.back(), path);  // the references grade against (and the rest)
   }
   const int jobs = options.jobs > 0 ? options.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   validation::OutputFolder out(options.out, "--out");

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/report.h"
 #include "crankcheck/validation/errors.h"
@@ -128,9 +129,9 @@ int runValidate(const ValidateOptions& options) {
     campaign.scenes.push_back(loadScene(path));
     if (!names.insert(campaign.scenes.back().name).second)
       throw UsageError(path + ": a scene named " + campaign.scenes.back().name + " is given twice");
-    const Mechanism& m = campaign.scenes.back();
-    if (!(m.rod.mass > 0 && m.rod.inertia_about_wrist_pin > 0))
-      throw UsageError(path + ": [rod].mass and [rod].inertia_about_wrist_pin must be > 0 for the Simbody engine");
+    // Every engine must be able to build the scene (a massless rod for Simbody, a massless piston for MuJoCo, ...):
+    // refused now, naming the engine and the key, not after minutes of work.
+    validation::checkEveryEngineBuilds(campaign.scenes.back(), path);
   }
   int shard_index = 0, shard_count = 1;
   if (!options.shard.empty()) {

@@ -119,6 +119,16 @@ TEST(Cli, SceneMujocoCannotBuildIsRefusedWithOneLine) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
   EXPECT_EQ(run("eval " + path.string() + " --engine both --format json").exit_status, 0);
+  // validate and grade check every engine before any work: status 2, nothing written.
+  for (const std::string& command : {"validate " + path.string() + " --quick --out " + (folder.path() / "report").string(),
+                                     "grade " + path.string() + " --quick --out " + (folder.path() / "graded").string() +
+                                         " -- /bin/true"}) {
+    const RunResult r = run(command);
+    EXPECT_EQ(r.exit_status, 2) << command << "\n" << r.err;
+    EXPECT_NE(r.err.find(path.string() + ": --engine mujoco: piston.mass"), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(folder.path() / "report"));
+  EXPECT_FALSE(std::filesystem::exists(folder.path() / "graded"));
 }
 
 // 17 significant digits round-trip: the printed numbers are the library's doubles, bit for bit.

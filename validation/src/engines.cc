@@ -5,6 +5,7 @@
 #include "crankcheck/analytic/engine.h"
 #include "crankcheck/mujoco_models/engine.h"
 #include "crankcheck/simbody_models/engine.h"
+#include "crankcheck/validation/errors.h"
 
 namespace crankcheck::validation {
 
@@ -30,6 +31,16 @@ std::string joinEngineNames(const std::string& separator) {
   std::string names;
   for (const Engine& e : listEngines()) names += (names.empty() ? "" : separator) + e.name;
   return names;
+}
+
+void checkEveryEngineBuilds(const Mechanism& m, const std::string& path) {
+  for (const Engine& engine : listEngines()) {
+    try {
+      engine.build(m);
+    } catch (const std::exception& e) {
+      throw UsageError(path + ": --engine " + engine.name + ": " + e.what());
+    }
+  }
 }
 
 std::vector<const Engine*> listReferenceEngines() {

@@ -20,6 +20,10 @@ const Engine& findEngine(const std::string& name);
 /// The names of listEngines(), joined by `separator`.
 std::string joinEngineNames(const std::string& separator);
 
+/// Builds every engine's model of m once, before any long work: a scene some engine cannot build is refused now.
+/// @throws UsageError "PATH: --engine NAME: KEY: rule" (exit status 2) for the first engine that cannot.
+void checkEveryEngineBuilds(const Mechanism& m, const std::string& path);
+
 /// The gated (exact) engines other than "analytic": the references the analytic engine and graded programs are
 /// compared with (simbody, mujoco).
 std::vector<const Engine*> listReferenceEngines();
