@@ -1,0 +1,190 @@
+"""crankcheck from Python: the same scenes, engines and grade as the `crankcheck` CLI, over NumPy arrays.
+
+    import numpy as np, crankcheck
+    scene = crankcheck.Scene.load("scenes/inline4_four_stroke.toml")
+    phi = np.linspace(0.0, 4 * np.pi, 3600, endpoint=False)     # crank angles [rad]
+    r = scene.evaluate(phi)                                      # the analytic engine, SIMD batch kernels
+    r["Q"].shape, r["crank_pin_force"].shape                     # (3600,), (3600, 4, 2)
+    s = scene.evaluate(phi[:36], engine="simbody")               # any engine of crankcheck.engines()
+
+Names, units (SI: m, kg, s, N, N m, J; angles in radians) and signs are those of `crankcheck eval --format json`
+(README "Other commands", ../shared/CONVENTIONS.md). A scene the CLI refuses raises SceneError (a ValueError) with the
+CLI's message: "FILE: KEY: rule".
+"""
+
+import os as _os
+from dataclasses import dataclass as _dataclass, field as _field
+
+from ._crankcheck import (  # noqa: F401  (the public API)
+    Scene,
+    SceneError,
+    __version__,
+    batch_target,
+    engines,
+    fourier_piston_kinematics,
+    inverse_radical_fourier_coefficients,
+    lambda_coefficients,
+    lambda_coefficients_as_printed,
+    lambda_series_coefficient,
+    norton_two_term,
+    piston_kinematics,
+    quantities,
+    radians_from_degrees,
+    radical_fourier_coefficients,
+)
+from . import _crankcheck
+
+__all__ = [
+    "Scene", "SceneError", "SceneTable", "GradeResult", "grade", "engines", "quantities", "batch_target",
+    "radical_fourier_coefficients", "inverse_radical_fourier_coefficients", "lambda_coefficients",
+    "lambda_coefficients_as_printed", "lambda_series_coefficient", "piston_kinematics", "norton_two_term",
+    "fourier_piston_kinematics", "radians_from_degrees", "__version__",
+]
+
+_RELAY = _os.path.join(_os.path.dirname(_os.path.abspath(__file__)), "crankcheck-grade-relay")
+
+
+class SceneTable:
+    """One table of a scene (engine, crank, rod, piston, gas, flywheel) with its values as read-only attributes, named
+    and in the units of `crankcheck eval --format json`'s "scene" (SI, radians)."""
+
+    __slots__ = ("_name", "_values")
+
+    def __init__(self, name, values):
+        object.__setattr__(self, "_name", name)
+        object.__setattr__(self, "_values", dict(values))
+
+    def __getattr__(self, key):
+        try:
+            return self._values[key]
+        except KeyError:
+            raise AttributeError("scene table %s has no value %r (it has: %s)"
+                                 % (self._name, key, ", ".join(self._values))) from None
+
+    def __setattr__(self, key, value):
+        raise AttributeError("a scene is read-only: make a new one (Scene.from_toml) to change it")
+
+    def __dir__(self):
+        return list(self._values)
+
+    def to_dict(self):
+        return dict(self._values)
+
+    def __repr__(self):
+        return "%s(%s)" % (self._name, ", ".join("%s=%r" % kv for kv in self._values.items()))
+
+
+def _scene_table(name, doc):
+    def get(self):
+        values = self.to_dict()[name] if name in self.to_dict() else None
+        return None if values is None else SceneTable(name, values)
+    return property(get, doc=doc)
+
+
+Scene.engine = _scene_table("engine", "cylinders, cycle, acting, crank_angles, explicit_crank_angles, cylinder_angle, "
+                                      "bank_angles, axial_positions, speed [rad/s], gravity [m/s^2] (firing_angles "
+                                      "with [gas])")
+Scene.crank = _scene_table("crank", "radius, mass, com_radius, counterweight_mass, counterweight_radius")
+Scene.rod = _scene_table("rod", "length, mass, com_from_wrist_pin, inertia_about_wrist_pin")
+Scene.piston = _scene_table("piston", "mass")
+Scene.gas = _scene_table("gas", "bore, cycle_angles, pressures [Pa], cycle [rad]; None without [gas]")
+Scene.flywheel = _scene_table("flywheel", "inertia [kg m^2]; None without [flywheel]")
+
+
+def _number(text):
+    """A field of a grade table: a float where it is a number, None where empty, the text otherwise."""
+    if text == "":
+        return None
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+def _rows(table):
+    return [{c: _number(v) for c, v in zip(table["columns"], row)} for row in table["rows"]]
+
+
+@_dataclass
+class GradeResult:
+    """What `crankcheck grade` found for a function: the tables of its report (validation/grade.h) as lists of dicts.
+
+    summary          one row per quantity: quantity, asked, provided, worst_rel_error_simbody, worst_rel_error_analytic,
+                     tolerance_rel, where_case, where_phi_deg, where_speed_rpm, worst_rel_error_mujoco, verdict
+                     ("pass", "FAIL" or "not provided")
+    error_vs_lambda  quantity, lambda, program_max_rel_error, analytic_max_rel_error
+    failures         case, family, lambda, quantity, cylinder, phi_deg, speed_rpm, program_value, simbody_value,
+                     analytic_value, rel_error, tolerance_rel, mujoco_value
+    exit_status      the CLI's: 0 when every provided value agrees with every reference engine (and one was
+                     provided), 1 otherwise
+    """
+
+    exit_status: int
+    summary: list = _field(default_factory=list)
+    error_vs_lambda: list = _field(default_factory=list)
+    failures: list = _field(default_factory=list)
+    cases: int = 0
+    seconds: float = 0.0
+    report: str = None
+
+    @property
+    def passed(self):
+        return self.exit_status == 0
+
+    def verdict(self, quantity):
+        """The summary's verdict for `quantity` ("pass", "FAIL", "not provided"), None when it was not asked."""
+        for row in self.summary:
+            if row["quantity"] == quantity:
+                return row["verdict"]
+        return None
+
+    def __str__(self):
+        """The summary as `crankcheck grade` prints it."""
+        def brief(x):
+            return "-" if x is None else "%.2g" % x
+
+        lines = ["%-16s %18s %14s %14s  %s" % ("quantity", "provided / asked", "vs Simbody [-]", "vs analytic [-]",
+                                              "verdict")]
+        for row in self.summary:
+            lines.append("%-16s %18s %14s %14s  %s" % (
+                row["quantity"], "%d / %d" % (row["provided"], row["asked"]), brief(row["worst_rel_error_simbody"]),
+                brief(row["worst_rel_error_analytic"]), row["verdict"]))
+        lines.append("Every provided value agrees with both engines." if self.passed else
+                     "SOME VALUES DISAGREE, or none was provided (see the report's failing cases).")
+        return "\n".join(lines)
+
+
+def grade(function, scenes=None, quick=True, *, jobs=None, timeout=60.0, out=None):
+    """Grades `function` by the rule and with the cases of `crankcheck grade --batch` (README "Grade your own code").
+
+    function(scene, phi) -> dict: `scene` is a crankcheck.Scene (the case's mechanism), `phi` a NumPy array of crank
+    angles [rad]; it returns what it computes as Scene.evaluate does, with eval's names and shapes ((n,), (n, 2),
+    (n, 3), (n, k), (n, k, 2) for n angles and k cylinders). A quantity left out, or None, is "not provided": reported as
+    such, never as wrong. Values must be finite, except shaking_moment's X and Y for a scene without axial positions
+    (not defined, not graded: NaN as Scene.evaluate gives them). An exception of the function ends the grade and is
+    raised here (with a note naming the case).
+
+    scenes: scene files or Scenes (default: the built-in campaign of `crankcheck validate`); quick: the CLI's --quick;
+    jobs: references computed in parallel (default: one per core); timeout: seconds per request, as --timeout; out: a
+    folder for the CLI's report (the same folder rule as --out; needs gnuplot). The function is called from one
+    thread at a time, in this process (the requests reach it through a relay program that `crankcheck grade`'s own
+    code starts).
+    """
+    if not callable(function):
+        raise TypeError("grade: function must be callable as function(scene, phi) -> dict")
+    scene_list = None if scenes is None else list(scenes)
+    name = getattr(function, "__qualname__", None) or repr(function)
+    module = getattr(function, "__module__", None)
+    program = "python: %s.%s" % (module, name) if module else "python: %s" % name
+    r = _crankcheck._grade(function, scene_list, bool(quick), 0 if jobs is None else int(jobs), float(timeout),
+                           None if out is None else _os.fspath(out), _RELAY, program)
+    tables = r["tables"]
+    return GradeResult(
+        exit_status=r["exit_status"],
+        summary=_rows(tables["grade_summary"]),
+        error_vs_lambda=_rows(tables["grade_error_vs_lambda"]),
+        failures=_rows(tables["grade_failures"]),
+        cases=r["cases"],
+        seconds=r["seconds"],
+        report=r["report"],
+    )

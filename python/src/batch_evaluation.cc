@@ -1,0 +1,240 @@
+#include "batch_evaluation.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+#include "crankcheck/analytic/batch.h"
+#include "crankcheck/analytic/kinematics.h"
+
+namespace crankcheck::python {
+
+const std::vector<QuantityInfo>& listQuantities() {
+  static const std::vector<QuantityInfo> quantities = {
+      {"U", 1, false},          {"Q", 1, false},          {"U_star", 1, false},         {"Q_star", 1, false},
+      {"drive_torque", 1, false}, {"bearing_force", 2, false}, {"shaking_force", 2, false}, {"shaking_moment", 3, false},
+      {"x_p", 1, true},         {"v_p", 1, true},         {"a_p", 1, true},             {"crank_pin_force", 2, true},
+      {"wrist_pin_force", 2, true}, {"wall_force", 1, true}, {"gas_force", 1, true},    {"rod_angle", 1, true},
+      {"rod_omega", 1, true},   {"rod_alpha", 1, true}};
+  return quantities;
+}
+
+const QuantityInfo* findQuantity(const std::string& name) {
+  for (const QuantityInfo& q : listQuantities())
+    if (name == q.name) return &q;
+  return nullptr;
+}
+
+bool isDefined(const Mechanism& m, const std::string& name) {
+  if (name == "U_star" || name == "Q_star") return m.flywheel_inertia.has_value() && m.engine.speed > 0.0;
+  if (name == "gas_force") return m.gas.has_value();
+  return findQuantity(name) != nullptr;
+}
+
+double*& BatchOutput::at(const std::string& name) {
+  double** fields[] = {&U, &Q, &U_star, &Q_star, &drive_torque, &bearing_force, &shaking_force, &shaking_moment,
+                       &x_p, &v_p, &a_p, &crank_pin_force, &wrist_pin_force, &wall_force, &gas_force, &rod_angle,
+                       &rod_omega, &rod_alpha};
+  const std::vector<QuantityInfo>& all = listQuantities();
+  for (size_t i = 0; i < all.size(); ++i)
+    if (name == all[i].name) return *fields[i];
+  throw std::invalid_argument("no quantity called " + name);
+}
+
+void checkAngles(std::span<const double> phi) {
+  // One pass without a branch per angle in the common case (all finite), then the first offender for the message.
+  bool finite = true;
+  for (double x : phi) finite &= std::isfinite(x);
+  if (finite) return;
+  for (size_t i = 0; i < phi.size(); ++i)
+    if (!std::isfinite(phi[i])) {
+      char text[96];
+      std::snprintf(text, sizeof text, "phi[%zu] = %g: must be a finite number of radians", i, phi[i]);
+      throw std::invalid_argument(text);
+    }
+}
+
+namespace {
+
+// Memory for what a kernel computes but nobody asked for: uninitialised doubles, allocated only when needed.
+class Scratch {
+ public:
+  explicit Scratch(size_t n) : n_(n) {}
+  double* get() {
+    blocks_.push_back(std::unique_ptr<double[]>(new double[n_ == 0 ? 1 : n_]));
+    return blocks_.back().get();
+  }
+  // `wanted`, or scratch memory when it is null.
+  double* orScratch(double* wanted) { return wanted ? wanted : get(); }
+
+ private:
+  size_t n_;
+  std::vector<std::unique_ptr<double[]>> blocks_;
+};
+
+// Component c of cylinder j of a [component][cylinder][angle] block.
+double* part(double* base, int c, int j, int k, size_t n) {
+  return base + (static_cast<size_t>(c) * static_cast<size_t>(k) + static_cast<size_t>(j)) * n;
+}
+
+}  // namespace
+
+void evaluateAnalyticBatch(const Mechanism& m, std::span<const double> phi, const BatchOutput& out) {
+  checkAngles(phi);
+  const size_t n = phi.size();
+  const int k = m.engine.cylinders;
+  Scratch scratch(n);
+  auto span = [n](double* p) { return std::span<double>(p, n); };
+
+  // U and Q (U_star and Q_star are the same divided by I_w omega^2).
+  const bool dimensionless = m.flywheel_inertia && m.engine.speed > 0.0;
+  if ((out.U_star || out.Q_star) && !dimensionless)
+    throw std::invalid_argument("U_star, Q_star: not defined without [flywheel].inertia and a speed");
+  const double unit = dimensionless ? *m.flywheel_inertia * m.engine.speed * m.engine.speed : 1.0;
+  if (out.U || out.U_star) {
+    double* U = scratch.orScratch(out.U);
+    analytic::calcPotentialEnergyBatch(m, phi, span(U));
+    if (out.U_star)
+      for (size_t i = 0; i < n; ++i) out.U_star[i] = U[i] / unit;
+  }
+  if (out.Q || out.Q_star) {
+    double* Q = scratch.orScratch(out.Q);
+    analytic::calcGravityTorqueBatch(m, phi, span(Q));
+    if (out.Q_star)
+      for (size_t i = 0; i < n; ++i) out.Q_star[i] = Q[i] / unit;
+  }
+
+  // Piston kinematics.
+  if (out.x_p || out.v_p || out.a_p) {
+    double *x = out.x_p, *v = out.v_p, *a = out.a_p;
+    std::vector<analytic::PistonKinematicsSpans> cylinders;
+    for (int j = 0; j < k; ++j) {
+      // One scratch run per missing quantity and cylinder (the kernel needs every span).
+      cylinders.push_back({span(x ? part(x, 0, j, k, n) : scratch.get()), span(v ? part(v, 0, j, k, n) : scratch.get()),
+                           span(a ? part(a, 0, j, k, n) : scratch.get())});
+    }
+    analytic::calcPistonKinematicsBatch(m, phi, cylinders);
+  }
+
+  // Reactions: the totals always; the cylinders' when one of their quantities is asked for.
+  const bool cylinder_reactions = out.crank_pin_force || out.wrist_pin_force || out.wall_force;
+  if (out.drive_torque || out.bearing_force || cylinder_reactions) {
+    double* tau = scratch.orScratch(out.drive_torque);
+    double* F_X = out.bearing_force ? part(out.bearing_force, 0, 0, 1, n) : scratch.get();
+    double* F_Y = out.bearing_force ? part(out.bearing_force, 1, 0, 1, n) : scratch.get();
+    std::vector<analytic::CylinderReactionsSpans> cylinders;
+    if (cylinder_reactions)
+      for (int j = 0; j < k; ++j) {
+        analytic::CylinderReactionsSpans c;
+        c.crank_pin_force_X = span(out.crank_pin_force ? part(out.crank_pin_force, 0, j, k, n) : scratch.get());
+        c.crank_pin_force_Y = span(out.crank_pin_force ? part(out.crank_pin_force, 1, j, k, n) : scratch.get());
+        c.wrist_pin_force_X = span(out.wrist_pin_force ? part(out.wrist_pin_force, 0, j, k, n) : scratch.get());
+        c.wrist_pin_force_Y = span(out.wrist_pin_force ? part(out.wrist_pin_force, 1, j, k, n) : scratch.get());
+        c.wall_force = span(out.wall_force ? part(out.wall_force, 0, j, k, n) : scratch.get());
+        cylinders.push_back(c);
+      }
+    analytic::ReactionsSpans reactions;
+    reactions.drive_torque = span(tau);
+    reactions.bearing_force_X = span(F_X);
+    reactions.bearing_force_Y = span(F_Y);
+    reactions.cylinders = cylinders;
+    analytic::calcReactionsBatch(m, phi, reactions);
+  }
+
+  // Shaking force and moment.
+  if (out.shaking_force || out.shaking_moment) {
+    analytic::ShakingSpans s;
+    s.force_X = span(out.shaking_force ? part(out.shaking_force, 0, 0, 1, n) : scratch.get());
+    s.force_Y = span(out.shaking_force ? part(out.shaking_force, 1, 0, 1, n) : scratch.get());
+    s.moment_X = span(out.shaking_moment ? part(out.shaking_moment, 0, 0, 1, n) : scratch.get());
+    s.moment_Y = span(out.shaking_moment ? part(out.shaking_moment, 1, 0, 1, n) : scratch.get());
+    s.moment_Z = span(out.shaking_moment ? part(out.shaking_moment, 2, 0, 1, n) : scratch.get());
+    analytic::calcShakingBatch(m, phi, s);
+    if (out.shaking_moment && !hasAxialPositions(m))  // eval: null, never 0
+      for (size_t i = 0; i < 2 * n; ++i) out.shaking_moment[i] = std::numeric_limits<double>::quiet_NaN();
+  }
+
+  // The rod's angle and its derivatives, and the gas force: no kernel; the analytic engine's own scalar functions,
+  // as calcEvaluation calls them (calcCylinderMotion: the rod at calcThrowSinCos(phi, alpha_j), with the cylinder's
+  // pin offset, so the two agree by construction whatever the layout).
+  if (out.rod_angle || out.rod_omega || out.rod_alpha) {
+    for (int j = 0; j < k; ++j) {
+      double* beta = out.rod_angle ? part(out.rod_angle, 0, j, k, n) : nullptr;
+      double* beta_dot = out.rod_omega ? part(out.rod_omega, 0, j, k, n) : nullptr;
+      double* beta_ddot = out.rod_alpha ? part(out.rod_alpha, 0, j, k, n) : nullptr;
+      for (size_t i = 0; i < n; ++i) {
+        const analytic::RodKinematics rod = analytic::calcCylinderMotion(m, j, phi[i]).rod;
+        if (beta) beta[i] = rod.beta;
+        if (beta_dot) beta_dot[i] = rod.beta_dot;
+        if (beta_ddot) beta_ddot[i] = rod.beta_ddot;
+      }
+    }
+  }
+  if (out.gas_force) {
+    if (!m.gas) throw std::invalid_argument("gas_force: not defined without [gas]");
+    for (int j = 0; j < k; ++j) {
+      double* f = part(out.gas_force, 0, j, k, n);
+      for (size_t i = 0; i < n; ++i) f[i] = calcGasForce(m, j, phi[i]);
+    }
+  }
+}
+
+void evaluateModel(const Mechanism& m, const Engine& engine, EngineModel& model, std::span<const double> phi,
+                   const BatchOutput& out) {
+  checkAngles(phi);
+  const size_t n = phi.size();
+  const int k = m.engine.cylinders;
+  const bool dimensionless = m.flywheel_inertia && m.engine.speed > 0.0;
+  if ((out.U_star || out.Q_star) && !dimensionless)
+    throw std::invalid_argument("U_star, Q_star: not defined without [flywheel].inertia and a speed");
+  if (out.gas_force && !m.gas) throw std::invalid_argument("gas_force: not defined without [gas]");
+  const double unit = dimensionless ? *m.flywheel_inertia * m.engine.speed * m.engine.speed : 1.0;
+  const bool moment_xy = hasAxialPositions(m);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (size_t i = 0; i < n; ++i) {
+    Evaluation ev;
+    try {
+      ev = model.evaluate(phi[i]);
+    } catch (const std::invalid_argument&) {
+      throw;
+    } catch (const std::exception& e) {
+      char where[96];
+      std::snprintf(where, sizeof where, " could not evaluate phi[%zu] = %.17g rad: ", i, phi[i]);
+      throw std::runtime_error("engine " + engine.name + ": " + engine.library + where + e.what());
+    }
+    if (ev.cylinders.size() != static_cast<size_t>(k))
+      throw std::runtime_error("engine " + engine.name + " returned " + std::to_string(ev.cylinders.size()) +
+                               " cylinders for a scene of " + std::to_string(k));
+    if (out.U) out.U[i] = ev.U;
+    if (out.Q) out.Q[i] = ev.Q;
+    if (out.U_star) out.U_star[i] = ev.U / unit;
+    if (out.Q_star) out.Q_star[i] = ev.Q / unit;
+    if (out.drive_torque) out.drive_torque[i] = ev.drive_torque;
+    for (int c = 0; c < 2; ++c) {
+      if (out.bearing_force) part(out.bearing_force, c, 0, 1, n)[i] = ev.bearing_force[static_cast<size_t>(c)];
+      if (out.shaking_force) part(out.shaking_force, c, 0, 1, n)[i] = ev.shaking_force[static_cast<size_t>(c)];
+    }
+    if (out.shaking_moment)
+      for (int c = 0; c < 3; ++c)
+        part(out.shaking_moment, c, 0, 1, n)[i] = c < 2 && !moment_xy ? nan : ev.shaking_moment[static_cast<size_t>(c)];
+    for (int j = 0; j < k; ++j) {
+      const CylinderEvaluation& cyl = ev.cylinders[static_cast<size_t>(j)];
+      if (out.x_p) part(out.x_p, 0, j, k, n)[i] = cyl.x_p;
+      if (out.v_p) part(out.v_p, 0, j, k, n)[i] = cyl.v_p;
+      if (out.a_p) part(out.a_p, 0, j, k, n)[i] = cyl.a_p;
+      for (int c = 0; c < 2; ++c) {
+        if (out.crank_pin_force) part(out.crank_pin_force, c, j, k, n)[i] = cyl.crank_pin_force[static_cast<size_t>(c)];
+        if (out.wrist_pin_force) part(out.wrist_pin_force, c, j, k, n)[i] = cyl.wrist_pin_force[static_cast<size_t>(c)];
+      }
+      if (out.wall_force) part(out.wall_force, 0, j, k, n)[i] = cyl.wall_force;
+      if (out.gas_force) part(out.gas_force, 0, j, k, n)[i] = cyl.gas_force;
+      if (out.rod_angle) part(out.rod_angle, 0, j, k, n)[i] = cyl.rod_angle;
+      if (out.rod_omega) part(out.rod_omega, 0, j, k, n)[i] = cyl.rod_omega;
+      if (out.rod_alpha) part(out.rod_alpha, 0, j, k, n)[i] = cyl.rod_alpha;
+    }
+  }
+}
+
+}  // namespace crankcheck::python

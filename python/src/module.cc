@@ -1,0 +1,726 @@
+// The Python module crankcheck._crankcheck (pybind11): scenes, every engine of validation::listEngines() over NumPy
+// arrays of crank angles, balance, the free run, `crankcheck grade` of a Python function, and the closed forms of
+// fourier_series.h and kinematics.h as plain functions of lambda. python/crankcheck/__init__.py is the public face.
+//
+// Names, units (SI, radians) and conventions are the CLI's (README "Other commands", ../shared/CONVENTIONS.md); a
+// scene that the CLI refuses is refused here as crankcheck.SceneError with the CLI's message (without the CLI's
+// "crankcheck: " prefix). The engines run with the GIL released; each call builds its own engine model, so calls from
+// several Python threads run in parallel (an EngineModel is used by one thread only: scene/engine.h).
+
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "batch_evaluation.h"
+#include "crankcheck/analytic/batch.h"
+#include "crankcheck/analytic/fourier_series.h"
+#include "crankcheck/analytic/kinematics.h"
+#include "crankcheck/analytic/motion.h"
+#include "crankcheck/analytic/shaking.h"
+#include "crankcheck/scene/scene_file.h"
+#include "crankcheck/scene/scene_writer.h"
+#include "crankcheck/validation/balance.h"
+#include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/evaluation_json.h"
+#include "crankcheck/validation/grade.h"
+#include "crankcheck/validation/output_folder.h"
+#include "crankcheck/validation/report.h"
+#include "crankcheck/validation/scales.h"
+#include "grade_bridge.h"
+
+namespace py = pybind11;
+
+namespace crankcheck::python {
+namespace {
+
+using Angles = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// A scene as Python holds it: the mechanism and the name messages use for it (the file path, as the CLI's).
+struct Scene {
+  Mechanism m;
+  std::string source;
+};
+using ScenePtr = std::shared_ptr<Scene>;
+
+// JSON (nlohmann) to Python objects through Python's own json module: the same numbers the CLI prints.
+py::object toPython(const nlohmann::ordered_json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+py::array_t<double> toArray(const std::vector<double>& v) {
+  py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+  std::copy(v.begin(), v.end(), a.mutable_data());
+  return a;
+}
+
+// ---- Angles: the buffer of a C-contiguous float64 array is used as it is (no copy); anything else (a float, a list,
+// another dtype, a strided view) is converted once by NumPy.
+Angles asAngles(const py::handle& phi) {
+  Angles a = Angles::ensure(phi);
+  if (!a) throw py::error_already_set();
+  return a;
+}
+
+std::span<const double> spanOf(const Angles& a) { return {a.data(), static_cast<size_t>(a.size())}; }
+
+// ---- Outputs: one NumPy array per quantity, laid out [component][cylinder][angle...] in memory (what the batch
+// kernels write, BatchOutput) and returned as the view of shape phi.shape + (k,) + (components,), so that no value is
+// copied. The views are Fortran-ordered (each component contiguous).
+struct Output {
+  const QuantityInfo* info;
+  py::array_t<double> buffer;
+};
+
+Output allocate(const QuantityInfo& q, int k, const std::vector<py::ssize_t>& angle_shape) {
+  std::vector<py::ssize_t> shape;
+  if (q.components > 1) shape.push_back(q.components);
+  if (q.per_cylinder) shape.push_back(k);
+  shape.insert(shape.end(), angle_shape.begin(), angle_shape.end());
+  return {&q, py::array_t<double>(shape)};
+}
+
+py::object view(const Output& o, size_t angle_dims) {
+  const size_t prefix = (o.info->components > 1 ? 1 : 0) + (o.info->per_cylinder ? 1 : 0);
+  py::list axes;
+  for (size_t a = 0; a < angle_dims; ++a) axes.append(prefix + a);
+  for (size_t a = prefix; a-- > 0;) axes.append(a);  // cylinder, then component
+  py::object v = o.buffer.attr("transpose")(py::tuple(axes));
+  if (v.attr("ndim").cast<int>() == 0) return v[py::tuple()];  // a float angle gives NumPy scalars
+  return v;
+}
+
+std::vector<std::string> defaultQuantities(const Mechanism& m) {
+  std::vector<std::string> names;
+  for (const QuantityInfo& q : listQuantities())
+    if (isDefined(m, q.name)) names.push_back(q.name);
+  return names;
+}
+
+std::string joinQuantityNames() {
+  std::string all;
+  for (const QuantityInfo& q : listQuantities()) all += std::string(all.empty() ? "" : ", ") + q.name;
+  return all;
+}
+
+// The CLI's refusal of a scene an engine cannot build: "SOURCE: --engine NAME: KEY: rule".
+std::unique_ptr<EngineModel> buildModel(const Scene& s, const Engine& engine) {
+  try {
+    return engine.build(s.m);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(s.source + ": --engine " + engine.name + ": " + e.what());
+  } catch (const std::exception& e) {
+    throw std::runtime_error(s.source + ": --engine " + engine.name + ": " + engine.library + " failed: " + e.what());
+  }
+}
+
+const Engine& engineNamed(const std::string& name) {
+  try {
+    return validation::findEngine(name);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(std::string("engine: ") + e.what());
+  }
+}
+
+py::dict evaluate(const ScenePtr& scene, const py::handle& phi_in, const std::string& engine_name,
+                  const std::optional<std::vector<std::string>>& quantities) {
+  const Mechanism& m = scene->m;
+  const Engine& engine = engineNamed(engine_name);
+  const Angles phi = asAngles(phi_in);
+  std::vector<py::ssize_t> angle_shape(phi.shape(), phi.shape() + phi.ndim());
+  // Which quantities: all that the scene defines (U_star, Q_star without a flywheel and a speed: None, as eval's null;
+  // gas_force without [gas]: absent, as in eval), or the caller's list.
+  const std::vector<std::string> names = quantities ? *quantities : defaultQuantities(m);
+  std::set<std::string> seen;
+  for (const std::string& name : names) {
+    if (!findQuantity(name))
+      throw py::value_error("quantities: \"" + name + "\" is not a quantity of eval (one of " + joinQuantityNames() + ")");
+    if (!isDefined(m, name))
+      throw py::value_error("quantities: " + name + " is not defined for " + scene->source +
+                            (name == "gas_force" ? " (it has no [gas] table)" : " (it needs [flywheel].inertia and speed_rpm > 0)"));
+    if (!seen.insert(name).second) throw py::value_error("quantities: " + name + " is given twice");
+  }
+  std::vector<Output> outputs;
+  BatchOutput out;
+  for (const QuantityInfo& q : listQuantities())
+    if (seen.count(q.name)) {
+      outputs.push_back(allocate(q, m.engine.cylinders, angle_shape));
+      out.at(q.name) = outputs.back().buffer.mutable_data();
+    }
+  const std::span<const double> angles = spanOf(phi);
+  {
+    py::gil_scoped_release release;
+    try {
+      if (engine.name == "analytic") {
+        evaluateAnalyticBatch(m, angles, out);
+      } else {
+        const std::unique_ptr<EngineModel> model = buildModel(*scene, engine);
+        evaluateModel(m, engine, *model, angles, out);
+      }
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(e.what());  // an angle that is not finite
+    }
+  }
+  py::dict result;
+  size_t next = 0;
+  for (const QuantityInfo& q : listQuantities()) {
+    if (next < outputs.size() && outputs[next].info == &q) {
+      result[q.name] = view(outputs[next++], angle_shape.size());
+    } else if (!quantities && (std::string(q.name) == "U_star" || std::string(q.name) == "Q_star")) {
+      result[q.name] = py::none();  // eval: null without a flywheel or at rest
+    }
+  }
+  return result;
+}
+
+// ---- balance: the CLI's JSON (app/balance_command.cc), built from the same validation::calcBalance.
+const char* kAxes[3] = {"X", "Y", "Z"};
+
+std::string reasonOf(const analytic::HarmonicSymmetry& s, bool axial) {
+  if (!s.decided) return "not decided (an angle is not a whole degree, or a position not a whole nanometre)";
+  std::string parts;
+  auto add = [&](bool cancels, const char* what) {
+    if (cancels) parts += std::string(parts.empty() ? "" : ", ") + what;
+  };
+  add(s.force_cancels, "force");
+  if (axial) add(s.moment_xy_cancels, "moment X, Y");
+  add(s.moment_z_cancels, "moment Z");
+  return parts.empty() ? "" : parts + ": the throws' phases cancel (exact sum of roots of unity)";
+}
+
+analytic::ShakingHarmonic withExactZeros(analytic::ShakingHarmonic h, const analytic::HarmonicSymmetry& s) {
+  if (!s.decided) return h;
+  if (s.force_cancels) h.force_cos = h.force_sin = Vec2{0.0, 0.0};
+  for (int k = 0; k < 2; ++k)
+    if (s.moment_xy_cancels) h.moment_cos[k] = h.moment_sin[k] = 0.0;
+  if (s.moment_z_cancels) h.moment_cos[2] = h.moment_sin[2] = 0.0;
+  return h;
+}
+
+nlohmann::ordered_json harmonicToJson(const analytic::ShakingHarmonic& h, bool axial) {
+  nlohmann::ordered_json j;
+  j["shaking_force"] = {{"amplitude", h.calcForceAmplitude()},
+                        {"cos", nlohmann::ordered_json::array({h.force_cos[0], h.force_cos[1]})},
+                        {"sin", nlohmann::ordered_json::array({h.force_sin[0], h.force_sin[1]})}};
+  nlohmann::ordered_json moment;
+  for (int k = 0; k < 3; ++k) {
+    if (k < 2 && !axial) {
+      moment[kAxes[k]] = nullptr;
+      continue;
+    }
+    moment[kAxes[k]] = {{"amplitude", h.calcMomentAmplitude(k)}, {"cos", h.moment_cos[k]}, {"sin", h.moment_sin[k]}};
+  }
+  j["shaking_moment"] = moment;
+  return j;
+}
+
+py::object balance(const ScenePtr& scene, int order) {
+  if (order < 1 || order > 64) throw py::value_error("order: " + std::to_string(order) + " not in [1 - 64]");
+  const Mechanism& m = scene->m;
+  std::vector<validation::BalanceRow> rows;
+  {
+    py::gil_scoped_release release;
+    try {
+      rows = validation::calcBalance(m, order);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(scene->source + ": " + e.what());
+    }
+  }
+  const bool axial = hasAxialPositions(m);
+  nlohmann::ordered_json doc;
+  doc["scene"] = validation::sceneToJson(m);
+  doc["order"] = order;
+  doc["samples"] = std::max(64, 4 * order);
+  doc["harmonics"] = nlohmann::ordered_json::array();
+  for (const validation::BalanceRow& row : rows) {
+    nlohmann::ordered_json h;
+    h["n"] = row.n;
+    h["analytic"] = harmonicToJson(withExactZeros(row.analytic, row.symmetry), axial);
+    for (const auto& [engine, harmonic] : row.engines) h[engine] = harmonicToJson(harmonic, axial);
+    const auto& s = row.symmetry;
+    auto decided = [&](bool v) { return s.decided ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
+    h["vanishes_by_symmetry"] = {{"force", decided(s.force_cancels)},
+                                 {"moment_xy", axial ? decided(s.moment_xy_cancels) : nlohmann::ordered_json(nullptr)},
+                                 {"moment_z", decided(s.moment_z_cancels)}};
+    h["reason"] = reasonOf(s, axial);
+    doc["harmonics"].push_back(h);
+  }
+  return toPython(doc);
+}
+
+// ---- motion: the CLI's JSON (app/motion_command.cc) from the same functions, optionally with each engine's run.
+py::object motion(const ScenePtr& scene, const std::string& integrator, double accuracy,
+                  const std::string& mujoco_integrator, double mujoco_step, bool series) {
+  const Mechanism& m = scene->m;
+  const std::string& source = scene->source;
+  // The CLI's checks of its flags, by the parameters' names.
+  const std::vector<std::string> simbody_integrators = {"RungeKuttaMerson", "CPodes", "SemiExplicitEuler2"};
+  const std::vector<std::string> mujoco_integrators = {"RK4", "Euler", "implicit"};
+  auto member = [](const std::vector<std::string>& set, const std::string& x) {
+    return std::find(set.begin(), set.end(), x) != set.end();
+  };
+  if (!member(simbody_integrators, integrator))
+    throw py::value_error("integrator: " + integrator + " not in {RungeKuttaMerson, CPodes, SemiExplicitEuler2}");
+  if (!member(mujoco_integrators, mujoco_integrator))
+    throw py::value_error("mujoco_integrator: " + mujoco_integrator + " not in {RK4, Euler, implicit}");
+  if (!(accuracy >= 1e-14 && accuracy <= 1e-1)) throw py::value_error("accuracy: value not in range 1e-14 to 0.1");
+  if (!(mujoco_step >= 1e-6 && mujoco_step <= 1e-1)) throw py::value_error("mujoco_step: value not in range 1e-06 to 0.1");
+  if (!m.flywheel_inertia)
+    throw SceneError(source + ": [flywheel].inertia: missing key (the free run needs the flywheel inertia)");
+  if (!(m.engine.speed > 0.0)) throw SceneError(source + ": [engine].speed_rpm: must be > 0 for the free run (the release speed)");
+  const double w0 = m.engine.speed;
+  nlohmann::ordered_json doc;
+  struct Run {
+    std::string engine;
+    FreeRunResult with;
+  };
+  std::vector<Run> runs;
+  {
+    py::gil_scoped_release release;
+    try {
+      const analytic::FreeRun with = analytic::calcFreeRun(m, w0, true), without = analytic::calcFreeRun(m, w0, false);
+      doc["analytic"] = {{"delta_gravity", with.delta}, {"delta_no_gravity", without.delta}, {"omega_min", with.omega_min},
+                         {"omega_max", with.omega_max}, {"omega_mean", with.omega_mean}};
+    } catch (const std::domain_error& e) {
+      throw SceneError(source + ": [engine].speed_rpm: " + e.what());
+    }
+    for (const Engine& engine : validation::listEngines()) {
+      if (!engine.simulate) continue;
+      const bool simbody = engine.name == "simbody";
+      FreeRunSettings run;
+      run.integrator = simbody ? integrator : mujoco_integrator;
+      run.accuracy = simbody ? accuracy : mujoco_step;
+      try {
+        run.gravity = true;
+        const FreeRunResult with = engine.simulate(m, w0, run);
+        run.gravity = false;
+        const FreeRunResult without = engine.simulate(m, w0, run);
+        doc[engine.name] = {{"delta_gravity", with.delta},       {"delta_no_gravity", without.delta},
+                            {"omega_min", with.omega_min},       {"omega_max", with.omega_max},
+                            {"omega_mean", with.omega_mean},     {"integrator", run.integrator},
+                            {"energy_drift_per_revolution", with.energy_drift_per_revolution},
+                            {"steps", with.steps}};
+        if (series) runs.push_back({engine.name, with});
+      } catch (const std::invalid_argument& e) {
+        throw SceneError(source + ": " + engine.name + ": " + e.what());
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error(source + ": " + engine.name + ": " + engine.library + " could not run: " + e.what());
+      }
+    }
+  }
+  py::object result = toPython(doc);
+  for (const Run& r : runs) {
+    // The run with gravity, step by step: time [s], phi [rad] (unwrapped), phi_dot [rad/s], energy [J].
+    py::dict s;
+    s["time"] = toArray(r.with.time);
+    s["phi"] = toArray(r.with.phi);
+    s["phi_dot"] = toArray(r.with.phi_dot);
+    s["energy"] = toArray(r.with.energy);
+    result[py::str(r.engine)]["series"] = s;
+  }
+  return result;
+}
+
+// ---- grade: the user's function answers `crankcheck grade`'s requests (grade_bridge.h).
+
+std::string formatShape(const std::vector<py::ssize_t>& shape) {
+  std::string text = "(";
+  for (size_t d = 0; d < shape.size(); ++d) text += (d ? ", " : "") + std::to_string(shape[d]);
+  return text + (shape.size() == 1 ? ",)" : ")");
+}
+
+// The function's answer for case c as protocol 1's response line: {"results": [{"phi_deg", "U", ..., "cylinders":
+// [...]}, ...]}. Called with the GIL held.
+std::string toResponse(const validation::GradeCase& c, const py::handle& answer) {
+  const std::string where = "crankcheck.grade: case " + c.id + ": ";
+  if (!py::isinstance<py::dict>(answer))
+    throw py::type_error(where + "the function must return a dict of eval's quantities (as Scene.evaluate does), not " +
+                         std::string(py::str(answer.get_type().attr("__name__"))));
+  const size_t n = c.phi_deg.size();
+  const int k = c.mechanism.engine.cylinders;
+  const bool axial = hasAxialPositions(c.mechanism);
+  nlohmann::ordered_json results = nlohmann::ordered_json::array();
+  for (size_t i = 0; i < n; ++i) results.push_back({{"phi_deg", c.phi_deg[i]}});
+  for (const auto& [key_handle, value] : py::reinterpret_borrow<py::dict>(answer)) {
+    const std::string key = py::str(key_handle);
+    const QuantityInfo* q = findQuantity(key);
+    if (!q) throw py::value_error(where + "\"" + key + "\" is not a quantity of eval (one of " + joinQuantityNames() + ")");
+    if (value.is_none() || key == "U_star" || key == "Q_star") continue;  // not provided; U_star, Q_star are not graded
+    const Angles a = asAngles(value);
+    std::vector<py::ssize_t> expected = {static_cast<py::ssize_t>(n)};
+    if (q->per_cylinder) expected.push_back(k);
+    if (q->components > 1) expected.push_back(q->components);
+    const std::vector<py::ssize_t> shape(a.shape(), a.shape() + a.ndim());
+    if (shape != expected)
+      throw py::value_error(where + "result[\"" + key + "\"] has shape " + formatShape(shape) + ", expected " +
+                            formatShape(expected) + " (angles" + (q->per_cylinder ? ", cylinders" : "") +
+                            (q->components > 1 ? ", components" : "") + ")");
+    const double* data = a.data();
+    const int cyls = q->per_cylinder ? k : 1;
+    for (size_t i = 0; i < n; ++i)
+      for (int j = 0; j < cyls; ++j) {
+        nlohmann::ordered_json value_json;
+        for (int comp = 0; comp < q->components; ++comp) {
+          const double x = data[(i * static_cast<size_t>(cyls) + static_cast<size_t>(j)) * static_cast<size_t>(q->components) +
+                                static_cast<size_t>(comp)];
+          nlohmann::ordered_json number = x;
+          if (!std::isfinite(x)) {
+            // shaking_moment X, Y without axial positions are not defined (eval: null; Scene.evaluate: NaN): not graded.
+            if (key == "shaking_moment" && comp < 2 && !axial) {
+              number = nullptr;
+            } else {
+              throw py::value_error(where + "result[\"" + key + "\"][" + std::to_string(i) + (q->per_cylinder ? ", " + std::to_string(j) : "") +
+                                    (q->components > 1 ? ", " + std::to_string(comp) : "") + "] = " + std::to_string(x) +
+                                    " is not a finite number (leave a quantity out, or None, to not provide it)");
+            }
+          }
+          if (q->components > 1) value_json.push_back(number);
+          else value_json = number;
+        }
+        if (q->per_cylinder) {
+          nlohmann::ordered_json& cylinders = results[i]["cylinders"];
+          if (cylinders.is_null())
+            for (int jj = 0; jj < k; ++jj) cylinders.push_back(nlohmann::ordered_json::object());
+          cylinders[static_cast<size_t>(j)][key] = value_json;
+        } else {
+          results[i][key] = value_json;
+        }
+      }
+  }
+  return nlohmann::ordered_json{{"results", results}}.dump();
+}
+
+// The tables as {name: {"columns": [...], "rows": [[...], ...]}}.
+py::dict tablesToPython(const validation::TableSet& tables) {
+  py::dict d;
+  for (const auto& [name, table] : tables) {
+    py::dict t;
+    t["columns"] = table.columns;
+    t["rows"] = table.rows;
+    d[py::str(name)] = t;
+  }
+  return d;
+}
+
+py::dict grade(const py::function& function, const std::optional<std::vector<py::object>>& scenes, bool quick, int jobs,
+               double timeout_seconds, const std::optional<std::string>& out_dir, const std::string& relay,
+               const std::string& program_name) {
+  if (!(timeout_seconds >= 0.001 && timeout_seconds <= 1e6)) throw py::value_error("timeout: value not in range 0.001 to 1e+06");
+  if (jobs < 0 || jobs > 256) throw py::value_error("jobs: value not in range 1 to 256");
+  // Everything that can be checked is checked before the first case, as the CLI does: the scenes (each engine must
+  // build each), the output folder, gnuplot.
+  std::vector<Mechanism> mechanisms;
+  std::set<std::string> names;
+  if (scenes)
+    for (const py::object& item : *scenes) {
+      ScenePtr s;
+      if (py::isinstance<Scene>(item)) {
+        s = item.cast<ScenePtr>();
+      } else {
+        const std::string path = py::str(py::module_::import("os").attr("fspath")(item));
+        s = std::make_shared<Scene>(Scene{loadSceneFile(path), path});
+      }
+      mechanisms.push_back(s->m);
+      if (!names.insert(s->m.name).second) throw SceneError(s->source + ": a scene named " + s->m.name + " is given twice");
+      try {
+        validation::checkEveryEngineBuilds(s->m, s->source);
+      } catch (const UsageError& e) {
+        throw SceneError(e.what());
+      }
+    }
+  std::unique_ptr<validation::OutputFolder> folder;
+  validation::GradeReportInfo info;
+  if (out_dir) {
+    folder = std::make_unique<validation::OutputFolder>(*out_dir, "out");
+    info.gnuplot_version = validation::checkGnuplot();
+  }
+  InProcessGrade settings;
+  settings.relay = relay;
+  settings.jobs = jobs > 0 ? jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  settings.timeout_seconds = timeout_seconds;
+  validation::TableSet tables;
+  std::vector<validation::GradeCase> cases;
+  const auto start = std::chrono::steady_clock::now();
+  {
+    py::gil_scoped_release release;
+    cases = validation::buildGradeCases(mechanisms, quick);
+    const GradeAnswer answer = [&function](const validation::GradeCase& c, const std::string&) {
+      py::gil_scoped_acquire gil;
+      try {
+        py::array_t<double> phi(static_cast<py::ssize_t>(c.phi_deg.size()));
+        for (size_t i = 0; i < c.phi_deg.size(); ++i) phi.mutable_data()[i] = radiansFromDegrees(c.phi_deg[i]);
+        const auto scene = std::make_shared<Scene>(Scene{c.mechanism, c.id});
+        return toResponse(c, function(scene, phi));
+      } catch (py::error_already_set& e) {
+        if (py::hasattr(e.value(), "add_note"))
+          e.value().attr("add_note")("crankcheck.grade: raised on case " + c.id + " (" + c.family + ")");
+        throw;
+      }
+    };
+    tables = gradeInProcess(cases, answer, settings);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  py::dict result;
+  result["tables"] = tablesToPython(tables);
+  result["exit_status"] = validation::findGradeExitStatus(tables);
+  result["cases"] = cases.size();
+  result["seconds"] = seconds;
+  result["jobs"] = settings.jobs;
+  if (folder) {
+    info.program = {program_name};
+    info.quick = quick;
+    info.batch = true;
+    info.jobs = settings.jobs;
+    info.timeout_seconds = timeout_seconds;
+    info.seconds = seconds;
+    py::gil_scoped_release release;
+    folder->createStaging();
+    validation::renderGradeReport(tables, cases, info, folder->getStaging());
+    folder->install("report");
+  }
+  result["report"] = out_dir ? py::object(py::str(*out_dir + "/index.md")) : py::object(py::none());
+  return result;
+}
+
+// ---- Plain functions of lambda.
+Mechanism unitSliderCrank(double lambda, double r, double omega) {
+  if (!(lambda > 0.0 && lambda < 1.0)) throw py::value_error("lam: must be in (0, 1) (lambda = r / l)");
+  if (!(r > 0.0) || !std::isfinite(r)) throw py::value_error("r: must be a positive finite length [m]");
+  if (!std::isfinite(omega)) throw py::value_error("omega: must be finite [rad/s]");
+  Mechanism m;
+  m.crank.radius = r;
+  m.rod.length = r / lambda;
+  m.engine.speed = omega;
+  return m;
+}
+
+// x_p, v_p, a_p, j_p at each theta, by `f(m, theta)`.
+template <class F>
+py::dict pistonKinematics(const py::handle& theta_in, const Mechanism& m, F f) {
+  const Angles theta = asAngles(theta_in);
+  checkAngles(spanOf(theta));
+  std::vector<py::ssize_t> shape(theta.shape(), theta.shape() + theta.ndim());
+  py::array_t<double> x(shape), v(shape), a(shape), j(shape);
+  {
+    double *px = x.mutable_data(), *pv = v.mutable_data(), *pa = a.mutable_data(), *pj = j.mutable_data();
+    const double* t = theta.data();
+    const size_t n = static_cast<size_t>(theta.size());
+    py::gil_scoped_release release;
+    for (size_t i = 0; i < n; ++i) {
+      const analytic::PistonKinematics k = f(m, t[i]);
+      px[i] = k.x_p;
+      pv[i] = k.v_p;
+      pa[i] = k.a_p;
+      pj[i] = k.j_p;
+    }
+  }
+  py::dict d;
+  auto out = [&](py::array_t<double>& arr) -> py::object {
+    return arr.ndim() == 0 ? py::object(arr[py::tuple()]) : py::object(arr);
+  };
+  d["x_p"] = out(x);
+  d["v_p"] = out(v);
+  d["a_p"] = out(a);
+  d["j_p"] = out(j);
+  return d;
+}
+
+template <class F>
+py::array_t<double> coefficients(F f, double lambda, int order) {
+  try {
+    return toArray(f(lambda, order));
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+}
+
+std::string int128ToString(analytic::Int128 x) {
+  // |x| fits: the coefficients are far from the type's limits (calcLambdaSeriesCoefficient throws before overflow).
+  const bool negative = x < 0;
+  if (negative) x = -x;
+  std::string digits;
+  do {
+    digits.insert(digits.begin(), static_cast<char>('0' + static_cast<int>(x % 10)));
+    x /= 10;
+  } while (x > 0);
+  return negative ? "-" + digits : digits;
+}
+
+}  // namespace
+}  // namespace crankcheck::python
+
+PYBIND11_MODULE(_crankcheck, mod) {
+  using namespace crankcheck;
+  using namespace crankcheck::python;
+  mod.doc() = "crankcheck's engines over NumPy arrays (the compiled part; import crankcheck).";
+
+  // SceneError: a ValueError whose message is the CLI's line without "crankcheck: ". Bad usage is a ValueError, a
+  // failed environment (gnuplot missing, a graded function's answer timed out) a RuntimeError.
+  py::register_exception<SceneError>(mod, "SceneError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const UsageError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const EnvironmentError& e) {
+      PyErr_SetString(PyExc_RuntimeError, e.what());
+    }
+  });
+
+  py::class_<Scene, std::shared_ptr<Scene>>(mod, "Scene", R"doc(
+A scene (a mechanism), read from a TOML scene file as `crankcheck eval` reads it. Every value is in SI units and
+radians. Immutable; thread-safe (every call builds its own engine model).)doc")
+      .def_static(
+          "load",
+          [](const py::object& path) {
+            const std::string source = py::str(py::module_::import("os").attr("fspath")(path));
+            return std::make_shared<Scene>(Scene{loadSceneFile(source), source});
+          },
+          py::arg("path"), "Reads and checks a scene file. Raises SceneError with the CLI's message (file, key, rule).")
+      .def_static(
+          "from_toml",
+          [](const std::string& text, const std::string& source) {
+            return std::make_shared<Scene>(Scene{parseScene(text, source), source});
+          },
+          py::arg("text"), py::arg("source") = "<string>",
+          "Parses scene text; `source` names it in messages (and its stem is the scene's name). Raises SceneError.")
+      .def_property_readonly("name", [](const Scene& s) { return s.m.name; }, "The scene's name: its file's stem.")
+      .def_property_readonly("source", [](const Scene& s) { return s.source; }, "The path or source name messages use.")
+      .def_property_readonly("crank_ratio", [](const Scene& s) { return calcCrankRatio(s.m); }, "lambda = r / l.")
+      .def_property_readonly("speed_rpm", [](const Scene& s) { return s.m.speed_rpm; }, "The speed as the file gives it [rpm].")
+      .def("to_dict", [](const Scene& s) { return toPython(validation::sceneToJson(s.m)); },
+           "The parsed scene as `crankcheck eval --format json` prints it under \"scene\" (SI, plus lambda).")
+      .def("to_toml", [](const Scene& s) { return formatSceneToml(s.m); },
+           "The scene as a scene file that reads back to the same mechanism (formatSceneToml).")
+      .def("scales", [](const Scene& s) {
+            const validation::Scales sc = validation::calcScales(s.m);
+            py::dict d;
+            d["energy"] = sc.energy;
+            d["simbody_energy"] = sc.simbody_energy;
+            d["position"] = sc.position;
+            d["velocity"] = sc.velocity;
+            d["acceleration"] = sc.acceleration;
+            d["force"] = sc.force;
+            d["torque"] = sc.torque;
+            d["moment"] = sc.moment;
+            d["conditioning"] = sc.conditioning;
+            d["velocity_conditioning"] = sc.velocity_conditioning;
+            d["acceleration_conditioning"] = sc.acceleration_conditioning;
+            d["closure"] = sc.closure;
+            return d;
+          }, "The physical scales of the scene and the conditioning of comparisons (validation/scales.h), the gate's.")
+      .def("evaluate", &evaluate, py::arg("phi"), py::arg("engine") = "analytic", py::arg("quantities") = py::none(),
+           R"doc(
+Every quantity of `crankcheck eval` at the crank angles `phi` [rad] (a NumPy array of any shape, or a float) by
+`engine` (any name of crankcheck.engines()). Returns a dict of NumPy arrays named as eval's JSON: U, Q, U_star, Q_star
+(None without a flywheel or at rest), drive_torque with phi's shape; bearing_force, shaking_force (..., 2);
+shaking_moment (..., 3), X and Y NaN without axial positions (eval: null); per cylinder x_p, v_p, a_p, wall_force,
+gas_force (only with [gas]), rod_angle, rod_omega, rod_alpha (..., k) and crank_pin_force, wrist_pin_force (..., k, 2).
+`quantities`: compute only these names. The analytic engine runs the SIMD batch kernels on phi's own buffer (a
+C-contiguous float64 array is not copied); other engines run angle by angle in C++. The GIL is released.)doc")
+      .def("balance", &balance, py::arg("order") = 8,
+           "Harmonics 1..order of the shaking force and moment: `crankcheck balance SCENE --order N --format json` as a dict.")
+      .def("motion", &motion, py::kw_only(), py::arg("integrator") = "RungeKuttaMerson", py::arg("accuracy") = 1e-10,
+           py::arg("mujoco_integrator") = "RK4", py::arg("mujoco_step") = 1e-3, py::arg("series") = false,
+           "The free run: `crankcheck motion SCENE --format json` as a dict (series=True adds each integrating engine's "
+           "run with gravity: time [s], phi [rad], phi_dot [rad/s], energy [J]).")
+      .def("__repr__", [](const Scene& s) {
+        return "<crankcheck.Scene " + s.m.name + " (" + s.source + "): k = " + std::to_string(s.m.engine.cylinders) +
+               ", lambda = " + validation::formatNumber(calcCrankRatio(s.m)) + ", " + validation::formatNumber(s.m.speed_rpm) + " rpm>";
+      });
+
+  mod.def("engines", [] {
+        py::list list;
+        for (const Engine& e : validation::listEngines()) {
+          py::dict d;
+          d["name"] = e.name;
+          d["library"] = e.library;
+          d["method"] = e.method;
+          d["gated"] = e.gated;
+          d["integrators"] = e.integrators;
+          list.append(d);
+        }
+        return list;
+      }, "Every engine of the registry (validation::listEngines()), in its order: name, library, method, gated, integrators.");
+  mod.def("quantities", [] {
+        py::list list;
+        for (const QuantityInfo& q : listQuantities()) list.append(q.name);
+        return list;
+      }, "The names Scene.evaluate returns, in eval's order.");
+  mod.def("batch_target", [] { return std::string(analytic::getBatchTargetName()); },
+          "The instruction set the analytic batch kernels run on here (AVX3, AVX2, SSE4, SSSE3 or SCALAR).");
+  mod.attr("__version__") = validation::getCrankcheckVersion();
+
+  mod.def("radians_from_degrees", [](const py::handle& degrees_in) {
+        const Angles degrees = asAngles(degrees_in);
+        py::array_t<double> radians(std::vector<py::ssize_t>(degrees.shape(), degrees.shape() + degrees.ndim()));
+        for (py::ssize_t i = 0; i < degrees.size(); ++i) radians.mutable_data()[i] = radiansFromDegrees(degrees.data()[i]);
+        return radians.ndim() == 0 ? py::object(radians[py::tuple()]) : py::object(radians);
+      }, py::arg("degrees"),
+      "Degrees to radians as the CLI converts --phi-deg (exact multiples of 90 degrees become n x (pi/2) exactly, "
+      "so that sin and cos are exact at quarter turns): the same angles as `crankcheck eval --phi-deg`.");
+  mod.def("_grade", &grade, py::arg("function"), py::arg("scenes"), py::arg("quick"), py::arg("jobs"), py::arg("timeout"),
+          py::arg("out"), py::arg("relay"), py::arg("program_name"));
+  mod.def("_input_buffer_address", [](const py::handle& phi) {
+        return reinterpret_cast<std::uintptr_t>(asAngles(phi).data());
+      }, "The address of the angles' buffer as evaluate() uses it (a test that a float64 C-contiguous array is not copied).");
+
+  // Closed forms (fourier_series.h, kinematics.h) as plain functions of lambda.
+  mod.def("radical_fourier_coefficients", [](double lam, int order) {
+        return coefficients(analytic::calcRadicalFourierCoefficients, lam, order);
+      }, py::arg("lam"), py::arg("order"),
+      "A_0 .. A_order of sqrt(1 - lam^2 sin^2 theta) = A_0 + sum A_2m cos(2 m theta), exact to double precision.");
+  mod.def("inverse_radical_fourier_coefficients", [](double lam, int order) {
+        return coefficients(analytic::calcInverseRadicalFourierCoefficients, lam, order);
+      }, py::arg("lam"), py::arg("order"), "B_0 .. B_order of 1 / sqrt(1 - lam^2 sin^2 theta).");
+  mod.def("lambda_coefficients", [](double lam, int order) {
+        return coefficients(analytic::calcLambdaCoefficients, lam, order);
+      }, py::arg("lam"), py::arg("order"),
+      "Lambda_0 .. Lambda_order of Stanczak eq (14): lam sin cos / sqrt(1 - lam^2 sin^2) = sum Lambda_n sin(n theta).");
+  mod.def("lambda_coefficients_as_printed", [](double lam, int order) {
+        return coefficients(analytic::calcLambdaCoefficientsAsPrinted, lam, order);
+      }, py::arg("lam"), py::arg("order"), "The paper's eq (15) table as printed (truncated at lam^11; see docs/ERRATA.md).");
+  mod.def("lambda_series_coefficient", [](int n, int power) {
+        analytic::Rational r;
+        try {
+          r = analytic::calcLambdaSeriesCoefficient(n, power);
+        } catch (const std::invalid_argument& e) {
+          throw py::value_error(e.what());
+        } catch (const std::overflow_error& e) {
+          throw py::value_error(e.what());
+        }
+        py::object integer = py::module_::import("builtins").attr("int");
+        return py::module_::import("fractions").attr("Fraction")(integer(int128ToString(r.numerator)),
+                                                               integer(int128ToString(r.denominator)));
+      }, py::arg("n"), py::arg("power"), "The exact coefficient of lam^power in Lambda_n, a fractions.Fraction.");
+  mod.def("piston_kinematics", [](const py::handle& theta, double lam, double r, double omega) {
+        return pistonKinematics(theta, unitSliderCrank(lam, r, omega),
+                                [](const Mechanism& m, double t) { return analytic::calcPistonKinematics(m, t); });
+      }, py::arg("theta"), py::arg("lam"), py::kw_only(), py::arg("r") = 1.0, py::arg("omega") = 1.0,
+      "Exact x_p [m], v_p, a_p, j_p of a centric slider-crank (Norton 13.1d and its derivatives) at crank angles theta "
+      "[rad], crank r [m], l = r / lam, constant speed omega [rad/s].");
+  mod.def("norton_two_term", [](const py::handle& theta, double lam, double r, double omega) {
+        return pistonKinematics(theta, unitSliderCrank(lam, r, omega), analytic::calcPistonKinematicsNorton);
+      }, py::arg("theta"), py::arg("lam"), py::kw_only(), py::arg("r") = 1.0, py::arg("omega") = 1.0,
+      "Norton's two-term forms (13.3c-e) and the derivative of 13.3e: x = l - r^2/(4l) + r (cos + (r/4l) cos 2theta), "
+      "v = -r omega (sin + (r/2l) sin 2theta), a = -r omega^2 (cos + (r/l) cos 2theta).");
+  mod.def("fourier_piston_kinematics", [](const py::handle& theta, double lam, int order, double r, double omega) {
+        if (order < 1) throw py::value_error("order: must be >= 1");
+        return pistonKinematics(theta, unitSliderCrank(lam, r, omega), [order](const Mechanism& m, double t) {
+          return analytic::calcPistonKinematicsFourier(m, t, order);
+        });
+      }, py::arg("theta"), py::arg("lam"), py::arg("order"), py::kw_only(), py::arg("r") = 1.0, py::arg("omega") = 1.0,
+      "x_p's Fourier series with exact coefficients truncated after harmonic `order`, and its time derivatives.");
+}
