@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "crankcheck/analytic/kinematics.h"
+
 namespace crankcheck::app {
 
 std::string dumpJson(const nlohmann::ordered_json& document) {
@@ -33,6 +35,15 @@ std::string formatTable(const Mechanism& m, const std::string& scene_path, const
   std::snprintf(line, sizeof line, ", %.6g rpm, lambda = %.6g, g = %.6g m/s^2\n", m.speed_rpm, calcCrankRatio(m),
                 m.engine.gravity);
   out << line;
+  if (hasPinOffsets(m))  // the dead centres move off theta = 0 and 180 degrees and the stroke exceeds 2 r
+    for (int j = 0; j < m.engine.cylinders; ++j) {
+      const analytic::DeadCentres d = analytic::calcDeadCentres(m, getPinOffset(m, j));
+      std::snprintf(line, sizeof line,
+                    "  cylinder %d: pin offset %.6g m, dead centres at theta = %.9g deg (outer) and %.9g deg (inner), "
+                    "stroke %.9g m\n",
+                    j, getPinOffset(m, j), degreesFromRadians(d.outer), degreesFromRadians(d.inner), d.stroke);
+      out << line;
+    }
   for (size_t i = 0; i < results.size(); ++i) {
     const Evaluation& ev = results[i];
     std::snprintf(line, sizeof line,

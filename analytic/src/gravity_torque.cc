@@ -58,10 +58,11 @@ double calcGravityTorque(const Mechanism& m, double phi, Eq5Form form) {
   for (int j = 0; j < m.engine.cylinders; ++j) {
     const SinCos gamma = calcSinCos(getBankAngle(m, j));
     const SinCos theta = calcThrowSinCos(phi, m.engine.crank_angles[j]);
-    const double root = std::sqrt((1.0 - lambda * theta.sin) * (1.0 + lambda * theta.sin));
-    // Stanczak eq (13); lambda sin 2theta / (2 root) written as lambda sin cos / root.
-    Q += U2 * (theta.cos * gamma.cos - theta.sin * gamma.sin) -
-         U1 * (theta.sin + lambda * theta.sin * theta.cos / root) * gamma.sin;
+    // s = sin(beta) = lambda sin - delta / l with the pin offset delta (0: centric, the paper's case).
+    const double s = lambda * theta.sin - getPinOffset(m, j) / m.rod.length;
+    const double root = std::sqrt((1.0 - s) * (1.0 + s));
+    // Stanczak eq (13), dx_p/dtheta / r = -(sin + cos s / root); centric: lambda sin 2theta / (2 root) = lambda sin cos / root.
+    Q += U2 * (theta.cos * gamma.cos - theta.sin * gamma.sin) - U1 * (theta.sin + s * theta.cos / root) * gamma.sin;
   }
   return Q;
 }

@@ -18,10 +18,10 @@ ReducedInertia calcReducedInertia(const Mechanism& m, double phi, RodInertiaForm
   const double m_o = m.piston.mass, m_k = m.rod.mass, I_o = m.rod.inertia_about_wrist_pin;
   ReducedInertia out;
   out.J = m.flywheel_inertia.value_or(0.0);
-  for (double alpha : m.engine.crank_angles) {
-    const SinCos t = calcThrowSinCos(phi, alpha);
-    const PistonKinematics p = calcPistonKinematics(unit, t);   // v_p = x', a_p = x''
-    const RodKinematics rod = calcRodKinematics(unit, t);       // beta', beta''
+  for (int j = 0; j < m.engine.cylinders; ++j) {
+    const SinCos t = calcThrowSinCos(phi, m.engine.crank_angles[static_cast<size_t>(j)]);
+    const PistonKinematics p = calcPistonKinematics(unit, t, getPinOffset(m, j));   // v_p = x', a_p = x''
+    const RodKinematics rod = calcRodKinematics(unit, t, getPinOffset(m, j));       // beta', beta''
     const double crank = m.crank.mass * m.crank.com_radius * m.crank.com_radius +
                          m.crank.counterweight_mass * m.crank.counterweight_radius * m.crank.counterweight_radius;
     out.J += crank;

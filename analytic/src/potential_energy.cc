@@ -32,13 +32,22 @@ double calcPotentialEnergy(const Mechanism& m, double phi, Eq5Form form) {
     const SinCos a = calcSinCos(alpha);
     const SinCos x = addAngles(a, half);              // angle addition: no rounding of alpha + phi/2
     const SinCos theta = addAngles(x, half);
-    const double root_theta = std::sqrt((1.0 - lambda * theta.sin) * (1.0 + lambda * theta.sin));
-    const double root_alpha = std::sqrt((1.0 - lambda * a.sin) * (1.0 + lambda * a.sin));
+    // s = sin(beta) = lambda sin - delta / l (pin offset delta: the wrist pin on x_p e + delta n, whose height
+    // delta cos(gamma) is the same at every angle and drops out of U).
+    const double epsilon = getPinOffset(m, j) / m.rod.length;
+    const double s_theta = lambda * theta.sin - epsilon, s_alpha = lambda * a.sin - epsilon;
+    const double root_theta = std::sqrt((1.0 - s_theta) * (1.0 + s_theta));
+    const double root_alpha = std::sqrt((1.0 - s_alpha) * (1.0 + s_alpha));
     // U2 [sin(theta + gamma) - sin(alpha + gamma)] = U2 2 sin(phi/2) cos(x + gamma)
     const double crank_term = U2 * 2.0 * half.sin * (x.cos * gamma.cos - x.sin * gamma.sin);
-    // [x_p(theta) - x_p(alpha)] / r = cos theta - cos alpha + (root_theta - root_alpha) / lambda
-    //   = -2 sin(x) sin(phi/2) - lambda sin(phi) sin(2x) / (root_theta + root_alpha)
-    const double stroke = -2.0 * x.sin * half.sin - lambda * sin_phi * 2.0 * x.sin * x.cos / (root_theta + root_alpha);
+    // [x_p(theta) - x_p(alpha)] / r = cos theta - cos alpha + (root_theta - root_alpha) / lambda, and
+    // root_theta - root_alpha = (s_alpha - s_theta)(s_alpha + s_theta) / (root_theta + root_alpha) with
+    // s_alpha - s_theta = -2 lambda cos(x) sin(phi/2) (delta cancels):
+    //   = -2 sin(x) sin(phi/2) - 2 cos(x) sin(phi/2) (s_alpha + s_theta) / (root_theta + root_alpha);
+    // centric, s_alpha + s_theta = 2 lambda sin(x) cos(phi/2): -lambda sin(phi) sin(2x) / (root_theta + root_alpha).
+    const double stroke =
+        epsilon == 0.0 ? -2.0 * x.sin * half.sin - lambda * sin_phi * 2.0 * x.sin * x.cos / (root_theta + root_alpha)
+                       : -2.0 * half.sin * (x.sin + x.cos * (s_alpha + s_theta) / (root_theta + root_alpha));
     U += crank_term + U1 * gamma.sin * stroke;
   }
   return U;

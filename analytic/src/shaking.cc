@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -59,8 +60,64 @@ double ShakingHarmonic::calcMomentAmplitude(int axis) const {
   return std::hypot(moment_cos.at(static_cast<size_t>(axis)), moment_sin.at(static_cast<size_t>(axis)));
 }
 
+namespace {
+
+// Harmonics 1..order of the exact F_s and M_s (calcShaking) by a DFT over N equally spaced angles. The coefficients
+// of the offset motion decay geometrically; N is doubled until harmonics N/4 and N/4 + 1 are below 4 eps of the
+// largest value, so that what the DFT folds onto harmonics 1..order <= N/4 (harmonics N - n and beyond) is below
+// rounding.
+std::vector<ShakingHarmonic> calcShakingHarmonicsByDft(const Mechanism& m, int order) {
+  int N = 64;
+  while (N < 4 * order) N *= 2;
+  for (; N <= (1 << 20); N *= 2) {
+    std::vector<Shaking> samples(static_cast<size_t>(N));
+    double largest = 0.0;
+    for (int i = 0; i < N; ++i) {
+      samples[static_cast<size_t>(i)] = calcShaking(m, calcCylinderMotions(m, 2.0 * M_PI * i / N));
+      for (double f : samples[static_cast<size_t>(i)].force) largest = std::max(largest, std::fabs(f));
+      for (double f : samples[static_cast<size_t>(i)].moment) largest = std::max(largest, std::fabs(f));
+    }
+    auto harmonic = [&](int n) {
+      ShakingHarmonic x;
+      x.n = n;
+      for (int i = 0; i < N; ++i) {
+        // n i mod N keeps the angle exact
+        const SinCos e = calcSinCos(2.0 * M_PI * static_cast<double>((static_cast<long long>(n) * i) % N) / N);
+        const Shaking& f = samples[static_cast<size_t>(i)];
+        for (int k = 0; k < 2; ++k) {
+          x.force_cos[k] += 2.0 / N * f.force[k] * e.cos;
+          x.force_sin[k] += 2.0 / N * f.force[k] * e.sin;
+        }
+        for (int k = 0; k < 3; ++k) {
+          x.moment_cos[k] += 2.0 / N * f.moment[k] * e.cos;
+          x.moment_sin[k] += 2.0 / N * f.moment[k] * e.sin;
+        }
+      }
+      return x;
+    };
+    auto size = [](const ShakingHarmonic& x) {
+      double v = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        if (k < 2) v = std::max({v, std::fabs(x.force_cos[k]), std::fabs(x.force_sin[k])});
+        v = std::max({v, std::fabs(x.moment_cos[k]), std::fabs(x.moment_sin[k])});
+      }
+      return v;
+    };
+    if (std::max(size(harmonic(N / 4)), size(harmonic(N / 4 + 1))) > 4.0 * std::numeric_limits<double>::epsilon() * largest)
+      continue;  // not resolved yet
+    std::vector<ShakingHarmonic> h;
+    for (int n = 1; n <= order; ++n) h.push_back(harmonic(n));
+    return h;
+  }
+  throw std::runtime_error("calcShakingHarmonics: the harmonics of this offset motion are not resolved by 2^20 samples "
+                           "(the loop comes too close to its singularity, lambda + |delta| / l near 1)");
+}
+
+}  // namespace
+
 std::vector<ShakingHarmonic> calcShakingHarmonics(const Mechanism& m, int order) {
   if (order < 1) throw std::invalid_argument("calcShakingHarmonics: order must be >= 1");
+  if (hasPinOffsets(m)) return calcShakingHarmonicsByDft(m, order);
   const double r = m.crank.radius, l = m.rod.length, lambda = r / l, w2 = m.engine.speed * m.engine.speed;
   const double m_o = m.piston.mass, m_k = m.rod.mass, mu = m.rod.com_from_wrist_pin / l;
   const double I_G = m.rod.inertia_about_wrist_pin - m_k * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
@@ -168,6 +225,9 @@ HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n) {
   constexpr long long kTurn = 2880;
   HarmonicSymmetry s;
   const int k = m.engine.cylinders;
+  // The sums below hold when every cylinder has the same harmonic in its own frame: the same pin offset for all.
+  for (int j = 1; j < k; ++j)
+    if (getPinOffset(m, j) != getPinOffset(m, 0)) return s;
   std::vector<long long> gamma(k), beta(k), z(k), ones(k, 1);
   for (int j = 0; j < k; ++j) {
     const double gamma_deg = degreesFromRadians(getBankAngle(m, j));

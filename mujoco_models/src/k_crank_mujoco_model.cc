@@ -162,15 +162,16 @@ std::string calcMjcf(const Mechanism& m, Variant variant) {
   }
   x += "    </body>\n";
 
-  // Pistons on slides along e_j (origin on the crank axis at z_j: the slide coordinate is x_p), rods on hinges at
-  // the wrist pin pointing along -e_j at hinge angle 0.
+  // Pistons on slides along e_j (origin on the crank axis at z_j, moved by the pin offset delta_j along n_j: the slide
+  // coordinate is x_p), rods on hinges at the wrist pin pointing along -e_j at hinge angle 0.
   const double piston_nominal_inertia = m.piston.mass * r * r;
   const double rod_inertia = m.rod.inertia_about_wrist_pin - m.rod.mass * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
   for (int j = 0; j < k; ++j) {
     const std::string J = std::to_string(j);
     const double gamma = getBankAngle(m, j);
     const double ex = std::cos(gamma), ey = std::sin(gamma);
-    x += "    <body name=\"piston" + J + "\" pos=\"" + vec3(0.0, 0.0, getAxialPosition(m, j)) + "\">\n";
+    const double delta = getPinOffset(m, j);  // the wrist pin on x_p e_j + delta n_j
+    x += "    <body name=\"piston" + J + "\" pos=\"" + vec3(-delta * ey, delta * ex, getAxialPosition(m, j)) + "\">\n";
     x += "      <joint name=\"slide" + J + "\" type=\"slide\" axis=\"" + vec3(ex, ey, 0.0) + "\" pos=\"0 0 0\"/>\n";
     x += "      <inertial pos=\"0 0 0\" mass=\"" + num(m.piston.mass) + "\" diaginertia=\"" +
          vec3(piston_nominal_inertia, piston_nominal_inertia, piston_nominal_inertia) + "\"/>\n";

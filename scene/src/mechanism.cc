@@ -20,6 +20,16 @@ double getAxialPosition(const Mechanism& m, int j) {
   return m.engine.axial_positions.empty() ? 0.0 : m.engine.axial_positions.at(static_cast<size_t>(j));
 }
 
+double getPinOffset(const Mechanism& m, int j) {
+  return m.engine.pin_offsets.empty() ? 0.0 : m.engine.pin_offsets.at(static_cast<size_t>(j));
+}
+
+bool hasPinOffsets(const Mechanism& m) {
+  for (double delta : m.engine.pin_offsets)
+    if (delta != 0.0) return true;
+  return false;
+}
+
 bool isSingleBank(const Mechanism& m) {
   for (double gamma : m.engine.bank_angles)
     if (gamma != m.engine.cylinder_angle) return false;

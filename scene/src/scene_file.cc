@@ -245,6 +245,18 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
   require(m.crank.radius < m.rod.length, "[crank].radius",
           "lambda = r / l must be < 1 (rod length " + formatNumber(m.rod.length) + " m)",
           m.crank.radius / m.rod.length);
+  // The pin offset: the rod reaches the crank pin at every angle only if |delta| + r < l.
+  require(m.engine.pin_offsets.empty() || m.engine.pin_offsets.size() == k, "[[cylinder]]",
+          "must give every cylinder a pin offset", static_cast<double>(m.engine.pin_offsets.size()));
+  for (size_t i = 0; i < m.engine.pin_offsets.size(); ++i) {
+    const std::string key = m.engine.bank_angles.empty() ? "[engine].pin_offset" : "cylinder[" + std::to_string(i) + "].pin_offset";
+    const double delta = m.engine.pin_offsets[i];
+    requireFinite(delta, key);
+    require(std::fabs(delta) < m.rod.length - m.crank.radius, key,
+            "|pin_offset| must be < l - r = " + formatNumber(m.rod.length - m.crank.radius) +
+                " m (beyond it the rod cannot reach the crank pin at every angle: no mechanism)",
+            delta);
+  }
   requireMass(m.rod.mass, "[rod].mass");
   require(finite(m.rod.com_from_wrist_pin) && m.rod.com_from_wrist_pin >= 0 &&
               m.rod.com_from_wrist_pin <= m.rod.length,
@@ -343,16 +355,17 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
 
   TableReader engine(root, "engine", source, true,
                      {"cylinders", "cycle", "acting", "crank_angles_deg", "cylinder_angle_deg", "cylinder_spacing",
-                      "speed_rpm", "gravity"});
+                      "speed_rpm", "gravity", "pin_offset"});
   long long cylinders = 0;
   if (layout != nullptr) {
     cylinders = static_cast<long long>(layout->size());
     if (engine.find("cylinders") != nullptr && engine.integer("cylinders") != cylinders)
       fail(source, engine.key("cylinders"),
            "must equal the number of [[cylinder]] tables (" + std::to_string(cylinders) + "), or be left out");
-    for (const char* key : {"cylinder_angle_deg", "crank_angles_deg", "cylinder_spacing"})
+    for (const char* key : {"cylinder_angle_deg", "crank_angles_deg", "cylinder_spacing", "pin_offset"})
       if (engine.find(key) != nullptr)
-        fail(source, engine.key(key), "must be absent when [[cylinder]] tables place each cylinder");
+        fail(source, engine.key(key), std::string("must be absent when [[cylinder]] tables place each cylinder") +
+                                          (std::string(key) == "pin_offset" ? " (give pin_offset in each [[cylinder]])" : ""));
   } else {
     cylinders = engine.integer("cylinders");
   }
@@ -373,7 +386,7 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
     size_t with_axial = 0;
     for (size_t j = 0; j < layout->size(); ++j) {
       TableReader cylinder(*layout->get(j)->as_table(), "cylinder[" + std::to_string(j) + "]", source,
-                           {"bank_angle_deg", "throw_angle_deg", "axial_position", "firing_angle_deg"});
+                           {"bank_angle_deg", "throw_angle_deg", "axial_position", "firing_angle_deg", "pin_offset"});
       const double bank_deg = cylinder.number("bank_angle_deg");
       const double throw_deg = cylinder.number("throw_angle_deg");
       requireAngleDegrees(bank_deg, source, cylinder.key("bank_angle_deg"));
@@ -393,6 +406,7 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
       }
       if (with_axial != 0 && with_axial != j + 1)
         fail(source, cylinder.key("axial_position"), "give it for every cylinder or for none");
+      m.engine.pin_offsets.push_back(cylinder.number("pin_offset", 0.0));  // a cylinder without one is centric
       if (has_gas) {
         const double firing_deg = cylinder.number("firing_angle_deg");
         requireAngleDegrees(firing_deg, source, cylinder.key("firing_angle_deg"));
@@ -402,6 +416,7 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
       }
     }
     if (with_axial == 0) m.engine.axial_positions.clear();
+    if (!hasPinOffsets(m)) m.engine.pin_offsets.clear();
     m.engine.explicit_crank_angles = true;
     m.engine.cylinder_angle = m.engine.bank_angles.front();
   } else {
@@ -428,6 +443,8 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
                  formatNumber(*spacing) + ")");
       for (long long j = 0; j < cylinders; ++j) m.engine.axial_positions.push_back(static_cast<double>(j) * *spacing);
     }
+    if (const auto delta = engine.optionalNumber("pin_offset"))  // every cylinder of the bank
+      m.engine.pin_offsets.assign(static_cast<size_t>(cylinders), *delta);
   }
   m.speed_rpm = engine.number("speed_rpm");
   m.engine.speed = m.speed_rpm * (M_PI / 30.0);

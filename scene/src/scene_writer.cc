@@ -61,8 +61,10 @@ std::string formatSceneToml(const Mechanism& m) {
   const bool with_gas = m.gas.has_value();
   const std::vector<int> firing_order = with_gas ? findFiringOrder(m) : std::vector<int>{};
   const double spacing = hasAxialPositions(m) ? findSpacing(m) : 0.0;
+  bool same_offsets = true;  // [engine].pin_offset gives every cylinder the same one
+  for (double delta : m.engine.pin_offsets) same_offsets = same_offsets && delta == m.engine.pin_offsets.front();
   const bool inline_form = isSingleBank(m) && m.engine.bank_angles.empty() && !std::isnan(spacing) &&
-                           (!with_gas || !firing_order.empty());
+                           (!with_gas || !firing_order.empty()) && same_offsets;
   const double speed_rpm = m.engine.speed * (30.0 / M_PI) == m.speed_rpm || m.speed_rpm * (M_PI / 30.0) == m.engine.speed
                                ? m.speed_rpm
                                : m.engine.speed * (30.0 / M_PI);
@@ -78,6 +80,7 @@ std::string formatSceneToml(const Mechanism& m) {
     if (m.engine.crank_angles != calcPhaseAngles(k, m.engine.cycle, m.engine.acting))
       out << "crank_angles_deg = " << list(m.engine.crank_angles, degreesFromRadians) << "\n";
     if (hasAxialPositions(m)) out << "cylinder_spacing = " << formatShortest(spacing) << "\n";
+    if (!m.engine.pin_offsets.empty()) out << "pin_offset = " << formatShortest(getPinOffset(m, 0)) << "\n";
   }
   out << "speed_rpm = " << formatShortest(speed_rpm) << "\n";
   out << "gravity = " << formatShortest(m.engine.gravity) << "\n";
@@ -112,6 +115,7 @@ std::string formatSceneToml(const Mechanism& m) {
       out << "bank_angle_deg = " << formatShortest(degreesFromRadians(getBankAngle(m, j))) << "\n";
       out << "throw_angle_deg = " << formatShortest(degreesFromRadians(getThrowAngle(m, j))) << "\n";
       if (hasAxialPositions(m)) out << "axial_position = " << formatShortest(getAxialPosition(m, j)) << "\n";
+      if (!m.engine.pin_offsets.empty()) out << "pin_offset = " << formatShortest(getPinOffset(m, j)) << "\n";
       if (with_gas)
         out << "firing_angle_deg = " << formatShortest(degreesFromRadians(m.firing_angles[static_cast<size_t>(j)])) << "\n";
     }

@@ -54,8 +54,11 @@ class KCrankGravityModel::Impl {
     SimTK::Motion::Custom(crank_, new CrankMotion(drive_));
     const SimTK::Body::Rigid piston_body(SimTK::MassProperties(wrist_mass, SimTK::Vec3(0), SimTK::Inertia(0)));
     for (size_t j = 0; j < pins.size(); ++j) {
-      pistons_.emplace_back(matter_.Ground(), SimTK::Transform(cylinder_rotation, SimTK::Vec3(0)), piston_body,
-                            SimTK::Transform());
+      // the wrist pin on x_p e + delta_j n (the pin offset)
+      const double delta_j = getPinOffset(m_, static_cast<int>(j));
+      pistons_.emplace_back(matter_.Ground(),
+                            SimTK::Transform(cylinder_rotation, SimTK::Vec3(-delta_j * std::sin(gamma), delta_j * std::cos(gamma), 0.0)),
+                            piston_body, SimTK::Transform());
       SimTK::Constraint::Rod(crank_, pins[j], pistons_.back(), SimTK::Vec3(0), l);  // |B_j - A_j| = l: 1 equation
     }
     system_.realizeTopology();

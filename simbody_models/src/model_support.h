@@ -132,8 +132,11 @@ MechanismBodies buildMechanismBodies(SimTK::SimbodyMatterSubsystem& matter, cons
       SimTK::MassProperties(m_k, rod_com, SimTK::Inertia(0.0, rod_central, rod_central) + SimTK::Inertia(rod_com, m_k)));
   const SimTK::Body::Rigid piston_body(SimTK::MassProperties(m.piston.mass, SimTK::Vec3(0), SimTK::Inertia(0)));
   for (int j = 0; j < k; ++j) {
-    // Piston: slider along the x axis of F = Ground turned by gamma_j and moved to z_j, so q = x_p along +e_j.
-    const SimTK::Transform X_GF(SimTK::Rotation(getBankAngle(m, j), SimTK::ZAxis), SimTK::Vec3(0.0, 0.0, getAxialPosition(m, j)));
+    // Piston: slider along the x axis of F = Ground turned by gamma_j and moved to z_j and by the pin offset delta_j
+    // along n_j, so the wrist pin is at x_p e_j + delta_j n_j with q = x_p.
+    const double gamma_j = getBankAngle(m, j), delta_j = getPinOffset(m, j);
+    const SimTK::Transform X_GF(SimTK::Rotation(gamma_j, SimTK::ZAxis),
+                                SimTK::Vec3(-delta_j * std::sin(gamma_j), delta_j * std::cos(gamma_j), getAxialPosition(m, j)));
     b.pistons.emplace_back(matter.Ground(), X_GF, piston_body, SimTK::Transform());
     b.rods.emplace_back(b.pistons.back(), SimTK::Transform(), rod_body, SimTK::Transform());
     // Loop closure: the rod's big end on the line through B_j parallel to Z (2 equations, planar).

@@ -231,6 +231,22 @@ TEST(SceneLayout, CylinderTablesGiveBanksThrowsAndAxialPositions) {
   EXPECT_EQ(getThrowAngle(m, 1), radiansFromDegrees(45) + radiansFromDegrees(45));
 }
 
+// pin_offset: in [engine] every cylinder of an inline scene, in a [[cylinder]] table that cylinder (default 0).
+TEST(SceneLayout, PinOffsetsPerEngineAndPerCylinder) {
+  std::string text = kGoodScene;
+  text.replace(text.find("cylinders = 2"), 13, "cylinders = 2\npin_offset = -0.0012");
+  const Mechanism m = parseScene(text, "inline2.toml");
+  EXPECT_EQ(m.engine.pin_offsets, (std::vector<double>{-0.0012, -0.0012}));
+  EXPECT_TRUE(hasPinOffsets(m));
+  std::string layout = kLayoutScene;
+  layout.replace(layout.find("axial_position = 0.02"), 21, "axial_position = 0.02\npin_offset = 0.0008");
+  const Mechanism v = parseScene(layout, "v2.toml");
+  EXPECT_EQ(getPinOffset(v, 0), 0.0);
+  EXPECT_EQ(getPinOffset(v, 1), 0.0008);
+  EXPECT_FALSE(hasPinOffsets(parseScene(kLayoutScene, "v2.toml")));
+  EXPECT_TRUE(parseScene(kLayoutScene, "v2.toml").engine.pin_offsets.empty());
+}
+
 TEST(SceneLayout, InlineSpacingPlacesCylindersAlongTheShaft) {
   std::string text = kGoodScene;
   text.replace(text.find("cylinders = 2"), 13, "cylinders = 2\ncylinder_spacing = 0.09");
@@ -264,7 +280,16 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"axial_too_far", "axial_position = 0.02", "axial_position = 2e6", "cylinder[1].axial_position",
                  "1e6 m", &kLayoutScene},
         BadScene{"single_table", "[[cylinder]]\nbank_angle_deg = 45", "[cylinder2]\nbank_angle_deg = 45", "cylinder2",
-                 "unknown key", &kLayoutScene}),
+                 "unknown key", &kLayoutScene},
+        // Pin offsets: l - r = 0.15 m here; beyond it the rod cannot reach the crank pin at every angle.
+        BadScene{"pin_offset_in_engine_with_layout", "cycle = \"four-stroke\"", "cycle = \"four-stroke\"\npin_offset = 0.001",
+                 "[engine].pin_offset", "give pin_offset in each [[cylinder]]", &kLayoutScene},
+        BadScene{"cylinder_pin_offset_beyond_l_minus_r", "axial_position = 0.02", "axial_position = 0.02\npin_offset = -0.16",
+                 "cylinder[1].pin_offset", "|pin_offset| must be < l - r = 0.15", &kLayoutScene},
+        BadScene{"engine_pin_offset_beyond_l_minus_r", "cylinders = 2", "cylinders = 2\npin_offset = 0.2",
+                 "[engine].pin_offset", "no mechanism"},
+        BadScene{"engine_pin_offset_not_a_number", "cylinders = 2", "cylinders = 2\npin_offset = \"1 mm\"",
+                 "[engine].pin_offset", "must be a number"}),
     [](const auto& info) { return info.param.name; });
 
 // The limits of each unit (docs/SCENE-FORMAT.md, "Limits"): a value just beyond each is refused with a message

@@ -35,6 +35,7 @@ void expectSameMechanism(const Mechanism& a, const Mechanism& b) {
     expectSameAngle(getThrowAngle(a, j), getThrowAngle(b, j), "throw " + std::to_string(j));
     expectSameAngle(a.engine.crank_angles[j], b.engine.crank_angles[j], "alpha " + std::to_string(j));
     EXPECT_EQ(getAxialPosition(a, j), getAxialPosition(b, j));
+    EXPECT_EQ(getPinOffset(a, j), getPinOffset(b, j));
   }
   EXPECT_EQ(hasAxialPositions(a), hasAxialPositions(b));
   EXPECT_EQ(a.engine.speed, b.engine.speed);
@@ -85,6 +86,14 @@ TEST(SceneWriterTest, BuiltInScenesAndLayoutsReadBackAsThemselves) {
       const Mechanism m = validation::makeLayoutMechanism(layout, parts, rotation);
       expectSameMechanism(m, parseScene(formatSceneToml(m), "written"));
     }
+  // Pin offsets: one for every cylinder of an inline engine ([engine].pin_offset), one per cylinder of a layout.
+  Mechanism inline_offset = parts;
+  inline_offset.engine.pin_offsets.assign(static_cast<size_t>(parts.engine.cylinders), -0.0013);
+  expectSameMechanism(inline_offset, parseScene(formatSceneToml(inline_offset), "written"));
+  EXPECT_NE(formatSceneToml(inline_offset).find("[engine]"), std::string::npos);
+  Mechanism mixed = validation::makeLayoutMechanism(validation::getBalanceLayouts().back(), parts);
+  for (int j = 0; j < mixed.engine.cylinders; ++j) mixed.engine.pin_offsets.push_back(0.0004 * (j - 1));
+  expectSameMechanism(mixed, parseScene(formatSceneToml(mixed), "written"));
 }
 
 TEST(SceneWriterTest, ShortestNumbersReadBackExactly) {

@@ -105,7 +105,8 @@ GAS = {**INLINE, "gas": {"bore": 0.08, "cycle_angle_deg": [0, 30, 360], "pressur
 # Every key of an inline scene written out.
 INLINE_FULL = {"format_version": 1, "name": "Twin, every key", "description": "Two cylinders,\n\"standing\".",
                "engine": {"cylinders": 2, "cycle": "four-stroke", "acting": "single", "crank_angles_deg": [0, 360],
-                          "cylinder_angle_deg": 90, "cylinder_spacing": 0.09, "speed_rpm": 3000, "gravity": 9.80665},
+                          "cylinder_angle_deg": 90, "cylinder_spacing": 0.09, "speed_rpm": 3000, "gravity": 9.80665,
+                          "pin_offset": 0.0012},
                **PARTS, "gas": GAS["gas"]}
 LAYOUT = {"engine": {"cycle": "four-stroke", "speed_rpm": 3000},
           "cylinder": [{"bank_angle_deg": 135, "throw_angle_deg": 90, "axial_position": 0.0},
@@ -177,6 +178,8 @@ def cases():
         add(f"unknown_key_in_{table}", edit(INLINE, ((table, "colour"), "red")), INVALID)
     add("unknown_key_in_gas", edit(GAS, (("gas", "colour"), "red")), INVALID)
     add("unknown_key_in_cylinder", edit(LAYOUT, (("cylinder", 1, "firing_deg"), 0)), INVALID)
+    add("pin_offset_per_cylinder", edit(LAYOUT, (("cylinder", 0, "pin_offset"), -0.0015)), VALID)
+    add("pin_offset_in_engine_with_cylinders", edit(LAYOUT, (("engine", "pin_offset"), 0.001)), INVALID)
     for table in ("engine", "crank", "rod", "piston"):
         add(f"missing_table_{table}", edit(INLINE, ((table,), DELETE)), INVALID)
     for table, keys in [("engine", ["cylinders", "cycle", "cylinder_angle_deg", "speed_rpm"]),
@@ -250,6 +253,11 @@ def cases():
         parser_only("firing_order lists each cylinder 0..k-1 once"))
     add("spacing_too_long", edit(INLINE, (("engine", "cylinder_spacing"), 2e6)),
         parser_only("|cylinder_spacing| (k - 1) <= 1e6 m"))
+    # l - r = 0.15 m in these scenes.
+    add("pin_offset_beyond_l_minus_r", edit(INLINE, (("engine", "pin_offset"), -0.16)),
+        parser_only("|pin_offset| < l - r"))
+    add("pin_offset_of_a_cylinder_beyond_l_minus_r", edit(LAYOUT, (("cylinder", 1, "pin_offset"), 0.16)),
+        parser_only("|pin_offset| < l - r"))
     add("cycle_angles_decrease", edit(GAS, (("gas", "cycle_angle_deg"), [0, 30, 20])),
         parser_only("cycle_angle_deg strictly increasing"))
     add("pressures_short", edit(GAS, (("gas", "pressure_pa"), [5e6, 1e6])),

@@ -25,6 +25,7 @@
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/engines_part.h"
+#include "crankcheck/validation/offset_part.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/engine_loads.h"
 #include "crankcheck/validation/install_paths.h"
@@ -899,6 +900,7 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   tasks.push_back({"errata", false, [base] { return errata(base); }});
   tasks.push_back({"speed_vs_error", true, [base, quick] { return speedVsError(base, quick); }});
   tasks.push_back(buildEngineCostTask(base, quick));
+  tasks.push_back({"offset", false, [base, quick] { return calcOffsetTables(base, quick); }});
   return tasks;
 }
 

@@ -1,5 +1,9 @@
 #include "crankcheck/validation/evaluation_json.h"
 
+#include <cmath>
+
+#include "crankcheck/analytic/kinematics.h"
+
 namespace crankcheck::validation {
 namespace {
 
@@ -19,6 +23,7 @@ nlohmann::ordered_json sceneToJson(const Mechanism& m) {
       {"cylinder_angle", m.engine.cylinder_angle},
       {"bank_angles", m.engine.bank_angles},
       {"axial_positions", m.engine.axial_positions},
+      {"pin_offsets", m.engine.pin_offsets},
       {"speed", m.engine.speed},
       {"gravity", m.engine.gravity},
   };
@@ -38,6 +43,20 @@ nlohmann::ordered_json sceneToJson(const Mechanism& m) {
     j["engine"]["firing_angles"] = m.firing_angles;
   }
   j["flywheel"] = m.flywheel_inertia ? nlohmann::ordered_json{{"inertia", *m.flywheel_inertia}} : nlohmann::ordered_json(nullptr);
+  // Each cylinder's dead centres (theta: its own crank angle; phi: cylinder 0's, in [0, 360)) and stroke: with a pin
+  // offset they move off theta = 0 and 180 degrees and the stroke exceeds 2 r.
+  j["dead_centres"] = nlohmann::ordered_json::array();
+  for (int c = 0; c < m.engine.cylinders; ++c) {
+    const analytic::DeadCentres d = analytic::calcDeadCentres(m, getPinOffset(m, c));
+    const double alpha = m.engine.crank_angles[static_cast<size_t>(c)];
+    auto phiDeg = [&](double theta) {
+      const double deg = std::fmod(degreesFromRadians(theta - alpha), 360.0);
+      return deg < 0.0 ? deg + 360.0 : deg;
+    };
+    j["dead_centres"].push_back({{"cylinder", c}, {"pin_offset", getPinOffset(m, c)},
+                                 {"outer_theta_deg", degreesFromRadians(d.outer)}, {"inner_theta_deg", degreesFromRadians(d.inner)},
+                                 {"outer_phi_deg", phiDeg(d.outer)}, {"inner_phi_deg", phiDeg(d.inner)}, {"stroke", d.stroke}});
+  }
   j["lambda"] = calcCrankRatio(m);
   j["units"] = "SI: m, kg, s, rad, N, N m, J";
   return j;

@@ -23,8 +23,14 @@ double calcStaticAcceleration(const Mechanism& m) {
 
 }  // namespace
 
+double calcLoopRatio(const Mechanism& m) {
+  double offset = 0.0;
+  for (int j = 0; j < m.engine.cylinders; ++j) offset = std::max(offset, std::fabs(getPinOffset(m, j)));
+  return (m.crank.radius + offset) / m.rod.length;
+}
+
 double calcAccelerationScale(const Mechanism& m) {
-  const double lambda = m.crank.radius / m.rod.length;
+  const double lambda = calcLoopRatio(m);  // lambda for centric cylinders
   const double w = m.engine.speed;
   // Simbody finds accelerations from the forces it balances: with gas, the largest gas force over the masses it
   // pushes sets the size of its rounding (a_p at rest is 0 exactly in the closed form, rounding of that in Simbody).
@@ -42,19 +48,23 @@ double calcTorqueScale(const Mechanism& m) {
 }
 
 Scales calcScales(const Mechanism& m) {
-  const double r = m.crank.radius, l = m.rod.length, lambda = r / l;
+  const double r = m.crank.radius, l = m.rod.length;
+  // The loop is singular where |sin(beta)| reaches 1: at most lambda + max |delta_j| / l (calcLoopRatio; lambda when
+  // centric) is how close it comes.
+  const double lambda = calcLoopRatio(m);
   const double stiff = 1.0 / ((1.0 - lambda) * (1.0 + lambda));
+  const double offset = lambda * l - r;  // max |delta_j|
   Scales s;
   s.energy = calcEnergyScale(m);
   s.simbody_energy = s.energy + m.engine.cylinders * m.engine.gravity * (m.piston.mass + m.rod.mass) * (l + r);
-  s.position = l + r;
+  s.position = l + r + offset;
   s.velocity = r * m.engine.speed * (1.0 + std::sqrt(stiff));
   s.acceleration = calcAccelerationScale(m);
   s.force = calcForceScale(m);
   s.torque = calcTorqueScale(m);
   double z_max = 0.0;
   for (int j = 0; j < m.engine.cylinders; ++j) z_max = std::max(z_max, std::fabs(getAxialPosition(m, j)));
-  s.moment = s.force * (l + r + z_max);
+  s.moment = s.force * (l + r + offset + z_max);
   s.closure = std::sqrt(stiff);
   s.conditioning = stiff * (l + r) / r;
   s.velocity_conditioning = s.closure * (l + r) / r;

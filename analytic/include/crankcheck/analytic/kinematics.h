@@ -1,10 +1,13 @@
 #pragma once
 /// @file
-/// Kinematics of one centric slider-crank at constant crank speed omega: exact closed forms, Norton's two-term
-/// approximation (Design of Machinery, 13.3c-e) and the Fourier series of any order with exact coefficients.
+/// Kinematics of one slider-crank at constant crank speed omega: exact closed forms, centric or with the piston pin
+/// offset by delta along n (desaxe); Norton's two-term approximation (Design of Machinery, 13.3c-e) and the Fourier
+/// series of any order with exact coefficients (both centric: the textbook's forms).
 ///
-/// theta is the crank angle of this cylinder [rad] (theta = 0: outer dead centre), x_p is measured from the crank
-/// centre O along the cylinder axis e (CONVENTIONS.md): x_p = r cos(theta) + l sqrt(1 - lambda^2 sin^2 theta).
+/// theta is the crank angle of this cylinder [rad] (theta = 0: crank pin on +e, the outer dead centre when centric),
+/// x_p is measured from the crank centre O along the cylinder axis e (CONVENTIONS.md); the wrist pin is at
+/// A = x_p e + delta n. With s = sin(beta) = lambda sin(theta) - delta / l:
+///   x_p = r cos(theta) + l sqrt(1 - s^2)   (delta = 0: Norton 13.1d).
 /// Time derivatives are at the scene's constant omega = m.engine.speed: v_p = omega dx_p/dtheta, etc.
 
 #include <Eigen/Core>
@@ -23,7 +26,7 @@ struct PistonKinematics {
   double j_p = 0.0;  ///< [m/s^3] jerk
 };
 
-/// The rod's angle beta to the cylinder axis, sin(beta) = lambda sin(theta), |beta| < pi/2, and its time
+/// The rod's angle beta to the cylinder axis, sin(beta) = lambda sin(theta) - delta / l, |beta| < pi/2, and its time
 /// derivatives. The vector from wrist pin A to crank pin B is l (-cos(beta) e + sin(beta) n), so the rod body
 /// turns about +Z with angular velocity -beta_dot and angular acceleration -beta_ddot.
 struct RodKinematics {
@@ -50,22 +53,36 @@ CylinderMotion calcCylinderMotion(const Mechanism& m, int j, double phi);
 /// calcCylinderMotion of every cylinder, in order: computed once where several quantities need it (calcEvaluation).
 std::vector<CylinderMotion> calcCylinderMotions(const Mechanism& m, double phi);
 
-/// Exact piston kinematics (Norton 13.1d and its derivatives; closed forms, no series).
-PistonKinematics calcPistonKinematics(const Mechanism& m, double theta);
+/// Exact piston kinematics (Norton 13.1d and its derivatives; closed forms, no series), with the pin offset
+/// pin_offset = delta [m] (|delta| < l - r; 0: centric). Per radian of crank, c = cos(beta) = sqrt(1 - s^2):
+///   x' = -r (sin + cos s / c),  x'' = -r cos + r sin s / c - r lambda cos^2 / c^3,
+///   x''' = r sin + r cos s / c + 3 r lambda sin cos / c^3 - 3 r lambda^2 s cos^3 / c^5.
+PistonKinematics calcPistonKinematics(const Mechanism& m, double theta, double pin_offset = 0.0);
 /// The same from sin and cos of theta (e.g. calcThrowSinCos(phi, alpha_j)).
-PistonKinematics calcPistonKinematics(const Mechanism& m, const SinCos& theta);
+PistonKinematics calcPistonKinematics(const Mechanism& m, const SinCos& theta, double pin_offset = 0.0);
 
-/// Exact rod angle and its derivatives: beta' = lambda cos(theta) / cos(beta),
-/// beta'' = -lambda (1 - lambda^2) sin(theta) / cos^3(beta) (per radian of crank; times omega, omega^2).
-RodKinematics calcRodKinematics(const Mechanism& m, double theta);
-RodKinematics calcRodKinematics(const Mechanism& m, const SinCos& theta);
+/// Exact rod angle and its derivatives (per radian of crank; times omega, omega^2): beta' = lambda cos / cos(beta),
+/// beta'' = -lambda sin / cos(beta) + lambda^2 sin(beta) cos^2 / cos^3(beta); centric: -lambda (1 - lambda^2) sin /
+/// cos^3(beta).
+RodKinematics calcRodKinematics(const Mechanism& m, double theta, double pin_offset = 0.0);
+RodKinematics calcRodKinematics(const Mechanism& m, const SinCos& theta, double pin_offset = 0.0);
 
-/// Norton's two-term approximation: x = l - r^2/(4l) + r (cos + (r/4l) cos 2theta)   (13.3c),
+/// The dead centres of a cylinder with pin offset delta: the crank angles theta at which the piston reverses (crank
+/// and rod in line: sin(theta_outer) = delta / (l + r), theta_inner = pi + asin(delta / (l - r))), and the stroke
+/// x_p(theta_outer) - x_p(theta_inner) = sqrt((l + r)^2 - delta^2) - sqrt((l - r)^2 - delta^2) (2 r when centric).
+struct DeadCentres {
+  double outer = 0.0, inner = 0.0;  ///< [rad] theta of the outer (farthest) and inner dead centre, in (-pi, pi]
+  double stroke = 0.0;              ///< [m]
+};
+DeadCentres calcDeadCentres(const Mechanism& m, double pin_offset);
+
+/// Norton's two-term approximation (centric, whatever the scene's pin offset: the textbook's shortcut):
+/// x = l - r^2/(4l) + r (cos + (r/4l) cos 2theta)   (13.3c),
 /// v = -r omega (sin + (r/2l) sin 2theta)   (13.3d), a = -r omega^2 (cos + (r/l) cos 2theta)   (13.3e),
 /// and j, the time derivative of (13.3e).
 PistonKinematics calcPistonKinematicsNorton(const Mechanism& m, double theta);
 
-/// The Fourier series of x_p truncated after harmonic `order` (>= 1), with the exact coefficients of
+/// The Fourier series of the centric x_p truncated after harmonic `order` (>= 1), with the exact coefficients of
 /// fourier_series.h, and its term-by-term time derivatives.
 /// @throws std::invalid_argument if order < 1.
 PistonKinematics calcPistonKinematicsFourier(const Mechanism& m, double theta, int order);

@@ -56,7 +56,10 @@ struct ShakingHarmonic {
 ///                   - I_G omega^2 sum_h h C_h sin(h theta),  C_1 = lambda (B_0 + B_2 / 2), C_h = lambda (B_{h-1} + B_{h+1}) / 2
 /// (the mass times acceleration of piston, rod and throw; the rod's angular velocity per radian of crank is
 /// sum_h C_h cos(h theta)), negated; the X and Y moments are z_j times the force's Y and -X parts.
-/// @throws std::invalid_argument if order < 1.
+/// With pin offsets the motion has sine terms too: the harmonics are then those of the exact F_s and M_s (calcShaking)
+/// by a DFT whose number of samples N is doubled until harmonics N/4 and N/4 + 1 are below 4 eps of the largest value
+/// (they decay geometrically, so what the DFT folds onto harmonics up to N/4 is then below rounding).
+/// @throws std::invalid_argument if order < 1; std::runtime_error if an offset motion's DFT does not converge.
 std::vector<ShakingHarmonic> calcShakingHarmonics(const Mechanism& m, int order);
 
 /// Which parts of harmonic n vanish exactly because of the layout's symmetry, whatever the masses: with every bank
@@ -68,7 +71,8 @@ std::vector<ShakingHarmonic> calcShakingHarmonics(const Mechanism& m, int order)
 ///   moment X and Y:  the same sums weighted by z_j;
 ///   moment Z:        sum_j e^{i n alpha_j} = 0.
 struct HarmonicSymmetry {
-  bool decided = false;  ///< false when an angle is not a whole 1/8 degree or a position not a whole nanometre
+  bool decided = false;  ///< false when an angle is not a whole 1/8 degree or a position not a whole nanometre, or
+                         ///< the cylinders' pin offsets differ
   bool force_cancels = false, moment_xy_cancels = false, moment_z_cancels = false;
 };
 HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n);

@@ -10,7 +10,8 @@
 ///    at r_p opposite, in the plane z_j of the throw's cylinder) as one inertial (mass, centre of mass, full inertia
 ///    tensor), plus the flywheel I_w about Z (isotropic: only I_zz, I_xz, I_yz act) when the scene has one, and a crank-pin
 ///    site per cylinder at r (cos beta_j, sin beta_j, z_j).
-///  - piston j: a body on a slide along e_j, its origin at z_j on the crank axis, so the slide's coordinate is x_p;
+///  - piston j: a body on a slide along e_j, its origin at z_j on the crank axis moved by the pin offset delta_j along
+///    n_j, so the slide's coordinate is x_p;
 ///    a particle m_o (with a nominal isotropic inertia, which never acts: the piston does not turn).
 ///  - rod j: a body on a hinge about +Z at the wrist pin, child of piston j; at hinge angle 0 it points along -e_j:
 ///    centre of mass at -z_k e_j, inertia about it I_o - m_k z_k^2 about Z, big-end site at -l e_j. The rod angle of

@@ -38,6 +38,10 @@ struct EngineParams {
   /// z_j [m] per cylinder along the crankshaft (+Z). Empty: every cylinder in the plane z = 0 (the planar model:
   /// the shaking moment's X and Y parts are then not defined). Read it through getAxialPosition.
   std::vector<double> axial_positions;
+  /// delta_j [m] per cylinder: the piston-pin (desaxe) offset, signed along n_j (e_j turned +90 degrees): the wrist
+  /// pin moves on the line A_j = x_p e_j + delta_j n_j, x_p its coordinate along e_j (docs/CONVENTIONS-crankcheck.md,
+  /// "Pin offset"). |delta_j| < l - r. Empty: every cylinder centric. Read it through getPinOffset.
+  std::vector<double> pin_offsets;
   double speed = 0.0;                        ///< omega [rad/s], constant crank speed (0 = static)
   double gravity = 9.80665;                  ///< g [m/s^2], acting along -Y
 };
@@ -91,6 +95,10 @@ double getAxialPosition(const Mechanism& m, int j);
 /// True when every cylinder lies in one bank (gamma_j = cylinder_angle for all j): the inline engine the
 /// paper's series (eqs 14-18) and the reduced and free-run Simbody models are written for.
 bool isSingleBank(const Mechanism& m);
+/// delta_j [m], the pin offset of cylinder j: pin_offsets[j], or 0 when the scene gives none.
+double getPinOffset(const Mechanism& m, int j);
+/// True when some cylinder's pin is offset (delta_j != 0).
+bool hasPinOffsets(const Mechanism& m);
 /// True when the scene placed the cylinders along the shaft (axial_position or cylinder_spacing).
 bool hasAxialPositions(const Mechanism& m);
 /// The same mechanism with only some of its loads (for the split of the drive torque into its parts): without gas

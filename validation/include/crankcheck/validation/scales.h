@@ -19,6 +19,11 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 /// 64 keeps a margin of about 7 for other compilers and libm versions.
 constexpr double kAgreementMultiple = 64.0;
 
+/// The largest |sin(beta)| the rods reach, (r + max_j |delta_j|) / l: lambda for centric cylinders. Where lambda
+/// appears in a scale or a conditioning below, this stands in for it (an offset pin brings the loop closer to its
+/// singularity |sin(beta)| = 1).
+double calcLoopRatio(const Mechanism& m);
+
 /// Energy scale [J] for U and Q: k g (r (m_o + m_k) + m_s r_s + m_p r_p).
 double calcEnergyScale(const Mechanism& m);
 /// Acceleration scale [m/s^2]: g + r omega^2 (1 + (1 - lambda^2)^(-3/2)), plus max |p| A_bore / (m_o + m_k) with
@@ -34,7 +39,7 @@ double calcTorqueScale(const Mechanism& m);
 struct Scales {
   double energy = 0.0;            ///< E [J]: U and Q
   double simbody_energy = 0.0;    ///< E + k g (m_o + m_k)(l + r): Simbody's U subtracts absolute heights up to l + r
-  double position = 0.0;          ///< l + r [m]
+  double position = 0.0;          ///< l + r + max |delta_j| [m]
   double velocity = 0.0;          ///< r omega (1 + (1 - lambda^2)^(-1/2)) [m/s]
   double acceleration = 0.0;      ///< calcAccelerationScale [m/s^2]
   double force = 0.0;             ///< calcForceScale [N]
