@@ -1,20 +1,70 @@
 #!/usr/bin/env bash
 # Campaigns in shards on batch engines (ctest, label distributed): the GNU parallel recipe (scripts/parallel-shards.sh)
-# and the Slurm recipe (scripts/slurm/submit.sh, its two batch scripts run by tests/distributed/fake-slurm/sbatch,
-# a stand-in that runs them here as Slurm would on a node) each give a merged report whose data is byte-identical to
-# one `crankcheck validate` run: every CSV of data/, except the measured timing columns (ns_per_*) of the two timing
-# tables, whose other columns must still match. Bad input stops the recipe with exit status 2 and nothing merged.
+# and the Slurm recipe (scripts/slurm/submit.sh and its two batch scripts, on a real one-node Slurm cluster that this
+# test starts here: munged, slurmctld and slurmd from Debian's packages, on 127.0.0.1) each give a merged report whose
+# data is byte-identical to one `crankcheck validate --quick` run: every CSV of data/, except the measured timing
+# columns (ns_per_*) of the timing tables, whose other columns must still match. On Slurm, a shard that fails (a bad
+# scene) or is cancelled (scancel) makes the merge job refuse, naming the shard; a job sbatch refuses is not left
+# submitted. Bad input stops the recipes with exit status 2 and nothing merged.
 #
 #   shards_test.sh CRANKCHECK SOURCE_DIR
 #
-# Everything happens in a fresh mkdtemp folder, removed at the end.
+# The Slurm part needs root and Debian's slurmctld, slurmd, munge and slurm-client (scripts/setup.sh installs them);
+# without them the test runs the GNU parallel part, then says why and exits 77, which ctest reports as skipped.
+# Everything happens in a fresh mktemp folder: the cluster's configuration, munge key and socket, state, spool, logs
+# and pid files, and every report. When the test ends, also on a failure or a signal, the jobs it submitted are
+# cancelled, the three daemons it started are stopped by their process ids, and the folder is removed.
 set -euo pipefail
 crankcheck=$1
 src=$2
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/crankcheck_test_XXXXXX")
-trap 'rm -rf -- "$tmp"' EXIT
+daemons=()  # "name pid" of each daemon started here, in the order they started
+submitted=()  # the Slurm jobs submitted here
+
+stop_cluster() {
+  local i k name pid
+  if ((${#submitted[@]})) && [[ -n ${SLURM_CONF:-} ]]; then
+    scancel "${submitted[@]}" 2>/dev/null || true
+    for ((i = 0; i < 100; ++i)); do  # up to 20 s for their processes to end
+      scontrol -o show job 2>/dev/null | grep -Eq 'JobState=(RUNNING|COMPLETING|CONFIGURING|SUSPENDED)' || break
+      sleep 0.2
+    done
+  fi
+  for ((k = ${#daemons[@]} - 1; k >= 0; --k)); do  # slurmd, slurmctld, then munged
+    read -r name pid <<<"${daemons[k]}"
+    kill -TERM "$pid" 2>/dev/null || continue
+    for ((i = 0; i < 100; ++i)); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+    if kill -0 "$pid" 2>/dev/null; then
+      echo "$name (pid $pid) ignored SIGTERM for 10 s: killed" >&2
+      kill -KILL "$pid" 2>/dev/null || true
+    fi
+    wait "$pid" 2>/dev/null || true
+  done
+}
+cleanup() {
+  stop_cluster
+  rm -rf -- "$tmp"
+}
+trap cleanup EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM
 failures=0
 fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
+
+# Can this machine run the Slurm part? Said now; the GNU parallel part runs either way.
+skip=""
+if (($(id -u) != 0)); then
+  skip="not root (uid $(id -u)): the one-node Slurm cluster runs munged, slurmctld and slurmd as root (SlurmUser=root)"
+else
+  missing=()
+  for program in munged munge slurmctld slurmd sbatch scontrol scancel; do
+    command -v "$program" >/dev/null || missing+=("$program")
+  done
+  if ((${#missing[@]})); then
+    skip="no ${missing[*]} on PATH (Debian: apt-get install slurmctld slurmd munge slurm-client; scripts/setup.sh does)"
+  fi
+fi
+[[ -z $skip ]] || echo "SKIP (the Slurm part): $skip"
 
 # The timing tables: their ns_per_* columns are measurements (never identical from run to run); the merge keeps them
 # as the shards measured them. Everything else in them is computed and must match.
@@ -53,24 +103,6 @@ compare_data() {
 compare_data "$tmp/one" "$tmp/parallel"
 [[ $(tail -n +2 "$tmp/parallel.shards/parallel-joblog.txt" | wc -l) == 3 ]] || fail "the job log lists other than 3 shards"
 
-# Slurm: a job array of two shards and the merge after it, through submit.sh.
-PATH="$src/tests/distributed/fake-slurm:$PATH" FAKE_SLURM_STATE="$tmp/slurm-jobs" \
-  "$src/scripts/slurm/submit.sh" --crankcheck "$crankcheck" --sbatch --partition=test 2 "$tmp/slurm" -- --quick \
-  >"$tmp/slurm.log" 2>&1 || { cat "$tmp/slurm.log"; fail "submit.sh: exit status $?"; }
-grep -q "shards: job 1000 (array 0-1); merge: job 1001" "$tmp/slurm.log" || { cat "$tmp/slurm.log"; fail "submit.sh's job ids"; }
-[[ ! -e $tmp/slurm-jobs.failed ]] || { cat "$tmp/slurm-jobs.failed" "$tmp"/slurm.shards/logs/*; fail "a Slurm job failed"; }
-grep -q "Shard 1/2" "$tmp/slurm.shards/logs/shard-1.out" || fail "no log of shard 1"
-grep -q "All comparisons agree." "$tmp/slurm.shards/logs/merge.out" || fail "no log of the merge"
-compare_data "$tmp/one" "$tmp/slurm"
-
-# The Slurm merge refuses an incomplete set of shards, naming the missing one.
-mkdir "$tmp/half"
-mv "$tmp/slurm.shards/shard-1" "$tmp/half/"
-status=0
-bash "$src/scripts/slurm/crankcheck-merge.sbatch" "$crankcheck" 2 "$tmp/slurm.shards" "$tmp/slurm2" 2>"$tmp/merge.err" || status=$?
-[[ $status == 2 && ! -e $tmp/slurm2 ]] || fail "merge of an incomplete set: exit status $status"
-grep -q "shards 1 of 2 left no data" "$tmp/merge.err" || fail "merge of an incomplete set: $(cat "$tmp/merge.err")"
-
 # Bad input: exit status 2, nothing merged.
 status=0
 "$src/scripts/parallel-shards.sh" --crankcheck "$crankcheck" 2 "$tmp/bad" -- --quick --no-such-flag >"$tmp/bad.log" 2>&1 ||
@@ -86,8 +118,232 @@ status=0
 "$src/scripts/parallel-shards.sh" --crankcheck "$crankcheck" 2 "$tmp/mine" -- --quick >"$tmp/bad.log" 2>&1 || status=$?
 [[ $status == 2 && -f $tmp/mine.shards/notes.txt && ! -e $tmp/mine.shards/shard-0 ]] || fail "a folder of mine: status $status"
 
+if [[ -n $skip ]]; then
+  if ((failures)); then
+    echo "$failures failure(s)" >&2
+    exit 1
+  fi
+  echo "GNU parallel's recipe agrees with one run; the Slurm part is skipped: $skip"
+  exit 77
+fi
+
+# ---- A one-node Slurm cluster in $tmp/slurm-cluster -------------------------------------------------------------
+# Nothing of the machine's own Slurm or munge is used: the configuration, key, socket, state and logs are all here,
+# and the two Slurm ports are free ones on 127.0.0.1.
+unset "${!SLURM_@}" "${!SBATCH_@}"  # a Slurm job's or the user's settings would change what sbatch does
+cluster=$tmp/slurm-cluster
+mkdir -p "$cluster/state" "$cluster/spool"
+chmod 711 "$tmp"  # munged wants every folder above its socket searchable by all (not readable)
+cd "$tmp"         # the daemons' and the jobs' working folder (sbatch's default)
+
+show_logs() {  # show_logs: the daemons' last words, when the cluster does not come up
+  local file
+  for file in "$cluster"/*.out "$cluster"/*.log; do
+    [[ -f $file ]] && { echo "--- $file" >&2; tail -n 20 "$file" >&2; }
+  done
+}
+die() {  # die MESSAGE: the cluster cannot be used; the rest of the Slurm part would only fail the same way
+  fail "$*"
+  show_logs
+  echo "$failures failure(s)" >&2
+  exit 1
+}
+# await SECONDS WHAT COMMAND...: runs COMMAND every 0.2 s until it succeeds; fails the test after SECONDS, or when
+# the Slurm part has used its 150 s (so that the test ends, and cleans up, well within ctest's TIMEOUT).
+deadline=$((SECONDS + 150))
+await() {
+  local seconds=$1 what=$2 end=$((SECONDS + $1))
+  shift 2
+  ((end < deadline)) || end=$deadline
+  until "$@"; do
+    ((SECONDS < end)) || { fail "$what: not within $seconds s (or the Slurm part's 150 s)"; return 1; }
+    sleep 0.2
+  done
+}
+free_port() {  # free_port NOT: a TCP port nothing listens on at 127.0.0.1, other than NOT
+  local port
+  while :; do
+    port=$((20000 + RANDOM % 30000))
+    [[ $port != "${1:-}" ]] && ! (: <>"/dev/tcp/127.0.0.1/$port") 2>/dev/null && break
+  done
+  echo "$port"
+}
+running() { kill -0 "$1" 2>/dev/null; }
+
+head -c 1024 /dev/urandom >"$cluster/munge.key"
+chmod 400 "$cluster/munge.key"
+munged --foreground --key-file="$cluster/munge.key" --socket="$cluster/munge.socket" \
+  --pid-file="$cluster/munged.pid" --log-file="$cluster/munged.log" --seed-file="$cluster/munged.seed" \
+  >"$cluster/munged.out" 2>&1 &
+daemons+=("munged $!")
+munge_works() {  # a credential made and decoded through the socket
+  munge --socket="$cluster/munge.socket" --no-input 2>/dev/null | unmunge --socket="$cluster/munge.socket" >/dev/null 2>&1
+}
+await 20 "munged's socket $cluster/munge.socket" munge_works || die "munged did not start"
+
+host=$(hostname -s)
+node=$(slurmd -C | head -n 1)  # this machine as slurmd sees it: NodeName=HOST CPUs=... RealMemory=...
+[[ $node == "NodeName=$host "*RealMemory=* ]] || die "slurmd -C: unexpected: $node"
+ctld_port=$(free_port)
+slurmd_port=$(free_port "$ctld_port")
+cat >"$cluster/slurm.conf" <<EOF
+# A one-node cluster for tests/distributed/shards_test.sh: everything in $cluster.
+ClusterName=crankcheck-test
+SlurmctldHost=$host(127.0.0.1)
+SlurmctldPort=$ctld_port
+SlurmdPort=$slurmd_port
+SlurmUser=root
+SlurmdUser=root
+AuthType=auth/munge
+CredType=cred/munge
+AuthInfo=socket=$cluster/munge.socket
+StateSaveLocation=$cluster/state
+SlurmdSpoolDir=$cluster/spool
+SlurmctldPidFile=$cluster/slurmctld.pid
+SlurmdPidFile=$cluster/slurmd.pid
+SlurmctldLogFile=$cluster/slurmctld.log
+SlurmdLogFile=$cluster/slurmd.log
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+JobAcctGatherType=jobacct_gather/none
+AccountingStorageType=accounting_storage/none
+JobCompType=jobcomp/none
+SelectType=select/cons_tres
+SelectTypeParameters=CR_CPU
+MpiDefault=none
+ReturnToService=2
+MailProg=/bin/true
+$node NodeAddr=127.0.0.1 State=UNKNOWN
+PartitionName=crankcheck Nodes=$host Default=YES MaxTime=INFINITE State=UP
+EOF
+export SLURM_CONF=$cluster/slurm.conf
+slurmctld -D -i >"$cluster/slurmctld.out" 2>&1 &
+daemons+=("slurmctld $!")
+ctld_up() { running "${daemons[1]#* }" && scontrol ping 2>/dev/null | grep -q "is UP"; }
+await 30 "slurmctld on port $ctld_port" ctld_up || die "slurmctld did not start"
+slurmd -D -N "$host" >"$cluster/slurmd.out" 2>&1 &
+daemons+=("slurmd $!")
+node_idle() { running "${daemons[2]#* }" && scontrol -o show node "$host" 2>/dev/null | grep -q "State=IDLE "; }
+await 30 "slurmd: node $host idle" node_idle || die "slurmd did not start"
+echo "a one-node Slurm cluster: ${daemons[*]}; ${node%% RealMemory*} on $host, ports $ctld_port and $slurmd_port"
+
+# submit ARGS...: scripts/slurm/submit.sh ARGS; sets array_job and merge_job from what it prints.
+submit() {
+  local log=$tmp/submit-${#submitted[@]}.log
+  array_job="" merge_job=""
+  "$src/scripts/slurm/submit.sh" --crankcheck "$crankcheck" --sbatch --partition=crankcheck "$@" >"$log" 2>&1 ||
+    { cat "$log"; fail "submit.sh $*: exit status $?"; return 1; }
+  [[ $(cat "$log") =~ shards:\ job\ ([0-9]+)\ \(array\ 0-[0-9]+\)\;\ merge:\ job\ ([0-9]+) ]] ||
+    { cat "$log"; fail "submit.sh $*: no job ids"; return 1; }
+  array_job=${BASH_REMATCH[1]} merge_job=${BASH_REMATCH[2]}
+  submitted+=("$array_job" "$merge_job")
+}
+# field JOB NAME: NAME's value in `scontrol show job JOB` (JOB may be ARRAY_TASK); "" if it has none.
+field() { scontrol -o show job "$1" 2>/dev/null | grep -o "\(^\| \)$2=[^ ]*" | head -n 1 | cut -d= -f2- || true; }
+ended() {  # ended JOB...: every record of each JOB (every task of an array) has reached a final state
+  local job state
+  for job; do
+    state=$(scontrol -o show job "$job" 2>/dev/null | grep -o ' JobState=[A-Z_]*' | sort -u) || return 1
+    [[ -n $state ]] || return 1
+    ! grep -qvE 'JobState=(COMPLETED|FAILED|CANCELLED|TIMEOUT|NODE_FAIL|OUT_OF_MEMORY|PREEMPTED|BOOT_FAIL|DEADLINE)$' \
+      <<<"$state" || return 1
+  done
+}
+# expect JOB STATE EXITCODE: the job ended so (EXITCODE "" for any).
+expect() {
+  local state exit_code
+  state=$(field "$1" JobState) exit_code=$(field "$1" ExitCode)
+  [[ $state == "$2" && ( -z $3 || $exit_code == "$3" ) ]] ||
+    fail "job $1: $state, exit code $exit_code; expected $2${3:+, exit code $3}"
+}
+
+# 1. A job array of two shards and the merge after it, through submit.sh; the merged data is one run's.
+if submit 2 "$tmp/slurm" -- --quick && await 90 "jobs $array_job and $merge_job" ended "$array_job" "$merge_job"; then
+  before=$failures
+  expect "${array_job}_0" COMPLETED 0:0
+  expect "${array_job}_1" COMPLETED 0:0
+  expect "$merge_job" COMPLETED 0:0
+  if ((failures > before)); then
+    for file in "$tmp"/slurm.shards/logs/* "$cluster/slurmd.log"; do echo "--- $file" >&2; tail -n 20 "$file" >&2; done
+  fi
+  # What the scripts ask of Slurm: their #SBATCH defaults, and submit.sh's --sbatch option for both jobs.
+  [[ $(field "${array_job}_1" CPUs/Task) == 1 && $(field "${array_job}_1" TimeLimit) == 02:00:00 ]] ||
+    fail "the shards' #SBATCH defaults: $(field "${array_job}_1" CPUs/Task) CPU, $(field "${array_job}_1" TimeLimit)"
+  [[ $(field "$merge_job" TimeLimit) == 00:30:00 && $(field "$merge_job" Partition) == crankcheck ]] ||
+    fail "the merge's time limit and partition: $(field "$merge_job" TimeLimit), $(field "$merge_job" Partition)"
+  grep -q "Shard 0/2" "$tmp/slurm.shards/logs/shard-0.out" || fail "no log of shard 0"
+  grep -q "Shard 1/2" "$tmp/slurm.shards/logs/shard-1.out" || fail "no log of shard 1"
+  grep -q "All comparisons agree." "$tmp/slurm.shards/logs/merge.out" || fail "no log of the merge"
+  compare_data "$tmp/one" "$tmp/slurm"
+fi
+
+# refused_merge OUT SHARDS...: the merge job ended with exit code 2, naming exactly SHARDS, and wrote no OUT.
+refused_merge() {
+  local out=$1 log=$1.shards/logs/merge.out
+  shift
+  expect "$merge_job" FAILED 2:0
+  grep -q "shards $* of 2 left no data" "$log" || { cat "$log"; fail "$out: the merge does not name shards $*"; }
+  [[ ! -e $out ]] || fail "$out: merged, though shards $* are missing"
+}
+
+# 2. A failing shard: the scene is broken after task 0 ran and before task 1 runs (both held until then).
+scene=$tmp/scene.toml
+cp "$src/scenes/single_cylinder.toml" "$scene"
+if submit --sbatch --hold 2 "$tmp/badscene" -- --quick "$scene"; then
+  [[ $(field "$merge_job" Dependency) == "afterany:${array_job}_*(unfulfilled)" ]] ||
+    fail "the merge's dependency: $(field "$merge_job" Dependency)"
+  scontrol release "${array_job}_0"
+  if await 60 "task ${array_job}_0" ended "${array_job}_0"; then
+    expect "${array_job}_0" COMPLETED 0:0
+    echo "cylinders = [" >>"$scene"
+    scontrol release "${array_job}_1"
+    scontrol release "$merge_job"
+    if await 60 "jobs $array_job and $merge_job" ended "$array_job" "$merge_job"; then
+      expect "${array_job}_1" FAILED 2:0
+      grep -q "crankcheck: $scene: .*not valid TOML" "$tmp/badscene.shards/logs/shard-1.out" ||
+        fail "shard 1's log does not name the bad scene: $(cat "$tmp/badscene.shards/logs/shard-1.out")"
+      refused_merge "$tmp/badscene" 1
+      grep -q "shard 1: .*shard-1.out: crankcheck: $scene" "$tmp/badscene.shards/logs/merge.out" ||
+        fail "the merge does not say why shard 1 failed: $(cat "$tmp/badscene.shards/logs/merge.out")"
+    fi
+  fi
+fi
+
+# 3. Cancelled tasks: task 0 while it waits, task 1 while it runs. The whole campaign (about 20 s a shard, not
+# --quick) keeps task 1 running until it is cancelled.
+if submit --sbatch --hold 2 "$tmp/cancelled"; then
+  scancel "${array_job}_0"
+  scontrol release "${array_job}_1"
+  task_running() { [[ $(field "${array_job}_1" JobState) == RUNNING ]]; }
+  if await 60 "task ${array_job}_1 running" task_running; then
+    scancel "${array_job}_1"
+    scontrol release "$merge_job"
+    if await 60 "jobs $array_job and $merge_job" ended "$array_job" "$merge_job"; then
+      expect "${array_job}_1" CANCELLED ""
+      grep -q "\*\*\* JOB [0-9]* ON $host CANCELLED AT" "$tmp/cancelled.shards/logs/shard-1.out" ||
+        fail "no cancellation in shard 1's log: $(cat "$tmp/cancelled.shards/logs/shard-1.out")"
+      [[ ! -e $tmp/cancelled.shards/shard-1/shard.json ]] || fail "the cancelled shard 1 left data"
+      refused_merge "$tmp/cancelled" 0 1
+      grep -q "shard 0: no log .*never started" "$tmp/cancelled.shards/logs/merge.out" &&
+        grep -q "shard 1: .*CANCELLED AT" "$tmp/cancelled.shards/logs/merge.out" ||
+        fail "the merge does not say why shards 0 and 1 are missing: $(cat "$tmp/cancelled.shards/logs/merge.out")"
+    fi
+  fi
+fi
+
+# 4. A job sbatch refuses: exit status 2 with Slurm's reason, nothing left submitted, no folders left behind.
+records=$(scontrol -o show job | wc -l)
+status=0
+"$src/scripts/slurm/submit.sh" --crankcheck "$crankcheck" --sbatch --partition=no-such-partition 2 \
+  "$tmp/refused/report" -- --quick >"$tmp/refused.log" 2>&1 || status=$?
+[[ $status == 2 && ! -e $tmp/refused ]] || { cat "$tmp/refused.log"; fail "a refused job: exit status $status"; }
+grep -q "sbatch: error: .*[Ii]nvalid partition" "$tmp/refused.log" &&
+  grep -q "submit.sh: sbatch refused the shards' job array .*nothing submitted" "$tmp/refused.log" ||
+  fail "a refused job: $(cat "$tmp/refused.log")"
+[[ $(scontrol -o show job | wc -l) == "$records" ]] || fail "a refused job: submitted all the same"
+
 if ((failures)); then
   echo "$failures failure(s)" >&2
   exit 1
 fi
-echo "all shard recipes agree with one run"
+echo "all shard recipes agree with one run; Slurm's merge refuses a failed or cancelled shard, naming it"
