@@ -25,6 +25,7 @@ struct Member {
 struct Group {
   double gamma = 0.0;
   double offset = 0.0;  // the group's grid is phi0 + offset + index step
+  double pin_offset = 0.0;  // delta of every member [m]
   std::vector<Member> members;
 };
 
@@ -50,17 +51,20 @@ std::vector<Group> groupCylinders(const Mechanism& m, double step) {
                        std::fabs(alpha - steps * step) <= 8.0 * kEps * std::max(std::fabs(alpha), kTurn);
     const double offset = whole ? 0.0 : alpha;
     const long long shift = whole ? static_cast<long long>(steps) : 0;
+    const double delta = getPinOffset(m, j);  // cylinders with different pin offsets are different one-cylinder models
     auto it = std::find_if(groups.begin(), groups.end(),
-                           [&](const Group& g) { return g.gamma == gamma && g.offset == offset; });
-    if (it == groups.end()) it = groups.insert(groups.end(), Group{gamma, offset, {}});
+                           [&](const Group& g) { return g.gamma == gamma && g.offset == offset && g.pin_offset == delta; });
+    if (it == groups.end()) it = groups.insert(groups.end(), Group{gamma, offset, delta, {}});
     it->members.push_back({j, shift});
   }
   return groups;
 }
 
-// The one-cylinder mechanism of bank gamma: the same crank, rod and piston, alpha = 0, no gas (U and Q are gravity's).
-Mechanism oneCylinder(const Mechanism& m, double gamma) {
+// The one-cylinder mechanism of bank gamma and pin offset delta: the same crank, rod and piston, alpha = 0, no gas (U
+// and Q are gravity's).
+Mechanism oneCylinder(const Mechanism& m, double gamma, double delta) {
   Mechanism one = m;
+  one.engine.pin_offsets.assign(1, delta);
   one.engine.cylinders = 1;
   one.engine.crank_angles = {0.0};
   one.engine.explicit_crank_angles = true;
@@ -93,7 +97,7 @@ std::vector<double> superpose(Quantity quantity, const Mechanism& m, double phi0
     return quantity == Quantity::kHoldingTorque ? model.calcHoldingTorque(phi) : model.calcPotentialEnergy(phi);
   };
   for (const Group& group : groupCylinders(m, step)) {
-    KCrankModel model(oneCylinder(m, group.gamma), options);
+    KCrankModel model(oneCylinder(m, group.gamma, group.pin_offset), options);
     ++counted.models;
     if (n == 0) continue;
     // Every distinct index the group's cylinders read, in increasing order (neighbouring angles: warm starts).

@@ -807,7 +807,11 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   // The paper's figures (parts 1-7) are about one bank of cylinders: a layout's base scene gives them its parts as
   // a standing inline engine of the same k and cycle, and the report says so.
   const Mechanism& first = scenes.front();
-  const Mechanism base = isSingleBank(first) ? first : withGamma(withCylinders(first, first.engine.cylinders, first.engine.cycle), 90.0);
+  Mechanism base = isSingleBank(first) ? first : withGamma(withCylinders(first, first.engine.cylinders, first.engine.cycle), 90.0);
+  // The paper's figures are about centric cylinders: an offset base scene gives them its parts centric (part 14 and the
+  // cross-checks show the offset engine itself).
+  const bool offset_base = hasPinOffsets(base);
+  base.engine.pin_offsets.clear();
 
   std::vector<Task> tasks;
   Table notes;
@@ -816,12 +820,18 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
     notes.rows.push_back({"The first scene, " + first.name + ", has cylinders in more than one bank; the figures of parts "
                           "1-7, written for the paper's inline engine, use its parts as a standing inline engine of "
                           "the same cylinder count and cycle. Its own layout is cross-checked in the summary."});
+  if (offset_base)
+    notes.rows.push_back({"The first scene, " + first.name + ", has pin offsets; the figures of parts 1-7, written for the "
+                          "paper's centric engine, use its parts centric. Its offset engine is cross-checked in the "
+                          "summary, and part 14 shows what the offset changes."});
   tasks.push_back({"scenes", false, [families] { return scenesTable(families); }});
   const std::vector<double> sweep = quick ? std::vector<double>{} : std::vector<double>{0.1, 0.2, 0.3, 0.4, 0.6, 0.9};
   for (const auto& [family, m] : families) {
     std::vector<double> lambdas = {lambdaOf(m)};
+    // A pin offset needs |delta| < l - r: the rod changed to lambda must still reach the crank pin at every angle.
+    const double offset = calcLoopRatio(m) * m.rod.length - m.crank.radius;  // max |delta_j|
     for (double lambda : sweep)
-      if (std::fabs(lambda - lambdaOf(m)) > 1e-3) lambdas.push_back(lambda);
+      if (std::fabs(lambda - lambdaOf(m)) > 1e-3 && offset < m.crank.radius / lambda - m.crank.radius) lambdas.push_back(lambda);
     for (double lambda : lambdas) {
       const Mechanism variant = withLambda(m, lambda);
       char id[128];

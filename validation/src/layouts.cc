@@ -102,6 +102,9 @@ Mechanism makeLayoutMechanism(const Layout& layout, const Mechanism& parts, doub
   m.engine.crank_angles.clear();
   m.engine.bank_angles.clear();
   m.engine.axial_positions.clear();
+  m.engine.pin_offsets.clear();  // the textbook's layouts are centric
+  m.gas.reset();                 // and without gas: a pressure table needs a firing angle per cylinder of the layout
+  m.firing_angles.clear();
   for (const CylinderPlace& c : layout.cylinders) {
     m.engine.bank_angles.push_back(radiansFromDegrees(c.bank_deg + rotation_deg));
     m.engine.crank_angles.push_back(radiansFromDegrees(c.throw_deg - c.bank_deg));  // theta offset: beta - gamma

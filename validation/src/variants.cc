@@ -1,6 +1,7 @@
 #include "crankcheck/validation/variants.h"
 
 #include <cmath>
+#include <vector>
 
 namespace crankcheck::validation {
 
@@ -29,6 +30,11 @@ Mechanism withCylinders(const Mechanism& base, int k, Cycle cycle) {
   m.engine.crank_angles = calcPhaseAngles(k, cycle, Acting::kSingle);
   m.engine.bank_angles.clear();      // one bank, at cylinder_angle
   m.engine.axial_positions.clear();  // in one plane
+  // An offset shared by every cylinder ([engine].pin_offset) stays with every new cylinder; per-cylinder ones cannot.
+  bool common = !m.engine.pin_offsets.empty();
+  for (double delta : m.engine.pin_offsets) common = common && delta == m.engine.pin_offsets.front();
+  m.engine.pin_offsets = common ? std::vector<double>(static_cast<size_t>(k), base.engine.pin_offsets.front())
+                                : std::vector<double>{};
   m.gas.reset();                     // a pressure table needs a firing angle per cylinder: none for the new k
   m.firing_angles.clear();
   return m;

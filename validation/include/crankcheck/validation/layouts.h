@@ -44,7 +44,7 @@ struct Layout {
 std::vector<Layout> getBalanceLayouts();
 
 /// The mechanism of `layout` turned by rotation_deg, on `parts` (its crank, rod, piston, flywheel, speed and gravity;
-/// its engine layout is replaced), named "<layout>_rot<deg>". Four-stroke.
+/// its engine layout is replaced; centric, without gas), named "<layout>_rot<deg>". Four-stroke.
 Mechanism makeLayoutMechanism(const Layout& layout, const Mechanism& parts, double rotation_deg = 0.0);
 
 }  // namespace crankcheck::validation
