@@ -154,6 +154,17 @@ class GradeResult:
         return "\n".join(lines)
 
 
+def _find_reports_dir():
+    """share/crankcheck/reports (the report's gnuplot scripts) above this package: the build tree's
+    build/share/crankcheck/reports, or PREFIX/share/crankcheck/reports of an install tree."""
+    folder = _os.path.dirname(_os.path.abspath(__file__))
+    for up in range(1, 6):
+        candidate = _os.path.join(folder, *([_os.pardir] * up), "share", "crankcheck", "reports")
+        if _os.path.isdir(candidate):
+            return _os.path.normpath(candidate)
+    return None
+
+
 def grade(function, scenes=None, quick=True, *, jobs=None, timeout=60.0, out=None):
     """Grades `function` by the rule and with the cases of `crankcheck grade --batch` (README "Grade your own code").
 
@@ -176,8 +187,18 @@ def grade(function, scenes=None, quick=True, *, jobs=None, timeout=60.0, out=Non
     name = getattr(function, "__qualname__", None) or repr(function)
     module = getattr(function, "__module__", None)
     program = "python: %s.%s" % (module, name) if module else "python: %s" % name
-    r = _crankcheck._grade(function, scene_list, bool(quick), 0 if jobs is None else int(jobs), float(timeout),
-                           None if out is None else _os.fspath(out), _RELAY, program)
+    # The report's gnuplot scripts: the C++ looks beside the running program (python3 here) unless told where.
+    reports = None
+    if out is not None and "CRANKCHECK_REPORTS_DIR" not in _os.environ:
+        reports = _find_reports_dir()
+        if reports is not None:
+            _os.environ["CRANKCHECK_REPORTS_DIR"] = reports
+    try:
+        r = _crankcheck._grade(function, scene_list, bool(quick), 0 if jobs is None else int(jobs), float(timeout),
+                               None if out is None else _os.fspath(out), _RELAY, program)
+    finally:
+        if reports is not None:
+            del _os.environ["CRANKCHECK_REPORTS_DIR"]
     tables = r["tables"]
     return GradeResult(
         exit_status=r["exit_status"],

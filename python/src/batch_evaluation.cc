@@ -8,6 +8,7 @@
 
 #include "crankcheck/analytic/batch.h"
 #include "crankcheck/analytic/kinematics.h"
+#include "crankcheck/validation/engines.h"
 
 namespace crankcheck::python {
 
@@ -81,8 +82,25 @@ double* part(double* base, int c, int j, int k, size_t n) {
 
 }  // namespace
 
+bool batchKernelsAccept(const Mechanism& m) {
+  // The kernels check the mechanism before any angle (batch.h: std::invalid_argument for what they do not cover);
+  // asked for no angle at all, that check is all they do.
+  try {
+    analytic::calcGravityTorqueBatch(m, {}, {});
+    return true;
+  } catch (const std::invalid_argument&) {
+    return false;
+  }
+}
+
 void evaluateAnalyticBatch(const Mechanism& m, std::span<const double> phi, const BatchOutput& out) {
   checkAngles(phi);
+  if (!batchKernelsAccept(m)) {
+    // What the kernels do not cover: the analytic engine itself (calcEvaluation), angle by angle.
+    const Engine& analytic = validation::findEngine("analytic");
+    evaluateModel(m, analytic, *analytic.build(m), phi, out);
+    return;
+  }
   const size_t n = phi.size();
   const int k = m.engine.cylinders;
   Scratch scratch(n);

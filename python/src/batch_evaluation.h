@@ -7,8 +7,8 @@
 ///
 /// The analytic engine goes through the batch kernels (U, Q, piston kinematics, reactions, shaking); the rod's angle
 /// and its derivatives and the gas force, which have no kernel, come from the same scalar functions the analytic
-/// engine's calcEvaluation calls (calcRodKinematics at calcThrowSinCos(phi, alpha_j), calcGasForce), angle by angle
-/// in C++. Any other engine (validation::listEngines()) is evaluated angle by angle through its EngineModel.
+/// engine's calcEvaluation calls (calcCylinderMotion's rod, calcGasForce), angle by angle in C++. A mechanism the
+/// kernels do not cover (pin offsets, balance shafts) is evaluated by calcEvaluation angle by angle. Any other engine (validation::listEngines()) is evaluated angle by angle through its EngineModel.
 /// Names, units and signs: eval's (README "Other commands", ../shared/CONVENTIONS.md).
 
 #include <cstddef>
@@ -66,7 +66,11 @@ struct BatchOutput {
 /// radians" for the first that is not.
 void checkAngles(std::span<const double> phi);
 
-/// The analytic engine at every angle phi[i] [rad] through the batch kernels; fills what `out` points at (a kernel
+/// Whether the batch kernels cover m (batch.h: centric cylinders without balance shafts).
+bool batchKernelsAccept(const Mechanism& m);
+
+/// The analytic engine at every angle phi[i] [rad] through the batch kernels (for a mechanism they do not cover,
+/// batchKernelsAccept, through the analytic engine's calcEvaluation angle by angle); fills what `out` points at (a kernel
 /// runs only when one of its quantities is asked for; what it computes besides goes to scratch memory).
 /// Thread-safe: a pure function of m and phi. @throws std::invalid_argument if an angle is not finite; a quantity not
 /// defined for m (isDefined) must not be asked for.

@@ -69,9 +69,9 @@ py::array_t<double> toArray(const std::vector<double>& v) {
 // ---- Angles: the buffer of a C-contiguous float64 array is used as it is (no copy); anything else (a float, a list,
 // another dtype, a strided view) is converted once by NumPy.
 Angles asAngles(const py::handle& phi) {
-  Angles a = Angles::ensure(phi);
-  if (!a) throw py::error_already_set();
-  return a;
+  // numpy.asarray returns a C-contiguous float64 array itself, and raises NumPy's own error for what is not numbers.
+  const py::object a = py::module_::import("numpy").attr("asarray")(phi, py::arg("dtype") = "float64", py::arg("order") = "C");
+  return Angles::ensure(a);
 }
 
 std::span<const double> spanOf(const Angles& a) { return {a.data(), static_cast<size_t>(a.size())}; }
@@ -565,6 +565,10 @@ PYBIND11_MODULE(_crankcheck, mod) {
   using namespace crankcheck;
   using namespace crankcheck::python;
   mod.doc() = "crankcheck's engines over NumPy arrays (the compiled part; import crankcheck).";
+  // pybind11 initialises its NumPy API table in a function-local static on first use, importing numpy under the
+  // static's guard; first used from two threads at once (crankcheck.grade's answers), the import releasing the GIL
+  // lets the second thread take the GIL and wait for the guard: a deadlock. Initialise it here, on the importing thread.
+  (void)py::array_t<double>(0);
 
   // SceneError: a ValueError whose message is the CLI's line without "crankcheck: ". Bad usage is a ValueError, a
   // failed environment (gnuplot missing, a graded function's answer timed out) a RuntimeError.
@@ -600,6 +604,10 @@ radians. Immutable; thread-safe (every call builds its own engine model).)doc")
       .def_property_readonly("source", [](const Scene& s) { return s.source; }, "The path or source name messages use.")
       .def_property_readonly("crank_ratio", [](const Scene& s) { return calcCrankRatio(s.m); }, "lambda = r / l.")
       .def_property_readonly("speed_rpm", [](const Scene& s) { return s.m.speed_rpm; }, "The speed as the file gives it [rpm].")
+      .def_property_readonly("batch_kernels", [](const Scene& s) { return batchKernelsAccept(s.m); },
+                             "Whether evaluate(engine=\"analytic\") runs the SIMD batch kernels for this scene (they cover "
+                             "centric cylinders without balance shafts); otherwise it runs the analytic engine's scalar "
+                             "closed forms angle by angle, in C++.")
       .def("to_dict", [](const Scene& s) { return toPython(validation::sceneToJson(s.m)); },
            "The parsed scene as `crankcheck eval --format json` prints it under \"scene\" (SI, plus lambda).")
       .def("to_toml", [](const Scene& s) { return formatSceneToml(s.m); },
