@@ -81,8 +81,10 @@ std::span<const double> spanOf(const Angles& a) { return {a.data(), static_cast<
 // copied. The views are Fortran-ordered (each component contiguous).
 struct Output {
   const QuantityInfo* info;
-  py::array_t<double> buffer;
+  py::array buffer;  // float64, C-contiguous, [component][cylinder][angle...]
 };
+
+size_t prefixDims(const QuantityInfo& q) { return (q.components > 1 ? 1 : 0) + (q.per_cylinder ? 1 : 0); }
 
 Output allocate(const QuantityInfo& q, int k, const std::vector<py::ssize_t>& angle_shape) {
   std::vector<py::ssize_t> shape;
@@ -92,8 +94,31 @@ Output allocate(const QuantityInfo& q, int k, const std::vector<py::ssize_t>& an
   return {&q, py::array_t<double>(shape)};
 }
 
+// The memory of an array an earlier evaluate returned (out=): view()'s transpose undone, checked to be what allocate
+// makes, so that the kernels write into it again (no new memory: no page to fault in and zero).
+Output reuse(const QuantityInfo& q, int k, const std::vector<py::ssize_t>& angle_shape, const py::dict& out) {
+  const std::string where = std::string("out[\"") + q.name + "\"]";
+  const std::string rule = " (out must be a result of evaluate with the same scene, phi's shape and quantities)";
+  if (!out.contains(q.name)) throw py::value_error(where + ": missing" + rule);
+  const py::object v = out[q.name];
+  if (!py::isinstance<py::array>(v)) throw py::value_error(where + ": not a NumPy array" + rule);
+  const size_t prefix = prefixDims(q), d = angle_shape.size();
+  py::list inverse;  // buffer axis b is view axis (b < prefix: d + prefix - 1 - b; else b - prefix)
+  for (size_t b = 0; b < prefix + d; ++b) inverse.append(b < prefix ? d + prefix - 1 - b : b - prefix);
+  const py::array buffer = v.attr("transpose")(py::tuple(inverse));
+  std::vector<py::ssize_t> shape;
+  if (q.components > 1) shape.push_back(q.components);
+  if (q.per_cylinder) shape.push_back(k);
+  shape.insert(shape.end(), angle_shape.begin(), angle_shape.end());
+  const bool layout = buffer.dtype().equal(py::dtype::of<double>()) && (buffer.flags() & py::array::c_style) &&
+                      std::vector<py::ssize_t>(buffer.shape(), buffer.shape() + buffer.ndim()) == shape;
+  if (!layout) throw py::value_error(where + ": not the float64 array of this shape and layout evaluate returns" + rule);
+  if (!buffer.writeable()) throw py::value_error(where + ": read-only");
+  return {&q, buffer};
+}
+
 py::object view(const Output& o, size_t angle_dims) {
-  const size_t prefix = (o.info->components > 1 ? 1 : 0) + (o.info->per_cylinder ? 1 : 0);
+  const size_t prefix = prefixDims(*o.info);
   py::list axes;
   for (size_t a = 0; a < angle_dims; ++a) axes.append(prefix + a);
   for (size_t a = prefix; a-- > 0;) axes.append(a);  // cylinder, then component
@@ -135,7 +160,7 @@ const Engine& engineNamed(const std::string& name) {
 }
 
 py::dict evaluate(const ScenePtr& scene, const py::handle& phi_in, const std::string& engine_name,
-                  const std::optional<std::vector<std::string>>& quantities) {
+                  const std::optional<std::vector<std::string>>& quantities, const std::optional<py::dict>& reused) {
   const Mechanism& m = scene->m;
   const Engine& engine = engineNamed(engine_name);
   const Angles phi = asAngles(phi_in);
@@ -152,12 +177,14 @@ py::dict evaluate(const ScenePtr& scene, const py::handle& phi_in, const std::st
                             (name == "gas_force" ? " (it has no [gas] table)" : " (it needs [flywheel].inertia and speed_rpm > 0)"));
     if (!seen.insert(name).second) throw py::value_error("quantities: " + name + " is given twice");
   }
+  if (reused && angle_shape.empty()) throw py::value_error("out: needs phi with at least one dimension (arrays to write into)");
   std::vector<Output> outputs;
   BatchOutput out;
   for (const QuantityInfo& q : listQuantities())
     if (seen.count(q.name)) {
-      outputs.push_back(allocate(q, m.engine.cylinders, angle_shape));
-      out.at(q.name) = outputs.back().buffer.mutable_data();
+      outputs.push_back(reused ? reuse(q, m.engine.cylinders, angle_shape, *reused)
+                               : allocate(q, m.engine.cylinders, angle_shape));
+      out.at(q.name) = static_cast<double*>(outputs.back().buffer.mutable_data());
     }
   const std::span<const double> angles = spanOf(phi);
   {
@@ -173,6 +200,7 @@ py::dict evaluate(const ScenePtr& scene, const py::handle& phi_in, const std::st
       throw py::value_error(e.what());  // an angle that is not finite
     }
   }
+  if (reused) return *reused;  // written in place
   py::dict result;
   size_t next = 0;
   for (const QuantityInfo& q : listQuantities()) {
@@ -630,13 +658,15 @@ radians. Immutable; thread-safe (every call builds its own engine model).)doc")
             return d;
           }, "The physical scales of the scene and the conditioning of comparisons (validation/scales.h), the gate's.")
       .def("evaluate", &evaluate, py::arg("phi"), py::arg("engine") = "analytic", py::arg("quantities") = py::none(),
+           py::kw_only(), py::arg("out") = py::none(),
            R"doc(
 Every quantity of `crankcheck eval` at the crank angles `phi` [rad] (a NumPy array of any shape, or a float) by
 `engine` (any name of crankcheck.engines()). Returns a dict of NumPy arrays named as eval's JSON: U, Q, U_star, Q_star
 (None without a flywheel or at rest), drive_torque with phi's shape; bearing_force, shaking_force (..., 2);
 shaking_moment (..., 3), X and Y NaN without axial positions (eval: null); per cylinder x_p, v_p, a_p, wall_force,
 gas_force (only with [gas]), rod_angle, rod_omega, rod_alpha (..., k) and crank_pin_force, wrist_pin_force (..., k, 2).
-`quantities`: compute only these names. The analytic engine runs the SIMD batch kernels on phi's own buffer (a
+`quantities`: compute only these names. `out`: a dict an earlier call returned (the same scene, phi's shape and
+quantities): its arrays are written again and it is returned (no new memory). The analytic engine runs the SIMD batch kernels on phi's own buffer (a
 C-contiguous float64 array is not copied); other engines run angle by angle in C++. The GIL is released.)doc")
       .def("balance", &balance, py::arg("order") = 8,
            "Harmonics 1..order of the shaking force and moment: `crankcheck balance SCENE --order N --format json` as a dict.")

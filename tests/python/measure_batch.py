@@ -5,8 +5,10 @@
 
 Runs bench/python_batch_bench.cc (Google Benchmark, median of --repetitions runs) and times the same work from Python
 on the same scenes and the same 1e6 angles (phi_i = i x 1e-5 rad), median of as many runs:
-  kernels   Scene.evaluate(phi, quantities=<what the kernels compute>) beside BM_PythonBatchKernels (outputs allocated
-            per call as NumPy allocates them, fresh:1; and into reused outputs, fresh:0: the kernels alone)
+  kernels   Scene.evaluate(phi, quantities=<what the kernels compute>) beside BM_PythonBatchKernels with outputs
+            allocated per call as NumPy allocates them (fresh:1)
+  kernels, out=   the same writing into the arrays of an earlier call (evaluate(..., out=r)) beside the kernels writing
+            into outputs allocated once (fresh:0): the kernels alone, no fresh memory to fault in and zero
   all       Scene.evaluate(phi), every quantity of eval, beside BM_PythonBatchEvaluate (the same C++ function the
             module calls, without Python)
 and prints each Python time over the C++ time. On a shared machine run it when it is quiet: both sides are wall times.
@@ -54,17 +56,20 @@ def main():
     phi = np.arange(ANGLES, dtype=float) * 1e-5  # as the benchmark's angles
     print("batch target %s, %d angles, median of %d runs each, wall time" % (crankcheck.batch_target(), ANGLES,
                                                                              args.repetitions))
-    print("%-22s %-8s %12s %12s %8s   %s" % ("scene", "work", "Python [ms]", "C++ [ms]", "ratio", "C++ row"))
+    print("%-20s %-14s %12s %12s %8s   %s" % ("scene", "work", "Python [ms]", "C++ [ms]", "ratio", "C++ row"))
     for index, name in enumerate(SCENES):
         scene = crankcheck.Scene.load(os.path.join(args.scenes, name + ".toml"))
         assert scene.batch_kernels
         py_kernels = median_seconds(lambda: scene.evaluate(phi, quantities=KERNEL_QUANTITIES), args.repetitions)
+        reused = scene.evaluate(phi, quantities=KERNEL_QUANTITIES)
+        py_reused = median_seconds(lambda: scene.evaluate(phi, quantities=KERNEL_QUANTITIES, out=reused),
+                                   args.repetitions)
         py_all = median_seconds(lambda: scene.evaluate(phi), args.repetitions)
         rows = [("kernels", py_kernels, "BM_PythonBatchKernels/scene:%d/fresh:1/real_time" % index),
-                ("kernels", py_kernels, "BM_PythonBatchKernels/scene:%d/fresh:0/real_time" % index),
+                ("kernels, out=", py_reused, "BM_PythonBatchKernels/scene:%d/fresh:0/real_time" % index),
                 ("all", py_all, "BM_PythonBatchEvaluate/scene:%d/fresh:1/real_time" % index)]
         for work, seconds, row in rows:
-            print("%-22s %-8s %12.1f %12.1f %8.2f   %s" % (name, work, seconds * 1e3, cpp[row] * 1e3,
+            print("%-20s %-14s %12.1f %12.1f %8.2f   %s" % (name, work, seconds * 1e3, cpp[row] * 1e3,
                                                            seconds / cpp[row], row))
     return 0
 

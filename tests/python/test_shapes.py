@@ -156,3 +156,39 @@ def test_an_engine_that_cannot_build_the_scene_is_refused_as_the_cli_does(engine
     with pytest.raises(crankcheck.SceneError) as e:
         scene.evaluate([0.0, 1.0], engine=engine)
     assert str(e.value) == message
+
+
+@pytest.mark.parametrize("name", ["single_cylinder", "inline4_four_stroke", "inline4_pin_offset"])
+def test_out_writes_into_the_arrays_of_an_earlier_call(name):
+    if name not in SCENES:
+        pytest.skip("no such example scene")
+    scene = crankcheck.Scene.load(SCENES[name])
+    first = scene.evaluate(np.linspace(0.0, 1.0, 6).reshape(2, 3))
+    arrays = {k: v for k, v in first.items()}
+    phi = np.linspace(2.0, 5.0, 6).reshape(2, 3)
+    again = scene.evaluate(phi, out=first)
+    assert again is first
+    fresh = scene.evaluate(phi)
+    for key, value in fresh.items():
+        if value is None:
+            assert again[key] is None
+            continue
+        assert again[key] is arrays[key]  # the same arrays, written again
+        np.testing.assert_array_equal(again[key], value)
+    subset = scene.evaluate(phi, quantities=["Q", "crank_pin_force"])
+    assert scene.evaluate(phi + 1, quantities=["Q", "crank_pin_force"], out=subset) is subset
+    np.testing.assert_array_equal(subset["Q"], scene.evaluate(phi + 1)["Q"])
+
+
+def test_out_must_be_an_earlier_result():
+    scene = crankcheck.Scene.load(SCENES["inline4_four_stroke"])
+    phi = np.linspace(0.0, 1.0, 5)
+    r = scene.evaluate(phi)
+    with pytest.raises(ValueError, match=r'out\["U"\]: not the float64 array of this shape'):
+        scene.evaluate(np.linspace(0.0, 1.0, 6), out=r)  # another shape
+    with pytest.raises(ValueError, match=r'out\["Q"\]: missing'):
+        scene.evaluate(phi, out={"U": r["U"]}, quantities=["U", "Q"])
+    with pytest.raises(ValueError, match=r'out\["U"\]: not the float64 array'):
+        scene.evaluate(phi, out={"U": np.zeros(5, dtype=np.float32)}, quantities=["U"])
+    with pytest.raises(ValueError, match="at least one dimension"):
+        scene.evaluate(0.5, out=r)
