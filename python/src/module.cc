@@ -213,20 +213,9 @@ py::dict evaluate(const ScenePtr& scene, const py::handle& phi_in, const std::st
   return result;
 }
 
-// ---- balance: the CLI's JSON (app/balance_command.cc), built from the same validation::calcBalance.
+// ---- balance: the CLI's JSON (app/balance_command.cc) from the same validation::calcBalance, without its words
+// ("reason": vanishes_by_symmetry holds what they say).
 const char* kAxes[3] = {"X", "Y", "Z"};
-
-std::string reasonOf(const analytic::HarmonicSymmetry& s, bool axial) {
-  if (!s.decided) return "not decided (an angle is not a whole degree, or a position not a whole nanometre)";
-  std::string parts;
-  auto add = [&](bool cancels, const char* what) {
-    if (cancels) parts += std::string(parts.empty() ? "" : ", ") + what;
-  };
-  add(s.force_cancels, "force");
-  if (axial) add(s.moment_xy_cancels, "moment X, Y");
-  add(s.moment_z_cancels, "moment Z");
-  return parts.empty() ? "" : parts + ": the throws' phases cancel (exact sum of roots of unity)";
-}
 
 analytic::ShakingHarmonic withExactZeros(analytic::ShakingHarmonic h, const analytic::HarmonicSymmetry& s) {
   if (!s.decided) return h;
@@ -282,7 +271,6 @@ py::object balance(const ScenePtr& scene, int order) {
     h["vanishes_by_symmetry"] = {{"force", decided(s.force_cancels)},
                                  {"moment_xy", axial ? decided(s.moment_xy_cancels) : nlohmann::ordered_json(nullptr)},
                                  {"moment_z", decided(s.moment_z_cancels)}};
-    h["reason"] = reasonOf(s, axial);
     doc["harmonics"].push_back(h);
   }
   return toPython(doc);
@@ -669,7 +657,8 @@ gas_force (only with [gas]), rod_angle, rod_omega, rod_alpha (..., k) and crank_
 quantities): its arrays are written again and it is returned (no new memory). The analytic engine runs the SIMD batch kernels on phi's own buffer (a
 C-contiguous float64 array is not copied); other engines run angle by angle in C++. The GIL is released.)doc")
       .def("balance", &balance, py::arg("order") = 8,
-           "Harmonics 1..order of the shaking force and moment: `crankcheck balance SCENE --order N --format json` as a dict.")
+           "Harmonics 1..order of the shaking force and moment: `crankcheck balance SCENE --order N --format json` as a dict "
+           "(without its words, \"reason\": \"vanishes_by_symmetry\" says what vanishes exactly).")
       .def("motion", &motion, py::kw_only(), py::arg("integrator") = "RungeKuttaMerson", py::arg("accuracy") = 1e-10,
            py::arg("mujoco_integrator") = "RK4", py::arg("mujoco_step") = 1e-3, py::arg("series") = false,
            "The free run: `crankcheck motion SCENE --format json` as a dict (series=True adds each integrating engine's "

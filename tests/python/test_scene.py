@@ -57,21 +57,22 @@ def test_from_toml_names_the_scene_by_the_sources_stem():
 
 
 @pytest.mark.parametrize("path", SCENE_FILES, ids=scene_id)
-def test_scales_are_the_documented_formulas(path):
-    """scales() is validation/scales.h's calcScales; two of its scales recomputed from their definitions there."""
+def test_scales_are_the_clis(path):
+    """scales() is validation/scales.h's calcScales, the scales the CLI uses: `eval --split` prints its tolerance,
+    64 eps x torque scale x acceleration conditioning, computed from them in that order."""
     scene = crankcheck.Scene.load(path)
     s = scene.scales()
-    e, c, rod, p = scene.engine, scene.crank, scene.rod, scene.piston
-    k, r, l, g = e.cylinders, c.radius, rod.length, e.gravity
-    energy = k * g * (r * (p.mass + rod.mass) + c.mass * c.com_radius + c.counterweight_mass * c.counterweight_radius)
-    if "balance_shafts" not in scene.to_dict():  # each balance shaft adds its own term
-        assert s["energy"] == pytest.approx(energy, rel=4 * np.finfo(float).eps)
-    # Simbody's U subtracts absolute heights up to l + r.
-    assert s["simbody_energy"] == pytest.approx(s["energy"] + k * g * (p.mass + rod.mass) * (l + r),
-                                                rel=4 * np.finfo(float).eps)
+    split = cli_json("eval", path, "--phi-deg", "30", "--split")["results"][0]["split"]
+    assert split["tolerance"] == 64 * np.finfo(float).eps * s["torque"] * s["acceleration_conditioning"]
     assert set(s) == {"energy", "simbody_energy", "position", "velocity", "acceleration", "force", "torque", "moment",
                       "conditioning", "velocity_conditioning", "acceleration_conditioning", "closure"}
-    assert all(v > 0 or (v == 0 and e.speed == 0) for v in s.values())
+    assert all(v > 0 or (v == 0 and scene.engine.speed == 0) for v in s.values())
+    # The energy scale as scales.h defines it, for a plain inline scene (offsets and shafts add terms of their own).
+    e, c, rod, p = scene.engine, scene.crank, scene.rod, scene.piston
+    if not any(scene.to_dict()["engine"].get("pin_offsets", [])) and "balance_shafts" not in scene.to_dict():
+        energy = e.cylinders * e.gravity * (c.radius * (p.mass + rod.mass) + c.mass * c.com_radius +
+                                            c.counterweight_mass * c.counterweight_radius)
+        assert s["energy"] == pytest.approx(energy, rel=4 * np.finfo(float).eps)
 
 
 def test_engines_are_the_registry():
