@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "crankcheck/scene/scene_writer.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/errors.h"
 #include "json_output.h"
@@ -16,6 +17,10 @@ void addBalanceOptions(CLI::App& command, BalanceOptions& options) {
   command.add_option("--format", options.format, "Output format")
       ->check(CLI::IsMember({"table", "json"}))
       ->capture_default_str();
+  command.add_option("--design", options.design,
+                     "Design the balance shafts that cancel harmonic N of the shaking force, print them as "
+                     "[[balance_shaft]] tables and every harmonic with them")
+      ->check(CLI::Range(1, 64));
 }
 
 namespace {
@@ -24,7 +29,9 @@ const char* kAxes[3] = {"X", "Y", "Z"};
 
 // What vanishes by symmetry, in words ("" when nothing does, "undecided" when angles are not whole degrees).
 std::string reasonOf(const analytic::HarmonicSymmetry& s, bool axial) {
-  if (!s.decided) return "not decided (an angle is not a whole degree, or a position not a whole nanometre)";
+  if (!s.decided)
+    return "not decided (an angle is not a whole 1/8 degree, a position not a whole nanometre, the pin offsets differ, or a "
+           "balance shaft turns at this harmonic: the masses decide)";
   std::string parts;
   auto add = [&](bool cancels, const char* what) {
     if (cancels) parts += std::string(parts.empty() ? "" : ", ") + what;
@@ -65,17 +72,36 @@ nlohmann::ordered_json harmonicToJson(const analytic::ShakingHarmonic& h, bool a
 }  // namespace
 
 std::string runBalance(const BalanceOptions& options) {
-  const Mechanism m = loadScene(options.scene_path);
+  Mechanism m = loadScene(options.scene_path);
+  std::vector<BalanceShaftParams> designed;
   std::vector<validation::BalanceRow> rows;
   try {
-    rows = validation::calcBalance(m, options.order);
+    if (options.design > 0) {
+      designed = validation::designBalanceShafts(m, options.design);
+      m.balance_shafts.insert(m.balance_shafts.end(), designed.begin(), designed.end());
+    }
+    rows = validation::calcBalance(m, std::max(options.order, options.design));
   } catch (const std::invalid_argument& e) {
     throw UsageError(options.scene_path + ": " + e.what());
   }
+  // The designed shafts as the scene file writes them (degrees at the edge).
+  std::string tables;
+  for (const BalanceShaftParams& b : designed)
+    tables += "[[balance_shaft]]\nratio = " + formatShortest(b.ratio) + "\nmass = " + formatShortest(b.mass) +
+              "   # [kg]\nradius = " + formatShortest(b.radius) + "   # [m]\nphase_deg = " +
+              formatShortest(degreesFromRadians(b.phase)) + "\nposition = [" + formatShortest(b.position[0]) + ", " +
+              formatShortest(b.position[1]) + ", " + formatShortest(b.position[2]) + "]   # [m]\n";
   const bool axial = hasAxialPositions(m);
   if (options.format == "json") {
     nlohmann::ordered_json doc;
     doc["scene"] = sceneToJson(m);
+    if (options.design > 0) {
+      nlohmann::ordered_json shafts = nlohmann::ordered_json::array();
+      for (const BalanceShaftParams& b : designed)
+        shafts.push_back({{"ratio", b.ratio}, {"mass", b.mass}, {"radius", b.radius}, {"phase_deg", degreesFromRadians(b.phase)},
+                          {"position", {b.position[0], b.position[1], b.position[2]}}});
+      doc["design"] = {{"harmonic", options.design}, {"balance_shafts", shafts}, {"toml", tables}};
+    }
     doc["order"] = options.order;
     doc["samples"] = std::max(64, 4 * options.order);
     doc["harmonics"] = nlohmann::ordered_json::array();
@@ -94,7 +120,11 @@ std::string runBalance(const BalanceOptions& options) {
     }
     return dumpJson(doc);
   }
-  std::string out = "balance of " + options.scene_path + " at " + std::to_string(m.speed_rpm) +
+  std::string out;
+  if (options.design > 0)
+    out += "balance shafts that cancel harmonic " + std::to_string(options.design) + " of the shaking force (paste into " +
+           options.scene_path + "):\n\n" + tables + "\nwith them, every harmonic (the residual):\n";
+  out += "balance of " + options.scene_path + " at " + std::to_string(m.speed_rpm) +
                     " rpm: amplitude of each harmonic n (closed form / Simbody DFT / MuJoCo DFT); F [N], M [N m] about O\n";
   char line[640];
   std::snprintf(line, sizeof line, "%3s %37s %37s %37s %37s  %s\n", "n", "|F_s|", "|M_X|", "|M_Y|", "|M_Z|",

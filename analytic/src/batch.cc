@@ -488,9 +488,10 @@ HWY_EXPORT(Reactions);
 HWY_EXPORT(Shaking);
 
 Params makeParams(const Mechanism& m, RodInertiaForm rod = RodInertiaForm::kTrueInertia) {
-  if (hasPinOffsets(m))
-    throw std::invalid_argument("the batch kernels (batch.h) are written for centric cylinders and this mechanism has "
-                                "pin offsets: evaluate it angle by angle (calcEvaluation and the scalar functions)");
+  if (hasPinOffsets(m) || !m.balance_shafts.empty())
+    throw std::invalid_argument("the batch kernels (batch.h) are written for centric cylinders without balance shafts, "
+                                "and this mechanism has pin offsets or shafts: evaluate it angle by angle (calcEvaluation "
+                                "and the scalar functions)");
   Params p;
   p.m = &m;
   p.r = m.crank.radius;

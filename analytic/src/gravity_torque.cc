@@ -1,5 +1,7 @@
 #include "crankcheck/analytic/gravity_torque.h"
 
+#include "crankcheck/analytic/balance_shafts.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -64,7 +66,7 @@ double calcGravityTorque(const Mechanism& m, double phi, Eq5Form form) {
     // Stanczak eq (13), dx_p/dtheta / r = -(sin + cos s / root); centric: lambda sin 2theta / (2 root) = lambda sin cos / root.
     Q += U2 * (theta.cos * gamma.cos - theta.sin * gamma.sin) - U1 * (theta.sin + s * theta.cos / root) * gamma.sin;
   }
-  return Q;
+  return Q + calcBalanceShaftLoads(m, phi).Q;  // the balance shafts' masses (balance_shafts.h)
 }
 
 double calcGravityTorqueFourier(const Mechanism& m, double phi, int order, LambdaSource source, Eq5Form form) {

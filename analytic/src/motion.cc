@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "crankcheck/analytic/balance_shafts.h"
 #include "crankcheck/analytic/exact_trig.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/kinematics.h"
@@ -17,7 +18,7 @@ ReducedInertia calcReducedInertia(const Mechanism& m, double phi, RodInertiaForm
   const double r = m.crank.radius, l = m.rod.length, z = m.rod.com_from_wrist_pin, mu = z / l;
   const double m_o = m.piston.mass, m_k = m.rod.mass, I_o = m.rod.inertia_about_wrist_pin;
   ReducedInertia out;
-  out.J = m.flywheel_inertia.value_or(0.0);
+  out.J = m.flywheel_inertia.value_or(0.0) + calcBalanceShaftLoads(m, phi).inertia;  // shafts: m rho^2 ratio^2 each
   for (int j = 0; j < m.engine.cylinders; ++j) {
     const SinCos t = calcThrowSinCos(phi, m.engine.crank_angles[static_cast<size_t>(j)]);
     const PistonKinematics p = calcPistonKinematics(unit, t, getPinOffset(m, j));   // v_p = x', a_p = x''

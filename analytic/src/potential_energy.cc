@@ -1,5 +1,7 @@
 #include "crankcheck/analytic/potential_energy.h"
 
+#include "crankcheck/analytic/balance_shafts.h"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -50,7 +52,7 @@ double calcPotentialEnergy(const Mechanism& m, double phi, Eq5Form form) {
                        : -2.0 * half.sin * (x.sin + x.cos * (s_alpha + s_theta) / (root_theta + root_alpha));
     U += crank_term + U1 * gamma.sin * stroke;
   }
-  return U;
+  return U + calcBalanceShaftLoads(m, phi).U;  // the balance shafts' masses (balance_shafts.h)
 }
 
 double calcDimensionlessUnit(const Mechanism& m) {

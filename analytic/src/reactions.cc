@@ -3,6 +3,7 @@
 #include <Eigen/Core>
 #include <cmath>
 
+#include "crankcheck/analytic/balance_shafts.h"
 #include "crankcheck/analytic/exact_trig.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/kinematics.h"
@@ -73,6 +74,9 @@ Reactions calcReactions(const Mechanism& m, double phi, const std::vector<Cylind
     out.bearing_force[1] += F_O_W.y();
     out.drive_torque += tau;
   }
+  // The balance shafts: the gear gives each the torque it needs (its gravity torque at constant speed), times the ratio
+  // at the crank; no force on the main bearing (balance_shafts.h).
+  out.drive_torque += calcBalanceShaftLoads(m, phi).drive_torque;
   return out;
 }
 
@@ -87,7 +91,7 @@ Evaluation calcEvaluation(const Mechanism& m, double phi) {
   const Reactions reactions = calcReactions(m, phi, motions);
   ev.drive_torque = reactions.drive_torque;
   ev.bearing_force = reactions.bearing_force;
-  const Shaking shaking = calcShaking(m, motions);
+  const Shaking shaking = calcShaking(m, motions, phi);
   ev.shaking_force = shaking.force;
   ev.shaking_moment = shaking.moment;
   for (size_t j = 0; j < motions.size(); ++j) {

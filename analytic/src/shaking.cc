@@ -8,15 +8,16 @@
 #include <stdexcept>
 #include <vector>
 
+#include "crankcheck/analytic/balance_shafts.h"
 #include "crankcheck/analytic/exact_trig.h"
 #include "crankcheck/analytic/fourier_series.h"
 #include "crankcheck/analytic/kinematics.h"
 
 namespace crankcheck::analytic {
 
-Shaking calcShaking(const Mechanism& m, double phi) { return calcShaking(m, calcCylinderMotions(m, phi)); }
+Shaking calcShaking(const Mechanism& m, double phi) { return calcShaking(m, calcCylinderMotions(m, phi), phi); }
 
-Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motions) {
+Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motions, double phi) {
   const double r = m.crank.radius, w = m.engine.speed;
   const double m_o = m.piston.mass, m_k = m.rod.mass;
   const double I_G = m.rod.inertia_about_wrist_pin - m_k * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
@@ -38,9 +39,11 @@ Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motio
     P_dot += f_W;
     H_dot += Eigen::Vector3d{0.0, 0.0, c.z}.cross(f_W) + Eigen::Vector3d{0.0, 0.0, moment_Z};
   }
+  const BalanceShaftLoads shafts = calcBalanceShaftLoads(m, phi);
   Shaking s;
-  s.force = {-P_dot.x(), -P_dot.y()};
-  s.moment = {-H_dot.x(), -H_dot.y(), -H_dot.z()};
+  s.force = {-P_dot.x() + shafts.shaking_force[0], -P_dot.y() + shafts.shaking_force[1]};
+  s.moment = {-H_dot.x() + shafts.shaking_moment[0], -H_dot.y() + shafts.shaking_moment[1],
+              -H_dot.z() + shafts.shaking_moment[2]};
   return s;
 }
 
@@ -73,7 +76,7 @@ std::vector<ShakingHarmonic> calcShakingHarmonicsByDft(const Mechanism& m, int o
     std::vector<Shaking> samples(static_cast<size_t>(N));
     double largest = 0.0;
     for (int i = 0; i < N; ++i) {
-      samples[static_cast<size_t>(i)] = calcShaking(m, calcCylinderMotions(m, 2.0 * M_PI * i / N));
+      samples[static_cast<size_t>(i)] = calcShaking(m, 2.0 * M_PI * i / N);
       for (double f : samples[static_cast<size_t>(i)].force) largest = std::max(largest, std::fabs(f));
       for (double f : samples[static_cast<size_t>(i)].moment) largest = std::max(largest, std::fabs(f));
     }
@@ -117,7 +120,26 @@ std::vector<ShakingHarmonic> calcShakingHarmonicsByDft(const Mechanism& m, int o
 
 std::vector<ShakingHarmonic> calcShakingHarmonics(const Mechanism& m, int order) {
   if (order < 1) throw std::invalid_argument("calcShakingHarmonics: order must be >= 1");
-  if (hasPinOffsets(m)) return calcShakingHarmonicsByDft(m, order);
+  if (hasPinOffsets(m) || !m.balance_shafts.empty()) {
+    // the cylinders' harmonics (by DFT when offset), and each shaft's exact harmonic added
+    Mechanism cylinders = m;
+    cylinders.balance_shafts.clear();
+    std::vector<ShakingHarmonic> h = hasPinOffsets(m) ? calcShakingHarmonicsByDft(cylinders, order)
+                                                      : calcShakingHarmonics(cylinders, order);
+    for (ShakingHarmonic& x : h)
+      for (const BalanceShaftParams& b : m.balance_shafts) {
+        const ShaftHarmonic s = calcBalanceShaftHarmonic(m, b, x.n);
+        for (int k = 0; k < 2; ++k) {
+          x.force_cos[k] += s.force_cos[k];
+          x.force_sin[k] += s.force_sin[k];
+        }
+        for (int k = 0; k < 3; ++k) {
+          x.moment_cos[k] += s.moment_cos[k];
+          x.moment_sin[k] += s.moment_sin[k];
+        }
+      }
+    return h;
+  }
   const double r = m.crank.radius, l = m.rod.length, lambda = r / l, w2 = m.engine.speed * m.engine.speed;
   const double m_o = m.piston.mass, m_k = m.rod.mass, mu = m.rod.com_from_wrist_pin / l;
   const double I_G = m.rod.inertia_about_wrist_pin - m_k * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
@@ -225,9 +247,12 @@ HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n) {
   constexpr long long kTurn = 2880;
   HarmonicSymmetry s;
   const int k = m.engine.cylinders;
-  // The sums below hold when every cylinder has the same harmonic in its own frame: the same pin offset for all.
+  // The sums below hold when every cylinder has the same harmonic in its own frame: the same pin offset for all; and
+  // when no balance shaft adds to harmonic n (then the masses decide, not the symmetry).
   for (int j = 1; j < k; ++j)
     if (getPinOffset(m, j) != getPinOffset(m, 0)) return s;
+  for (const BalanceShaftParams& b : m.balance_shafts)
+    if (std::fabs(b.ratio) == n) return s;
   std::vector<long long> gamma(k), beta(k), z(k), ones(k, 1);
   for (int j = 0; j < k; ++j) {
     const double gamma_deg = degreesFromRadians(getBankAngle(m, j));

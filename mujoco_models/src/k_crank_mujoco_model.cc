@@ -95,6 +95,10 @@ void checkBuildable(const Mechanism& m) {
     throw std::invalid_argument("rod.inertia_about_wrist_pin: MuJoCo needs the rod's inertia about its centre of mass, "
                                 "I_o - m_k z_k^2 = " + num(rod_inertia_about_com) + " kg m^2, above 1e-15 kg m^2 (a "
                                 "point-mass rod cannot be built)");
+  for (size_t i = 0; i < m.balance_shafts.size(); ++i)
+    if (!(m.balance_shafts[i].mass >= mjMINVAL))
+      throw std::invalid_argument("balance_shaft[" + std::to_string(i) + "].mass: MuJoCo cannot build a body lighter "
+                                  "than 1e-15 kg");
   double crank_mass = 0.0;
   for (const PointMass& p : crankPointMasses(m)) crank_mass += p.mass;
   if (!(crank_mass >= mjMINVAL))
@@ -183,8 +187,25 @@ std::string calcMjcf(const Mechanism& m, Variant variant) {
     x += "      </body>\n";
     x += "    </body>\n";
   }
+  // Balance shafts: a body on a hinge about Z through (x, y, z), its eccentric point mass at rho along the body's x
+  // axis (at the hinge angle from +X), with a nominal isotropic inertia 1e-9 m rho^2 (MuJoCo needs one; at a constant
+  // shaft speed an isotropic inertia never acts). The exact way couples it to the crank itself (hinge angle = ratio
+  // phi + phase); the soft ways by a joint equality.
+  for (size_t i = 0; i < m.balance_shafts.size(); ++i) {
+    const BalanceShaftParams& b = m.balance_shafts[i];
+    const std::string I = std::to_string(i);
+    const double nominal = std::max(1e-9 * b.mass * b.radius * b.radius, 1e-15);
+    x += "    <body name=\"shaft" + I + "\" pos=\"" + vec3(b.position[0], b.position[1], b.position[2]) + "\">\n";
+    x += "      <joint name=\"shaft" + I + "\" type=\"hinge\" axis=\"0 0 1\" pos=\"0 0 0\"/>\n";
+    x += "      <inertial pos=\"" + vec3(b.radius, 0.0, 0.0) + "\" mass=\"" + num(b.mass) + "\" diaginertia=\"" +
+         vec3(nominal, nominal, nominal) + "\"/>\n";
+    x += "    </body>\n";
+  }
   x += "  </worldbody>\n";
   x += "  <equality>\n";
+  for (size_t i = 0; i < m.balance_shafts.size(); ++i)  // shaft = phase + ratio crank
+    x += "    <joint name=\"gear" + std::to_string(i) + "\" joint1=\"shaft" + std::to_string(i) + "\" joint2=\"crank\" polycoef=\"" +
+         num(m.balance_shafts[i].phase) + " " + num(m.balance_shafts[i].ratio) + " 0 0 0\"/>\n";
   for (int j = 0; j < k; ++j) {
     const double gamma = getBankAngle(m, j);
     x += "    <connect name=\"loop" + std::to_string(j) + "\" body1=\"rod" + std::to_string(j) +
@@ -307,6 +328,11 @@ class KCrankMujocoModel::Impl {
   DataPtr soft_data_;
   int crank_q_ = 0, crank_v_ = 0, crank_body_ = 0;
   std::vector<Cylinder> cylinders_;
+  struct Shaft {
+    int q = 0, v = 0, body = 0;
+    double ratio = 0.0, phase = 0.0;
+  };
+  std::vector<Shaft> shafts_;
   std::vector<std::array<double, 2>> forces_;  // f_j: the crank on rod j at its crank pin (crank_pin_force)
   std::vector<double> jacobian_;               // 3 x nv scratch
   std::vector<double> rne_;                    // nv scratch
@@ -353,6 +379,11 @@ KCrankMujocoModel::Impl::Impl(const Mechanism& m, Variant variant) : m_(m), vari
     c.n[1] = std::cos(gamma);
   }
   if (soft_model_) setCrankPinAnchors(soft_model_.get(), m_);
+  for (size_t i = 0; i < m_.balance_shafts.size(); ++i) {
+    const int joint = mj_name2id(mm, mjOBJ_JOINT, ("shaft" + std::to_string(i)).c_str());
+    shafts_.push_back({mm->jnt_qposadr[joint], mm->jnt_dofadr[joint], mj_name2id(mm, mjOBJ_BODY, ("shaft" + std::to_string(i)).c_str()),
+                       m_.balance_shafts[i].ratio, m_.balance_shafts[i].phase});
+  }
   jacobian_.resize(3 * static_cast<size_t>(mm->nv));
   rne_.resize(static_cast<size_t>(mm->nv));
   closure_tolerance_ = 4.0 * kEps * (m_.rod.length + m_.crank.radius);
@@ -375,6 +406,7 @@ void KCrankMujocoModel::Impl::close(double phi) {
     }
   }
   d->qpos[crank_q_] = phi;
+  for (const Shaft& s : shafts_) d->qpos[s.q] = s.ratio * phi + s.phase;  // the gear's (linear) constraint, solved
   const int nv = mm->nv;
   for (int iteration = 0;; ++iteration) {
     mj_kinematics(mm, d);
@@ -425,6 +457,7 @@ void KCrankMujocoModel::Impl::close(double phi) {
 void KCrankMujocoModel::Impl::solveVelocities(double omega) {
   mjData* d = data_.get();
   d->qvel[crank_v_] = omega;
+  for (const Shaft& s : shafts_) d->qvel[s.v] = s.ratio * omega;
   for (const Cylinder& c : cylinders_) {
     // J_big_end,dep v_dep = J_crank_pin,crank omega
     const auto v = solve2(c.jb_s[0], c.jb_h[0], c.jb_s[1], c.jb_h[1], c.jc[0] * omega, c.jc[1] * omega);
@@ -450,6 +483,7 @@ void KCrankMujocoModel::Impl::solveAccelerations() {
     d->qacc[c.wrist_v] = a[1];
   }
   d->qacc[crank_v_] = 0.0;
+  for (const Shaft& s : shafts_) d->qacc[s.v] = 0.0;
 }
 
 double KCrankMujocoModel::Impl::solveExactForces(double phi, bool gas) {
@@ -465,6 +499,8 @@ double KCrankMujocoModel::Impl::solveExactForces(double phi, bool gas) {
     // crank row: M qacc + bias = tau - J_crank_pin^T f
     tau += c.jc[0] * forces_[j][0] + c.jc[1] * forces_[j][1];
   }
+  // Each gear: the shaft's row, M qacc + bias = mu, and the crank's gets -ratio mu: tau = ... + ratio mu.
+  for (const Shaft& s : shafts_) tau += s.ratio * rne_[s.v];
   return tau;
 }
 
@@ -560,6 +596,7 @@ void KCrankMujocoModel::Impl::fillShaking(Evaluation& e) {
   double dP[3] = {0, 0, 0}, dH[3] = {0, 0, 0};
   std::vector<int> roots{crank_body_};
   for (const Cylinder& c : cylinders_) roots.push_back(c.piston_body);
+  for (const Shaft& s : shafts_) roots.push_back(s.body);
   for (int b : roots) {
     const double* frc = d->cfrc_int + 6 * b;
     const double* c = d->subtree_com + 3 * mm->body_rootid[b];

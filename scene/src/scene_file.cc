@@ -245,6 +245,24 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
   require(m.crank.radius < m.rod.length, "[crank].radius",
           "lambda = r / l must be < 1 (rod length " + formatNumber(m.rod.length) + " m)",
           m.crank.radius / m.rod.length);
+  for (size_t i = 0; i < m.balance_shafts.size(); ++i) {
+    const BalanceShaftParams& b = m.balance_shafts[i];
+    const std::string key = "balance_shaft[" + std::to_string(i) + "]";
+    requireFinite(b.ratio, key + ".ratio");
+    require(b.ratio != 0.0 && std::fabs(b.ratio) <= kMaxCylinders, key + ".ratio",
+            "must be nonzero and at most 64 in magnitude (shaft turns per crank turn)", b.ratio);
+    requireFinite(b.mass, key + ".mass");
+    require(b.mass > 0.0, key + ".mass", "must be > 0 (a shaft without a mass balances nothing)", b.mass);
+    require(b.mass <= kMaxMass.value, key + ".mass", atMost(kMaxMass), b.mass);
+    requirePositiveLength(b.radius, key + ".radius");
+    requireAngle(b.phase, key + ".phase_deg");
+    for (int c = 0; c < 3; ++c) {
+      const std::string pkey = key + ".position[" + std::to_string(c) + "]";
+      requireFinite(b.position[static_cast<size_t>(c)], pkey);
+      require(std::fabs(b.position[static_cast<size_t>(c)]) <= kMaxLength.value, pkey, "magnitude " + atMost(kMaxLength),
+              b.position[static_cast<size_t>(c)]);
+    }
+  }
   // The pin offset: the rod reaches the crank pin at every angle only if |delta| + r < l.
   require(m.engine.pin_offsets.empty() || m.engine.pin_offsets.size() == k, "[[cylinder]]",
           "must give every cylinder a pin offset", static_cast<double>(m.engine.pin_offsets.size()));
@@ -330,13 +348,14 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
     if (const toml::node* text = root.get(key); text != nullptr && !text->is_string())
       fail(source, key, "must be a string");
   static const std::set<std::string> kTopLevel = {"format_version", "name", "description"};
-  static const std::set<std::string> kTables = {"engine", "crank", "rod", "piston", "flywheel", "gas", "cylinder"};
+  static const std::set<std::string> kTables = {"engine", "crank", "rod", "piston", "flywheel", "gas", "cylinder",
+                                                "balance_shaft"};
   for (const auto& [k, v] : root) {
     const std::string name(k.str());
     if (!kTables.contains(name) && !kTopLevel.contains(name))
       fail(source, name,
            "unknown key (top level: format_version, name, description; tables: engine, crank, rod, piston, flywheel, "
-           "gas, [[cylinder]])");
+           "gas, [[cylinder]], [[balance_shaft]])");
   }
   const bool has_gas = root.get("gas") != nullptr;
 
@@ -471,6 +490,29 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
 
   TableReader flywheel(root, "flywheel", source, false, {"inertia"});
   if (flywheel.present()) m.flywheel_inertia = flywheel.number("inertia");
+
+  if (const toml::node* node = root.get("balance_shaft")) {
+    const toml::array* shafts = node->as_array();
+    if (shafts == nullptr || !shafts->is_array_of_tables())
+      fail(source, "[[balance_shaft]]", "must be an array of tables, one [[balance_shaft]] per shaft");
+    for (size_t i = 0; i < shafts->size(); ++i) {
+      TableReader shaft(*shafts->get(i)->as_table(), "balance_shaft[" + std::to_string(i) + "]", source,
+                        {"ratio", "mass", "radius", "phase_deg", "position"});
+      BalanceShaftParams b;
+      b.ratio = shaft.number("ratio");
+      b.mass = shaft.number("mass");
+      b.radius = shaft.number("radius");
+      const double phase_deg = shaft.number("phase_deg", 0.0);
+      requireAngleDegrees(phase_deg, source, shaft.key("phase_deg"));
+      b.phase = radiansFromDegrees(phase_deg);
+      const auto position = shaft.optionalNumberArray("position");
+      if (!position) fail(source, shaft.key("position"), "missing key (the shaft's axis, [x, y, z] in m)");
+      if (position->size() != 3)
+        fail(source, shaft.key("position"), "must be [x, y, z] (got " + std::to_string(position->size()) + " numbers)");
+      b.position = {(*position)[0], (*position)[1], (*position)[2]};
+      m.balance_shafts.push_back(b);
+    }
+  }
 
   TableReader gas(root, "gas", source, false, {"bore", "cycle_angle_deg", "pressure_pa", "firing_order"});
   if (gas.present()) {

@@ -109,6 +109,15 @@ std::string formatSceneToml(const Mechanism& m) {
       out << "]\n";
     }
   }
+  for (const BalanceShaftParams& b : m.balance_shafts) {
+    out << "\n[[balance_shaft]]\n";
+    out << "ratio = " << formatShortest(b.ratio) << "\n";
+    out << "mass = " << formatShortest(b.mass) << "\n";
+    out << "radius = " << formatShortest(b.radius) << "\n";
+    out << "phase_deg = " << formatShortest(degreesFromRadians(b.phase)) << "\n";
+    out << "position = [" << formatShortest(b.position[0]) << ", " << formatShortest(b.position[1]) << ", "
+        << formatShortest(b.position[2]) << "]\n";
+  }
   if (!inline_form)
     for (int j = 0; j < k; ++j) {
       out << "\n[[cylinder]]\n";

@@ -41,6 +41,9 @@ long long findPeriod(double step) {
 std::vector<Group> groupCylinders(const Mechanism& m, double step) {
   if (m.engine.cylinders < 1 || m.engine.crank_angles.size() != static_cast<size_t>(m.engine.cylinders))
     throw std::invalid_argument("grid sweep: the mechanism needs one crank angle per cylinder (k >= 1)");
+  if (!m.balance_shafts.empty())
+    throw std::invalid_argument("grid sweep: superposing one-cylinder models has no room for balance shafts; use "
+                                "KCrankModel angle by angle");
   std::vector<Group> groups;
   for (int j = 0; j < m.engine.cylinders; ++j) {
     const double alpha = m.engine.crank_angles[static_cast<size_t>(j)];

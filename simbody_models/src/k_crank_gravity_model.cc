@@ -23,6 +23,8 @@ class KCrankGravityModel::Impl {
     checkModelInputs(m_, options, "KCrankGravityModel");
     if (!isSingleBank(m_))
       throw std::invalid_argument("KCrankGravityModel: the reduced model is built for one bank of cylinders (one gamma)");
+    if (!m_.balance_shafts.empty())
+      throw std::invalid_argument("KCrankGravityModel: the reduced model has no balance shafts; use KCrankModel");
     const double r = m_.crank.radius, l = m_.rod.length, z = m_.rod.com_from_wrist_pin;
     const double wrist_mass = m_.piston.mass + m_.rod.mass * (l - z) / l;   // rod mass whose first moment...
     const double crank_pin_mass = m_.rod.mass * z / l;                      // ...about A equals the rod's

@@ -60,6 +60,7 @@ class KCrankModel::Impl {
   SimTK::MobilizedBody::Pin crank_;
   std::vector<SimTK::MobilizedBody::Slider> pistons_;
   std::vector<SimTK::MobilizedBody::Pin> rods_;
+  std::vector<SimTK::MobilizedBody::Pin> shafts_;  // balance shafts (coupled to the crank)
   std::vector<SimTK::Vec3> crank_pins_in_crank_;  // B_j in the crankshaft body frame
   SimTK::Vec3 rod_big_end_in_rod_;                // B in the rod body frame
   SimTK::State state_;
@@ -104,6 +105,7 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
     SimTK::Motion::Custom(crank_, new CrankMotion(drive_));
     pistons_ = std::move(bodies.pistons);
     rods_ = std::move(bodies.rods);
+    shafts_ = std::move(bodies.shafts);
     crank_pins_in_crank_ = std::move(bodies.crank_pins_in_crank);
     rod_big_end_in_rod_ = bodies.rod_big_end_in_rod;
     if (m_.gas) SimTK::Force::Custom(forces_, new GasForce(m_, drive_, matter_, crank_, pistons_));
@@ -274,6 +276,7 @@ Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
   SimTK::SpatialVec rate(SimTK::Vec3(0), SimTK::Vec3(0));
   rate += momentumRate(crank_);
   for (int j = 0; j < k_; ++j) rate += momentumRate(pistons_[j]) + momentumRate(rods_[j]);
+  for (const SimTK::MobilizedBody::Pin& shaft : shafts_) rate += momentumRate(shaft);
   ev.shaking_force = {-rate[1][0], -rate[1][1]};
   ev.shaking_moment = {-rate[0][0], -rate[0][1], -rate[0][2]};
 

@@ -90,6 +90,7 @@ struct MechanismBodies {
   std::vector<SimTK::MobilizedBody::Pin> rods;
   std::vector<SimTK::Vec3> crank_pins_in_crank;  // B_j in the crankshaft body frame
   SimTK::Vec3 rod_big_end_in_rod;                // B in the rod body frame
+  std::vector<SimTK::MobilizedBody::Pin> shafts; // the balance shafts, geared to the crank by coupler constraints
 };
 
 /// Builds the crankshaft (a 3D body: throw j's point masses and crank pin in the plane z_j of its cylinder, plus
@@ -142,6 +143,22 @@ MechanismBodies buildMechanismBodies(SimTK::SimbodyMatterSubsystem& matter, cons
     // Loop closure: the rod's big end on the line through B_j parallel to Z (2 equations, planar).
     SimTK::Constraint::PointOnLine(b.crank, SimTK::UnitVec3(SimTK::ZAxis), b.crank_pins_in_crank[j], b.rods.back(),
                                    b.rod_big_end_in_rod);
+  }
+  // Balance shafts: a body on a pin about Z through (x, y, z) from Ground, its eccentric point mass at (rho, 0, 0) of
+  // the body (at angle q from +X), geared to the crank by a coordinate coupler q_shaft - ratio q_crank - phase = 0 (the
+  // crank's q is phi): a constraint, never a prescribed function of time.
+  for (const BalanceShaftParams& s : m.balance_shafts) {
+    const SimTK::Vec3 station(s.radius, 0.0, 0.0);
+    const SimTK::Body::Rigid shaft_body(SimTK::MassProperties(s.mass, station, SimTK::Inertia(station, s.mass)));
+    b.shafts.emplace_back(matter.Ground(), SimTK::Transform(SimTK::Vec3(s.position[0], s.position[1], s.position[2])),
+                          shaft_body, SimTK::Transform());
+    SimTK::Vector coefficients(3);
+    coefficients[0] = -s.ratio;  // q_crank
+    coefficients[1] = 1.0;       // q_shaft
+    coefficients[2] = -s.phase;
+    SimTK::Array_<SimTK::MobilizedBodyIndex> bodies{b.crank.getMobilizedBodyIndex(), b.shafts.back().getMobilizedBodyIndex()};
+    SimTK::Array_<SimTK::MobilizerQIndex> coordinates{SimTK::MobilizerQIndex(0), SimTK::MobilizerQIndex(0)};
+    SimTK::Constraint::CoordinateCoupler(matter, new SimTK::Function::Linear(coefficients), bodies, coordinates);
   }
   return b;
 }

@@ -112,7 +112,7 @@ WorstByQuantity compareWithScalar(const Mechanism& m, const BatchOutputs& b, con
     note("drive_torque", b.tau[i], r.drive_torque, sc.torque);
     note("bearing_force", b.F_X[i], r.bearing_force[0], sc.force);
     note("bearing_force", b.F_Y[i], r.bearing_force[1], sc.force);
-    const Shaking s = calcShaking(m, motions);
+    const Shaking s = calcShaking(m, motions, phi);
     note("shaking_force", b.shake_FX[i], s.force[0], sc.force);
     note("shaking_force", b.shake_FY[i], s.force[1], sc.force);
     note("shaking_moment", b.shake_MX[i], s.moment[0], sc.moment);

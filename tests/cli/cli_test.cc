@@ -131,6 +131,32 @@ TEST(Cli, SceneMujocoCannotBuildIsRefusedWithOneLine) {
   EXPECT_FALSE(std::filesystem::exists(folder.path() / "graded"));
 }
 
+// balance --design 2 on the inline four: a Lanchester pair (ratios 2 and -2) whose TOML reads back as the same shafts,
+// and with them the secondary force is gone from the closed form and from each engine's DFT (to 1e-9 of what it was).
+TEST(Cli, BalanceDesignGivesShaftsThatCancelTheHarmonic) {
+  const std::string scene = std::string(CRANKCHECK_SCENES_DIR) + "/inline4_four_stroke.toml";
+  const RunResult before = testing::runCrankcheck({"balance", scene, "--order", "2", "--format", "json"});
+  const RunResult r = testing::runCrankcheck({"balance", scene, "--order", "2", "--design", "2", "--format", "json"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  const double was = nlohmann::json::parse(before.out)["harmonics"][1]["analytic"]["shaking_force"]["amplitude"].get<double>();
+  ASSERT_EQ(doc["design"]["balance_shafts"].size(), 2u);
+  EXPECT_EQ(doc["design"]["balance_shafts"][0]["ratio"].get<double>(), 2.0);
+  EXPECT_EQ(doc["design"]["balance_shafts"][1]["ratio"].get<double>(), -2.0);
+  for (const char* engine : {"analytic", "simbody", "mujoco"})
+    EXPECT_LE(doc["harmonics"][1][engine]["shaking_force"]["amplitude"].get<double>(), 1e-9 * was) << engine;
+  // The printed tables are a scene's: appended to the scene they give the same balance.
+  testing::FreshFolder folder;
+  const auto path = folder.path() / "with_pair.toml";
+  {
+    std::ofstream out(path);
+    out << readFile(scene) << "\n" << doc["design"]["toml"].get<std::string>();
+  }
+  const RunResult pasted = testing::runCrankcheck({"balance", path.string(), "--order", "2", "--format", "json"});
+  ASSERT_EQ(pasted.exit_status, 0) << pasted.err;
+  EXPECT_LE(nlohmann::json::parse(pasted.out)["harmonics"][1]["analytic"]["shaking_force"]["amplitude"].get<double>(), 1e-9 * was);
+}
+
 // 17 significant digits round-trip: the printed numbers are the library's doubles, bit for bit.
 TEST(Cli, JsonNumbersRoundTripExactly) {
   const auto scene = std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml";

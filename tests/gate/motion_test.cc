@@ -75,6 +75,16 @@ TEST(FreeRunGate, CPodesAgreesAtItsOwnAccuracy) {
   expectFreeRunAgrees(m, IntegratorKind::kCPodes, 1e-8, 1e3, true);
 }
 
+// Balance shafts in the free run: Simbody's shafts on their couplers (and a pin offset) against the energy integral
+// with the shafts' m rho^2 ratio^2 in J and their weight in U, at Simbody's own accuracy rule.
+TEST(FreeRunGate, BalanceShaftsAndPinOffsetTurnWithTheCrank) {
+  Mechanism m = testing::makeMechanism({1, Cycle::kTwoStroke, Acting::kSingle, 0.3, 37.0, 300.0});
+  m.flywheel_inertia = 0.01;
+  m.engine.pin_offsets = {0.004};
+  m.balance_shafts = {{-1.0, 1.1, 0.03, 0.7, {0.0, 0.1, 0.0}}, {2.0, 0.2, 0.02, -0.4, {0.05, -0.08, 0.0}}};
+  for (bool gravity : {true, false}) expectFreeRunAgrees(m, IntegratorKind::kRungeKuttaMerson, 1e-10, 1e3, gravity);
+}
+
 // MuJoCo's free run as its users run it: its soft constraint solver holds the loops while its integrators step. The
 // finding, asserted: the soft loops take energy out (drift per revolution above 1e-3 of E at the default and at the
 // stiffest settings, where Simbody's is below 1e-7), so its delta is off by more than 1 % of the energy integral's,

@@ -1,7 +1,8 @@
-// The gate for pin offsets (desaxe): every exact engine (Simbody, MuJoCo) against the analytic engine, every quantity,
-// offsets of both signs up to 0.999 (l - r) where the loop is nearly singular, a single cylinder, an inline four, a V8
-// with offsets of alternating sign, and an inline four with gas, at speed and at rest, at the gate's crank angles and at
-// each cylinder's dead centres. Rule and scales: validation/scales.h (the conditioning with lambda + max |delta| / l in
+// The gate for real engines' geometry: pin offsets (desaxe) and balance shafts. Every exact engine (Simbody, MuJoCo)
+// against the analytic engine, every quantity, offsets of both signs up to 0.999 (l - r) where the loop is nearly
+// singular, a single cylinder, an inline four, a V8 with offsets of alternating sign, an inline four with gas; a
+// Lanchester pair, a primary balancer, shafts with offsets and gas; at speed and at rest, at the gate's crank angles and
+// at each cylinder's dead centres. The shafts designed by `balance --design N` cancel harmonic N in every engine. Rule and scales: validation/scales.h (the conditioning with lambda + max |delta| / l in
 // place of lambda: how close the offset loop comes to its singularity).
 
 #include <gtest/gtest.h>
@@ -17,6 +18,7 @@
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
+#include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/scales.h"
 
@@ -51,6 +53,17 @@ std::vector<OffsetGateCase> offsetCases() {
   Mechanism v8 = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "v8_cross_plane.toml");
   for (int j = 0; j < v8.engine.cylinders; ++j) v8.engine.pin_offsets.push_back(j % 2 ? -0.001 : 0.001);
   cases.push_back({"v8_cross_plane_alternating_offsets", v8});
+  // Balance shafts: a Lanchester pair and a primary balancer on a single cylinder, off the crank's plane and axis.
+  Mechanism lanchester = single;
+  lanchester.balance_shafts = {{2.0, 0.3, 0.04, -1.5, {0.05, -0.09, 0.01}}, {-2.0, 0.3, 0.04, -1.6, {-0.05, -0.09, -0.01}}};
+  cases.push_back({"single_lanchester_pair", lanchester});
+  Mechanism primary = single;
+  primary.balance_shafts = {{-1.0, 1.2, 0.035, 1.9, {0.0, 0.11, 0.02}}};
+  cases.push_back({"single_primary_balancer", primary});
+  Mechanism both = offset(inline4, -0.3);
+  both.balance_shafts = {{2.0, 0.5, 0.05, 0.4, {0.06, -0.1, 0.05}}, {-2.0, 0.5, 0.05, 0.2, {-0.06, -0.1, 0.05}},
+                         {1.0, 0.2, 0.03, 2.0, {0.0, -0.15, 0.0}}};
+  cases.push_back({"inline4_gamma37_offset_m3000_shafts", both});
   const Mechanism gas = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
   for (double d : {-0.0012, 0.0012}) {
     Mechanism m = gas;
@@ -89,6 +102,28 @@ TEST_P(OffsetGateTest, EveryExactEngineAgrees) {
 
 INSTANTIATE_TEST_SUITE_P(Gate, OffsetGateTest, ::testing::ValuesIn(offsetCases()),
                          [](const auto& info) { return info.param.name; });
+
+// balance --design N: the shafts cancel harmonic N of the shaking force in the closed form and in each exact engine's
+// DFT (tolerance: the DFT's, twice the gate's rule on the force scale with the shafts, as BalanceGateTest), for a single
+// cylinder's primary (n = 1) and an inline four's secondary (n = 2), with a pin offset too.
+TEST(BalanceShaftDesign, CancelsTheHarmonicInEveryEngine) {
+  Mechanism single = testing::makeMechanism({1, Cycle::kFourStroke, Acting::kSingle, 0.3, 90.0, 6000.0});
+  Mechanism inline4 = testing::makeMechanism({4, Cycle::kFourStroke, Acting::kSingle, 0.3, 90.0, 6000.0});
+  inline4.engine.pin_offsets.assign(4, -0.001);
+  for (auto [m, n] : {std::pair{single, 1}, std::pair{inline4, 2}}) {
+    const double before = validation::calcBalance(m, n, 64)[static_cast<size_t>(n - 1)].analytic.calcForceAmplitude();
+    const std::vector<BalanceShaftParams> shafts = validation::designBalanceShafts(m, n);
+    ASSERT_FALSE(shafts.empty());
+    m.balance_shafts.insert(m.balance_shafts.end(), shafts.begin(), shafts.end());
+    const validation::Scales sc = validation::calcScales(m);
+    const double tol = 2 * validation::kAgreementMultiple * validation::kEps * sc.force * sc.acceleration_conditioning;
+    const validation::BalanceRow row = validation::calcBalance(m, n, 64)[static_cast<size_t>(n - 1)];
+    SCOPED_TRACE(m.name + ", harmonic " + std::to_string(n));
+    EXPECT_GT(before, 1e6 * tol) << "a harmonic worth cancelling";
+    EXPECT_LE(row.analytic.calcForceAmplitude(), tol);
+    for (const auto& [engine, h] : row.engines) EXPECT_LE(h.calcForceAmplitude(), tol) << engine;
+  }
+}
 
 }  // namespace
 }  // namespace crankcheck

@@ -289,7 +289,18 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"engine_pin_offset_beyond_l_minus_r", "cylinders = 2", "cylinders = 2\npin_offset = 0.2",
                  "[engine].pin_offset", "no mechanism"},
         BadScene{"engine_pin_offset_not_a_number", "cylinders = 2", "cylinders = 2\npin_offset = \"1 mm\"",
-                 "[engine].pin_offset", "must be a number"}),
+                 "[engine].pin_offset", "must be a number"},
+        // Balance shafts.
+        BadScene{"shaft_without_mass", "[piston]", "[[balance_shaft]]\nratio = 2\nradius = 0.04\nposition = [0, -0.1, 0]\n[piston]",
+                 "balance_shaft[0].mass", "missing key"},
+        BadScene{"shaft_mass_zero", "[piston]", "[[balance_shaft]]\nratio = 2\nmass = 0\nradius = 0.04\nposition = [0, -0.1, 0]\n[piston]",
+                 "balance_shaft[0].mass", "must be > 0"},
+        BadScene{"shaft_ratio_zero", "[piston]", "[[balance_shaft]]\nratio = 0\nmass = 1\nradius = 0.04\nposition = [0, -0.1, 0]\n[piston]",
+                 "balance_shaft[0].ratio", "must be nonzero"},
+        BadScene{"shaft_position_of_two", "[piston]", "[[balance_shaft]]\nratio = 2\nmass = 1\nradius = 0.04\nposition = [0, -0.1]\n[piston]",
+                 "balance_shaft[0].position", "must be [x, y, z]"},
+        BadScene{"shaft_unknown_key", "[piston]", "[[balance_shaft]]\nratio = 2\nmass = 1\nradius = 0.04\nposition = [0, 0, 0]\nteeth = 40\n[piston]",
+                 "balance_shaft[0].teeth", "unknown key"}),
     [](const auto& info) { return info.param.name; });
 
 // The limits of each unit (docs/SCENE-FORMAT.md, "Limits"): a value just beyond each is refused with a message

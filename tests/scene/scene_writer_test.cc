@@ -91,6 +91,19 @@ TEST(SceneWriterTest, BuiltInScenesAndLayoutsReadBackAsThemselves) {
   inline_offset.engine.pin_offsets.assign(static_cast<size_t>(parts.engine.cylinders), -0.0013);
   expectSameMechanism(inline_offset, parseScene(formatSceneToml(inline_offset), "written"));
   EXPECT_NE(formatSceneToml(inline_offset).find("[engine]"), std::string::npos);
+  Mechanism shafts = inline_offset;  // and balance shafts
+  shafts.balance_shafts = {{2.0, 0.07, 0.04, radiansFromDegrees(-90.0), {0.04, -0.08, 0.0}},
+                           {-1.0, 1.3, 0.03, radiansFromDegrees(12.5), {0.0, 0.1, -0.02}}};
+  const Mechanism read = parseScene(formatSceneToml(shafts), "written");
+  expectSameMechanism(shafts, read);
+  ASSERT_EQ(read.balance_shafts.size(), 2u);
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(read.balance_shafts[i].ratio, shafts.balance_shafts[i].ratio);
+    EXPECT_EQ(read.balance_shafts[i].mass, shafts.balance_shafts[i].mass);
+    EXPECT_EQ(read.balance_shafts[i].radius, shafts.balance_shafts[i].radius);
+    EXPECT_EQ(read.balance_shafts[i].position, shafts.balance_shafts[i].position);
+    expectSameAngle(read.balance_shafts[i].phase, shafts.balance_shafts[i].phase, "shaft phase");
+  }
   Mechanism mixed = validation::makeLayoutMechanism(validation::getBalanceLayouts().back(), parts);
   for (int j = 0; j < mixed.engine.cylinders; ++j) mixed.engine.pin_offsets.push_back(0.0004 * (j - 1));
   expectSameMechanism(mixed, parseScene(formatSceneToml(mixed), "written"));

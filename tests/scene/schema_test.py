@@ -102,6 +102,9 @@ INLINE = {"engine": {"cylinders": 2, "cycle": "four-stroke", "cylinder_angle_deg
 # Two-cylinder four-stroke: the phase angles are 0 and 720 / 2 = 360 degrees, so each cylinder fires at its ODC.
 GAS = {**INLINE, "gas": {"bore": 0.08, "cycle_angle_deg": [0, 30, 360], "pressure_pa": [5e6, 1e6, 0.0],
                          "firing_order": [0, 1]}}
+# An inline scene with a Lanchester pair.
+SHAFTS = {**INLINE, "balance_shaft": [{"ratio": 2, "mass": 0.07, "radius": 0.04, "phase_deg": -90, "position": [0.04, -0.08, 0.0]},
+                                      {"ratio": -2, "mass": 0.07, "radius": 0.04, "phase_deg": -90, "position": [-0.04, -0.08, 0.0]}]}
 # Every key of an inline scene written out.
 INLINE_FULL = {"format_version": 1, "name": "Twin, every key", "description": "Two cylinders,\n\"standing\".",
                "engine": {"cylinders": 2, "cycle": "four-stroke", "acting": "single", "crank_angles_deg": [0, 360],
@@ -179,6 +182,11 @@ def cases():
     add("unknown_key_in_gas", edit(GAS, (("gas", "colour"), "red")), INVALID)
     add("unknown_key_in_cylinder", edit(LAYOUT, (("cylinder", 1, "firing_deg"), 0)), INVALID)
     add("pin_offset_per_cylinder", edit(LAYOUT, (("cylinder", 0, "pin_offset"), -0.0015)), VALID)
+    add("balance_shafts", SHAFTS, VALID)
+    add("balance_shaft_without_mass", edit(SHAFTS, (("balance_shaft", 1, "mass"), DELETE)), INVALID)
+    add("balance_shaft_position_of_two", edit(SHAFTS, (("balance_shaft", 0, "position"), [0.0, 0.0])), INVALID)
+    add("balance_shaft_unknown_key", edit(SHAFTS, (("balance_shaft", 0, "teeth"), 40)), INVALID)
+    add("balance_shaft_ratio_zero", edit(SHAFTS, (("balance_shaft", 0, "ratio"), 0)), parser_only("a balance shaft's ratio is nonzero"))
     add("pin_offset_in_engine_with_cylinders", edit(LAYOUT, (("engine", "pin_offset"), 0.001)), INVALID)
     for table in ("engine", "crank", "rod", "piston"):
         add(f"missing_table_{table}", edit(INLINE, ((table,), DELETE)), INVALID)
@@ -324,6 +332,11 @@ def probe_scenes():
         ("cylinder", "[]", "throw_angle_deg"): lambda v, side: edit(
             LAYOUT, (("cylinder", 0, "bank_angle_deg"), max(-1e6, min(1e6, v))), (("cylinder", 0, "throw_angle_deg"), v)),
         ("cylinder", "[]", "axial_position"): at(LAYOUT, ("cylinder", 0, "axial_position")),
+        ("balance_shaft", "[]", "ratio"): at(SHAFTS, ("balance_shaft", 0, "ratio")),
+        ("balance_shaft", "[]", "mass"): at(SHAFTS, ("balance_shaft", 0, "mass")),
+        ("balance_shaft", "[]", "radius"): at(SHAFTS, ("balance_shaft", 0, "radius")),
+        ("balance_shaft", "[]", "position", "[]"): at(SHAFTS, ("balance_shaft", 0, "position", 1)),
+        ("balance_shaft", "[]", "phase_deg"): at(SHAFTS, ("balance_shaft", 0, "phase_deg")),
         # At its firing angle F the cylinder must be at its outer dead centre: F + throw - bank = 0 (mod 360).
         # 1e6 = 2778 x 360 - 80, so throw - bank = 80 at the upper bound and -80 at the lower.
         ("cylinder", "[]", "firing_angle_deg"): lambda v, side: edit(
@@ -482,7 +495,7 @@ class SchemaTest(unittest.TestCase):
                 with self.subTest(".".join(path)):
                     self.assertIn("description", node)
                     if node.get("type") == "number":
-                        self.assertRegex(node["description"], r"\[(m|kg|kg m\^2|deg|rpm|m/s\^2|Pa)\]",
+                        self.assertRegex(node["description"], r"\[(m|kg|kg m\^2|deg|rpm|m/s\^2|Pa|-)\]",
                                          "a number's description gives its unit")
 
 

@@ -1,6 +1,8 @@
 #include "crankcheck/validation/balance.h"
 
 #include <algorithm>
+#include <complex>
+#include <tuple>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -60,6 +62,32 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples) 
     rows.push_back(row);
   }
   return rows;
+}
+
+std::vector<BalanceShaftParams> designBalanceShafts(const Mechanism& m, int n) {
+  if (n < 1) throw std::invalid_argument("--design: the harmonic must be >= 1");
+  Mechanism unit = m;
+  if (!(unit.engine.speed > 0.0)) unit.engine.speed = 1.0;
+  const double w = unit.engine.speed, r = m.crank.radius;
+  const analytic::ShakingHarmonic h = analytic::calcShakingHarmonics(unit, n).back();
+  const std::complex<double> c(h.force_cos[0], h.force_cos[1]), s(h.force_sin[0], h.force_sin[1]);
+  const std::complex<double> forward = 0.5 * (c - std::complex<double>(0.0, 1.0) * s);
+  const std::complex<double> backward = 0.5 * (c + std::complex<double>(0.0, 1.0) * s);
+  double z = 0.0;
+  for (int j = 0; j < m.engine.cylinders; ++j) z += getAxialPosition(m, j) / m.engine.cylinders;
+  const double floor = kAgreementMultiple * kEps * calcForceScale(unit);
+  std::vector<BalanceShaftParams> shafts;
+  for (const auto& [part, ratio, x] : {std::tuple{forward, static_cast<double>(n), r}, std::tuple{backward, -static_cast<double>(n), -r}}) {
+    if (std::abs(part) <= floor) continue;  // this turning part is rounding: no shaft for it
+    BalanceShaftParams b;
+    b.ratio = ratio;
+    b.radius = r;
+    b.mass = std::abs(part) / (r * n * n * w * w);
+    b.phase = std::arg(-part);
+    b.position = {x, -2.0 * r, z};
+    shafts.push_back(b);
+  }
+  return shafts;
 }
 
 const analytic::ShakingHarmonic& BalanceRow::of(const std::string& name) const {

@@ -810,8 +810,9 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   Mechanism base = isSingleBank(first) ? first : withGamma(withCylinders(first, first.engine.cylinders, first.engine.cycle), 90.0);
   // The paper's figures are about centric cylinders: an offset base scene gives them its parts centric (part 14 and the
   // cross-checks show the offset engine itself).
-  const bool offset_base = hasPinOffsets(base);
+  const bool offset_base = hasPinOffsets(base) || !base.balance_shafts.empty();
   base.engine.pin_offsets.clear();
+  base.balance_shafts.clear();
 
   std::vector<Task> tasks;
   Table notes;
@@ -821,9 +822,9 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
                           "1-7, written for the paper's inline engine, use its parts as a standing inline engine of "
                           "the same cylinder count and cycle. Its own layout is cross-checked in the summary."});
   if (offset_base)
-    notes.rows.push_back({"The first scene, " + first.name + ", has pin offsets; the figures of parts 1-7, written for the "
-                          "paper's centric engine, use its parts centric. Its offset engine is cross-checked in the "
-                          "summary, and part 14 shows what the offset changes."});
+    notes.rows.push_back({"The first scene, " + first.name + ", has pin offsets or balance shafts; the figures of parts 1-7, "
+                          "written for the paper's centric engine without shafts, use its parts without them. Its own "
+                          "engine is cross-checked in the summary, and part 14 shows what an offset changes."});
   tasks.push_back({"scenes", false, [families] { return scenesTable(families); }});
   const std::vector<double> sweep = quick ? std::vector<double>{} : std::vector<double>{0.1, 0.2, 0.3, 0.4, 0.6, 0.9};
   for (const auto& [family, m] : families) {

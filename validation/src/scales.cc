@@ -6,9 +6,12 @@
 namespace crankcheck::validation {
 
 double calcEnergyScale(const Mechanism& m) {
-  return m.engine.cylinders * m.engine.gravity *
-         (m.crank.radius * (m.piston.mass + m.rod.mass) + m.crank.mass * m.crank.com_radius +
-          m.crank.counterweight_mass * m.crank.counterweight_radius);
+  double shafts = 0.0;  // each balance shaft: Q = m g rho ratio cos(psi)
+  for (const BalanceShaftParams& b : m.balance_shafts) shafts += b.mass * b.radius * std::fabs(b.ratio);
+  return m.engine.gravity * (m.engine.cylinders * (m.crank.radius * (m.piston.mass + m.rod.mass) +
+                                                   m.crank.mass * m.crank.com_radius +
+                                                   m.crank.counterweight_mass * m.crank.counterweight_radius) +
+                             shafts);
 }
 
 namespace {
@@ -40,11 +43,16 @@ double calcAccelerationScale(const Mechanism& m) {
 double calcForceScale(const Mechanism& m) {
   const double mass = m.piston.mass + m.rod.mass + m.rod.inertia_about_wrist_pin / (m.rod.length * m.rod.length) +
                       m.crank.mass + m.crank.counterweight_mass;
-  return m.engine.cylinders * mass * calcAccelerationScale(m);
+  double shafts = 0.0;  // each balance shaft's mass: its weight and m rho (ratio omega)^2
+  for (const BalanceShaftParams& b : m.balance_shafts)
+    shafts += b.mass * (m.engine.gravity + b.radius * b.ratio * b.ratio * m.engine.speed * m.engine.speed);
+  return m.engine.cylinders * mass * calcAccelerationScale(m) + shafts;
 }
 
 double calcTorqueScale(const Mechanism& m) {
-  return calcForceScale(m) * std::max({m.crank.radius, m.crank.com_radius, m.crank.counterweight_radius});
+  double shafts = 0.0;  // the torque the crank gives the shafts: ratio m g rho
+  for (const BalanceShaftParams& b : m.balance_shafts) shafts += std::fabs(b.ratio) * b.mass * m.engine.gravity * b.radius;
+  return calcForceScale(m) * std::max({m.crank.radius, m.crank.com_radius, m.crank.counterweight_radius}) + shafts;
 }
 
 Scales calcScales(const Mechanism& m) {
@@ -62,9 +70,13 @@ Scales calcScales(const Mechanism& m) {
   s.acceleration = calcAccelerationScale(m);
   s.force = calcForceScale(m);
   s.torque = calcTorqueScale(m);
-  double z_max = 0.0;
+  double z_max = 0.0, shaft_arm = 0.0;
   for (int j = 0; j < m.engine.cylinders; ++j) z_max = std::max(z_max, std::fabs(getAxialPosition(m, j)));
-  s.moment = s.force * (l + r + offset + z_max);
+  for (const BalanceShaftParams& b : m.balance_shafts)  // a shaft's mass at up to |(x, y, z)| + rho from O
+    shaft_arm = std::max(shaft_arm, std::hypot(b.position[0], b.position[1], b.position[2]) + b.radius);
+  s.moment = s.force * (std::max(l + r + offset, shaft_arm) + z_max);
+  // Simbody's and MuJoCo's U subtract absolute heights: the shafts' masses at up to their arm from O
+  for (const BalanceShaftParams& b : m.balance_shafts) s.simbody_energy += m.engine.gravity * b.mass * shaft_arm;
   s.closure = std::sqrt(stiff);
   s.conditioning = stiff * (l + r) / r;
   s.velocity_conditioning = s.closure * (l + r) / r;

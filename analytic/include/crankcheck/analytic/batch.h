@@ -70,8 +70,9 @@ struct ShakingSpans {
   std::span<double> moment_X, moment_Y, moment_Z;  ///< [N m] about O
 };
 
-// Every kernel below is written for centric cylinders: each throws std::invalid_argument for a mechanism with pin
-// offsets (hasPinOffsets), whose values the scalar functions (calcEvaluation) give angle by angle.
+// Every kernel below is written for centric cylinders without balance shafts: each throws std::invalid_argument for a
+// mechanism with pin offsets (hasPinOffsets) or [[balance_shaft]]s, whose values the scalar functions
+// (calcEvaluation) give angle by angle.
 
 /// Q [N m] (Stanczak eq 13, calcGravityTorque) at each angle phi[i] [rad].
 /// @throws std::invalid_argument if the spans differ in size or an angle is not finite.

@@ -27,8 +27,9 @@ struct Shaking {
 
 /// F_s and M_s at crank angle phi [rad] and the scene's omega; gravity and gas do not enter.
 Shaking calcShaking(const Mechanism& m, double phi);
-/// The same from every cylinder's motion at one angle (calcCylinderMotions), when it is already at hand.
-Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motions);
+/// The same from every cylinder's motion at crank angle phi (calcCylinderMotions), when it is already at hand; the
+/// balance shafts' share (balance_shafts.h) from phi.
+Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motions, double phi);
 
 }  // namespace crankcheck::analytic
 

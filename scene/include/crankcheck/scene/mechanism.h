@@ -6,6 +6,7 @@
 /// Symbols, frames and signs follow ../shared/CONVENTIONS.md and docs/CONVENTIONS-crankcheck.md.
 /// Everything here is in SI units (m, kg, s, rad); degrees exist only in scene files and CLI flags.
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -68,6 +69,17 @@ struct PistonParams {
   double mass = 0.0;                         ///< m_o [kg]
 };
 
+/// A balance shaft: an eccentric point mass on a shaft parallel to Z, geared to the crankshaft (an ideal coupling:
+/// a torque between the two shafts, no force on the crank's main bearing). Gravity acts on it; the crankshaft drives
+/// it, so the drive torque includes it.
+struct BalanceShaftParams {
+  double ratio = 0.0;     ///< shaft turns per crank turn, signed (2 and -2: a Lanchester pair; -1: a primary balancer)
+  double mass = 0.0;      ///< [kg] the eccentric point mass, > 0
+  double radius = 0.0;    ///< [m] its distance from the shaft's axis, > 0
+  double phase = 0.0;     ///< [rad] its angle from +X at phi = 0: at crank angle phi it is at ratio phi + phase
+  std::array<double, 3> position{};  ///< [m] (x, y): the shaft's axis (parallel to Z); z: the mass's plane
+};
+
 /// A complete scene: the mechanism plus what a scene file may add (a name, the flywheel inertia).
 struct Mechanism {
   std::string name;                          ///< for reports; the scene file's stem
@@ -80,6 +92,7 @@ struct Mechanism {
   /// firing_j [rad] per cylinder (with gas): the crank angle phi at which cylinder j is at its firing outer dead
   /// centre, in [0, cycle). The pressure on piston j is calcGasPressure(gas, phi - firing_j).
   std::vector<double> firing_angles;
+  std::vector<BalanceShaftParams> balance_shafts;  ///< the scene's [[balance_shaft]] tables; none: no shafts
   double speed_rpm = 0.0;                    ///< the scene's speed as given, for display
 };
 

@@ -33,6 +33,15 @@ struct BalanceRow {
 ///         (the message names the engine); std::runtime_error if an engine fails.
 std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples = 0);
 
+/// Balance shafts that cancel harmonic n of the shaking force exactly as the closed form gives it (including the
+/// scene's own shafts): F_n(phi) = F+ e^{i n phi} + F- e^{-i n phi} (X + iY), each turning part cancelled by one shaft
+/// turning with it, ratio +n against F+ and -n against F-, its mass at the crank radius r with m r (n omega)^2 = |F|
+/// and its phase opposite (a part below 64 eps of the force scale gets no shaft). The shafts sit below the crank at
+/// (+-r, -2 r) in the mean plane of the cylinders (a starting point: their position moves only the moments). The
+/// shaking and a shaft's force both scale with omega^2: a scene at rest is designed at 1 rad/s, the same shafts.
+/// @throws std::invalid_argument if n < 1 or a shaft of the scene has a ratio that is not a whole number.
+std::vector<BalanceShaftParams> designBalanceShafts(const Mechanism& m, int n);
+
 /// The report's balance tables for every layout of layouts.h, built on `parts` (its crank, rod and piston) at
 /// 6000 rpm, and for each of `scenes` as it is (the user's scenes: harmonics only, no textbook claim), harmonics 1..8
 /// from both engines:
