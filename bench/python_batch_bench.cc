@@ -9,7 +9,7 @@
 //                                           Q, kinematics, reactions with every cylinder, shaking) into output vectors
 //                                           allocated once: the kernels' own time
 //   BM_PythonBatchKernels/scene:S/fresh:1   the same with the outputs allocated for each call as NumPy allocates its
-//                                           arrays (uninitialised; large blocks advised to use transparent huge pages,
+//                                           arrays (malloc; from 4 MiB on advised to use transparent huge pages,
 //                                           madvise(MADV_HUGEPAGE), as NumPy >= 1.22 does on Linux)
 //   BM_PythonBatchEvaluate/scene:S/fresh:1  python/src/batch_evaluation.cc's evaluateAnalyticBatch for every quantity
 //                                           of eval (the kernels plus the rod's angle and derivatives and the gas
@@ -19,6 +19,7 @@
 #include <benchmark/benchmark.h>
 #include <sys/mman.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -39,34 +40,38 @@ using namespace crankcheck;
 constexpr size_t kAngles = 1000000;
 const char* const kScenes[] = {"single_cylinder", "inline4_four_stroke"};
 
-const std::vector<double>& angles() {
-  static const std::vector<double> phi = [] {
-    std::vector<double> v(kAngles);
-    for (size_t i = 0; i < kAngles; ++i) v[i] = static_cast<double>(i) * 1e-5;
-    return v;
-  }();
-  return phi;
-}
-
 const Mechanism& scene(int index) {
   static const Mechanism scenes[2] = {loadSceneFile(std::string(CRANKCHECK_SCENES_DIR) + "/" + kScenes[0] + ".toml"),
                                       loadSceneFile(std::string(CRANKCHECK_SCENES_DIR) + "/" + kScenes[1] + ".toml")};
   return scenes[index];
 }
 
-// One output block of `doubles` values allocated as NumPy allocates a large array: uninitialised, and (Linux) advised
-// to use transparent huge pages, which spares most page faults of fresh memory.
+// One block of `doubles` values allocated as NumPy 1.24 allocates a large array's data (numpy/core/src/multiarray/
+// alloc.c): malloc, then, from 4 MiB on, madvise(MADV_HUGEPAGE) from the first page boundary on (transparent huge
+// pages spare most page faults of fresh memory). Uninitialised, as np.empty.
 struct FreeDeleter {
   void operator()(double* p) const { std::free(p); }
 };
 using Block = std::unique_ptr<double[], FreeDeleter>;
 Block allocate(size_t doubles) {
-  constexpr size_t kHuge = size_t{2} << 20;
-  const size_t bytes = (doubles * sizeof(double) + kHuge - 1) / kHuge * kHuge;
-  void* p = std::aligned_alloc(kHuge, bytes);
+  const size_t bytes = doubles * sizeof(double);
+  void* p = std::malloc(bytes);
   if (!p) throw std::bad_alloc();
-  ::madvise(p, bytes, MADV_HUGEPAGE);
+  if (bytes >= (size_t{1} << 22)) {
+    const uintptr_t offset = 4096u - reinterpret_cast<uintptr_t>(p) % 4096u;
+    ::madvise(static_cast<char*>(p) + offset, bytes - offset, MADV_HUGEPAGE);
+  }
   return Block(static_cast<double*>(p));
+}
+
+// The angles, in memory allocated as NumPy allocates the array the Python side passes (np.arange).
+std::span<const double> angles() {
+  static const Block phi = [] {
+    Block b = allocate(kAngles);
+    for (size_t i = 0; i < kAngles; ++i) b[i] = static_cast<double>(i) * 1e-5;
+    return b;
+  }();
+  return {phi.get(), kAngles};
 }
 
 // Output memory: `count` runs of kAngles doubles.

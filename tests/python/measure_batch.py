@@ -11,7 +11,8 @@ on the same scenes and the same 1e6 angles (phi_i = i x 1e-5 rad), median of as 
             into outputs allocated once (fresh:0): the kernels alone, no fresh memory to fault in and zero
   all       Scene.evaluate(phi), every quantity of eval, beside BM_PythonBatchEvaluate (the same C++ function the
             module calls, without Python)
-and prints each Python time over the C++ time. On a shared machine run it when it is quiet: both sides are wall times.
+and prints each Python time over the C++ time, both as wall time and as CPU time of the process (Google Benchmark's
+cpu_time; Python's time.process_time): on a busy machine the CPU times are the steadier comparison.
 """
 import argparse
 import json
@@ -32,13 +33,15 @@ ANGLES = 1_000_000
 
 
 def median_seconds(f, repetitions):
+    """(wall, cpu) medians [s]."""
     f()  # warm: first-touch of the allocator's memory, Highway's dispatch
-    times = []
+    wall, cpu = [], []
     for _ in range(repetitions):
-        t = time.perf_counter()
+        t, c = time.perf_counter(), time.process_time()
         f()
-        times.append(time.perf_counter() - t)
-    return statistics.median(times)
+        wall.append(time.perf_counter() - t)
+        cpu.append(time.process_time() - c)
+    return statistics.median(wall), statistics.median(cpu)
 
 
 def main():
@@ -50,13 +53,14 @@ def main():
 
     run = subprocess.run([args.bench, "--benchmark_format=json", "--benchmark_repetitions=%d" % args.repetitions,
                           "--benchmark_report_aggregates_only=true"], capture_output=True, text=True, check=True)
-    cpp = {b["run_name"]: b["real_time"] / 1e3 for b in json.loads(run.stdout)["benchmarks"]
+    cpp = {b["run_name"]: (b["real_time"] / 1e3, b["cpu_time"] / 1e3) for b in json.loads(run.stdout)["benchmarks"]
            if b.get("aggregate_name") == "median"}  # [s]; the rows are in milliseconds
 
     phi = np.arange(ANGLES, dtype=float) * 1e-5  # as the benchmark's angles
-    print("batch target %s, %d angles, median of %d runs each, wall time" % (crankcheck.batch_target(), ANGLES,
-                                                                             args.repetitions))
-    print("%-20s %-14s %12s %12s %8s   %s" % ("scene", "work", "Python [ms]", "C++ [ms]", "ratio", "C++ row"))
+    print("batch target %s, %d angles, median of %d runs each; wall and CPU time [ms]" % (
+        crankcheck.batch_target(), ANGLES, args.repetitions))
+    print("%-20s %-14s %10s %10s %6s %10s %10s %6s   %s" % ("scene", "work", "Python", "C++", "ratio", "Python cpu",
+                                                          "C++ cpu", "ratio", "C++ row"))
     for index, name in enumerate(SCENES):
         scene = crankcheck.Scene.load(os.path.join(args.scenes, name + ".toml"))
         assert scene.batch_kernels
@@ -68,9 +72,10 @@ def main():
         rows = [("kernels", py_kernels, "BM_PythonBatchKernels/scene:%d/fresh:1/real_time" % index),
                 ("kernels, out=", py_reused, "BM_PythonBatchKernels/scene:%d/fresh:0/real_time" % index),
                 ("all", py_all, "BM_PythonBatchEvaluate/scene:%d/fresh:1/real_time" % index)]
-        for work, seconds, row in rows:
-            print("%-20s %-14s %12.1f %12.1f %8.2f   %s" % (name, work, seconds * 1e3, cpp[row] * 1e3,
-                                                           seconds / cpp[row], row))
+        for work, (wall, cpu), row in rows:
+            cw, cc = cpp[row]
+            print("%-20s %-14s %10.1f %10.1f %6.2f %10.1f %10.1f %6.2f   %s" % (
+                name, work, wall * 1e3, cw * 1e3, wall / cw, cpu * 1e3, cc * 1e3, cpu / cc, row.replace("/real_time", "")))
     return 0
 
 
