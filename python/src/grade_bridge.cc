@@ -165,6 +165,9 @@ validation::TableSet gradeInProcess(const std::vector<validation::GradeCase>& ca
   } catch (...) {
     grade_error = std::current_exception();
   }
+  // The grade is over (or ended by a timeout, which killed the relays): a handler still answering stops after the
+  // answer it is computing, which cannot be interrupted (the function runs in this process).
+  failed = true;
   const char stop = 1;
   while (::write(stop_write.get(), &stop, 1) < 0 && errno == EINTR) {
   }

@@ -485,7 +485,19 @@ py::dict grade(const py::function& function, const std::optional<std::vector<py:
         throw;
       }
     };
-    tables = gradeInProcess(cases, answer, settings);
+    try {
+      tables = gradeInProcess(cases, answer, settings);
+    } catch (const EnvironmentError& e) {
+      // runGrade names the program it started (the relay) and the CLI's flag: say it in this call's words.
+      std::string what = e.what();
+      auto replace = [&what](const std::string& from, const std::string& to) {
+        for (size_t at = what.find(from); at != std::string::npos; at = what.find(from, at + to.size()))
+          what.replace(at, from.size(), to);
+      };
+      replace(relay + ": ", "crankcheck.grade: " + program_name + ": ");
+      replace("--timeout sets the time per request", "timeout= sets the seconds per request");
+      throw EnvironmentError(what);
+    }
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   py::dict result;

@@ -135,6 +135,20 @@ def test_what_the_function_gets_and_its_errors():
         crankcheck.grade(42)
 
 
+def test_the_timeout_ends_the_grade():
+    import time
+
+    def slow(scene, phi):
+        time.sleep(0.5)
+        return {}
+    start = time.monotonic()
+    with pytest.raises(RuntimeError, match=r"crankcheck.grade: python: .*slow: batch of \d+ requests: no complete "
+                                           r"answer within .* s \(killed; timeout= sets the seconds per request\)"):
+        crankcheck.grade(slow, [SCENE_FILES[0]], quick=True, timeout=0.05, jobs=1)
+    # The grade ends after the answer being computed when the time ran out, not after every case.
+    assert time.monotonic() - start < 5
+
+
 def test_scene_refusals_are_the_clis(tmp_path):
     missing = str(tmp_path / "missing.toml")
     with pytest.raises(crankcheck.SceneError) as e:
