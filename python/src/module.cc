@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <cmath>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -472,7 +473,11 @@ py::dict grade(const py::function& function, const std::optional<std::vector<py:
   {
     py::gil_scoped_release release;
     cases = validation::buildGradeCases(mechanisms, quick);
-    const GradeAnswer answer = [&function](const validation::GradeCase& c, const std::string&) {
+    // One call of the function at a time (the GIL alone would let two jobs' calls interleave): the lock is taken
+    // before the GIL, so a thread waiting for it holds nothing another needs.
+    std::mutex one_at_a_time;
+    const GradeAnswer answer = [&function, &one_at_a_time](const validation::GradeCase& c, const std::string&) {
+      std::lock_guard<std::mutex> lock(one_at_a_time);
       py::gil_scoped_acquire gil;
       try {
         py::array_t<double> phi(static_cast<py::ssize_t>(c.phi_deg.size()));

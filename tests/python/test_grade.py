@@ -106,6 +106,24 @@ class Boom(Exception):
     pass
 
 
+def test_the_function_is_called_once_at_a_time():
+    import threading
+    import time
+    active, most = [0], [0]
+    lock = threading.Lock()
+
+    def counting(scene, phi):
+        with lock:
+            active[0] += 1
+            most[0] = max(most[0], active[0])
+        time.sleep(0.01)  # lets the interpreter switch threads, were two calls under way
+        with lock:
+            active[0] -= 1
+        return scene.evaluate(phi, quantities=["Q"])
+    result = crankcheck.grade(counting, SCENE_FILES[:3], quick=True, jobs=3)
+    assert result.passed and most[0] == 1
+
+
 def test_what_the_function_gets_and_its_errors():
     seen = []
 
