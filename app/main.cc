@@ -9,6 +9,7 @@
 
 #include "balance_command.h"
 #include "eval_command.h"
+#include "flywheel_command.h"
 #include "motion_command.h"
 #include "grade_command.h"
 #include "validate_command.h"
@@ -57,6 +58,11 @@ int main(int argc, char** argv) {
       "motion", "The free run under gravity: speed fluctuation delta with and without gravity, analytic and Simbody");
   crankcheck::app::addMotionOptions(*motion_cmd, motion);
 
+  crankcheck::app::FlywheelOptions flywheel;
+  CLI::App* flywheel_cmd = app.add_subcommand(
+      "flywheel", "Flywheel sizing (Norton 13.9) for a speed fluctuation C: exact, Norton's method, Simbody's run");
+  crankcheck::app::addFlywheelOptions(*flywheel_cmd, flywheel);
+
   crankcheck::app::BalanceOptions balance;
   CLI::App* balance_cmd = app.add_subcommand(
       "balance", "Shaking force and moment harmonic by harmonic: closed form and Simbody, what vanishes by symmetry");
@@ -103,6 +109,7 @@ int main(int argc, char** argv) {
     }
     if (motion_cmd->parsed()) output = crankcheck::app::runMotion(motion);
     if (balance_cmd->parsed()) output = crankcheck::app::runBalance(balance);
+    if (flywheel_cmd->parsed()) output = crankcheck::app::runFlywheel(flywheel);
     std::fwrite(output.data(), 1, output.size(), stdout);  // only complete results are ever printed
     if (std::fflush(stdout) != 0) throw crankcheck::EnvironmentError("stdout: cannot write the results");
     return checks_hold ? 0 : 1;

@@ -98,6 +98,11 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOp
   const double I_w = *m.flywheel_inertia;
   MechanismBodies bodies = buildMechanismBodies(matter, m, SimTK::Inertia(0.5 * I_w, 0.5 * I_w, I_w));
   SimTK::MobilizedBody::Pin& crank = bodies.crank;
+  // The flywheel run: the gas on the pistons (at the crank's own angle q) and the load against the crank.
+  auto drive = std::make_shared<CrankDrive>();
+  drive->gas = options.gas && m.gas.has_value();
+  if (drive->gas) SimTK::Force::Custom(forces, new GasForce(m, drive, matter, crank, bodies.pistons));
+  if (options.load_torque != 0.0) SimTK::Force::MobilityConstantForce(forces, crank, 0, -options.load_torque);
   const std::vector<SimTK::MobilizedBody::Slider>& pistons = bodies.pistons;
   const std::vector<SimTK::MobilizedBody::Pin>& rods = bodies.rods;
   system.realizeTopology();
@@ -162,12 +167,15 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOp
   }
   out.steps = integrator->getNumStepsTaken();
 
-  // First revolution: its time at phi = 2 pi, its extremes over the steps up to there.
+  // First revolution (the flywheel run: the first working cycle): its time at phi = period, its extremes over the steps
+  // up to there.
+  const double period = options.gas && m.gas ? m.gas->cycle : two_pi;
+  if (period > target) throw std::invalid_argument("simulateFreeRun: the revolutions do not cover the working cycle");
   size_t i1 = 1;
-  while (out.phi[i1] < two_pi) ++i1;
+  while (out.phi[i1] < period) ++i1;
   const double t_rev = hermiteCrossing(out.time[i1 - 1], out.phi[i1 - 1], out.phi_dot[i1 - 1], out.time[i1], out.phi[i1],
-                                       out.phi_dot[i1], two_pi);
-  out.omega_mean = two_pi / t_rev;
+                                       out.phi_dot[i1], period);
+  out.omega_mean = period / t_rev;
   double lo = out.phi_dot[0], hi = out.phi_dot[0];
   for (size_t i = 0; i < i1; ++i)
     hermiteExtremes(out.time[i + 1] - out.time[i], out.phi_dot[i], accel[i], out.phi_dot[i + 1], accel[i + 1], lo, hi);
@@ -177,7 +185,15 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOp
   double drift = 0.0;
   for (double e : out.energy) drift = std::max(drift, std::fabs(e - out.energy.front()));
   const double kinetic = 0.5 * I_w * omega0 * omega0;  // the scale of the run's energy
-  out.energy_drift_per_revolution = drift / std::max(kinetic, std::fabs(out.energy.front())) / options.revolutions;
+  if (drive->gas || options.load_torque != 0.0) {
+    // Gas and load do work: the mechanical energy returns only after a whole cycle (the load is the gas's mean), at
+    // the cycle's end, between the two steps around it
+    const double s = (t_rev - out.time[i1 - 1]) / (out.time[i1] - out.time[i1 - 1]);
+    drift = std::fabs((1.0 - s) * out.energy[i1 - 1] + s * out.energy[i1] - out.energy.front());
+    out.energy_drift_per_revolution = drift / std::max(kinetic, std::fabs(out.energy.front())) / (period / two_pi);
+  } else {
+    out.energy_drift_per_revolution = drift / std::max(kinetic, std::fabs(out.energy.front())) / options.revolutions;
+  }
   return out;
 }
 

@@ -157,6 +157,32 @@ TEST(Cli, BalanceDesignGivesShaftsThatCancelTheHarmonic) {
   EXPECT_LE(nlohmann::json::parse(pasted.out)["harmonics"][1]["analytic"]["shaking_force"]["amplitude"].get<double>(), 1e-9 * was);
 }
 
+// crankcheck flywheel: the JSON's shape, the exact inertia giving C, Simbody's run within 1e-4 C of it (the gate's
+// FlywheelGate has the reason), and the refusals: no [gas], C outside (0, 1), one line each, status 2, no output.
+TEST(Cli, FlywheelJsonAndRefusals) {
+  const std::string scenes = CRANKCHECK_SCENES_DIR;
+  const RunResult r = testing::runCrankcheck({"flywheel", scenes + "/inline4_four_stroke.toml", "--fluctuation", "0.02", "--format", "json"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  EXPECT_GT(doc["load_torque"].get<double>(), 0.0);
+  EXPECT_GT(doc["exact"]["flywheel_inertia"].get<double>(), 0.0);
+  EXPECT_NEAR(doc["exact"]["fluctuation"].get<double>(), 0.02, 1e4 * validation::kEps * 0.02);
+  EXPECT_GT(doc["norton"]["flywheel_inertia"].get<double>(), 0.0);
+  EXPECT_TRUE(doc["norton"]["fluctuation"].is_number());
+  EXPECT_NEAR(doc["simbody"]["fluctuation"].get<double>(), 0.02, 1e-4 * 0.02);
+  EXPECT_TRUE(doc["simbody"]["energy_drift"].is_number());
+  for (const auto& [args, expected] :
+       {std::pair<std::vector<std::string>, std::string>{{"flywheel", scenes + "/single_cylinder.toml", "--fluctuation", "0.01"}, "[gas]: missing table"},
+        {{"flywheel", scenes + "/inline4_four_stroke.toml", "--fluctuation", "1.5"}, "--fluctuation: must be in (0, 1)"},
+        {{"flywheel", scenes + "/inline4_four_stroke.toml", "--fluctuation", "0"}, "--fluctuation: must be in (0, 1)"}}) {
+    const RunResult bad = testing::runCrankcheck(args);
+    EXPECT_EQ(bad.exit_status, 2) << bad.err;
+    EXPECT_EQ(bad.out, "");
+    EXPECT_NE(bad.err.find(expected), std::string::npos) << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  }
+}
+
 // 17 significant digits round-trip: the printed numbers are the library's doubles, bit for bit.
 TEST(Cli, JsonNumbersRoundTripExactly) {
   const auto scene = std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml";

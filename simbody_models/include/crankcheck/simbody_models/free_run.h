@@ -24,6 +24,11 @@ struct FreeRunOptions {
   double accuracy = 1e-10;            ///< the integrator's relative accuracy (Integrator::setAccuracy)
   int revolutions = 2;                ///< how far to integrate; every internal step is recorded
   bool gravity = true;
+  /// The flywheel run (crankcheck flywheel): the scene's gas forces on the pistons and a constant load torque
+  /// against the crank; delta and the energy's return are then measured over the first working cycle (720 degrees
+  /// four-stroke, 360 two-stroke) instead of the first revolution, and `revolutions` must cover it.
+  bool gas = false;
+  double load_torque = 0.0;           ///< [N m]
 };
 
 /// What the run found (crankcheck/scene/free_run.h: the same for every engine's free run).
