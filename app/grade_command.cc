@@ -37,7 +37,7 @@ void addGradeOptions(CLI::App& command, GradeOptions& options) {
   command.footer(
       "The program follows `--`: crankcheck grade [SCENE...] [options] -- PROGRAM [ARG...]. It is started without a "
       "shell, reads one JSON request on stdin and writes one JSON response on stdout (README, \"Grade your own "
-      "code\"). Exit status 0: every value it provided agrees with both engines; 1: some do not (or none was "
+      "code\"). Exit status 0: every value it provided agrees with every reference engine; 1: some do not (or none was "
       "provided); 3: it could not be run, crashed, timed out or broke the protocol.");
 }
 
@@ -99,7 +99,9 @@ int runGrade(const GradeOptions& options) {
 
   const int status = validation::findGradeExitStatus(tables);
   const validation::Table& summary = tables.at("grade_summary");
-  std::printf("%-16s %18s %14s %14s  %s\n", "quantity", "provided / asked", "vs Simbody [-]", "vs analytic [-]", "verdict");
+  std::printf("%-16s %18s %14s %14s %14s  %s\n", "quantity", "provided / asked", "vs Simbody [-]", "vs analytic [-]",
+              "vs MuJoCo [-]", "verdict");
+  const size_t vs_mujoco = 9, verdict = 10;  // grade.h: grade_summary's columns
   auto brief = [](const std::string& number) {
     if (number.empty()) return std::string("-");
     char text[32];
@@ -107,10 +109,10 @@ int runGrade(const GradeOptions& options) {
     return std::string(text);
   };
   for (const auto& row : summary.rows)
-    std::printf("%-16s %18s %14s %14s  %s\n", row[0].c_str(), (row[2] + " / " + row[1]).c_str(), brief(row[3]).c_str(),
-                brief(row[4]).c_str(), row[9].c_str());
+    std::printf("%-16s %18s %14s %14s %14s  %s\n", row[0].c_str(), (row[2] + " / " + row[1]).c_str(), brief(row[3]).c_str(),
+                brief(row[4]).c_str(), brief(row[vs_mujoco]).c_str(), row[verdict].c_str());
   std::printf("%s\nReport: %s (also index.html)\n",
-              status == 0 ? "Every provided value agrees with both engines."
+              status == 0 ? "Every provided value agrees with every reference engine (Simbody, analytic, MuJoCo)."
                           : "SOME VALUES DISAGREE, or none was provided (see the report's failing cases).",
               (out.getTarget() / "index.md").string().c_str());
   return status;

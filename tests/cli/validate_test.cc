@@ -41,14 +41,15 @@ class ValidateTest : public ::testing::Test {
   const fs::path dir_ = folder_.path();
 };
 
-const char* kFigures[] = {"error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance", "norton_fig13_8", "engines", "offset",
+const char* kFigures[] = {"error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance", "norton_fig13_8", "engines", "offset", "flywheel",
                           "delta_vs_k", "integrator_pareto", "balance_harmonics", "torque_split", "rod_models",
                           "pin_load_polar"};
 const char* kTables[] = {"crosscheck", "error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance",
                          "norton_fig13_8", "errata", "scenes", "delta_vs_k", "integrator_pareto", "balance",
                          "balance_harmonics", "torque_split", "gravity_share", "rod_models", "eq5_layouts",
                          "eq15_coefficients", "eq15_engines", "pin_load_polar", "pin_load_polar_summary", "engine_cost",
-                         "engines", "engines_league", "offset", "offset_thrust"};
+                         "engines", "engines_league", "offset", "offset_thrust", "flywheel", "flywheel_sizing",
+                         "flywheel_norton"};
 
 TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   const fs::path report = dir_ / "report";

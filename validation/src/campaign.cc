@@ -25,6 +25,7 @@
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/engines_part.h"
+#include "crankcheck/validation/flywheel_part.h"
 #include "crankcheck/validation/offset_part.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/engine_loads.h"
@@ -912,6 +913,8 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   tasks.push_back({"speed_vs_error", true, [base, quick] { return speedVsError(base, quick); }});
   tasks.push_back(buildEngineCostTask(base, quick));
   tasks.push_back({"offset", false, [base, quick] { return calcOffsetTables(base, quick); }});
+  // Flywheel sizing (part 15): the scenes with gas (the example scenes in the default campaign) and the base's parts.
+  tasks.push_back({"flywheel", false, [pin_scenes, base, quick] { return calcFlywheelTables(pin_scenes, base, quick); }});
   return tasks;
 }
 

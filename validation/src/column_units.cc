@@ -38,6 +38,8 @@ const std::map<std::string, std::string>& columnUnits() {
       {"crank_angle_deg", "deg"}, {"gamma_deg", "deg"}, {"phi_deg", "deg"}, {"phi_deg_at_max", "deg"},
       {"where_phi_deg", "deg"}, {"speed_rpm", "rpm"}, {"where_speed_rpm", "rpm"},
       {"ns_per_eval", "ns"}, {"ns_per_revolution", "ns"}, {"ns_per_eval_k1", "ns"}, {"ns_per_eval_k12", "ns"},
+      {"flywheel_inertia", "kg m^2"}, {"exact_inertia", "kg m^2"}, {"norton_inertia", "kg m^2"},
+      {"exact_delta", "-"}, {"simbody_delta", "-"}, {"norton_error", "-"}, {"norton_delta", "-"},
       {"peak_major_thrust", "N"}, {"peak_minor_thrust", "N"}, {"thrust_reversal_deg", "deg"}, {"max_abs_drive_torque", "N m"},
       {"max_abs_Q", "N m"}, {"max_abs_Q_printed", "N m"}, {"simbody_max_abs_Q", "N m"}, {"simbody_bound", "N m"},
       {"max_inertia_torque", "N m"}, {"mean_abs_drive_torque", "N m"}, {"mean_abs_gravity_torque", "N m"},

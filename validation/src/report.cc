@@ -20,6 +20,7 @@
 #include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/engines_part.h"
+#include "crankcheck/validation/flywheel_part.h"
 #include "crankcheck/validation/offset_part.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/report_document.h"
@@ -506,6 +507,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
        "vector (after Norton's Program ENGINE); analytic lines, Simbody dots"},
       {"engines", "", ""},  // part 13: heading and caption from engines_part.cc
       {"offset", "", ""},   // part 14: offset_part.cc
+      {"flywheel", "", ""}, // part 15: flywheel_part.cc
   };
   // One gnuplot per figure, up to info.jobs at a time (each writes only its own NAME.svg and NAME.png).
   std::vector<std::string> to_draw;
@@ -575,8 +577,8 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   for (const Figure& f : figures) {
     const std::string& name = f.name;
     if (!tables.count(name) || name == "balance_harmonics" || name == "torque_split" || name == "rod_models" ||
-        name == "pin_load_polar" || name == "engines" || name == "offset")
-      continue;  // parts 9-14 follow the errata
+        name == "pin_load_polar" || name == "engines" || name == "offset" || name == "flywheel")
+      continue;  // parts 9-15 follow the errata
     doc.push_back({Block::kHeading, f.heading});
     doc.push_back({Block::kFigure, f.caption, {}, {}, name});
     if (name == "integrator_pareto")
@@ -627,6 +629,12 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
       doc.push_back({Block::kFigure, part.caption, {}, {}, "engines"});
       for (const std::string& paragraph : part.paragraphs) doc.push_back({Block::kParagraph, paragraph});
       doc.push_back({Block::kTable, "", part.header, part.rows});
+    }
+    if (f.name == "flywheel") {
+      const FlywheelPart part = describeFlywheelPart(tables);
+      doc.push_back({Block::kHeading, part.heading});
+      doc.push_back({Block::kFigure, part.caption, {}, {}, "flywheel"});
+      for (const std::string& paragraph : part.paragraphs) doc.push_back({Block::kParagraph, paragraph});
     }
     if (f.name == "offset") {
       const OffsetPart part = describeOffsetPart(tables);

@@ -1,0 +1,99 @@
+# flywheel.gp -- report part 15: flywheel sizing, the exact inertia against Norton's method and Simbody's run.
+#
+#   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/flywheel.gp
+#
+# Reads  in_dir/flywheel.csv          scene,flywheel_inertia,exact_delta,simbody_delta
+#        in_dir/flywheel_norton.csv   speed_rpm,k,exact_inertia,norton_inertia,norton_error,norton_delta
+# Writes out_dir/flywheel.svg and out_dir/flywheel.png
+#
+# Left: delta against the flywheel inertia (log-log), one line per scene (the exact energy integral), Simbody's run as
+# dots (empty cells: not run there), the sizing target delta = 0.01 dashed. Right: Norton's error in the inertia
+# (norton / exact - 1, in %) against k, one line per speed. Each series' rows come together, in order (crankcheck sorts
+# the tables by their first columns).
+
+if (!exists("in_dir"))  in_dir  = "."
+if (!exists("out_dir")) out_dir = "."
+name = "flywheel"
+curve = in_dir . "/flywheel.csv"
+sweep = in_dir . "/flywheel_norton.csv"
+
+reset
+set encoding utf8
+set datafile separator ","
+nlines = 0
+stats curve using (nlines = nlines + 1, 1) nooutput
+if (nlines == 0) { print "error: " . curve . " is missing or empty (not even a header line)"; exit status 1 }
+nsweep = 0
+stats sweep using (nsweep = nsweep + 1, 1) nooutput
+if (nsweep == 0) { print "error: " . sweep . " is missing or empty (not even a header line)"; exit status 1 }
+
+# the scenes, in order of appearance (at most 6)
+array S[6]
+nscenes = 0
+if (nlines > 1) {
+    stats curve skip 1 using (s = strcol(1), (nscenes == 0 || S[nscenes] ne s) && nscenes < 6 ? (nscenes = nscenes + 1, S[nscenes] = s) : 0, 0) nooutput
+}
+array C[6] = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"]
+array R[3] = [1500, 3000, 6000]
+array RC[3] = ["#1f77b4", "#2ca02c", "#d62728"]
+array RN[3] = [0, 0, 0]  # rows per speed: a speed without rows gets no line (gnuplot refuses an all-undefined plot)
+do for [i = 1:3] {
+    if (nsweep > 1) { stats sweep skip 1 using ($1 == R[i] ? RN[i] = RN[i] + 1 : 0, 0) nooutput }
+}
+rightcmd = ""
+do for [i = 1:3] {
+    if (RN[i] > 0) {
+        rightcmd = rightcmd . (strlen(rightcmd) > 0 ? ", " : "") . \
+            sprintf("sweep skip 1 using 2:($1 == %d ? 100.0 * $5 : NaN) with linespoints lw 2 pt 7 lc rgb '%s' title '%d rpm'", R[i], RC[i], R[i])
+    }
+}
+
+if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) { pngterm = "pngcairo" } else { pngterm = "png" }
+do for [fmt in "svg png"] {
+    if (fmt eq "svg") {
+        set terminal svg size 1100,520 enhanced font "DejaVu Sans,10" background rgb "white"
+    } else {
+        if (pngterm eq "pngcairo") {
+            set terminal pngcairo size 1100,520 enhanced font "DejaVu Sans,10" background rgb "white"
+        } else {
+            set terminal png size 1100,520 enhanced font "DejaVuSans,10" background rgb "white"
+        }
+    }
+    set output out_dir . "/" . name . "." . fmt
+    set multiplot layout 1,2 title "Flywheel sizing for a speed fluctuation C (Norton 13.9)" font ",13"
+    set grid lc rgb "#dddddd"
+    set logscale xy
+    set xlabel "flywheel inertia I_f [kg m^2]"
+    set ylabel "speed fluctuation delta [-]"
+    set key top right font ",9" samplen 2 noenhanced
+    if (nscenes == 0) {
+        set label 5 "no scene with [gas]" at graph 0.5, graph 0.5 center
+        set xrange [1e-3:1]
+        set yrange [1e-3:1e-1]
+        plot NaN notitle
+        unset label 5
+        set autoscale xy
+    } else {
+        plot for [i = 1:nscenes] curve skip 1 using 2:(strcol(1) eq S[i] ? $3 : NaN) with lines lw 2 lc rgb C[i] title S[i], \
+             for [i = 1:nscenes] curve skip 1 using 2:(strcol(1) eq S[i] && strcol(4) ne "" ? $4 : NaN) with points pt 7 ps 0.8 lc rgb C[i] notitle, \
+             0.01 with lines dt 2 lc rgb "#777777" title "C = 0.01", \
+             NaN with points pt 7 lc rgb "#444444" title "Simbody's run"
+    }
+    unset logscale xy
+    set xlabel "cylinders k (inline four-stroke, the base scene's parts, example pressures)"
+    set ylabel "Norton's inertia / exact - 1 [%]"
+    set xrange [0.5:6.5]
+    set key top left font ",9"
+    if (strlen(rightcmd) == 0) {
+        set label 6 "no engine of the sweep needs a flywheel for C = 0.01" at graph 0.5, graph 0.5 center
+        set yrange [-1:1]
+        plot NaN notitle
+        unset label 6
+        set autoscale y
+    } else {
+        eval "plot " . rightcmd
+    }
+    unset xrange
+    unset multiplot
+    unset output
+}

@@ -1,0 +1,38 @@
+#pragma once
+/// @file
+/// Report part `flywheel` (15): flywheel sizing (Norton 13.9) judged. Everything of the part is here: its task's
+/// tables and its sentences; report.cc only places it.
+///
+/// Tables (CSV stems, columns; reports/README.md):
+///   flywheel         scene,flywheel_inertia,exact_delta,simbody_delta
+///                    for each campaign scene with [gas] (the example scenes with gas in the default campaign), the
+///                    steady run's delta against the flywheel inertia I_f (exact energy integral; Simbody's run over a
+///                    working cycle at some of the points, empty elsewhere), I_f from 0.3 to 3 times the exact inertia
+///                    for C = 0.01
+///   flywheel_sizing  scene,cycle,k,speed_rpm,exact_inertia,norton_inertia,norton_error,norton_delta
+///                    the exact and Norton's I_f for C = 0.01 of the campaign's gas scenes; norton_error = norton /
+///                    exact - 1, norton_delta the delta Norton's inertia really gives
+///   flywheel_norton  speed_rpm,k,exact_inertia,norton_inertia,norton_error,norton_delta
+///                    the same for the base scene's parts as an inline k-cylinder four-stroke with the example
+///                    spark-ignition pressures (bore 2 r), k = 1, 2, 3, 4, 6, at 1500, 3000 and 6000 rpm (rows where no
+///                    flywheel is needed for C = 0.01 are left out)
+
+#include <string>
+#include <vector>
+
+#include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/campaign.h"
+
+namespace crankcheck::validation {
+
+/// The part's tables for the gas scenes among `scenes` and the `parts` sweep.
+TableSet calcFlywheelTables(const std::vector<Mechanism>& scenes, const Mechanism& parts, bool quick);
+
+struct FlywheelPart {
+  std::string heading, caption;
+  std::vector<std::string> paragraphs;
+};
+/// @return an empty heading without data.
+FlywheelPart describeFlywheelPart(const TableSet& tables);
+
+}  // namespace crankcheck::validation

@@ -1,0 +1,146 @@
+// Report part `flywheel` (flywheel_part.h).
+#include "crankcheck/validation/flywheel_part.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <optional>
+#include <stdexcept>
+
+#include "crankcheck/analytic/flywheel.h"
+#include "crankcheck/simbody_models/free_run.h"
+#include "crankcheck/validation/engine_loads.h"
+#include "crankcheck/validation/variants.h"
+
+namespace crankcheck::validation {
+namespace {
+
+constexpr double kFluctuation = 0.01;
+
+std::string num(double x) { return formatNumber(x); }
+
+std::string shortNumber(double x, int digits = 3) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
+  return buffer;
+}
+
+size_t columnOf(const Table& t, const std::string& name) {
+  for (size_t i = 0; i < t.columns.size(); ++i)
+    if (t.columns[i] == name) return i;
+  throw std::runtime_error("table has no column " + name);
+}
+
+}  // namespace
+
+TableSet calcFlywheelTables(const std::vector<Mechanism>& scenes, const Mechanism& parts, bool quick) {
+  // The key columns first: sorted, each series' rows come together, in order (reports/flywheel.gp draws them so).
+  Table curve, sizing, sweep;
+  curve.columns = {"scene", "flywheel_inertia", "exact_delta", "simbody_delta"};
+  sizing.columns = {"scene", "cycle", "k", "speed_rpm", "exact_inertia", "norton_inertia", "norton_error", "norton_delta"};
+  sweep.columns = {"speed_rpm", "k", "exact_inertia", "norton_inertia", "norton_error", "norton_delta"};
+  auto sized = [](const Mechanism& m) -> std::optional<analytic::FlywheelSizing> {
+    try {
+      return analytic::calcFlywheelSizing(m, kFluctuation);
+    } catch (const std::domain_error&) {
+      return std::nullopt;  // no flywheel needed (or possible) for this C
+    }
+  };
+  for (const Mechanism& m : scenes) {
+    if (!m.gas || !(m.engine.speed > 0.0)) continue;
+    const std::optional<analytic::FlywheelSizing> s = sized(m);
+    if (!s) continue;
+    const analytic::FlywheelSizing& exact = *s;
+    sizing.rows.push_back({m.name, toString(m.engine.cycle), std::to_string(m.engine.cylinders), num(m.speed_rpm),
+                           num(exact.exact_inertia), num(exact.norton_inertia),
+                           num(exact.norton_inertia / exact.exact_inertia - 1.0), num(exact.norton.delta)});
+    const int points = quick ? 5 : 13;
+    for (int i = 0; i < points; ++i) {
+      const double I = exact.exact_inertia * std::pow(10.0, -0.5 + static_cast<double>(i) / (points - 1));  // 0.3 .. 3
+      std::string simbody;
+      if (i % (quick ? 2 : 3) == 0) {  // Simbody's run at every other (third) point
+        Mechanism with = m;
+        with.flywheel_inertia = I;
+        simbody_models::FreeRunOptions run;
+        run.gas = true;
+        run.load_torque = exact.load_torque;
+        run.revolutions = 2;
+        run.accuracy = quick ? 1e-8 : 1e-10;
+        simbody = num(simbody_models::simulateFreeRun(with, analytic::calcSteadyRun(m, I, exact.load_torque).omega0, run).delta);
+      }
+      curve.rows.push_back({m.name, num(I), num(analytic::calcSteadyRun(m, I, exact.load_torque).delta), simbody});
+    }
+  }
+  const std::vector<int> ks = quick ? std::vector<int>{1, 4} : std::vector<int>{1, 2, 3, 4, 6};
+  const std::vector<double> speeds = quick ? std::vector<double>{3000.0} : std::vector<double>{1500.0, 3000.0, 6000.0};
+  Mechanism base = parts;
+  base.engine.pin_offsets.clear();
+  base.balance_shafts.clear();
+  for (int k : ks)
+    for (double rpm : speeds) {
+      const Mechanism m = withSpeed(withGasAtDeadCentres(withGamma(withCylinders(base, k, Cycle::kFourStroke), 90.0),
+                                                         makeExampleGas(Cycle::kFourStroke, 2.0 * base.crank.radius)),
+                                    rpm);
+      if (const std::optional<analytic::FlywheelSizing> s = sized(m))
+        sweep.rows.push_back({num(rpm), std::to_string(k), num(s->exact_inertia), num(s->norton_inertia),
+                              num(s->norton_inertia / s->exact_inertia - 1.0), num(s->norton.delta)});
+    }
+  return {{"flywheel", curve}, {"flywheel_sizing", sizing}, {"flywheel_norton", sweep}};
+}
+
+FlywheelPart describeFlywheelPart(const TableSet& tables) {
+  FlywheelPart part;
+  const auto sizing = tables.find("flywheel_sizing"), sweep = tables.find("flywheel_norton");
+  if (sizing == tables.end() || sweep == tables.end() || !tables.count("flywheel")) return part;
+  part.heading = "15. Flywheel sizing: the exact inertia, Norton's method, Simbody's run";
+  part.caption =
+      "Left: the steady run's speed fluctuation delta against the flywheel inertia for each scene with gas (the exact "
+      "energy integral as lines, Simbody's run over a working cycle as dots), the exact inertia for delta = 0.01 marked "
+      "by the dashed line. Right: the error of Norton's inertia (13.9) against the exact one, for C = 0.01, against the "
+      "number of cylinders of an inline four-stroke on the base scene's parts, one line per speed";
+  const Table& t = sizing->second;
+  const size_t scene = columnOf(t, "scene"), exact = columnOf(t, "exact_inertia"), norton = columnOf(t, "norton_inertia"),
+               error = columnOf(t, "norton_error"), nd = columnOf(t, "norton_delta");
+  for (const auto& row : t.rows)
+    part.paragraphs.push_back(row[scene] + " at C = 0.01: the exact flywheel is " + shortNumber(std::stod(row[exact]), 4) +
+                              " kg m^2, Norton's " + shortNumber(std::stod(row[norton]), 4) + " kg m^2 (" +
+                              shortNumber(100.0 * std::stod(row[error])) + " %), which really gives delta = " +
+                              shortNumber(std::stod(row[nd]), 4) + ".");
+  const Table& w = sweep->second;
+  const size_t wk = columnOf(w, "k"), wr = columnOf(w, "speed_rpm"), we = columnOf(w, "norton_error");
+  double worst = 0.0, best = 1e300;
+  std::string worst_at, best_at;
+  for (const auto& row : w.rows) {
+    const double e = std::fabs(std::stod(row[we]));
+    const std::string at = "k = " + row[wk] + ", " + row[wr] + " rpm";
+    if (e > worst) {
+      worst = e;
+      worst_at = at;
+    }
+    if (e < best) {
+      best = e;
+      best_at = at;
+    }
+  }
+  if (w.rows.empty()) return part;
+  part.paragraphs.push_back("On the base scene's parts as an inline four-stroke with gas, Norton's inertia is off by " +
+                            shortNumber(100.0 * best) + " % at best (" + best_at + ") and " + shortNumber(100.0 * worst) +
+                            " % at worst (" + worst_at +
+                            "): his method takes the energy swing of the constant-speed torque, and leaves out that the "
+                            "speed itself varies and that the mechanism's own inertia varies with the crank angle.");
+  const auto curve = tables.find("flywheel");
+  if (curve != tables.end()) {
+    const Table& c = curve->second;
+    const size_t ed = columnOf(c, "exact_delta"), sd = columnOf(c, "simbody_delta");
+    double agreement = 0.0;
+    for (const auto& row : c.rows)
+      if (!row[sd].empty())
+        agreement = std::max(agreement, std::fabs(std::stod(row[sd]) / std::stod(row[ed]) - 1.0));
+    part.paragraphs.push_back("Simbody's run agrees with the exact energy integral's delta to " + shortNumber(agreement, 2) +
+                              " (relative) at every point it was run.");
+  }
+  return part;
+}
+
+}  // namespace crankcheck::validation
