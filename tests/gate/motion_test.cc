@@ -110,7 +110,13 @@ TEST(FlywheelGate, ExactInertiaGivesTheFluctuationInSimbody) {
       run.load_torque = s.load_torque;
       run.revolutions = 2;
       const simbody_models::FreeRunResult r = simbody_models::simulateFreeRun(with, s.exact.omega0, run);
+      // Scale: delta is a ratio of speeds, (w_max - w_min) / w_mean. Simbody's run uses relative accuracy 1e-10 per
+      // step over ~1e3 steps of the two revolutions, so the speed is known to ~1e3 * 1e-10 = 1e-7 of w, and so is
+      // each of w_max and w_min: delta is off by up to ~2e-7 absolute, 4e-5 of the smallest C (0.005); 1e-4 C keeps a
+      // margin of 2.5. The extrema are found on the step grid and refined, so no sampling error adds to that.
       EXPECT_NEAR(r.delta, C, 1e-4 * C);
+      // Scale: the mean speed is 2 pi / (the cycle's time); the time of the revolutions is interpolated from the
+      // steps to ~1e-7 relative (same reasoning), so 1e-6 of the speed keeps a margin of 10.
       EXPECT_NEAR(r.omega_mean, m.engine.speed, 1e-6 * m.engine.speed);
       EXPECT_GT(std::fabs(s.norton_inertia / s.exact_inertia - 1.0), 1e-2);
       EXPECT_GT(std::fabs(s.norton.delta / C - 1.0), 1e-2);
