@@ -6,6 +6,7 @@
 #include "crankcheck/scene/scene_writer.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/evaluation_json.h"
 #include "json_output.h"
 #include "scene_input.h"
 
@@ -25,8 +26,6 @@ void addBalanceOptions(CLI::App& command, BalanceOptions& options) {
 
 namespace {
 
-const char* kAxes[3] = {"X", "Y", "Z"};
-
 // What vanishes by symmetry, in words ("" when nothing does, "undecided" when angles are not whole degrees).
 std::string reasonOf(const analytic::HarmonicSymmetry& s, bool axial) {
   if (!s.decided)
@@ -40,33 +39,6 @@ std::string reasonOf(const analytic::HarmonicSymmetry& s, bool axial) {
   if (axial) add(s.moment_xy_cancels, "moment X, Y");
   add(s.moment_z_cancels, "moment Z");
   return parts.empty() ? "" : parts + ": the throws' phases cancel (exact sum of roots of unity)";
-}
-
-// The closed form with exactly-cancelling parts set to 0 (they are rounding otherwise).
-analytic::ShakingHarmonic withExactZeros(analytic::ShakingHarmonic h, const analytic::HarmonicSymmetry& s) {
-  if (!s.decided) return h;
-  if (s.force_cancels) h.force_cos = h.force_sin = Vec2{0.0, 0.0};
-  for (int k = 0; k < 2; ++k)
-    if (s.moment_xy_cancels) h.moment_cos[k] = h.moment_sin[k] = 0.0;
-  if (s.moment_z_cancels) h.moment_cos[2] = h.moment_sin[2] = 0.0;
-  return h;
-}
-
-nlohmann::ordered_json harmonicToJson(const analytic::ShakingHarmonic& h, bool axial) {
-  nlohmann::ordered_json j;
-  j["shaking_force"] = {{"amplitude", h.calcForceAmplitude()},
-                        {"cos", nlohmann::ordered_json::array({h.force_cos[0], h.force_cos[1]})},
-                        {"sin", nlohmann::ordered_json::array({h.force_sin[0], h.force_sin[1]})}};
-  nlohmann::ordered_json moment;
-  for (int k = 0; k < 3; ++k) {
-    if (k < 2 && !axial) {
-      moment[kAxes[k]] = nullptr;  // no axial positions: not defined
-      continue;
-    }
-    moment[kAxes[k]] = {{"amplitude", h.calcMomentAmplitude(k)}, {"cos", h.moment_cos[k]}, {"sin", h.moment_sin[k]}};
-  }
-  j["shaking_moment"] = moment;
-  return j;
 }
 
 }  // namespace
@@ -104,20 +76,8 @@ std::string runBalance(const BalanceOptions& options) {
     }
     doc["order"] = options.order;
     doc["samples"] = std::max(64, 4 * options.order);
-    doc["harmonics"] = nlohmann::ordered_json::array();
-    for (const validation::BalanceRow& row : rows) {
-      nlohmann::ordered_json h;
-      h["n"] = row.n;
-      h["analytic"] = harmonicToJson(withExactZeros(row.analytic, row.symmetry), axial);
-      for (const auto& [engine, harmonic] : row.engines) h[engine] = harmonicToJson(harmonic, axial);
-      const auto& s = row.symmetry;
-      auto decided = [&](bool v) { return s.decided ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
-      h["vanishes_by_symmetry"] = {{"force", decided(s.force_cancels)},
-                                   {"moment_xy", axial ? decided(s.moment_xy_cancels) : nlohmann::ordered_json(nullptr)},
-                                   {"moment_z", decided(s.moment_z_cancels)}};
-      h["reason"] = reasonOf(s, axial);
-      doc["harmonics"].push_back(h);
-    }
+    doc["harmonics"] = validation::balanceToJson(rows, axial);
+    for (size_t i = 0; i < rows.size(); ++i) doc["harmonics"][i]["reason"] = reasonOf(rows[i].symmetry, axial);
     return dumpJson(doc);
   }
   std::string out;
@@ -143,7 +103,7 @@ std::string runBalance(const BalanceOptions& options) {
     return text;
   };
   for (const validation::BalanceRow& row : rows) {
-    const analytic::ShakingHarmonic a = withExactZeros(row.analytic, row.symmetry);
+    const analytic::ShakingHarmonic a = validation::withExactZeros(row.analytic, row.symmetry);
     auto moment = [](int axis) { return [axis](const analytic::ShakingHarmonic& h) { return h.calcMomentAmplitude(axis); }; };
     const std::string mx = axial ? all(a.calcMomentAmplitude(0), row, moment(0)) : "-";
     const std::string my = axial ? all(a.calcMomentAmplitude(1), row, moment(1)) : "-";

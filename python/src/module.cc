@@ -216,34 +216,6 @@ py::dict evaluate(const ScenePtr& scene, const py::handle& phi_in, const std::st
 
 // ---- balance: the CLI's JSON (app/balance_command.cc) from the same validation::calcBalance, without its words
 // ("reason": vanishes_by_symmetry holds what they say).
-const char* kAxes[3] = {"X", "Y", "Z"};
-
-analytic::ShakingHarmonic withExactZeros(analytic::ShakingHarmonic h, const analytic::HarmonicSymmetry& s) {
-  if (!s.decided) return h;
-  if (s.force_cancels) h.force_cos = h.force_sin = Vec2{0.0, 0.0};
-  for (int k = 0; k < 2; ++k)
-    if (s.moment_xy_cancels) h.moment_cos[k] = h.moment_sin[k] = 0.0;
-  if (s.moment_z_cancels) h.moment_cos[2] = h.moment_sin[2] = 0.0;
-  return h;
-}
-
-nlohmann::ordered_json harmonicToJson(const analytic::ShakingHarmonic& h, bool axial) {
-  nlohmann::ordered_json j;
-  j["shaking_force"] = {{"amplitude", h.calcForceAmplitude()},
-                        {"cos", nlohmann::ordered_json::array({h.force_cos[0], h.force_cos[1]})},
-                        {"sin", nlohmann::ordered_json::array({h.force_sin[0], h.force_sin[1]})}};
-  nlohmann::ordered_json moment;
-  for (int k = 0; k < 3; ++k) {
-    if (k < 2 && !axial) {
-      moment[kAxes[k]] = nullptr;
-      continue;
-    }
-    moment[kAxes[k]] = {{"amplitude", h.calcMomentAmplitude(k)}, {"cos", h.moment_cos[k]}, {"sin", h.moment_sin[k]}};
-  }
-  j["shaking_moment"] = moment;
-  return j;
-}
-
 py::object balance(const ScenePtr& scene, int order) {
   if (order < 1 || order > 64) throw py::value_error("order: " + std::to_string(order) + " not in [1 - 64]");
   const Mechanism& m = scene->m;
@@ -256,24 +228,11 @@ py::object balance(const ScenePtr& scene, int order) {
       throw SceneError(scene->source + ": " + e.what());
     }
   }
-  const bool axial = hasAxialPositions(m);
   nlohmann::ordered_json doc;
   doc["scene"] = validation::sceneToJson(m);
   doc["order"] = order;
   doc["samples"] = std::max(64, 4 * order);
-  doc["harmonics"] = nlohmann::ordered_json::array();
-  for (const validation::BalanceRow& row : rows) {
-    nlohmann::ordered_json h;
-    h["n"] = row.n;
-    h["analytic"] = harmonicToJson(withExactZeros(row.analytic, row.symmetry), axial);
-    for (const auto& [engine, harmonic] : row.engines) h[engine] = harmonicToJson(harmonic, axial);
-    const auto& s = row.symmetry;
-    auto decided = [&](bool v) { return s.decided ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
-    h["vanishes_by_symmetry"] = {{"force", decided(s.force_cancels)},
-                                 {"moment_xy", axial ? decided(s.moment_xy_cancels) : nlohmann::ordered_json(nullptr)},
-                                 {"moment_z", decided(s.moment_z_cancels)}};
-    doc["harmonics"].push_back(h);
-  }
+  doc["harmonics"] = validation::balanceToJson(rows, hasAxialPositions(m));
   return toPython(doc);
 }
 

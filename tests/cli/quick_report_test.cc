@@ -56,12 +56,6 @@ const std::vector<MaximumColumns> kMaxima = {
     {"pin_load_polar_summary", {"scene", "engine", "force"}, {"max_magnitude"}, "", ""},
 };
 
-size_t columnOf(const Table& t, const std::string& name) {
-  for (size_t i = 0; i < t.columns.size(); ++i)
-    if (t.columns[i] == name) return i;
-  throw std::runtime_error("no column " + name);
-}
-
 fs::path report(const fs::path& folder, const std::string& name) { return folder / name; }
 
 // 1 %: the rule for a maximum that must not depend on the grid. Maxima found from the exact harmonics or

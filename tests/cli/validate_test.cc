@@ -42,14 +42,14 @@ class ValidateTest : public ::testing::Test {
 };
 
 const char* kFigures[] = {"error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance", "norton_fig13_8", "engines", "offset", "flywheel",
-                          "delta_vs_k", "integrator_pareto", "balance_harmonics", "torque_split", "rod_models",
+                          "balance_shafts", "delta_vs_k", "integrator_pareto", "balance_harmonics", "torque_split", "rod_models",
                           "pin_load_polar"};
 const char* kTables[] = {"crosscheck", "error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance",
                          "norton_fig13_8", "errata", "scenes", "delta_vs_k", "integrator_pareto", "balance",
                          "balance_harmonics", "torque_split", "gravity_share", "rod_models", "eq5_layouts",
                          "eq15_coefficients", "eq15_engines", "pin_load_polar", "pin_load_polar_summary", "engine_cost",
                          "engines", "engines_league", "offset", "offset_thrust", "flywheel", "flywheel_sizing",
-                         "flywheel_norton"};
+                         "flywheel_norton", "balance_shafts"};
 
 TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   const fs::path report = dir_ / "report";
@@ -76,6 +76,28 @@ TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   EXPECT_EQ(speed.rfind("method,ns_per_eval [ns],max_rel_error [-],resolved\n", 0), 0u);
   EXPECT_GE(std::count(speed.begin(), speed.end(), '\n'), 6) << "every method timed:\n" << speed;
   EXPECT_NE(speed.find("simbody_tol_1e-12,"), std::string::npos) << speed;
+  // Part 16: the Lanchester pair designed for the inline four takes its secondary force to rounding in every engine.
+  // 64 eps of the force scale: the gate's multiple for a force (docs/CONVENTIONS-crankcheck.md); the secondary force
+  // without the pair is about lambda / 4 of the primary, itself about 1/8 of the scale (0.02 at the base scene's lambda).
+  const std::string shafts = readFile(report / "data/balance_shafts.csv");
+  std::stringstream lines(shafts);
+  int checked = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("inline four: Lanchester pair for n = 2,", 0) != 0) continue;
+    std::vector<std::string> f;
+    std::stringstream fields(line);
+    for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
+    ASSERT_EQ(f.size(), 6u) << line;  // case,shafts,engine,n,force_amplitude,force_relative
+    if (f[3] != "2") continue;
+    const double rel = std::stod(f[5]);
+    if (f[1] == "none") {
+      EXPECT_GT(rel, 1e-3) << line;
+    } else {
+      EXPECT_LT(rel, 64 * 2.220446049250313e-16) << line;
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, 6) << "analytic, simbody and mujoco, without and with the pair:\n" << shafts;
   // Nothing but the report next to it: no staging folder left behind.
   for (const auto& entry : fs::directory_iterator(dir_))
     EXPECT_EQ(entry.path().filename().string().find("partial"), std::string::npos) << entry.path();

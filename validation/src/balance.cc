@@ -64,6 +64,15 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples) 
   return rows;
 }
 
+analytic::ShakingHarmonic withExactZeros(analytic::ShakingHarmonic h, const analytic::HarmonicSymmetry& s) {
+  if (!s.decided) return h;
+  if (s.force_cancels) h.force_cos = h.force_sin = Vec2{0.0, 0.0};
+  for (int k = 0; k < 2; ++k)
+    if (s.moment_xy_cancels) h.moment_cos[k] = h.moment_sin[k] = 0.0;
+  if (s.moment_z_cancels) h.moment_cos[2] = h.moment_sin[2] = 0.0;
+  return h;
+}
+
 std::vector<BalanceShaftParams> designBalanceShafts(const Mechanism& m, int n) {
   if (n < 1) throw std::invalid_argument("--design: the harmonic must be >= 1");
   Mechanism unit = m;

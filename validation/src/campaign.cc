@@ -25,6 +25,7 @@
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/engines_part.h"
+#include "crankcheck/validation/balance_shafts_part.h"
 #include "crankcheck/validation/flywheel_part.h"
 #include "crankcheck/validation/offset_part.h"
 #include "crankcheck/validation/balance.h"
@@ -42,6 +43,18 @@ std::string formatNumber(double x) {
   char buffer[40];
   const auto end = std::to_chars(buffer, buffer + sizeof buffer, x + 0.0).ptr;  // shortest round-trip; -0 as 0
   return std::string(buffer, end);
+}
+
+std::string shortNumber(double x, int digits) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
+  return buffer;
+}
+
+size_t columnOf(const Table& t, const std::string& name) {
+  const auto it = std::find(t.columns.begin(), t.columns.end(), name);
+  if (it == t.columns.end()) throw std::runtime_error("report: table has no column " + name);
+  return static_cast<size_t>(it - t.columns.begin());
 }
 
 void appendTables(TableSet& into, const TableSet& from) {
@@ -915,6 +928,8 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   tasks.push_back({"offset", false, [base, quick] { return calcOffsetTables(base, quick); }});
   // Flywheel sizing (part 15): the scenes with gas (the example scenes in the default campaign) and the base's parts.
   tasks.push_back({"flywheel", false, [pin_scenes, base, quick] { return calcFlywheelTables(pin_scenes, base, quick); }});
+  // Balance shafts (part 16): designed sets on the base's parts, and the scenes that carry shafts.
+  tasks.push_back({"balance_shafts", false, [pin_scenes, base] { return calcBalanceShaftTables(base, pin_scenes); }});
   return tasks;
 }
 

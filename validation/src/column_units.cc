@@ -16,7 +16,7 @@ const std::map<std::string, std::string>& columnUnits() {
       {"acting", ""}, {"case", ""}, {"couple_vanishes", ""}, {"cycle", ""}, {"description", ""}, {"engine", ""},
       {"family", ""}, {"force", ""}, {"force_vanishes", ""}, {"holds", ""}, {"integrator", ""}, {"item", ""},
       {"layout", ""}, {"measure", ""}, {"method", ""}, {"note", ""}, {"paper_negligible", ""}, {"paper_nonzero", ""},
-      {"part", ""}, {"pass", ""}, {"quantity", ""}, {"resolved", ""}, {"scene", ""}, {"status", ""}, {"textbook", ""},
+      {"part", ""}, {"pass", ""}, {"quantity", ""}, {"resolved", ""}, {"scene", ""}, {"shafts", ""}, {"status", ""}, {"textbook", ""},
       {"two_mass_delta_I_resolved", ""}, {"vanishes_exactly", ""}, {"variable", ""}, {"verdict", ""},
       {"where_case", ""}, {"errata/printed", ""},
       // dimensionless
@@ -46,7 +46,7 @@ const std::map<std::string, std::string>& columnUnits() {
       {"drive_torque", "N m"}, {"simbody_drive_torque", "N m"}, {"gas_torque", "N m"}, {"inertia_torque", "N m"},
       {"gravity_torque", "N m"}, {"harmonics/simbody_amplitude", "N m"}, {"analytic_amplitude", "N m"},
       {"bearing_x", "N"}, {"bearing_y", "N"}, {"crank_pin_radial", "N"}, {"crank_pin_tangential", "N"},
-      {"max_magnitude", "N"},
+      {"max_magnitude", "N"}, {"force_amplitude", "N"},
       // the row says which quantity, and so the unit
       {"max_abs_error", "SI"}, {"program_value", "SI"}, {"simbody_value", "SI"}, {"mujoco_value", "SI"}, {"analytic_value", "SI"},
       {"balance/simbody_amplitude", "SI"}, {"balance/mujoco_amplitude", "SI"}, {"balance_harmonics/simbody_amplitude", "SI"}, {"x", "SI"},

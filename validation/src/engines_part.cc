@@ -19,19 +19,7 @@
 namespace crankcheck::validation {
 namespace {
 
-size_t columnOf(const Table& t, const std::string& name) {
-  for (size_t i = 0; i < t.columns.size(); ++i)
-    if (t.columns[i] == name) return i;
-  throw std::runtime_error("table has no column " + name);
-}
-
 double toDouble(const std::string& s) { return s.empty() ? 0.0 : std::stod(s); }
-
-std::string shortNumber(double x, int digits = 2) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-  return buffer;
-}
 
 struct Worst {
   double rel = -1.0;

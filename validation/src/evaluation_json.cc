@@ -9,6 +9,22 @@ namespace {
 
 nlohmann::ordered_json vec(const Vec2& v) { return nlohmann::ordered_json::array({v[0], v[1]}); }
 
+nlohmann::ordered_json harmonicToJson(const analytic::ShakingHarmonic& h, bool axial) {
+  static const char* const kAxes[3] = {"X", "Y", "Z"};
+  nlohmann::ordered_json j;
+  j["shaking_force"] = {{"amplitude", h.calcForceAmplitude()}, {"cos", vec(h.force_cos)}, {"sin", vec(h.force_sin)}};
+  nlohmann::ordered_json moment;
+  for (int k = 0; k < 3; ++k) {
+    if (k < 2 && !axial) {
+      moment[kAxes[k]] = nullptr;  // no axial positions: not defined
+      continue;
+    }
+    moment[kAxes[k]] = {{"amplitude", h.calcMomentAmplitude(k)}, {"cos", h.moment_cos[k]}, {"sin", h.moment_sin[k]}};
+  }
+  j["shaking_moment"] = moment;
+  return j;
+}
+
 }  // namespace
 
 nlohmann::ordered_json sceneToJson(const Mechanism& m) {
@@ -98,6 +114,23 @@ nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, co
   }
   j["cylinders"] = cylinders;
   return j;
+}
+
+nlohmann::ordered_json balanceToJson(const std::vector<BalanceRow>& rows, bool axial) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const BalanceRow& row : rows) {
+    nlohmann::ordered_json h;
+    h["n"] = row.n;
+    h["analytic"] = harmonicToJson(withExactZeros(row.analytic, row.symmetry), axial);
+    for (const auto& [engine, harmonic] : row.engines) h[engine] = harmonicToJson(harmonic, axial);
+    const auto& s = row.symmetry;
+    auto decided = [&](bool v) { return s.decided ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
+    h["vanishes_by_symmetry"] = {{"force", decided(s.force_cancels)},
+                                 {"moment_xy", axial ? decided(s.moment_xy_cancels) : nlohmann::ordered_json(nullptr)},
+                                 {"moment_z", decided(s.moment_z_cancels)}};
+    out.push_back(h);
+  }
+  return out;
 }
 
 }  // namespace crankcheck::validation

@@ -20,18 +20,6 @@ constexpr double kFluctuation = 0.01;
 
 std::string num(double x) { return formatNumber(x); }
 
-std::string shortNumber(double x, int digits = 3) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-  return buffer;
-}
-
-size_t columnOf(const Table& t, const std::string& name) {
-  for (size_t i = 0; i < t.columns.size(); ++i)
-    if (t.columns[i] == name) return i;
-  throw std::runtime_error("table has no column " + name);
-}
-
 }  // namespace
 
 TableSet calcFlywheelTables(const std::vector<Mechanism>& scenes, const Mechanism& parts, bool quick) {
@@ -105,7 +93,7 @@ FlywheelPart describeFlywheelPart(const TableSet& tables) {
   for (const auto& row : t.rows)
     part.paragraphs.push_back(row[scene] + " at C = 0.01: the exact flywheel is " + shortNumber(std::stod(row[exact]), 4) +
                               " kg m^2, Norton's " + shortNumber(std::stod(row[norton]), 4) + " kg m^2 (" +
-                              shortNumber(100.0 * std::stod(row[error])) + " %), which really gives delta = " +
+                              shortNumber(100.0 * std::stod(row[error]), 3) + " %), which really gives delta = " +
                               shortNumber(std::stod(row[nd]), 4) + ".");
   const Table& w = sweep->second;
   const size_t wk = columnOf(w, "k"), wr = columnOf(w, "speed_rpm"), we = columnOf(w, "norton_error");
@@ -125,7 +113,7 @@ FlywheelPart describeFlywheelPart(const TableSet& tables) {
   }
   if (w.rows.empty()) return part;
   part.paragraphs.push_back("On the base scene's parts as an inline four-stroke with gas, Norton's inertia is off by " +
-                            shortNumber(100.0 * best) + " % at best (" + best_at + ") and " + shortNumber(100.0 * worst) +
+                            shortNumber(100.0 * best, 3) + " % at best (" + best_at + ") and " + shortNumber(100.0 * worst, 3) +
                             " % at worst (" + worst_at +
                             "): his method takes the energy swing of the constant-speed torque, and leaves out that the "
                             "speed itself varies and that the mechanism's own inertia varies with the crank angle.");

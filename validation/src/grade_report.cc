@@ -18,10 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-size_t columnOf(const Table& t, const std::string& name) {
-  return static_cast<size_t>(std::find(t.columns.begin(), t.columns.end(), name) - t.columns.begin());
-}
-
 std::string shortNumber(const std::string& text) {
   if (text.empty()) return text;
   char buffer[32];

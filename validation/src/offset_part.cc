@@ -20,18 +20,6 @@ namespace {
 
 std::string num(double x) { return formatNumber(x); }
 
-std::string shortNumber(double x, int digits = 2) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-  return buffer;
-}
-
-size_t columnOf(const Table& t, const std::string& name) {
-  for (size_t i = 0; i < t.columns.size(); ++i)
-    if (t.columns[i] == name) return i;
-  throw std::runtime_error("table has no column " + name);
-}
-
 }  // namespace
 
 TableSet calcOffsetTables(const Mechanism& parts, bool quick) {

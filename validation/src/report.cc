@@ -20,6 +20,7 @@
 #include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/engines_part.h"
+#include "crankcheck/validation/balance_shafts_part.h"
 #include "crankcheck/validation/flywheel_part.h"
 #include "crankcheck/validation/offset_part.h"
 #include "crankcheck/validation/errors.h"
@@ -35,18 +36,6 @@ namespace {
 
 double toDouble(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
 
-std::string shortNumber(double x, int digits = 2) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-  return buffer;
-}
-
-size_t column(const Table& t, const std::string& name) {
-  const auto it = std::find(t.columns.begin(), t.columns.end(), name);
-  if (it == t.columns.end()) throw std::runtime_error("report: table has no column " + name);
-  return static_cast<size_t>(it - t.columns.begin());
-}
-
 }  // namespace
 
 std::vector<SummaryRow> summarize(const TableSet& tables) {
@@ -54,9 +43,9 @@ std::vector<SummaryRow> summarize(const TableSet& tables) {
   const auto it = tables.find("crosscheck");
   if (it == tables.end()) return out;
   const Table& t = it->second;
-  const size_t engine = column(t, "engine"), family = column(t, "family"), kase = column(t, "case"), quantity = column(t, "quantity"),
-               rel = column(t, "worst_rel_error"), phi = column(t, "where_phi_deg"), rpm = column(t, "where_speed_rpm"),
-               tol = column(t, "tolerance_rel"), pass = column(t, "pass");
+  const size_t engine = columnOf(t, "engine"), family = columnOf(t, "family"), kase = columnOf(t, "case"), quantity = columnOf(t, "quantity"),
+               rel = columnOf(t, "worst_rel_error"), phi = columnOf(t, "where_phi_deg"), rpm = columnOf(t, "where_speed_rpm"),
+               tol = columnOf(t, "tolerance_rel"), pass = columnOf(t, "pass");
   std::map<std::tuple<std::string, std::string, std::string>, SummaryRow> rows;
   for (const auto& row : t.rows) {
     if (row[pass] == "reported") continue;  // a soft engine: measured in part engines, never gated
@@ -223,7 +212,7 @@ std::vector<std::vector<std::string>> tableRows(const TableSet& tables, const st
   const auto it = tables.find(name);
   if (it == tables.end()) return rows;
   std::vector<size_t> index;
-  for (const auto& c : columns) index.push_back(column(it->second, c));
+  for (const auto& c : columns) index.push_back(columnOf(it->second, c));
   for (const auto& row : it->second.rows) {
     std::vector<std::string> out;
     for (size_t i = 0; i < index.size(); ++i) {
@@ -420,8 +409,8 @@ void addBalancePart(std::vector<Block>& doc, const TableSet& tables, const std::
   const auto it = tables.find("balance_harmonics");
   if (it != tables.end()) {
     const Table& t = it->second;
-    const size_t layout = column(t, "layout"), n = column(t, "n"), force = column(t, "force_relative"),
-                 couple = column(t, "couple_relative");
+    const size_t layout = columnOf(t, "layout"), n = columnOf(t, "n"), force = columnOf(t, "force_relative"),
+                 couple = columnOf(t, "couple_relative");
     std::map<std::string, std::pair<std::string, double>> worst_force, worst_couple;
     std::vector<std::string> order;
     for (const auto& row : t.rows) {
@@ -508,6 +497,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
       {"engines", "", ""},  // part 13: heading and caption from engines_part.cc
       {"offset", "", ""},   // part 14: offset_part.cc
       {"flywheel", "", ""}, // part 15: flywheel_part.cc
+      {"balance_shafts", "", ""}, // part 16: balance_shafts_part.cc
   };
   // One gnuplot per figure, up to info.jobs at a time (each writes only its own NAME.svg and NAME.png).
   std::vector<std::string> to_draw;
@@ -577,8 +567,9 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   for (const Figure& f : figures) {
     const std::string& name = f.name;
     if (!tables.count(name) || name == "balance_harmonics" || name == "torque_split" || name == "rod_models" ||
-        name == "pin_load_polar" || name == "engines" || name == "offset" || name == "flywheel")
-      continue;  // parts 9-15 follow the errata
+        name == "pin_load_polar" || name == "engines" || name == "offset" || name == "flywheel" ||
+        name == "balance_shafts")
+      continue;  // parts 9-16 follow the errata
     doc.push_back({Block::kHeading, f.heading});
     doc.push_back({Block::kFigure, f.caption, {}, {}, name});
     if (name == "integrator_pareto")
@@ -634,6 +625,12 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
       const FlywheelPart part = describeFlywheelPart(tables);
       doc.push_back({Block::kHeading, part.heading});
       doc.push_back({Block::kFigure, part.caption, {}, {}, "flywheel"});
+      for (const std::string& paragraph : part.paragraphs) doc.push_back({Block::kParagraph, paragraph});
+    }
+    if (f.name == "balance_shafts") {
+      const BalanceShaftPart part = describeBalanceShaftPart(tables);
+      doc.push_back({Block::kHeading, part.heading});
+      doc.push_back({Block::kFigure, part.caption, {}, {}, "balance_shafts"});
       for (const std::string& paragraph : part.paragraphs) doc.push_back({Block::kParagraph, paragraph});
     }
     if (f.name == "offset") {

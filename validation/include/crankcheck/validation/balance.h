@@ -33,6 +33,10 @@ struct BalanceRow {
 ///         (the message names the engine); std::runtime_error if an engine fails.
 std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples = 0);
 
+/// The closed-form harmonic h with the parts that vanish exactly by the layout's symmetry s set to 0 (they are
+/// rounding otherwise); h itself where s is not decided.
+analytic::ShakingHarmonic withExactZeros(analytic::ShakingHarmonic h, const analytic::HarmonicSymmetry& s);
+
 /// Balance shafts that cancel harmonic n of the shaking force exactly as the closed form gives it (including the
 /// scene's own shafts): F_n(phi) = F+ e^{i n phi} + F- e^{-i n phi} (X + iY), each turning part cancelled by one shaft
 /// turning with it, ratio +n against F+ and -n against F-, its mass at the crank radius r with m r (n omega)^2 = |F|

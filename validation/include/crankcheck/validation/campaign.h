@@ -11,7 +11,8 @@
 ///   crosscheck            family,engine,case,lambda,quantity,worst_rel_error,where_phi_deg,where_speed_rpm,tolerance_rel,
 ///                         pass (engine: the engine compared with the analytic one; pass: pass/FAIL for gated engines,
 ///                         reported for soft ones, which are measured, never gated)
-///   engine_cost, engines, engines_league: engines_part.h; offset, offset_thrust: offset_part.h; flywheel, flywheel_sizing, flywheel_norton: flywheel_part.h
+///   engine_cost, engines, engines_league: engines_part.h; offset, offset_thrust: offset_part.h; flywheel, flywheel_sizing, flywheel_norton: flywheel_part.h;
+///                         balance_shafts: balance_shafts_part.h
 ///   error_vs_lambda       quantity,method,lambda,max_abs_error,max_rel_error,resolved
 ///   speed_vs_error        method,ns_per_eval,max_rel_error,resolved
 ///   harmonics             cycle,k,n,simbody_amplitude,analytic_amplitude,paper_nonzero
@@ -79,5 +80,12 @@ std::vector<Task> buildCampaign(const CampaignOptions& options);
 
 /// x in its shortest form that reads back to the same double (std::to_chars): 0.1, not 0.10000000000000001.
 std::string formatNumber(double x);
+
+/// x to `digits` significant digits (printf %g), for the sentences of the report: 0.012, 3.4e-15.
+std::string shortNumber(double x, int digits = 2);
+
+/// The index of the column `name` in t. @throws std::runtime_error if t has no such column (a report part read a
+/// table it did not build: a programming error, never a user's).
+size_t columnOf(const Table& t, const std::string& name);
 
 }  // namespace crankcheck::validation

@@ -8,6 +8,7 @@
 
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/balance.h"
 
 namespace crankcheck::validation {
 
@@ -20,5 +21,12 @@ nlohmann::ordered_json sceneToJson(const Mechanism& m);
 /// shaking_moment's X and Y are numbers only when the scene places its cylinders along the shaft (otherwise null);
 /// each cylinder's gas_force is present only when the scene has [gas].
 nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, const Mechanism& m);
+
+/// The harmonics of calcBalance as `crankcheck balance --format json` prints them: one object per row, {"n",
+/// "analytic" (the closed form with its exact zeros), one key per reference engine (its DFT), "vanishes_by_symmetry":
+/// {"force", "moment_xy", "moment_z"} (null where not decided)}; each harmonic {"shaking_force": {"amplitude", "cos",
+/// "sin"}, "shaking_moment": {"X", "Y", "Z": {"amplitude", "cos", "sin"}}}, X and Y null when `axial` is false (the
+/// scene places no cylinder along the shaft).
+nlohmann::ordered_json balanceToJson(const std::vector<BalanceRow>& rows, bool axial);
 
 }  // namespace crankcheck::validation
