@@ -84,7 +84,7 @@ std::string runBalance(const BalanceOptions& options) {
   if (options.design > 0)
     out += "balance shafts that cancel harmonic " + std::to_string(options.design) + " of the shaking force (paste into " +
            options.scene_path + "):\n\n" + tables + "\nwith them, every harmonic (the residual):\n";
-  out += "balance of " + options.scene_path + " at " + std::to_string(m.speed_rpm) +
+  out += "balance of " + options.scene_path + " at " + formatShortest(m.speed_rpm) +
                     " rpm: amplitude of each harmonic n (closed form / Simbody DFT / MuJoCo DFT); F [N], M [N m] about O\n";
   char line[640];
   std::snprintf(line, sizeof line, "%3s %37s %37s %37s %37s  %s\n", "n", "|F_s|", "|M_X|", "|M_Y|", "|M_Z|",

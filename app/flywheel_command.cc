@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "crankcheck/analytic/flywheel.h"
+#include "crankcheck/scene/scene_writer.h"
 #include "crankcheck/simbody_models/free_run.h"
 #include "crankcheck/validation/errors.h"
 #include "json_output.h"
@@ -24,7 +25,7 @@ void addFlywheelOptions(CLI::App& command, FlywheelOptions& options) {
 
 std::string runFlywheel(const FlywheelOptions& options) {
   if (!(options.fluctuation > 0.0 && options.fluctuation < 1.0))
-    throw UsageError("--fluctuation: must be in (0, 1) (got " + std::to_string(options.fluctuation) + ")");
+    throw UsageError("--fluctuation: must be in (0, 1) (got " + formatShortest(options.fluctuation) + ")");
   const Mechanism m = loadScene(options.scene_path);
   if (!m.gas)
     throw UsageError(options.scene_path + ": [gas]: missing table (flywheel sizing needs the working torque of a gas cycle)");
@@ -33,7 +34,7 @@ std::string runFlywheel(const FlywheelOptions& options) {
   try {
     s = analytic::calcFlywheelSizing(m, options.fluctuation);
   } catch (const std::domain_error& e) {
-    throw UsageError(options.scene_path + ": --fluctuation " + std::to_string(options.fluctuation) + ": " + e.what());
+    throw UsageError(options.scene_path + ": --fluctuation " + formatShortest(options.fluctuation) + ": " + e.what());
   }
   // Simbody: the exact flywheel in place of the scene's, the load, the gas, released at phi = 0 with the steady run's
   // speed there, over one working cycle.

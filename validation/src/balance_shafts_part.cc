@@ -62,8 +62,8 @@ TableSet calcBalanceShaftTables(const Mechanism& parts, const std::vector<Mechan
   return {{"balance_shafts", t}};
 }
 
-BalanceShaftPart describeBalanceShaftPart(const TableSet& tables) {
-  BalanceShaftPart part;
+ReportPart describeBalanceShaftPart(const TableSet& tables) {
+  ReportPart part;
   const auto it = tables.find("balance_shafts");
   if (it == tables.end() || it->second.rows.empty()) return part;
   part.heading = "16. Balance shafts: what a designed set cancels, by every engine";

@@ -116,8 +116,8 @@ void deriveEngineTables(TableSet& tables) {
   tables["engines_league"] = league;
 }
 
-EnginesPart describeEnginesPart(const TableSet& tables) {
-  EnginesPart part;
+ReportPart describeEnginesPart(const TableSet& tables) {
+  ReportPart part;
   const auto it = tables.find("engines");
   if (it == tables.end() || it->second.rows.empty()) return part;
   const Table& t = it->second;

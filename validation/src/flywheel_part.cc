@@ -77,8 +77,8 @@ TableSet calcFlywheelTables(const std::vector<Mechanism>& scenes, const Mechanis
   return {{"flywheel", curve}, {"flywheel_sizing", sizing}, {"flywheel_norton", sweep}};
 }
 
-FlywheelPart describeFlywheelPart(const TableSet& tables) {
-  FlywheelPart part;
+ReportPart describeFlywheelPart(const TableSet& tables) {
+  ReportPart part;
   const auto sizing = tables.find("flywheel_sizing"), sweep = tables.find("flywheel_norton");
   if (sizing == tables.end() || sweep == tables.end() || !tables.count("flywheel")) return part;
   part.heading = "15. Flywheel sizing: the exact inertia, Norton's method, Simbody's run";

@@ -83,8 +83,8 @@ TableSet calcOffsetTables(const Mechanism& parts, bool quick) {
   return {{"offset", cost}, {"offset_thrust", thrust}};
 }
 
-OffsetPart describeOffsetPart(const TableSet& tables) {
-  OffsetPart part;
+ReportPart describeOffsetPart(const TableSet& tables) {
+  ReportPart part;
   const auto cost = tables.find("offset"), thrust = tables.find("offset_thrust");
   if (cost == tables.end() || thrust == tables.end() || cost->second.rows.empty()) return part;
   part.heading = "14. Pin offset: what the centric formulas cost, what the offset buys";

@@ -437,6 +437,14 @@ void addBalancePart(std::vector<Block>& doc, const TableSet& tables, const std::
   doc.push_back({Block::kFigure, caption, {}, {}, "balance_harmonics"});
 }
 
+// The parts that describe themselves (report_part.h), by figure name, in the report's order.
+const std::pair<const char*, ReportPart (*)(const TableSet&)> kDescribedParts[] = {
+    {"engines", describeEnginesPart},
+    {"offset", describeOffsetPart},
+    {"flywheel", describeFlywheelPart},
+    {"balance_shafts", describeBalanceShaftPart},
+};
+
 }  // namespace
 
 void renderReport(const TableSet& input, const ReportInfo& info, const fs::path& dir) {
@@ -567,8 +575,8 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   for (const Figure& f : figures) {
     const std::string& name = f.name;
     if (!tables.count(name) || name == "balance_harmonics" || name == "torque_split" || name == "rod_models" ||
-        name == "pin_load_polar" || name == "engines" || name == "offset" || name == "flywheel" ||
-        name == "balance_shafts")
+        name == "pin_load_polar" ||
+        std::any_of(std::begin(kDescribedParts), std::end(kDescribedParts), [&](const auto& p) { return p.first == name; }))
       continue;  // parts 9-16 follow the errata
     doc.push_back({Block::kHeading, f.heading});
     doc.push_back({Block::kFigure, f.caption, {}, {}, name});
@@ -614,30 +622,15 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
                      tableRows(tables, "pin_load_polar_summary", {"scene", "engine", "force", "max_magnitude", "max_difference_rel"},
                                {false, false, false, true, true})});
     }
-    if (f.name == "engines") {
-      const EnginesPart part = describeEnginesPart(tables);
+    // Parts 13-16: each described by its own file (report_part.h), placed here.
+    for (const auto& [name, describe] : kDescribedParts) {
+      if (f.name != name) continue;
+      const ReportPart part = describe(tables);
+      if (part.heading.empty()) continue;
       doc.push_back({Block::kHeading, part.heading});
-      doc.push_back({Block::kFigure, part.caption, {}, {}, "engines"});
+      doc.push_back({Block::kFigure, part.caption, {}, {}, name});
       for (const std::string& paragraph : part.paragraphs) doc.push_back({Block::kParagraph, paragraph});
-      doc.push_back({Block::kTable, "", part.header, part.rows});
-    }
-    if (f.name == "flywheel") {
-      const FlywheelPart part = describeFlywheelPart(tables);
-      doc.push_back({Block::kHeading, part.heading});
-      doc.push_back({Block::kFigure, part.caption, {}, {}, "flywheel"});
-      for (const std::string& paragraph : part.paragraphs) doc.push_back({Block::kParagraph, paragraph});
-    }
-    if (f.name == "balance_shafts") {
-      const BalanceShaftPart part = describeBalanceShaftPart(tables);
-      doc.push_back({Block::kHeading, part.heading});
-      doc.push_back({Block::kFigure, part.caption, {}, {}, "balance_shafts"});
-      for (const std::string& paragraph : part.paragraphs) doc.push_back({Block::kParagraph, paragraph});
-    }
-    if (f.name == "offset") {
-      const OffsetPart part = describeOffsetPart(tables);
-      doc.push_back({Block::kHeading, part.heading});
-      doc.push_back({Block::kFigure, part.caption, {}, {}, "offset"});
-      for (const std::string& paragraph : part.paragraphs) doc.push_back({Block::kParagraph, paragraph});
+      if (!part.header.empty()) doc.push_back({Block::kTable, "", part.header, part.rows});
     }
   }
 

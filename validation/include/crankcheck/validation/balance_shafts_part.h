@@ -20,6 +20,7 @@
 
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/report_part.h"
 
 namespace crankcheck::validation {
 
@@ -27,11 +28,8 @@ namespace crankcheck::validation {
 /// @throws std::runtime_error if an engine fails.
 TableSet calcBalanceShaftTables(const Mechanism& parts, const std::vector<Mechanism>& scenes);
 
-struct BalanceShaftPart {
-  std::string heading, caption;
-  std::vector<std::string> paragraphs;
-};
-/// @return an empty heading without data.
-BalanceShaftPart describeBalanceShaftPart(const TableSet& tables);
+/// The part as the report shows it: heading, figure caption, sentences read from the data; an empty heading
+/// without data.
+ReportPart describeBalanceShaftPart(const TableSet& tables);
 
 }  // namespace crankcheck::validation

@@ -21,6 +21,7 @@
 
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/report_part.h"
 
 namespace crankcheck::validation {
 
@@ -33,13 +34,7 @@ Task buildEngineCostTask(const Mechanism& base, bool quick);
 void deriveEngineTables(TableSet& tables);
 
 /// The part as the report shows it: heading, figure caption, sentences read from the data, the table.
-struct EnginesPart {
-  std::string heading, caption;
-  std::vector<std::string> paragraphs;
-  std::vector<std::string> header;
-  std::vector<std::vector<std::string>> rows;
-};
 /// @return an empty heading when the tables are missing.
-EnginesPart describeEnginesPart(const TableSet& tables);
+ReportPart describeEnginesPart(const TableSet& tables);
 
 }  // namespace crankcheck::validation

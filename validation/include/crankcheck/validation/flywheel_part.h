@@ -22,17 +22,15 @@
 
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/report_part.h"
 
 namespace crankcheck::validation {
 
 /// The part's tables for the gas scenes among `scenes` and the `parts` sweep.
 TableSet calcFlywheelTables(const std::vector<Mechanism>& scenes, const Mechanism& parts, bool quick);
 
-struct FlywheelPart {
-  std::string heading, caption;
-  std::vector<std::string> paragraphs;
-};
-/// @return an empty heading without data.
-FlywheelPart describeFlywheelPart(const TableSet& tables);
+/// The part as the report shows it: heading, figure caption, sentences read from the data; an empty heading
+/// without data.
+ReportPart describeFlywheelPart(const TableSet& tables);
 
 }  // namespace crankcheck::validation

@@ -24,6 +24,7 @@
 
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/report_part.h"
 
 namespace crankcheck::validation {
 
@@ -31,10 +32,6 @@ namespace crankcheck::validation {
 TableSet calcOffsetTables(const Mechanism& parts, bool quick);
 
 /// The part as the report shows it: heading, caption, sentences read from the data; an empty heading without data.
-struct OffsetPart {
-  std::string heading, caption;
-  std::vector<std::string> paragraphs;
-};
-OffsetPart describeOffsetPart(const TableSet& tables);
+ReportPart describeOffsetPart(const TableSet& tables);
 
 }  // namespace crankcheck::validation
