@@ -136,6 +136,10 @@ std::string calcMjcf(const Mechanism& m, Variant variant) {
   x += std::string("    <flag contact=\"disable\" energy=\"enable\"") +
        (variant == Variant::kExact ? " constraint=\"disable\"" : "") + "/>\n";
   x += "  </option>\n";
+  // The constraint rows this model can have: 3 per connect (the loops), 1 per joint equality (the shafts' gears),
+  // a few to spare; no contacts. MuJoCo's defaults (njmax 500, a stack of 1.25e6 doubles: 10 MB per mjData, zeroed
+  // at every build) cost more than the whole evaluation. A full row table is checked after every solve (mjWARN_CNSTRFULL).
+  x += "  <size njmax=\"" + std::to_string(3 * k + static_cast<int>(m.balance_shafts.size()) + 8) + "\" nconmax=\"1\"/>\n";
   if (variant == Variant::kSoftStiff) {
     // The stiffest the solver accepts: impedance at its ceiling mjMAXIMP = 0.9999, time constant at the refsafe
     // floor of twice the time step.
@@ -217,6 +221,13 @@ std::string calcMjcf(const Mechanism& m, Variant variant) {
 }
 
 namespace {
+
+/// An invariant: the constraint rows calcMjcf sized (njmax) held every row MuJoCo made; it drops rows silently
+/// otherwise (a warning, which crankcheck does not print). @throws std::logic_error if they did not.
+void checkRowsFit(const mjData* d) {
+  if (d->warning[mjWARN_CNSTRFULL].number > 0)
+    throw std::logic_error("MuJoCo: the constraint rows outgrew the model's njmax (calcMjcf's <size>)");
+}
 
 /// MJCF text -> mjModel through MuJoCo's virtual file system (2.2.2 has no mj_loadXMLString).
 mjModel* loadModel(const std::string& xml) {
@@ -518,6 +529,7 @@ double KCrankMujocoModel::Impl::solveSoftForces(double phi, bool gas) {
   auto crankAcceleration = [&](double tau) {
     s->qfrc_applied[crank_v_] = tau;
     mj_forward(sm, s);
+    checkRowsFit(s);
     return s->qacc[crank_v_];
   };
   const double a0 = crankAcceleration(0.0);
@@ -731,6 +743,7 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, Variant variant
   const long long max_steps = static_cast<long long>(20.0 * settings.revolutions / settings.accuracy) + 1000;
   for (long long step = 0;; ++step) {
     mj_forward(model.get(), d);  // everything at this state, its energies (mjENBL_ENERGY) among them
+    checkRowsFit(d);
     const double phi = d->qpos[crank_q], w = d->qvel[crank_v], e = d->energy[0] + d->energy[1];
     if (!(std::isfinite(phi) && std::isfinite(w) && std::isfinite(e)))
       throw std::runtime_error("MuJoCo's free run became non-finite at t = " + num(d->time) + " s");

@@ -927,7 +927,10 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   tasks.push_back(buildEngineCostTask(base, quick));
   tasks.push_back({"offset", false, [base, quick] { return calcOffsetTables(base, quick); }});
   // Flywheel sizing (part 15): the scenes with gas (the example scenes in the default campaign) and the base's parts.
-  tasks.push_back({"flywheel", false, [pin_scenes, base, quick] { return calcFlywheelTables(pin_scenes, base, quick); }});
+  // One task per scene (Simbody's runs are the campaign's longest work: they spread over the jobs).
+  for (const Mechanism& m : pin_scenes)
+    tasks.push_back({"flywheel " + m.name, false, [m, quick] { return calcFlywheelSceneTables(m, quick); }});
+  tasks.push_back({"flywheel_norton", false, [base, quick] { return calcFlywheelNortonTables(base, quick); }});
   // Balance shafts (part 16): designed sets on the base's parts, and the scenes that carry shafts.
   tasks.push_back({"balance_shafts", false, [pin_scenes, base] { return calcBalanceShaftTables(base, pin_scenes); }});
   return tasks;

@@ -20,46 +20,59 @@ constexpr double kFluctuation = 0.01;
 
 std::string num(double x) { return formatNumber(x); }
 
+// The part's three tables, empty: each task fills its own rows, the campaign adds them up (appendTables).
+TableSet makeEmptyTables() {
+  // The key columns first: sorted, each series' rows come together, in order (reports/flywheel.gp draws them so).
+  TableSet t;
+  t["flywheel"].columns = {"scene", "flywheel_inertia", "exact_delta", "simbody_delta"};
+  t["flywheel_sizing"].columns = {"scene", "cycle", "k", "speed_rpm", "exact_inertia", "norton_inertia", "norton_error",
+                                  "norton_delta"};
+  t["flywheel_norton"].columns = {"speed_rpm", "k", "exact_inertia", "norton_inertia", "norton_error", "norton_delta"};
+  return t;
+}
+
+std::optional<analytic::FlywheelSizing> sized(const Mechanism& m) {
+  try {
+    return analytic::calcFlywheelSizing(m, kFluctuation);
+  } catch (const std::domain_error&) {
+    return std::nullopt;  // no flywheel needed (or possible) for this C
+  }
+}
+
 }  // namespace
 
-TableSet calcFlywheelTables(const std::vector<Mechanism>& scenes, const Mechanism& parts, bool quick) {
-  // The key columns first: sorted, each series' rows come together, in order (reports/flywheel.gp draws them so).
-  Table curve, sizing, sweep;
-  curve.columns = {"scene", "flywheel_inertia", "exact_delta", "simbody_delta"};
-  sizing.columns = {"scene", "cycle", "k", "speed_rpm", "exact_inertia", "norton_inertia", "norton_error", "norton_delta"};
-  sweep.columns = {"speed_rpm", "k", "exact_inertia", "norton_inertia", "norton_error", "norton_delta"};
-  auto sized = [](const Mechanism& m) -> std::optional<analytic::FlywheelSizing> {
-    try {
-      return analytic::calcFlywheelSizing(m, kFluctuation);
-    } catch (const std::domain_error&) {
-      return std::nullopt;  // no flywheel needed (or possible) for this C
+TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick) {
+  TableSet tables = makeEmptyTables();
+  Table &curve = tables["flywheel"], &sizing = tables["flywheel_sizing"];
+  if (!m.gas || !(m.engine.speed > 0.0)) return tables;
+  const std::optional<analytic::FlywheelSizing> s = sized(m);
+  if (!s) return tables;
+  const analytic::FlywheelSizing& exact = *s;
+  sizing.rows.push_back({m.name, toString(m.engine.cycle), std::to_string(m.engine.cylinders), num(m.speed_rpm),
+                         num(exact.exact_inertia), num(exact.norton_inertia),
+                         num(exact.norton_inertia / exact.exact_inertia - 1.0), num(exact.norton.delta)});
+  const int points = quick ? 5 : 13;
+  for (int i = 0; i < points; ++i) {
+    const double I = exact.exact_inertia * std::pow(10.0, -0.5 + static_cast<double>(i) / (points - 1));  // 0.3 .. 3
+    std::string simbody;
+    if (i % (quick ? 2 : 3) == 0) {  // Simbody's run at every other (third) point
+      Mechanism with = m;
+      with.flywheel_inertia = I;
+      simbody_models::FreeRunOptions run;
+      run.gas = true;
+      run.load_torque = exact.load_torque;
+      run.revolutions = 2;
+      run.accuracy = quick ? 1e-8 : 1e-10;
+      simbody = num(simbody_models::simulateFreeRun(with, analytic::calcSteadyRun(m, I, exact.load_torque).omega0, run).delta);
     }
-  };
-  for (const Mechanism& m : scenes) {
-    if (!m.gas || !(m.engine.speed > 0.0)) continue;
-    const std::optional<analytic::FlywheelSizing> s = sized(m);
-    if (!s) continue;
-    const analytic::FlywheelSizing& exact = *s;
-    sizing.rows.push_back({m.name, toString(m.engine.cycle), std::to_string(m.engine.cylinders), num(m.speed_rpm),
-                           num(exact.exact_inertia), num(exact.norton_inertia),
-                           num(exact.norton_inertia / exact.exact_inertia - 1.0), num(exact.norton.delta)});
-    const int points = quick ? 5 : 13;
-    for (int i = 0; i < points; ++i) {
-      const double I = exact.exact_inertia * std::pow(10.0, -0.5 + static_cast<double>(i) / (points - 1));  // 0.3 .. 3
-      std::string simbody;
-      if (i % (quick ? 2 : 3) == 0) {  // Simbody's run at every other (third) point
-        Mechanism with = m;
-        with.flywheel_inertia = I;
-        simbody_models::FreeRunOptions run;
-        run.gas = true;
-        run.load_torque = exact.load_torque;
-        run.revolutions = 2;
-        run.accuracy = quick ? 1e-8 : 1e-10;
-        simbody = num(simbody_models::simulateFreeRun(with, analytic::calcSteadyRun(m, I, exact.load_torque).omega0, run).delta);
-      }
-      curve.rows.push_back({m.name, num(I), num(analytic::calcSteadyRun(m, I, exact.load_torque).delta), simbody});
-    }
+    curve.rows.push_back({m.name, num(I), num(analytic::calcSteadyRun(m, I, exact.load_torque).delta), simbody});
   }
+  return tables;
+}
+
+TableSet calcFlywheelNortonTables(const Mechanism& parts, bool quick) {
+  TableSet tables = makeEmptyTables();
+  Table& sweep = tables["flywheel_norton"];
   const std::vector<int> ks = quick ? std::vector<int>{1, 4} : std::vector<int>{1, 2, 3, 4, 6};
   const std::vector<double> speeds = quick ? std::vector<double>{3000.0} : std::vector<double>{1500.0, 3000.0, 6000.0};
   Mechanism base = parts;
@@ -74,7 +87,7 @@ TableSet calcFlywheelTables(const std::vector<Mechanism>& scenes, const Mechanis
         sweep.rows.push_back({num(rpm), std::to_string(k), num(s->exact_inertia), num(s->norton_inertia),
                               num(s->norton_inertia / s->exact_inertia - 1.0), num(s->norton.delta)});
     }
-  return {{"flywheel", curve}, {"flywheel_sizing", sizing}, {"flywheel_norton", sweep}};
+  return tables;
 }
 
 ReportPart describeFlywheelPart(const TableSet& tables) {

@@ -26,8 +26,12 @@
 
 namespace crankcheck::validation {
 
-/// The part's tables for the gas scenes among `scenes` and the `parts` sweep.
-TableSet calcFlywheelTables(const std::vector<Mechanism>& scenes, const Mechanism& parts, bool quick);
+/// The part's three tables with the rows of one scene (`flywheel`, `flywheel_sizing`; none when it has no [gas] or
+/// needs no flywheel for C = 0.01). The campaign runs one task per scene and one for the sweep: the tables add up.
+TableSet calcFlywheelSceneTables(const Mechanism& scene, bool quick);
+
+/// The part's three tables with the rows of the sweep on `parts` (`flywheel_norton`).
+TableSet calcFlywheelNortonTables(const Mechanism& parts, bool quick);
 
 /// The part as the report shows it: heading, figure caption, sentences read from the data; an empty heading
 /// without data.
