@@ -840,6 +840,25 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
                           "written for the paper's centric engine without shafts, use its parts without them. Its own "
                           "engine is cross-checked in the summary, and part 14 shows what an offset changes."});
   tasks.push_back({"scenes", false, [families] { return scenesTable(families); }});
+  // The user's scenes, or the example scenes (scenes/*.toml) in the default campaign: parts 12, 15 and 16.
+  std::vector<Mechanism> pin_scenes = options.scenes;
+  if (pin_scenes.empty()) pin_scenes = loadExampleScenes();
+  // The longest tasks first, so that the jobs finish together (the order changes no table: they are sorted): Simbody's
+  // flywheel runs, the offset sweep (part 14), then the cross-checks and the gate's sweep, largest k first.
+  // Flywheel sizing (part 15): the scenes with gas (the example scenes in the default campaign) and the base's parts.
+  // One task per Simbody run (the campaign's longest work: they spread over the jobs), one per scene for the rest.
+  for (const Mechanism& m : pin_scenes) {
+    if (!m.gas) continue;
+    tasks.push_back({"flywheel " + m.name, false, [m, quick] { return calcFlywheelSceneTables(m, quick, -1); }});
+    for (int point : listFlywheelRunPoints(quick))
+      tasks.push_back({"flywheel " + m.name + " run " + std::to_string(point), false,
+                       [m, quick, point] { return calcFlywheelSceneTables(m, quick, point); }});
+  }
+  for (double f : listOffsetFractions(quick)) {
+    char id[64];
+    std::snprintf(id, sizeof id, "offset delta/r=%g", f);
+    tasks.push_back({id, false, [base, f, quick] { return calcOffsetTables(base, f, quick); }});
+  }
   const std::vector<double> sweep = quick ? std::vector<double>{} : std::vector<double>{0.1, 0.2, 0.3, 0.4, 0.6, 0.9};
   for (const auto& [family, m] : families) {
     std::vector<double> lambdas = {lambdaOf(m)};
@@ -863,7 +882,7 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
               : std::vector<double>{1e-6, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.9, 0.999};
     const std::vector<double> sweep_gammas = quick ? std::vector<double>{90.0, 37.0} : std::vector<double>{0.0, 180.0, 90.0, -90.0, 37.0};
     const std::vector<double> gate_angles = {0.0, 17.0, 45.0, 90.0, 133.0, 180.0, 222.5, 270.0, 300.0, 359.0, -60.0};
-    for (int k = 1; k <= 12; ++k)
+    for (int k = 12; k >= 1; --k)
       for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke}) {
         const bool two = cycle == Cycle::kTwoStroke;
         const std::string family = std::string("gate sweep ") + (two ? "two" : "four") + "-stroke (k = 1..12)";
@@ -916,20 +935,13 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
     if (m.name.rfind("marine", 0) == 0) marine = m;
   tasks.push_back({"torque_split", false, [base, marine] { return calcTorqueSplitTables(base, marine); }});
   tasks.push_back({"rod_models", false, [base, marine] { return calcRodModelTables(base, marine); }});
-  // Pin loads as polar diagrams: the user's scenes, or the example scenes (scenes/*.toml) in the default campaign.
-  std::vector<Mechanism> pin_scenes = options.scenes;
-  if (pin_scenes.empty()) pin_scenes = loadExampleScenes();
+  // Pin loads as polar diagrams: the user's scenes, or the example scenes (pin_scenes) in the default campaign.
   for (size_t i = 0; i < pin_scenes.size(); ++i)
     tasks.push_back({"pin_load_polar " + pin_scenes[i].name, false,
                      [m = pin_scenes[i], i, quick] { return calcPinLoadTables({m}, static_cast<int>(i), quick ? 4.0 : 2.0); }});
   tasks.push_back({"errata", false, [base] { return errata(base); }});
   tasks.push_back({"speed_vs_error", true, [base, quick] { return speedVsError(base, quick); }});
   tasks.push_back(buildEngineCostTask(base, quick));
-  tasks.push_back({"offset", false, [base, quick] { return calcOffsetTables(base, quick); }});
-  // Flywheel sizing (part 15): the scenes with gas (the example scenes in the default campaign) and the base's parts.
-  // One task per scene (Simbody's runs are the campaign's longest work: they spread over the jobs).
-  for (const Mechanism& m : pin_scenes)
-    tasks.push_back({"flywheel " + m.name, false, [m, quick] { return calcFlywheelSceneTables(m, quick); }});
   tasks.push_back({"flywheel_norton", false, [base, quick] { return calcFlywheelNortonTables(base, quick); }});
   // Balance shafts (part 16): designed sets on the base's parts, and the scenes that carry shafts.
   tasks.push_back({"balance_shafts", false, [pin_scenes, base] { return calcBalanceShaftTables(base, pin_scenes); }});

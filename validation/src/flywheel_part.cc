@@ -39,31 +39,45 @@ std::optional<analytic::FlywheelSizing> sized(const Mechanism& m) {
   }
 }
 
+// The points of the curve delta(I_f): 0.3 to 3 times the exact inertia, log spaced.
+int calcPointCount(bool quick) { return quick ? 5 : 13; }
+
 }  // namespace
 
-TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick) {
+std::vector<int> listFlywheelRunPoints(bool quick) {
+  if (quick) return {calcPointCount(quick) / 2};  // a smoke test: the exact inertia only (10^0 of it)
+  std::vector<int> runs;
+  for (int i = 0; i < calcPointCount(quick); i += 3) runs.push_back(i);  // every third point, the middle among them
+  return runs;
+}
+
+TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, int point) {
   TableSet tables = makeEmptyTables();
   Table &curve = tables["flywheel"], &sizing = tables["flywheel_sizing"];
   if (!m.gas || !(m.engine.speed > 0.0)) return tables;
   const std::optional<analytic::FlywheelSizing> s = sized(m);
   if (!s) return tables;
   const analytic::FlywheelSizing& exact = *s;
-  sizing.rows.push_back({m.name, toString(m.engine.cycle), std::to_string(m.engine.cylinders), num(m.speed_rpm),
-                         num(exact.exact_inertia), num(exact.norton_inertia),
-                         num(exact.norton_inertia / exact.exact_inertia - 1.0), num(exact.norton.delta)});
-  const int points = quick ? 5 : 13;
+  const std::vector<int> runs = listFlywheelRunPoints(quick);
+  if (point < 0)
+    sizing.rows.push_back({m.name, toString(m.engine.cycle), std::to_string(m.engine.cylinders), num(m.speed_rpm),
+                           num(exact.exact_inertia), num(exact.norton_inertia),
+                           num(exact.norton_inertia / exact.exact_inertia - 1.0), num(exact.norton.delta)});
+  const int points = calcPointCount(quick);
   for (int i = 0; i < points; ++i) {
+    const bool run = std::find(runs.begin(), runs.end(), i) != runs.end();
+    if (point < 0 ? run : i != point) continue;  // each point in one task: the runs alone, the rest together
     const double I = exact.exact_inertia * std::pow(10.0, -0.5 + static_cast<double>(i) / (points - 1));  // 0.3 .. 3
     std::string simbody;
-    if (i % (quick ? 2 : 3) == 0) {  // Simbody's run at every other (third) point
+    if (run) {
       Mechanism with = m;
       with.flywheel_inertia = I;
-      simbody_models::FreeRunOptions run;
-      run.gas = true;
-      run.load_torque = exact.load_torque;
-      run.revolutions = 2;
-      run.accuracy = quick ? 1e-8 : 1e-10;
-      simbody = num(simbody_models::simulateFreeRun(with, analytic::calcSteadyRun(m, I, exact.load_torque).omega0, run).delta);
+      simbody_models::FreeRunOptions options;
+      options.gas = true;
+      options.load_torque = exact.load_torque;
+      options.revolutions = 2;
+      options.accuracy = quick ? 1e-8 : 1e-10;
+      simbody = num(simbody_models::simulateFreeRun(with, analytic::calcSteadyRun(m, I, exact.load_torque).omega0, options).delta);
     }
     curve.rows.push_back({m.name, num(I), num(analytic::calcSteadyRun(m, I, exact.load_torque).delta), simbody});
   }

@@ -22,7 +22,13 @@ std::string num(double x) { return formatNumber(x); }
 
 }  // namespace
 
-TableSet calcOffsetTables(const Mechanism& parts, bool quick) {
+std::vector<double> listOffsetFractions(bool quick) {
+  return quick ? std::vector<double>{-0.5, -0.04, 0.0, 0.04, 0.5}
+               : std::vector<double>{-0.5, -0.3, -0.2, -0.1, -0.06, -0.04, -0.02, -0.01, 0.0,
+                                     0.01, 0.02, 0.04, 0.06, 0.1, 0.2, 0.3, 0.5};
+}
+
+TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
   const Mechanism single = withSpeed(withGasAtDeadCentres(withGamma(withCylinders(parts, 1, Cycle::kFourStroke), 90.0),
                                                           makeExampleGas(Cycle::kFourStroke, 2.0 * parts.crank.radius)),
                                      6000.0);
@@ -33,53 +39,48 @@ TableSet calcOffsetTables(const Mechanism& parts, bool quick) {
   cost.columns = {"quantity", "offset_over_r", "max_rel_error", "simbody_max_rel_error"};
   thrust.columns = {"engine", "offset_over_r", "peak_major_thrust", "peak_minor_thrust", "thrust_reversal_deg",
                     "max_abs_drive_torque"};
-  const std::vector<double> fractions = quick ? std::vector<double>{-0.5, -0.04, 0.0, 0.04, 0.5}
-                                              : std::vector<double>{-0.5, -0.3, -0.2, -0.1, -0.06, -0.04, -0.02, -0.01, 0.0,
-                                                                    0.01, 0.02, 0.04, 0.06, 0.1, 0.2, 0.3, 0.5};
-  for (double f : fractions) {
-    Mechanism m = single;
-    m.engine.pin_offsets = {f * r};
-    const Scales sc = calcScales(m);
-    const double stroke = analytic::calcDeadCentres(m, f * r).stroke;
-    const std::unique_ptr<EngineModel> simbody = findEngine("simbody").build(m);
-    std::map<std::string, double> worst, worst_simbody;
-    struct Thrust {
-      double major = 0.0, minor = 0.0, reversal = NAN, drive = 0.0, previous = NAN, previous_deg = 0.0;
+  Mechanism m = single;
+  m.engine.pin_offsets = {f * r};
+  const Scales sc = calcScales(m);
+  const double stroke = analytic::calcDeadCentres(m, f * r).stroke;
+  const std::unique_ptr<EngineModel> simbody = findEngine("simbody").build(m);
+  std::map<std::string, double> worst, worst_simbody;
+  struct Thrust {
+    double major = 0.0, minor = 0.0, reversal = NAN, drive = 0.0, previous = NAN, previous_deg = 0.0;
+  };
+  std::map<std::string, Thrust> by_engine;
+  for (double d = -360.0; d < 360.0; d += step) {
+    const double phi = radiansFromDegrees(d);
+    const Evaluation exact = analytic::calcEvaluation(m, phi), centric = analytic::calcEvaluation(single, phi);
+    const Evaluation s = simbody->evaluate(phi);
+    const auto note = [&](const std::string& q, double a, double b, double sb, double scale) {
+      worst[q] = std::max(worst[q], std::fabs(b - a) / scale);
+      worst_simbody[q] = std::max(worst_simbody[q], std::fabs(sb - a) / scale);
     };
-    std::map<std::string, Thrust> by_engine;
-    for (double d = -360.0; d < 360.0; d += step) {
-      const double phi = radiansFromDegrees(d);
-      const Evaluation exact = analytic::calcEvaluation(m, phi), centric = analytic::calcEvaluation(single, phi);
-      const Evaluation s = simbody->evaluate(phi);
-      const auto note = [&](const std::string& q, double a, double b, double sb, double scale) {
-        worst[q] = std::max(worst[q], std::fabs(b - a) / scale);
-        worst_simbody[q] = std::max(worst_simbody[q], std::fabs(sb - a) / scale);
-      };
-      const CylinderEvaluation &x = exact.cylinders[0], &c = centric.cylinders[0], &y = s.cylinders[0];
-      note("x_p", x.x_p, c.x_p, y.x_p, stroke);
-      note("a_p", x.a_p, c.a_p, y.a_p, r * m.engine.speed * m.engine.speed);
-      note("wall_force", x.wall_force, c.wall_force, y.wall_force, sc.force);
-      note("drive_torque", exact.drive_torque, centric.drive_torque, s.drive_torque, sc.torque);
-      for (const auto& [name, e] : {std::pair<std::string, const Evaluation&>{"analytic", exact},
-                                    std::pair<std::string, const Evaluation&>{"simbody", s}}) {
-        Thrust& t = by_engine[name];
-        const double n = e.cylinders[0].wall_force;
-        t.major = std::max(t.major, n);
-        t.minor = std::max(t.minor, -n);
-        t.drive = std::max(t.drive, std::fabs(e.drive_torque));
-        // the sign change nearest the firing outer dead centre (phi = 0 here), within 90 degrees: linear between samples
-        if (std::fabs(d) <= 90.0 && !std::isnan(t.previous) && (t.previous > 0) != (n > 0)) {
-          const double crossing = t.previous_deg + (d - t.previous_deg) * t.previous / (t.previous - n);
-          if (std::isnan(t.reversal) || std::fabs(crossing) < std::fabs(t.reversal)) t.reversal = crossing;
-        }
-        t.previous = n;
-        t.previous_deg = d;
+    const CylinderEvaluation &x = exact.cylinders[0], &c = centric.cylinders[0], &y = s.cylinders[0];
+    note("x_p", x.x_p, c.x_p, y.x_p, stroke);
+    note("a_p", x.a_p, c.a_p, y.a_p, r * m.engine.speed * m.engine.speed);
+    note("wall_force", x.wall_force, c.wall_force, y.wall_force, sc.force);
+    note("drive_torque", exact.drive_torque, centric.drive_torque, s.drive_torque, sc.torque);
+    for (const auto& [name, e] : {std::pair<std::string, const Evaluation&>{"analytic", exact},
+                                  std::pair<std::string, const Evaluation&>{"simbody", s}}) {
+      Thrust& t = by_engine[name];
+      const double n = e.cylinders[0].wall_force;
+      t.major = std::max(t.major, n);
+      t.minor = std::max(t.minor, -n);
+      t.drive = std::max(t.drive, std::fabs(e.drive_torque));
+      // the sign change nearest the firing outer dead centre (phi = 0 here), within 90 degrees: linear between samples
+      if (std::fabs(d) <= 90.0 && !std::isnan(t.previous) && (t.previous > 0) != (n > 0)) {
+        const double crossing = t.previous_deg + (d - t.previous_deg) * t.previous / (t.previous - n);
+        if (std::isnan(t.reversal) || std::fabs(crossing) < std::fabs(t.reversal)) t.reversal = crossing;
       }
+      t.previous = n;
+      t.previous_deg = d;
     }
-    for (const auto& [q, e] : worst) cost.rows.push_back({q, num(f), num(e), num(worst_simbody[q])});
-    for (const auto& [name, t] : by_engine)
-      thrust.rows.push_back({name, num(f), num(t.major), num(t.minor), std::isnan(t.reversal) ? "" : num(t.reversal), num(t.drive)});
   }
+  for (const auto& [q, e] : worst) cost.rows.push_back({q, num(f), num(e), num(worst_simbody[q])});
+  for (const auto& [name, t] : by_engine)
+    thrust.rows.push_back({name, num(f), num(t.major), num(t.minor), std::isnan(t.reversal) ? "" : num(t.reversal), num(t.drive)});
   return {{"offset", cost}, {"offset_thrust", thrust}};
 }
 

@@ -26,9 +26,15 @@
 
 namespace crankcheck::validation {
 
-/// The part's three tables with the rows of one scene (`flywheel`, `flywheel_sizing`; none when it has no [gas] or
-/// needs no flywheel for C = 0.01). The campaign runs one task per scene and one for the sweep: the tables add up.
-TableSet calcFlywheelSceneTables(const Mechanism& scene, bool quick);
+/// The points of a scene's curve (`flywheel`) at which Simbody runs: every third of 13, the exact inertia among
+/// them; with `quick`, the exact inertia's alone.
+std::vector<int> listFlywheelRunPoints(bool quick);
+
+/// The part's three tables with rows of one scene (none when it has no [gas] or needs no flywheel for C = 0.01):
+/// `point` < 0: its `flywheel_sizing` row and the curve's points Simbody does not run; else the curve's point `point`
+/// (one of listFlywheelRunPoints) with Simbody's run. The campaign runs one task for each, and one for the sweep: the
+/// tables add up.
+TableSet calcFlywheelSceneTables(const Mechanism& scene, bool quick, int point);
 
 /// The part's three tables with the rows of the sweep on `parts` (`flywheel_norton`).
 TableSet calcFlywheelNortonTables(const Mechanism& parts, bool quick);

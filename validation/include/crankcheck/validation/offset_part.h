@@ -28,8 +28,13 @@
 
 namespace crankcheck::validation {
 
-/// The part's tables on `parts` (its crank, rod, piston and flywheel); the 0.25-degree samples of one working cycle.
-TableSet calcOffsetTables(const Mechanism& parts, bool quick);
+/// The offsets delta / r of the part: -0.5 .. 0.5 (5 of them with `quick`).
+std::vector<double> listOffsetFractions(bool quick);
+
+/// The part's tables on `parts` (its crank, rod, piston and flywheel) at one offset delta / r = `offset_over_r` (the
+/// campaign runs one task per offset: the tables add up); the 0.25-degree samples of one working cycle (2 degrees
+/// with `quick`).
+TableSet calcOffsetTables(const Mechanism& parts, double offset_over_r, bool quick);
 
 /// The part as the report shows it: heading, caption, sentences read from the data; an empty heading without data.
 ReportPart describeOffsetPart(const TableSet& tables);
