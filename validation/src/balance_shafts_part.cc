@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 #include <utility>
 
 #include "crankcheck/validation/balance.h"
@@ -19,8 +20,8 @@ constexpr int kOrder = 6;
 // from each other exact engine's DFT, relative to `force_scale`.
 void addRows(Table& t, const std::string& kase, const std::string& shafts, const Mechanism& m, double force_scale) {
   for (const BalanceRow& row : calcBalance(m, kOrder)) {
-    const double closed = row.symmetry.decided && row.symmetry.force_cancels ? 0.0 : row.analytic.calcForceAmplitude();
-    std::vector<std::pair<std::string, double>> amplitudes = {{"analytic", closed}};
+    std::vector<std::pair<std::string, double>> amplitudes = {
+        {"analytic", withExactZeros(row.analytic, row.symmetry).calcForceAmplitude()}};
     for (const auto& [name, h] : row.engines) amplitudes.emplace_back(name, h.calcForceAmplitude());
     for (const auto& [engine, a] : amplitudes)
       t.rows.push_back({kase, shafts, engine, std::to_string(row.n), formatNumber(a), formatNumber(a / force_scale)});
@@ -121,7 +122,7 @@ ReportPart describeBalanceShaftPart(const TableSet& tables) {
                               " of the force scale (" + h.engine + "); " +
                               (others == 0.0 ? std::string("the closed form of every other harmonic is unchanged.")
                                              : "the other harmonics change by at most " + shortNumber(others, 2) +
-                                                   " of the force scale.")); 
+                                                   " of the force scale."));
   }
   return part;
 }

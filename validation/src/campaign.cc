@@ -843,10 +843,10 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   // The user's scenes, or the example scenes (scenes/*.toml) in the default campaign: parts 12, 15 and 16.
   std::vector<Mechanism> pin_scenes = options.scenes;
   if (pin_scenes.empty()) pin_scenes = loadExampleScenes();
-  // The longest tasks first, so that the jobs finish together (the order changes no table: they are sorted): Simbody's
-  // flywheel runs, the offset sweep (part 14), then the cross-checks and the gate's sweep, largest k first.
-  // Flywheel sizing (part 15): the scenes with gas (the example scenes in the default campaign) and the base's parts.
-  // One task per Simbody run (the campaign's longest work: they spread over the jobs), one per scene for the rest.
+  // The longest tasks first, so that the jobs finish together (the order changes no table: they are sorted): the
+  // flywheel sizings of part 15 (one task per Simbody run, one per gas scene for the rest; the sweep on the base's
+  // parts is flywheel_norton below), the offset sweep of part 14 (one task per offset), then the cross-checks and the
+  // gate's sweep, largest k first.
   for (const Mechanism& m : pin_scenes) {
     if (!m.gas) continue;
     tasks.push_back({"flywheel " + m.name, false, [m, quick] { return calcFlywheelSceneTables(m, quick, -1); }});
@@ -935,7 +935,7 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
     if (m.name.rfind("marine", 0) == 0) marine = m;
   tasks.push_back({"torque_split", false, [base, marine] { return calcTorqueSplitTables(base, marine); }});
   tasks.push_back({"rod_models", false, [base, marine] { return calcRodModelTables(base, marine); }});
-  // Pin loads as polar diagrams: the user's scenes, or the example scenes (pin_scenes) in the default campaign.
+  // Pin loads as polar diagrams (part 12) of pin_scenes.
   for (size_t i = 0; i < pin_scenes.size(); ++i)
     tasks.push_back({"pin_load_polar " + pin_scenes[i].name, false,
                      [m = pin_scenes[i], i, quick] { return calcPinLoadTables({m}, static_cast<int>(i), quick ? 4.0 : 2.0); }});

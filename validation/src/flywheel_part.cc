@@ -68,6 +68,7 @@ TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, int point) {
     const bool run = std::find(runs.begin(), runs.end(), i) != runs.end();
     if (point < 0 ? run : i != point) continue;  // each point in one task: the runs alone, the rest together
     const double I = exact.exact_inertia * std::pow(10.0, -0.5 + static_cast<double>(i) / (points - 1));  // 0.3 .. 3
+    const analytic::SteadyRun steady = analytic::calcSteadyRun(m, I, exact.load_torque);
     std::string simbody;
     if (run) {
       Mechanism with = m;
@@ -77,9 +78,9 @@ TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, int point) {
       options.load_torque = exact.load_torque;
       options.revolutions = 2;
       options.accuracy = quick ? 1e-8 : 1e-10;
-      simbody = num(simbody_models::simulateFreeRun(with, analytic::calcSteadyRun(m, I, exact.load_torque).omega0, options).delta);
+      simbody = num(simbody_models::simulateFreeRun(with, steady.omega0, options).delta);
     }
-    curve.rows.push_back({m.name, num(I), num(analytic::calcSteadyRun(m, I, exact.load_torque).delta), simbody});
+    curve.rows.push_back({m.name, num(I), num(steady.delta), simbody});
   }
   return tables;
 }
