@@ -114,6 +114,20 @@ TEST_F(OutputSafetyTest, ReplacesOnlyAReportItWroteItself) {
                 "\"data.csv\"");
 }
 
+// A folder full of other things (`--out /`, `--out ~`) is refused at the first entry crankcheck did not write, with
+// status 2 and nothing below that entry read: the walk used to go on into /proc and end with "permission denied"
+// (status 3), and walked a whole home folder before refusing.
+TEST_F(OutputSafetyTest, RefusesAFolderOfOtherThingsAtItsFirstEntry) {
+  for (const std::string root : {"/", "/proc", "/usr"}) {
+    const ProgramResult r = testing::runCrankcheck({"validate", "--quick", "--out", root});
+    EXPECT_EQ(r.exit_status, 2) << root << ": " << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_EQ(r.err.rfind("crankcheck: --out: \"" + root + "\": holds ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("which crankcheck did not write"), std::string::npos) << r.err;
+  }
+}
+
 TEST_F(OutputSafetyTest, AnEmptyFolderIsUsed) {
   fs::create_directories(dir_ / "empty");
   const ProgramResult r = writeShard(dir_ / "empty");

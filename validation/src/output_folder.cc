@@ -95,7 +95,10 @@ void checkOutputFolder(const fs::path& target, const std::string& flag) {
   if (fs::is_empty(path, ec) && !ec) return;
   const Manifest manifest = readManifest(path);
   try {
-    for (const fs::directory_entry& entry : entriesUnder(path)) {
+    // Each entry is judged as the walk reaches it, before the walk descends into it: the first one crankcheck did
+    // not write ends the check (`--out /` or `--out ~` is refused at its first entry, nothing below it is read).
+    for (auto it = fs::recursive_directory_iterator(path); it != fs::recursive_directory_iterator(); ++it) {
+      const fs::directory_entry& entry = *it;
       const std::string rel = entry.path().lexically_relative(path).generic_string();
       const fs::file_status status = entry.symlink_status();
       bool ours = false;
