@@ -22,6 +22,7 @@ sigset_t interruptSignals() {
   sigemptyset(&set);
   sigaddset(&set, SIGINT);
   sigaddset(&set, SIGTERM);
+  sigaddset(&set, SIGHUP);  // the terminal closed
   return set;
 }
 
@@ -33,9 +34,14 @@ void watch() {
   validation::killRunningPrograms();
   {
     std::lock_guard<std::mutex> lock(g_mutex);
-    if (g_folder != nullptr) g_folder->abandon();
-    std::fprintf(stderr, "\ncrankcheck: interrupted by %s; the partial output was removed, the previous report is as it was\n",
-                 signal_number == SIGINT ? "SIGINT" : "SIGTERM");
+    const char* name = signal_number == SIGINT ? "SIGINT" : signal_number == SIGTERM ? "SIGTERM" : "SIGHUP";
+    if (g_folder != nullptr) {
+      g_folder->abandon();
+      std::fprintf(stderr, "\ncrankcheck: interrupted by %s; the partial output was removed, the previous report is as it was\n",
+                   name);
+    } else {
+      std::fprintf(stderr, "\ncrankcheck: interrupted by %s; nothing was written\n", name);
+    }
     std::fflush(stderr);
     std::_Exit(128 + signal_number);  // with the lock held: no install starts after this point
   }
@@ -43,7 +49,7 @@ void watch() {
 
 }  // namespace
 
-InterruptGuard::InterruptGuard(validation::OutputFolder& folder) {
+void watchInterrupts() {
   static const bool started = [] {
     const sigset_t set = interruptSignals();
     pthread_sigmask(SIG_BLOCK, &set, nullptr);
@@ -51,6 +57,10 @@ InterruptGuard::InterruptGuard(validation::OutputFolder& folder) {
     return true;
   }();
   (void)started;
+}
+
+InterruptGuard::InterruptGuard(validation::OutputFolder& folder) {
+  watchInterrupts();
   std::lock_guard<std::mutex> lock(g_mutex);
   g_folder = &folder;
 }

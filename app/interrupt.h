@@ -1,11 +1,18 @@
 #pragma once
 /// @file
-/// SIGINT and SIGTERM during `validate` and `report merge`: the partial folder is removed, the previous report
-/// stays as it was, and crankcheck exits with status 128 + the signal number.
+/// SIGINT, SIGTERM and SIGHUP: every program crankcheck started is ended with it, during `validate` and `report
+/// merge` the partial folder is removed and the previous report stays as it was, and crankcheck exits with status
+/// 128 + the signal number.
 
 #include "crankcheck/validation/output_folder.h"
 
 namespace crankcheck::app {
+
+/// Blocks SIGINT, SIGTERM and SIGHUP in the calling thread (and so in every thread it starts later) and starts the
+/// one watcher thread that receives them: it kills every external program crankcheck is running (gnuplot, a graded
+/// program), abandons the output folder of a live InterruptGuard, and exits with 128 + the signal number. Call it
+/// first thing in main, before any other thread and any child. Idempotent.
+void watchInterrupts();
 
 /// While a guard lives, SIGINT or SIGTERM kills the external programs crankcheck is running (gnuplot), abandons
 /// `folder` (OutputFolder::abandon) and exits with 128 + the signal number. The signals are blocked in every thread

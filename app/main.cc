@@ -12,6 +12,7 @@
 #include "flywheel_command.h"
 #include "motion_command.h"
 #include "grade_command.h"
+#include "interrupt.h"
 #include "validate_command.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/output_folder.h"
@@ -24,7 +25,8 @@ constexpr const char* kExitStatus =
     "  1  a comparison that should hold failed\n"
     "  2  bad input or usage: a bad scene, flag or output folder; nothing was written\n"
     "  3  the environment failed: a tool missing (gnuplot), a disk full, a write refused\n"
-    "  128+N  interrupted by signal N (SIGINT 130, SIGTERM 143); the partial output was removed\n"
+    "  128+N  interrupted by signal N (SIGHUP 129, SIGINT 130, SIGTERM 143); the partial output was removed and\n"
+    "         every program crankcheck started was ended\n"
     "Output folders (--out): crankcheck creates a folder, or replaces one that is empty or holds a report it wrote\n"
     "itself (crankcheck-manifest.json); any other folder, a file or a symbolic link is refused with status 2.";
 
@@ -43,6 +45,7 @@ std::string parseErrorMessage(const CLI::ParseError& e) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  crankcheck::app::watchInterrupts();  // from here on, a signal ends every child with crankcheck
   CLI::App app{"crankcheck: validates slider-crank and k-crank formulas against an independent Simbody model"};
   app.set_version_flag("--version", std::string("crankcheck ") + crankcheck::validation::getCrankcheckVersion());
   app.footer(kExitStatus);

@@ -150,6 +150,74 @@ TEST_F(OutputSafetyTest, MissingGnuplotIsFoundBeforeAnyWork) {
   EXPECT_EQ(snapshot(dir_), (std::map<std::string, std::string>{{"bin", "<folder>"}}));
 }
 
+// A gnuplot that never answers (here a stand-in on PATH that writes its process id and sleeps) is ended at
+// kGnuplotVersionSeconds and crankcheck stops before any work: status 3, one line, nothing written, the child gone.
+class HangingGnuplotTest : public OutputSafetyTest {
+ protected:
+  void SetUp() override {
+    fs::create_directories(dir_ / "bin");
+    const fs::path fake = dir_ / "bin/gnuplot";
+    writeFile(fake, "#!/bin/sh\necho $$ > '" + (dir_ / "gnuplot.pid").string() + "'\nexec /bin/sleep 600\n");
+    fs::permissions(fake, fs::perms::owner_all);
+  }
+  // The stand-in's process id, once it has started (at most 20 s: crankcheck starts it before any work).
+  pid_t waitForGnuplot() {
+    for (int i = 0; i < 2000; ++i) {
+      std::ifstream in(dir_ / "gnuplot.pid");
+      pid_t pid = 0;
+      if (in >> pid && pid > 0) return pid;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return 0;
+  }
+  // Whether `pid` still runs (a zombie left to the system's reaper has ended), waiting up to 5 s for it to end.
+  static bool stillRuns(pid_t pid) {
+    for (int i = 0; i < 500; ++i) {
+      std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+      std::string stat;
+      if (!std::getline(in, stat)) return false;
+      const size_t close = stat.rfind(')');
+      if (close != std::string::npos && close + 2 < stat.size() && stat[close + 2] == 'Z') return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return true;
+  }
+  std::vector<std::string> path() const { return {"PATH=" + (dir_ / "bin").string()}; }
+};
+
+TEST_F(HangingGnuplotTest, IsEndedAtItsTimeLimit) {
+  const ProgramResult r = testing::runCrankcheck({"validate", "--quick", "--out", (dir_ / "report").string()}, path());
+  EXPECT_EQ(r.exit_status, 3) << r.err;
+  EXPECT_EQ(r.err, "crankcheck: gnuplot: 'gnuplot --version' did not answer within 10 s; gnuplot was ended\n");
+  EXPECT_EQ(r.out, "");
+  const pid_t gnuplot = waitForGnuplot();
+  ASSERT_GT(gnuplot, 0);
+  EXPECT_FALSE(stillRuns(gnuplot));
+  EXPECT_FALSE(fs::exists(dir_ / "report"));
+}
+
+// SIGTERM, SIGINT or SIGHUP while crankcheck waits on a child (before any output folder exists): status 128 + the
+// signal, and the child does not outlive crankcheck.
+class SignalWhileWaitingTest : public HangingGnuplotTest, public ::testing::WithParamInterface<int> {};
+
+TEST_P(SignalWhileWaitingTest, EndsTheChildWithCrankcheck) {
+  validation::ProgramCall call{{CRANKCHECK_BINARY, "validate", "--quick", "--out", (dir_ / "report").string()}, {}, path()};
+  call.timeout_seconds = testing::kCliRunSeconds;
+  validation::RunningProgram run = validation::startProgram(call);
+  const pid_t gnuplot = waitForGnuplot();
+  ASSERT_GT(gnuplot, 0) << "crankcheck never started gnuplot";
+  ASSERT_EQ(::kill(run.pid(), GetParam()), 0);
+  const ProgramResult r = run.wait();
+  EXPECT_EQ(r.exit_status, 128 + GetParam()) << r.err;
+  EXPECT_NE(r.err.find("interrupted by"), std::string::npos) << r.err;
+  EXPECT_FALSE(stillRuns(gnuplot)) << "gnuplot (pid " << gnuplot << ") outlived crankcheck";
+  EXPECT_FALSE(fs::exists(dir_ / "report"));
+}
+INSTANTIATE_TEST_SUITE_P(Signals, SignalWhileWaitingTest, ::testing::Values(SIGINT, SIGTERM, SIGHUP),
+                         [](const auto& info) {
+                           return info.param == SIGINT ? "SIGINT" : info.param == SIGTERM ? "SIGTERM" : "SIGHUP";
+                         });
+
 // A write that fails (here: the file-size limit, which refuses writes as a full disk does, even to root) is the
 // environment's failure: status 3, the file named, the previous report as it was, no partial folder left.
 TEST_F(OutputSafetyTest, AFailedWriteIsStatus3AndKeepsThePreviousReport) {

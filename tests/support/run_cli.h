@@ -19,6 +19,10 @@
 
 namespace crankcheck::testing {
 
+/// [s] The limit on one crankcheck run in a test (every child has one): the longest, a full campaign, takes about
+/// two minutes on two cores; ctest's own timeout (1500 s) is the test's.
+constexpr double kCliRunSeconds = 1200.0;
+
 /// Runs `crankcheck ARGS...` in `working_dir` (empty: the test's) with `environment` changes ("NAME=VALUE",
 /// "NAME" to remove); returns its exit status, stdout and stderr.
 inline validation::ProgramResult runCrankcheck(const std::vector<std::string>& args,
@@ -26,6 +30,7 @@ inline validation::ProgramResult runCrankcheck(const std::vector<std::string>& a
                                                const std::filesystem::path& working_dir = {}) {
   validation::ProgramCall call{{CRANKCHECK_BINARY}, working_dir, environment};
   call.argv.insert(call.argv.end(), args.begin(), args.end());
+  call.timeout_seconds = kCliRunSeconds;
   return validation::runProgram(call);
 }
 
@@ -33,6 +38,7 @@ inline validation::ProgramResult runCrankcheck(const std::vector<std::string>& a
 inline validation::RunningProgram startCrankcheck(const std::vector<std::string>& args) {
   validation::ProgramCall call{{CRANKCHECK_BINARY}};
   call.argv.insert(call.argv.end(), args.begin(), args.end());
+  call.timeout_seconds = kCliRunSeconds;
   return validation::startProgram(call);
 }
 

@@ -241,6 +241,8 @@ ProgramResult RunningProgram::wait() {
 
 RunningProgram startProgram(const ProgramCall& call) {
   if (call.argv.empty()) throw std::logic_error("startProgram: empty argument vector");
+  if (!(call.timeout_seconds > 0.0))
+    throw std::logic_error("startProgram: " + call.argv[0] + ": no time limit (every child has one)");
   const fs::path program = findOnPath(call.argv[0], pathSetting(call.environment));
   if (program.empty())
     throw EnvironmentError(call.argv[0] + ": not found (no executable of that name on PATH)");

@@ -666,7 +666,12 @@ std::string checkGnuplot() {
   if (findProgram("gnuplot").empty())
     throw EnvironmentError("gnuplot: not found on PATH; the report's figures need it (Debian package gnuplot-nox, "
                            "which ./run.sh installs)");
-  const ProgramResult r = runProgram({{"gnuplot", "--version"}});
+  ProgramCall call{{"gnuplot", "--version"}};
+  call.timeout_seconds = kGnuplotVersionSeconds;
+  const ProgramResult r = runProgram(call);
+  if (r.timed_out)
+    throw EnvironmentError("gnuplot: 'gnuplot --version' did not answer within " + formatNumber(kGnuplotVersionSeconds) +
+                           " s; gnuplot was ended");
   std::string version = r.out;
   while (!version.empty() && (version.back() == '\n' || version.back() == '\r')) version.pop_back();
   if (r.exit_status != 0 || version.empty())

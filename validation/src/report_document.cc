@@ -120,8 +120,12 @@ std::string ReportDocument::toHtml() const {
 void drawFigure(const std::string& name, const fs::path& dir, const std::string& definitions) {
   const fs::path script = fs::absolute(findReportsDir() / (name + ".gp"));
   if (!fs::is_regular_file(script)) throw EnvironmentError("gnuplot script not found: " + quotePath(script));
-  const ProgramResult r =
-      runProgram({{"gnuplot", "-e", "in_dir='data'; out_dir='.'; " + definitions, script.string()}, dir});
+  ProgramCall call{{"gnuplot", "-e", "in_dir='data'; out_dir='.'; " + definitions, script.string()}, dir};
+  call.timeout_seconds = kGnuplotFigureSeconds;
+  const ProgramResult r = runProgram(call);
+  if (r.timed_out)
+    throw EnvironmentError("gnuplot: " + quotePath(script) + ": no figure within " + std::to_string(static_cast<int>(kGnuplotFigureSeconds)) +
+                           " s; gnuplot was ended");
   if (r.exit_status != 0 || !fs::exists(dir / (name + ".svg")) || !fs::exists(dir / (name + ".png")))
     throw EnvironmentError("gnuplot failed on " + quotePath(script) + ":\n" + r.out + r.err);
 }

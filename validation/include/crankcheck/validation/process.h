@@ -21,7 +21,8 @@ struct ProgramCall {
   std::vector<std::string> environment = {};
   /// What the program reads on stdin (written through a pipe, then closed); none: stdin is /dev/null.
   std::optional<std::string> input = std::nullopt;
-  /// [s] The program (and every process of its process group) is killed with SIGKILL after this long; 0: no limit.
+  /// [s] The program (and every process of its process group) is killed with SIGKILL after this long. Required:
+  /// crankcheck never waits on a child without a limit (startProgram refuses a call without one).
   double timeout_seconds = 0.0;
   /// [bytes] The program is killed with SIGKILL when its stdout grows past this; 0: no limit.
   size_t output_limit = 0;
@@ -69,6 +70,7 @@ class RunningProgram {
 /// and stderr are captured, the signal mask and the dispositions of SIGINT, SIGTERM and SIGPIPE are reset to the
 /// defaults whatever the caller's are. Writing the input never raises SIGPIPE in the caller.
 /// @throws EnvironmentError naming the program when it is not found or cannot be started.
+/// @throws std::logic_error when the call has no time limit (timeout_seconds <= 0): a caller's mistake.
 RunningProgram startProgram(const ProgramCall& call);
 
 /// startProgram, then wait. While it runs the child is listed for killRunningPrograms().

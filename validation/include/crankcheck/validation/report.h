@@ -37,8 +37,13 @@ struct ReportInfo {
   std::string gnuplot_version;   ///< from checkGnuplot()
 };
 
+/// [s] How long `gnuplot --version` may take: it answers in milliseconds; a gnuplot that has not answered in 10 s
+/// (a wrapper waiting on a display, a hung install) is ended and crankcheck stops before the campaign.
+constexpr double kGnuplotVersionSeconds = 10.0;
+
 /// Finds gnuplot on PATH and asks its version: the check made before a campaign that ends in figures (well under
-/// a second). @return gnuplot's version line. @throws EnvironmentError when gnuplot is missing or does not run.
+/// a second). @return gnuplot's version line. @throws EnvironmentError when gnuplot is missing, does not run or
+/// does not answer within kGnuplotVersionSeconds.
 std::string checkGnuplot();
 
 /// The unit of a column of table `table` as its CSV header shows it: "" (text), "-" (dimensionless), "N m", ...,

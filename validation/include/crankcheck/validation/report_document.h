@@ -33,10 +33,15 @@ class ReportDocument {
   std::vector<std::pair<int, std::string>> headings_;
 };
 
+/// [s] How long gnuplot may take to draw one figure: the largest takes under a second; two minutes leave room for a
+/// loaded machine and still end a gnuplot that hangs.
+constexpr double kGnuplotFigureSeconds = 120.0;
+
 /// Draws figure NAME: runs gnuplot on reports/NAME.gp (findReportsDir) in `dir` without a shell; the script reads
 /// data/NAME.csv and writes NAME.svg and NAME.png. `definitions` are extra gnuplot -e assignments made by the caller
 /// from its own fixed names (never from user input).
-/// @throws EnvironmentError if the script is missing or gnuplot fails.
+/// @throws EnvironmentError if the script is missing, gnuplot fails, or it has not finished within
+/// kGnuplotFigureSeconds (then it is ended).
 void drawFigure(const std::string& name, const std::filesystem::path& dir, const std::string& definitions = "");
 
 }  // namespace crankcheck::validation
