@@ -251,6 +251,12 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
     requireFinite(b.ratio, key + ".ratio");
     require(b.ratio != 0.0 && std::fabs(b.ratio) <= kMaxCylinders, key + ".ratio",
             "must be nonzero and at most 64 in magnitude (shaft turns per crank turn)", b.ratio);
+    // A whole number: the shaft's motion then repeats with every crank turn, as the harmonics (order n of the
+    // turn), the energy integrals and the free run over a cycle assume; 1.5 would need two crank turns.
+    require(b.ratio == std::round(b.ratio), key + ".ratio",
+            "must be a whole number of shaft turns per crank turn (e.g. 1, -1, 2, -2), so that the mechanism repeats "
+            "every crank turn",
+            b.ratio);
     requireFinite(b.mass, key + ".mass");
     require(b.mass > 0.0, key + ".mass", "must be > 0 (a shaft without a mass balances nothing)", b.mass);
     require(b.mass <= kMaxMass.value, key + ".mass", atMost(kMaxMass), b.mass);

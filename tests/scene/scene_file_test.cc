@@ -297,6 +297,12 @@ INSTANTIATE_TEST_SUITE_P(
                  "balance_shaft[0].mass", "must be > 0"},
         BadScene{"shaft_ratio_zero", "[piston]", "[[balance_shaft]]\nratio = 0\nmass = 1\nradius = 0.04\nposition = [0, -0.1, 0]\n[piston]",
                  "balance_shaft[0].ratio", "must be nonzero"},
+        // Not a whole number: the motion would not repeat every crank turn (validate failed after seconds of work,
+        // balance printed 1e-300 as 0.000000); the value is named as given.
+        BadScene{"shaft_ratio_fraction", "[piston]", "[[balance_shaft]]\nratio = 1.5\nmass = 1\nradius = 0.04\nposition = [0, -0.1, 0]\n[piston]",
+                 "balance_shaft[0].ratio", "repeats every crank turn (got 1.5)"},
+        BadScene{"shaft_ratio_tiny", "[piston]", "[[balance_shaft]]\nratio = 1e-300\nmass = 1\nradius = 0.04\nposition = [0, -0.1, 0]\n[piston]",
+                 "balance_shaft[0].ratio", "must be a whole number of shaft turns per crank turn (e.g. 1, -1, 2, -2), so that the mechanism repeats every crank turn (got 1e-300)"},
         BadScene{"shaft_position_of_two", "[piston]", "[[balance_shaft]]\nratio = 2\nmass = 1\nradius = 0.04\nposition = [0, -0.1]\n[piston]",
                  "balance_shaft[0].position", "must be [x, y, z]"},
         BadScene{"shaft_unknown_key", "[piston]", "[[balance_shaft]]\nratio = 2\nmass = 1\nradius = 0.04\nposition = [0, 0, 0]\nteeth = 40\n[piston]",

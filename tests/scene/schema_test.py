@@ -186,6 +186,8 @@ def cases():
     add("balance_shaft_without_mass", edit(SHAFTS, (("balance_shaft", 1, "mass"), DELETE)), INVALID)
     add("balance_shaft_position_of_two", edit(SHAFTS, (("balance_shaft", 0, "position"), [0.0, 0.0])), INVALID)
     add("balance_shaft_unknown_key", edit(SHAFTS, (("balance_shaft", 0, "teeth"), 40)), INVALID)
+    add("balance_shaft_ratio_fraction", edit(SHAFTS, (("balance_shaft", 0, "ratio"), 1.5)), INVALID)
+    add("balance_shaft_ratio_tiny", edit(SHAFTS, (("balance_shaft", 0, "ratio"), 1e-300)), INVALID)
     add("balance_shaft_ratio_zero", edit(SHAFTS, (("balance_shaft", 0, "ratio"), 0)), parser_only("a balance shaft's ratio is nonzero"))
     add("pin_offset_in_engine_with_cylinders", edit(LAYOUT, (("engine", "pin_offset"), 0.001)), INVALID)
     for table in ("engine", "crank", "rod", "piston"):
