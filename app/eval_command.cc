@@ -112,7 +112,7 @@ EvalOutput runEval(const EvalOptions& options) {
   std::vector<double> results_phi_deg;  // the user's angle of each result, printed as given
   std::vector<TorqueSplit> splits;
   for (double phi_deg : angles_deg) {
-    const double phi = radiansFromDegrees(phi_deg);
+    const double phi = crankAngleFromDegrees(phi_deg);  // any finite angle, reduced exactly (mechanism.h)
     for (Models& model : models) {
       try {
         results.push_back(model.whole->evaluate(phi));

@@ -8,7 +8,8 @@ packages=(g++ cmake make pkg-config libeigen3-dev libsimbody-dev libcli11-dev li
           nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox libhwy-dev libsleef-dev
           libcmark-gfm-dev libcmark-gfm-extensions-dev python3 chromium python3-jsonschema parallel slurmctld slurmd
           libmujoco-dev libqhull-dev  # libqhull-dev: the include folder Debian's mujoco::mujoco target names
-          python3-dev pybind11-dev python3-numpy python3-pytest)  # the Python module (python/) and its tests
+          python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module (python/) and its tests
+          python3-mpmath)  # the high-precision reference of tests/python/test_angles.py
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

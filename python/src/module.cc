@@ -187,7 +187,15 @@ py::dict evaluate(const ScenePtr& scene, const py::handle& phi_in, const std::st
                                : allocate(q, m.engine.cylinders, angle_shape));
       out.at(q.name) = static_cast<double*>(outputs.back().buffer.mutable_data());
     }
-  const std::span<const double> angles = spanOf(phi);
+  std::span<const double> angles = spanOf(phi);
+  // Angles beyond 4 pi in magnitude are reduced to rounding (reduceCrankAngle) into a copy; the usual angles are
+  // read in place, from phi's own buffer.
+  std::vector<double> reduced;
+  if (std::any_of(angles.begin(), angles.end(), [](double a) { return std::fabs(a) > 4.0 * M_PI; })) {
+    reduced.assign(angles.begin(), angles.end());
+    for (double& a : reduced) a = reduceCrankAngle(a);
+    angles = reduced;
+  }
   {
     py::gil_scoped_release release;
     try {
@@ -624,7 +632,8 @@ radians. Immutable; thread-safe (every call builds its own engine model).)doc")
       .def("evaluate", &evaluate, py::arg("phi"), py::arg("engine") = "analytic", py::arg("quantities") = py::none(),
            py::kw_only(), py::arg("out") = py::none(),
            R"doc(
-Every quantity of `crankcheck eval` at the crank angles `phi` [rad] (a NumPy array of any shape, or a float) by
+Every quantity of `crankcheck eval` at the crank angles `phi` [rad] (a NumPy array of any shape, or a float; any
+finite angle: beyond 4 pi in magnitude it is reduced to rounding first, see README "Angles of any size") by
 `engine` (any name of crankcheck.engines()). Returns a dict of NumPy arrays named as eval's JSON: U, Q, U_star, Q_star
 (None without a flywheel or at rest), drive_torque with phi's shape; bearing_force, shaking_force (..., 2);
 shaking_moment (..., 3), X and Y NaN without axial positions (eval: null); per cylinder x_p, v_p, a_p, wall_force,
@@ -669,11 +678,12 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
   mod.def("radians_from_degrees", [](const py::handle& degrees_in) {
         const Angles degrees = asAngles(degrees_in);
         py::array_t<double> radians(std::vector<py::ssize_t>(degrees.shape(), degrees.shape() + degrees.ndim()));
-        for (py::ssize_t i = 0; i < degrees.size(); ++i) radians.mutable_data()[i] = radiansFromDegrees(degrees.data()[i]);
+        for (py::ssize_t i = 0; i < degrees.size(); ++i) radians.mutable_data()[i] = crankAngleFromDegrees(degrees.data()[i]);
         return radians.ndim() == 0 ? py::object(radians[py::tuple()]) : py::object(radians);
       }, py::arg("degrees"),
-      "Degrees to radians as the CLI converts --phi-deg (exact multiples of 90 degrees become n x (pi/2) exactly, "
-      "so that sin and cos are exact at quarter turns): the same angles as `crankcheck eval --phi-deg`.");
+      "Degrees to radians as the CLI converts --phi-deg (beyond 720 degrees reduced exactly modulo 720 first; exact "
+      "multiples of 90 degrees become n x (pi/2) exactly, so that sin and cos are exact at quarter turns): the same "
+      "angles as `crankcheck eval --phi-deg`.");
   mod.def("_grade", &grade, py::arg("function"), py::arg("scenes"), py::arg("quick"), py::arg("jobs"), py::arg("timeout"),
           py::arg("out"), py::arg("relay"), py::arg("program_name"));
   mod.def("_input_buffer_address", [](const py::handle& phi) {

@@ -83,6 +83,18 @@ double radiansFromDegrees(double degrees) {
   return degrees * (M_PI / 180.0);
 }
 
+double reduceCrankAngle(double phi) {
+  if (!(std::fabs(phi) > 4.0 * M_PI)) return phi;  // also NaN
+  if (!std::isfinite(phi)) return phi;
+  const double half = 0.5 * phi;  // exact
+  return 2.0 * std::atan2(std::sin(half), std::cos(half));
+}
+
+double crankAngleFromDegrees(double degrees) {
+  if (std::fabs(degrees) > 720.0 && std::isfinite(degrees)) degrees = std::fmod(degrees, 720.0);  // exact
+  return radiansFromDegrees(degrees);
+}
+
 double degreesFromRadians(double radians) {
   if (std::isfinite(radians) && radians != 0.0) {
     const double quarter_turns = std::nearbyint(radians / M_PI_2);

@@ -141,6 +141,17 @@ PhaseTurns calcPhaseTurns(int cylinders, Cycle cycle, Acting acting);
 double radiansFromDegrees(double degrees);
 double degreesFromRadians(double radians);
 
+/// [rad] The crank angle phi [rad] brought into [-4 pi, 4 pi], to rounding, for any finite phi: every quantity
+/// repeats after 4 pi (a four-stroke cycle; a two-stroke's 2 pi divides it), and the engines keep their promised
+/// accuracy only for angles of that size (phi + gamma_j and Simbody's q lose ulp(phi): at 1e17 deg the fourth digit).
+/// |phi| <= 4 pi is returned as it is, bit for bit. Beyond, phi / 2 is exact and glibc's sin and cos reduce any
+/// double exactly (Payne-Hanek), so 2 atan2(sin(phi / 2), cos(phi / 2)), in (-2 pi, 2 pi], is within about 1e-15 rad
+/// of phi modulo 4 pi: the rounding of an angle of a turn or two. NaN and infinities are returned as they are.
+double reduceCrankAngle(double phi);
+/// [rad] A crank angle typed in degrees, reduced exactly: beyond 720 degrees in magnitude, fmod(degrees, 720) (exact
+/// for every finite double) first, then radiansFromDegrees. So `--phi-deg 1e18` is the angle 640 degrees, as it is.
+double crankAngleFromDegrees(double degrees);
+
 std::string toString(Cycle cycle);   ///< "two-stroke" | "four-stroke"
 std::string toString(Acting acting); ///< "single" | "double"
 
