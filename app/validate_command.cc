@@ -17,6 +17,7 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/report.h"
+#include "crankcheck/validation/verdict.h"
 #include "crankcheck/validation/errors.h"
 #include "interrupt.h"
 #include "scene_input.h"
@@ -33,6 +34,9 @@ void addValidateOptions(CLI::App& command, ValidateOptions& options) {
                      "other folder or file is refused")
       ->capture_default_str();
   command.add_flag("--quick", options.quick, "A fast smoke run: fewer lambdas, angles and methods");
+  command.add_flag("--verbose", options.verbose,
+                   "Print the table of every family of cases on the terminal (without it: only the families that failed; "
+                   "the report always has all of it)");
   command.add_option("--jobs", options.jobs, "Worker threads (default: one per core)")->check(CLI::Range(1, 1024));
   command.add_option("--shard", options.shard,
                      "Run only part I of N (0-based) of the campaign and write its data for 'crankcheck report merge'");
@@ -42,6 +46,7 @@ void addMergeOptions(CLI::App& command, MergeOptions& options) {
   command.add_option("shards", options.shard_dirs, "Shard folders written by 'crankcheck validate --shard I/N'")
       ->required();
   command.add_option("--out", options.out, "Report folder (the same rule as validate --out)")->capture_default_str();
+  command.add_flag("--verbose", options.verbose, "Print the table of every family of cases (as validate --verbose)");
 }
 
 namespace {
@@ -103,17 +108,26 @@ TableSet runTasks(const std::vector<Task>& tasks, int jobs) {
   return merged;
 }
 
-bool allPass(const TableSet& tables) {
-  const std::vector<validation::SummaryRow> summary = validation::summarize(tables);
-  return std::all_of(summary.begin(), summary.end(), [](const auto& s) { return s.pass; });
-}
+bool allPass(const TableSet& tables) { return validation::allAgree(validation::calcVerdicts(tables)); }
 
-int reportAndInstall(const TableSet& tables, validation::ReportInfo& info, validation::OutputFolder& out) {
+// The terminal's end: the families' table (all of it with --verbose, else only the families that failed), the
+// verdict (one line per engine, the ctest-style closing line) and where the report is.
+int reportAndInstall(const TableSet& tables, validation::ReportInfo& info, validation::OutputFolder& out, bool verbose) {
   validation::renderReport(tables, info, out.getStaging());
   out.install("report");
-  const bool pass = allPass(tables);
-  std::cout << validation::formatSummary(validation::summarize(tables)) << "\n"
-            << (pass ? "All comparisons agree." : "SOME COMPARISONS FAIL (see the summary).") << "\n"
+  const std::vector<validation::EngineVerdict> verdicts = validation::calcVerdicts(tables);
+  const bool pass = validation::allAgree(verdicts);
+  std::vector<validation::SummaryRow> families = validation::summarize(tables);
+  if (!verbose) std::erase_if(families, [](const validation::SummaryRow& s) { return s.pass; });
+  if (!families.empty())
+    std::cout << (verbose ? "Every family of cases:\n" : "The families of cases that FAIL:\n") << validation::formatSummary(families)
+              << "\n";
+  std::cout << "crankcheck validate" << (info.quick ? " --quick" : "") << ": the analytic engine against " << verdicts.size()
+            << " engine(s)"
+            << (info.shards > 1 ? ", merged from " + std::to_string(info.shards) + " shards"
+                                : ", in " + validation::shortNumber(info.seconds, 3) + " s")
+            << "\n"
+            << validation::formatVerdict(verdicts)
             << "Report: " << (out.getTarget() / "index.md").string() << " (also index.html)\n";
   return pass ? 0 : 1;
 }
@@ -177,7 +191,7 @@ int runValidate(const ValidateOptions& options) {
               << ". Merge the shards with: crankcheck report merge SHARD_DIR... --out DIR\n";
     return pass ? 0 : 1;
   }
-  return reportAndInstall(tables, info, out);
+  return reportAndInstall(tables, info, out, options.verbose);
 }
 
 int runMerge(const MergeOptions& options) {
@@ -209,7 +223,7 @@ int runMerge(const MergeOptions& options) {
   info.shards = first.count;
   InterruptGuard interrupt(out);
   out.createStaging();
-  return reportAndInstall(tables, info, out);
+  return reportAndInstall(tables, info, out, options.verbose);
 }
 
 }  // namespace crankcheck::app

@@ -15,11 +15,13 @@ struct ValidateOptions {
   bool quick = false;
   int jobs = 0;            ///< 0: one per core
   std::string shard;       ///< "I/N", empty = the whole campaign
+  bool verbose = false;    ///< the families' table in full on the terminal (else only the families that failed)
 };
 
 struct MergeOptions {
   std::vector<std::string> shard_dirs;
   std::string out = "out/report";
+  bool verbose = false;    ///< as ValidateOptions::verbose
 };
 
 void addValidateOptions(CLI::App& command, ValidateOptions& options);

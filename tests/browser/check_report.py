@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
 """Opens a report's index.html in headless Chromium and fails on anything a reader would see broken.
 
-    check_report.py CHROMIUM REPORT_DIR SCREENSHOT.png
+    check_report.py CHROMIUM REPORT_DIR SCREENSHOT.png [--verdict-first]
 
 Talks to Chromium over the DevTools protocol on a pipe (--remote-debugging-pipe: file descriptors 3 and 4, JSON
 messages ended by NUL), so no network port and no extra package is needed. Fails (exit status 1, one line per
 problem) on: a console error or warning of level error, an uncaught exception, a resource that failed to load, an
-image whose naturalWidth is 0, a page without lang, title or table of contents. Keeps a full-page screenshot.
+image whose naturalWidth is 0, a page without lang, title or table of contents; with --verdict-first, a page whose
+first screen (1200 x 900) does not show the heading "Verdict", its engine table and its coloured engine x quantity
+matrix whole. Keeps a full-page screenshot, and SCREENSHOT_first.png of the first screen.
 The page is opened from the file system with the network disabled: the report must work offline.
 """
 import base64
@@ -88,6 +90,7 @@ class DevTools:
 
 def main():
     chromium, report_dir, screenshot = sys.argv[1:4]
+    verdict_first = "--verdict-first" in sys.argv[4:]
     index = os.path.abspath(os.path.join(report_dir, "index.html"))
     if not os.path.isfile(index):
         print("check_report: no index.html in " + report_dir)
@@ -111,8 +114,25 @@ def main():
                 toc: document.querySelectorAll('nav a[href^="#"]').length,
                 images: document.images.length,
                 broken: Array.from(document.images).filter(i => !i.complete || i.naturalWidth === 0).map(i => i.getAttribute('src')),
-                anchors: Array.from(document.querySelectorAll('nav a[href^="#"]')).filter(a => !document.getElementById(a.getAttribute('href').slice(1))).map(a => a.getAttribute('href'))
+                anchors: Array.from(document.querySelectorAll('nav a[href^="#"]')).filter(a => !document.getElementById(a.getAttribute('href').slice(1))).map(a => a.getAttribute('href')),
+                verdict: (() => {
+                    const h = Array.from(document.querySelectorAll('h2')).find(e => e.textContent.trim() === 'Verdict');
+                    if (!h) return ['no heading "Verdict"'];
+                    const problems = [], tables = [];
+                    for (let e = h.nextElementSibling; e && e.tagName !== 'H2' && e.tagName !== 'NAV'; e = e.nextElementSibling)
+                        if (e.tagName === 'TABLE') tables.push(e);
+                    if (tables.length < 2) problems.push('the verdict has no engine table and matrix');
+                    for (const t of tables) {
+                        const bottom = Math.round(t.getBoundingClientRect().bottom);
+                        if (bottom > innerHeight) problems.push('a table of the verdict ends below the first screen (' + bottom + ' px > ' + innerHeight + ' px)');
+                    }
+                    if (!document.querySelector('td.mark0, td.mark1, td.mark2, td.mark3')) problems.push('the matrix has no coloured cell');
+                    return problems;
+                })()
             })"""}, session=session)["result"]["value"]
+            first = tools.send("Page.captureScreenshot", {"format": "png"}, session=session)
+            with open(screenshot[:-4] + "_first.png" if screenshot.endswith(".png") else screenshot + "_first", "wb") as out:
+                out.write(base64.b64decode(first["data"]))
             shot = tools.send("Page.captureScreenshot", {"format": "png", "captureBeyondViewport": True}, session=session)
             with open(screenshot, "wb") as out:
                 out.write(base64.b64decode(shot["data"]))
@@ -141,6 +161,8 @@ def main():
         problems.append("image did not load: " + src)
     for href in state["anchors"]:
         problems.append("table of contents link to nothing: " + href)
+    if verdict_first:
+        problems += ["the first screen: " + p for p in state["verdict"]]
     for p in problems:
         print("check_report: " + p)
     print("check_report: %d images, %d contents entries, screenshot %s: %s" %

@@ -14,7 +14,7 @@ file(REMOVE_RECURSE ${WORK_DIR})  # the test's own folder in the build tree
 file(MAKE_DIRECTORY ${WORK_DIR})
 run("validate --quick" ${CRANKCHECK} validate --quick --out ${WORK_DIR}/validate)
 run("validate report in Chromium" ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/check_report.py ${CHROMIUM} ${WORK_DIR}/validate
-    ${WORK_DIR}/validate_report.png)
+    ${WORK_DIR}/validate_report.png --verdict-first)
 run("grade --quick" ${CRANKCHECK} grade --quick --batch --out ${WORK_DIR}/grade -- ${GRADE_PROGRAM})
 run("grade report in Chromium" ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/check_report.py ${CHROMIUM} ${WORK_DIR}/grade
     ${WORK_DIR}/grade_report.png)

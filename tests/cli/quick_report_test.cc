@@ -151,6 +151,9 @@ TEST(QuickReportTest, QuickReportDrawsTheFullReportsConclusions) {
     if (std::string(name) == "quick") argv.push_back("--quick");
     const validation::ProgramResult r = testing::runCrankcheck(argv);
     ASSERT_EQ(r.exit_status, 0) << name << ": " << r.err;
+    // A passing run, full or quick, tells its verdict in at most 15 lines (issue 27).
+    EXPECT_LE(std::count(r.out.begin(), r.out.end(), '\n'), 15) << r.out;
+    EXPECT_NE(r.out.find("\n100% of comparisons agree, 0 failed out of "), std::string::npos) << r.out;
   }
   {
     SCOPED_TRACE("every maximum within 1 % or a bound");

@@ -56,8 +56,11 @@ TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   const fs::path report = dir_ / "report";
   const RunResult r = run("validate --quick --out " + report.string());
   ASSERT_EQ(r.exit_status, 0) << r.err << r.out;
-  EXPECT_NE(r.out.find("All comparisons agree."), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("quantity"), std::string::npos);
+  // The verdict first (verdict.h): a passing run ends with one line per engine and ctest's closing line, no table.
+  EXPECT_NE(r.out.find("\n100% of comparisons agree, 0 failed out of "), std::string::npos) << r.out;
+  EXPECT_LE(std::count(r.out.begin(), r.out.end(), '\n'), 15) << r.out;
+  EXPECT_EQ(r.out.find("family of cases"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err, "");
   const std::string index = readFile(report / "index.md");
   for (const char* figure : kFigures) {
     SCOPED_TRACE(figure);
@@ -113,8 +116,11 @@ TEST_F(ValidateTest, ShardsMergeIntoTheSameReportAsOneRun) {
   ASSERT_EQ(s1.exit_status, 0) << s1.err;
   EXPECT_TRUE(fs::exists(dir_ / "s0" / "shard.json"));
   const RunResult merged = run("report merge " + (dir_ / "s0").string() + " " + (dir_ / "s1").string() + " --out " +
-                               (dir_ / "merged").string());
+                               (dir_ / "merged").string() + " --verbose");
   ASSERT_EQ(merged.exit_status, 0) << merged.err;
+  // --verbose: the families' table in full before the verdict.
+  EXPECT_NE(merged.out.find("Every family of cases:\n"), std::string::npos) << merged.out;
+  EXPECT_NE(merged.out.find("merged from 2 shards\n"), std::string::npos) << merged.out;
   for (const char* table : kTables) {
     const std::string name = table;
     if (name == "speed_vs_error" || name == "integrator_pareto" || name == "engine_cost" || name == "engines" ||

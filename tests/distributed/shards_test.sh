@@ -273,7 +273,7 @@ if submit 2 "$tmp/slurm" -- --quick && await 90 "jobs $array_job and $merge_job"
     fail "the merge's time limit and partition: $(field "$merge_job" TimeLimit), $(field "$merge_job" Partition)"
   grep -q "Shard 0/2" "$tmp/slurm.shards/logs/shard-0.out" || fail "no log of shard 0"
   grep -q "Shard 1/2" "$tmp/slurm.shards/logs/shard-1.out" || fail "no log of shard 1"
-  grep -q "All comparisons agree." "$tmp/slurm.shards/logs/merge.out" || fail "no log of the merge"
+  grep -q "^100% of comparisons agree, 0 failed out of " "$tmp/slurm.shards/logs/merge.out" || fail "no log of the merge"
   compare_data "$tmp/one" "$tmp/slurm"
 fi
 

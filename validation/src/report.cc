@@ -27,6 +27,7 @@
 #include "crankcheck/validation/report_document.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/process.h"
+#include "crankcheck/validation/verdict.h"
 
 
 namespace crankcheck::validation {
@@ -541,6 +542,41 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
        << (info.quick ? "quick" : "full") << ", " << info.jobs << " job(s)" << (info.shards > 1 ? ", merged from " + std::to_string(info.shards) + " shards" : "")
        << (info.seconds > 0 ? ", " + shortNumber(info.seconds, 3) + " s" : "") << ".";
   doc.push_back({Block::kParagraph, meta.str()});
+
+  // The verdict first: one line per engine, the closing line, and the engine x quantity matrix (verdict.h).
+  const std::vector<EngineVerdict> verdicts = calcVerdicts(tables);
+  doc.push_back({Block::kHeading, "Verdict"});
+  std::string closing = formatVerdict(verdicts);
+  closing = closing.substr(closing.rfind('\n', closing.size() - 2) + 1);
+  closing.pop_back();
+  doc.push_back({Block::kParagraph, std::string(allAgree(verdicts) ? "**Pass.** " : "**FAIL.** ") + closing + "."});
+  Block verdict_table{Block::kTable, "", {"engine", "gated", "cases", "comparisons", "worst error / tolerance [-]",
+                                          "worst error / scale [-]", "of", "result"}};
+  std::string where;  // each engine's worst comparison, for the sentence under the matrix
+  for (const EngineVerdict& v : verdicts) {
+    verdict_table.rows.push_back({v.engine, v.gated ? "gated" : "measured", std::to_string(v.cases),
+                                  std::to_string(v.comparisons), v.gated ? formatMatrixCell(v.worst_ratio) : "-",
+                                  shortNumber(v.worst_error), v.worst_quantity,
+                                  !v.gated ? "reported" : v.failed == 0 ? "pass" : "FAIL (" + std::to_string(v.failed) + ")"});
+    where += (where.empty() ? "" : "; ") + v.engine + ": " + v.worst_quantity + " at " + v.worst_where;
+  }
+  doc.push_back(verdict_table);
+  const VerdictMatrix matrix = calcVerdictMatrix(tables);
+  doc.push_back({Block::kParagraph, "Worst error / tolerance by quantity and gated engine (green up to 1/8, yellow up to "
+                                    "1/2, orange up to 1, red beyond: FAIL):"});
+  Block matrix_table{Block::kTable, "", {"quantity"}};
+  for (const std::string& e : matrix.engines) matrix_table.header.push_back(e + " [-]");
+  for (size_t q = 0; q < matrix.quantities.size(); ++q) {
+    std::vector<std::string> row = {matrix.quantities[q]};
+    for (size_t e = 0; e < matrix.engines.size(); ++e) row.push_back(formatMatrixCell(matrix.ratio[e][q]));
+    matrix_table.rows.push_back(row);
+  }
+  doc.push_back(matrix_table);
+  doc.push_back({Block::kParagraph,
+                 "A comparison is one quantity of one case (a scene at one lambda), the worst over its crank angles and "
+                 "speeds, judged by the gate's rule |analytic - engine| <= 64 eps x scale x conditioning "
+                 "(docs/CONVENTIONS-crankcheck.md); soft engines are measured, never gated. The worst comparisons: " +
+                     where + "."});
 
   doc.push_back({Block::kHeading, "Summary: the analytic engine against every exact engine"});
   doc.push_back({Block::kParagraph,

@@ -93,6 +93,12 @@ std::string ReportDocument::toMarkdown() const { return body_; }
 
 std::string ReportDocument::toHtml() const {
   std::string fragment = renderMarkdown(body_);
+  // Cells that start with a mark of kCellMarks: coloured by their class instead.
+  for (size_t i = 0; i < std::size(kCellMarks); ++i) {
+    const std::string from = std::string("<td>") + kCellMarks[i] + " ", to = "<td class=\"mark" + std::to_string(i) + "\">";
+    for (size_t at = fragment.find(from); at != std::string::npos; at = fragment.find(from, at + to.size()))
+      fragment.replace(at, from.size(), to);
+  }
   // Anchors on the level-2 and level-3 headings, in order, for the table of contents.
   std::string toc = "<nav><h2>Contents</h2><ul>\n";
   size_t search = 0;
@@ -107,13 +113,18 @@ std::string ReportDocument::toHtml() const {
            escapeHtml(headings_[n].second) + "</a></li>\n";
   }
   toc += "</ul></nav>\n";
-  // The title heading stays first; the contents follow it.
+  // The title and the first section (a report's verdict) stay first, on the first screen; the contents follow them.
+  const size_t first_section = fragment.find("<h2");
+  const size_t second_section = first_section == std::string::npos ? first_section : fragment.find("<h2", first_section + 3);
   const size_t title_end = fragment.find("</h1>");
-  if (title_end != std::string::npos) fragment.insert(title_end + 5, "\n" + toc);
+  if (second_section != std::string::npos) fragment.insert(second_section, toc + "\n");
+  else if (title_end != std::string::npos) fragment.insert(title_end + 5, "\n" + toc);
   return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escapeHtml(title_) +
          "</title>\n<style>\nbody{font-family:sans-serif;max-width:72em;margin:2em auto;padding:0 1em;line-height:1.4}\n"
-         "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:.2em .5em}\n"
-         "img{max-width:100%}code{background:#f4f4f4}nav li.sub{margin-left:1.5em}\n</style>\n</head>\n<body>\n" +
+         "table{border-collapse:collapse;margin:1em 0;line-height:1.2}td,th{border:1px solid #bbb;padding:.15em .5em}\n"
+         "img{max-width:100%}code{background:#f4f4f4}nav li.sub{margin-left:1.5em}\n"
+         "td.mark0{background:#c6efc6}td.mark1{background:#fff2a8}td.mark2{background:#ffd29e}"
+         "td.mark3{background:#ff9e9e;font-weight:bold}\n</style>\n</head>\n<body>\n" +
          fragment + "</body>\n</html>\n";
 }
 

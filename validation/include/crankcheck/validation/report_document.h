@@ -10,6 +10,11 @@
 
 namespace crankcheck::validation {
 
+/// Marks that colour a table cell from pass to fail (green, yellow, orange, red) when the cell starts with one and a
+/// space: in Markdown the mark itself, in HTML the cell's background (the mark is dropped there, so no emoji font
+/// is needed).
+inline constexpr const char* kCellMarks[4] = {"\U0001F7E9", "\U0001F7E8", "\U0001F7E7", "\U0001F7E5"};
+
 class ReportDocument {
  public:
   explicit ReportDocument(std::string title);

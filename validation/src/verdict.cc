@@ -1,0 +1,159 @@
+#include "crankcheck/validation/verdict.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/grade.h"
+#include "crankcheck/validation/report_document.h"
+
+namespace crankcheck::validation {
+
+namespace {
+
+double toDouble(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
+
+// The engines in the registry's order, then any other name the table holds (a shard of another build), sorted.
+std::vector<std::string> orderEngines(const std::set<std::string>& present) {
+  std::vector<std::string> out;
+  for (const Engine& e : listEngines())
+    if (present.count(e.name)) out.push_back(e.name);
+  for (const std::string& name : present)
+    if (std::find(out.begin(), out.end(), name) == out.end()) out.push_back(name);
+  return out;
+}
+
+// The quantities in eval's order (getGradeQuantities), then the others (e.g. "Q (virtual power)") after the one
+// whose name they extend, else at the end.
+std::vector<std::string> orderQuantities(const std::set<std::string>& present) {
+  std::vector<std::string> out;
+  for (const std::string& q : getGradeQuantities()) {
+    if (present.count(q)) out.push_back(q);
+    for (const std::string& other : present)
+      if (other != q && other.rfind(q + " ", 0) == 0) out.push_back(other);
+  }
+  for (const std::string& q : present)
+    if (std::find(out.begin(), out.end(), q) == out.end()) out.push_back(q);
+  return out;
+}
+
+}  // namespace
+
+std::vector<EngineVerdict> calcVerdicts(const TableSet& tables) {
+  const auto it = tables.find("crosscheck");
+  if (it == tables.end()) return {};
+  const Table& t = it->second;
+  const size_t engine = columnOf(t, "engine"), family = columnOf(t, "family"), kase = columnOf(t, "case"),
+               quantity = columnOf(t, "quantity"), rel = columnOf(t, "worst_rel_error"), phi = columnOf(t, "where_phi_deg"),
+               rpm = columnOf(t, "where_speed_rpm"), tol = columnOf(t, "tolerance_rel"), pass = columnOf(t, "pass");
+  std::map<std::string, EngineVerdict> by_engine;
+  std::map<std::string, std::set<std::pair<std::string, std::string>>> cases;
+  for (const auto& row : t.rows) {
+    EngineVerdict& v = by_engine[row[engine]];
+    const bool first = v.comparisons == 0;
+    v.engine = row[engine];
+    if (row[pass] == "reported") v.gated = false;
+    ++v.comparisons;
+    cases[row[engine]].insert({row[family], row[kase]});
+    const double error = toDouble(row[rel]), tolerance = toDouble(row[tol]);
+    const double ratio = error / tolerance;  // tolerances are never zero (scales.h: every scale is positive)
+    if (row[pass] == "FAIL") ++v.failed;
+    // Gated engines: the worst ratio; soft ones (a ratio there is not a verdict): the largest error.
+    const bool worse = first || (row[pass] == "reported" ? error > v.worst_error : ratio > v.worst_ratio);
+    if (worse) {
+      v.worst_ratio = ratio;
+      v.worst_error = error;
+      v.worst_quantity = row[quantity];
+      v.worst_where = row[kase] + ", phi " + row[phi] + " deg, " + row[rpm] + " rpm";
+    }
+  }
+  std::set<std::string> names;
+  for (const auto& [name, v] : by_engine) names.insert(name);
+  std::vector<EngineVerdict> out;
+  for (const std::string& name : orderEngines(names)) {
+    EngineVerdict v = by_engine.at(name);
+    v.cases = cases[name].size();
+    out.push_back(v);
+  }
+  return out;
+}
+
+bool allAgree(const std::vector<EngineVerdict>& verdicts) {
+  return std::all_of(verdicts.begin(), verdicts.end(), [](const EngineVerdict& v) { return v.pass(); });
+}
+
+std::string formatVerdict(const std::vector<EngineVerdict>& verdicts) {
+  std::ostringstream out;
+  size_t width = 6;
+  for (const EngineVerdict& v : verdicts) width = std::max(width, v.engine.size());
+  size_t gated_comparisons = 0, failed = 0;
+  std::string gated_names;
+  char line[600];
+  for (const EngineVerdict& v : verdicts) {
+    if (v.gated) {
+      gated_comparisons += v.comparisons;
+      failed += v.failed;
+      gated_names += (gated_names.empty() ? "" : ", ") + v.engine;
+      std::snprintf(line, sizeof line, "  %-*s gated    %6zu cases %7zu comparisons  worst %s of tolerance (%s: %s)  %s\n",
+                    static_cast<int>(width), v.engine.c_str(), v.cases, v.comparisons, shortNumber(v.worst_ratio).c_str(),
+                    v.worst_quantity.c_str(), v.worst_where.c_str(),
+                    v.failed == 0 ? "pass" : ("FAIL (" + std::to_string(v.failed) + ")").c_str());
+    } else {
+      std::snprintf(line, sizeof line, "  %-*s measured %6zu cases %7zu comparisons  largest error %s of scale (%s), not gated\n",
+                    static_cast<int>(width), v.engine.c_str(), v.cases, v.comparisons, shortNumber(v.worst_error).c_str(),
+                    v.worst_quantity.c_str());
+    }
+    out << line;
+  }
+  if (gated_comparisons == 0) {
+    out << "No comparison of a gated engine: nothing was checked\n";
+    return out.str();
+  }
+  // ctest's closing line: "100% tests passed, 0 tests failed out of 7". The percentage is floored, so that 100% is
+  // printed only when nothing failed.
+  const size_t percent = (gated_comparisons - failed) * 100 / gated_comparisons;
+  out << percent << "% of comparisons agree, " << failed << " failed out of " << gated_comparisons << " (gated engines: "
+      << gated_names << ")\n";
+  return out.str();
+}
+
+VerdictMatrix calcVerdictMatrix(const TableSet& tables) {
+  VerdictMatrix m;
+  const auto it = tables.find("crosscheck");
+  if (it == tables.end()) return m;
+  const Table& t = it->second;
+  const size_t engine = columnOf(t, "engine"), quantity = columnOf(t, "quantity"), rel = columnOf(t, "worst_rel_error"),
+               tol = columnOf(t, "tolerance_rel"), pass = columnOf(t, "pass");
+  std::map<std::pair<std::string, std::string>, double> worst;
+  std::set<std::string> engines, quantities;
+  for (const auto& row : t.rows) {
+    if (row[pass] == "reported") continue;  // soft engines are measured in part engines, never gated
+    engines.insert(row[engine]);
+    quantities.insert(row[quantity]);
+    double& w = worst.try_emplace({row[engine], row[quantity]}, 0.0).first->second;
+    w = std::max(w, toDouble(row[rel]) / toDouble(row[tol]));
+  }
+  m.engines = orderEngines(engines);
+  m.quantities = orderQuantities(quantities);
+  for (const std::string& e : m.engines) {
+    m.ratio.emplace_back();
+    for (const std::string& q : m.quantities) {
+      const auto w = worst.find({e, q});
+      m.ratio.back().push_back(w == worst.end() ? -1.0 : w->second);
+    }
+  }
+  return m;
+}
+
+std::string formatMatrixCell(double ratio) {
+  if (ratio < 0.0) return "-";
+  // Coloured marks that read the same in Markdown, in HTML and in a terminal: green, yellow, orange, red.
+  const char* mark = kCellMarks[ratio <= 0.125 ? 0 : ratio <= 0.5 ? 1 : ratio <= 1.0 ? 2 : 3];
+  return std::string(mark) + " " + shortNumber(ratio) + (ratio > 1.0 ? " FAIL" : "");
+}
+
+}  // namespace crankcheck::validation
