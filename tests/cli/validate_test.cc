@@ -157,7 +157,7 @@ class MergeRefusalTest : public ValidateTest {
   // `what`, nothing on stdout, no --out folder and nothing left beside it.
   void expectRefused(const std::vector<fs::path>& shards, const std::string& what) {
     std::string args = "report merge";
-    for (const fs::path& s : shards) args += " " + s.string();
+    for (const fs::path& s : shards) args.append(" ").append(s.string());
     const RunResult r = run(args + " --out " + (dir_ / "merged").string());
     EXPECT_EQ(r.exit_status, 2) << r.err << r.out;
     EXPECT_EQ(r.err.rfind("crankcheck: report merge: ", 0), 0u) << r.err;
@@ -230,7 +230,12 @@ TEST_F(MergeRefusalTest, ShardWithAChangedDataFileIsRefused) {
   changed[header.size()] = changed[header.size()] == '9' ? '8' : '9';
   replace(changed);
   expectRefused({s0, s1}, "\"" + file.string() + "\": not the content the shard wrote");
-  replace(good);  // as written: merged
+  replace(good);  // as written: merged, but never into one of the shards
+  const RunResult into_shard = run("report merge " + s0.string() + " " + s1.string() + " --out " + s1.string());
+  EXPECT_EQ(into_shard.exit_status, 2);
+  EXPECT_NE(into_shard.err.find("--out: \"" + s1.string() + "\": is a shard being merged"), std::string::npos)
+      << into_shard.err;
+  EXPECT_TRUE(fs::exists(s1 / "shard.json"));
   const RunResult r = run("report merge " + s0.string() + " " + s1.string() + " --out " + (dir_ / "merged").string());
   EXPECT_EQ(r.exit_status, 0) << r.err;
 }
