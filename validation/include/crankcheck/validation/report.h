@@ -74,7 +74,6 @@ void renderReport(const TableSet& tables, const ReportInfo& info, const std::fil
 /// A scene of a shard's campaign: its name and its content (calcChecksum of the scene as formatSceneToml writes it).
 struct ShardScene {
   std::string name, checksum;
-  bool operator==(const ShardScene&) const = default;
 };
 
 /// A shard's manifest (shard.json): which part of which campaign the folder holds, and what it wrote. Two shards
