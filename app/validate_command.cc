@@ -19,6 +19,7 @@
 #include "crankcheck/validation/report.h"
 #include "crankcheck/validation/verdict.h"
 #include "crankcheck/validation/errors.h"
+#include "crankcheck/scene/scene_writer.h"
 #include "interrupt.h"
 #include "scene_input.h"
 
@@ -163,6 +164,18 @@ int runValidate(const ValidateOptions& options) {
   out.createStaging();
 
   const std::vector<Task> all = validation::buildCampaign(campaign);
+  // A shard's campaign is its scenes' content (the default campaign's built-in and example scenes too), --quick,
+  // N and crankcheck's version: the merge refuses shards of campaigns that differ in any.
+  validation::ShardManifest manifest{shard_index, shard_count, options.quick, {}, static_cast<int>(all.size()),
+                                     validation::getCrankcheckVersion(), {}};
+  if (shard) {
+    std::vector<Mechanism> scenes = campaign.scenes;
+    if (scenes.empty()) {
+      scenes = validation::buildDefaultScenes();
+      for (Mechanism& m : validation::loadExampleScenes()) scenes.push_back(std::move(m));
+    }
+    for (const Mechanism& m : scenes) manifest.scenes.push_back({m.name, validation::calcChecksum(formatSceneToml(m))});
+  }
   std::vector<Task> mine;
   for (size_t i = 0; i < all.size(); ++i)
     if (static_cast<int>(i % shard_count) == shard_index) mine.push_back(all[i]);
@@ -180,9 +193,7 @@ int runValidate(const ValidateOptions& options) {
 
   if (shard) {
     validation::sortTables(tables);
-    validation::writeTables(tables, out.getStaging());
-    validation::ShardManifest manifest{shard_index, shard_count, options.quick, {}, static_cast<int>(all.size())};
-    for (const Mechanism& m : campaign.scenes) manifest.scenes.push_back(m.name);
+    manifest.files = validation::writeTables(tables, out.getStaging());
     validation::writeShardManifest(manifest, out.getStaging());
     out.install("shard");
     const bool pass = allPass(tables);
@@ -194,28 +205,80 @@ int runValidate(const ValidateOptions& options) {
   return reportAndInstall(tables, info, out, options.verbose);
 }
 
+namespace {
+
+// The scenes' names, for a message: "a, b, c".
+std::string listNames(const std::vector<validation::ShardScene>& scenes) {
+  std::string names;
+  for (const auto& scene : scenes) names += (names.empty() ? "" : ", ") + scene.name;
+  return names.empty() ? "none" : names;
+}
+
+// How the campaign of `shard` differs from that of `first` (read from first_dir): "" when it is the same one.
+std::string findCampaignDifference(const validation::ShardManifest& shard, const validation::ShardManifest& first,
+                                   const std::string& first_dir) {
+  const std::string there = quotePath(first_dir);
+  if (shard.version != first.version)
+    return "written by crankcheck " + shard.version + ", " + there + " by crankcheck " + first.version;
+  if (shard.count != first.count)
+    return "shard " + std::to_string(shard.index) + " of " + std::to_string(shard.count) + ", not of " +
+           std::to_string(first.count) + " as " + there;
+  if (shard.quick != first.quick)
+    return std::string("a ") + (shard.quick ? "--quick" : "full") + " campaign, " + there + " a " +
+           (first.quick ? "--quick" : "full") + " one";
+  if (shard.scenes.size() != first.scenes.size())
+    return "scenes " + listNames(shard.scenes) + ", " + there + " has " + listNames(first.scenes);
+  for (size_t i = 0; i < shard.scenes.size(); ++i) {
+    if (shard.scenes[i].name != first.scenes[i].name)
+      return "scenes " + listNames(shard.scenes) + ", " + there + " has " + listNames(first.scenes);
+    if (shard.scenes[i].checksum != first.scenes[i].checksum)
+      return "scene " + shard.scenes[i].name + ": another scene than in " + there + " (the same name, other content)";
+  }
+  if (shard.tasks != first.tasks)
+    return std::to_string(shard.tasks) + " tasks, " + there + " " + std::to_string(first.tasks) +
+           ": a shard of another campaign";
+  return "";
+}
+
+}  // namespace
+
 int runMerge(const MergeOptions& options) {
+  // Every shard is checked before anything is written: one campaign, each shard once, all there, every data file
+  // as its shard wrote it. A refusal is one line naming the shard or its file ("report merge: ..."), status 2.
+  auto refuse = [](const std::string& why) { return UsageError("report merge: " + why); };
   TableSet tables;
   std::set<int> seen;
   validation::ShardManifest first;
   for (size_t i = 0; i < options.shard_dirs.size(); ++i) {
     const std::string& dir = options.shard_dirs[i];
-    validation::ShardManifest manifest;
     try {
-      manifest = validation::readShardManifest(dir);
-      validation::appendTables(tables, validation::readTables(dir));
+      const validation::ShardManifest manifest = validation::readShardManifest(dir);
+      if (i == 0) first = manifest;
+      const std::string difference = findCampaignDifference(manifest, first, options.shard_dirs[0]);
+      if (!difference.empty()) throw refuse(quotePath(dir) + ": " + difference);
+      if (!seen.insert(manifest.index).second)
+        throw refuse(quotePath(dir) + ": shard " + std::to_string(manifest.index) + " given twice");
+      validation::appendTables(tables, validation::readShardTables(dir, manifest));
+    } catch (const UsageError&) {
+      throw;
+    } catch (const EnvironmentError&) {
+      throw;
     } catch (const std::runtime_error& e) {
-      throw UsageError(e.what());
+      throw refuse(e.what());
     }
-    if (i == 0) first = manifest;
-    if (manifest.count != first.count || manifest.quick != first.quick || manifest.scenes != first.scenes ||
-        manifest.tasks != first.tasks)
-      throw UsageError(quotePath(dir) + ": shard of a different campaign than " + quotePath(options.shard_dirs[0]));
-    if (!seen.insert(manifest.index).second)
-      throw UsageError(quotePath(dir) + ": shard " + std::to_string(manifest.index) + " given twice");
   }
-  if (static_cast<int>(seen.size()) != first.count)
-    throw UsageError("shards: " + std::to_string(seen.size()) + " of " + std::to_string(first.count) + " given; all are needed");
+  if (static_cast<int>(seen.size()) != first.count) {
+    std::string missing;
+    for (int index = 0; index < first.count; ++index)
+      if (!seen.count(index)) missing += (missing.empty() ? "" : ", ") + std::to_string(index);
+    throw refuse("shards: " + std::to_string(seen.size()) + " of " + std::to_string(first.count) + " given (missing: " +
+                 missing + "); all are needed");
+  }
+  std::error_code ec;
+  for (const std::string& dir : options.shard_dirs)
+    if (fs::equivalent(dir, options.out, ec))
+      throw UsageError("--out: " + quotePath(options.out) + ": is a shard being merged (" + quotePath(dir) +
+                       "); choose another folder");
   validation::OutputFolder out(options.out, "--out");
   validation::ReportInfo info;
   info.gnuplot_version = validation::checkGnuplot();

@@ -136,6 +136,116 @@ TEST_F(ValidateTest, ShardsMergeIntoTheSameReportAsOneRun) {
   EXPECT_NE(incomplete.err.find("1 of 2 given"), std::string::npos) << incomplete.err;
 }
 
+// Shards of one scene file, for the merge's refusals: a small campaign (the user's scene alone, --quick).
+class MergeRefusalTest : public ValidateTest {
+ protected:
+  // Writes the example single cylinder to dir_/FOLDER/one.toml with its crank radius replaced by `radius` (empty:
+  // as it is); returns the path.
+  fs::path writeScene(const std::string& folder, const std::string& radius = "") {
+    std::string text = readFile(fs::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml");
+    if (!radius.empty()) {
+      const size_t at = text.find("radius = 0.043");
+      EXPECT_NE(at, std::string::npos);
+      text.replace(at, std::string("radius = 0.043").size(), "radius = " + radius);
+    }
+    fs::create_directories(dir_ / folder);
+    std::ofstream(dir_ / folder / "one.toml") << text;
+    return dir_ / folder / "one.toml";
+  }
+  // `crankcheck validate --quick --shard I/N SCENE --out dir_/NAME`; expects it to succeed.
+  fs::path shard(const std::string& name, const std::string& part, const fs::path& scene) {
+    const RunResult r = run("validate --quick --jobs 2 --shard " + part + " " + scene.string() + " --out " +
+                            (dir_ / name).string());
+    EXPECT_EQ(r.exit_status, 0) << r.err << r.out;
+    return dir_ / name;
+  }
+  // `crankcheck report merge SHARDS... --out dir_/merged`; expects a refusal: status 2, one line on stderr naming
+  // `what`, nothing on stdout, no --out folder and nothing left beside it.
+  void expectRefused(const std::vector<fs::path>& shards, const std::string& what) {
+    std::string args = "report merge";
+    for (const fs::path& s : shards) args.append(" ").append(s.string());
+    const RunResult r = run(args + " --out " + (dir_ / "merged").string());
+    EXPECT_EQ(r.exit_status, 2) << r.err << r.out;
+    EXPECT_EQ(r.err.rfind("crankcheck: report merge: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(what), std::string::npos) << "expected " << what << " in: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_FALSE(fs::exists(dir_ / "merged"));
+    for (const auto& entry : fs::directory_iterator(dir_))
+      EXPECT_EQ(entry.path().filename().string().find("partial"), std::string::npos) << entry.path();
+  }
+  // A data file of `shard` (data/NAME.csv) that the other shard does not have: its rows come from `shard` alone.
+  std::string onlyIn(const fs::path& shard, const fs::path& other) {
+    for (const auto& entry : fs::directory_iterator(shard / "data"))
+      if (!fs::exists(other / "data" / entry.path().filename())) return entry.path().filename().string();
+    ADD_FAILURE() << "every table of " << shard << " is also in " << other;
+    return "";
+  }
+};
+
+// (a) Two scene files of the same name but other content (another crank radius): not one campaign.
+TEST_F(MergeRefusalTest, ShardsOfDifferentScenesOfTheSameNameAreRefused) {
+  const fs::path s0 = shard("s0", "0/2", writeScene("a")), s1 = shard("s1", "1/2", writeScene("b", "0.05"));
+  ASSERT_FALSE(HasFailure());
+  expectRefused({s0, s1}, "\"" + s1.string() + "\": scene one: another scene than in \"" + s0.string() + "\"");
+  // The same campaign with another N, or other options, is refused too; the same shard twice, or one missing.
+  const fs::path other_n = shard("s1of3", "1/3", writeScene("a"));
+  ASSERT_FALSE(HasFailure());
+  expectRefused({s0, other_n}, "\"" + other_n.string() + "\": shard 1 of 3, not of 2 as \"" + s0.string() + "\"");
+  expectRefused({s0, s0}, "\"" + s0.string() + "\": shard 0 given twice");
+  expectRefused({s0}, "1 of 2 given (missing: 1)");
+}
+
+// (b) A shard that lacks a file its manifest lists: refused, naming the file, not merged without its rows.
+TEST_F(MergeRefusalTest, ShardWithoutAFileItsManifestListsIsRefused) {
+  const fs::path scene = writeScene("a");
+  const fs::path s0 = shard("s0", "0/2", scene), s1 = shard("s1", "1/2", scene);
+  ASSERT_FALSE(HasFailure());
+  const std::string name = onlyIn(s1, s0);
+  const fs::path file = s1 / "data" / name;
+  const std::string good = readFile(file);
+  fs::remove(file);
+  expectRefused({s0, s1}, "\"" + file.string() + "\": missing");
+  // A data file the manifest does not list (one more table) is refused too.
+  std::ofstream(file) << good;
+  std::ofstream(s1 / "data" / "extra.csv") << good;
+  expectRefused({s0, s1}, "\"" + (s1 / "data" / "extra.csv").string() + "\": not listed");
+}
+
+// (c) A CSV replaced by other content: garbage with no rows, the same header with rows left out, the same rows
+// changed: refused, naming the file (the merge would draw a figure from nothing, or from other data).
+TEST_F(MergeRefusalTest, ShardWithAChangedDataFileIsRefused) {
+  const fs::path scene = writeScene("a");
+  const fs::path s0 = shard("s0", "0/2", scene), s1 = shard("s1", "1/2", scene);
+  ASSERT_FALSE(HasFailure());
+  const std::string name = onlyIn(s0, s1);
+  const fs::path file = s0 / "data" / name;
+  const std::string good = readFile(file);
+  const std::string header = good.substr(0, good.find('\n') + 1);
+  const size_t rows = static_cast<size_t>(std::count(good.begin(), good.end(), '\n')) - 1;
+  ASSERT_GE(rows, 1u) << good;
+  auto replace = [&](const std::string& text) {
+    fs::remove(file);
+    std::ofstream(file) << text;
+  };
+  replace("garbage\n");
+  expectRefused({s0, s1}, "\"" + file.string() + "\": header");
+  replace(header);
+  expectRefused({s0, s1}, "\"" + file.string() + "\": 0 rows, the shard wrote " + std::to_string(rows));
+  std::string changed = good;
+  changed[header.size()] = changed[header.size()] == '9' ? '8' : '9';
+  replace(changed);
+  expectRefused({s0, s1}, "\"" + file.string() + "\": not the content the shard wrote");
+  replace(good);  // as written: merged, but never into one of the shards
+  const RunResult into_shard = run("report merge " + s0.string() + " " + s1.string() + " --out " + s1.string());
+  EXPECT_EQ(into_shard.exit_status, 2);
+  EXPECT_NE(into_shard.err.find("--out: \"" + s1.string() + "\": is a shard being merged"), std::string::npos)
+      << into_shard.err;
+  EXPECT_TRUE(fs::exists(s1 / "shard.json"));
+  const RunResult r = run("report merge " + s0.string() + " " + s1.string() + " --out " + (dir_ / "merged").string());
+  EXPECT_EQ(r.exit_status, 0) << r.err;
+}
+
 // A run that fails (here: the figure scripts cannot be found) leaves the previous good report exactly as it was.
 TEST_F(ValidateTest, FailedRunNeverReplacesAGoodReport) {
   const fs::path report = dir_ / "report";

@@ -5,7 +5,8 @@
 # data is byte-identical to one `crankcheck validate --quick` run: every CSV of data/, except the measured timing
 # columns (ns_per_*) of the timing tables, whose other columns must still match. On Slurm, a shard that fails (a bad
 # scene) or is cancelled (scancel) makes the merge job refuse, naming the shard; a job sbatch refuses is not left
-# submitted. Bad input stops the recipes with exit status 2 and nothing merged.
+# submitted. Bad input stops the recipes with exit status 2 and nothing merged; so does a shard changed after it was
+# written.
 #
 #   shards_test.sh CRANKCHECK SOURCE_DIR
 #
@@ -102,6 +103,16 @@ compare_data() {
   { cat "$tmp/parallel.log"; fail "parallel-shards.sh: exit status $?"; }
 compare_data "$tmp/one" "$tmp/parallel"
 [[ $(tail -n +2 "$tmp/parallel.shards/parallel-joblog.txt" | wc -l) == 3 ]] || fail "the job log lists other than 3 shards"
+# A shard changed after it was written (a data file's last line gone): the merge refuses, naming the file.
+cp -r "$tmp/parallel.shards" "$tmp/changed.shards"
+changed=$(cd "$tmp/changed.shards/shard-1/data" && ls | head -n 1)
+sed -i '$d' "$tmp/changed.shards/shard-1/data/$changed"
+status=0
+"$crankcheck" report merge "$tmp"/changed.shards/shard-{0,1,2} --out "$tmp/changed" >/dev/null 2>"$tmp/changed.log" ||
+  status=$?
+[[ $status == 2 && ! -e $tmp/changed ]] &&
+  grep -q "^crankcheck: report merge: \"$tmp/changed.shards/shard-1/data/$changed\": " "$tmp/changed.log" ||
+  fail "a changed shard: exit status $status: $(cat "$tmp/changed.log")"
 
 # Bad input: exit status 2, nothing merged.
 status=0

@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <map>
+#include <set>
 #include <tuple>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -131,10 +135,19 @@ std::vector<std::vector<std::string>> parseCsv(const std::string& text, const st
 
 }  // namespace
 
-void writeTables(const TableSet& tables, const fs::path& dir) {
+std::string calcChecksum(std::string_view bytes) {
+  std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a 64: offset basis, then xor and multiply by the prime per byte
+  for (const unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ull;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return hex;
+}
+
+std::vector<DataFileRecord> writeTables(const TableSet& tables, const fs::path& dir) {
   std::error_code ec;
   if (!fs::create_directory(dir / "data", ec) && ec)
     throw EnvironmentError(quotePath(dir / "data") + ": cannot create the folder: " + ec.message());
+  std::vector<DataFileRecord> records;
   for (const auto& [name, table] : tables) {
     std::string text;
     // Each header names its unit: "max_rel_error [-]", "ns_per_eval [ns]"; a text column stays bare.
@@ -142,14 +155,46 @@ void writeTables(const TableSet& tables, const fs::path& dir) {
       const std::string unit = getColumnUnit(name, table.columns[i]);
       text += (i ? "," : "") + csvField(table.columns[i] + (unit.empty() ? "" : " [" + unit + "]"));
     }
+    const std::string header = text;
     text += "\n";
     for (const auto& row : table.rows) {
       for (size_t i = 0; i < row.size(); ++i) text += (i ? "," : "") + csvField(row[i]);
       text += "\n";
     }
     writeNewFile(dir / "data" / (name + ".csv"), text);
+    records.push_back({"data/" + name + ".csv", header, table.rows.size(), calcChecksum(text)});
   }
+  return records;
 }
+
+namespace {
+
+// The file's bytes. @throws EnvironmentError when it cannot be read.
+std::string readBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw EnvironmentError(quotePath(path) + ": cannot read: " + std::strerror(errno));
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A table from its CSV records; the columns are named without their units. @throws std::runtime_error on an empty
+// table or a row of another length than the header.
+Table toTable(std::vector<std::vector<std::string>> records, const std::string& source) {
+  if (records.empty()) throw std::runtime_error(source + ": empty table");
+  Table table;
+  table.columns = std::move(records.front());
+  for (std::string& column : table.columns) column = column.substr(0, column.find(" ["));  // the name, not the unit
+  for (size_t i = 1; i < records.size(); ++i) {
+    if (records[i].size() != table.columns.size())
+      throw std::runtime_error(source + ": a row has " + std::to_string(records[i].size()) + " fields, the header " +
+                               std::to_string(table.columns.size()));
+    table.rows.push_back(std::move(records[i]));
+  }
+  return table;
+}
+
+}  // namespace
 
 TableSet readTables(const fs::path& dir) {
   TableSet tables;
@@ -157,22 +202,8 @@ TableSet readTables(const fs::path& dir) {
     throw std::runtime_error(quotePath(dir) + ": no data/ folder (not a crankcheck report or shard)");
   for (const auto& entry : fs::directory_iterator(dir / "data")) {
     if (entry.path().extension() != ".csv") continue;
-    std::ifstream in(entry.path(), std::ios::binary);
-    std::stringstream text;
-    text << in.rdbuf();
     const std::string source = quotePath(entry.path());
-    std::vector<std::vector<std::string>> records = parseCsv(text.str(), source);
-    if (records.empty()) throw std::runtime_error(source + ": empty table");
-    Table table;
-    table.columns = std::move(records.front());
-    for (std::string& column : table.columns) column = column.substr(0, column.find(" ["));  // the name, not the unit
-    for (size_t i = 1; i < records.size(); ++i) {
-      if (records[i].size() != table.columns.size())
-        throw std::runtime_error(source + ": a row has " + std::to_string(records[i].size()) + " fields, the header " +
-                                 std::to_string(table.columns.size()));
-      table.rows.push_back(std::move(records[i]));
-    }
-    tables[entry.path().stem().string()] = std::move(table);
+    tables[entry.path().stem().string()] = toTable(parseCsv(readBytes(entry.path()), source), source);
   }
   return tables;
 }
@@ -675,9 +706,21 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   writeNewFile(dir / "index.html", page.toHtml());
 }
 
+namespace {
+
+// shard.json's format: 2 added the campaign's identity (version, scenes' content) and the data files' records.
+constexpr int kShardFormat = 2;
+
+}  // namespace
+
 void writeShardManifest(const ShardManifest& manifest, const fs::path& dir) {
-  nlohmann::json j = {{"crankcheck_shard", 1},     {"index", manifest.index}, {"count", manifest.count},
-                      {"quick", manifest.quick},   {"scenes", manifest.scenes}, {"tasks", manifest.tasks}};
+  nlohmann::json scenes = nlohmann::json::array(), files = nlohmann::json::array();
+  for (const ShardScene& scene : manifest.scenes) scenes.push_back({{"name", scene.name}, {"fnv1a64", scene.checksum}});
+  for (const DataFileRecord& f : manifest.files)
+    files.push_back({{"path", f.path}, {"header", f.header}, {"rows", f.rows}, {"fnv1a64", f.checksum}});
+  nlohmann::json j = {{"crankcheck_shard", kShardFormat}, {"version", manifest.version}, {"index", manifest.index},
+                      {"count", manifest.count},          {"quick", manifest.quick},     {"scenes", scenes},
+                      {"tasks", manifest.tasks},          {"files", files}};
   writeNewFile(dir / "shard.json", j.dump(2) + "\n");
 }
 
@@ -686,16 +729,89 @@ ShardManifest readShardManifest(const fs::path& dir) {
   if (!in) throw std::runtime_error(quotePath(dir) + ": no shard.json (not a shard written by crankcheck validate --shard)");
   try {
     const nlohmann::json j = nlohmann::json::parse(in);
+    const int format = j.at("crankcheck_shard").get<int>();
+    if (format != kShardFormat)
+      throw std::runtime_error(quotePath(dir / "shard.json") + ": a shard of format " + std::to_string(format) +
+                               ", written by another crankcheck; this one (" + getCrankcheckVersion() +
+                               ") merges format " + std::to_string(kShardFormat) + ": run the shard again");
     ShardManifest m;
+    m.version = j.at("version").get<std::string>();
     m.index = j.at("index").get<int>();
     m.count = j.at("count").get<int>();
     m.quick = j.at("quick").get<bool>();
-    m.scenes = j.at("scenes").get<std::vector<std::string>>();
+    for (const auto& scene : j.at("scenes"))
+      m.scenes.push_back({scene.at("name").get<std::string>(), scene.at("fnv1a64").get<std::string>()});
     m.tasks = j.at("tasks").get<int>();
+    for (const auto& f : j.at("files"))
+      m.files.push_back({f.at("path").get<std::string>(), f.at("header").get<std::string>(), f.at("rows").get<size_t>(),
+                         f.at("fnv1a64").get<std::string>()});
+    if (m.count < 2 || m.index < 0 || m.index >= m.count)
+      throw std::runtime_error(quotePath(dir / "shard.json") + ": malformed: shard " + std::to_string(m.index) +
+                               " of " + std::to_string(m.count));
     return m;
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error(quotePath(dir / "shard.json") + ": malformed: " + e.what());
   }
+}
+
+TableSet readShardTables(const fs::path& dir, const ShardManifest& manifest) {
+  // Every file crankcheck-manifest.json lists (what the shard wrote, shard.json among them) must be there.
+  const fs::path listing = dir / kManifestName;
+  std::set<std::string> listed;
+  try {
+    std::ifstream in(listing);
+    if (!in) throw std::runtime_error(quotePath(listing) + ": missing: every shard crankcheck writes has it");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    if (j.at("tool").get<std::string>() != "crankcheck" || j.at("kind").get<std::string>() != "shard")
+      throw std::runtime_error(quotePath(listing) + ": not a shard's manifest (tool " + j.at("tool").dump() + ", kind " +
+                               j.at("kind").dump() + ")");
+    for (const auto& f : j.at("files")) listed.insert(f.get<std::string>());
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(quotePath(listing) + ": malformed: " + e.what());
+  }
+  std::error_code ec;
+  for (const std::string& rel : listed)
+    if (!fs::is_regular_file(fs::symlink_status(dir / rel, ec)))
+      throw std::runtime_error(quotePath(dir / rel) + ": missing, though the shard's " + kManifestName + " lists it");
+  // shard.json records exactly the data files listed, and data/ holds no other.
+  std::set<std::string> recorded;
+  for (const DataFileRecord& f : manifest.files) {
+    const fs::path path(f.path);
+    if (!recorded.insert(f.path).second || !listed.count(f.path) || path.parent_path() != "data" ||
+        path.extension() != ".csv")
+      throw std::runtime_error(quotePath(dir / "shard.json") + ": records " + quotePath(f.path) + ", which the shard's " +
+                               kManifestName + " does not list as a data file");
+  }
+  for (const std::string& rel : listed)
+    if (rel.rfind("data/", 0) == 0 && !recorded.count(rel))
+      throw std::runtime_error(quotePath(dir / rel) + ": not listed in the shard's shard.json");
+  if (!fs::is_directory(dir / "data")) throw std::runtime_error(quotePath(dir / "data") + ": missing");
+  for (const auto& entry : fs::directory_iterator(dir / "data")) {
+    const std::string rel = "data/" + entry.path().filename().string();
+    if (!recorded.count(rel))
+      throw std::runtime_error(quotePath(entry.path()) + ": not listed in the shard's manifest: not written by the shard");
+  }
+  // Each data file as the shard wrote it: its header, its rows, its checksum.
+  TableSet tables;
+  for (const DataFileRecord& f : manifest.files) {
+    const fs::path path = dir / f.path;
+    const std::string source = quotePath(path);
+    const std::string text = readBytes(path);
+    std::vector<std::vector<std::string>> records = parseCsv(text, source);
+    const std::string header = text.substr(0, text.find('\n'));
+    if (header != f.header)
+      throw std::runtime_error(source + ": header " + quotePath(header.substr(0, 80)) + ", the shard wrote " +
+                               quotePath(f.header.substr(0, 80)));
+    const size_t rows = records.empty() ? 0 : records.size() - 1;
+    if (rows != f.rows)
+      throw std::runtime_error(source + ": " + std::to_string(rows) + " rows, the shard wrote " + std::to_string(f.rows));
+    const std::string checksum = calcChecksum(text);
+    if (checksum != f.checksum)
+      throw std::runtime_error(source + ": not the content the shard wrote (FNV-1a 64 " + checksum + ", shard.json records " +
+                               f.checksum + ")");
+    tables[fs::path(f.path).stem().string()] = toTable(std::move(records), source);
+  }
+  return tables;
 }
 
 std::string checkGnuplot() {

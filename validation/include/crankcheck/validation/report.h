@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "crankcheck/validation/campaign.h"
@@ -50,9 +51,22 @@ std::string checkGnuplot();
 /// "SI" (the unit of the row's quantity). @throws std::logic_error for a column without one (column_units.cc).
 std::string getColumnUnit(const std::string& table, const std::string& column);
 
+/// The checksum of a file's or a scene's bytes: FNV-1a 64 as 16 hex digits. It finds a changed, truncated or
+/// replaced file, not a forged one.
+std::string calcChecksum(std::string_view bytes);
+
+/// What a shard records of one data file it wrote, for the merge to check.
+struct DataFileRecord {
+  std::string path;      ///< relative to the shard's folder: data/NAME.csv
+  std::string header;    ///< the first line, without its line break
+  size_t rows = 0;       ///< CSV records after the header
+  std::string checksum;  ///< calcChecksum of the whole file
+};
+
 /// Writes tables as CSV files (RFC 4180) into dir/data, which must not exist yet; each header is "name [unit]"
-/// (getColumnUnit). @throws EnvironmentError when a file cannot be written.
-void writeTables(const TableSet& tables, const std::filesystem::path& dir);
+/// (getColumnUnit). @return a record of each file written, by name. @throws EnvironmentError when a file cannot be
+/// written.
+std::vector<DataFileRecord> writeTables(const TableSet& tables, const std::filesystem::path& dir);
 /// Reads every dir/data/*.csv; the columns are named without their units. @throws std::runtime_error on a missing or
 /// malformed file.
 TableSet readTables(const std::filesystem::path& dir);
@@ -62,15 +76,27 @@ TableSet readTables(const std::filesystem::path& dir);
 /// gnuplot runs in `dir` without a shell. @throws EnvironmentError if gnuplot fails or a file cannot be written.
 void renderReport(const TableSet& tables, const ReportInfo& info, const std::filesystem::path& dir);
 
-/// A shard's manifest (shard.json): which part of which campaign the directory holds.
+/// A scene of a shard's campaign: its name and its content (calcChecksum of the scene as formatSceneToml writes it).
+struct ShardScene {
+  std::string name, checksum;
+};
+
+/// A shard's manifest (shard.json): which part of which campaign the folder holds, and what it wrote. Two shards
+/// are of one campaign when version, count, quick, scenes and tasks are the same.
 struct ShardManifest {
   int index = 0, count = 1;
   bool quick = false;
-  std::vector<std::string> scenes;  ///< family names, to refuse merging shards of different campaigns
+  std::vector<ShardScene> scenes;    ///< every scene the campaign uses (the default campaign's too), in order
   int tasks = 0;
+  std::string version;               ///< the crankcheck that wrote it (getCrankcheckVersion)
+  std::vector<DataFileRecord> files;  ///< every data file, by path
 };
 void writeShardManifest(const ShardManifest& manifest, const std::filesystem::path& dir);
-/// @throws std::runtime_error if dir/shard.json is missing or malformed.
+/// @throws std::runtime_error naming dir/shard.json if it is missing, malformed or of another format.
 ShardManifest readShardManifest(const std::filesystem::path& dir);
+/// Reads a shard's data for the merge, after checking it against both its manifests: every file
+/// crankcheck-manifest.json lists is there, every data file is in shard.json and no other is in data/, and each has
+/// the header, row count and checksum shard.json records. @throws std::runtime_error, one line naming the file.
+TableSet readShardTables(const std::filesystem::path& dir, const ShardManifest& manifest);
 
 }  // namespace crankcheck::validation
