@@ -97,6 +97,9 @@ TEST_P(GradeMisbehaviourTest, ExitStatus3WithOneClearLine) {
   EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
   EXPECT_NE(r.err.find(GetParam().expected), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+  // Nothing of the program's output reaches the terminal raw: no control byte but the final newline.
+  for (size_t i = 0; i + 1 < r.err.size(); ++i)
+    EXPECT_FALSE(static_cast<unsigned char>(r.err[i]) < 0x20 || r.err[i] == 0x7f) << "byte " << i << " of: " << r.err;
   EXPECT_FALSE(fs::exists(out)) << "no partial report";
 }
 
@@ -111,6 +114,10 @@ INSTANTIATE_TEST_SUITE_P(
                       Misbehaviour{"crash", "ended by signal 6"},
                       Misbehaviour{"exit7", "exited with status 7; its stderr: \"something went wrong"},
                       Misbehaviour{"hang", "no complete answer within 5 s"},
+                      Misbehaviour{"answer-then-hang", "answered completely but did not exit within 5 s"},
+                      // The quote is closed, and ESC, NUL and tab are shown as escapes.
+                      Misbehaviour{"control-bytes", "line 1: \"\\x1b[2J\\x1b[31mred\\x1b[0m\\x00\\tafter NUL\""},
+                      Misbehaviour{"control-bytes-stderr", "its stderr: \"\\x1b]0;title\\x07\\x00hidden\""},
                       Misbehaviour{"huge", "bytes to stdout (killed)"}),
     [](const ::testing::TestParamInfo<Misbehaviour>& info) {
       std::string name = info.param.mode;
@@ -118,6 +125,18 @@ INSTANTIATE_TEST_SUITE_P(
         if (c == '-') c = '_';
       return name;
     });
+
+// --batch: every response line arrived, then the program did not exit; told so, not "no complete answer".
+TEST(GradeTest, ABatchThatAnsweredCompletelyButDoesNotExitIsToldSo) {
+  FreshFolder dir;
+  const fs::path out = dir.path() / "report";
+  const auto r = runCrankcheck({"grade", "--quick", "--batch", "--jobs", "2", "--timeout", "0.2", "--out", out.string(), "--",
+                                CRANKCHECK_FAKE_PROGRAM, "answer-then-hang"});
+  EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find(": batch of "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("requests: answered completely but did not exit within"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
 
 TEST(GradeTest, NothingProvidedIsNeitherRightNorWrong) {
   FreshFolder dir;

@@ -70,7 +70,8 @@ GradeCase makeCase(const std::string& family, const std::string& id, const Mecha
   return c;
 }
 
-// The first line of `text` that holds byte `at` (or the first line), at most 160 characters, for a message.
+// The first line of `text` that holds byte `at` (or the first line), at most 160 bytes, for a message: quoted, its
+// control bytes escaped (an ESC never reaches the terminal, a NUL never cuts the message), the quote closed.
 std::string quoteLine(const std::string& text, size_t at = 0) {
   at = std::min(at, text.empty() ? size_t{0} : text.size() - 1);
   size_t begin = text.rfind('\n', at == 0 ? 0 : at - (text[at] == '\n' ? 1 : 0));
@@ -78,10 +79,9 @@ std::string quoteLine(const std::string& text, size_t at = 0) {
   if (at == 0) begin = 0;
   size_t end = text.find('\n', begin);
   if (end == std::string::npos) end = text.size();
-  std::string line = text.substr(begin, std::min<size_t>(end - begin, 160));
+  const std::string line = text.substr(begin, std::min<size_t>(end - begin, 160));
   const size_t line_number = static_cast<size_t>(std::count(text.begin(), text.begin() + static_cast<long>(begin), '\n')) + 1;
-  if (end - begin > 160) line += "...";
-  return "line " + std::to_string(line_number) + ": \"" + line + "\"";
+  return "line " + std::to_string(line_number) + ": " + quoteText(line) + (end - begin > 160 ? "..." : "");
 }
 
 }  // namespace
@@ -158,7 +158,7 @@ std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string
   try {
     doc = Json::parse(response);
   } catch (const Json::parse_error& e) {
-    fail(std::string("the response is not JSON (") + e.what() + ")", e.byte > 0 ? e.byte - 1 : 0);
+    fail("the response is not JSON (" + escapeText(e.what()) + ")", e.byte > 0 ? e.byte - 1 : 0);
   }
   if (!doc.is_object() || !doc.contains("results") || !doc["results"].is_array())
     fail("the response must be an object {\"results\": [...]}");
@@ -362,6 +362,24 @@ std::string describeSignal(int signal) {
 }
 
 // Runs the program on `input`; returns its stdout. @throws EnvironmentError on anything but a clean exit.
+// True when `out` holds `requests` complete JSON responses (one per line in batch; one document otherwise), whatever
+// they say: the program answered, even if it did not exit.
+bool isCompleteAnswer(const std::string& out, size_t requests, bool batch) {
+  if (!batch) return out.find_first_not_of(" \t\r\n") != std::string::npos && Json::accept(out);
+  size_t complete = 0;
+  for (size_t begin = 0; begin < out.size();) {
+    size_t end = out.find('\n', begin);
+    if (end == std::string::npos) end = out.size();
+    const std::string line = out.substr(begin, end - begin);
+    if (line.find_first_not_of(" \t\r") != std::string::npos) {
+      if (!Json::accept(line)) return false;
+      ++complete;
+    }
+    begin = end + 1;
+  }
+  return complete == requests;
+}
+
 std::string runOnce(const GradeProgram& program, const std::string& input, size_t requests, const std::string& what) {
   ProgramCall call{program.argv};
   call.input = input;
@@ -369,10 +387,13 @@ std::string runOnce(const GradeProgram& program, const std::string& input, size_
   call.output_limit = program.output_limit * requests;
   const ProgramResult r = runProgram(call);
   const std::string name = program.argv.front();
-  auto stderrLine = [&] {
+  auto stderrLine = [&] {  // its first line, quoted with its control bytes escaped
     const std::string err = r.err.substr(0, r.err.find('\n')).substr(0, 200);
-    return err.empty() ? std::string() : "; its stderr: \"" + err + "\"";
+    return err.empty() ? std::string() : "; its stderr: " + quoteText(err);
   };
+  if (r.timed_out && isCompleteAnswer(r.out, requests, program.batch))
+    throw EnvironmentError(name + ": " + what + ": answered completely but did not exit within " +
+                           formatNumber(call.timeout_seconds) + " s (killed; the program must exit when its stdin ends)");
   if (r.timed_out)
     throw EnvironmentError(name + ": " + what + ": no complete answer within " + formatNumber(call.timeout_seconds) +
                            " s (killed; --timeout sets the time per request)");
