@@ -676,6 +676,11 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
       "so that sin and cos are exact at quarter turns): the same angles as `crankcheck eval --phi-deg`.");
   mod.def("_grade", &grade, py::arg("function"), py::arg("scenes"), py::arg("quick"), py::arg("jobs"), py::arg("timeout"),
           py::arg("out"), py::arg("relay"), py::arg("program_name"));
+  mod.def("_grade_regimes", [] {
+        py::dict regimes;  // the summary's regime ids and their words (grade.h: getGradeRegimes)
+        for (const validation::GradeRegime& r : validation::getGradeRegimes()) regimes[py::str(r.id)] = r.words;
+        return regimes;
+      });
   mod.def("_input_buffer_address", [](const py::handle& phi) {
         return reinterpret_cast<std::uintptr_t>(asAngles(phi).data());
       }, "The address of the angles' buffer as evaluate() uses it (a test that a float64 C-contiguous array is not copied).");
