@@ -175,6 +175,8 @@ def test_what_the_function_gets_and_its_errors():
         crankcheck.grade(lambda s, phi: {"Q": phi * np.nan}, [SCENE_FILES[0]], quick=True)
     with pytest.raises(ValueError, match='"torque" is not a quantity'):
         crankcheck.grade(lambda s, phi: {"torque": phi}, [SCENE_FILES[0]], quick=True)
+    with pytest.raises(ValueError, match=r'"\\x1b\[31m\\x00" is not a quantity'):  # quoted with its control bytes escaped
+        crankcheck.grade(lambda s, phi: {"\x1b[31m\x00": phi}, [SCENE_FILES[0]], quick=True)
     with pytest.raises(TypeError, match="callable"):
         crankcheck.grade(42)
 
