@@ -186,7 +186,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(GradeTest, ABatchThatAnsweredCompletelyButDoesNotExitIsToldSo) {
   FreshFolder dir;
   const fs::path out = dir.path() / "report";
-  const auto r = runCrankcheck({"grade", "--quick", "--batch", "--jobs", "2", "--timeout", "0.2", "--out", out.string(), "--",
+  const auto r = runCrankcheck({"grade", "--quick", "--batch", "--jobs", "2", "--timeout", "0.1", "--out", out.string(), "--",
                                 CRANKCHECK_FAKE_PROGRAM, "answer-then-hang"});
   EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
   EXPECT_NE(r.err.find(": batch of "), std::string::npos) << r.err;
