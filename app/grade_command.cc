@@ -99,18 +99,30 @@ int runGrade(const GradeOptions& options) {
 
   const int status = validation::findGradeExitStatus(tables);
   const validation::Table& summary = tables.at("grade_summary");
-  std::printf("%-16s %18s %14s %14s %14s  %s\n", "quantity", "provided / asked", "vs Simbody [-]", "vs analytic [-]",
-              "vs MuJoCo [-]", "verdict");
-  const size_t vs_mujoco = 9, verdict = 10;  // grade.h: grade_summary's columns
+  // One row per quantity over all cases, then (for a provided quantity) one per regime: moving or at rest, lambda up
+  // to 0.4 or beyond. Errors relative to the quantity's scale: the largest, and the one at the worst error / tolerance.
+  const size_t quantity = validation::columnOf(summary, "quantity"), regime = validation::columnOf(summary, "regime"),
+               asked = validation::columnOf(summary, "asked"), provided = validation::columnOf(summary, "provided"),
+               largest = validation::columnOf(summary, "largest_rel_error"),
+               at_worst = validation::columnOf(summary, "rel_error_at_worst_ratio"),
+               tolerance = validation::columnOf(summary, "tolerance_rel"), verdict = validation::columnOf(summary, "verdict");
   auto brief = [](const std::string& number) {
     if (number.empty()) return std::string("-");
     char text[32];
     std::snprintf(text, sizeof text, "%.2g", std::strtod(number.c_str(), nullptr));
     return std::string(text);
   };
-  for (const auto& row : summary.rows)
-    std::printf("%-16s %18s %14s %14s %14s  %s\n", row[0].c_str(), (row[2] + " / " + row[1]).c_str(), brief(row[3]).c_str(),
-                brief(row[4]).c_str(), brief(row[vs_mujoco]).c_str(), row[verdict].c_str());
+  std::printf("%-16s %-22s %17s %22s %21s %18s  %s\n", "quantity", "regime", "provided / asked", "largest error / scale",
+              "error at worst ratio", "tolerance / scale", "verdict");
+  for (const auto& row : summary.rows) {
+    if (row[regime] != "all" && row[provided] == "0") continue;  // a regime of a quantity not provided
+    std::printf("%-16s %-22s %17s %22s %21s %18s  %s\n", row[regime] == "all" ? row[quantity].c_str() : "",
+                validation::describeGradeRegime(row[regime]).c_str(), (row[provided] + " / " + row[asked]).c_str(),
+                brief(row[largest]).c_str(), brief(row[at_worst]).c_str(), brief(row[tolerance]).c_str(),
+                row[verdict].c_str());
+  }
+  std::printf("Errors relative to the quantity's scale against Simbody, the analytic engine and MuJoCo: the largest, and the "
+              "one where error / tolerance is worst (beside that tolerance).\n");
   std::printf("%s\nReport: %s (also index.html)\n",
               status == 0 ? "Every provided value agrees with every reference engine (Simbody, analytic, MuJoCo)."
                           : "SOME VALUES DISAGREE, or none was provided (see the report's failing cases).",

@@ -105,13 +105,22 @@ def _rows(table):
     return [{c: _number(v) for c, v in zip(table["columns"], row)} for row in table["rows"]]
 
 
+# The summary's regimes as `crankcheck grade` prints them (validation/grade.h: getGradeRegimes).
+_REGIMES = _crankcheck._grade_regimes()
+
+
 @_dataclass
 class GradeResult:
     """What `crankcheck grade` found for a function: the tables of its report (validation/grade.h) as lists of dicts.
 
-    summary          one row per quantity: quantity, asked, provided, worst_rel_error_simbody, worst_rel_error_analytic,
-                     tolerance_rel, where_case, where_phi_deg, where_speed_rpm, worst_rel_error_mujoco, verdict
-                     ("pass", "FAIL" or "not provided")
+    summary          one row per quantity and regime ("all", then "moving_lambda_le_0.4", "moving_lambda_gt_0.4",
+                     "at_rest_lambda_le_0.4", "at_rest_lambda_gt_0.4"; a regime without a value asked left out):
+                     quantity, regime, asked, provided, largest_rel_error (the largest error / scale over every value
+                     and the three references), largest_rel_error_simbody, largest_rel_error_analytic,
+                     largest_rel_error_mujoco, largest_where_case, largest_where_phi_deg, largest_where_speed_rpm,
+                     rel_error_at_worst_ratio (the error / scale where error / tolerance is worst), worst_ratio,
+                     tolerance_rel (there), where_case, where_phi_deg, where_speed_rpm, verdict ("pass", "FAIL" or
+                     "not provided")
     error_vs_lambda  quantity, lambda, program_max_rel_error, analytic_max_rel_error
     failures         case, family, lambda, quantity, cylinder, phi_deg, speed_rpm, program_value, simbody_value,
                      analytic_value, rel_error, tolerance_rel, mujoco_value
@@ -132,9 +141,10 @@ class GradeResult:
         return self.exit_status == 0
 
     def verdict(self, quantity):
-        """The summary's verdict for `quantity` ("pass", "FAIL", "not provided"), None when it was not asked."""
+        """The summary's verdict for `quantity` over all cases ("pass", "FAIL", "not provided"), None when it was not
+        asked."""
         for row in self.summary:
-            if row["quantity"] == quantity:
+            if row["quantity"] == quantity and row["regime"] == "all":
                 return row["verdict"]
         return None
 
@@ -143,14 +153,20 @@ class GradeResult:
         def brief(x):
             return "-" if x is None else "%.2g" % x
 
-        lines = ["%-16s %18s %14s %14s  %s" % ("quantity", "provided / asked", "vs Simbody [-]", "vs analytic [-]",
-                                              "verdict")]
+        form = "%-16s %-22s %17s %22s %21s %18s  %s"
+        lines = [form % ("quantity", "regime", "provided / asked", "largest error / scale", "error at worst ratio",
+                         "tolerance / scale", "verdict")]
         for row in self.summary:
-            lines.append("%-16s %18s %14s %14s  %s" % (
-                row["quantity"], "%d / %d" % (row["provided"], row["asked"]), brief(row["worst_rel_error_simbody"]),
-                brief(row["worst_rel_error_analytic"]), row["verdict"]))
-        lines.append("Every provided value agrees with both engines." if self.passed else
-                     "SOME VALUES DISAGREE, or none was provided (see the report's failing cases).")
+            if row["regime"] != "all" and not row["provided"]:
+                continue  # a regime of a quantity not provided
+            lines.append(form % (
+                row["quantity"] if row["regime"] == "all" else "", _REGIMES.get(row["regime"], row["regime"]),
+                "%d / %d" % (row["provided"], row["asked"]), brief(row["largest_rel_error"]),
+                brief(row["rel_error_at_worst_ratio"]), brief(row["tolerance_rel"]), row["verdict"]))
+        lines.append("Errors relative to the quantity's scale against Simbody, the analytic engine and MuJoCo: the "
+                     "largest, and the one where error / tolerance is worst (beside that tolerance).")
+        lines.append("Every provided value agrees with every reference engine (Simbody, analytic, MuJoCo)." if self.passed
+                     else "SOME VALUES DISAGREE, or none was provided (see the report's failing cases).")
         return "\n".join(lines)
 
 

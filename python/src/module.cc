@@ -104,6 +104,10 @@ Output reuse(const QuantityInfo& q, int k, const std::vector<py::ssize_t>& angle
   const py::object v = out[q.name];
   if (!py::isinstance<py::array>(v)) throw py::value_error(where + ": not a NumPy array" + rule);
   const size_t prefix = prefixDims(q), d = angle_shape.size();
+  const std::string layout_rule = ": not the float64 array of this shape and layout evaluate returns";
+  // Another rank (phi of another rank than the call that made it) is another shape: the same message as any, before
+  // the transpose below would fail with NumPy's own ("axes don't match array").
+  if (v.attr("ndim").cast<size_t>() != prefix + d) throw py::value_error(where + layout_rule + rule);
   py::list inverse;  // buffer axis b is view axis (b < prefix: d + prefix - 1 - b; else b - prefix)
   for (size_t b = 0; b < prefix + d; ++b) inverse.append(b < prefix ? d + prefix - 1 - b : b - prefix);
   const py::array buffer = v.attr("transpose")(py::tuple(inverse));
@@ -113,7 +117,7 @@ Output reuse(const QuantityInfo& q, int k, const std::vector<py::ssize_t>& angle
   shape.insert(shape.end(), angle_shape.begin(), angle_shape.end());
   const bool layout = buffer.dtype().equal(py::dtype::of<double>()) && (buffer.flags() & py::array::c_style) &&
                       std::vector<py::ssize_t>(buffer.shape(), buffer.shape() + buffer.ndim()) == shape;
-  if (!layout) throw py::value_error(where + ": not the float64 array of this shape and layout evaluate returns" + rule);
+  if (!layout) throw py::value_error(where + layout_rule + rule);
   if (!buffer.writeable()) throw py::value_error(where + ": read-only");
   return {&q, buffer};
 }
@@ -340,7 +344,7 @@ std::string toResponse(const validation::GradeCase& c, const py::handle& answer)
   for (const auto& [key_handle, value] : py::reinterpret_borrow<py::dict>(answer)) {
     const std::string key = py::str(key_handle);
     const QuantityInfo* q = findQuantity(key);
-    if (!q) throw py::value_error(where + "\"" + key + "\" is not a quantity of eval (one of " + joinQuantityNames() + ")");
+    if (!q) throw py::value_error(where + quoteText(key) + " is not a quantity of eval (one of " + joinQuantityNames() + ")");
     if (value.is_none() || key == "U_star" || key == "Q_star") continue;  // not provided; U_star, Q_star are not graded
     const Angles a = asAngles(value);
     std::vector<py::ssize_t> expected = {static_cast<py::ssize_t>(n)};
@@ -686,6 +690,11 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
       "angles as `crankcheck eval --phi-deg`.");
   mod.def("_grade", &grade, py::arg("function"), py::arg("scenes"), py::arg("quick"), py::arg("jobs"), py::arg("timeout"),
           py::arg("out"), py::arg("relay"), py::arg("program_name"));
+  mod.def("_grade_regimes", [] {
+        py::dict regimes;  // the summary's regime ids and their words (grade.h: getGradeRegimes)
+        for (const validation::GradeRegime& r : validation::getGradeRegimes()) regimes[py::str(r.id)] = r.words;
+        return regimes;
+      });
   mod.def("_input_buffer_address", [](const py::handle& phi) {
         return reinterpret_cast<std::uintptr_t>(asAngles(phi).data());
       }, "The address of the angles' buffer as evaluate() uses it (a test that a float64 C-contiguous array is not copied).");

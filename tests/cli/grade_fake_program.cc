@@ -11,9 +11,12 @@
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   std::string line, first;
+  size_t requests = 0;  // one per line (--batch: several)
   if (mode != "no-read")
-    while (std::getline(std::cin, line))
+    while (std::getline(std::cin, line)) {
       if (first.empty()) first = line;
+      requests += !line.empty();
+    }
   if (mode == "silent" || mode == "no-read") return 0;
   // The number of angles of the request, to answer with the right number of results.
   const size_t at = first.find("\"phi_deg\":[");
@@ -55,6 +58,58 @@ int main(int argc, char** argv) {
   if (mode == "huge") {
     const std::string block(1 << 20, ' ');
     for (int i = 0; i < 100; ++i) std::fwrite(block.data(), 1, block.size(), stdout);  // 100 MiB of blanks
+    return 0;
+  }
+  if (mode == "control-bytes") {
+    // A terminal's escape sequences, a NUL and a tab in a line that is not JSON: quoted in the message, escaped.
+    const char text[] = "\x1b[2J\x1b[31mred\x1b[0m\0\tafter NUL\n";
+    std::fwrite(text, 1, sizeof text - 1, stdout);
+    return 0;
+  }
+  if (mode == "control-bytes-stderr") {
+    const char text[] = "\x1b]0;title\x07\0hidden\n";
+    std::fwrite(text, 1, sizeof text - 1, stderr);
+    return 7;
+  }
+  if (mode == "answer-then-hang") {
+    // A complete, valid answer to every request (nothing provided), and then no exit.
+    for (size_t i = 0; i < requests; ++i) std::puts(repeat("null").c_str());
+    std::fflush(stdout);
+    for (;;) ::pause();
+  }
+  if (mode == "tiny-at-rest") {
+    // At rest (the scene's speed 0): 1e-18 for each quantity of argv[2] (comma-separated), every cylinder; at speed
+    // nothing. A value of 1e-18 where the truth is 0 is rounding, and must pass.
+    const std::string wanted = "," + std::string(argc > 2 ? argv[2] : "") + ",";
+    auto field = [&first](const std::string& key) {
+      const size_t k = first.find("\"" + key + "\":");
+      return k == std::string::npos ? -1.0 : std::strtod(first.c_str() + k + key.size() + 3, nullptr);
+    };
+    const int cylinders = static_cast<int>(field("cylinders"));
+    if (field("speed") != 0.0 || cylinders < 1) {
+      std::puts(repeat("null").c_str());
+      return 0;
+    }
+    auto has = [&wanted](const char* q) {
+      std::string item = ",";
+      item += q;
+      return wanted.find(item += ',') != std::string::npos;
+    };
+    std::string result = "{", cylinder = "{";
+    auto add = [](std::string& to, const char* key, int n) {
+      to += std::string(to.size() > 1 ? "," : "") + "\"" + key + "\":";
+      if (n == 1) to += "1e-18";
+      else to += n == 2 ? "[1e-18,1e-18]" : "[1e-18,1e-18,1e-18]";
+    };
+    for (const char* q : {"U", "Q", "drive_torque"}) if (has(q)) add(result, q, 1);
+    for (const char* q : {"bearing_force", "shaking_force"}) if (has(q)) add(result, q, 2);
+    if (has("shaking_moment")) add(result, "shaking_moment", 3);
+    for (const char* q : {"v_p", "a_p", "wall_force", "rod_omega", "rod_alpha"}) if (has(q)) add(cylinder, q, 1);
+    for (const char* q : {"crank_pin_force", "wrist_pin_force"}) if (has(q)) add(cylinder, q, 2);
+    cylinder += "}";
+    result += std::string(result.size() > 1 ? "," : "") + "\"cylinders\":[";
+    for (int j = 0; j < cylinders; ++j) result += (j ? "," : "") + cylinder;
+    std::puts(repeat(result + "]}").c_str());
     return 0;
   }
   if (mode == "nothing-provided") {

@@ -2,6 +2,7 @@
 grading the example programs that compute the same things (examples/grade/)."""
 import csv
 import os
+import re
 
 import numpy as np
 import pytest
@@ -27,7 +28,8 @@ def cli_grade(tmp_path, program, *scenes):
 
 
 def by_quantity(rows):
-    return {row["quantity"]: row for row in rows}
+    """The summary's rows by (quantity, regime): "all", and moving / at rest by lambda up to 0.4 and beyond."""
+    return {(row["quantity"], row["regime"]): row for row in rows}
 
 
 def evaluate(scene, phi):
@@ -51,11 +53,12 @@ def test_the_analytic_engine_passes_as_the_clis_example_does(scenes, tmp_path):
     assert result.exit_status == status == 0
     assert result.passed and result.failures == [] and failures == []
     cli = by_quantity(summary)
-    assert [row["quantity"] for row in result.summary] == [row["quantity"] for row in summary]
+    assert [(row["quantity"], row["regime"]) for row in result.summary] == list(cli)
     for row in result.summary:
         # The same cases: the same number of values asked for; every one provided and passed by both.
-        assert row["asked"] == float(cli[row["quantity"]]["asked"]), row
-        assert row["provided"] == row["asked"] and row["verdict"] == "pass" == cli[row["quantity"]]["verdict"], row
+        c = cli[row["quantity"], row["regime"]]
+        assert row["asked"] == float(c["asked"]), row
+        assert row["provided"] == row["asked"] and row["verdict"] == "pass" == c["verdict"], row
     assert result.cases > 0 and result.report is None
 
 
@@ -65,14 +68,23 @@ def test_norton_fails_where_the_clis_norton_example_fails(tmp_path):
     assert result.exit_status == status == 1 and not result.passed
     cli = by_quantity(summary)
     for row in result.summary:
-        c = cli[row["quantity"]]
+        c = cli[row["quantity"], row["regime"]]
         assert (row["asked"], row["provided"], row["verdict"]) == (float(c["asked"]), float(c["provided"]), c["verdict"])
-        if row["provided"]:
+        if row["provided"] and row["regime"].startswith("moving"):
             # The same formula computed twice (NumPy here, math there; angles from the CLI's radians and from
-            # math.radians): the worst errors, of order 1e-3 of the scale, agree far beyond rounding of the values.
-            assert row["worst_rel_error_simbody"] == pytest.approx(float(c["worst_rel_error_simbody"]), rel=1e-9)
-            assert row["where_case"] == c["where_case"]
+            # math.radians): the errors at speed, of order 1e-3 of the scale, agree far beyond rounding of the values.
+            for column in ("largest_rel_error_simbody", "rel_error_at_worst_ratio"):
+                assert row[column] == pytest.approx(float(c[column]), rel=1e-9), column
+            assert row["where_case"] == c["where_case"] and row["largest_where_case"] == c["largest_where_case"]
     assert result.verdict("a_p") == "FAIL" and result.verdict("U") == "not provided"
+    # The summary names what it shows: the largest error, and the error where error / tolerance is worst.
+    a_p = {row["regime"]: row for row in result.summary if row["quantity"] == "a_p"}
+    assert a_p["all"]["largest_rel_error"] >= a_p["all"]["rel_error_at_worst_ratio"] > 0
+    assert a_p["moving_lambda_gt_0.4"]["verdict"] == "FAIL" and a_p["at_rest_lambda_le_0.4"]["verdict"] == "pass"
+    text = str(result)
+    for words in ("largest error / scale", "error at worst ratio", "at rest, lambda <= 0.4", "moving, lambda > 0.4"):
+        assert words in text, text
+    assert not re.search(r"\b(nan|inf)\b", text, re.IGNORECASE), text
     assert {(f["case"], f["quantity"], f["cylinder"]) for f in result.failures} == \
         {(f["case"], f["quantity"], float(f["cylinder"])) for f in failures}
 
@@ -84,6 +96,20 @@ def test_a_partial_answer_is_graded_as_provided():
     assert result.verdict("Q") == "pass" and result.verdict("U") == "not provided"
     nothing = crankcheck.grade(lambda s, phi: {}, [SCENE_FILES[0]], quick=True)
     assert nothing.exit_status == 1  # nothing provided: as the CLI
+
+
+def test_rounding_of_a_velocity_at_rest_passes():
+    """At rest v_p is 0 exactly and r omega = 0: 1e-18 m/s is rounding, judged against a positive scale."""
+    def tiny_at_rest(scene, phi):
+        if scene.engine.speed != 0:
+            return {}
+        return {"v_p": np.full((len(phi), scene.engine.cylinders), 1e-18),
+                "rod_omega": np.full((len(phi), scene.engine.cylinders), 1e-18)}
+    result = crankcheck.grade(tiny_at_rest, quick=True)
+    assert result.exit_status == 0, str(result)
+    for row in result.summary:
+        if row["provided"]:
+            assert 0 < row["tolerance_rel"] < 1e-11 and row["largest_rel_error"] < row["tolerance_rel"], row
 
 
 def test_the_report(tmp_path):
@@ -149,6 +175,8 @@ def test_what_the_function_gets_and_its_errors():
         crankcheck.grade(lambda s, phi: {"Q": phi * np.nan}, [SCENE_FILES[0]], quick=True)
     with pytest.raises(ValueError, match='"torque" is not a quantity'):
         crankcheck.grade(lambda s, phi: {"torque": phi}, [SCENE_FILES[0]], quick=True)
+    with pytest.raises(ValueError, match=r'"\\x1b\[31m\\x00" is not a quantity'):  # quoted with its control bytes escaped
+        crankcheck.grade(lambda s, phi: {"\x1b[31m\x00": phi}, [SCENE_FILES[0]], quick=True)
     with pytest.raises(TypeError, match="callable"):
         crankcheck.grade(42)
 

@@ -192,3 +192,13 @@ def test_out_must_be_an_earlier_result():
         scene.evaluate(phi, out={"U": np.zeros(5, dtype=np.float32)}, quantities=["U"])
     with pytest.raises(ValueError, match="at least one dimension"):
         scene.evaluate(0.5, out=r)
+    # phi of another rank than the arrays of out: the same message, not NumPy's "axes don't match array".
+    layout = r'out\["(U|x_p)"\]: not the float64 array of this shape and layout evaluate returns \(out must be'
+    with pytest.raises(ValueError, match=layout):
+        scene.evaluate(phi.reshape(1, 5), out=r)
+    with pytest.raises(ValueError, match=layout):
+        scene.evaluate(phi.reshape(5, 1, 1), quantities=["x_p"], out=r)
+    grid = scene.evaluate(phi.reshape(1, 5), quantities=["U", "crank_pin_force"])
+    for quantities in (["U"], ["crank_pin_force"]):
+        with pytest.raises(ValueError, match=layout.replace("U|x_p", quantities[0])):
+            scene.evaluate(phi, quantities=quantities, out=grid)

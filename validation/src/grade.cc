@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -70,7 +71,8 @@ GradeCase makeCase(const std::string& family, const std::string& id, const Mecha
   return c;
 }
 
-// The first line of `text` that holds byte `at` (or the first line), at most 160 characters, for a message.
+// The first line of `text` that holds byte `at` (or the first line), at most 160 bytes, for a message: quoted, its
+// control bytes escaped (an ESC never reaches the terminal, a NUL never cuts the message), the quote closed.
 std::string quoteLine(const std::string& text, size_t at = 0) {
   at = std::min(at, text.empty() ? size_t{0} : text.size() - 1);
   size_t begin = text.rfind('\n', at == 0 ? 0 : at - (text[at] == '\n' ? 1 : 0));
@@ -78,10 +80,9 @@ std::string quoteLine(const std::string& text, size_t at = 0) {
   if (at == 0) begin = 0;
   size_t end = text.find('\n', begin);
   if (end == std::string::npos) end = text.size();
-  std::string line = text.substr(begin, std::min<size_t>(end - begin, 160));
+  const std::string line = text.substr(begin, std::min<size_t>(end - begin, 160));
   const size_t line_number = static_cast<size_t>(std::count(text.begin(), text.begin() + static_cast<long>(begin), '\n')) + 1;
-  if (end - begin > 160) line += "...";
-  return "line " + std::to_string(line_number) + ": \"" + line + "\"";
+  return "line " + std::to_string(line_number) + ": " + quoteText(line) + (end - begin > 160 ? "..." : "");
 }
 
 }  // namespace
@@ -158,7 +159,7 @@ std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string
   try {
     doc = Json::parse(response);
   } catch (const Json::parse_error& e) {
-    fail(std::string("the response is not JSON (") + e.what() + ")", e.byte > 0 ? e.byte - 1 : 0);
+    fail("the response is not JSON (" + escapeText(e.what()) + ")", e.byte > 0 ? e.byte - 1 : 0);
   }
   if (!doc.is_object() || !doc.contains("results") || !doc["results"].is_array())
     fail("the response must be an object {\"results\": [...]}");
@@ -243,16 +244,68 @@ std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string
   return out;
 }
 
+const std::vector<GradeRegime>& getGradeRegimes() {
+  static const std::vector<GradeRegime> regimes = {{"all", "all cases"},
+                                                   {"moving_lambda_le_0.4", "moving, lambda <= 0.4"},
+                                                   {"moving_lambda_gt_0.4", "moving, lambda > 0.4"},
+                                                   {"at_rest_lambda_le_0.4", "at rest, lambda <= 0.4"},
+                                                   {"at_rest_lambda_gt_0.4", "at rest, lambda > 0.4"}};
+  return regimes;
+}
+
+std::string describeGradeRegime(const std::string& id) {
+  for (const GradeRegime& r : getGradeRegimes())
+    if (id == r.id) return r.words;
+  return id;
+}
+
 namespace {
 
-// What a grade found for one quantity over every case.
+// The regime of a case besides "all" (getGradeRegimes): moving or at rest, lambda up to 0.4 (the gate's fine
+// sweep; 1e-9 for the rounding of r / l) or beyond.
+std::string regimeOf(const Mechanism& m) {
+  return std::string(m.engine.speed > 0.0 ? "moving" : "at_rest") + (lambdaOf(m) <= 0.4 + 1e-9 ? "_lambda_le_0.4" : "_lambda_gt_0.4");
+}
+
+// An error / scale or error / tolerance as a number: one beyond double's range (a program's 1e308 against a scale
+// below 1) is shown as the largest double, never as inf.
+double finiteRatio(double x) { return std::min(x, std::numeric_limits<double>::max()); }
+
+// What a grade found for one quantity in one regime.
 struct QuantityGrade {
   long long asked = 0, provided = 0;
   bool pass = true;
-  double worst_ratio = -1.0;  // max over references of error / tolerance
-  double worst_rel_simbody = 0.0, worst_rel_analytic = 0.0, worst_rel_mujoco = 0.0, tolerance_rel = 0.0;
+  // The largest error / scale against each reference, and where the largest of the three is.
+  double largest_simbody = 0.0, largest_analytic = 0.0, largest_mujoco = 0.0, largest = -1.0;
+  std::string largest_case;
+  double largest_phi_deg = 0.0, largest_rpm = 0.0;
+  // Where error / tolerance (the largest of the three references) is worst: that error / scale, tolerance / scale.
+  double worst_ratio = -1.0, error_at_worst = 0.0, tolerance_rel = 0.0;
   std::string where_case;
   double where_phi_deg = 0.0, where_rpm = 0.0;
+
+  void merge(const QuantityGrade& q) {
+    asked += q.asked;
+    provided += q.provided;
+    pass = pass && q.pass;
+    largest_simbody = std::max(largest_simbody, q.largest_simbody);
+    largest_analytic = std::max(largest_analytic, q.largest_analytic);
+    largest_mujoco = std::max(largest_mujoco, q.largest_mujoco);
+    if (q.largest > largest) {
+      largest = q.largest;
+      largest_case = q.largest_case;
+      largest_phi_deg = q.largest_phi_deg;
+      largest_rpm = q.largest_rpm;
+    }
+    if (q.worst_ratio > worst_ratio) {
+      worst_ratio = q.worst_ratio;
+      error_at_worst = q.error_at_worst;
+      tolerance_rel = q.tolerance_rel;
+      where_case = q.where_case;
+      where_phi_deg = q.where_phi_deg;
+      where_rpm = q.where_rpm;
+    }
+  }
 };
 
 struct LambdaError {
@@ -267,7 +320,7 @@ struct Failure {
 
 // Everything one thread found; merged at the end.
 struct GradeState {
-  std::map<std::string, QuantityGrade> quantities;
+  std::map<std::pair<std::string, std::string>, QuantityGrade> quantities;  // (quantity, regime id)
   std::map<std::pair<std::string, double>, LambdaError> by_lambda;  // (quantity, lambda)
   std::map<std::string, Failure> failures;                          // the worst failure per case, quantity, cylinder
 };
@@ -275,6 +328,8 @@ struct GradeState {
 void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, GradeState& state) {
   const Mechanism& m = c.mechanism;
   simbody_models::KCrankModel model(m);
+  const Scales scales = calcPositiveScales(m);  // positive at rest and without gravity too
+  const std::string regime = regimeOf(m);
   // The third reference: MuJoCo with exact multipliers (engines.h), built like the others from the case's scene.
   const std::unique_ptr<EngineModel> mujoco = findEngine("mujoco").build(m);
   const double lambda = lambdaOf(m);
@@ -282,10 +337,10 @@ void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, Grade
     const double phi = radiansFromDegrees(c.phi_deg[i]);
     const Evaluation a = analytic::calcEvaluation(m, phi);
     const Evaluation s = model.evaluate(phi);
-    const std::vector<Comparison> vs_simbody = compareEvaluations(m, program[i], s);
-    const std::vector<Comparison> vs_analytic = compareEvaluations(m, program[i], a);
-    const std::vector<Comparison> vs_mujoco = compareEvaluations(m, program[i], mujoco->evaluate(phi));
-    const std::vector<Comparison> own = compareEvaluations(m, a, s);  // the analytic engine's own error
+    const std::vector<Comparison> vs_simbody = compareEvaluations(m, scales, program[i], s);
+    const std::vector<Comparison> vs_analytic = compareEvaluations(m, scales, program[i], a);
+    const std::vector<Comparison> vs_mujoco = compareEvaluations(m, scales, program[i], mujoco->evaluate(phi));
+    const std::vector<Comparison> own = compareEvaluations(m, scales, a, s);  // the analytic engine's own error
     int moment_component = 0;
     for (size_t n = 0; n < vs_simbody.size(); ++n) {
       const Comparison& cs = vs_simbody[n];
@@ -294,29 +349,33 @@ void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, Grade
       // shaking_moment X and Y without axial positions are not defined: not asked, never graded.
       const bool defined =
           cs.quantity != "shaking_moment" || moment_component++ == 2 || hasAxialPositions(m);
-      QuantityGrade& q = state.quantities[cs.quantity];
       LambdaError& le = state.by_lambda[{cs.quantity, lambda}];
-      le.analytic = std::max(le.analytic, own[n].error() / own[n].scale);
+      le.analytic = std::max(le.analytic, finiteRatio(own[n].error() / own[n].scale));
       if (!defined) continue;
-      ++q.asked;
-      if (std::isnan(cs.a)) continue;  // not provided
-      ++q.provided;
-      le.provided = true;
-      const double rel_s = cs.error() / cs.scale, rel_a = ca.error() / ca.scale, rel_m = cm.error() / cm.scale;
-      le.program = std::max(le.program, rel_s);
-      const double ratio = std::max({cs.error() / cs.tolerance(), ca.error() / ca.tolerance(), cm.error() / cm.tolerance()});
-      const bool agrees = cs.agrees() && ca.agrees() && cm.agrees();
-      q.pass = q.pass && agrees;
-      if (ratio > q.worst_ratio) {
-        q.worst_ratio = ratio;
-        q.worst_rel_simbody = rel_s;
-        q.worst_rel_analytic = rel_a;
-        q.worst_rel_mujoco = rel_m;
-        q.tolerance_rel = cs.tolerance() / cs.scale;
-        q.where_case = c.id;
-        q.where_phi_deg = c.phi_deg[i];
-        q.where_rpm = m.speed_rpm;
+      QuantityGrade value;  // this one value, merged into the quantity's "all" and its regime
+      value.asked = 1;
+      if (!std::isnan(cs.a)) {  // provided
+        value.provided = 1;
+        le.provided = true;
+        value.largest_simbody = finiteRatio(cs.error() / cs.scale);
+        value.largest_analytic = finiteRatio(ca.error() / ca.scale);
+        value.largest_mujoco = finiteRatio(cm.error() / cm.scale);
+        value.largest = std::max({value.largest_simbody, value.largest_analytic, value.largest_mujoco});
+        value.largest_case = value.where_case = c.id;
+        value.largest_phi_deg = value.where_phi_deg = c.phi_deg[i];
+        value.largest_rpm = value.where_rpm = m.speed_rpm;
+        // The three tolerances are one (the scale and conditioning are the case's): the worst ratio is the largest error's.
+        value.worst_ratio = finiteRatio(std::max({cs.error(), ca.error(), cm.error()}) / cs.tolerance());
+        value.error_at_worst = value.largest;
+        value.tolerance_rel = cs.tolerance() / cs.scale;
+        value.pass = cs.agrees() && ca.agrees() && cm.agrees();
+        le.program = std::max(le.program, value.largest_simbody);
       }
+      state.quantities[{cs.quantity, "all"}].merge(value);
+      state.quantities[{cs.quantity, regime}].merge(value);
+      if (value.provided == 0) continue;
+      const double rel_s = value.largest_simbody, ratio = value.worst_ratio;
+      const bool agrees = value.pass;
       if (!agrees) {
         const std::string key = c.id + "\n" + cs.quantity + "\n" + std::to_string(cs.cylinder);
         Failure& f = state.failures[key];
@@ -332,20 +391,7 @@ void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, Grade
 }
 
 void mergeInto(GradeState& into, const GradeState& from) {
-  for (const auto& [name, q] : from.quantities) {
-    QuantityGrade& t = into.quantities[name];
-    t.asked += q.asked;
-    t.provided += q.provided;
-    t.pass = t.pass && q.pass;
-    if (q.worst_ratio > t.worst_ratio) {
-      const long long asked = t.asked, provided = t.provided;
-      const bool pass = t.pass;
-      t = q;
-      t.asked = asked;
-      t.provided = provided;
-      t.pass = pass;
-    }
-  }
+  for (const auto& [key, q] : from.quantities) into.quantities[key].merge(q);
   for (const auto& [key, e] : from.by_lambda) {
     LambdaError& t = into.by_lambda[key];
     t.program = std::max(t.program, e.program);
@@ -362,6 +408,24 @@ std::string describeSignal(int signal) {
 }
 
 // Runs the program on `input`; returns its stdout. @throws EnvironmentError on anything but a clean exit.
+// True when `out` holds `requests` complete JSON responses (one per line in batch; one document otherwise), whatever
+// they say: the program answered, even if it did not exit.
+bool isCompleteAnswer(const std::string& out, size_t requests, bool batch) {
+  if (!batch) return out.find_first_not_of(" \t\r\n") != std::string::npos && Json::accept(out);
+  size_t complete = 0;
+  for (size_t begin = 0; begin < out.size();) {
+    size_t end = out.find('\n', begin);
+    if (end == std::string::npos) end = out.size();
+    const std::string line = out.substr(begin, end - begin);
+    if (line.find_first_not_of(" \t\r") != std::string::npos) {
+      if (!Json::accept(line)) return false;
+      ++complete;
+    }
+    begin = end + 1;
+  }
+  return complete == requests;
+}
+
 std::string runOnce(const GradeProgram& program, const std::string& input, size_t requests, const std::string& what) {
   ProgramCall call{program.argv};
   call.input = input;
@@ -369,10 +433,13 @@ std::string runOnce(const GradeProgram& program, const std::string& input, size_
   call.output_limit = program.output_limit * requests;
   const ProgramResult r = runProgram(call);
   const std::string name = program.argv.front();
-  auto stderrLine = [&] {
+  auto stderrLine = [&] {  // its first line, quoted with its control bytes escaped
     const std::string err = r.err.substr(0, r.err.find('\n')).substr(0, 200);
-    return err.empty() ? std::string() : "; its stderr: \"" + err + "\"";
+    return err.empty() ? std::string() : "; its stderr: " + quoteText(err);
   };
+  if (r.timed_out && isCompleteAnswer(r.out, requests, program.batch))
+    throw EnvironmentError(name + ": " + what + ": answered completely but did not exit within " +
+                           formatNumber(call.timeout_seconds) + " s (killed; the program must exit when its stdin ends)");
   if (r.timed_out)
     throw EnvironmentError(name + ": " + what + ": no complete answer within " + formatNumber(call.timeout_seconds) +
                            " s (killed; --timeout sets the time per request)");
@@ -454,19 +521,24 @@ TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& progr
   for (const GradeState& s : states) mergeInto(all, s);
   TableSet tables;
   Table& summary = tables["grade_summary"];
-  summary.columns = {"quantity", "asked", "provided", "worst_rel_error_simbody", "worst_rel_error_analytic", "tolerance_rel",
-                     "where_case", "where_phi_deg", "where_speed_rpm", "worst_rel_error_mujoco", "verdict"};
-  for (const std::string& quantity : getGradeQuantities()) {
-    const auto it = all.quantities.find(quantity);
-    if (it == all.quantities.end() || it->second.asked == 0) continue;
-    const QuantityGrade& q = it->second;
-    const bool any = q.provided > 0;
-    summary.rows.push_back({quantity, std::to_string(q.asked), std::to_string(q.provided),
-                            any ? formatNumber(q.worst_rel_simbody) : "", any ? formatNumber(q.worst_rel_analytic) : "",
-                            any ? formatNumber(q.tolerance_rel) : "", any ? q.where_case : "",
-                            any ? formatNumber(q.where_phi_deg) : "", any ? formatNumber(q.where_rpm) : "",
-                            any ? formatNumber(q.worst_rel_mujoco) : "", !any ? "not provided" : q.pass ? "pass" : "FAIL"});
-  }
+  summary.columns = {"quantity", "regime", "asked", "provided", "largest_rel_error", "largest_rel_error_simbody",
+                     "largest_rel_error_analytic", "largest_rel_error_mujoco", "largest_where_case", "largest_where_phi_deg",
+                     "largest_where_speed_rpm", "rel_error_at_worst_ratio", "worst_ratio", "tolerance_rel", "where_case",
+                     "where_phi_deg", "where_speed_rpm", "verdict"};
+  for (const std::string& quantity : getGradeQuantities())
+    for (const GradeRegime& regime : getGradeRegimes()) {
+      const auto it = all.quantities.find({quantity, regime.id});
+      if (it == all.quantities.end() || it->second.asked == 0) continue;
+      const QuantityGrade& q = it->second;
+      const bool any = q.provided > 0;
+      auto number = [any](double x) { return any ? formatNumber(x) : std::string(); };
+      summary.rows.push_back({quantity, regime.id, std::to_string(q.asked), std::to_string(q.provided), number(q.largest),
+                              number(q.largest_simbody), number(q.largest_analytic), number(q.largest_mujoco),
+                              any ? q.largest_case : "", number(q.largest_phi_deg), number(q.largest_rpm),
+                              number(q.error_at_worst), number(q.worst_ratio), number(q.tolerance_rel),
+                              any ? q.where_case : "", number(q.where_phi_deg), number(q.where_rpm),
+                              !any ? "not provided" : q.pass ? "pass" : "FAIL"});
+    }
   Table& by_lambda = tables["grade_error_vs_lambda"];
   by_lambda.columns = {"quantity", "lambda", "program_max_rel_error", "analytic_max_rel_error"};
   for (const auto& [key, e] : all.by_lambda)
@@ -483,7 +555,9 @@ int findGradeExitStatus(const TableSet& tables) {
   const auto it = tables.find("grade_summary");
   if (it == tables.end()) return 1;
   bool any = false;
+  const size_t regime = columnOf(it->second, "regime");
   for (const auto& row : it->second.rows) {
+    if (row[regime] != "all") continue;
     if (row.back() == "FAIL") return 1;
     any = any || row.back() == "pass";
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace crankcheck::validation {
 
@@ -87,11 +88,43 @@ Scales calcScales(const Mechanism& m) {
   return s;
 }
 
+Scales calcPositiveScales(const Mechanism& m) {
+  Scales s = calcScales(m);
+  const double tiny = std::numeric_limits<double>::min();  // smallest normal double
+  auto zero = [tiny](double scale) { return !(scale >= tiny); };
+  if (!zero(s.energy) && !zero(s.simbody_energy) && !zero(s.velocity) && !zero(s.acceleration) && !zero(s.force) &&
+      !zero(s.torque) && !zero(s.moment))
+    return s;
+  // The case's static load A_s (standard gravity when it has none), and the same mechanism with A_s as its gravity
+  // and no gas, at rest: its calcScales are A_s times the masses and arms of each scale (see scales.h).
+  const double static_load = calcStaticAcceleration(m);
+  const double load = zero(static_load) ? kStandardGravity : static_load;
+  Mechanism loaded = m;
+  loaded.engine.gravity = load;
+  loaded.engine.speed = 0.0;
+  loaded.gas.reset();
+  const Scales at_rest = calcScales(loaded);
+  auto floor = [&](double& scale, double value) {
+    if (zero(scale)) scale = std::max(value, tiny);
+  };
+  floor(s.energy, at_rest.energy);
+  floor(s.simbody_energy, at_rest.simbody_energy);
+  floor(s.velocity, std::sqrt(m.crank.radius * load) * (1.0 + s.closure));  // r omega_c (1 + (1 - lambda^2)^(-1/2))
+  floor(s.acceleration, load);
+  floor(s.force, at_rest.force);
+  floor(s.torque, at_rest.torque);
+  floor(s.moment, at_rest.moment);
+  return s;
+}
+
 double Comparison::error() const { return std::fabs(a - b); }
 double Comparison::tolerance() const { return kAgreementMultiple * kEps * scale * conditioning; }
 
 std::vector<Comparison> compareEvaluations(const Mechanism& m, const Evaluation& a, const Evaluation& s) {
-  const Scales sc = calcScales(m);
+  return compareEvaluations(m, calcScales(m), a, s);
+}
+
+std::vector<Comparison> compareEvaluations(const Mechanism& m, const Scales& sc, const Evaluation& a, const Evaluation& s) {
   std::vector<Comparison> out;
   // U is a position-level quantity (heights of the bodies): the closure's amplification, as x_p. (With 1 here, U
   // failed at lambda = 0.99999 on a 0.1-degree grid: 1.2 x the tolerance.)

@@ -28,4 +28,12 @@ class EnvironmentError : public std::runtime_error {
 /// in a folder name) escaped, so that every message stays one line and shows exactly which path is meant.
 std::string quotePath(const std::filesystem::path& path);
 
+/// Text from outside (a program's output or stderr) as it appears in messages: escapeText in double quotes.
+std::string quoteText(const std::string& text);
+
+/// Every byte that could act on a terminal or cut a message shown as an escape: backslash and double quote as \\ and
+/// \", newline, carriage return and tab as \n, \r, \t, every other control byte (C0, DEL, a NUL) and every byte that is
+/// not part of valid UTF-8 or encodes a C1 control (U+0080..U+009F) as \xHH. UTF-8 letters stay as they are.
+std::string escapeText(const std::string& text);
+
 }  // namespace crankcheck

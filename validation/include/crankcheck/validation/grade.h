@@ -6,13 +6,16 @@
 /// Simbody's and with the analytic engine's by the gate's rule (scales.h: |a - b| <= 64 eps scale conditioning,
 /// compareEvaluations, the same code path as the gate).
 ///
+/// Scales: calcPositiveScales (a positive scale for every quantity, at rest and without gravity too).
+///
 /// Protocol 1 (README, "Grade your own code"):
 ///   request   {"protocol": 1, "case": ID, "scene": {...as eval's "scene"...}, "scene_toml": "...a scene file crankcheck
 ///             accepts...", "phi_deg": [...], "quantities": ["U", "Q", ...]}
 ///   response  {"results": [...one object per angle, in order, as eval's "results" without "engine"...]}
 /// A value left out, or null, is "not provided": reported as such, never as wrong, never as right. Anything else
 /// that is not the protocol (not JSON, the wrong number of results, a string where a number belongs, a number
-/// that is not finite, a result for another angle) ends the grade with exit status 3 and the first offending line.
+/// that is not finite, a result for another angle) ends the grade with exit status 3 and the first offending line,
+/// quoted with every control byte escaped (errors.h: quoteText).
 /// With `batch`, one program gets every request of its share of the cases, one per line, and answers one response
 /// per line in the same order.
 
@@ -63,10 +66,29 @@ struct GradeProgram {
 /// protocol.
 std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string& response, const std::string& program);
 
+/// A part of the cases the summary shows on its own: a simulator's errors at rest and at speed, and at small and
+/// large lambda, differ by orders of magnitude.
+struct GradeRegime {
+  const char* id;     ///< the summary's `regime` column: all, moving_lambda_le_0.4, ..., at_rest_lambda_gt_0.4
+  const char* words;  ///< as the terminal and the report say it: "moving, lambda <= 0.4"
+};
+/// "all" first, then moving (speed > 0) and at rest, each with lambda up to 0.4 and beyond.
+const std::vector<GradeRegime>& getGradeRegimes();
+/// The words of a regime id ("all cases" for "all"); the id itself when unknown.
+std::string describeGradeRegime(const std::string& id);
+
 /// Runs the program on `cases` (several programs at once with jobs > 1; batch: one program per job) and grades
 /// every answer. `progress(done, total)` is called after each case. Tables (reports/README.md):
-///   grade_summary         quantity,asked,provided,worst_rel_error_simbody,worst_rel_error_analytic,tolerance_rel,
-///                         where_case,where_phi_deg,where_speed_rpm,worst_rel_error_mujoco,verdict
+///   grade_summary         quantity,regime,asked,provided,largest_rel_error,largest_rel_error_simbody,
+///                         largest_rel_error_analytic,largest_rel_error_mujoco,largest_where_case,
+///                         largest_where_phi_deg,largest_where_speed_rpm,rel_error_at_worst_ratio,worst_ratio,
+///                         tolerance_rel,where_case,where_phi_deg,where_speed_rpm,verdict
+///                         one row per quantity and regime (getGradeRegimes; "all" first, a regime without a value
+///                         asked left out). largest_rel_error: the largest |program - reference| / scale over every
+///                         value and the three references (and against each); rel_error_at_worst_ratio: the error /
+///                         scale where error / tolerance (worst_ratio) is largest, tolerance_rel the tolerance / scale
+///                         there, where_* that value's case. Errors / scale beyond double's range are shown as its
+///                         largest number (1.8e308), never as inf.
 ///   grade_error_vs_lambda quantity,lambda,program_max_rel_error,analytic_max_rel_error
 ///   grade_failures        case,family,lambda,quantity,cylinder,phi_deg,speed_rpm,program_value,simbody_value,
 ///                         analytic_value,rel_error,tolerance_rel,mujoco_value
@@ -94,8 +116,8 @@ struct GradeReportInfo {
 void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cases, const GradeReportInfo& info,
                        const std::filesystem::path& dir);
 
-/// Verdict of a grade: 0 when every provided value agrees with every reference engine and at least one was provided, 1
-/// otherwise.
+/// Verdict of a grade (the summary's "all" rows): 0 when every provided value agrees with every reference engine and
+/// at least one was provided, 1 otherwise.
 int findGradeExitStatus(const TableSet& tables);
 
 }  // namespace crankcheck::validation

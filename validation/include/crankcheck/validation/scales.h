@@ -72,6 +72,29 @@ struct Scales {
 };
 Scales calcScales(const Mechanism& m);
 
+/// [m/s^2] The scene format's default gravity (docs/SCENE-FORMAT.md), the load calcPositiveScales assumes where a
+/// case has none.
+constexpr double kStandardGravity = 9.80665;
+
+/// calcScales with every scale positive, for judging values that are not an engine's (`crankcheck grade`): a
+/// mechanism at rest has r omega = 0 (velocity, rod_omega's v / l), and with g = 0 and no gas also no acceleration,
+/// force, torque, moment or energy scale. Where calcScales gives 0 (or a number below double's normal range) the
+/// scale is that of the case's own characteristic motion and load instead:
+///   - the static acceleration A_s = g + max |p| A_bore / (m_o + m_k) (calcAccelerationScale at rest) is the load;
+///     with none (g = 0, no gas, at rest), standard gravity: the case has no load and no time of its own, so the
+///     load it would carry on Earth sets the size of its quantities (all 0 exactly but x_p and the rod angle);
+///   - velocity: r omega_c (1 + (1 - lambda^2)^(-1/2)) with omega_c = sqrt(A_s / r), the crank speed whose
+///     centripetal acceleration r omega_c^2 is the static load: at speed the velocity and acceleration scales are
+///     related by V^2 = r A (V = r omega, A = r omega^2); at rest the only acceleration is A_s, and sqrt(r A_s) is
+///     the speed the static loads give the crank pin over one crank radius (a pendulum's), the size of any velocity
+///     the mechanism can reach from rest;
+///   - acceleration A_s; force, torque and moment calcForceScale's masses (and arms) times it; energy calcEnergyScale
+///     with A_s in place of g (the work of the static load over the crank's mass moments).
+/// Never below double's smallest normal number, so that no tolerance is 0. The gate and `validate` use calcScales
+/// (where both engines give 0 exactly they must agree exactly); a scale that calcScales gives positive (every scale
+/// at speed with a load) is used unchanged.
+Scales calcPositiveScales(const Mechanism& m);
+
 /// One compared quantity of two Evaluations.
 struct Comparison {
   std::string quantity;      ///< "U", "Q", "drive_torque", "bearing_force", "x_p", ... (CONVENTIONS.md names)
@@ -87,5 +110,7 @@ struct Comparison {
 /// Every quantity of an analytic and a Simbody Evaluation at the same angle, with its scale and conditioning
 /// (Q is compared as the static holding torque).
 std::vector<Comparison> compareEvaluations(const Mechanism& m, const Evaluation& analytic, const Evaluation& simbody);
+/// The same with given scales (calcPositiveScales for grade).
+std::vector<Comparison> compareEvaluations(const Mechanism& m, const Scales& scales, const Evaluation& a, const Evaluation& b);
 
 }  // namespace crankcheck::validation
