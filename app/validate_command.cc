@@ -1,5 +1,6 @@
 #include "validate_command.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <mutex>
 #include <set>
 #include <thread>
@@ -17,6 +19,7 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/report.h"
+#include "crankcheck/validation/profile.h"
 #include "crankcheck/validation/verdict.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/scene/scene_writer.h"
@@ -38,6 +41,9 @@ void addValidateOptions(CLI::App& command, ValidateOptions& options) {
   command.add_flag("--verbose", options.verbose,
                    "Print the table of every family of cases on the terminal (without it: only the families that failed; "
                    "the report always has all of it)");
+  command.add_option("--profile", options.profile,
+                     "Write where the time goes to FILE (a new CSV file, never an existing one): per task and engine, "
+                     "model builds, evaluations and seconds");
   command.add_option("--jobs", options.jobs, "Worker threads (default: one per core)")->check(CLI::Range(1, 1024));
   command.add_option("--shard", options.shard,
                      "Run only part I of N (0-based) of the campaign and write its data for 'crankcheck report merge'");
@@ -65,16 +71,29 @@ std::string formatDuration(double seconds) {
 // Runs the tasks, those that measure time alone after the others; shows progress when stderr is a terminal: tasks
 // done, the elapsed time and an estimate of the time left (the mean time per task so far times the tasks left; the
 // tasks differ in cost, so it settles as the run goes on).
-TableSet runTasks(const std::vector<Task>& tasks, int jobs) {
+// With `profile`, each task's seconds and what each engine did in it (profile.h) go to profile->at(i).
+struct TaskProfile {
+  double seconds = 0.0;
+  std::map<std::string, validation::EngineUse> engines;
+};
+
+TableSet runTasks(const std::vector<Task>& tasks, int jobs, std::vector<TaskProfile>* profile = nullptr) {
   const bool progress = ::isatty(STDERR_FILENO);
   const auto start = std::chrono::steady_clock::now();
   std::vector<TableSet> results(tasks.size());
+  if (profile) profile->assign(tasks.size(), {});
   std::vector<std::string> errors;
   std::mutex mutex;
   std::atomic<size_t> next{0}, done{0};
   auto runOne = [&](size_t i) {
     try {
+      if (profile) validation::getThreadEngineUse().clear();
+      const auto task_start = std::chrono::steady_clock::now();
       results[i] = tasks[i].run();
+      if (profile) {
+        (*profile)[i].seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - task_start).count();
+        (*profile)[i].engines = validation::getThreadEngineUse();
+      }
     } catch (const std::exception& e) {
       std::lock_guard<std::mutex> lock(mutex);
       errors.push_back(tasks[i].id + ": " + e.what());
@@ -107,6 +126,25 @@ TableSet runTasks(const std::vector<Task>& tasks, int jobs) {
   TableSet merged;
   for (const TableSet& r : results) validation::appendTables(merged, r);
   return merged;
+}
+
+// The profile as CSV: per task, one row per engine it used and one for the rest of its time (work that does not go
+// through the registry's models: the analytic batch kernels, a part's own calls into an engine, the part's own code).
+std::string formatProfile(const std::vector<Task>& tasks, const std::vector<TaskProfile>& profile) {
+  std::string csv = "task,engine,builds,evaluations,seconds [s],task_seconds [s]\n";
+  auto field = [](const std::string& s) { return s.find_first_of(",\"\n") == std::string::npos ? s : "\"" + s + "\""; };
+  for (size_t i = 0; i < tasks.size(); ++i) {
+    double engines = 0.0;
+    for (const auto& [name, use] : profile[i].engines) {
+      csv += field(tasks[i].id) + "," + name + "," + std::to_string(use.builds) + "," + std::to_string(use.evaluations) + "," +
+             validation::formatNumber(use.build_seconds + use.evaluate_seconds) + "," +
+             validation::formatNumber(profile[i].seconds) + "\n";
+      engines += use.build_seconds + use.evaluate_seconds;
+    }
+    csv += field(tasks[i].id) + ",(rest),0,0," + validation::formatNumber(std::max(0.0, profile[i].seconds - engines)) + "," +
+           validation::formatNumber(profile[i].seconds) + "\n";
+  }
+  return csv;
 }
 
 bool allPass(const TableSet& tables) { return validation::allAgree(validation::calcVerdicts(tables)); }
@@ -156,6 +194,14 @@ int runValidate(const ValidateOptions& options) {
       throw UsageError("--shard: " + options.shard + ": expected I/N with 0 <= I < N, e.g. --shard 0/4");
   }
   const bool shard = shard_count > 1;
+  if (!options.profile.empty()) {  // a new file, in a folder that exists: checked before the campaign
+    struct stat st {};
+    const fs::path path = fs::absolute(options.profile);
+    if (::lstat(path.c_str(), &st) == 0)
+      throw UsageError("--profile: " + quotePath(options.profile) + ": exists; crankcheck never overwrites a file");
+    if (!fs::is_directory(path.parent_path()))
+      throw UsageError("--profile: " + quotePath(options.profile) + ": its folder does not exist");
+  }
   const int jobs = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
   validation::OutputFolder out(options.out, "--out");
   validation::ReportInfo info;
@@ -181,12 +227,15 @@ int runValidate(const ValidateOptions& options) {
     if (static_cast<int>(i % shard_count) == shard_index) mine.push_back(all[i]);
   const auto start = std::chrono::steady_clock::now();
   TableSet tables;
+  std::vector<TaskProfile> profile;
+  validation::setProfiling(!options.profile.empty());
   try {
-    tables = runTasks(mine, jobs);
+    tables = runTasks(mine, jobs, options.profile.empty() ? nullptr : &profile);
   } catch (const std::runtime_error& e) {
     std::cerr << "crankcheck: " << e.what() << "\n";
     return 1;
   }
+  if (!options.profile.empty()) validation::writeNewFile(options.profile, formatProfile(mine, profile));
   info.quick = options.quick;
   info.jobs = jobs;
   info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -16,6 +16,7 @@ struct ValidateOptions {
   int jobs = 0;            ///< 0: one per core
   std::string shard;       ///< "I/N", empty = the whole campaign
   bool verbose = false;    ///< the families' table in full on the terminal (else only the families that failed)
+  std::string profile;     ///< --profile FILE: where each task's time goes, by engine (a new CSV file); empty: none
 };
 
 struct MergeOptions {

@@ -6,6 +6,7 @@
 #include "crankcheck/mujoco_models/engine.h"
 #include "crankcheck/simbody_models/engine.h"
 #include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/profile.h"
 
 namespace crankcheck::validation {
 
@@ -16,6 +17,9 @@ const std::vector<Engine>& listEngines() {
     for (Engine& e : analytic::describeEngines()) all.push_back(std::move(e));
     for (Engine& e : simbody_models::describeEngines()) all.push_back(std::move(e));
     for (Engine& e : mujoco_models::describeEngines()) all.push_back(std::move(e));
+    // Every build counted while profiling is on (profile.h); the engines' own models otherwise.
+    for (Engine& e : all)
+      e.build = [build = std::move(e.build), name = e.name](const Mechanism& m) { return buildCounted(build, name, m); };
     return all;
   }();
   return engines;

@@ -38,7 +38,8 @@ struct Engine {
   /// Builds the engine's model of m.
   /// @throws std::invalid_argument if the engine cannot build m (the message names the scene key and the rule);
   ///         std::runtime_error if the engine's library fails.
-  std::function<std::unique_ptr<EngineModel>(const Mechanism& m)> build;
+  using BuildFunction = std::function<std::unique_ptr<EngineModel>(const Mechanism& m)>;
+  BuildFunction build;
 
   /// The free run (`crankcheck motion`), for engines that simulate; empty `integrators`: none.
   std::vector<std::string> integrators;  ///< the names FreeRunSettings::integrator takes; the first is the default

@@ -1,0 +1,54 @@
+#include "crankcheck/validation/profile.h"
+
+#include <atomic>
+#include <chrono>
+
+namespace crankcheck::validation {
+
+namespace {
+
+std::atomic<bool> g_profiling{false};
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// An engine's model whose evaluations are counted and timed into the calling thread's counters.
+class CountedModel : public EngineModel {
+ public:
+  CountedModel(std::unique_ptr<EngineModel> model, std::string engine) : model_(std::move(model)), engine_(std::move(engine)) {}
+  Evaluation evaluate(double phi) override {
+    const auto start = std::chrono::steady_clock::now();
+    Evaluation e = model_->evaluate(phi);
+    EngineUse& use = getThreadEngineUse()[engine_];
+    ++use.evaluations;
+    use.evaluate_seconds += secondsSince(start);
+    return e;
+  }
+
+ private:
+  std::unique_ptr<EngineModel> model_;
+  std::string engine_;
+};
+
+}  // namespace
+
+void setProfiling(bool on) { g_profiling = on; }
+bool isProfiling() { return g_profiling; }
+
+std::map<std::string, EngineUse>& getThreadEngineUse() {
+  thread_local std::map<std::string, EngineUse> use;
+  return use;
+}
+
+std::unique_ptr<EngineModel> buildCounted(const Engine::BuildFunction& build, const std::string& engine, const Mechanism& m) {
+  if (!g_profiling) return build(m);
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<EngineModel> model = build(m);
+  EngineUse& use = getThreadEngineUse()[engine];
+  ++use.builds;
+  use.build_seconds += secondsSince(start);
+  return std::make_unique<CountedModel>(std::move(model), engine);
+}
+
+}  // namespace crankcheck::validation
