@@ -5,6 +5,7 @@
 
 #include "crankcheck/scene/scene_writer.h"
 #include "crankcheck/validation/balance.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/evaluation_json.h"
 #include "json_output.h"
@@ -45,6 +46,8 @@ std::string reasonOf(const analytic::HarmonicSymmetry& s, bool axial) {
 
 std::string runBalance(const BalanceOptions& options) {
   Mechanism m = loadScene(options.scene_path);
+  // Every engine whose harmonics are shown must build the scene: refused now, naming the engine and the key.
+  validation::checkEveryEngineBuilds(m, options.scene_path);
   std::vector<BalanceShaftParams> designed;
   std::vector<validation::BalanceRow> rows;
   try {
@@ -55,6 +58,8 @@ std::string runBalance(const BalanceOptions& options) {
     rows = validation::calcBalance(m, std::max(options.order, options.design));
   } catch (const std::invalid_argument& e) {
     throw UsageError(options.scene_path + ": " + e.what());
+  } catch (const std::runtime_error& e) {  // a harmonic analysis that does not reach rounding: refused
+    throw UncomputableError(options.scene_path + ": balance: " + e.what());
   }
   // The designed shafts as the scene file writes them (degrees at the edge).
   std::string tables;

@@ -35,6 +35,8 @@ std::string runFlywheel(const FlywheelOptions& options) {
     s = analytic::calcFlywheelSizing(m, options.fluctuation);
   } catch (const std::domain_error& e) {
     throw UsageError(options.scene_path + ": --fluctuation " + formatShortest(options.fluctuation) + ": " + e.what());
+  } catch (const std::runtime_error& e) {  // a root that does not converge: refused, not printed
+    throw UncomputableError(options.scene_path + ": flywheel sizing: " + e.what());
   }
   // Simbody: the exact flywheel in place of the scene's, the load, the gas, released at phi = 0 with the steady run's
   // speed there, over one working cycle.
@@ -50,6 +52,8 @@ std::string runFlywheel(const FlywheelOptions& options) {
     simbody = simbody_models::simulateFreeRun(with, s.exact.omega0, run);
   } catch (const std::invalid_argument& e) {
     throw UsageError(options.scene_path + ": " + e.what());
+  } catch (const std::runtime_error& e) {  // a run too stiff to finish: refused, not printed
+    throw UncomputableError(options.scene_path + ": Simbody's run with the exact flywheel: " + e.what());
   }
   if (options.format == "json") {
     nlohmann::ordered_json doc;

@@ -119,6 +119,9 @@ int main(int argc, char** argv) {
   } catch (const crankcheck::UsageError& e) {
     std::cerr << "crankcheck: " << e.what() << "\n";
     return 2;
+  } catch (const crankcheck::UncomputableError& e) {
+    std::cerr << "crankcheck: " << e.what() << "\n";
+    return 1;
   } catch (const crankcheck::EnvironmentError& e) {
     std::cerr << "crankcheck: " << e.what() << "\n";
     return 3;

@@ -112,8 +112,9 @@ std::vector<ShakingHarmonic> calcShakingHarmonicsByDft(const Mechanism& m, int o
     for (int n = 1; n <= order; ++n) h.push_back(harmonic(n));
     return h;
   }
-  throw std::runtime_error("calcShakingHarmonics: the harmonics of this offset motion are not resolved by 2^20 samples "
-                           "(the loop comes too close to its singularity, lambda + |delta| / l near 1)");
+  throw std::runtime_error("calcShakingHarmonics: the harmonics of this offset motion do not fall below the DFT's "
+                           "rounding (4 eps of the largest force or moment) within 2^20 samples (a loop close to its "
+                           "singularity, (r + max |delta|) / l near 1, or masses many orders apart); refused");
 }
 
 }  // namespace

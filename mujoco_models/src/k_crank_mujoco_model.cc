@@ -104,6 +104,13 @@ void checkBuildable(const Mechanism& m) {
   if (!(crank_mass >= mjMINVAL))
     throw std::invalid_argument("crank.mass: MuJoCo cannot build a crankshaft without mass (crank.mass and "
                                 "crank.counterweight_mass are both 0; a body on a joint needs mass > 1e-15 kg)");
+  // The crank body's rotor inertia (calcMjcf): the flywheel's, or a nominal m r^2 without one.
+  if (m.flywheel_inertia && !(*m.flywheel_inertia >= mjMINVAL))
+    throw std::invalid_argument("flywheel.inertia: MuJoCo cannot build a crankshaft whose inertia is below 1e-15 kg m^2 "
+                                "(a body on a joint needs every principal inertia > mjMINVAL); got " + num(*m.flywheel_inertia));
+  if (!m.flywheel_inertia && !(crank_mass * m.crank.radius * m.crank.radius >= mjMINVAL))
+    throw std::invalid_argument("crank.radius: MuJoCo cannot build a crankshaft whose inertia m r^2 is below 1e-15 kg m^2 "
+                                "without a [flywheel] (give [flywheel].inertia)");
 }
 
 }  // namespace
@@ -241,7 +248,13 @@ mjModel* loadModel(const std::string& xml) {
   char error[1024] = "";
   mjModel* model = mj_loadXML(kFileName, vfs.get(), error, sizeof error);
   mj_deleteVFS(vfs.get());
-  if (!model) throw std::runtime_error(std::string("MuJoCo could not compile the model: ") + error);
+  if (!model) {
+    std::string text = error;  // MuJoCo's message spans lines: one line here, as every message of crankcheck
+    for (char& c : text)
+      if (c == '\n' || c == '\r') c = ' ';
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    throw std::runtime_error("MuJoCo could not compile the model: " + text);
+  }
   return model;
 }
 

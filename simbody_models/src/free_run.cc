@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <stdexcept>
 
@@ -27,6 +28,13 @@ std::string toString(IntegratorKind kind) {
 }
 
 namespace {
+
+// x as printf's %g: 1e-10, for messages.
+std::string shortText(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
 
 // Cubic Hermite interpolation of q(t) between two samples with slopes u: the time at which q reaches `target`.
 double hermiteCrossing(double t0, double q0, double u0, double t1, double q1, double u1, double target) {
@@ -157,6 +165,12 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOp
     while (out.phi.back() < target) {
       if (!(out.phi_dot.back() > 0.0))
         throw std::runtime_error("the crank stops or turns back before " + std::to_string(options.revolutions) + " revolutions");
+      if (integrator->getNumStepsTaken() > static_cast<long long>(options.max_steps_per_revolution) * options.revolutions)
+        throw std::runtime_error("took more than " + std::to_string(options.max_steps_per_revolution) +
+                                 " steps per revolution at accuracy " + shortText(options.accuracy) +
+                                 " without completing " + std::to_string(options.revolutions) +
+                                 " revolutions: the scene's dynamics are too stiff for this run (masses or inertias "
+                                 "many orders apart); refused rather than left running");
       const SimTK::Integrator::SuccessfulStepStatus status = integrator->stepTo(t_limit);
       if (status == SimTK::Integrator::EndOfSimulation || status == SimTK::Integrator::ReachedFinalTime)
         throw std::runtime_error("the crank does not complete " + std::to_string(options.revolutions) + " revolutions in time");

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// The two kinds of failure every crankcheck command tells apart, each with its own exit status
-/// (README, "Exit status"): bad input or usage (2, nothing written) and a failed environment (3: a tool missing,
-/// a disk full, a write refused). A comparison that should hold and fails is not an exception: it is exit status 1.
+/// The kinds of failure every crankcheck command tells apart, each with its own exit status (README, "Exit
+/// status"): bad input or usage (2, nothing written), a result that cannot be computed to its accuracy (1, refused)
+/// and a failed environment (3: a tool missing, a disk full, a write refused). A comparison that should hold and fails is not an exception: it is exit status 1.
 
 #include <filesystem>
 #include <stdexcept>
@@ -20,6 +20,15 @@ class UsageError : public std::runtime_error {
 /// The environment failed: a program crankcheck needs is missing or failed, a file could not be written (disk
 /// full, write refused). The CLI prints the message after "crankcheck: " and exits with status 3.
 class EnvironmentError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A result that cannot be computed to its promised accuracy for this input (a Simbody run too stiff to finish, a
+/// harmonic analysis that does not reach rounding, a sizing whose root does not converge): refused, never printed.
+/// Neither the user's mistake nor the environment's: the CLI prints the message after "crankcheck: " and exits with
+/// status 1, as for a case an engine could not compute.
+class UncomputableError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
