@@ -63,6 +63,7 @@ struct Task {
   std::string id;                   ///< e.g. "crosscheck inline4_four_gamma90 lambda=0.3"
   bool measures_time = false;       ///< must run alone (its timings would suffer from parallel work)
   std::function<TableSet()> run;
+  double cost = 0.0;                ///< estimated, relative (part.h's task_cost): buildCampaign lists the largest first
 };
 
 /// The built-in scenes: a single cylinder (gamma 90, 0, 180, -90), inline 2, 3, 4, 6, 8, 12 in both strokes,
