@@ -24,13 +24,10 @@
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/engines.h"
-#include "crankcheck/validation/engines_part.h"
-#include "crankcheck/validation/balance_shafts_part.h"
-#include "crankcheck/validation/flywheel_part.h"
-#include "crankcheck/validation/offset_part.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/engine_loads.h"
 #include "crankcheck/validation/install_paths.h"
+#include "crankcheck/validation/parts.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/timing.h"
@@ -843,22 +840,6 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   // The user's scenes, or the example scenes (scenes/*.toml) in the default campaign: parts 12, 15 and 16.
   std::vector<Mechanism> pin_scenes = options.scenes;
   if (pin_scenes.empty()) pin_scenes = loadExampleScenes();
-  // The longest tasks first, so that the jobs finish together (the order changes no table: they are sorted): the
-  // flywheel sizings of part 15 (one task per Simbody run, one per gas scene for the rest; the sweep on the base's
-  // parts is flywheel_norton below), the offset sweep of part 14 (one task per offset), then the cross-checks and the
-  // gate's sweep, largest k first.
-  for (const Mechanism& m : pin_scenes) {
-    if (!m.gas) continue;
-    tasks.push_back({"flywheel " + m.name, false, [m, quick] { return calcFlywheelSceneTables(m, quick, -1); }});
-    for (int point : listFlywheelRunPoints(quick))
-      tasks.push_back({"flywheel " + m.name + " run " + std::to_string(point), false,
-                       [m, quick, point] { return calcFlywheelSceneTables(m, quick, point); }});
-  }
-  for (double f : listOffsetFractions(quick)) {
-    char id[64];
-    std::snprintf(id, sizeof id, "offset delta/r=%g", f);
-    tasks.push_back({id, false, [base, f, quick] { return calcOffsetTables(base, f, quick); }});
-  }
   const std::vector<double> sweep = quick ? std::vector<double>{} : std::vector<double>{0.1, 0.2, 0.3, 0.4, 0.6, 0.9};
   for (const auto& [family, m] : families) {
     std::vector<double> lambdas = {lambdaOf(m)};
@@ -871,7 +852,8 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
       char id[128];
       std::snprintf(id, sizeof id, "crosscheck %s lambda=%.3g", m.name.c_str(), lambda);
       const std::vector<double> angles = anglesDeg(quick ? 45.0 : 15.0);
-      tasks.push_back({id, false, [family = family, variant, angles] { return crossCheckCase(family, variant, angles); }});
+      tasks.push_back({id, false, [family = family, variant, angles] { return crossCheckCase(family, variant, angles); },
+                       task_cost::kCrossCheck});
     }
   }
   // The gate's sweep (tests/gate): every k and stroke over lambda and gamma, at the gate's crank angles (both dead
@@ -899,7 +881,8 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
                                appendTables(out, crossCheckCase(family, variant, gate_angles));
                              }
                            return out;
-                         }});
+                         },
+                         task_cost::kGateSweep});
       }
   }
   // 21 lambdas from 0.01 to 0.95, log spaced; the quick campaign takes every fourth, so that each of its rows is also
@@ -941,10 +924,14 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
                      [m = pin_scenes[i], i, quick] { return calcPinLoadTables({m}, static_cast<int>(i), quick ? 4.0 : 2.0); }});
   tasks.push_back({"errata", false, [base] { return errata(base); }});
   tasks.push_back({"speed_vs_error", true, [base, quick] { return speedVsError(base, quick); }});
-  tasks.push_back(buildEngineCostTask(base, quick));
-  tasks.push_back({"flywheel_norton", false, [base, quick] { return calcFlywheelNortonTables(base, quick); }});
-  // Balance shafts (part 16): designed sets on the base's parts, and the scenes that carry shafts.
-  tasks.push_back({"balance_shafts", false, [pin_scenes, base] { return calcBalanceShaftTables(base, pin_scenes); }});
+  // Every registered part's tasks (parts.h), in report order.
+  const PartContext context{base, first, pin_scenes, options.scenes, families, quick};
+  for (const Part* part : listParts())
+    for (Task& task : part->tasks(context)) tasks.push_back(std::move(task));
+  // The longest tasks first, so that the jobs finish together (the order changes no table: they are sorted): the
+  // flywheel sizings (one task per Simbody run), the offset sweep, then the cross-checks and the gate's sweep, largest
+  // k first, then the rest in the order listed (Task::cost).
+  std::stable_sort(tasks.begin(), tasks.end(), [](const Task& a, const Task& b) { return a.cost > b.cost; });
   return tasks;
 }
 

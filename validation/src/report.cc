@@ -23,13 +23,10 @@
 
 #include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
-#include "crankcheck/validation/engines_part.h"
-#include "crankcheck/validation/balance_shafts_part.h"
-#include "crankcheck/validation/flywheel_part.h"
-#include "crankcheck/validation/offset_part.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/report_document.h"
 #include "crankcheck/validation/output_folder.h"
+#include "crankcheck/validation/parts.h"
 #include "crankcheck/validation/process.h"
 #include "crankcheck/validation/verdict.h"
 
@@ -469,20 +466,12 @@ void addBalancePart(std::vector<Block>& doc, const TableSet& tables, const std::
   doc.push_back({Block::kFigure, caption, {}, {}, "balance_harmonics"});
 }
 
-// The parts that describe themselves (report_part.h), by figure name, in the report's order.
-const std::pair<const char*, ReportPart (*)(const TableSet&)> kDescribedParts[] = {
-    {"engines", describeEnginesPart},
-    {"offset", describeOffsetPart},
-    {"flywheel", describeFlywheelPart},
-    {"balance_shafts", describeBalanceShaftPart},
-};
-
 }  // namespace
 
 void renderReport(const TableSet& input, const ReportInfo& info, const fs::path& dir) {
   TableSet tables = input;
-  sortTables(tables);          // first: the derived tables then do not depend on the order tasks ran in
-  deriveEngineTables(tables);  // part 13's table, from the cross-checks of every engine and their costs
+  sortTables(tables);  // first: the derived tables then do not depend on the order tasks ran in
+  for (const Part* part : listParts()) part->derive(tables);
   sortTables(tables);
   writeTables(tables, dir);
 
@@ -534,15 +523,14 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
        "tangential in the direction of rotation) and the main-bearing force (frame on the crankshaft at O, all throws, "
        "frame X, Y) over one working cycle at each scene's speed with its gas and gravity, as the tip of the force "
        "vector (after Norton's Program ENGINE); analytic lines, Simbody dots"},
-      {"engines", "", ""},  // part 13: heading and caption from engines_part.cc
-      {"offset", "", ""},   // part 14: offset_part.cc
-      {"flywheel", "", ""}, // part 15: flywheel_part.cc
-      {"balance_shafts", "", ""}, // part 16: balance_shafts_part.cc
   };
   // One gnuplot per figure, up to info.jobs at a time (each writes only its own NAME.svg and NAME.png).
   std::vector<std::string> to_draw;
   for (const Figure& f : figures)
     if (tables.count(f.name)) to_draw.push_back(f.name);
+  for (const Part* part : listParts())
+    for (const std::string& figure : part->figures())
+      if (tables.count(figure)) to_draw.push_back(figure);
   std::atomic<size_t> next{0};
   std::mutex error_mutex;
   std::exception_ptr error;
@@ -642,9 +630,8 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   for (const Figure& f : figures) {
     const std::string& name = f.name;
     if (!tables.count(name) || name == "balance_harmonics" || name == "torque_split" || name == "rod_models" ||
-        name == "pin_load_polar" ||
-        std::any_of(std::begin(kDescribedParts), std::end(kDescribedParts), [&](const auto& p) { return p.first == name; }))
-      continue;  // parts 9-16 follow the errata
+        name == "pin_load_polar")
+      continue;  // parts 9-12 follow the errata
     doc.push_back({Block::kHeading, f.heading});
     doc.push_back({Block::kFigure, f.caption, {}, {}, name});
     if (name == "integrator_pareto")
@@ -689,16 +676,15 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
                      tableRows(tables, "pin_load_polar_summary", {"scene", "engine", "force", "max_magnitude", "max_difference_rel"},
                                {false, false, false, true, true})});
     }
-    // Parts 13-16: each described by its own file (report_part.h), placed here.
-    for (const auto& [name, describe] : kDescribedParts) {
-      if (f.name != name) continue;
-      const ReportPart part = describe(tables);
-      if (part.heading.empty()) continue;
-      doc.push_back({Block::kHeading, part.heading});
-      doc.push_back({Block::kFigure, part.caption, {}, {}, name});
-      for (const std::string& paragraph : part.paragraphs) doc.push_back({Block::kParagraph, paragraph});
-      if (!part.header.empty()) doc.push_back({Block::kTable, "", part.header, part.rows});
-    }
+  }
+  // The registered parts (parts.h), each described by its own file.
+  for (const Part* part : listParts()) {
+    const ReportPart described = part->describe(tables);
+    if (described.heading.empty()) continue;
+    doc.push_back({Block::kHeading, described.heading});
+    doc.push_back({Block::kFigure, described.caption, {}, {}, part->key()});
+    for (const std::string& paragraph : described.paragraphs) doc.push_back({Block::kParagraph, paragraph});
+    if (!described.header.empty()) doc.push_back({Block::kTable, "", described.header, described.rows});
   }
 
   const ReportDocument page = toDocument(doc, info.title);

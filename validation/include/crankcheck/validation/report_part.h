@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// A part of the report as its own file describes it (engines_part.h, offset_part.h, flywheel_part.h,
-/// balance_shafts_part.h): report.cc only places it, heading, figure, sentences and table in that order.
+/// A part of the report as its own file describes it (Part::describe, part.h): report.cc only places it, heading,
+/// figure, sentences and table in that order.
 
 #include <string>
 #include <vector>
