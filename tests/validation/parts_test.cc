@@ -1,11 +1,12 @@
-// The registry of report parts (parts.h) and each registered part's describe() on a small fixed TableSet: its heading
-// and the numbers its sentences read from the data. Every expected number is worked out by hand from the rows below.
+// The registry of report parts (parts.h), and describe() of parts 4 and 13-16 on a small fixed TableSet: the heading
+// and the numbers the sentences read from the data. Every expected number is worked out by hand from the rows below.
 
 #include "crankcheck/validation/parts.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <map>
 #include <set>
 #include <string>
 
@@ -26,10 +27,12 @@ Table makeTable(std::vector<std::string> columns, std::vector<std::vector<std::s
   return Table{std::move(columns), std::move(rows)};
 }
 
-// The paragraph that contains `needle`, or "" (the test then fails on its expectations).
+// The paragraph (of the sentences or the blocks) that contains `needle`, or "" (the test then fails on its expectations).
 std::string findParagraph(const ReportPart& part, const std::string& needle) {
   for (const std::string& p : part.paragraphs)
     if (p.find(needle) != std::string::npos) return p;
+  for (const ReportBlock& b : part.blocks)
+    if (b.kind == ReportBlock::kParagraph && b.text.find(needle) != std::string::npos) return b.text;
   ADD_FAILURE() << "no paragraph with \"" << needle << "\"";
   return "";
 }
@@ -42,8 +45,8 @@ TEST(PartsTest, KeysAreUniqueAndNumbersFollowTheRegistrysOrder) {
     const Part& part = *parts[i];
     SCOPED_TRACE(part.key());
     EXPECT_TRUE(keys.insert(part.key()).second) << "key twice";
-    // Consecutive numbers in report order; parts 1-12 are not in the registry yet, so it starts at 13.
-    EXPECT_EQ(part.number(), parts.front()->number() + static_cast<int>(i));
+    // 1..N in report order.
+    EXPECT_EQ(part.number(), static_cast<int>(i) + 1);
     EXPECT_EQ(part.heading(), std::to_string(part.number()) + ". " + part.title());
     for (const std::string& t : part.tables()) EXPECT_TRUE(tables.insert(t).second) << t << ": written by two parts";
     // Each figure is drawn from its own table: data/NAME.csv.
@@ -56,8 +59,39 @@ TEST(PartsTest, KeysAreUniqueAndNumbersFollowTheRegistrysOrder) {
   EXPECT_EQ(parts.back()->number(), 16);
 }
 
-TEST(PartsTest, EveryPartIsLeftOutWithoutItsTables) {
-  for (const Part* part : listParts()) EXPECT_TRUE(part->describe({}).heading.empty()) << part->key();
+TEST(PartsTest, EveryPartWithAFigureIsLeftOutWithoutItsTables) {
+  for (const Part* part : listParts())
+    if (!part->figures().empty()) {
+      EXPECT_TRUE(part->describe({}).heading.empty()) << part->key();
+    }
+}
+
+TEST(PartsTest, GravitySignificanceTestsThePapersClaims) {
+  // max |Q| / max |Q|(k = 1) of a two-stroke: the weakest of the engines the paper says gravity matters for is k = 12
+  // (1e-6), the strongest it calls negligible k = 7 (1e-12): the dividing line holds by a factor 1e6.
+  const std::map<int, std::string> ratio = {{1, "1"},     {2, "0.5"},   {3, "0.01"},  {4, "0.3"},
+                                            {5, "1e-4"},  {6, "1e-3"},  {7, "1e-12"}, {8, "1e-4"},
+                                            {9, "1e-13"}, {10, "1e-5"}, {11, "1e-14"}, {12, "1e-6"}};
+  Table t{{"cycle", "k", "first_order", "max_abs_Q", "ratio_to_k1", "max_inertia_torque", "ratio_to_inertia",
+           "simbody_max_abs_Q", "resolved", "simbody_bound"},
+          {}};
+  for (const auto& [k, r] : ratio) t.rows.push_back({"two-stroke", std::to_string(k), "1", r, r, "1", r, r, "1", "0"});
+  const ReportPart d = partNumbered(4).describe({{"gravity_significance", t}});
+  EXPECT_EQ(d.heading, "4. When gravity matters");
+  EXPECT_NE(findParagraph(d, "two-stroke: the weakest engine the paper says gravity matters for (k = 12) has 1e+06 times the "
+                             "max |Q| of the strongest it calls negligible (k = 7), so the line holds for any threshold "
+                             "between 1e-12 and 1e-06 of the single cylinder's max |Q|").size(), 0u);
+  // The claims table: the dividing line, then the practical list at 1e-3 (k = 3 and 6 reach it, the paper says
+  // 1, 2, 4) and at 1e-5.
+  const ReportBlock* claims = nullptr;
+  for (const ReportBlock& b : d.blocks)
+    if (b.kind == ReportBlock::kTable && !b.header.empty() && b.header[0] == "claim (Stanczak section 7)") claims = &b;
+  ASSERT_NE(claims, nullptr);
+  ASSERT_EQ(claims->rows.size(), 3u);
+  EXPECT_EQ(claims->rows[0].back(), "holds, by a factor 1e+06");
+  EXPECT_EQ(claims->rows[1][4], "{1, 2, 3, 4, 6}");
+  EXPECT_EQ(claims->rows[1][5], "k = 3: 0.01, k = 6: 0.001");
+  EXPECT_EQ(claims->rows[1].back(), "does not hold");
 }
 
 TEST(PartsTest, EnginesReadCostsAndWorstErrors) {

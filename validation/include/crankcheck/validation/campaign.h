@@ -11,7 +11,7 @@
 ///   crosscheck            family,engine,case,lambda,quantity,worst_rel_error,where_phi_deg,where_speed_rpm,tolerance_rel,
 ///                         pass (engine: the engine compared with the analytic one; pass: pass/FAIL for gated engines,
 ///                         reported for soft ones, which are measured, never gated)
-///   the tables of the registered parts (parts.h): in each part's file, validation/src/parts/KEY.cc
+///   parts 13-16's tables: in each part's file, validation/src/parts/KEY.cc (Part::tables lists every part's)
 ///   error_vs_lambda       quantity,method,lambda,max_abs_error,max_rel_error,resolved
 ///   speed_vs_error        method,ns_per_eval,max_rel_error,resolved
 ///   harmonics             cycle,k,n,simbody_amplitude,analytic_amplitude,paper_nonzero
