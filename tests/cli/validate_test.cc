@@ -11,6 +11,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "crankcheck/validation/parts.h"
 #include "crankcheck/validation/scales.h"
 #include "run_cli.h"
 
@@ -42,15 +43,21 @@ class ValidateTest : public ::testing::Test {
   const fs::path dir_ = folder_.path();
 };
 
-const char* kFigures[] = {"error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance", "norton_fig13_8", "engines", "offset", "flywheel",
-                          "balance_shafts", "delta_vs_k", "integrator_pareto", "balance_harmonics", "torque_split", "rod_models",
-                          "pin_load_polar"};
-const char* kTables[] = {"crosscheck", "error_vs_lambda", "speed_vs_error", "harmonics", "gravity_significance",
-                         "norton_fig13_8", "errata", "scenes", "delta_vs_k", "integrator_pareto", "balance",
-                         "balance_harmonics", "torque_split", "gravity_share", "rod_models", "eq5_layouts",
-                         "eq15_coefficients", "eq15_engines", "pin_load_polar", "pin_load_polar_summary", "engine_cost",
-                         "engines", "engines_league", "offset", "offset_thrust", "flywheel", "flywheel_sizing",
-                         "flywheel_norton", "balance_shafts"};
+// Every figure and table of a quick campaign: those of the parts (parts.h), and the campaign's own tables.
+std::vector<std::string> listFigures() {
+  std::vector<std::string> figures;
+  for (const validation::Part* part : validation::listParts())
+    for (const std::string& figure : part->figures()) figures.push_back(figure);
+  return figures;
+}
+std::vector<std::string> listTables() {
+  std::vector<std::string> tables = {"crosscheck", "scenes"};
+  for (const validation::Part* part : validation::listParts())
+    for (const std::string& table : part->tables()) tables.push_back(table);
+  return tables;
+}
+const std::vector<std::string> kFigures = listFigures();
+const std::vector<std::string> kTables = listTables();
 
 TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   const fs::path report = dir_ / "report";
@@ -62,14 +69,14 @@ TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   EXPECT_EQ(r.out.find("family of cases"), std::string::npos) << r.out;
   EXPECT_EQ(r.err, "");
   const std::string index = readFile(report / "index.md");
-  for (const char* figure : kFigures) {
+  for (const std::string& figure : kFigures) {
     SCOPED_TRACE(figure);
     EXPECT_GT(fs::file_size(report / (std::string(figure) + ".svg")), 1000u);
     EXPECT_GT(fs::file_size(report / (std::string(figure) + ".png")), 1000u);
     EXPECT_NE(index.find(std::string("](") + figure + ".png)"), std::string::npos);
     EXPECT_NE(index.find(std::string("data/") + figure + ".csv"), std::string::npos);
   }
-  for (const char* table : kTables) EXPECT_TRUE(fs::exists(report / "data" / (std::string(table) + ".csv"))) << table;
+  for (const std::string& table : kTables) EXPECT_TRUE(fs::exists(report / "data" / (std::string(table) + ".csv"))) << table;
   EXPECT_NE(index.find("Errata"), std::string::npos);
   EXPECT_NE(index.find("Simbody 3.7"), std::string::npos);
   EXPECT_NE(readFile(report / "index.html").find("<img src=\"harmonics.png\""), std::string::npos);
@@ -121,7 +128,7 @@ TEST_F(ValidateTest, ShardsMergeIntoTheSameReportAsOneRun) {
   // --verbose: the families' table in full before the verdict.
   EXPECT_NE(merged.out.find("Every family of cases:\n"), std::string::npos) << merged.out;
   EXPECT_NE(merged.out.find("merged from 2 shards\n"), std::string::npos) << merged.out;
-  for (const char* table : kTables) {
+  for (const std::string& table : kTables) {
     const std::string name = table;
     if (name == "speed_vs_error" || name == "integrator_pareto" || name == "engine_cost" || name == "engines" ||
         name == "engines_league")
@@ -130,7 +137,7 @@ TEST_F(ValidateTest, ShardsMergeIntoTheSameReportAsOneRun) {
               readFile(dir_ / "whole/data" / (std::string(table) + ".csv")))
         << table;
   }
-  for (const char* figure : kFigures) EXPECT_TRUE(fs::exists(dir_ / "merged" / (std::string(figure) + ".png")));
+  for (const std::string& figure : kFigures) EXPECT_TRUE(fs::exists(dir_ / "merged" / (std::string(figure) + ".png")));
   const RunResult incomplete = run("report merge " + (dir_ / "s0").string() + " --out " + (dir_ / "m2").string());
   EXPECT_EQ(incomplete.exit_status, 2);
   EXPECT_NE(incomplete.err.find("1 of 2 given"), std::string::npos) << incomplete.err;

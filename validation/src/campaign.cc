@@ -1,5 +1,7 @@
 #include "crankcheck/validation/campaign.h"
 
+#include "campaign_tables.h"
+
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -24,13 +26,10 @@
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/engines.h"
-#include "crankcheck/validation/engines_part.h"
-#include "crankcheck/validation/balance_shafts_part.h"
-#include "crankcheck/validation/flywheel_part.h"
-#include "crankcheck/validation/offset_part.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/engine_loads.h"
 #include "crankcheck/validation/install_paths.h"
+#include "crankcheck/validation/parts.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/timing.h"
@@ -242,12 +241,15 @@ bool resolvedToOnePercent(double rel_value, double conditioning = 1.0) {
 // The samples of a turn for quantities that hold harmonics up to about n: 6 per period (3 per hump of |f|), at least 48.
 int samplesForOrder(int n) { return std::max(48, 6 * n); }
 
+}  // namespace
+
+// The computations of parts 1-8 (campaign_tables.h).
 // ------------------------------------------------------------------------------------------------------------
 // error_vs_lambda: every approximate method against its exact reference at one lambda. Every maximum is found on the
 // same grid in the quick and the full campaign: Q's truncation errors from the exact harmonics, the others by
 // refining the best samples (extremum.h); the engines' agreement (rounding) is marked unresolved.
 
-TableSet errorVsLambda(const Mechanism& base, double lambda) {
+TableSet calcErrorVsLambdaTables(const Mechanism& base, double lambda) {
   const Mechanism m = withLambda(base, lambda);
   const double r = m.crank.radius, w = m.engine.speed;
   const double E = calcEnergyScale(m);
@@ -306,7 +308,7 @@ TableSet errorVsLambda(const Mechanism& base, double lambda) {
 // ------------------------------------------------------------------------------------------------------------
 // speed_vs_error: cost per evaluation of Q against its error, every method measured in one Google Benchmark run.
 
-TableSet speedVsError(const Mechanism& base, bool quick) {
+TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
   const Mechanism m = withSpeed(base, 0.0);
   const double E = calcEnergyScale(m);
   const std::vector<double> angles = [&] {
@@ -438,7 +440,7 @@ TableSet speedVsError(const Mechanism& base, bool quick) {
 // ------------------------------------------------------------------------------------------------------------
 // harmonics: DFT of Simbody's Q over one turn, against the analytic prediction and the paper's claim.
 
-TableSet harmonics(const Mechanism& base, Cycle cycle) {
+TableSet calcHarmonicsTables(const Mechanism& base, Cycle cycle) {
   const int M = 64, max_order = 24;
   Table t;
   t.columns = {"cycle", "k", "n", "simbody_amplitude", "analytic_amplitude", "paper_nonzero"};
@@ -468,7 +470,7 @@ TableSet harmonics(const Mechanism& base, Cycle cycle) {
 // analytic maximum is that of Q's exact harmonics (no cancellation: exact however small); Simbody's is found on the
 // same grid, refined the same way (extremum.h); below the agreement tolerance Simbody's is a bound, not a value.
 
-TableSet gravitySignificance(const Mechanism& base, Cycle cycle) {
+TableSet calcGravitySignificanceTables(const Mechanism& base, Cycle cycle) {
   Table t;
   t.columns = {"cycle", "k", "max_abs_Q", "ratio_to_k1", "max_inertia_torque", "ratio_to_inertia", "simbody_max_abs_Q",
                "resolved", "first_order", "simbody_bound", "simbody_ratio_to_k1", "paper_negligible"};
@@ -502,7 +504,7 @@ TableSet gravitySignificance(const Mechanism& base, Cycle cycle) {
 // ------------------------------------------------------------------------------------------------------------
 // norton_fig13_8: piston motion over two revolutions, exact and two-term (Norton's figure 13-8).
 
-TableSet nortonFigure(const Mechanism& base) {
+TableSet calcNortonFigureTables(const Mechanism& base) {
   Table t;
   t.columns = {"crank_angle_deg", "x_exact", "x_two_term", "v_exact", "v_two_term", "a_exact", "a_two_term"};
   for (int d = 0; d <= 720; ++d) {
@@ -522,7 +524,7 @@ TableSet nortonFigure(const Mechanism& base) {
 //   eq15_coefficients  n,lambda,printed,exact,relative_error
 //   eq15_engines       cycle,k,lambda,first_order,max_abs_Q,max_abs_Q_printed,ratio_of_maxima,max_error_rel
 
-TableSet errata(const Mechanism& base) {
+TableSet calcErrataTables(const Mechanism& base) {
   Table t;
   t.columns = {"item", "printed", "holds", "measure", "value", "verdict"};
   auto add = [&](const std::string& item, const std::string& printed, const std::string& holds, const std::string& measure,
@@ -668,7 +670,7 @@ TableSet errata(const Mechanism& base) {
 // ------------------------------------------------------------------------------------------------------------
 // delta_vs_k: the free run's speed fluctuation with and without gravity, k = 1..12, both strokes, a few speeds.
 
-TableSet deltaVsK(const Mechanism& base, Cycle cycle, bool quick) {
+TableSet calcDeltaVsKTables(const Mechanism& base, Cycle cycle, bool quick) {
   Table t;
   t.columns = {"cycle", "k", "speed_rpm", "delta_gravity", "delta_no_gravity", "delta_due_to_gravity"};
   for (int k = 1; k <= 12; ++k)
@@ -689,7 +691,7 @@ TableSet deltaVsK(const Mechanism& base, Cycle cycle, bool quick) {
 // integrator_pareto: Simbody's free run by each integrator and accuracy: cost per simulated revolution (one Google
 // Benchmark run) against the error of delta and the energy drift, the analytic energy integral as reference.
 
-TableSet integratorPareto(const Mechanism& base, bool quick) {
+TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick) {
   const Mechanism m = withSpeed(base, 300.0);
   const analytic::FreeRun exact = analytic::calcFreeRun(m, m.engine.speed, true);
   struct Run {
@@ -745,6 +747,8 @@ TableSet integratorPareto(const Mechanism& base, bool quick) {
   return {{"integrator_pareto", t}};
 }
 
+namespace {
+
 TableSet scenesTable(const std::vector<std::pair<std::string, Mechanism>>& families) {
   Table t;
   t.columns = {"family", "scene", "cylinders", "cycle", "acting", "gamma_deg", "speed_rpm", "r", "l", "lambda", "m_o",
@@ -788,6 +792,12 @@ std::vector<Mechanism> buildDefaultScenes() {
   small.flywheel_inertia = 0.004;
   scenes.push_back(small);
   return scenes;
+}
+
+Mechanism findMarineScene() {
+  for (const Mechanism& m : buildDefaultScenes())
+    if (m.name.rfind("marine", 0) == 0) return m;
+  throw std::logic_error("campaign: no built-in marine scene");
 }
 
 std::string familyOf(const Mechanism& m) {
@@ -843,22 +853,6 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   // The user's scenes, or the example scenes (scenes/*.toml) in the default campaign: parts 12, 15 and 16.
   std::vector<Mechanism> pin_scenes = options.scenes;
   if (pin_scenes.empty()) pin_scenes = loadExampleScenes();
-  // The longest tasks first, so that the jobs finish together (the order changes no table: they are sorted): the
-  // flywheel sizings of part 15 (one task per Simbody run, one per gas scene for the rest; the sweep on the base's
-  // parts is flywheel_norton below), the offset sweep of part 14 (one task per offset), then the cross-checks and the
-  // gate's sweep, largest k first.
-  for (const Mechanism& m : pin_scenes) {
-    if (!m.gas) continue;
-    tasks.push_back({"flywheel " + m.name, false, [m, quick] { return calcFlywheelSceneTables(m, quick, -1); }});
-    for (int point : listFlywheelRunPoints(quick))
-      tasks.push_back({"flywheel " + m.name + " run " + std::to_string(point), false,
-                       [m, quick, point] { return calcFlywheelSceneTables(m, quick, point); }});
-  }
-  for (double f : listOffsetFractions(quick)) {
-    char id[64];
-    std::snprintf(id, sizeof id, "offset delta/r=%g", f);
-    tasks.push_back({id, false, [base, f, quick] { return calcOffsetTables(base, f, quick); }});
-  }
   const std::vector<double> sweep = quick ? std::vector<double>{} : std::vector<double>{0.1, 0.2, 0.3, 0.4, 0.6, 0.9};
   for (const auto& [family, m] : families) {
     std::vector<double> lambdas = {lambdaOf(m)};
@@ -871,7 +865,8 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
       char id[128];
       std::snprintf(id, sizeof id, "crosscheck %s lambda=%.3g", m.name.c_str(), lambda);
       const std::vector<double> angles = anglesDeg(quick ? 45.0 : 15.0);
-      tasks.push_back({id, false, [family = family, variant, angles] { return crossCheckCase(family, variant, angles); }});
+      tasks.push_back({id, false, [family = family, variant, angles] { return crossCheckCase(family, variant, angles); },
+                       task_cost::kCrossCheck});
     }
   }
   // The gate's sweep (tests/gate): every k and stroke over lambda and gamma, at the gate's crank angles (both dead
@@ -899,52 +894,25 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
                                appendTables(out, crossCheckCase(family, variant, gate_angles));
                              }
                            return out;
-                         }});
+                         },
+                         task_cost::kGateSweep});
       }
-  }
-  // 21 lambdas from 0.01 to 0.95, log spaced; the quick campaign takes every fourth, so that each of its rows is also
-  // a row of the full campaign (tests/cli/quick_report_test.cc compares them).
-  for (int i = 0; i <= 20; i += quick ? 4 : 1) {
-    const double lambda = 0.01 * std::pow(95.0, i / 20.0);
-    char id[64];
-    std::snprintf(id, sizeof id, "error_vs_lambda lambda=%.3g", lambda);
-    tasks.push_back({id, false, [base, lambda] { return errorVsLambda(base, lambda); }});
-  }
-  for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke}) {
-    tasks.push_back({"harmonics " + toString(cycle), false, [base, cycle] { return harmonics(base, cycle); }});
-    tasks.push_back({"gravity_significance " + toString(cycle), false,
-                     [base, cycle] { return gravitySignificance(base, cycle); }});
   }
   // The free run (parts 6 and 7) needs the base scene's flywheel; without one those parts are left out, and the
   // report says so: crankcheck invents no inertia on the user's behalf.
-  if (base.flywheel_inertia) {
-    for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke})
-      tasks.push_back({"delta_vs_k " + toString(cycle), false, [base, cycle, quick] { return deltaVsK(base, cycle, quick); }});
-    tasks.push_back({"integrator_pareto", true, [base, quick] { return integratorPareto(base, quick); }});
-  } else {
+  if (!base.flywheel_inertia)
     notes.rows.push_back({"Parts 6 and 7 (the free run) are left out: the base scene " + base.name +
                           " has no [flywheel] inertia and crankcheck does not assume one. Give the first scene a "
                           "[flywheel] table to get them."});
-  }
   if (!notes.rows.empty()) tasks.push_back({"notes", false, [notes] { return TableSet{{"notes", notes}}; }});
-  tasks.push_back({"norton_fig13_8", false, [base] { return nortonFigure(base); }});
-  tasks.push_back({"balance", false, [first, user = options.scenes] { return calcBalanceTables(first, user); }});
-  // The working torque (gas, inertia, gravity) and the two-mass rod, on the base scene's parts and the marine engine.
-  Mechanism marine;
-  for (const Mechanism& m : buildDefaultScenes())
-    if (m.name.rfind("marine", 0) == 0) marine = m;
-  tasks.push_back({"torque_split", false, [base, marine] { return calcTorqueSplitTables(base, marine); }});
-  tasks.push_back({"rod_models", false, [base, marine] { return calcRodModelTables(base, marine); }});
-  // Pin loads as polar diagrams (part 12) of pin_scenes.
-  for (size_t i = 0; i < pin_scenes.size(); ++i)
-    tasks.push_back({"pin_load_polar " + pin_scenes[i].name, false,
-                     [m = pin_scenes[i], i, quick] { return calcPinLoadTables({m}, static_cast<int>(i), quick ? 4.0 : 2.0); }});
-  tasks.push_back({"errata", false, [base] { return errata(base); }});
-  tasks.push_back({"speed_vs_error", true, [base, quick] { return speedVsError(base, quick); }});
-  tasks.push_back(buildEngineCostTask(base, quick));
-  tasks.push_back({"flywheel_norton", false, [base, quick] { return calcFlywheelNortonTables(base, quick); }});
-  // Balance shafts (part 16): designed sets on the base's parts, and the scenes that carry shafts.
-  tasks.push_back({"balance_shafts", false, [pin_scenes, base] { return calcBalanceShaftTables(base, pin_scenes); }});
+  // Every registered part's tasks (parts.h), in report order.
+  const PartContext context{base, first, pin_scenes, options.scenes, families, quick};
+  for (const Part* part : listParts())
+    for (Task& task : part->tasks(context)) tasks.push_back(std::move(task));
+  // The longest tasks first, so that the jobs finish together (the order changes no table: they are sorted): the
+  // flywheel sizings (one task per Simbody run), the offset sweep, then the cross-checks and the gate's sweep, largest
+  // k first, then the rest in the order listed (Task::cost).
+  std::stable_sort(tasks.begin(), tasks.end(), [](const Task& a, const Task& b) { return a.cost > b.cost; });
   return tasks;
 }
 

@@ -11,8 +11,7 @@
 ///   crosscheck            family,engine,case,lambda,quantity,worst_rel_error,where_phi_deg,where_speed_rpm,tolerance_rel,
 ///                         pass (engine: the engine compared with the analytic one; pass: pass/FAIL for gated engines,
 ///                         reported for soft ones, which are measured, never gated)
-///   engine_cost, engines, engines_league: engines_part.h; offset, offset_thrust: offset_part.h; flywheel, flywheel_sizing, flywheel_norton: flywheel_part.h;
-///                         balance_shafts: balance_shafts_part.h
+///   parts 13-16's tables: in each part's file, validation/src/parts/KEY.cc (Part::tables lists every part's)
 ///   error_vs_lambda       quantity,method,lambda,max_abs_error,max_rel_error,resolved
 ///   speed_vs_error        method,ns_per_eval,max_rel_error,resolved
 ///   harmonics             cycle,k,n,simbody_amplitude,analytic_amplitude,paper_nonzero
@@ -63,6 +62,7 @@ struct Task {
   std::string id;                   ///< e.g. "crosscheck inline4_four_gamma90 lambda=0.3"
   bool measures_time = false;       ///< must run alone (its timings would suffer from parallel work)
   std::function<TableSet()> run;
+  double cost = 0.0;                ///< estimated, relative (part.h's task_cost): buildCampaign lists the largest first
 };
 
 /// The built-in scenes: a single cylinder (gamma 90, 0, 180, -90), inline 2, 3, 4, 6, 8, 12 in both strokes,

@@ -1,5 +1,17 @@
-// Report part `balance_shafts` (balance_shafts_part.h).
-#include "crankcheck/validation/balance_shafts_part.h"
+// Report part `balance_shafts` (16): what balance shafts designed by `crankcheck balance --design N` cancel, by every
+// exact engine.
+//
+// The cases: the base scene's parts at 6000 rpm as a standing single cylinder with the shafts that cancel its primary
+// force (design 1: a shaft turning with the crank and one against it, the second the primary balancer, ratio -1),
+// as an inline four with the pair that cancels its secondary force (design 2: a Lanchester pair, ratios 2 and -2),
+// and each campaign scene that carries `[[balance_shaft]]` tables as it is (the example offset four with its pair),
+// each beside the same engine without shafts.
+// Table (CSV stem, columns; reports/README.md):
+//   balance_shafts  case,shafts,engine,n,force_amplitude,force_relative
+//                   case: the engine and what was designed; shafts "none" | "with"; n = 1..6; engine: "analytic"
+//                   (the closed form, its exact zeros as 0) and each other exact engine (a DFT of its own shaking
+//                   force over a revolution); the amplitude of harmonic n of the shaking force [N] and relative to the
+//                   force scale (scales.h) of the engine without shafts
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +21,7 @@
 
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/scales.h"
+#include "crankcheck/validation/part.h"
 #include "crankcheck/validation/variants.h"
 
 namespace crankcheck::validation {
@@ -28,8 +41,8 @@ void addRows(Table& t, const std::string& kase, const std::string& shafts, const
   }
 }
 
-}  // namespace
-
+// The part's table on `parts` (its crank, rod and piston) and the `scenes` with balance shafts.
+// @throws std::runtime_error if an engine fails.
 TableSet calcBalanceShaftTables(const Mechanism& parts, const std::vector<Mechanism>& scenes) {
   Table t;
   t.columns = {"case", "shafts", "engine", "n", "force_amplitude", "force_relative"};  // each series together, in n
@@ -63,11 +76,13 @@ TableSet calcBalanceShaftTables(const Mechanism& parts, const std::vector<Mechan
   return {{"balance_shafts", t}};
 }
 
-ReportPart describeBalanceShaftPart(const TableSet& tables) {
+// The part as the report shows it under `heading`: figure caption, sentences read from the data; an empty heading
+// without data.
+ReportPart describeBalanceShaftPart(const TableSet& tables, const std::string& heading) {
   ReportPart part;
   const auto it = tables.find("balance_shafts");
   if (it == tables.end() || it->second.rows.empty()) return part;
-  part.heading = "16. Balance shafts: what a designed set cancels, by every engine";
+  part.heading = heading;
   part.caption =
       "The amplitude of each harmonic n of the shaking force relative to the force scale, without balance shafts "
       "(grey) and with them (colours: the closed form as a line, each other exact engine's DFT as points), at 6000 rpm: "
@@ -126,5 +141,28 @@ ReportPart describeBalanceShaftPart(const TableSet& tables) {
   }
   return part;
 }
+
+class BalanceShaftsPart final : public Part {
+ public:
+  std::string key() const override { return "balance_shafts"; }
+  int number() const override { return 16; }
+  std::string title() const override { return "Balance shafts: what a designed set cancels, by every engine"; }
+  // Designed sets on the base's parts, and the scenes that carry shafts.
+  std::vector<Task> tasks(const PartContext& context) const override {
+    return {{"balance_shafts", false,
+             [base = context.base, scenes = context.scenes] { return calcBalanceShaftTables(base, scenes); }}};
+  }
+  ReportPart describe(const TableSet& tables) const override { return describeBalanceShaftPart(tables, heading()); }
+  std::vector<std::string> tables() const override { return {"balance_shafts"}; }
+};
+
+}  // namespace
+
+namespace parts {
+const Part& balanceShafts() {
+  static const BalanceShaftsPart part;
+  return part;
+}
+}  // namespace parts
 
 }  // namespace crankcheck::validation

@@ -1,5 +1,20 @@
-// Report part `offset` (offset_part.h).
-#include "crankcheck/validation/offset_part.h"
+// Report part `offset` (14): what the centric formulas cost on an offset (desaxe) engine, and what the offset buys.
+//
+// The engine: the base scene's parts as one standing cylinder, four-stroke, with the example spark-ignition pressure
+// table (bore 2 r) at 6000 rpm and gravity, its pin offset delta swept over delta / r in [-0.5, 0.5] (production pin
+// offsets are |delta| / r = 0.01 .. 0.04; desaxe cylinders reach 0.5).
+// Tables (CSV stems, columns; reports/README.md):
+//   offset         quantity,offset_over_r,max_rel_error,simbody_max_rel_error
+//                  the largest error over the working cycle of the centric form (delta = 0: x_p, a_p, wall_force,
+//                  drive_torque of the centric engine at the same crank angle) against the offset engine, relative
+//                  to the quantity's scale (x_p: the stroke; a_p: r omega^2; forces: the force scale; torque: the
+//                  torque scale), and the largest |analytic - Simbody| of the offset engine on the same samples
+//   offset_thrust  engine,offset_over_r,peak_major_thrust,peak_minor_thrust,thrust_reversal_deg,max_abs_drive_torque
+//                  the side thrust N_w over the working cycle: its largest value on the major-thrust side (N_w > 0:
+//                  the wall on -n, docs/CONVENTIONS-crankcheck.md "Pin offset"), its largest on the minor side (as a
+//                  positive number), the crank angle nearest the firing outer dead centre (within 90 degrees) where
+//                  N_w changes sign (the piston crosses over: slap), and the largest |drive torque|; engines
+//                  analytic and simbody
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +28,7 @@
 #include "crankcheck/validation/engine_loads.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/scales.h"
+#include "crankcheck/validation/part.h"
 #include "crankcheck/validation/variants.h"
 
 namespace crankcheck::validation {
@@ -20,14 +36,15 @@ namespace {
 
 std::string num(double x) { return formatNumber(x); }
 
-}  // namespace
-
+// The offsets delta / r of the part: -0.5 .. 0.5 (5 of them with `quick`).
 std::vector<double> listOffsetFractions(bool quick) {
   return quick ? std::vector<double>{-0.5, -0.04, 0.0, 0.04, 0.5}
                : std::vector<double>{-0.5, -0.3, -0.2, -0.1, -0.06, -0.04, -0.02, -0.01, 0.0,
                                      0.01, 0.02, 0.04, 0.06, 0.1, 0.2, 0.3, 0.5};
 }
 
+// The part's tables on `parts` (its crank, rod, piston and flywheel) at one offset delta / r = `f`; the 0.25-degree
+// samples of one working cycle (2 degrees with `quick`).
 TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
   const Mechanism single = withSpeed(withGasAtDeadCentres(withGamma(withCylinders(parts, 1, Cycle::kFourStroke), 90.0),
                                                           makeExampleGas(Cycle::kFourStroke, 2.0 * parts.crank.radius)),
@@ -84,11 +101,13 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
   return {{"offset", cost}, {"offset_thrust", thrust}};
 }
 
-ReportPart describeOffsetPart(const TableSet& tables) {
+// The part as the report shows it under `heading`: caption, sentences read from the data; an empty heading
+// without data.
+ReportPart describeOffsetPart(const TableSet& tables, const std::string& heading) {
   ReportPart part;
   const auto cost = tables.find("offset"), thrust = tables.find("offset_thrust");
   if (cost == tables.end() || thrust == tables.end() || cost->second.rows.empty()) return part;
-  part.heading = "14. Pin offset: what the centric formulas cost, what the offset buys";
+  part.heading = heading;
   part.caption =
       "Left: the largest error over the working cycle of the centric form (the same engine with delta = 0) against the "
       "offset engine, relative to each quantity's scale (x_p: the stroke; a_p: r omega^2; wall force and drive "
@@ -137,5 +156,34 @@ ReportPart describeOffsetPart(const TableSet& tables) {
   }
   return part;
 }
+
+class OffsetPart final : public Part {
+ public:
+  std::string key() const override { return "offset"; }
+  int number() const override { return 14; }
+  std::string title() const override { return "Pin offset: what the centric formulas cost, what the offset buys"; }
+  // One task per offset: the tables add up.
+  std::vector<Task> tasks(const PartContext& context) const override {
+    std::vector<Task> out;
+    for (double f : listOffsetFractions(context.quick)) {
+      char id[64];
+      std::snprintf(id, sizeof id, "offset delta/r=%g", f);
+      out.push_back({id, false, [base = context.base, f, quick = context.quick] { return calcOffsetTables(base, f, quick); },
+                     task_cost::kCycleSweep});
+    }
+    return out;
+  }
+  ReportPart describe(const TableSet& tables) const override { return describeOffsetPart(tables, heading()); }
+  std::vector<std::string> tables() const override { return {"offset", "offset_thrust"}; }
+};
+
+}  // namespace
+
+namespace parts {
+const Part& offset() {
+  static const OffsetPart part;
+  return part;
+}
+}  // namespace parts
 
 }  // namespace crankcheck::validation

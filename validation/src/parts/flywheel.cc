@@ -1,5 +1,18 @@
-// Report part `flywheel` (flywheel_part.h).
-#include "crankcheck/validation/flywheel_part.h"
+// Report part `flywheel` (15): flywheel sizing (Norton 13.9) judged.
+//
+// Tables (CSV stems, columns; reports/README.md):
+//   flywheel         scene,flywheel_inertia,exact_delta,simbody_delta
+//                    for each campaign scene with [gas] (the example scenes with gas in the default campaign), the
+//                    steady run's delta against the flywheel inertia I_f (exact energy integral; Simbody's run over a
+//                    working cycle at some of the points, empty elsewhere), I_f from 0.3 to 3 times the exact inertia
+//                    for C = 0.01
+//   flywheel_sizing  scene,cycle,k,speed_rpm,exact_inertia,norton_inertia,norton_error,norton_delta
+//                    the exact and Norton's I_f for C = 0.01 of the campaign's gas scenes; norton_error = norton /
+//                    exact - 1, norton_delta the delta Norton's inertia really gives
+//   flywheel_norton  speed_rpm,k,exact_inertia,norton_inertia,norton_error,norton_delta
+//                    the same for the base scene's parts as an inline k-cylinder four-stroke with the example
+//                    spark-ignition pressures (bore 2 r), k = 1, 2, 3, 4, 6, at 1500, 3000 and 6000 rpm (rows where no
+//                    flywheel is needed for C = 0.01 are left out)
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +24,7 @@
 #include "crankcheck/analytic/flywheel.h"
 #include "crankcheck/simbody_models/free_run.h"
 #include "crankcheck/validation/engine_loads.h"
+#include "crankcheck/validation/part.h"
 #include "crankcheck/validation/variants.h"
 
 namespace crankcheck::validation {
@@ -42,8 +56,8 @@ std::optional<analytic::FlywheelSizing> sized(const Mechanism& m) {
 // The points of the curve delta(I_f): 0.3 to 3 times the exact inertia, log spaced.
 int calcPointCount(bool quick) { return quick ? 5 : 13; }
 
-}  // namespace
-
+// The points of a scene's curve (`flywheel`) at which Simbody runs: every third of 13, the exact inertia among
+// them; with `quick`, the exact inertia's alone.
 std::vector<int> listFlywheelRunPoints(bool quick) {
   if (quick) return {calcPointCount(quick) / 2};  // a smoke test: the exact inertia only (10^0 of it)
   std::vector<int> runs;
@@ -51,6 +65,9 @@ std::vector<int> listFlywheelRunPoints(bool quick) {
   return runs;
 }
 
+// The part's three tables with rows of one scene (none when it has no [gas] or needs no flywheel for C = 0.01):
+// `point` < 0: its `flywheel_sizing` row and the curve's points Simbody does not run; else the curve's point `point`
+// (one of listFlywheelRunPoints) with Simbody's run.
 TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, int point) {
   TableSet tables = makeEmptyTables();
   Table &curve = tables["flywheel"], &sizing = tables["flywheel_sizing"];
@@ -85,6 +102,7 @@ TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, int point) {
   return tables;
 }
 
+// The part's three tables with the rows of the sweep on `parts` (`flywheel_norton`).
 TableSet calcFlywheelNortonTables(const Mechanism& parts, bool quick) {
   TableSet tables = makeEmptyTables();
   Table& sweep = tables["flywheel_norton"];
@@ -105,11 +123,13 @@ TableSet calcFlywheelNortonTables(const Mechanism& parts, bool quick) {
   return tables;
 }
 
-ReportPart describeFlywheelPart(const TableSet& tables) {
+// The part as the report shows it under `heading`: figure caption, sentences read from the data; an empty heading
+// without data.
+ReportPart describeFlywheelPart(const TableSet& tables, const std::string& heading) {
   ReportPart part;
   const auto sizing = tables.find("flywheel_sizing"), sweep = tables.find("flywheel_norton");
   if (sizing == tables.end() || sweep == tables.end() || !tables.count("flywheel")) return part;
-  part.heading = "15. Flywheel sizing: the exact inertia, Norton's method, Simbody's run";
+  part.heading = heading;
   part.caption =
       "Left: the steady run's speed fluctuation delta against the flywheel inertia for each scene with gas (the exact "
       "energy integral as lines, Simbody's run over a working cycle as dots), the exact inertia for delta = 0.01 marked "
@@ -158,5 +178,39 @@ ReportPart describeFlywheelPart(const TableSet& tables) {
   }
   return part;
 }
+
+class FlywheelPart final : public Part {
+ public:
+  std::string key() const override { return "flywheel"; }
+  int number() const override { return 15; }
+  std::string title() const override { return "Flywheel sizing: the exact inertia, Norton's method, Simbody's run"; }
+  // One task per Simbody run and one per gas scene for the rest of its curve (listed with its runs), one for the
+  // sweep on the base's parts: the tables add up.
+  std::vector<Task> tasks(const PartContext& context) const override {
+    std::vector<Task> out;
+    const bool quick = context.quick;
+    for (const Mechanism& m : context.scenes) {
+      if (!m.gas) continue;
+      out.push_back({"flywheel " + m.name, false, [m, quick] { return calcFlywheelSceneTables(m, quick, -1); },
+                     task_cost::kSimbodyRun});
+      for (int point : listFlywheelRunPoints(quick))
+        out.push_back({"flywheel " + m.name + " run " + std::to_string(point), false,
+                       [m, quick, point] { return calcFlywheelSceneTables(m, quick, point); }, task_cost::kSimbodyRun});
+    }
+    out.push_back({"flywheel_norton", false, [base = context.base, quick] { return calcFlywheelNortonTables(base, quick); }});
+    return out;
+  }
+  ReportPart describe(const TableSet& tables) const override { return describeFlywheelPart(tables, heading()); }
+  std::vector<std::string> tables() const override { return {"flywheel", "flywheel_sizing", "flywheel_norton"}; }
+};
+
+}  // namespace
+
+namespace parts {
+const Part& flywheel() {
+  static const FlywheelPart part;
+  return part;
+}
+}  // namespace parts
 
 }  // namespace crankcheck::validation

@@ -1,6 +1,18 @@
-// Report part `engines` (engines_part.h): cost per evaluation of every registered engine against its worst error over
-// the campaign's cross-checks, with sentences read from the data.
-#include "crankcheck/validation/engines_part.h"
+// Report part `engines` (13): which engine, at what cost, how exact. Cost per evaluation of every registered engine
+// against its worst error over the campaign's cross-checks, with sentences read from the data.
+//
+// Tables (CSV stems, columns; reports/README.md):
+//   engine_cost     engine,k,ns_per_eval                      one Google Benchmark run of every engine's evaluate()
+//                                                             (every quantity at one angle) on the base scene's parts
+//                                                             at k = 1 and k = 12
+//   engines         engine,quantity,worst_rel_error,where_case,where_lambda,where_phi_deg,where_speed_rpm,
+//                   ns_per_eval_k1,ns_per_eval_k12            derived at rendering: per engine variant and quantity the
+//                                                             worst error over every cross-checked case of the
+//                                                             campaign, relative to the quantity's scale, against the
+//                                                             analytic engine (the analytic engine's own row: case by
+//                                                             case against the nearer of the other exact engines)
+//   engines_league  engine,k,ns_per_eval,worst_rel_error      derived: the figure's points (cost against the worst
+//                                                             error over all quantities)
 
 #include <benchmark/benchmark.h>
 
@@ -13,6 +25,7 @@
 #include <stdexcept>
 
 #include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/part.h"
 #include "crankcheck/validation/timing.h"
 #include "crankcheck/validation/variants.h"
 
@@ -26,8 +39,8 @@ struct Worst {
   std::string kase, lambda, phi, rpm;
 };
 
-}  // namespace
-
+// The timed task: ns per evaluation of every registered engine at k = 1 and k = 12 (the base scene's parts, its
+// stroke and speed, standing). Runs alone (Task::measures_time).
 Task buildEngineCostTask(const Mechanism& base, bool quick) {
   return {"engine_cost", true, [base, quick] {
             std::vector<std::pair<std::string, std::function<void()>>> timed;
@@ -57,6 +70,8 @@ Task buildEngineCostTask(const Mechanism& base, bool quick) {
           }};
 }
 
+// Adds (replaces) the derived tables `engines` and `engines_league` from `crosscheck` and `engine_cost`; nothing when
+// either is missing.
 void deriveEngineTables(TableSet& tables) {
   const auto cross = tables.find("crosscheck");
   const auto cost = tables.find("engine_cost");
@@ -116,7 +131,9 @@ void deriveEngineTables(TableSet& tables) {
   tables["engines_league"] = league;
 }
 
-ReportPart describeEnginesPart(const TableSet& tables) {
+// The part as the report shows it under `heading`: figure caption, sentences read from the data, the table; an empty
+// heading when the tables are missing.
+ReportPart describeEnginesPart(const TableSet& tables, const std::string& heading) {
   ReportPart part;
   const auto it = tables.find("engines");
   if (it == tables.end() || it->second.rows.empty()) return part;
@@ -124,7 +141,7 @@ ReportPart describeEnginesPart(const TableSet& tables) {
   const size_t engine = columnOf(t, "engine"), quantity = columnOf(t, "quantity"), rel = columnOf(t, "worst_rel_error"),
                kase = columnOf(t, "where_case"), lambda = columnOf(t, "where_lambda"), phi = columnOf(t, "where_phi_deg"),
                rpm = columnOf(t, "where_speed_rpm"), ns1 = columnOf(t, "ns_per_eval_k1"), ns12 = columnOf(t, "ns_per_eval_k12");
-  part.heading = "13. Engines: which engine, at what cost, how exact";
+  part.heading = heading;
   part.caption =
       "Cost per evaluation (every quantity at one crank angle; k = 1 filled, k = 12 open) against the worst error over "
       "every quantity and every cross-checked case of the campaign, relative to the quantity's scale: each engine "
@@ -205,5 +222,28 @@ ReportPart describeEnginesPart(const TableSet& tables) {
                          shortNumber(toDouble(row[ns12]), 3)});
   return part;
 }
+
+class EnginesPart final : public Part {
+ public:
+  std::string key() const override { return "engines"; }
+  int number() const override { return 13; }
+  std::string title() const override { return "Engines: which engine, at what cost, how exact"; }
+  std::vector<Task> tasks(const PartContext& context) const override {
+    return {buildEngineCostTask(context.base, context.quick)};
+  }
+  // From the cross-checks of every engine and their costs.
+  void derive(TableSet& tables) const override { deriveEngineTables(tables); }
+  ReportPart describe(const TableSet& tables) const override { return describeEnginesPart(tables, heading()); }
+  std::vector<std::string> tables() const override { return {"engine_cost", "engines", "engines_league"}; }
+};
+
+}  // namespace
+
+namespace parts {
+const Part& engines() {
+  static const EnginesPart part;
+  return part;
+}
+}  // namespace parts
 
 }  // namespace crankcheck::validation

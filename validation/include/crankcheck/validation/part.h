@@ -1,0 +1,73 @@
+#pragma once
+/// @file
+/// One part of the validation report, the way an engine is one entry of engines.h: its own file under
+/// validation/src/parts/ says what work it needs (tasks), what it computes from finished work (derive) and how the
+/// report shows it (describe); the registry (parts.h) lists the parts in report order, one line each. The campaign
+/// (campaign.h) collects every part's tasks; the report (report.h) draws and places every part. The whole contract of
+/// a part is the abstract class below (after Google Benchmark's reporters: a few virtual methods, one file each).
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/report_part.h"
+
+namespace crankcheck::validation {
+
+/// What a part's tasks are built from: the campaign's scenes as buildCampaign resolved them.
+struct PartContext {
+  /// The base of the figures: the first scene, as a standing centric inline engine of its k and cycle without
+  /// balance shafts (campaign.cc says when that differs from the scene as given).
+  Mechanism base;
+  /// The first scene as given (its own layout, offsets and shafts).
+  Mechanism first;
+  /// The user's scene files, or the example scenes (scenes/*.toml) in the default campaign.
+  std::vector<Mechanism> scenes;
+  /// The user's scene files alone; empty in the default campaign.
+  std::vector<Mechanism> user_scenes;
+  /// (family of cases, scene) of every cross-checked scene: the built-in families, or one per user scene.
+  std::vector<std::pair<std::string, Mechanism>> families;
+  bool quick = false;  ///< fewer lambdas, angles and methods: a smoke test of the whole report
+};
+
+/// A task's estimated cost, relative: the campaign starts the larger first so that parallel jobs end together (the
+/// order changes no table: they are sorted). Ties keep the order in which the parts list them.
+namespace task_cost {
+inline constexpr double kSimbodyRun = 4.0;   ///< a Simbody run over a working cycle at fine steps (flywheel)
+inline constexpr double kCycleSweep = 3.0;   ///< both engines over a working cycle at 0.25 degrees (offset)
+inline constexpr double kCrossCheck = 2.0;   ///< every engine on one case at every angle and speed
+inline constexpr double kGateSweep = 1.0;    ///< the gate's sweep of one k and stroke over lambda and gamma
+inline constexpr double kShort = 0.0;        ///< the rest (seconds at most)
+}  // namespace task_cost
+
+/// One part of the report.
+class Part {
+ public:
+  virtual ~Part() = default;
+  /// The figure's and main table's stem ("flywheel": flywheel.png, data/flywheel.csv, reports/flywheel.gp).
+  virtual std::string key() const = 0;
+  /// Its number in the report, 1..N in the registry's order.
+  virtual int number() const = 0;
+  /// Its heading without the number ("Flywheel sizing: ...").
+  virtual std::string title() const = 0;
+  /// The independent units of work whose tables the part reads; each with its Task::cost.
+  virtual std::vector<Task> tasks(const PartContext& context) const = 0;
+  /// Adds the tables computed from the finished work of every task (the report runs it on the sorted tables before
+  /// writing them). Default: nothing.
+  virtual void derive(TableSet& tables) const { (void)tables; }
+  /// The part as the report shows it (heading "N. title", the figure's caption, sentences, a table); an empty heading
+  /// when the tables it needs are missing: the part is left out.
+  virtual ReportPart describe(const TableSet& tables) const = 0;
+  /// The CSV stems it writes (its tasks' and derive's), for tests and docs.
+  virtual std::vector<std::string> tables() const = 0;
+  /// The figures it draws (stems of reports/NAME.gp, data/NAME.csv, NAME.png, NAME.svg); drawn when data/NAME.csv
+  /// exists.
+  virtual std::vector<std::string> figures() const { return {key()}; }
+
+  /// "N. title": the heading describe() gives.
+  std::string heading() const { return std::to_string(number()) + ". " + title(); }
+};
+
+}  // namespace crankcheck::validation

@@ -1,0 +1,105 @@
+// Report part `balance` (9): the balance of engine layouts, computed (balance.cc) beside the textbook's claims, what
+// the two-term rules miss, and the figure of every harmonic.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "crankcheck/validation/balance.h"
+#include "crankcheck/validation/part.h"
+
+namespace crankcheck::validation {
+namespace {
+
+// A field as a number; an empty one as 0.
+double toDouble(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
+
+// Part 9: the balance table (computed, beside the textbook's claims), what the two-term rules miss, the figure.
+void addBalancePart(ReportPart& part, const TableSet& tables, const std::string& caption) {
+  part.blocks.push_back({ReportBlock::kParagraph,
+                 "Each layout is built on the base scene's crank, rod and piston at 6000 rpm, cylinders spaced along "
+                 "the shaft (throws 0.1 m apart, the two cylinders of a shared pin 0.02 m apart, O in the middle). F1, F2: "
+                 "primary and secondary shaking force [N]; M1, M2: primary and secondary couple about X and Y [N m]. "
+                 "'Vanishes exactly' is decided in integers (sums of roots of unity over the throws), not read off a "
+                 "small number; the amplitudes are the closed form's, Simbody's and MuJoCo's (a DFT of each engine's own "
+                 "shaking force and moment over one revolution). The textbook column is the claim of the standard balance tables "
+                 "(two-term piston motion, both cylinders of a pin in one plane). A DIFFERS is a finding, not a failure "
+                 "of the engines (they agree, see the summary): for example the 0.02 m between the two cylinders of a "
+                 "shared pin, which the tables ignore, gives a flat-plane V8 a secondary couple."});
+  part.blocks.push_back({ReportBlock::kTable, "",
+                 {"layout", "part", "textbook", "vanishes exactly", "amplitude (closed form)", "amplitude (Simbody)",
+                  "amplitude (MuJoCo)", "relative", "verdict"},
+                 formatRows(tables, "balance",
+                           {"layout", "part", "textbook", "vanishes_exactly", "analytic_amplitude", "simbody_amplitude",
+                            "mujoco_amplitude", "relative_amplitude", "verdict"},
+                           {false, false, false, false, true, true, true, true, false})});
+  // Beyond the two-term rules: the largest harmonic above 2 that the exact motion leaves, per layout.
+  const auto it = tables.find("balance_harmonics");
+  if (it != tables.end()) {
+    const Table& t = it->second;
+    const size_t layout = columnOf(t, "layout"), n = columnOf(t, "n"), force = columnOf(t, "force_relative"),
+                 couple = columnOf(t, "couple_relative");
+    std::map<std::string, std::pair<std::string, double>> worst_force, worst_couple;
+    std::vector<std::string> order;
+    for (const auto& row : t.rows) {
+      if (!worst_force.count(row[layout])) order.push_back(row[layout]);
+      auto& wf = worst_force[row[layout]];
+      auto& wc = worst_couple[row[layout]];
+      if (std::stoi(row[n]) <= 2) continue;
+      if (toDouble(row[force]) > wf.second) wf = {row[n], toDouble(row[force])};
+      if (toDouble(row[couple]) > wc.second) wc = {row[n], toDouble(row[couple])};
+    }
+    ReportBlock beyond{ReportBlock::kTable, "", {"layout", "largest force harmonic above 2", "relative [-]", "largest couple harmonic above 2", "relative [-]"}};
+    for (const std::string& name : order) {
+      const auto& f = worst_force[name];
+      const auto& c = worst_couple[name];
+      beyond.rows.push_back({name, f.first.empty() ? "none up to 8" : "n = " + f.first, shortNumber(f.second, 3),
+                             c.first.empty() ? "none up to 8" : "n = " + c.first, shortNumber(c.second, 3)});
+    }
+    part.blocks.push_back({ReportBlock::kParagraph,
+                   "Where the textbook rules hold only for the two-term approximation: the exact piston motion has "
+                   "harmonics 4, 6, 8, ... (and the rod's swing odd ones in the couples), which the tables do not "
+                   "consider. The largest that survives each layout's symmetry, relative to the force (moment) scale:"});
+    part.blocks.push_back(beyond);
+  }
+  part.blocks.push_back({ReportBlock::kFigure, caption, {}, {}, "balance_harmonics"});
+}
+
+class BalancePart final : public Part {
+ public:
+  std::string key() const override { return "balance"; }
+  int number() const override { return 9; }
+  std::string title() const override { return "Balance of engine layouts"; }
+  // The layouts on the first scene's parts, and the user's scenes.
+  std::vector<Task> tasks(const PartContext& context) const override {
+    return {{"balance", false,
+             [first = context.first, user = context.user_scenes] { return calcBalanceTables(first, user); }}};
+  }
+  ReportPart describe(const TableSet& tables) const override {
+    ReportPart part;
+    if (!tables.count("balance_harmonics")) return part;
+    part.heading = heading();
+    addBalancePart(part, tables,
+                   "The shaking force and the couple about X and Y of every layout of the balance table (and of the "
+                   "campaign's own scenes, below the layouts, when scene files were given), harmonics 1-8, relative "
+                   "to the force and moment scales: closed form from the exact Fourier coefficients (Simbody's DFT "
+                   "agrees, see the summary); white with a dot where the harmonic vanishes exactly by the layout's "
+                   "symmetry");
+    return part;
+  }
+  std::vector<std::string> tables() const override { return {"balance", "balance_harmonics"}; }
+  std::vector<std::string> figures() const override { return {"balance_harmonics"}; }
+};
+
+}  // namespace
+
+namespace parts {
+const Part& balance() {
+  static const BalancePart part;
+  return part;
+}
+}  // namespace parts
+
+}  // namespace crankcheck::validation

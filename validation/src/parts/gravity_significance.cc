@@ -1,0 +1,124 @@
+// Report part `gravity_significance` (4): when gravity matters, max |Q| against k (computed in campaign.cc), and the
+// paper's claims about it tested.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "../campaign_tables.h"
+#include "crankcheck/validation/part.h"
+
+namespace crankcheck::validation {
+namespace {
+
+// A field as a number; an empty one as 0.
+double toDouble(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
+
+// Part 4's claims: the paper's dividing line and its practical list, tested with stated thresholds on max |Q|
+// relative to the single cylinder of the same cycle (the exact harmonics' maxima, gravity_significance).
+void addGravityClaims(ReportPart& part, const TableSet& tables) {
+  std::map<std::string, std::map<int, double>> ratio;  // cycle -> k -> max |Q| / max |Q|(k = 1)
+  for (const auto& r : readRecords(tables, "gravity_significance")) ratio[r.at("cycle")][std::stoi(r.at("k"))] = toDouble(r.at("ratio_to_k1"));
+  if (ratio.empty()) return;
+  const std::vector<int> matters = {1, 2, 3, 4, 5, 6, 8, 10, 12}, negligible = {7, 9, 11};
+  auto list = [](const std::vector<int>& ks) {
+    std::string s;
+    for (int k : ks) s += (s.empty() ? "" : ", ") + std::to_string(k);
+    return "{" + s + "}";
+  };
+  ReportBlock claims{ReportBlock::kTable, "", {"claim (Stanczak section 7)", "cycle", "test", "paper", "data", "deciding ratios", "verdict"}};
+  std::string sentence;
+  for (const auto& [cycle, by_k] : ratio) {
+    if (by_k.size() < 12) continue;
+    // The dividing line holds when every k it says matters has a larger max |Q| than every k it says is negligible.
+    int k_low = matters.front(), k_high = negligible.front();
+    for (int k : matters) if (by_k.at(k) < by_k.at(k_low)) k_low = k;
+    for (int k : negligible) if (by_k.at(k) > by_k.at(k_high)) k_high = k;
+    const double margin = by_k.at(k_low) / by_k.at(k_high);
+    claims.rows.push_back({"gravity matters for k = 1..6, 8, 10, 12, negligible for 7, 9, 11", cycle,
+                           "some threshold separates the two sets (min of the first / max of the second > 1)",
+                           list(negligible) + " below all others", "smallest of the first: k = " + std::to_string(k_low) +
+                               ", largest of the second: k = " + std::to_string(k_high),
+                           "k = " + std::to_string(k_low) + ": " + shortNumber(by_k.at(k_low), 2) + ", k = " +
+                               std::to_string(k_high) + ": " + shortNumber(by_k.at(k_high), 2) + " (ratio " +
+                               shortNumber(margin, 2) + ")",
+                           margin > 1.0 ? "holds, by a factor " + shortNumber(margin, 2) : "does not hold"});
+    sentence += (sentence.empty() ? "" : " ") + cycle + ": the weakest engine the paper says gravity matters for (k = " +
+                std::to_string(k_low) + ") has " + shortNumber(margin, 2) + " times the max |Q| of the strongest it calls " +
+                "negligible (k = " + std::to_string(k_high) + ")" +
+                (margin > 1.0 ? ", so the line holds for any threshold between " + shortNumber(by_k.at(k_high), 2) + " and " +
+                                    shortNumber(by_k.at(k_low), 2) + " of the single cylinder's max |Q|, far below the "
+                                    "thresholds at which the practical list is tested"
+                              : ", so no threshold separates them") + ".";
+    // The practical list: k = 1, 2, 4 (perhaps 3 and 6), at stated thresholds.
+    for (const auto& [threshold, paper] : {std::pair<double, std::vector<int>>{1e-3, {1, 2, 4}},
+                                           std::pair<double, std::vector<int>>{1e-5, {1, 2, 3, 4, 6}}}) {
+      std::vector<int> data;
+      std::string deciding;
+      for (const auto& [k, x] : by_k) {
+        if (x >= threshold) data.push_back(k);
+        const bool in_paper = std::find(paper.begin(), paper.end(), k) != paper.end();
+        if ((x >= threshold) != in_paper) deciding += (deciding.empty() ? "" : ", ") + ("k = " + std::to_string(k) + ": " + shortNumber(x, 2));
+      }
+      claims.rows.push_back({threshold == 1e-3 ? "gravity may matter for k = 1, 2, 4" : "... perhaps also for k = 3, 6", cycle,
+                             "max |Q| >= " + shortNumber(threshold, 1) + " of the single cylinder's", list(paper), list(data),
+                             deciding.empty() ? "-" : deciding, data == paper ? "holds" : "does not hold"});
+    }
+  }
+  part.blocks.push_back({ReportBlock::kParagraph,
+                 "The paper (section 7): 'For k = 7, 9, 11 the influence of gravity on the motion can be neglected as "
+                 "negligibly small, since, for example, for k = 7 a non-zero value of formula (16) was obtained only at "
+                 "Lambda_14.' And its practical list: gravity 'may be significant in particular for heavy, medium- or "
+                 "high-speed mechanisms with k = 1, 2, 4 (possibly also k = 3, 6)'. Both tested as claims, on max |Q| "
+                 "relative to the single cylinder of the same cycle (the thresholds are stated in each row):"});
+  part.blocks.push_back(claims);
+  if (!sentence.empty()) part.blocks.push_back({ReportBlock::kParagraph, sentence});
+}
+
+class GravitySignificancePart final : public Part {
+ public:
+  std::string key() const override { return "gravity_significance"; }
+  int number() const override { return 4; }
+  std::string title() const override { return "When gravity matters"; }
+  // One task per cycle.
+  std::vector<Task> tasks(const PartContext& context) const override {
+    std::vector<Task> out;
+    for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke})
+      out.push_back({"gravity_significance " + toString(cycle), false,
+                     [base = context.base, cycle] { return calcGravitySignificanceTables(base, cycle); }});
+    return out;
+  }
+  ReportPart describe(const TableSet& tables) const override {
+    ReportPart part;
+    if (!tables.count(key())) return part;
+    part.heading = heading();
+    part.blocks.push_back({ReportBlock::kFigure,
+                           "Max |Q| against k, relative to k = 1 and relative to the inertia torque at the base scene's speed",
+                           {}, {}, key()});
+    part.blocks.push_back({ReportBlock::kParagraph,
+                           "max |Q| is the maximum over the turn of Q's exact harmonics (no cancellation, so it is exact however "
+                           "small); Simbody's is found on the same grid (6 samples per period of the first surviving harmonic, at least 48) "
+                           "and refined the same way (Brent's method). Where Simbody's max |Q| is below its rounding bound (64 eps "
+                           "of the energy scale) it shows only that |Q| is below the bound: 'Simbody resolves' = no, and the "
+                           "figure draws the bound as an arrow down."});
+    part.blocks.push_back({ReportBlock::kTable, "", {"cycle", "k", "first order", "max |Q| [N m]", "/ k = 1", "max inertia torque [N m]", "max |Q| / inertia", "Simbody max |Q| [N m]", "Simbody resolves", "rounding bound [N m]"},
+                           formatRows(tables, key(), {"cycle", "k", "first_order", "max_abs_Q", "ratio_to_k1", "max_inertia_torque", "ratio_to_inertia", "simbody_max_abs_Q", "resolved", "simbody_bound"},
+                                      {false, false, false, true, true, true, true, true, false, true})});
+    addGravityClaims(part, tables);
+    return part;
+  }
+  std::vector<std::string> tables() const override { return {"gravity_significance"}; }
+};
+
+}  // namespace
+
+namespace parts {
+const Part& gravitySignificance() {
+  static const GravitySignificancePart part;
+  return part;
+}
+}  // namespace parts
+
+}  // namespace crankcheck::validation
