@@ -36,7 +36,7 @@ std::string runFlywheel(const FlywheelOptions& options) {
   } catch (const std::domain_error& e) {
     throw UsageError(options.scene_path + ": --fluctuation " + formatShortest(options.fluctuation) + ": " + e.what());
   } catch (const std::runtime_error& e) {  // a root that does not converge: refused, not printed
-    throw UncomputableError(options.scene_path + ": flywheel sizing: " + e.what());
+    throw UncomputableError(options.scene_path + ": " + e.what());
   }
   // Simbody: the exact flywheel in place of the scene's, the load, the gas, released at phi = 0 with the steady run's
   // speed there, over one working cycle.

@@ -22,7 +22,7 @@ namespace {
 constexpr const char* kExitStatus =
     "Exit status (the same for every command):\n"
     "  0  every comparison agrees (eval, motion: the results were printed)\n"
-    "  1  a comparison that should hold failed\n"
+    "  1  a comparison that should hold failed, or a result cannot be computed to its accuracy (refused)\n"
     "  2  bad input or usage: a bad scene, flag or output folder; nothing was written\n"
     "  3  the environment failed: a tool missing (gnuplot), a disk full, a write refused\n"
     "  128+N  interrupted by signal N (SIGHUP 129, SIGINT 130, SIGTERM 143); the partial output was removed and\n"

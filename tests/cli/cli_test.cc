@@ -131,6 +131,50 @@ TEST(Cli, SceneMujocoCannotBuildIsRefusedWithOneLine) {
   EXPECT_FALSE(std::filesystem::exists(folder.path() / "graded"));
 }
 
+// A scene whose text is an example scene with `from` replaced by `to`, written into `folder`.
+std::filesystem::path editedScene(const std::filesystem::path& folder, const std::string& example, const std::string& from,
+                                  const std::string& to) {
+  std::string text = readFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / example);
+  const size_t at = text.find(from);
+  if (at == std::string::npos) throw std::runtime_error(example + ": no \"" + from + "\"");
+  text.replace(at, from.size(), to);
+  const auto path = folder / ("edited_" + example);
+  std::ofstream(path) << text;
+  return path;
+}
+
+// The same classes of mistakes as issue 29's, other shapes (a round of attacks): each refused with one line, the
+// right status, nothing on stdout. A rotor inertia MuJoCo cannot build is named by its key in eval and balance (MuJoCo's
+// own message spanned two lines and balance ended with status 3); a harmonic analysis that cannot reach rounding and a
+// sizing that cannot converge are refused with status 1 (they ended with "could not complete", status 3).
+TEST(Cli, ResultsThatCannotBeComputedAreRefusedWithOneLine) {
+  testing::FreshFolder folder;
+  const auto rotor = editedScene(folder.path(), "inline4_pin_offset.toml", "inertia = 0.12", "inertia = 1e-300");
+  for (const std::string& command : {"eval " + rotor.string() + " --engine mujoco", "balance " + rotor.string()}) {
+    const RunResult r = run(command);
+    EXPECT_EQ(r.exit_status, 2) << command;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err.rfind("crankcheck: " + rotor.string() + ": --engine mujoco: flywheel.inertia: ", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  // A 1e6 kg counterweight on a 0.04 kg m^2 flywheel's crank: the offset motion's harmonics sit below what the DFT
+  // resolves.
+  const auto heavy = editedScene(folder.path(), "inline4_pin_offset.toml", "counterweight_mass = 0.9", "counterweight_mass = 1e6");
+  const RunResult balance = run("balance " + heavy.string());
+  EXPECT_EQ(balance.exit_status, 1) << balance.err;
+  EXPECT_EQ(balance.out, "");
+  EXPECT_EQ(balance.err.rfind("crankcheck: " + heavy.string() + ": balance: ", 0), 0u) << balance.err;
+  EXPECT_NE(balance.err.find("; refused\n"), std::string::npos) << balance.err;
+  EXPECT_EQ(std::count(balance.err.begin(), balance.err.end(), '\n'), 1) << balance.err;
+  // 1e-300 rpm: omega^2 underflows, the sizing's root cannot be found.
+  const auto crawl = editedScene(folder.path(), "inline4_pin_offset.toml", "speed_rpm = 6000", "speed_rpm = 1e-300");
+  const RunResult flywheel = run("flywheel " + crawl.string() + " --fluctuation 0.02");
+  EXPECT_EQ(flywheel.exit_status, 1) << flywheel.err;
+  EXPECT_EQ(flywheel.out, "");
+  EXPECT_EQ(flywheel.err.rfind("crankcheck: " + crawl.string() + ": flywheel sizing: ", 0), 0u) << flywheel.err;
+  EXPECT_EQ(std::count(flywheel.err.begin(), flywheel.err.end(), '\n'), 1) << flywheel.err;
+}
+
 // balance --design 2 on the inline four: a Lanchester pair (ratios 2 and -2) whose TOML reads back as the same shafts,
 // and with them the secondary force is gone from the closed form and from each engine's DFT (to 1e-9 of what it was).
 TEST(Cli, BalanceDesignGivesShaftsThatCancelTheHarmonic) {

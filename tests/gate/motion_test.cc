@@ -173,3 +173,28 @@ INSTANTIATE_TEST_SUITE_P(
 
 }  // namespace
 }  // namespace crankcheck
+
+namespace crankcheck {
+namespace {
+
+// A run that needs more internal steps than its limit is refused, naming the limit, instead of running on (a 1e6 m
+// rod made `crankcheck flywheel` run for hours). The single cylinder takes about 400 steps per revolution at 1e-10:
+// a limit of 50 per revolution stops it, the default (20000) lets it finish.
+TEST(FreeRunGate, ARunPastItsStepLimitIsRefused) {
+  const Mechanism single = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml");
+  FreeRunOptions options;
+  options.max_steps_per_revolution = 50;
+  try {
+    simbody_models::simulateFreeRun(single, single.engine.speed, options);
+    ADD_FAILURE() << "a run past its step limit was not refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("took more than 50 steps per revolution at accuracy 1e-10"), std::string::npos)
+        << e.what();
+  }
+  const simbody_models::FreeRunResult r = simbody_models::simulateFreeRun(single, single.engine.speed, FreeRunOptions{});
+  EXPECT_LT(r.steps, 2 * 20000);
+  EXPECT_GT(r.steps, 2 * 50);
+}
+
+}  // namespace
+}  // namespace crankcheck
