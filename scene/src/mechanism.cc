@@ -1,5 +1,6 @@
 #include "crankcheck/scene/mechanism.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -28,6 +29,34 @@ bool hasPinOffsets(const Mechanism& m) {
   for (double delta : m.engine.pin_offsets)
     if (delta != 0.0) return true;
   return false;
+}
+
+std::vector<std::vector<int>> findThrows(const Mechanism& m) {
+  // Angles within 1e-9 rad modulo a turn are the same (beta_j = gamma_j + alpha_j rounds differently for a V pair
+  // typed with the same throw_angle_deg); 1e-9 rad is the tolerance of the firing-angle rule as well.
+  const auto same = [](double a, double b) { return std::fabs(std::remainder(a - b, 2.0 * M_PI)) <= 1e-9; };
+  std::vector<int> along(static_cast<size_t>(std::max(m.engine.cylinders, 0)));
+  std::iota(along.begin(), along.end(), 0);
+  std::stable_sort(along.begin(), along.end(),
+                   [&](int a, int b) { return getAxialPosition(m, a) < getAxialPosition(m, b); });
+  std::vector<std::vector<int>> throws;
+  for (int j : along) {
+    bool joins = !throws.empty() && same(getThrowAngle(m, j), getThrowAngle(m, throws.back().front()));
+    if (joins)
+      for (int c : throws.back()) joins = joins && !same(getBankAngle(m, j), getBankAngle(m, c));
+    if (joins) throws.back().push_back(j);
+    else throws.push_back({j});
+  }
+  return throws;
+}
+
+int countShaftSections(const Mechanism& m) {
+  const int throws = static_cast<int>(findThrows(m).size());
+  return m.crankshaft && m.crankshaft->front_inertia > 0.0 ? throws + 1 : throws;
+}
+
+double getSectionDamping(const CrankshaftParams& c, int i) {
+  return c.section_damping.size() == 1 ? c.section_damping.front() : c.section_damping.at(static_cast<size_t>(i));
 }
 
 bool isSingleBank(const Mechanism& m) {

@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <utility>
 #include <toml++/toml.h>
 
 namespace crankcheck {
@@ -42,6 +43,11 @@ constexpr Limit kMaxAngleDeg{1e6, "1e6 deg"};
 // four times the peak of the most highly charged diesels).
 constexpr Limit kMinGaugePressure{-101325.0, "-101325 Pa (no pressure at all)"};
 constexpr Limit kMaxGaugePressure{1e9, "1e9 Pa (10 kbar)"};
+// Torsional stiffness [N m/rad] and damping [N m s/rad] of the crank train: at most 1e18, eight orders above the
+// stiffest section of a ship's crankshaft (about 1e10 N m/rad); with inertias of at most 1e18 kg m^2 the products
+// K x, C omega and omega^2 J of the torsion analysis stay far inside double's range.
+constexpr Limit kMaxStiffness{1e18, "1e18 N m/rad"};
+constexpr Limit kMaxDamping{1e18, "1e18 N m s/rad"};
 // Cylinders: 1..64, more than any engine built; keeps the per-cylinder work and output bounded.
 constexpr int kMaxCylinders = 64;
 static_assert(kMaxInertia.value == 1e18);
@@ -320,6 +326,44 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
               degreesFromRadians(m.firing_angles[i]));
     }
   }
+  if (m.crankshaft) {
+    // The elastic crank train (../shared/CONVENTIONS.md, "Torsion"): one stiffness per section (a front mass adds
+    // one); damping one value for all sections or one each. A scene's [crankshaft] also needs a speed (parseScene:
+    // a mechanism derived at rest for the rigid engines keeps its table).
+    const CrankshaftParams& c = *m.crankshaft;
+    for (const auto& [x, key] : {std::pair{c.throw_inertia, "[crankshaft].throw_inertia"},
+                                 std::pair{c.front_inertia, "[crankshaft].front_inertia"}}) {
+      requireFinite(x, key);
+      require(x >= 0.0, key, "must be >= 0", x);
+      require(x <= kMaxInertia.value, key, atMost(kMaxInertia), x);
+    }
+    const size_t throws = findThrows(m).size();
+    const size_t sections = static_cast<size_t>(countShaftSections(m));
+    require(c.stiffness.size() == sections, "[crankshaft].stiffness",
+            "must have " + std::to_string(sections) + " values, one per section from front to flywheel (" +
+                std::to_string(throws) + (throws == 1 ? " throw" : " throws") +
+                (c.front_inertia > 0.0 ? " and a front mass: throws + 1" : ", no front mass: one per throw") + ")",
+            static_cast<double>(c.stiffness.size()));
+    for (size_t i = 0; i < c.stiffness.size(); ++i) {
+      const std::string key = "[crankshaft].stiffness[" + std::to_string(i) + "]";
+      requireFinite(c.stiffness[i], key);
+      require(c.stiffness[i] > 0.0, key, "must be > 0", c.stiffness[i]);
+      require(c.stiffness[i] <= kMaxStiffness.value, key, atMost(kMaxStiffness), c.stiffness[i]);
+    }
+    require(c.section_damping.size() == 1 || c.section_damping.size() == sections, "[crankshaft].section_damping",
+            "must be one value for all sections, or a list of " + std::to_string(sections) + " (one per section)",
+            static_cast<double>(c.section_damping.size()));
+    for (size_t i = 0; i < c.section_damping.size(); ++i) {
+      const std::string key =
+          "[crankshaft].section_damping" + (c.section_damping.size() == 1 ? std::string() : "[" + std::to_string(i) + "]");
+      requireFinite(c.section_damping[i], key);
+      require(c.section_damping[i] >= 0.0, key, "must be >= 0", c.section_damping[i]);
+      require(c.section_damping[i] <= kMaxDamping.value, key, atMost(kMaxDamping), c.section_damping[i]);
+    }
+    requireFinite(c.throw_damping, "[crankshaft].throw_damping");
+    require(c.throw_damping >= 0.0, "[crankshaft].throw_damping", "must be >= 0", c.throw_damping);
+    require(c.throw_damping <= kMaxDamping.value, "[crankshaft].throw_damping", atMost(kMaxDamping), c.throw_damping);
+  }
   if (m.flywheel_inertia) {
     requireFinite(*m.flywheel_inertia, "[flywheel].inertia");
     require(*m.flywheel_inertia > 0, "[flywheel].inertia", "must be > 0", *m.flywheel_inertia);
@@ -355,13 +399,13 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
       fail(source, key, "must be a string");
   static const std::set<std::string> kTopLevel = {"format_version", "name", "description"};
   static const std::set<std::string> kTables = {"engine", "crank", "rod", "piston", "flywheel", "gas", "cylinder",
-                                                "balance_shaft"};
+                                                "balance_shaft", "crankshaft"};
   for (const auto& [k, v] : root) {
     const std::string name(k.str());
     if (!kTables.contains(name) && !kTopLevel.contains(name))
       fail(source, name,
            "unknown key (top level: format_version, name, description; tables: engine, crank, rod, piston, flywheel, "
-           "gas, [[cylinder]], [[balance_shaft]])");
+           "gas, crankshaft, [[cylinder]], [[balance_shaft]])");
   }
   const bool has_gas = root.get("gas") != nullptr;
 
@@ -497,6 +541,23 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
   TableReader flywheel(root, "flywheel", source, false, {"inertia"});
   if (flywheel.present()) m.flywheel_inertia = flywheel.number("inertia");
 
+  // [crankshaft]: the elastic crank train (docs/SCENE-FORMAT.md, "Crankshaft (torsion)"); its rules: validateMechanism.
+  TableReader crankshaft(root, "crankshaft", source, false,
+                         {"throw_inertia", "front_inertia", "stiffness", "section_damping", "throw_damping"});
+  if (crankshaft.present()) {
+    CrankshaftParams c;
+    c.throw_inertia = crankshaft.number("throw_inertia", 0.0);
+    c.front_inertia = crankshaft.number("front_inertia", 0.0);
+    const auto stiffness = crankshaft.optionalNumberArray("stiffness");
+    if (!stiffness) fail(source, crankshaft.key("stiffness"), "missing key (K_s [N m/rad] per section, front to flywheel)");
+    c.stiffness = *stiffness;
+    const toml::node* damping = crankshaft.find("section_damping");
+    if (damping != nullptr && damping->is_array()) c.section_damping = *crankshaft.optionalNumberArray("section_damping");
+    else c.section_damping = {crankshaft.number("section_damping", 0.0)};
+    c.throw_damping = crankshaft.number("throw_damping", 0.0);
+    m.crankshaft = c;
+  }
+
   if (const toml::node* node = root.get("balance_shaft")) {
     const toml::array* shafts = node->as_array();
     if (shafts == nullptr || !shafts->is_array_of_tables())
@@ -567,6 +628,11 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
   }
 
   validateMechanism(m, source);
+  // The flywheel end of the elastic crank train turns at omega t ("Torsion"): a scene with [crankshaft] needs a speed.
+  if (m.crankshaft && !(m.engine.speed > 0.0))
+    fail(source, "[engine].speed_rpm",
+         "must be > 0 with a [crankshaft] table (its flywheel end turns at the scene's speed) (got " +
+             formatNumber(m.speed_rpm) + ")");
   return m;
 }
 

@@ -98,6 +98,17 @@ std::string formatSceneToml(const Mechanism& m) {
   out << "\n[piston]\n";
   out << "mass = " << formatShortest(m.piston.mass) << "\n";
   if (m.flywheel_inertia) out << "\n[flywheel]\ninertia = " << formatShortest(*m.flywheel_inertia) << "\n";
+  if (m.crankshaft) {
+    const CrankshaftParams& c = *m.crankshaft;
+    out << "\n[crankshaft]\n";
+    out << "throw_inertia = " << formatShortest(c.throw_inertia) << "\n";
+    out << "front_inertia = " << formatShortest(c.front_inertia) << "\n";
+    out << "stiffness = " << list(c.stiffness, same) << "\n";
+    out << "section_damping = "
+        << (c.section_damping.size() == 1 ? formatShortest(c.section_damping.front()) : list(c.section_damping, same))
+        << "\n";
+    out << "throw_damping = " << formatShortest(c.throw_damping) << "\n";
+  }
   if (with_gas) {
     out << "\n[gas]\n";
     out << "bore = " << formatShortest(m.gas->bore) << "\n";

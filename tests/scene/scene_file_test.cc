@@ -309,6 +309,133 @@ INSTANTIATE_TEST_SUITE_P(
                  "balance_shaft[0].teeth", "unknown key"}),
     [](const auto& info) { return info.param.name; });
 
+// ---------------------------------------------------------------------------------------------------------------
+// Crankshaft (torsion): the [crankshaft] table (docs/SCENE-FORMAT.md, "Crankshaft (torsion)").
+
+// Two inline cylinders (two throws) and a front mass: three sections.
+const std::string kCrankshaftScene = kGoodScene + R"(
+[crankshaft]
+throw_inertia = 2.0e-3
+front_inertia = 4.0e-3
+stiffness = [4.0e5, 5.5e5, 7.0e5]
+section_damping = 1.5
+throw_damping = 0.4
+)";
+// The V twin of kLayoutScene: both cylinders on one pin, one throw; no front mass: one section.
+const std::string kCrankshaftLayoutScene = kLayoutScene + R"(
+[crankshaft]
+stiffness = [7.0e5]
+)";
+
+TEST(SceneCrankshaft, TableIsReadWithItsDefaults) {
+  const Mechanism m = parseScene(kCrankshaftScene, "inline2.toml");
+  ASSERT_TRUE(m.crankshaft.has_value());
+  EXPECT_EQ(m.crankshaft->throw_inertia, 2.0e-3);
+  EXPECT_EQ(m.crankshaft->front_inertia, 4.0e-3);
+  EXPECT_EQ(m.crankshaft->stiffness, (std::vector<double>{4.0e5, 5.5e5, 7.0e5}));
+  EXPECT_EQ(m.crankshaft->section_damping, (std::vector<double>{1.5}));
+  EXPECT_EQ(getSectionDamping(*m.crankshaft, 2), 1.5);
+  EXPECT_EQ(m.crankshaft->throw_damping, 0.4);
+  EXPECT_EQ(countShaftSections(m), 3);
+  const Mechanism v = parseScene(kCrankshaftLayoutScene, "v2.toml");
+  ASSERT_TRUE(v.crankshaft.has_value());
+  EXPECT_EQ(v.crankshaft->throw_inertia, 0.0);  // defaults: no own inertia, no front mass, no damping
+  EXPECT_EQ(v.crankshaft->front_inertia, 0.0);
+  EXPECT_EQ(v.crankshaft->section_damping, (std::vector<double>{0.0}));
+  EXPECT_EQ(v.crankshaft->throw_damping, 0.0);
+  EXPECT_EQ(findThrows(v), (std::vector<std::vector<int>>{{0, 1}}));
+  EXPECT_FALSE(parseScene(kGoodScene, "inline2.toml").crankshaft.has_value());
+  std::string list = kCrankshaftScene;
+  list.replace(list.find("section_damping = 1.5"), 21, "section_damping = [1, 2, 3]");
+  EXPECT_EQ(parseScene(list, "inline2.toml").crankshaft->section_damping, (std::vector<double>{1, 2, 3}));
+}
+
+// The throws: one per cylinder in one bank (an inline four's two middle pins at 180 degrees stay two throws); a V
+// pair on one pin is one throw, whether the scene lists the cylinders pin by pin or bank by bank with axial positions
+// (the example V8); a flat-plane V8 (pins 0, 180, 180, 0) has four; a radial star one.
+TEST(SceneCrankshaft, ThrowsAreTheCrankPinsAlongTheShaft) {
+  Mechanism m = parseScene(kGoodScene, "inline2.toml");
+  m.engine.cylinders = 4;
+  m.engine.crank_angles = {0.0, M_PI, M_PI, 0.0};
+  EXPECT_EQ(findThrows(m), (std::vector<std::vector<int>>{{0}, {1}, {2}, {3}}));
+  m.engine.axial_positions = {0.0, -0.1, -0.2, -0.3};  // a negative spacing: the front is cylinder 3
+  EXPECT_EQ(findThrows(m), (std::vector<std::vector<int>>{{3}, {2}, {1}, {0}}));
+  const Mechanism example = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "v8_cross_plane.toml");
+  EXPECT_EQ(findThrows(example), (std::vector<std::vector<int>>{{0, 4}, {1, 5}, {2, 6}, {3, 7}}));
+  Mechanism v8 = m;
+  v8.engine.cylinders = 8;
+  v8.engine.bank_angles.clear();
+  v8.engine.crank_angles.clear();
+  v8.engine.axial_positions.clear();
+  for (double pin_deg : {0.0, 180.0, 180.0, 0.0})
+    for (double bank_deg : {135.0, 45.0}) {
+      v8.engine.bank_angles.push_back(radiansFromDegrees(bank_deg));
+      v8.engine.crank_angles.push_back(radiansFromDegrees(pin_deg - bank_deg));
+    }
+  EXPECT_EQ(findThrows(v8), (std::vector<std::vector<int>>{{0, 1}, {2, 3}, {4, 5}, {6, 7}}));
+  Mechanism radial = v8;
+  radial.engine.cylinders = 5;
+  radial.engine.bank_angles.clear();
+  radial.engine.crank_angles.clear();
+  for (int j = 0; j < 5; ++j) {
+    radial.engine.bank_angles.push_back(radiansFromDegrees(72.0 * j));
+    radial.engine.crank_angles.push_back(radiansFromDegrees(-72.0 * j));
+  }
+  EXPECT_EQ(findThrows(radial), (std::vector<std::vector<int>>{{0, 1, 2, 3, 4}}));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Crankshaft, BadSceneTest,
+    ::testing::Values(
+        BadScene{"crankshaft_unknown_key", "throw_damping = 0.4", "throw_damping = 0.4\nteeth = 3",
+                 "[crankshaft].teeth", "unknown key", &kCrankshaftScene},
+        BadScene{"crankshaft_without_stiffness", "stiffness = [4.0e5, 5.5e5, 7.0e5]\n", "", "[crankshaft].stiffness",
+                 "missing key", &kCrankshaftScene},
+        BadScene{"crankshaft_stiffness_zero", "stiffness = [4.0e5, 5.5e5, 7.0e5]", "stiffness = [4.0e5, 0, 7.0e5]",
+                 "[crankshaft].stiffness[1]", "must be > 0 (got 0)", &kCrankshaftScene},
+        BadScene{"crankshaft_stiffness_negative", "stiffness = [4.0e5, 5.5e5, 7.0e5]", "stiffness = [4.0e5, 5.5e5, -7e5]",
+                 "[crankshaft].stiffness[2]", "must be > 0 (got -7e+05)", &kCrankshaftScene},
+        BadScene{"crankshaft_stiffness_huge", "stiffness = [4.0e5, 5.5e5, 7.0e5]", "stiffness = [4.0e5, 5.5e5, 2e18]",
+                 "[crankshaft].stiffness[2]", "must be at most 1e18 N m/rad (got 2e+18)", &kCrankshaftScene},
+        BadScene{"crankshaft_stiffness_not_a_list", "stiffness = [4.0e5, 5.5e5, 7.0e5]", "stiffness = 4.0e5",
+                 "[crankshaft].stiffness", "must be an array of numbers", &kCrankshaftScene},
+        // Two throws and a front mass: three sections; without the front mass two.
+        BadScene{"crankshaft_stiffness_short", "stiffness = [4.0e5, 5.5e5, 7.0e5]", "stiffness = [4.0e5, 5.5e5]",
+                 "[crankshaft].stiffness",
+                 "must have 3 values, one per section from front to flywheel (2 throws and a front mass: throws + 1) (got 2)",
+                 &kCrankshaftScene},
+        BadScene{"crankshaft_stiffness_long_without_front", "front_inertia = 4.0e-3", "front_inertia = 0",
+                 "[crankshaft].stiffness", "must have 2 values, one per section from front to flywheel (2 throws, no front mass: one per throw) (got 3)",
+                 &kCrankshaftScene},
+        // A V pair shares its pin: one throw, one section.
+        BadScene{"crankshaft_stiffness_per_cylinder_on_a_v_pin", "stiffness = [7.0e5]", "stiffness = [7.0e5, 7.0e5]",
+                 "[crankshaft].stiffness", "must have 1 values, one per section from front to flywheel (1 throw, no front mass: one per throw) (got 2)",
+                 &kCrankshaftLayoutScene},
+        BadScene{"crankshaft_throw_inertia_negative", "throw_inertia = 2.0e-3", "throw_inertia = -2.0e-3",
+                 "[crankshaft].throw_inertia", "must be >= 0 (got -0.002)", &kCrankshaftScene},
+        BadScene{"crankshaft_front_inertia_negative", "front_inertia = 4.0e-3", "front_inertia = -4.0e-3",
+                 "[crankshaft].front_inertia", "must be >= 0 (got -0.004)", &kCrankshaftScene},
+        BadScene{"crankshaft_front_inertia_huge", "front_inertia = 4.0e-3", "front_inertia = 1e19",
+                 "[crankshaft].front_inertia", "must be at most 1e18 kg m^2", &kCrankshaftScene},
+        BadScene{"crankshaft_section_damping_negative", "section_damping = 1.5", "section_damping = -1.5",
+                 "[crankshaft].section_damping", "must be >= 0 (got -1.5)", &kCrankshaftScene},
+        BadScene{"crankshaft_section_damping_negative_in_list", "section_damping = 1.5", "section_damping = [1, -2, 3]",
+                 "[crankshaft].section_damping[1]", "must be >= 0 (got -2)", &kCrankshaftScene},
+        BadScene{"crankshaft_section_damping_wrong_length", "section_damping = 1.5", "section_damping = [1.5, 1.5]",
+                 "[crankshaft].section_damping", "must be one value for all sections, or a list of 3 (one per section) (got 2)",
+                 &kCrankshaftScene},
+        BadScene{"crankshaft_section_damping_empty", "section_damping = 1.5", "section_damping = []",
+                 "[crankshaft].section_damping", "(got 0)", &kCrankshaftScene},
+        BadScene{"crankshaft_throw_damping_negative", "throw_damping = 0.4", "throw_damping = -0.4",
+                 "[crankshaft].throw_damping", "must be >= 0 (got -0.4)", &kCrankshaftScene},
+        BadScene{"crankshaft_throw_damping_nan", "throw_damping = 0.4", "throw_damping = nan",
+                 "[crankshaft].throw_damping", "must be finite", &kCrankshaftScene},
+        BadScene{"crankshaft_without_speed", "speed_rpm = 3000", "speed_rpm = 0", "[engine].speed_rpm",
+                 "must be > 0 with a [crankshaft] table (its flywheel end turns at the scene's speed) (got 0)",
+                 &kCrankshaftScene},
+        BadScene{"crankshaft_is_a_value", "[engine]", "crankshaft = 2\n[engine]", "[crankshaft]", "must be a table"}),
+    [](const auto& info) { return info.param.name; });
+
 // The limits of each unit (docs/SCENE-FORMAT.md, "Limits"): a value just beyond each is refused with a message
 // that names the file, the key, the limit and the value. kLimitScene is kGoodScene with every key written out, so
 // that each edit below changes exactly one value.

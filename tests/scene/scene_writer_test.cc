@@ -51,6 +51,15 @@ void expectSameMechanism(const Mechanism& a, const Mechanism& b) {
   EXPECT_EQ(a.rod.inertia_about_wrist_pin, b.rod.inertia_about_wrist_pin);
   EXPECT_EQ(a.piston.mass, b.piston.mass);
   EXPECT_EQ(a.flywheel_inertia, b.flywheel_inertia);
+  ASSERT_EQ(a.crankshaft.has_value(), b.crankshaft.has_value());
+  if (a.crankshaft) {
+    EXPECT_EQ(a.crankshaft->throw_inertia, b.crankshaft->throw_inertia);
+    EXPECT_EQ(a.crankshaft->front_inertia, b.crankshaft->front_inertia);
+    EXPECT_EQ(a.crankshaft->stiffness, b.crankshaft->stiffness);
+    EXPECT_EQ(a.crankshaft->section_damping, b.crankshaft->section_damping);
+    EXPECT_EQ(a.crankshaft->throw_damping, b.crankshaft->throw_damping);
+    EXPECT_EQ(findThrows(a), findThrows(b));
+  }
   ASSERT_EQ(a.gas.has_value(), b.gas.has_value());
   if (a.gas) {
     EXPECT_EQ(a.gas->bore, b.gas->bore);
@@ -107,6 +116,34 @@ TEST(SceneWriterTest, BuiltInScenesAndLayoutsReadBackAsThemselves) {
   Mechanism mixed = validation::makeLayoutMechanism(validation::getBalanceLayouts().back(), parts);
   for (int j = 0; j < mixed.engine.cylinders; ++j) mixed.engine.pin_offsets.push_back(0.0004 * (j - 1));
   expectSameMechanism(mixed, parseScene(formatSceneToml(mixed), "written"));
+}
+
+// [crankshaft] on every layout of the balance table (V pairs share a pin: one stiffness per throw) and on an inline
+// engine, with and without a front mass, damping as one value and as a list.
+TEST(SceneWriterTest, CrankshaftReadsBackAsItself) {
+  Mechanism parts = validation::buildDefaultScenes().front();
+  parts.speed_rpm = 3000.0;
+  parts.engine.speed = 3000.0 * (M_PI / 30.0);
+  std::vector<Mechanism> scenes = {parts};
+  for (const validation::Layout& layout : validation::getBalanceLayouts())
+    scenes.push_back(validation::makeLayoutMechanism(layout, parts));
+  for (Mechanism m : scenes) {
+    SCOPED_TRACE(m.name);
+    for (double front : {0.0, 4.0e-3}) {
+      CrankshaftParams c;
+      c.throw_inertia = 2.0e-3;
+      c.front_inertia = front;
+      c.throw_damping = 0.4;
+      m.crankshaft = c;
+      const int sections = countShaftSections(m);
+      for (int i = 0; i < sections; ++i) m.crankshaft->stiffness.push_back(4.0e5 + 1.5e5 * i);
+      m.crankshaft->section_damping = {1.5};
+      expectSameMechanism(m, parseScene(formatSceneToml(m), "written"));
+      m.crankshaft->section_damping.assign(static_cast<size_t>(sections), 0.1);
+      m.crankshaft->section_damping.back() = 0.7;
+      expectSameMechanism(m, parseScene(formatSceneToml(m), "written"));
+    }
+  }
 }
 
 TEST(SceneWriterTest, ShortestNumbersReadBackExactly) {

@@ -121,6 +121,12 @@ LAYOUT_GAS = {"engine": {"cylinders": 2, "cycle": "four-stroke", "speed_rpm": 30
                             "firing_angle_deg": -45}],
               **PARTS, "gas": {k: v for k, v in GAS["gas"].items() if k != "firing_order"}}
 
+# Two inline cylinders (two throws) and a front mass: three sections of the crank train.
+CRANKSHAFT = {**INLINE, "crankshaft": {"throw_inertia": 2e-3, "front_inertia": 4e-3, "stiffness": [4e5, 5.5e5, 7e5],
+                                       "section_damping": 1.5, "throw_damping": 0.4}}
+# The V twin of LAYOUT: both cylinders on one pin, one throw; no front mass: one section.
+CRANKSHAFT_V = {**LAYOUT, "crankshaft": {"stiffness": [7e5]}}
+
 DELETE = object()
 
 
@@ -189,6 +195,32 @@ def cases():
     add("balance_shaft_ratio_fraction", edit(SHAFTS, (("balance_shaft", 0, "ratio"), 1.5)), INVALID)
     add("balance_shaft_ratio_tiny", edit(SHAFTS, (("balance_shaft", 0, "ratio"), 1e-300)), INVALID)
     add("balance_shaft_ratio_zero", edit(SHAFTS, (("balance_shaft", 0, "ratio"), 0)), parser_only("a balance shaft's ratio is nonzero"))
+    # [crankshaft] (the elastic crank train): one stiffness per section, damping one value or one per section.
+    add("crankshaft", CRANKSHAFT, VALID)
+    add("crankshaft_v_pair_one_throw", CRANKSHAFT_V, VALID)
+    add("crankshaft_defaults", edit(CRANKSHAFT, (("crankshaft", "front_inertia"), DELETE),
+                                    (("crankshaft", "throw_inertia"), DELETE), (("crankshaft", "section_damping"), DELETE),
+                                    (("crankshaft", "throw_damping"), DELETE), (("crankshaft", "stiffness"), [4e5, 5e5])),
+        VALID)
+    add("crankshaft_damping_list", edit(CRANKSHAFT, (("crankshaft", "section_damping"), [1, 2, 3])), VALID)
+    add("crankshaft_unknown_key", edit(CRANKSHAFT, (("crankshaft", "teeth"), 3)), INVALID)
+    add("crankshaft_without_stiffness", edit(CRANKSHAFT, (("crankshaft", "stiffness"), DELETE)), INVALID)
+    add("crankshaft_stiffness_zero", edit(CRANKSHAFT, (("crankshaft", "stiffness", 1), 0)), INVALID)
+    add("crankshaft_stiffness_negative", edit(CRANKSHAFT, (("crankshaft", "stiffness", 2), -7e5)), INVALID)
+    add("crankshaft_stiffness_number", edit(CRANKSHAFT, (("crankshaft", "stiffness"), 4e5)), INVALID)
+    add("crankshaft_stiffness_empty", edit(CRANKSHAFT, (("crankshaft", "stiffness"), [])), INVALID)
+    add("crankshaft_throw_inertia_negative", edit(CRANKSHAFT, (("crankshaft", "throw_inertia"), -2e-3)), INVALID)
+    add("crankshaft_section_damping_negative", edit(CRANKSHAFT, (("crankshaft", "section_damping"), -1.5)), INVALID)
+    add("crankshaft_section_damping_empty", edit(CRANKSHAFT, (("crankshaft", "section_damping"), [])), INVALID)
+    add("crankshaft_throw_damping_string", edit(CRANKSHAFT, (("crankshaft", "throw_damping"), "0.4")), INVALID)
+    add("crankshaft_without_speed", edit(CRANKSHAFT, (("engine", "speed_rpm"), 0)), INVALID)
+    add("crankshaft_is_a_value", edit(INLINE, (("crankshaft",), 2)), INVALID)
+    add("crankshaft_stiffness_short", edit(CRANKSHAFT, (("crankshaft", "stiffness"), [4e5, 5e5])),
+        parser_only("[crankshaft].stiffness has one value per section"))
+    add("crankshaft_stiffness_per_cylinder_on_a_v_pin", edit(CRANKSHAFT_V, (("crankshaft", "stiffness"), [7e5, 7e5])),
+        parser_only("[crankshaft].stiffness has one value per section"))
+    add("crankshaft_section_damping_wrong_length", edit(CRANKSHAFT, (("crankshaft", "section_damping"), [1, 2])),
+        parser_only("[crankshaft].section_damping is one value or one per section"))
     add("pin_offset_in_engine_with_cylinders", edit(LAYOUT, (("engine", "pin_offset"), 0.001)), INVALID)
     for table in ("engine", "crank", "rod", "piston"):
         add(f"missing_table_{table}", edit(INLINE, ((table,), DELETE)), INVALID)
@@ -334,6 +366,16 @@ def probe_scenes():
         ("cylinder", "[]", "throw_angle_deg"): lambda v, side: edit(
             LAYOUT, (("cylinder", 0, "bank_angle_deg"), max(-1e6, min(1e6, v))), (("cylinder", 0, "throw_angle_deg"), v)),
         ("cylinder", "[]", "axial_position"): at(LAYOUT, ("cylinder", 0, "axial_position")),
+        ("crankshaft", "throw_inertia"): at(CRANKSHAFT, ("crankshaft", "throw_inertia")),
+        # front_inertia = 0 (and below) means no front mass: one section fewer.
+        ("crankshaft", "front_inertia"): lambda v, side: edit(
+            CRANKSHAFT, (("crankshaft", "front_inertia"), v), *(
+                ((("crankshaft", "stiffness"), [4e5, 5e5]),) if side == "low" else ())),
+        ("crankshaft", "stiffness", "[]"): at(CRANKSHAFT, ("crankshaft", "stiffness", 1)),
+        ("crankshaft", "section_damping"): at(CRANKSHAFT, ("crankshaft", "section_damping")),
+        ("crankshaft", "section_damping", "[]"): at(CRANKSHAFT, ("crankshaft", "section_damping", 1),
+                                                    (("crankshaft", "section_damping"), [1, 2, 3])),
+        ("crankshaft", "throw_damping"): at(CRANKSHAFT, ("crankshaft", "throw_damping")),
         ("balance_shaft", "[]", "ratio"): at(SHAFTS, ("balance_shaft", 0, "ratio")),
         ("balance_shaft", "[]", "mass"): at(SHAFTS, ("balance_shaft", 0, "mass")),
         ("balance_shaft", "[]", "radius"): at(SHAFTS, ("balance_shaft", 0, "radius")),
@@ -469,7 +511,7 @@ class SchemaTest(unittest.TestCase):
             return listed
         props = self.schema["properties"]
         for table, base in [("engine", INLINE), ("crank", INLINE), ("rod", INLINE), ("piston", INLINE),
-                            ("flywheel", INLINE), ("gas", GAS)]:
+                            ("flywheel", INLINE), ("gas", GAS), ("crankshaft", CRANKSHAFT)]:
             with self.subTest(table):
                 listed = allowed(edit(base, ((table, "zz_unknown"), 1)), f"[{table}].zz_unknown")
                 self.assertEqual(sorted(listed.removeprefix("allowed: ").split(", ")),
@@ -497,7 +539,7 @@ class SchemaTest(unittest.TestCase):
                 with self.subTest(".".join(path)):
                     self.assertIn("description", node)
                     if node.get("type") == "number":
-                        self.assertRegex(node["description"], r"\[(m|kg|kg m\^2|deg|rpm|m/s\^2|Pa|-)\]",
+                        self.assertRegex(node["description"], r"\[(m|kg|kg m\^2|deg|rpm|m/s\^2|Pa|N m/rad|N m s/rad|-)\]",
                                          "a number's description gives its unit")
 
 

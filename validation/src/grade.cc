@@ -64,7 +64,9 @@ GradeCase makeCase(const std::string& family, const std::string& id, const Mecha
   GradeCase c;
   c.id = id;
   c.family = family;
-  c.scene_toml = formatSceneToml(m);
+  Mechanism rigid = m;
+  rigid.crankshaft.reset();  // grade is about the rigid shaft: the programs see no [crankshaft] table
+  c.scene_toml = formatSceneToml(rigid);
   c.mechanism = parseScene(c.scene_toml, id);
   c.mechanism.name = id;
   c.phi_deg = angles;

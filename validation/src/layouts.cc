@@ -105,6 +105,7 @@ Mechanism makeLayoutMechanism(const Layout& layout, const Mechanism& parts, doub
   m.engine.pin_offsets.clear();  // the textbook's layouts are centric
   m.gas.reset();                 // and without gas: a pressure table needs a firing angle per cylinder of the layout
   m.firing_angles.clear();
+  m.crankshaft.reset();          // and rigid: a [crankshaft] has one section per throw of the scene it came with
   for (const CylinderPlace& c : layout.cylinders) {
     m.engine.bank_angles.push_back(radiansFromDegrees(c.bank_deg + rotation_deg));
     m.engine.crank_angles.push_back(radiansFromDegrees(c.throw_deg - c.bank_deg));  // theta offset: beta - gamma

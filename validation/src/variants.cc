@@ -37,6 +37,7 @@ Mechanism withCylinders(const Mechanism& base, int k, Cycle cycle) {
                                 : std::vector<double>{};
   m.gas.reset();                     // a pressure table needs a firing angle per cylinder: none for the new k
   m.firing_angles.clear();
+  m.crankshaft.reset();              // a [crankshaft] has one section per throw of the base: none for the new k
   return m;
 }
 

@@ -80,6 +80,19 @@ struct BalanceShaftParams {
   std::array<double, 3> position{};  ///< [m] (x, y): the shaft's axis (parallel to Z); z: the mass's plane
 };
 
+/// The elastic crank train of a `[crankshaft]` table (../shared/CONVENTIONS.md, "Torsion"): bodies along the shaft
+/// front mass F (when front_inertia > 0), throws 0..n-1 (findThrows), flywheel W (driven at omega t). Only the torsion
+/// analysis reads it; every other command treats the shaft as rigid.
+struct CrankshaftParams {
+  double throw_inertia = 0.0;   ///< J_t [kg m^2] >= 0, each throw's own inertia beyond [crank]'s point masses
+  double front_inertia = 0.0;   ///< [kg m^2] >= 0, the pulley / damper hub; 0: no front mass
+  /// K_s [N m/rad] > 0 per section, front to flywheel: n + 1 values with a front mass, n without (n throws).
+  std::vector<double> stiffness;
+  /// C_s [N m s/rad] >= 0, relative damping of the sections: one value for all, or one per section (as given).
+  std::vector<double> section_damping{0.0};
+  double throw_damping = 0.0;   ///< c_t [N m s/rad] >= 0, each throw's absolute damping about omega t
+};
+
 /// A complete scene: the mechanism plus what a scene file may add (a name, the flywheel inertia).
 struct Mechanism {
   std::string name;                          ///< for reports; the scene file's stem
@@ -93,6 +106,7 @@ struct Mechanism {
   /// centre, in [0, cycle). The pressure on piston j is calcGasPressure(gas, phi - firing_j).
   std::vector<double> firing_angles;
   std::vector<BalanceShaftParams> balance_shafts;  ///< the scene's [[balance_shaft]] tables; none: no shafts
+  std::optional<CrankshaftParams> crankshaft;  ///< the scene's [crankshaft] table; none: the shaft is rigid
   double speed_rpm = 0.0;                    ///< the scene's speed as given, for display
 };
 
@@ -110,6 +124,18 @@ double getAxialPosition(const Mechanism& m, int j);
 bool isSingleBank(const Mechanism& m);
 /// delta_j [m], the pin offset of cylinder j: pin_offsets[j], or 0 when the scene gives none.
 double getPinOffset(const Mechanism& m, int j);
+/// The crank throws (crank pins) along the shaft, front first, each listing the cylinders on that pin. The cylinders
+/// are taken in the order of their axial positions z_j (the scene's order where equal or not given: a stable sort);
+/// a cylinder shares the pin of the throw before it when its throw angle beta equals that throw's (within 1e-9 rad,
+/// modulo a turn) and its bank angle differs from those of every cylinder already on it (a V pair, a 180-degree V, a
+/// radial star); otherwise it starts the next throw. So every cylinder of one bank has its own throw (an inline four:
+/// four), and a V8 has four whether its scene lists the cylinders bank by bank (with axial positions) or pin by pin.
+/// The front is at the smallest z (next to the front mass), the flywheel beyond the largest.
+std::vector<std::vector<int>> findThrows(const Mechanism& m);
+/// The number of sections of the crank train: throws + 1 with a front mass, throws without.
+int countShaftSections(const Mechanism& m);
+/// C_s [N m s/rad] of section i (0 = the front one): the one value given for all, or the i-th.
+double getSectionDamping(const CrankshaftParams& c, int i);
 /// True when some cylinder's pin is offset (delta_j != 0).
 bool hasPinOffsets(const Mechanism& m);
 /// True when the scene placed the cylinders along the shaft (axial_position or cylinder_spacing).
