@@ -340,7 +340,8 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
     const size_t throws = findThrows(m).size();
     const size_t sections = static_cast<size_t>(countShaftSections(m));
     require(c.stiffness.size() == sections, "[crankshaft].stiffness",
-            "must have " + std::to_string(sections) + " values, one per section from front to flywheel (" +
+            "must have " + std::to_string(sections) + (sections == 1 ? " value" : " values") +
+                ", one per section from front to flywheel (" +
                 std::to_string(throws) + (throws == 1 ? " throw" : " throws") +
                 (c.front_inertia > 0.0 ? " and a front mass: throws + 1" : ", no front mass: one per throw") + ")",
             static_cast<double>(c.stiffness.size()));

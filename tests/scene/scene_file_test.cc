@@ -409,7 +409,7 @@ INSTANTIATE_TEST_SUITE_P(
                  &kCrankshaftScene},
         // A V pair shares its pin: one throw, one section.
         BadScene{"crankshaft_stiffness_per_cylinder_on_a_v_pin", "stiffness = [7.0e5]", "stiffness = [7.0e5, 7.0e5]",
-                 "[crankshaft].stiffness", "must have 1 values, one per section from front to flywheel (1 throw, no front mass: one per throw) (got 2)",
+                 "[crankshaft].stiffness", "must have 1 value, one per section from front to flywheel (1 throw, no front mass: one per throw) (got 2)",
                  &kCrankshaftLayoutScene},
         BadScene{"crankshaft_throw_inertia_negative", "throw_inertia = 2.0e-3", "throw_inertia = -2.0e-3",
                  "[crankshaft].throw_inertia", "must be >= 0 (got -0.002)", &kCrankshaftScene},
