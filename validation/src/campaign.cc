@@ -50,17 +50,31 @@ std::string shortNumber(double x, int digits) {
   return buffer;
 }
 
+Table::Table(const std::string& name, std::vector<Column> columns) : columns_(std::move(columns)) {
+  for (const Column& c : columns_)
+    if (!c.text && c.unit.empty())
+      throw std::logic_error("table " + name + ": column " + c.name + " is a number without a unit (declare its unit, "
+                             "or kText for a text column)");
+}
+
+std::vector<std::string> Table::names() const {
+  std::vector<std::string> out;
+  for (const Column& c : columns_) out.push_back(c.name);
+  return out;
+}
+
 size_t columnOf(const Table& t, const std::string& name) {
-  const auto it = std::find(t.columns.begin(), t.columns.end(), name);
-  if (it == t.columns.end()) throw std::runtime_error("report: table has no column " + name);
-  return static_cast<size_t>(it - t.columns.begin());
+  const auto& columns = t.columns();
+  const auto it = std::find_if(columns.begin(), columns.end(), [&](const Column& c) { return c.name == name; });
+  if (it == columns.end()) throw std::runtime_error("report: table has no column " + name);
+  return static_cast<size_t>(it - columns.begin());
 }
 
 void appendTables(TableSet& into, const TableSet& from) {
   for (const auto& [name, table] : from) {
     auto [it, inserted] = into.try_emplace(name, table);
     if (inserted) continue;
-    if (it->second.columns != table.columns) throw std::runtime_error("table " + name + ": columns differ");
+    if (it->second.columns() != table.columns()) throw std::runtime_error("table " + name + ": columns differ");
     it->second.rows.insert(it->second.rows.end(), table.rows.begin(), table.rows.end());
   }
 }
@@ -163,9 +177,9 @@ TableSet crossCheckCase(const std::string& family, const Mechanism& m, const std
         for (const Comparison& c : compareEvaluations(case_m, a, other->evaluate(phi))) note(name, c, phi_deg, rpm);
     }
   }
-  Table t;
-  t.columns = {"family", "engine", "case", "lambda", "quantity", "worst_rel_error", "where_phi_deg", "where_speed_rpm",
-               "tolerance_rel", "pass"};
+  Table t("crosscheck", {{"family", kText}, {"engine", kText}, {"case", kText}, {"lambda", "-"}, {"quantity", kText},
+                         {"worst_rel_error", "-"}, {"where_phi_deg", "deg"}, {"where_speed_rpm", "rpm"},
+                         {"tolerance_rel", "-"}, {"pass", kText}});
   char case_name[160];
   std::snprintf(case_name, sizeof case_name, "%s lambda=%.4g", m.name.c_str(), lambdaOf(m));
   for (const auto& [key, w] : worst)
@@ -254,8 +268,8 @@ TableSet calcErrorVsLambdaTables(const Mechanism& base, double lambda) {
   const double r = m.crank.radius, w = m.engine.speed;
   const double E = calcEnergyScale(m);
   const Scales sc = calcScales(m);
-  Table t;
-  t.columns = {"quantity", "method", "lambda", "max_abs_error", "max_rel_error", "resolved"};
+  Table t("error_vs_lambda", {{"quantity", kText}, {"method", kText}, {"lambda", "-"}, {"max_abs_error", "SI"},
+                              {"max_rel_error", "-"}, {"resolved", kText}});
   auto add = [&](const std::string& quantity, const std::string& method, double max_abs, double scale, bool resolved) {
     t.rows.push_back({quantity, method, num(lambda), num(max_abs), num(max_abs / scale), resolved ? "1" : "0"});
   };
@@ -421,8 +435,7 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
   }
   for (const BatchMethod& b : batch_methods) timed.emplace_back(b.name, b.run);
   const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, quick ? 0.01 : 0.05);
-  Table t;
-  t.columns = {"method", "ns_per_eval", "max_rel_error", "resolved"};
+  Table t("speed_vs_error", {{"method", kText}, {"ns_per_eval", "ns"}, {"max_rel_error", "-"}, {"resolved", kText}});
   for (const Method& method : methods) {
     const auto it = ns.find(method.name);
     if (it != ns.end())
@@ -442,8 +455,8 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
 
 TableSet calcHarmonicsTables(const Mechanism& base, Cycle cycle) {
   const int M = 64, max_order = 24;
-  Table t;
-  t.columns = {"cycle", "k", "n", "simbody_amplitude", "analytic_amplitude", "paper_nonzero"};
+  Table t("harmonics", {{"cycle", kText}, {"k", "-"}, {"n", "-"}, {"simbody_amplitude", "N m"},
+                        {"analytic_amplitude", "N m"}, {"paper_nonzero", kText}});
   for (int k = 1; k <= 12; ++k) {
     const Mechanism m = withSpeed(withGamma(withCylinders(withLambda(base, 0.4), k, cycle), 90.0), 0.0);
     const double E = calcEnergyScale(m);
@@ -471,9 +484,11 @@ TableSet calcHarmonicsTables(const Mechanism& base, Cycle cycle) {
 // same grid, refined the same way (extremum.h); below the agreement tolerance Simbody's is a bound, not a value.
 
 TableSet calcGravitySignificanceTables(const Mechanism& base, Cycle cycle) {
-  Table t;
-  t.columns = {"cycle", "k", "max_abs_Q", "ratio_to_k1", "max_inertia_torque", "ratio_to_inertia", "simbody_max_abs_Q",
-               "resolved", "first_order", "simbody_bound", "simbody_ratio_to_k1", "paper_negligible"};
+  Table t("gravity_significance", {{"cycle", kText}, {"k", "-"}, {"max_abs_Q", "N m"}, {"ratio_to_k1", "-"},
+                                   {"max_inertia_torque", "N m"}, {"ratio_to_inertia", "-"},
+                                   {"simbody_max_abs_Q", "N m"}, {"resolved", kText}, {"first_order", "-"},
+                                   {"simbody_bound", "N m"}, {"simbody_ratio_to_k1", "-"},
+                                   {"paper_negligible", kText}});
   double q1 = 0.0, q1_simbody = 0.0;
   for (int k = 1; k <= 12; ++k) {
     const Mechanism m = withGamma(withCylinders(base, k, cycle), 90.0);
@@ -505,8 +520,8 @@ TableSet calcGravitySignificanceTables(const Mechanism& base, Cycle cycle) {
 // norton_fig13_8: piston motion over two revolutions, exact and two-term (Norton's figure 13-8).
 
 TableSet calcNortonFigureTables(const Mechanism& base) {
-  Table t;
-  t.columns = {"crank_angle_deg", "x_exact", "x_two_term", "v_exact", "v_two_term", "a_exact", "a_two_term"};
+  Table t("norton_fig13_8", {{"crank_angle_deg", "deg"}, {"x_exact", "m"}, {"x_two_term", "m"}, {"v_exact", "m/s"},
+                             {"v_two_term", "m/s"}, {"a_exact", "m/s^2"}, {"a_two_term", "m/s^2"}});
   for (int d = 0; d <= 720; ++d) {
     const double theta = radiansFromDegrees(d);
     const analytic::PistonKinematics e = analytic::calcPistonKinematics(base, theta);
@@ -525,8 +540,8 @@ TableSet calcNortonFigureTables(const Mechanism& base) {
 //   eq15_engines       cycle,k,lambda,first_order,max_abs_Q,max_abs_Q_printed,ratio_of_maxima,max_error_rel
 
 TableSet calcErrataTables(const Mechanism& base) {
-  Table t;
-  t.columns = {"item", "printed", "holds", "measure", "value", "verdict"};
+  Table t("errata", {{"item", kText}, {"printed", kText}, {"holds", kText}, {"measure", kText},
+                     {"value", "see measure"}, {"verdict", kText}});
   auto add = [&](const std::string& item, const std::string& printed, const std::string& holds, const std::string& measure,
                  double value, const std::string& verdict) {
     t.rows.push_back({item, printed, holds, measure, num(value), verdict});
@@ -544,8 +559,8 @@ TableSet calcErrataTables(const Mechanism& base) {
                   rest.rod.com_from_wrist_pin / rest.rod.length);
     add(text, "U2 = M_s - M_sp + l_z* M_z, l_z* = (l - z_k) / l", "U2 with z_k / l", "printed / true", p.U2 / c.U2, "error");
   }
-  Table layouts;
-  layouts.columns = {"cycle", "k", "gamma_deg", "max_abs_Q", "max_abs_Q_printed", "ratio_of_maxima", "max_error_rel"};
+  Table layouts("eq5_layouts", {{"cycle", kText}, {"k", "-"}, {"gamma_deg", "deg"}, {"max_abs_Q", "N m"},
+                                {"max_abs_Q_printed", "N m"}, {"ratio_of_maxima", "-"}, {"max_error_rel", "-"}});
   struct Worst {
     double error = -1.0, ratio = 0.0;
     std::string where;
@@ -577,8 +592,8 @@ TableSet calcErrataTables(const Mechanism& base) {
       add(text, "U1, U2 as printed", "U1, U2 from eq (2)", "max |Q_printed| / max |Q|", w.ratio, "error");
     }
   // eq (15): each printed Lambda_n against the exact one, at lambda = 0.4 (the paper's largest) and the base's.
-  Table coefficients;
-  coefficients.columns = {"n", "lambda", "printed", "exact", "relative_error"};
+  Table coefficients("eq15_coefficients", {{"n", "-"}, {"lambda", "-"}, {"printed", "-"}, {"exact", "-"},
+                                           {"relative_error", "-"}});
   const double base_lambda = lambdaOf(base);
   for (double lambda : {0.4, base_lambda}) {
     const std::vector<double> exact = analytic::calcLambdaCoefficients(lambda, 12);
@@ -612,8 +627,9 @@ TableSet calcErrataTables(const Mechanism& base) {
         "printed / exact - 1", printed / exact - 1.0, "misprint");
   }
   // eq (15) in the engines where only high harmonics survive: standing engines, every k, both strokes.
-  Table engines;
-  engines.columns = {"cycle", "k", "lambda", "first_order", "max_abs_Q", "max_abs_Q_printed", "ratio_of_maxima", "max_error_rel"};
+  Table engines("eq15_engines", {{"cycle", kText}, {"k", "-"}, {"lambda", "-"}, {"first_order", "-"},
+                                 {"max_abs_Q", "N m"}, {"max_abs_Q_printed", "N m"}, {"ratio_of_maxima", "-"},
+                                 {"max_error_rel", "-"}});
   for (double lambda : {0.4, base_lambda})
     for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke})
       for (int k = 1; k <= 12; ++k) {
@@ -671,8 +687,8 @@ TableSet calcErrataTables(const Mechanism& base) {
 // delta_vs_k: the free run's speed fluctuation with and without gravity, k = 1..12, both strokes, a few speeds.
 
 TableSet calcDeltaVsKTables(const Mechanism& base, Cycle cycle, bool quick) {
-  Table t;
-  t.columns = {"cycle", "k", "speed_rpm", "delta_gravity", "delta_no_gravity", "delta_due_to_gravity"};
+  Table t("delta_vs_k", {{"cycle", kText}, {"k", "-"}, {"speed_rpm", "rpm"}, {"delta_gravity", "-"},
+                         {"delta_no_gravity", "-"}, {"delta_due_to_gravity", "-"}});
   for (int k = 1; k <= 12; ++k)
     for (double rpm : quick ? std::vector<double>{300.0, 6000.0} : std::vector<double>{60.0, 300.0, 1500.0, 6000.0}) {
       const Mechanism m = withSpeed(withGamma(withCylinders(base, k, cycle), 90.0), rpm);
@@ -712,8 +728,8 @@ TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick) {
       std::snprintf(name, sizeof name, "%s %.0e", simbody_models::toString(kind).c_str(), accuracy);
       runs.push_back({options, name});
     }
-  Table t;
-  t.columns = {"integrator", "accuracy", "ns_per_revolution", "delta_error", "energy_drift", "status"};
+  Table t("integrator_pareto", {{"integrator", kText}, {"accuracy", "-"}, {"ns_per_revolution", "ns"},
+                                {"delta_error", "-"}, {"energy_drift", "-"}, {"status", kText}});
   // Each run is timed by Google Benchmark and keeps its last result, so that no run is integrated twice just for
   // its error (a run that fails is reported as failed).
   std::vector<std::pair<std::string, std::function<void()>>> timed;
@@ -750,9 +766,10 @@ TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick) {
 namespace {
 
 TableSet scenesTable(const std::vector<std::pair<std::string, Mechanism>>& families) {
-  Table t;
-  t.columns = {"family", "scene", "cylinders", "cycle", "acting", "gamma_deg", "speed_rpm", "r", "l", "lambda", "m_o",
-               "m_k", "z_k", "I_o", "m_s", "r_s", "m_p", "r_p", "g", "I_w"};
+  Table t("scenes", {{"family", kText}, {"scene", kText}, {"cylinders", "-"}, {"cycle", kText}, {"acting", kText},
+                     {"gamma_deg", "deg"}, {"speed_rpm", "rpm"}, {"r", "m"}, {"l", "m"}, {"lambda", "-"}, {"m_o", "kg"},
+                     {"m_k", "kg"}, {"z_k", "m"}, {"I_o", "kg m^2"}, {"m_s", "kg"}, {"r_s", "m"}, {"m_p", "kg"},
+                     {"r_p", "m"}, {"g", "m/s^2"}, {"I_w", "kg m^2"}});
   for (const auto& [family, m] : families)
     t.rows.push_back({family, m.name, std::to_string(m.engine.cylinders), toString(m.engine.cycle), toString(m.engine.acting),
                       num(degreesFromRadians(m.engine.cylinder_angle)), num(m.speed_rpm), num(m.crank.radius),
@@ -839,8 +856,7 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   base.balance_shafts.clear();
 
   std::vector<Task> tasks;
-  Table notes;
-  notes.columns = {"note"};
+  Table notes("notes", {{"note", kText}});
   if (!isSingleBank(first))
     notes.rows.push_back({"The first scene, " + first.name + ", has cylinders in more than one bank; the figures of parts "
                           "1-7, written for the paper's inline engine, use its parts as a standing inline engine of "

@@ -30,17 +30,54 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::validation {
 
-/// One table of the report: a header and rows of already formatted fields (numbers by formatNumber; a name may hold any
-/// character, the CSV writer quotes it).
-struct Table {
-  std::vector<std::string> columns;
+/// The unit of a text column (names, verdicts, flags): no unit, the CSV header names the column bare.
+struct TextUnit {
+  bool operator==(const TextUnit&) const = default;
+};
+/// A text column's unit: `Column{"engine", kText}`.
+inline constexpr TextUnit kText{};
+
+/// One column of a table: its name and its unit together. A number's unit is written in the CSV header,
+/// "max_rel_error [-]": "-" for a dimensionless number (ratios, errors relative to a scale, counts, indices), "SI" where
+/// the unit is the quantity's own (the row's quantity names it: J, N m, N, m, m/s, m/s^2, rad, ...), else the unit
+/// ("N m", "deg", "rpm", "ns", ...). There is no column without a unit: a text column says kText.
+struct Column {
+  /// A number's column; `unit` must not be empty (Table refuses it).
+  Column(std::string name, std::string unit) : name(std::move(name)), unit(std::move(unit)) {}
+  /// A text column.
+  Column(std::string name, TextUnit) : name(std::move(name)), text(true) {}
+
+  std::string name;
+  std::string unit;   ///< "" only for a text column
+  bool text = false;  ///< a text column (kText): its header is the bare name
+
+  bool operator==(const Column&) const = default;
+};
+
+/// One table of the report: its columns (each with its unit) and rows of already formatted fields (numbers by
+/// formatNumber; a name may hold any character, the CSV writer quotes it).
+class Table {
+ public:
+  Table() = default;
+  /// @param name the table's name (the CSV stem), for the message only.
+  /// @throws std::logic_error naming the table and the column for a number's column with an empty unit.
+  Table(const std::string& name, std::vector<Column> columns);
+
+  const std::vector<Column>& columns() const { return columns_; }
+  /// The columns' names, in order.
+  std::vector<std::string> names() const;
+
   std::vector<std::vector<std::string>> rows;
+
+ private:
+  std::vector<Column> columns_;
 };
 /// Tables by name (the CSV file stem).
 using TableSet = std::map<std::string, Table>;
