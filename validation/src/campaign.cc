@@ -2,8 +2,6 @@
 
 #include "campaign_tables.h"
 
-#include <benchmark/benchmark.h>
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -13,26 +11,18 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "crankcheck/analytic/batch.h"
-#include "crankcheck/analytic/fourier_series.h"
 #include "crankcheck/analytic/gravity_torque.h"
-#include "crankcheck/analytic/kinematics.h"
-#include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/simbody_models/free_run.h"
-#include "crankcheck/simbody_models/grid_sweep.h"
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/engines.h"
-#include "crankcheck/validation/balance.h"
-#include "crankcheck/validation/engine_loads.h"
 #include "crankcheck/validation/install_paths.h"
 #include "crankcheck/validation/parts.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/scales.h"
-#include "crankcheck/validation/timing.h"
 #include "crankcheck/validation/variants.h"
 
 
