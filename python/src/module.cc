@@ -395,7 +395,7 @@ py::dict tablesToPython(const validation::TableSet& tables) {
   py::dict d;
   for (const auto& [name, table] : tables) {
     py::dict t;
-    t["columns"] = table.columns;
+    t["columns"] = table.names();
     t["rows"] = table.rows;
     d[py::str(name)] = t;
   }

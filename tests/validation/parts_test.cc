@@ -23,8 +23,11 @@ const Part& partNumbered(int number) {
   return *listParts().front();
 }
 
-Table makeTable(std::vector<std::string> columns, std::vector<std::vector<std::string>> rows) {
-  return Table{std::move(columns), std::move(rows)};
+// Table `name` with its columns (names and units) and rows.
+Table makeTable(const std::string& name, std::vector<Column> columns, std::vector<std::vector<std::string>> rows) {
+  Table t(name, std::move(columns));
+  t.rows = std::move(rows);
+  return t;
 }
 
 // The paragraph (of the sentences or the blocks) that contains `needle`, or "" (the test then fails on its expectations).
@@ -72,9 +75,9 @@ TEST(PartsTest, GravitySignificanceTestsThePapersClaims) {
   const std::map<int, std::string> ratio = {{1, "1"},     {2, "0.5"},   {3, "0.01"},  {4, "0.3"},
                                             {5, "1e-4"},  {6, "1e-3"},  {7, "1e-12"}, {8, "1e-4"},
                                             {9, "1e-13"}, {10, "1e-5"}, {11, "1e-14"}, {12, "1e-6"}};
-  Table t{{"cycle", "k", "first_order", "max_abs_Q", "ratio_to_k1", "max_inertia_torque", "ratio_to_inertia",
-           "simbody_max_abs_Q", "resolved", "simbody_bound"},
-          {}};
+  Table t("gravity_significance", {{"cycle", kText}, {"k", "-"}, {"first_order", "-"}, {"max_abs_Q", "N m"},
+                                   {"ratio_to_k1", "-"}, {"max_inertia_torque", "N m"}, {"ratio_to_inertia", "-"},
+                                   {"simbody_max_abs_Q", "N m"}, {"resolved", kText}, {"simbody_bound", "N m"}});
   for (const auto& [k, r] : ratio) t.rows.push_back({"two-stroke", std::to_string(k), "1", r, r, "1", r, r, "1", "0"});
   const ReportPart d = partNumbered(4).describe({{"gravity_significance", t}});
   EXPECT_EQ(d.heading, "4. When gravity matters");
@@ -97,11 +100,13 @@ TEST(PartsTest, GravitySignificanceTestsThePapersClaims) {
 TEST(PartsTest, EnginesReadCostsAndWorstErrors) {
   // Two engines of the registry: analytic (50 ns at k = 1, worst 1e-15) and simbody (2500 ns, worst 2e-14 on Q).
   const std::string analytic = listEngines().at(0).name, simbody = listEngines().at(1).name;
-  const std::vector<std::string> columns = {"engine", "quantity", "worst_rel_error", "where_case", "where_lambda",
-                                            "where_phi_deg", "where_speed_rpm", "ns_per_eval_k1", "ns_per_eval_k12"};
-  const TableSet tables = {{"engines", makeTable(columns, {{analytic, "Q", "1e-15", "c1", "0.3", "45", "6000", "50", "400"},
-                                                           {simbody, "Q", "2e-14", "c2", "0.25", "90", "0", "2500", "30000"},
-                                                           {simbody, "x_p", "1e-16", "c1", "0.3", "0", "6000", "2500", "30000"}})}};
+  const std::vector<Column> columns = {{"engine", kText}, {"quantity", kText}, {"worst_rel_error", "-"},
+                                       {"where_case", kText}, {"where_lambda", "-"}, {"where_phi_deg", "deg"},
+                                       {"where_speed_rpm", "rpm"}, {"ns_per_eval_k1", "ns"}, {"ns_per_eval_k12", "ns"}};
+  const TableSet tables = {{"engines", makeTable("engines", columns,
+                                                 {{analytic, "Q", "1e-15", "c1", "0.3", "45", "6000", "50", "400"},
+                                                  {simbody, "Q", "2e-14", "c2", "0.25", "90", "0", "2500", "30000"},
+                                                  {simbody, "x_p", "1e-16", "c1", "0.3", "0", "6000", "2500", "30000"}})}};
   const Part& part = partNumbered(13);
   const ReportPart d = part.describe(tables);
   EXPECT_EQ(d.heading, "13. Engines: which engine, at what cost, how exact");
@@ -123,10 +128,12 @@ TEST(PartsTest, EnginesReadCostsAndWorstErrors) {
 
 TEST(PartsTest, OffsetReadsTheCentricErrorAndTheThrust) {
   const TableSet tables = {
-      {"offset", makeTable({"quantity", "offset_over_r", "max_rel_error", "simbody_max_rel_error"},
+      {"offset", makeTable("offset", {{"quantity", kText}, {"offset_over_r", "-"}, {"max_rel_error", "-"},
+                                      {"simbody_max_rel_error", "-"}},
                            {{"x_p", "0.04", "0.001", "1e-15"}, {"a_p", "0.04", "0.002", "2e-15"}, {"x_p", "-0.04", "0.5", "1"}})},
-      {"offset_thrust", makeTable({"engine", "offset_over_r", "peak_major_thrust", "peak_minor_thrust", "thrust_reversal_deg",
-                                   "max_abs_drive_torque"},
+      {"offset_thrust", makeTable("offset_thrust", {{"engine", kText}, {"offset_over_r", "-"},
+                                                    {"peak_major_thrust", "N"}, {"peak_minor_thrust", "N"},
+                                                    {"thrust_reversal_deg", "deg"}, {"max_abs_drive_torque", "N m"}},
                                   {{"analytic", "0", "1000", "500", "", "80"}, {"analytic", "0.04", "1100", "450", "12.5", "81"},
                                    {"simbody", "0.04", "1", "1", "1", "1"}})}};
   const ReportPart d = partNumbered(14).describe(tables);
@@ -144,12 +151,17 @@ TEST(PartsTest, OffsetReadsTheCentricErrorAndTheThrust) {
 
 TEST(PartsTest, FlywheelReadsNortonsErrorAndSimbodysAgreement) {
   const TableSet tables = {
-      {"flywheel_sizing", makeTable({"scene", "cycle", "k", "speed_rpm", "exact_inertia", "norton_inertia", "norton_error",
-                                     "norton_delta"},
+      {"flywheel_sizing", makeTable("flywheel_sizing", {{"scene", kText}, {"cycle", kText}, {"k", "-"},
+                                                        {"speed_rpm", "rpm"}, {"exact_inertia", "kg m^2"},
+                                                        {"norton_inertia", "kg m^2"}, {"norton_error", "-"},
+                                                        {"norton_delta", "-"}},
                                     {{"car", "four-stroke", "4", "3000", "0.2", "0.18", "-0.1", "0.011"}})},
-      {"flywheel_norton", makeTable({"speed_rpm", "k", "exact_inertia", "norton_inertia", "norton_error", "norton_delta"},
+      {"flywheel_norton", makeTable("flywheel_norton", {{"speed_rpm", "rpm"}, {"k", "-"}, {"exact_inertia", "kg m^2"},
+                                                        {"norton_inertia", "kg m^2"}, {"norton_error", "-"},
+                                                        {"norton_delta", "-"}},
                                     {{"3000", "1", "1", "1.05", "0.05", "0.01"}, {"3000", "4", "1", "0.8", "-0.2", "0.012"}})},
-      {"flywheel", makeTable({"scene", "flywheel_inertia", "exact_delta", "simbody_delta"},
+      {"flywheel", makeTable("flywheel", {{"scene", kText}, {"flywheel_inertia", "kg m^2"}, {"exact_delta", "-"},
+                                          {"simbody_delta", "-"}},
                              {{"car", "0.2", "0.01", "0.0101"}, {"car", "0.3", "0.007", ""}})}};
   const ReportPart d = partNumbered(15).describe(tables);
   EXPECT_EQ(d.heading, "15. Flywheel sizing: the exact inertia, Norton's method, Simbody's run");
@@ -166,7 +178,8 @@ TEST(PartsTest, BalanceShaftsReadWhatTheShaftsCancel) {
   // Force scale 100 N / 0.5 = 200 N; the shafts take harmonic 1 to 0 in closed form, Simbody leaves 5e-16 of the
   // scale, harmonic 2 is unchanged.
   const TableSet tables = {
-      {"balance_shafts", makeTable({"case", "shafts", "engine", "n", "force_amplitude", "force_relative"},
+      {"balance_shafts", makeTable("balance_shafts", {{"case", kText}, {"shafts", kText}, {"engine", kText}, {"n", "-"},
+                                                      {"force_amplitude", "N"}, {"force_relative", "-"}},
                                    {{"single", "none", "analytic", "1", "100", "0.5"},
                                     {"single", "none", "analytic", "2", "20", "0.1"},
                                     {"single", "with", "analytic", "1", "0", "0"},

@@ -14,9 +14,9 @@ namespace crankcheck::validation {
 namespace {
 
 Table crosscheck() {
-  Table t;
-  t.columns = {"family", "engine", "case", "lambda", "quantity", "worst_rel_error", "where_phi_deg", "where_speed_rpm",
-               "tolerance_rel", "pass"};
+  Table t("crosscheck", {{"family", kText}, {"engine", kText}, {"case", kText}, {"lambda", "-"}, {"quantity", kText},
+                         {"worst_rel_error", "-"}, {"where_phi_deg", "deg"}, {"where_speed_rpm", "rpm"},
+                         {"tolerance_rel", "-"}, {"pass", kText}});
   // simbody: 2 cases, 4 comparisons; the worst ratio 0.5 (x_p of case b), the largest error 4e-15 (Q of case a,
   // ratio 0.04).
   t.rows.push_back({"fam", "simbody", "a", "0.3", "Q", "4e-15", "45", "6000", "1e-13", "pass"});

@@ -107,12 +107,15 @@ const analytic::ShakingHarmonic& BalanceRow::of(const std::string& name) const {
 
 TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>& scenes) {
   constexpr int kOrder = 8;
-  Table summary, harmonics;
-  summary.columns = {"layout", "description", "part", "textbook", "vanishes_exactly", "analytic_amplitude"};
-  for (const Engine* engine : listReferenceEngines()) summary.columns.push_back(engine->name + "_amplitude");
-  summary.columns.insert(summary.columns.end(), {"relative_amplitude", "verdict"});
-  harmonics.columns = {"layout_index", "layout", "n", "force_relative", "couple_relative", "rocking_relative",
-                       "force_vanishes", "couple_vanishes"};
+  std::vector<Column> summary_columns = {{"layout", kText},   {"description", kText},      {"part", kText},
+                                         {"textbook", kText}, {"vanishes_exactly", kText}, {"analytic_amplitude", "N m"}};
+  // each reference engine's amplitude: a force (N) or a couple (N m), as the row's part says
+  for (const Engine* engine : listReferenceEngines()) summary_columns.push_back({engine->name + "_amplitude", "SI"});
+  summary_columns.insert(summary_columns.end(), {{"relative_amplitude", "-"}, {"verdict", kText}});
+  Table summary("balance", std::move(summary_columns));
+  Table harmonics("balance_harmonics", {{"layout_index", "-"}, {"layout", kText}, {"n", "-"}, {"force_relative", "-"},
+                                        {"couple_relative", "-"}, {"rocking_relative", "-"}, {"force_vanishes", kText},
+                                        {"couple_vanishes", kText}});
   Mechanism base = parts;
   base.speed_rpm = 6000.0;
   base.engine.speed = 6000.0 * (M_PI / 30.0);

@@ -1,28 +1,43 @@
 #pragma once
-// The computations of report parts 1-8 (campaign.cc), for their part files (parts/*.cc). Each returns the rows of its
-// tables from one task; the campaign adds the tasks' tables up (appendTables). Tables and columns: campaign.h.
+// What the computations of report parts 1-8 (parts/*.cc) share with the campaign (campaign.cc): maxima over a turn
+// from Q's exact harmonics, the resolution rule, the marine scene. Each part computes the rows of its tables from one
+// task; the campaign adds the tasks' tables up (appendTables). Tables and columns: campaign.h and each part's file.
 
+#include <vector>
+
+#include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/validation/campaign.h"
 
 namespace crankcheck::validation {
 
-/// error_vs_lambda at one lambda: every method's max error over the turn on the base's parts at `lambda`.
-TableSet calcErrorVsLambdaTables(const Mechanism& base, double lambda);
-/// speed_vs_error: ns per evaluation of Q against its error, one Google Benchmark run (run alone: it times).
-TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick);
-/// harmonics of Q of one cycle, k = 1..12 (Simbody's DFT, the analytic prediction, the paper's table).
-TableSet calcHarmonicsTables(const Mechanism& base, Cycle cycle);
-/// gravity_significance of one cycle, k = 1..12: max |Q| exact and by Simbody.
-TableSet calcGravitySignificanceTables(const Mechanism& base, Cycle cycle);
-/// norton_fig13_8: piston x, v, a over two turns, exact and two-term.
-TableSet calcNortonFigureTables(const Mechanism& base);
-/// errata, eq5_layouts, eq15_coefficients, eq15_engines: the sources as printed against the exact values.
-TableSet calcErrataTables(const Mechanism& base);
-/// delta_vs_k of one cycle: the free run's speed fluctuation with and without gravity (needs base's flywheel).
-TableSet calcDeltaVsKTables(const Mechanism& base, Cycle cycle, bool quick);
-/// integrator_pareto: Simbody's integrators' cost against their error (run alone: it times; needs base's flywheel).
-TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick);
+/// [-] The crank ratio lambda = r / l of m's parts.
+double lambdaOf(const Mechanism& m);
+
+/// Q's harmonics [N m] with exact Lambda_n up to order 200: the tail beyond is below q^100 ~ 1e-28 of Q up to
+/// lambda = 0.95 (q = (lambda / (1 + sqrt(1 - lambda^2)))^2, fourier_series.h).
+std::vector<analytic::TorqueHarmonic> exactHarmonics(const Mechanism& m,
+                                                     analytic::Eq5Form form = analytic::Eq5Form::kDerived);
+
+/// The harmonics above `order`: minus the error of the series truncated there (no cancellation: each term is its own
+/// size, so the error is exact to rounding however small).
+std::vector<analytic::TorqueHarmonic> harmonicsAbove(const std::vector<analytic::TorqueHarmonic>& h, int order);
+
+/// a - b, harmonic by harmonic.
+std::vector<analytic::TorqueHarmonic> harmonicsMinus(const std::vector<analytic::TorqueHarmonic>& a,
+                                                     const std::vector<analytic::TorqueHarmonic>& b);
+
+/// The maximum of |sum of harmonics| over a turn (in the harmonics' unit), found so that it does not depend on the grid
+/// (extremum.h); 0 for no harmonics.
+double maxAbsOfHarmonics(std::vector<analytic::TorqueHarmonic> h);
+
+/// A maximum of a difference computed in double carries an error up to the agreement tolerance (64 eps x scale x
+/// conditioning, the worst rounding either engine shows); it is known to 1 % only above 100 times that.
+/// @param rel_value [-] the maximum relative to its scale. @return false: the number is a bound, not a measured maximum.
+bool resolvedToOnePercent(double rel_value, double conditioning = 1.0);
+
+/// The samples of a turn for quantities that hold harmonics up to about n: 6 per period (3 per hump of |f|), at least 48.
+int samplesForOrder(int n);
 
 /// The built-in marine engine (buildDefaultScenes): the second engine of parts 10 and 11.
 Mechanism findMarineScene();

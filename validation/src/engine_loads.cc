@@ -64,8 +64,11 @@ Parts splitAt(const Mechanism& m, double phi) {
 
 TableSet calcTorqueSplitTables(const Mechanism& car, const Mechanism& marine) {
   Table split, share;
-  split.columns = {"engine", "phi_deg", "drive_torque", "gas_torque", "inertia_torque", "gravity_torque", "simbody_drive_torque"};
-  share.columns = {"cycle", "k", "speed_rpm", "mean_abs_drive_torque", "mean_abs_gravity_torque", "share", "resolved"};
+  split = Table("torque_split", {{"engine", kText}, {"phi_deg", "deg"}, {"drive_torque", "N m"}, {"gas_torque", "N m"},
+                                 {"inertia_torque", "N m"}, {"gravity_torque", "N m"},
+                                 {"simbody_drive_torque", "N m"}});
+  share = Table("gravity_share", {{"cycle", kText}, {"k", "-"}, {"speed_rpm", "rpm"}, {"mean_abs_drive_torque", "N m"},
+                                  {"mean_abs_gravity_torque", "N m"}, {"share", "-"}, {"resolved", kText}});
   const Mechanism car4 = withSpeed(withGasAtDeadCentres(inlineOf(car, 4, Cycle::kFourStroke),
                                                         makeExampleGas(Cycle::kFourStroke, 2.0 * car.crank.radius)), 6000.0);
   const Mechanism ship = withGasAtDeadCentres(inlineOf(marine, marine.engine.cylinders, Cycle::kTwoStroke),
@@ -102,8 +105,8 @@ TableSet calcTorqueSplitTables(const Mechanism& car, const Mechanism& marine) {
 }
 
 TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine) {
-  Table t;
-  t.columns = {"engine", "variable", "x", "two_mass_error", "two_mass_delta_I_error", "two_mass_delta_I_resolved"};
+  Table t("rod_models", {{"engine", kText}, {"variable", kText}, {"x", "SI"}, {"two_mass_error", "-"},
+                         {"two_mass_delta_I_error", "-"}, {"two_mass_delta_I_resolved", kText}});
   // The two-mass rod's error is a smooth function of phi: its maximum over the turn is refined from 48 samples
   // (extremum.h). With Delta_I the error is rounding: the worst of the 48 samples, a bound (resolved 0) unless it
   // exceeds 100 times the agreement tolerance.
@@ -148,8 +151,12 @@ TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine) {
 
 TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index, double step_deg) {
   Table polar, summary;
-  polar.columns = {"scene_index", "engine", "phi_deg", "crank_pin_radial", "crank_pin_tangential", "bearing_x", "bearing_y", "scene"};
-  summary.columns = {"scene", "engine", "force", "max_magnitude", "phi_deg_at_max", "max_difference_rel"};
+  polar = Table("pin_load_polar", {{"scene_index", "-"}, {"engine", kText}, {"phi_deg", "deg"},
+                                   {"crank_pin_radial", "N"}, {"crank_pin_tangential", "N"}, {"bearing_x", "N"},
+                                   {"bearing_y", "N"}, {"scene", kText}});
+  summary = Table("pin_load_polar_summary", {{"scene", kText}, {"engine", kText}, {"force", kText},
+                                             {"max_magnitude", "N"}, {"phi_deg_at_max", "deg"},
+                                             {"max_difference_rel", "-"}});
   for (size_t index = 0; index < scenes.size(); ++index) {
     const Mechanism& m = scenes[index];
     simbody_models::KCrankModel model(m);

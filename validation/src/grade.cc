@@ -523,10 +523,13 @@ TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& progr
   for (const GradeState& s : states) mergeInto(all, s);
   TableSet tables;
   Table& summary = tables["grade_summary"];
-  summary.columns = {"quantity", "regime", "asked", "provided", "largest_rel_error", "largest_rel_error_simbody",
-                     "largest_rel_error_analytic", "largest_rel_error_mujoco", "largest_where_case", "largest_where_phi_deg",
-                     "largest_where_speed_rpm", "rel_error_at_worst_ratio", "worst_ratio", "tolerance_rel", "where_case",
-                     "where_phi_deg", "where_speed_rpm", "verdict"};
+  summary = Table("grade_summary", {{"quantity", kText}, {"regime", kText}, {"asked", "-"}, {"provided", "-"},
+                                    {"largest_rel_error", "-"}, {"largest_rel_error_simbody", "-"},
+                                    {"largest_rel_error_analytic", "-"}, {"largest_rel_error_mujoco", "-"},
+                                    {"largest_where_case", kText}, {"largest_where_phi_deg", "deg"},
+                                    {"largest_where_speed_rpm", "rpm"}, {"rel_error_at_worst_ratio", "-"},
+                                    {"worst_ratio", "-"}, {"tolerance_rel", "-"}, {"where_case", kText},
+                                    {"where_phi_deg", "deg"}, {"where_speed_rpm", "rpm"}, {"verdict", kText}});
   for (const std::string& quantity : getGradeQuantities())
     for (const GradeRegime& regime : getGradeRegimes()) {
       const auto it = all.quantities.find({quantity, regime.id});
@@ -542,13 +545,16 @@ TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& progr
                               !any ? "not provided" : q.pass ? "pass" : "FAIL"});
     }
   Table& by_lambda = tables["grade_error_vs_lambda"];
-  by_lambda.columns = {"quantity", "lambda", "program_max_rel_error", "analytic_max_rel_error"};
+  by_lambda = Table("grade_error_vs_lambda", {{"quantity", kText}, {"lambda", "-"}, {"program_max_rel_error", "-"},
+                                              {"analytic_max_rel_error", "-"}});
   for (const auto& [key, e] : all.by_lambda)
     if (e.provided)
       by_lambda.rows.push_back({key.first, formatNumber(key.second), formatNumber(e.program), formatNumber(e.analytic)});
   Table& failures = tables["grade_failures"];
-  failures.columns = {"case", "family", "lambda", "quantity", "cylinder", "phi_deg", "speed_rpm", "program_value",
-                      "simbody_value", "analytic_value", "rel_error", "tolerance_rel", "mujoco_value"};
+  failures = Table("grade_failures", {{"case", kText}, {"family", kText}, {"lambda", "-"}, {"quantity", kText},
+                                      {"cylinder", "-"}, {"phi_deg", "deg"}, {"speed_rpm", "rpm"},
+                                      {"program_value", "SI"}, {"simbody_value", "SI"}, {"analytic_value", "SI"},
+                                      {"rel_error", "-"}, {"tolerance_rel", "-"}, {"mujoco_value", "SI"}});
   for (const auto& [key, f] : all.failures) failures.rows.push_back(f.row);
   return tables;
 }

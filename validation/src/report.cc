@@ -140,6 +140,25 @@ std::string calcChecksum(std::string_view bytes) {
   return hex;
 }
 
+namespace {
+
+// A column's CSV header: "max_rel_error [-]", a text column's bare name.
+std::string formatHeader(const Column& column) {
+  return column.text ? column.name : column.name + " [" + column.unit + "]";
+}
+
+// The column a CSV header declares: "name [unit]" a number's, a bare name a text column's (formatHeader's inverse).
+// @throws std::runtime_error on an empty unit, "name []".
+Column parseHeader(const std::string& header, const std::string& source) {
+  const size_t open = header.find(" [");
+  if (open == std::string::npos || header.back() != ']') return Column(header, kText);
+  const std::string unit = header.substr(open + 2, header.size() - open - 3);
+  if (unit.empty()) throw std::runtime_error(source + ": column " + header.substr(0, open) + " has an empty unit");
+  return Column(header.substr(0, open), unit);
+}
+
+}  // namespace
+
 std::vector<DataFileRecord> writeTables(const TableSet& tables, const fs::path& dir) {
   std::error_code ec;
   if (!fs::create_directory(dir / "data", ec) && ec)
@@ -148,9 +167,9 @@ std::vector<DataFileRecord> writeTables(const TableSet& tables, const fs::path& 
   for (const auto& [name, table] : tables) {
     std::string text;
     // Each header names its unit: "max_rel_error [-]", "ns_per_eval [ns]"; a text column stays bare.
-    for (size_t i = 0; i < table.columns.size(); ++i) {
-      const std::string unit = getColumnUnit(name, table.columns[i]);
-      text += (i ? "," : "") + csvField(table.columns[i] + (unit.empty() ? "" : " [" + unit + "]"));
+    for (size_t i = 0; i < table.columns().size(); ++i) {
+      if (i > 0) text += ",";
+      text += csvField(formatHeader(table.columns()[i]));
     }
     const std::string header = text;
     text += "\n";
@@ -175,17 +194,17 @@ std::string readBytes(const fs::path& path) {
   return text.str();
 }
 
-// A table from its CSV records; the columns are named without their units. @throws std::runtime_error on an empty
-// table or a row of another length than the header.
-Table toTable(std::vector<std::vector<std::string>> records, const std::string& source) {
+// Table `name` from its CSV records; each column's unit from its header (parseHeader). @throws std::runtime_error on an
+// empty table, an empty unit or a row of another length than the header.
+Table toTable(const std::string& name, std::vector<std::vector<std::string>> records, const std::string& source) {
   if (records.empty()) throw std::runtime_error(source + ": empty table");
-  Table table;
-  table.columns = std::move(records.front());
-  for (std::string& column : table.columns) column = column.substr(0, column.find(" ["));  // the name, not the unit
+  std::vector<Column> columns;
+  for (const std::string& header : records.front()) columns.push_back(parseHeader(header, source));
+  Table table(name, std::move(columns));
   for (size_t i = 1; i < records.size(); ++i) {
-    if (records[i].size() != table.columns.size())
+    if (records[i].size() != table.columns().size())
       throw std::runtime_error(source + ": a row has " + std::to_string(records[i].size()) + " fields, the header " +
-                               std::to_string(table.columns.size()));
+                               std::to_string(table.columns().size()));
     table.rows.push_back(std::move(records[i]));
   }
   return table;
@@ -200,7 +219,8 @@ TableSet readTables(const fs::path& dir) {
   for (const auto& entry : fs::directory_iterator(dir / "data")) {
     if (entry.path().extension() != ".csv") continue;
     const std::string source = quotePath(entry.path());
-    tables[entry.path().stem().string()] = toTable(parseCsv(readBytes(entry.path()), source), source);
+    const std::string name = entry.path().stem().string();
+    tables[name] = toTable(name, parseCsv(readBytes(entry.path()), source), source);
   }
   return tables;
 }
@@ -478,7 +498,8 @@ TableSet readShardTables(const fs::path& dir, const ShardManifest& manifest) {
     if (checksum != f.checksum)
       throw std::runtime_error(source + ": not the content the shard wrote (FNV-1a 64 " + checksum + ", shard.json records " +
                                f.checksum + ")");
-    tables[fs::path(f.path).stem().string()] = toTable(std::move(records), source);
+    const std::string name = fs::path(f.path).stem().string();
+    tables[name] = toTable(name, std::move(records), source);
   }
   return tables;
 }

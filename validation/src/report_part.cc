@@ -29,7 +29,7 @@ std::vector<std::map<std::string, std::string>> readRecords(const TableSet& tabl
   if (it == tables.end()) return out;
   for (const auto& row : it->second.rows) {
     std::map<std::string, std::string> r;
-    for (size_t i = 0; i < it->second.columns.size() && i < row.size(); ++i) r[it->second.columns[i]] = row[i];
+    for (size_t i = 0; i < it->second.columns().size() && i < row.size(); ++i) r[it->second.columns()[i].name] = row[i];
     out.push_back(std::move(r));
   }
   return out;

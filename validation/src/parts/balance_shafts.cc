@@ -44,8 +44,8 @@ void addRows(Table& t, const std::string& kase, const std::string& shafts, const
 // The part's table on `parts` (its crank, rod and piston) and the `scenes` with balance shafts.
 // @throws std::runtime_error if an engine fails.
 TableSet calcBalanceShaftTables(const Mechanism& parts, const std::vector<Mechanism>& scenes) {
-  Table t;
-  t.columns = {"case", "shafts", "engine", "n", "force_amplitude", "force_relative"};  // each series together, in n
+  Table t("balance_shafts", {{"case", kText}, {"shafts", kText}, {"engine", kText}, {"n", "-"},
+                             {"force_amplitude", "N"}, {"force_relative", "-"}});  // each series together, in n
   Mechanism base = withSpeed(withGamma(parts, 90.0), 6000.0);
   base.balance_shafts.clear();
   base.engine.pin_offsets.clear();

@@ -1,13 +1,39 @@
 // Report part `delta_vs_k` (6): the free run's speed fluctuation due to gravity against k. Needs the base scene's flywheel:
 // without one the part is left out (campaign.cc's notes say so).
+#include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "../campaign_tables.h"
+#include "crankcheck/analytic/motion.h"
+#include "crankcheck/simbody_models/free_run.h"
+#include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/part.h"
+#include "crankcheck/validation/variants.h"
 
 namespace crankcheck::validation {
 namespace {
+
+// ------------------------------------------------------------------------------------------------------------
+// delta_vs_k: the free run's speed fluctuation with and without gravity, k = 1..12, both strokes, a few speeds.
+
+TableSet calcDeltaVsKTables(const Mechanism& base, Cycle cycle, bool quick) {
+  Table t("delta_vs_k", {{"cycle", kText}, {"k", "-"}, {"speed_rpm", "rpm"}, {"delta_gravity", "-"},
+                         {"delta_no_gravity", "-"}, {"delta_due_to_gravity", "-"}});
+  for (int k = 1; k <= 12; ++k)
+    for (double rpm : quick ? std::vector<double>{300.0, 6000.0} : std::vector<double>{60.0, 300.0, 1500.0, 6000.0}) {
+      const Mechanism m = withSpeed(withGamma(withCylinders(base, k, cycle), 90.0), rpm);
+      double with = std::nan(""), without = std::nan("");
+      try {
+        with = analytic::calcFreeRun(m, m.engine.speed, true).delta;
+        without = analytic::calcFreeRun(m, m.engine.speed, false).delta;
+      } catch (const std::domain_error&) {  // too slow to turn over against gravity: no free run to report
+      }
+      t.rows.push_back({toString(cycle), std::to_string(k), formatNumber(rpm), formatNumber(with), formatNumber(without), formatNumber(std::fabs(with - without))});
+    }
+  return {{"delta_vs_k", t}};
+}
 
 // The figure's caption.
 constexpr const char* kCaption =

@@ -60,8 +60,7 @@ Task buildEngineCostTask(const Mechanism& base, bool quick) {
               }
             }
             const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, quick ? 0.01 : 0.05);
-            Table t;
-            t.columns = {"engine", "k", "ns_per_eval"};
+            Table t("engine_cost", {{"engine", kText}, {"k", "-"}, {"ns_per_eval", "ns"}});
             for (const auto& [engine, k] : keys) {
               const auto it = ns.find(engine + " k=" + std::to_string(k));
               if (it != ns.end()) t.rows.push_back({engine, std::to_string(k), formatNumber(it->second)});
@@ -113,17 +112,16 @@ void deriveEngineTables(TableSet& tables) {
     return it == ns.end() ? std::string() : formatNumber(it->second);
   };
 
-  Table engines;
-  engines.columns = {"engine", "quantity", "worst_rel_error", "where_case", "where_lambda", "where_phi_deg",
-                     "where_speed_rpm", "ns_per_eval_k1", "ns_per_eval_k12"};
+  Table engines("engines", {{"engine", kText}, {"quantity", kText}, {"worst_rel_error", "-"}, {"where_case", kText},
+                            {"where_lambda", "-"}, {"where_phi_deg", "deg"}, {"where_speed_rpm", "rpm"},
+                            {"ns_per_eval_k1", "ns"}, {"ns_per_eval_k12", "ns"}});
   std::map<std::string, double> worst_of_engine;
   for (const auto& [key, w] : worst) {
     engines.rows.push_back({key.first, key.second, formatNumber(w.rel), w.kase, w.lambda, w.phi, w.rpm,
                             nsOf(key.first, 1), nsOf(key.first, 12)});
     worst_of_engine[key.first] = std::max(worst_of_engine[key.first], w.rel);
   }
-  Table league;
-  league.columns = {"engine", "k", "ns_per_eval", "worst_rel_error"};
+  Table league("engines_league", {{"engine", kText}, {"k", "-"}, {"ns_per_eval", "ns"}, {"worst_rel_error", "-"}});
   for (const auto& [key, value] : ns)
     if (worst_of_engine.count(key.first))
       league.rows.push_back({key.first, std::to_string(key.second), formatNumber(value), formatNumber(worst_of_engine[key.first])});

@@ -38,10 +38,14 @@ std::string num(double x) { return formatNumber(x); }
 TableSet makeEmptyTables() {
   // The key columns first: sorted, each series' rows come together, in order (reports/flywheel.gp draws them so).
   TableSet t;
-  t["flywheel"].columns = {"scene", "flywheel_inertia", "exact_delta", "simbody_delta"};
-  t["flywheel_sizing"].columns = {"scene", "cycle", "k", "speed_rpm", "exact_inertia", "norton_inertia", "norton_error",
-                                  "norton_delta"};
-  t["flywheel_norton"].columns = {"speed_rpm", "k", "exact_inertia", "norton_inertia", "norton_error", "norton_delta"};
+  t["flywheel"] = Table("flywheel", {{"scene", kText}, {"flywheel_inertia", "kg m^2"}, {"exact_delta", "-"},
+                                     {"simbody_delta", "-"}});
+  t["flywheel_sizing"] = Table("flywheel_sizing", {{"scene", kText}, {"cycle", kText}, {"k", "-"}, {"speed_rpm", "rpm"},
+                                                   {"exact_inertia", "kg m^2"}, {"norton_inertia", "kg m^2"},
+                                                   {"norton_error", "-"}, {"norton_delta", "-"}});
+  t["flywheel_norton"] = Table("flywheel_norton", {{"speed_rpm", "rpm"}, {"k", "-"}, {"exact_inertia", "kg m^2"},
+                                                   {"norton_inertia", "kg m^2"}, {"norton_error", "-"},
+                                                   {"norton_delta", "-"}});
   return t;
 }
 

@@ -1,13 +1,89 @@
 // Report part `integrator_pareto` (7): Simbody's integrators, cost against error in the free run. Needs the base
 // scene's flywheel: without one the part is left out (campaign.cc's notes say so).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <functional>
+#include <map>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../campaign_tables.h"
+#include "crankcheck/analytic/motion.h"
+#include "crankcheck/simbody_models/free_run.h"
+#include "crankcheck/validation/balance.h"
+#include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/part.h"
+#include "crankcheck/validation/scales.h"
+#include "crankcheck/validation/timing.h"
+#include "crankcheck/validation/variants.h"
 
 namespace crankcheck::validation {
 namespace {
+
+// ------------------------------------------------------------------------------------------------------------
+// integrator_pareto: Simbody's free run by each integrator and accuracy: cost per simulated revolution (one Google
+// Benchmark run) against the error of delta and the energy drift, the analytic energy integral as reference.
+
+TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick) {
+  const Mechanism m = withSpeed(base, 300.0);
+  const analytic::FreeRun exact = analytic::calcFreeRun(m, m.engine.speed, true);
+  struct Run {
+    simbody_models::FreeRunOptions options;
+    std::string name;
+  };
+  std::vector<Run> runs;
+  const std::vector<double> accuracies = quick ? std::vector<double>{1e-4, 1e-8} : std::vector<double>{1e-3, 1e-4, 1e-6, 1e-8, 1e-10};
+  for (simbody_models::IntegratorKind kind : {simbody_models::IntegratorKind::kRungeKuttaMerson, simbody_models::IntegratorKind::kCPodes,
+                                              simbody_models::IntegratorKind::kSemiExplicitEuler2})
+    for (double accuracy : accuracies) {
+      // SemiExplicitEuler2 is first order: below 1e-6 it needs millions of steps per revolution.
+      if (kind == simbody_models::IntegratorKind::kSemiExplicitEuler2 && accuracy < 1e-6) continue;
+      simbody_models::FreeRunOptions options;
+      options.integrator = kind;
+      options.accuracy = accuracy;
+          char name[64];
+      std::snprintf(name, sizeof name, "%s %.0e", simbody_models::toString(kind).c_str(), accuracy);
+      runs.push_back({options, name});
+    }
+  Table t("integrator_pareto", {{"integrator", kText}, {"accuracy", "-"}, {"ns_per_revolution", "ns"},
+                                {"delta_error", "-"}, {"energy_drift", "-"}, {"status", kText}});
+  // Each run is timed by Google Benchmark and keeps its last result, so that no run is integrated twice just for
+  // its error (a run that fails is reported as failed).
+  std::vector<std::pair<std::string, std::function<void()>>> timed;
+  std::map<std::string, std::shared_ptr<simbody_models::FreeRunResult>> results;
+  std::map<std::string, std::shared_ptr<std::string>> failures;
+  for (const Run& run : runs) {
+    auto result = results[run.name] = std::make_shared<simbody_models::FreeRunResult>();
+    auto failure = failures[run.name] = std::make_shared<std::string>();
+    timed.emplace_back(run.name, [m, options = run.options, result, failure] {
+      if (!failure->empty()) return;
+      try {
+        *result = simbody_models::simulateFreeRun(m, m.engine.speed, options);
+      } catch (const std::exception& e) {
+        *failure = e.what();
+      }
+      benchmark::DoNotOptimize(result->delta);
+    });
+  }
+  const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, 0.01);
+  for (const Run& run : runs) {
+    const std::string integrator = simbody_models::toString(run.options.integrator);
+    const simbody_models::FreeRunResult& result = *results[run.name];
+    const auto time = ns.find(run.name);
+    if (!failures[run.name]->empty() || time == ns.end()) {
+      t.rows.push_back({integrator, formatNumber(run.options.accuracy), "nan", "nan", "nan", "failed"});
+      continue;
+    }
+    t.rows.push_back({integrator, formatNumber(run.options.accuracy), formatNumber(time->second / run.options.revolutions),
+                      formatNumber(std::fabs(result.delta - exact.delta) / exact.delta), formatNumber(result.energy_drift_per_revolution), "ok"});
+  }
+  return {{"integrator_pareto", t}};
+}
 
 class IntegratorParetoPart final : public Part {
  public:

@@ -53,9 +53,11 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
   const double step = quick ? 2.0 : 0.25;
   Table cost, thrust;
   // The key column first: the sorted table then holds each series' rows together, in order of delta / r.
-  cost.columns = {"quantity", "offset_over_r", "max_rel_error", "simbody_max_rel_error"};
-  thrust.columns = {"engine", "offset_over_r", "peak_major_thrust", "peak_minor_thrust", "thrust_reversal_deg",
-                    "max_abs_drive_torque"};
+  cost = Table("offset", {{"quantity", kText}, {"offset_over_r", "-"}, {"max_rel_error", "-"},
+                          {"simbody_max_rel_error", "-"}});
+  thrust = Table("offset_thrust", {{"engine", kText}, {"offset_over_r", "-"}, {"peak_major_thrust", "N"},
+                                   {"peak_minor_thrust", "N"}, {"thrust_reversal_deg", "deg"},
+                                   {"max_abs_drive_torque", "N m"}});
   Mechanism m = single;
   m.engine.pin_offsets = {f * r};
   const Scales sc = calcScales(m);

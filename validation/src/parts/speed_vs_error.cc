@@ -1,13 +1,166 @@
 // Report part `speed_vs_error` (2): cost per evaluation of Q against its error, every method timed in one run on this
-// machine (computed in campaign.cc).
+// machine.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <map>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../campaign_tables.h"
+#include "crankcheck/analytic/batch.h"
+#include "crankcheck/analytic/gravity_torque.h"
+#include "crankcheck/simbody_models/grid_sweep.h"
+#include "crankcheck/simbody_models/k_crank_gravity_model.h"
+#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/balance.h"
+#include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/part.h"
+#include "crankcheck/validation/scales.h"
+#include "crankcheck/validation/timing.h"
+#include "crankcheck/validation/variants.h"
 
 namespace crankcheck::validation {
 namespace {
+
+using analytic::LambdaSource;
+
+// ------------------------------------------------------------------------------------------------------------
+// speed_vs_error: cost per evaluation of Q against its error, every method measured in one Google Benchmark run.
+
+TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
+  const Mechanism m = withSpeed(base, 0.0);
+  const double E = calcEnergyScale(m);
+  const std::vector<double> angles = [&] {
+    std::vector<double> v;
+    for (double d : anglesDeg(quick ? 30.0 : 5.0)) v.push_back(radiansFromDegrees(d));
+    return v;
+  }();
+
+  struct Method {
+    std::string name;
+    std::function<double(double)> eval;   // Q at phi
+    std::shared_ptr<simbody_models::KCrankModel> model;
+  };
+  std::vector<Method> methods;
+  auto reduced = std::make_shared<simbody_models::KCrankGravityModel>(m);
+  methods.push_back({"simbody_reduced_tol_1e-12", [reduced](double phi) { return reduced->calcHoldingTorque(phi); }, nullptr});
+  methods.push_back({"exact_closed_form", [m](double phi) { return analytic::calcGravityTorque(m, phi); }, nullptr});
+  for (int order : {2, 4, 6, 8, 12}) {
+    auto harmonics = std::make_shared<std::vector<analytic::TorqueHarmonic>>(analytic::calcGravityTorqueHarmonics(m, order));
+    methods.push_back({"fourier_order_" + std::to_string(order),
+                       [harmonics](double phi) { return analytic::evaluateTorqueHarmonics(*harmonics, phi); }, nullptr});
+  }
+  auto printed = std::make_shared<std::vector<analytic::TorqueHarmonic>>(
+      analytic::calcGravityTorqueHarmonics(m, 12, LambdaSource::kAsPrinted));
+  methods.push_back({"paper_eq15_printed", [printed](double phi) { return analytic::evaluateTorqueHarmonics(*printed, phi); }, nullptr});
+  for (double tol : quick ? std::vector<double>{1e-4, 1e-12} : std::vector<double>{1e-4, 1e-6, 1e-8, 1e-10, 1e-12}) {
+    auto model = std::make_shared<simbody_models::KCrankModel>(m, simbody_models::ModelOptions{tol});
+    char name[48];
+    std::snprintf(name, sizeof name, "simbody_tol_%.0e", tol);
+    methods.push_back({name, [model](double phi) { return model->calcHoldingTorque(phi); }, model});
+  }
+
+  // Errors against the exact closed form (the closed form's own error against Simbody at 1e-12): the maximum over the
+  // turn, the same in the quick and the full campaign: the Fourier series' from the exact harmonics they leave out, the
+  // others by refining the best of 72 samples (extremum.h). resolved = 0: at rounding level, a bound.
+  std::map<std::string, std::pair<double, bool>> errors;
+  simbody_models::KCrankModel reference(m);
+  const auto exact_harmonics = exactHarmonics(m);
+  for (const Method& method : methods) {
+    double worst = 0.0;
+    bool resolved = true;
+    if (method.name.rfind("fourier_order_", 0) == 0) {
+      worst = maxAbsOfHarmonics(harmonicsAbove(exact_harmonics, std::stoi(method.name.substr(14))));
+    } else if (method.name == "paper_eq15_printed") {
+      worst = maxAbsOfHarmonics(harmonicsMinus(*printed, exact_harmonics));
+      resolved = resolvedToOnePercent(worst / E);
+    } else {
+      const bool closed_form = method.name == "exact_closed_form";
+      worst = findMaxAbsOverTurn([&](double phi) {
+                return method.eval(phi) - (closed_form ? reference.calcHoldingTorque(phi) : analytic::calcGravityTorque(m, phi));
+              }, 72).value;
+      resolved = resolvedToOnePercent(worst / E, calcScales(m).conditioning);
+    }
+    errors[method.name] = {worst / E, resolved};
+  }
+  std::vector<std::pair<std::string, std::function<void()>>> timed;
+  for (const Method& method : methods) {
+    auto counter = std::make_shared<size_t>(0);
+    timed.emplace_back(method.name, [method, counter, angles] {
+      const double phi = angles[(*counter)++ % angles.size()];
+      benchmark::DoNotOptimize(method.eval(phi));
+    });
+  }
+  // The same methods where they also have a batch form (issue 14): the SIMD kernels on arbitrary angles and on a
+  // uniform grid (batch.h), and Simbody over a grid by superposing one-cylinder models (grid_sweep.h). Each call
+  // evaluates a whole batch; the table gives ns per angle.
+  constexpr size_t kBatch = 4096;
+  const size_t simbody_grid = quick ? 72 : 360;
+  auto batch_angles = std::make_shared<std::vector<double>>(kBatch);
+  for (size_t i = 0; i < kBatch; ++i)  // the same turn, not a grid: each angle nudged off the sample
+    (*batch_angles)[i] = angles[i % angles.size()] + 1e-3 * static_cast<double>(i / angles.size());
+  auto batch_out = std::make_shared<std::vector<double>>(kBatch);
+  const double grid_step = 2.0 * M_PI / static_cast<double>(kBatch);
+  struct BatchMethod {
+    std::string name;
+    size_t angles_per_call;
+    std::function<void()> run;  // fills *batch_out (Simbody: its own grid)
+  };
+  const std::vector<BatchMethod> batch_methods = {
+      {"exact_closed_form_batch", kBatch, [m, batch_angles, batch_out] {
+         analytic::calcGravityTorqueBatch(m, *batch_angles, *batch_out);
+         benchmark::DoNotOptimize(batch_out->data());
+       }},
+      {"exact_closed_form_grid", kBatch, [m, batch_out, grid_step] {
+         analytic::calcGravityTorqueOnGrid(m, 0.0, grid_step, *batch_out);
+         benchmark::DoNotOptimize(batch_out->data());
+       }},
+      {"simbody_grid_superposition", simbody_grid, [m, simbody_grid] {
+         benchmark::DoNotOptimize(simbody_models::calcHoldingTorqueOnGrid(m, 0.0, 2.0 * M_PI / static_cast<double>(simbody_grid), simbody_grid));
+       }},
+  };
+  {
+    // Their errors: the kernels against the scalar closed form (rounding: a bound), Simbody's sums against it.
+    std::vector<double> batch(kBatch), grid(kBatch);
+    analytic::calcGravityTorqueBatch(m, *batch_angles, batch);
+    analytic::calcGravityTorqueOnGrid(m, 0.0, grid_step, grid);
+    double worst_batch = 0.0, worst_grid = 0.0, worst_sweep = 0.0;
+    for (size_t i = 0; i < kBatch; ++i) {
+      worst_batch = std::max(worst_batch, std::fabs(batch[i] - analytic::calcGravityTorque(m, (*batch_angles)[i])));
+      worst_grid = std::max(worst_grid, std::fabs(grid[i] - analytic::calcGravityTorque(m, static_cast<double>(i) * grid_step)));
+    }
+    const std::vector<double> sweep =
+        simbody_models::calcHoldingTorqueOnGrid(m, 0.0, 2.0 * M_PI / static_cast<double>(simbody_grid), simbody_grid);
+    for (size_t i = 0; i < simbody_grid; ++i)
+      worst_sweep = std::max(worst_sweep, std::fabs(sweep[i] - analytic::calcGravityTorque(m, 2.0 * M_PI * static_cast<double>(i) /
+                                                                                               static_cast<double>(simbody_grid))));
+    errors["exact_closed_form_batch"] = {worst_batch / E, false};
+    errors["exact_closed_form_grid"] = {worst_grid / E, false};
+    errors["simbody_grid_superposition"] = {worst_sweep / E, resolvedToOnePercent(worst_sweep / E, calcScales(m).conditioning)};
+  }
+  for (const BatchMethod& b : batch_methods) timed.emplace_back(b.name, b.run);
+  const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, quick ? 0.01 : 0.05);
+  Table t("speed_vs_error", {{"method", kText}, {"ns_per_eval", "ns"}, {"max_rel_error", "-"}, {"resolved", kText}});
+  for (const Method& method : methods) {
+    const auto it = ns.find(method.name);
+    if (it != ns.end())
+      t.rows.push_back({method.name, formatNumber(it->second), formatNumber(errors[method.name].first), errors[method.name].second ? "1" : "0"});
+  }
+  for (const BatchMethod& b : batch_methods) {
+    const auto it = ns.find(b.name);
+    if (it != ns.end())
+      t.rows.push_back({b.name, formatNumber(it->second / static_cast<double>(b.angles_per_call)), formatNumber(errors[b.name].first),
+                        errors[b.name].second ? "1" : "0"});
+  }
+  return {{"speed_vs_error", t}};
+}
 
 class SpeedVsErrorPart final : public Part {
  public:

@@ -11,18 +11,7 @@
 ///   crosscheck            family,engine,case,lambda,quantity,worst_rel_error,where_phi_deg,where_speed_rpm,tolerance_rel,
 ///                         pass (engine: the engine compared with the analytic one; pass: pass/FAIL for gated engines,
 ///                         reported for soft ones, which are measured, never gated)
-///   parts 13-16's tables: in each part's file, validation/src/parts/KEY.cc (Part::tables lists every part's)
-///   error_vs_lambda       quantity,method,lambda,max_abs_error,max_rel_error,resolved
-///   speed_vs_error        method,ns_per_eval,max_rel_error,resolved
-///   harmonics             cycle,k,n,simbody_amplitude,analytic_amplitude,paper_nonzero
-///   gravity_significance  cycle,k,max_abs_Q,ratio_to_k1,max_inertia_torque,ratio_to_inertia,simbody_max_abs_Q,resolved,
-///                         first_order,simbody_bound,simbody_ratio_to_k1,paper_negligible
-///   norton_fig13_8        crank_angle_deg,x_exact,x_two_term,v_exact,v_two_term,a_exact,a_two_term
-///   errata                item,printed,holds,measure,value,verdict
-///   eq5_layouts           cycle,k,gamma_deg,max_abs_Q,max_abs_Q_printed,ratio_of_maxima,max_error_rel
-///   eq15_coefficients     n,lambda,printed,exact,relative_error
-///   eq15_engines          cycle,k,lambda,first_order,max_abs_Q,max_abs_Q_printed,ratio_of_maxima,max_error_rel
-///   pin_load_polar, pin_load_polar_summary, torque_split, gravity_share, rod_models: engine_loads.h
+///   every report part's tables: in the part's file, validation/src/parts/KEY.cc (Part::tables lists them)
 ///   scenes                family,scene,cylinders,cycle,acting,gamma_deg,speed_rpm,r,l,lambda,m_o,m_k,z_k,I_o,m_s,r_s,
 ///                         m_p,r_p,g,I_w (I_w empty: the scene has no flywheel)
 ///   notes                 note (what the campaign left out, and why; only when there is something to say)
@@ -30,17 +19,54 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::validation {
 
-/// One table of the report: a header and rows of already formatted fields (numbers by formatNumber; a name may hold any
-/// character, the CSV writer quotes it).
-struct Table {
-  std::vector<std::string> columns;
+/// The unit of a text column (names, verdicts, flags): no unit, the CSV header names the column bare.
+struct TextUnit {
+  bool operator==(const TextUnit&) const = default;
+};
+/// A text column's unit: `Column{"engine", kText}`.
+inline constexpr TextUnit kText{};
+
+/// One column of a table: its name and its unit together. A number's unit is written in the CSV header,
+/// "max_rel_error [-]": "-" for a dimensionless number (ratios, errors relative to a scale, counts, indices), "SI" where
+/// the unit is the quantity's own (the row's quantity names it: J, N m, N, m, m/s, m/s^2, rad, ...), else the unit
+/// ("N m", "deg", "rpm", "ns", ...). There is no column without a unit: a text column says kText.
+struct Column {
+  /// A number's column; `unit` must not be empty (Table refuses it).
+  Column(std::string name, std::string unit) : name(std::move(name)), unit(std::move(unit)) {}
+  /// A text column.
+  Column(std::string name, TextUnit) : name(std::move(name)), text(true) {}
+
+  std::string name;
+  std::string unit;   ///< "" only for a text column
+  bool text = false;  ///< a text column (kText): its header is the bare name
+
+  bool operator==(const Column&) const = default;
+};
+
+/// One table of the report: its columns (each with its unit) and rows of already formatted fields (numbers by
+/// formatNumber; a name may hold any character, the CSV writer quotes it).
+class Table {
+ public:
+  Table() = default;
+  /// @param name the table's name (the CSV stem), for the message only.
+  /// @throws std::logic_error naming the table and the column for a number's column with an empty unit.
+  Table(const std::string& name, std::vector<Column> columns);
+
+  const std::vector<Column>& columns() const { return columns_; }
+  /// The columns' names, in order.
+  std::vector<std::string> names() const;
+
   std::vector<std::vector<std::string>> rows;
+
+ private:
+  std::vector<Column> columns_;
 };
 /// Tables by name (the CSV file stem).
 using TableSet = std::map<std::string, Table>;

@@ -47,10 +47,6 @@ constexpr double kGnuplotVersionSeconds = 10.0;
 /// does not answer within kGnuplotVersionSeconds.
 std::string checkGnuplot();
 
-/// The unit of a column of table `table` as its CSV header shows it: "" (text), "-" (dimensionless), "N m", ...,
-/// "SI" (the unit of the row's quantity). @throws std::logic_error for a column without one (column_units.cc).
-std::string getColumnUnit(const std::string& table, const std::string& column);
-
 /// The checksum of a file's or a scene's bytes: FNV-1a 64 as 16 hex digits. It finds a changed, truncated or
 /// replaced file, not a forged one.
 std::string calcChecksum(std::string_view bytes);
@@ -64,10 +60,10 @@ struct DataFileRecord {
 };
 
 /// Writes tables as CSV files (RFC 4180) into dir/data, which must not exist yet; each header is "name [unit]"
-/// (getColumnUnit). @return a record of each file written, by name. @throws EnvironmentError when a file cannot be
+/// (the unit its Column declares), a text column's the bare name. @return a record of each file written, by name. @throws EnvironmentError when a file cannot be
 /// written.
 std::vector<DataFileRecord> writeTables(const TableSet& tables, const std::filesystem::path& dir);
-/// Reads every dir/data/*.csv; the columns are named without their units. @throws std::runtime_error on a missing or
+/// Reads every dir/data/*.csv; each column's name and unit from its header ("name [unit]", a bare name: kText). @throws std::runtime_error on a missing or
 /// malformed file.
 TableSet readTables(const std::filesystem::path& dir);
 
