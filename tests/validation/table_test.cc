@@ -12,29 +12,12 @@
 
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/report.h"
+#include "fresh_folder.h"
 
 namespace crankcheck::validation {
 namespace {
 
-// A folder made fresh for one test (mkdtemp), removed with everything in it when the test ends.
-class FreshFolder {
- public:
-  FreshFolder() {
-    std::string name = (std::filesystem::temp_directory_path() / "crankcheck_table_test_XXXXXX").string();
-    if (::mkdtemp(name.data()) == nullptr) throw std::runtime_error("mkdtemp failed under " + name);
-    path_ = name;
-  }
-  ~FreshFolder() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  FreshFolder(const FreshFolder&) = delete;
-  FreshFolder& operator=(const FreshFolder&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
+using testing::FreshFolder;
 
 TEST(TableTest, RefusesANumbersColumnWithoutAUnit) {
   try {
