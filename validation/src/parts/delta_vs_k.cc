@@ -55,13 +55,7 @@ class DeltaVsKPart final : public Part {
                      [base = context.base, cycle, quick = context.quick] { return calcDeltaVsKTables(base, cycle, quick); }});
     return out;
   }
-  ReportPart describe(const TableSet& tables) const override {
-    ReportPart part;
-    if (!tables.count("delta_vs_k")) return part;
-    part.heading = heading();
-    part.caption = kCaption;
-    return part;
-  }
+  ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
   std::vector<std::string> tables() const override { return {"delta_vs_k"}; }
 };
 

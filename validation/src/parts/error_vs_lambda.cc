@@ -110,13 +110,7 @@ class ErrorVsLambdaPart final : public Part {
     }
     return out;
   }
-  ReportPart describe(const TableSet& tables) const override {
-    ReportPart part;
-    if (!tables.count("error_vs_lambda")) return part;
-    part.heading = heading();
-    part.caption = kCaption;
-    return part;
-  }
+  ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
   std::vector<std::string> tables() const override { return {"error_vs_lambda"}; }
 };
 

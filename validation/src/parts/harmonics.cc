@@ -67,13 +67,7 @@ class HarmonicsPart final : public Part {
                      [base = context.base, cycle] { return calcHarmonicsTables(base, cycle); }});
     return out;
   }
-  ReportPart describe(const TableSet& tables) const override {
-    ReportPart part;
-    if (!tables.count("harmonics")) return part;
-    part.heading = heading();
-    part.caption = kCaption;
-    return part;
-  }
+  ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
   std::vector<std::string> tables() const override { return {"harmonics"}; }
 };
 

@@ -38,13 +38,7 @@ class NortonFigurePart final : public Part {
   std::vector<Task> tasks(const PartContext& context) const override {
     return {{"norton_fig13_8", false, [base = context.base] { return calcNortonFigureTables(base); }}};
   }
-  ReportPart describe(const TableSet& tables) const override {
-    ReportPart part;
-    if (!tables.count("norton_fig13_8")) return part;
-    part.heading = heading();
-    part.caption = kCaption;
-    return part;
-  }
+  ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
   std::vector<std::string> tables() const override { return {"norton_fig13_8"}; }
 };
 

@@ -25,13 +25,7 @@ class RodModelsPart final : public Part {
     return {{"rod_models", false,
              [base = context.base, marine = findMarineScene()] { return calcRodModelTables(base, marine); }}};
   }
-  ReportPart describe(const TableSet& tables) const override {
-    ReportPart part;
-    if (!tables.count("rod_models")) return part;
-    part.heading = heading();
-    part.caption = kCaption;
-    return part;
-  }
+  ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
   std::vector<std::string> tables() const override { return {"rod_models"}; }
 };
 

@@ -29,13 +29,7 @@ class TorqueSplitPart final : public Part {
     return {{"torque_split", false,
              [base = context.base, marine = findMarineScene()] { return calcTorqueSplitTables(base, marine); }}};
   }
-  ReportPart describe(const TableSet& tables) const override {
-    ReportPart part;
-    if (!tables.count("torque_split")) return part;
-    part.heading = heading();
-    part.caption = kCaption;
-    return part;
-  }
+  ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
   std::vector<std::string> tables() const override { return {"torque_split", "gravity_share"}; }
 };
 

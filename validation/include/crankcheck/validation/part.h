@@ -68,6 +68,17 @@ class Part {
 
   /// "N. title": the heading describe() gives.
   std::string heading() const { return std::to_string(number()) + ". " + title(); }
+
+ protected:
+  /// describe() of a part that is its figure alone: the heading and `caption` when its table data/KEY.csv is there;
+  /// left out (empty heading) when it is not.
+  ReportPart describeFigure(const TableSet& tables, const std::string& caption) const {
+    ReportPart part;
+    if (!tables.count(key())) return part;
+    part.heading = heading();
+    part.caption = caption;
+    return part;
+  }
 };
 
 }  // namespace crankcheck::validation
