@@ -3,14 +3,15 @@
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/gravity_significance.gp
 #
 # Reads  in_dir/gravity_significance.csv   cycle,k,max_abs_Q,ratio_to_k1,max_inertia_torque,ratio_to_inertia,
-#        simbody_max_abs_Q,resolved,first_order,simbody_bound,simbody_ratio_to_k1 (columns 7-11 optional)
+#        first_order,paper_negligible,rounding_bound, then per reference engine ENGINE_max_abs_Q,ENGINE_resolved,
+#        ENGINE_ratio_to_k1 (columns 10-12: the first reference engine's, drawn; optional)
 # Writes out_dir/gravity_significance.svg and out_dir/gravity_significance.png
 #
 # Per cycle (two-stroke blue, four-stroke orange) two lines against k = 1..12 on a log y axis:
 # ratio_to_k1 (solid, filled points) = max|Q| relative to the same cycle's k = 1, and
 # ratio_to_inertia (dashed, open points) = max|Q| relative to the largest inertia torque.
-# Simbody's max |Q| relative to its k = 1 (column 11) is drawn as a cross where Simbody resolves it
-# (column 8 "yes") and as an arrow down from its rounding bound where it does not ("no"): an upper bound,
+# The first reference engine's max |Q| relative to its k = 1 (column 12) is drawn as a cross where it resolves it
+# (column 11 "yes") and as an arrow down from its rounding bound where it does not ("no"): an upper bound,
 # not a value. Values below 1e-17 are drawn at 1e-17. k = 7, 9, 11 are shaded. Rows may come in any
 # order; an absent cycle or column simply has no line.
 
@@ -66,21 +67,21 @@ do for [p = 1:2] {
         }
     }
 }
-# Simbody: resolved values as crosses, bounds as arrows down (one decade long) ending in a down triangle.
-has11 = 0
-if (ndata > 0) { stats file skip 1 using (has11 = (has11 || fin(column(11))), 0) nooutput }
-if (has11) {
+# The first reference engine: resolved values as crosses, bounds as arrows down (one decade long) ending in a down triangle.
+has12 = 0
+if (ndata > 0) { stats file skip 1 using (has12 = (has12 || fin(column(12))), 0) nooutput }
+if (has12) {
     do for [p = 1:2] {
         eval sprintf("set table $R%d separator comma", p)
-        plot file skip 1 using 2:(clamp(column(11))) with table if (strcol(1) eq CYC[p] && strcol(8) eq "yes" && fin(column(11)))
+        plot file skip 1 using 2:(clamp(column(12))) with table if (strcol(1) eq CYC[p] && strcol(11) eq "yes" && fin(column(12)))
         unset table
         eval sprintf("set table $B%d separator comma", p)
-        plot file skip 1 using 2:(clamp(column(11))) with table if (strcol(1) eq CYC[p] && strcol(8) ne "yes" && fin(column(11)))
+        plot file skip 1 using 2:(clamp(column(12))) with table if (strcol(1) eq CYC[p] && strcol(11) ne "yes" && fin(column(12)))
         unset table
         eval sprintf("nr = |$R%d|; nb = |$B%d|", p, p)
-        if (nr > 0) { cmd = cmd . sprintf("$R%d using 1:2 with points pt 2 ps 1.8 lw 2 lc rgb '%s' title 'Simbody, %s (resolved)', ", p, (p == 1 ? "#0b3d91" : "#a34a00"), CYC[p]) }
+        if (nr > 0) { cmd = cmd . sprintf("$R%d using 1:2 with points pt 2 ps 1.8 lw 2 lc rgb '%s' title 'reference engine, %s (resolved)', ", p, (p == 1 ? "#0b3d91" : "#a34a00"), CYC[p]) }
         if (nb > 0) {
-            cmd = cmd . sprintf("$B%d using 1:2:(0):($2 * 0.1 - $2) with vectors head filled size screen 0.008,25 lw 1.5 lc rgb '%s' title 'Simbody, %s: below rounding (upper bound)', ", p, (p == 1 ? "#0b3d91" : "#a34a00"), CYC[p])
+            cmd = cmd . sprintf("$B%d using 1:2:(0):($2 * 0.1 - $2) with vectors head filled size screen 0.008,25 lw 1.5 lc rgb '%s' title 'reference engine, %s: below rounding (upper bound)', ", p, (p == 1 ? "#0b3d91" : "#a34a00"), CYC[p])
         }
     }
 }

@@ -2,11 +2,11 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/harmonics.gp
 #
-# Reads  in_dir/harmonics.csv   cycle,k,n,simbody_amplitude,analytic_amplitude,paper_nonzero
+# Reads  in_dir/harmonics.csv   cycle,k,n,analytic_amplitude,paper_nonzero,ENGINE_amplitude... (one per reference engine)
 # Writes out_dir/harmonics.svg and out_dir/harmonics.png
 #
 # Two stacked panels (two-stroke above, four-stroke below). Each cell (n, k) is coloured by
-# log10(simbody_amplitude), clamped to [-17, 0] (0 or below 1e-17 is drawn as -17). An open circle
+# log10 of the first reference engine's amplitude (column 6), clamped to [-17, 0] (0 or below 1e-17 is drawn as -17). An open circle
 # marks analytic_amplitude > 1e-12 (the prediction); a small cross marks paper_nonzero == 1 (the
 # paper's table 1; 0 or empty draws nothing). A cell with no row in the CSV stays light grey.
 # Rows may come in any order; a missing cycle leaves its panel empty with a note.
@@ -50,14 +50,14 @@ set lmargin at screen 0.07
 set rmargin at screen 0.865
 set object 1 rectangle from graph 0, 0 to graph 1, 1 fillcolor rgb "#e6e6e6" fillstyle solid 1.0 noborder behind
 
-# paper_nonzero is tested with valid(6) && column(6) == 1: for an empty last field gnuplot 5.4's strcol(6)
+# paper_nonzero is tested with valid(5) && column(5) == 1: for an empty field gnuplot 5.4's strcol(5)
 # returns a stale string (seen: "1"), so a string comparison would draw crosses the CSV does not ask for.
 # cells, then each marker twice (a wide white stroke under a thin black one: visible on any colour)
-cells(c)   = sprintf("file skip 1 using 3:(strcol(1) eq '%s' ? $2 : NaN):(0.5):(0.5):(lz($4)) with boxxyerror fillstyle solid 1.0 noborder lc palette notitle", c)
-circles(c) = sprintf("file skip 1 using 3:(strcol(1) eq '%s' && $5 > amp_threshold ? $2 : NaN) with points pt 6 ps 1.25 lw 3.5 lc rgb 'white' notitle, ", c) . \
-             sprintf("file skip 1 using 3:(strcol(1) eq '%s' && $5 > amp_threshold ? $2 : NaN) with points pt 6 ps 1.25 lw 1.3 lc rgb 'black' notitle", c)
-crosses(c) = sprintf("file skip 1 using 3:(strcol(1) eq '%s' && valid(6) && column(6) == 1 ? $2 : NaN) with points pt 2 ps 0.7 lw 3.5 lc rgb 'white' notitle, ", c) . \
-             sprintf("file skip 1 using 3:(strcol(1) eq '%s' && valid(6) && column(6) == 1 ? $2 : NaN) with points pt 2 ps 0.7 lw 1.3 lc rgb 'black' notitle", c)
+cells(c)   = sprintf("file skip 1 using 3:(strcol(1) eq '%s' ? $2 : NaN):(0.5):(0.5):(lz($6)) with boxxyerror fillstyle solid 1.0 noborder lc palette notitle", c)
+circles(c) = sprintf("file skip 1 using 3:(strcol(1) eq '%s' && $4 > amp_threshold ? $2 : NaN) with points pt 6 ps 1.25 lw 3.5 lc rgb 'white' notitle, ", c) . \
+             sprintf("file skip 1 using 3:(strcol(1) eq '%s' && $4 > amp_threshold ? $2 : NaN) with points pt 6 ps 1.25 lw 1.3 lc rgb 'black' notitle", c)
+crosses(c) = sprintf("file skip 1 using 3:(strcol(1) eq '%s' && valid(5) && column(5) == 1 ? $2 : NaN) with points pt 2 ps 0.7 lw 3.5 lc rgb 'white' notitle, ", c) . \
+             sprintf("file skip 1 using 3:(strcol(1) eq '%s' && valid(5) && column(5) == 1 ? $2 : NaN) with points pt 2 ps 0.7 lw 1.3 lc rgb 'black' notitle", c)
 # the three markers only appear in the legend (NaN plots), drawn in the lower panel's key
 legend = "NaN with points pt 6 ps 1.25 lw 1.3 lc rgb 'black' title 'analytic amplitude > 10^{-12} (prediction)', " . \
          "NaN with points pt 2 ps 0.7 lw 1.3 lc rgb 'black' title 'nonzero in the paper''s table 1', " . \
@@ -72,8 +72,8 @@ do for [p = 1:2] {
     c = CYC[p]
     if (has(c)) {
         nc = 0; np = 0
-        stats file skip 1 using ((strcol(1) eq c && column(5) > amp_threshold) ? nc = nc + 1 : 0, \
-                                 (strcol(1) eq c && valid(6) && column(6) == 1) ? np = np + 1 : 0, 0) nooutput
+        stats file skip 1 using ((strcol(1) eq c && column(4) > amp_threshold) ? nc = nc + 1 : 0, \
+                                 (strcol(1) eq c && valid(5) && column(5) == 1) ? np = np + 1 : 0, 0) nooutput
         CMD[p] = cells(c) . (nc > 0 ? ", " . circles(c) : "") . (np > 0 ? ", " . crosses(c) : "")
     } else {
         CMD[p] = "NaN notitle"

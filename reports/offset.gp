@@ -2,7 +2,8 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/offset.gp
 #
-# Reads  in_dir/offset.csv          quantity,offset_over_r,max_rel_error,simbody_max_rel_error
+# Reads  in_dir/offset.csv          quantity,offset_over_r,max_rel_error,simbody_max_rel_error,... (column 4: the
+#                                    first reference engine's; one per reference engine)
 #        in_dir/offset_thrust.csv   engine,offset_over_r,peak_major_thrust,peak_minor_thrust,thrust_reversal_deg,
 #                                   max_abs_drive_torque
 # Writes out_dir/offset.svg and out_dir/offset.png

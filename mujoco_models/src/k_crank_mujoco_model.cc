@@ -731,6 +731,8 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, Variant variant
   if (!(settings.accuracy > 0.0 && settings.accuracy <= 0.1))
     throw std::invalid_argument("MuJoCo's time step must be a fraction of a revolution in (0, 0.1]");
   if (settings.revolutions < 1) throw std::invalid_argument("the free run needs at least one revolution");
+  if (settings.gas || settings.load_torque != 0.0)
+    throw std::invalid_argument("MuJoCo's free run takes neither gas forces nor a load torque (Engine::simulates_loads)");
 
   // The release state, closed exactly (Newton on MuJoCo's kinematics), at phi = 0 with omega0.
   std::vector<double> qpos, qvel;

@@ -15,9 +15,6 @@
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
-#include "crankcheck/simbody_models/free_run.h"
-#include "crankcheck/simbody_models/k_crank_gravity_model.h"
-#include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/install_paths.h"
 #include "crankcheck/validation/parts.h"
@@ -156,20 +153,22 @@ TableSet crossCheckCase(const std::string& family, const Mechanism& m, const std
   };
   for (double rpm : m.speed_rpm > 0.0 ? std::vector<double>{m.speed_rpm, 0.0} : std::vector<double>{0.0}) {
     const Mechanism case_m = withSpeed(m, rpm);
-    simbody_models::KCrankModel model(case_m);  // also Simbody's second route to Q (virtual power)
-    // every other registered engine, exact or soft (engines.h), against the analytic engine
-    std::vector<std::pair<std::string, std::unique_ptr<EngineModel>>> others;
+    // The closed forms against every other registered engine, exact or soft (engines.h), with its second route to Q
+    // where it offers one (Engine::second_q_route), at rest.
+    const std::unique_ptr<EngineModel> closed_form = getClosedFormEngine().build(case_m);
+    std::vector<std::pair<const Engine*, std::unique_ptr<EngineModel>>> others;
     for (const Engine& engine : listEngines())
-      if (engine.name != "analytic" && engine.name != "simbody") others.emplace_back(engine.name, engine.build(case_m));
+      if (!engine.closed_form) others.emplace_back(&engine, engine.build(case_m));
     const Scales sc = calcScales(case_m);
     for (double phi_deg : angles_deg) {
       const double phi = radiansFromDegrees(phi_deg);
-      const Evaluation a = analytic::calcEvaluation(case_m, phi);
-      for (const Comparison& c : compareEvaluations(case_m, a, model.evaluate(phi))) note("simbody", c, phi_deg, rpm);
-      if (rpm == 0.0)
-        note("simbody", {"Q (virtual power)", -1, a.Q, model.calcVirtualPowerQ(phi), sc.energy, sc.conditioning}, phi_deg, rpm);
-      for (auto& [name, other] : others)
-        for (const Comparison& c : compareEvaluations(case_m, a, other->evaluate(phi))) note(name, c, phi_deg, rpm);
+      const Evaluation a = closed_form->evaluate(phi);
+      for (auto& [engine, other] : others) {
+        for (const Comparison& c : compareEvaluations(case_m, a, other->evaluate(phi))) note(engine->name, c, phi_deg, rpm);
+        if (rpm == 0.0 && !engine->second_q_route.empty())
+          note(engine->name, {"Q (" + engine->second_q_route + ")", -1, a.Q, other->calcSecondRouteQ(phi), sc.energy, sc.conditioning},
+               phi_deg, rpm);
+      }
     }
   }
   Table t("crosscheck", {{"family", kText}, {"engine", kText}, {"case", kText}, {"lambda", "-"}, {"quantity", kText},

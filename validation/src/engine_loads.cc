@@ -4,11 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <tuple>
 
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/reactions.h"
-#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/scales.h"
 
@@ -64,9 +65,11 @@ Parts splitAt(const Mechanism& m, double phi) {
 
 TableSet calcTorqueSplitTables(const Mechanism& car, const Mechanism& marine) {
   Table split, share;
-  split = Table("torque_split", {{"engine", kText}, {"phi_deg", "deg"}, {"drive_torque", "N m"}, {"gas_torque", "N m"},
-                                 {"inertia_torque", "N m"}, {"gravity_torque", "N m"},
-                                 {"simbody_drive_torque", "N m"}});
+  const std::vector<const Engine*> references = listReferenceEngines();
+  std::vector<Column> split_columns = {{"engine", kText}, {"phi_deg", "deg"}, {"drive_torque", "N m"}, {"gas_torque", "N m"},
+                                       {"inertia_torque", "N m"}, {"gravity_torque", "N m"}};
+  for (const Engine* e : references) split_columns.push_back({e->name + "_drive_torque", "N m"});  // each engine's whole
+  split = Table("torque_split", split_columns);
   share = Table("gravity_share", {{"cycle", kText}, {"k", "-"}, {"speed_rpm", "rpm"}, {"mean_abs_drive_torque", "N m"},
                                   {"mean_abs_gravity_torque", "N m"}, {"share", "-"}, {"resolved", kText}});
   const Mechanism car4 = withSpeed(withGasAtDeadCentres(inlineOf(car, 4, Cycle::kFourStroke),
@@ -75,12 +78,15 @@ TableSet calcTorqueSplitTables(const Mechanism& car, const Mechanism& marine) {
                                               makeExampleGas(Cycle::kTwoStroke, 2.0 * marine.crank.radius / 3.0));
   for (const auto& [name, m] : {std::pair<std::string, const Mechanism&>{"car_inline4_6000rpm", car4},
                                 std::pair<std::string, const Mechanism&>{"marine_inline6_two_stroke", ship}}) {
-    simbody_models::KCrankModel model(m);
+    std::vector<std::unique_ptr<EngineModel>> models;
+    for (const Engine* e : references) models.push_back(e->build(m));
     const double cycle_deg = m.engine.cycle == Cycle::kFourStroke ? 720.0 : 360.0;
     for (double d = 0.0; d < cycle_deg; d += 2.5) {
       const double phi = radiansFromDegrees(d);
       const Parts p = splitAt(m, phi);
-      split.rows.push_back({name, num(d), num(p.drive), num(p.gas), num(p.inertia), num(p.gravity), num(model.evaluate(phi).drive_torque)});
+      std::vector<std::string> row = {name, num(d), num(p.drive), num(p.gas), num(p.inertia), num(p.gravity)};
+      for (const auto& model : models) row.push_back(num(model->evaluate(phi).drive_torque));
+      split.rows.push_back(row);
     }
   }
   for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke})
@@ -106,16 +112,17 @@ TableSet calcTorqueSplitTables(const Mechanism& car, const Mechanism& marine) {
 
 TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine) {
   Table t("rod_models", {{"engine", kText}, {"variable", kText}, {"x", "SI"}, {"two_mass_error", "-"},
-                         {"two_mass_delta_I_error", "-"}, {"two_mass_delta_I_resolved", kText}});
+                         {"two_mass_delta_I_error", "-"}, {"two_mass_delta_I_resolved", kText}, {"reference", kText}});
   // The two-mass rod's error is a smooth function of phi: its maximum over the turn is refined from 48 samples
   // (extremum.h). With Delta_I the error is rounding: the worst of the 48 samples, a bound (resolved 0) unless it
   // exceeds 100 times the agreement tolerance.
-  auto worst = [](const Mechanism& m) {
-    simbody_models::KCrankModel model(m);
+  // Against each reference engine's rigid rod (the `reference` column).
+  auto worst = [](const Engine& engine, const Mechanism& m) {
+    const std::unique_ptr<EngineModel> model = engine.build(m);
     const Scales scales = calcScales(m);
     auto error = [&](analytic::RodInertiaForm form) {
       return [&model, &m, form](double phi) {
-        return analytic::calcReactions(m, phi, form).drive_torque - model.evaluate(phi).drive_torque;
+        return analytic::calcReactions(m, phi, form).drive_torque - model->evaluate(phi).drive_torque;
       };
     };
     const double without = findMaxAbsOverTurn(error(analytic::RodInertiaForm::kTwoMassWithoutDeltaI), 48).value;
@@ -132,8 +139,10 @@ TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine) {
       m.rod.length *= scale;
       m.rod.com_from_wrist_pin *= scale;
       m.rod.inertia_about_wrist_pin *= scale * scale;
-      const auto [without, with, resolved] = worst(m);
-      t.rows.push_back({name, "lambda", num(lambda), num(without), num(with), resolved ? "1" : "0"});
+      for (const Engine* engine : listReferenceEngines()) {
+        const auto [without, with, resolved] = worst(*engine, m);
+        t.rows.push_back({name, "lambda", num(lambda), num(without), num(with), resolved ? "1" : "0", engine->name});
+      }
     }
     // Against Delta_I / I_G: the rod's central inertia I_G = f m_k z_k (l - z_k) (f = 1: the two-mass value, Delta_I = 0).
     for (double f : {0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 2.0, 3.0}) {
@@ -142,8 +151,10 @@ TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine) {
       const double I_G = f * m_k * z * (l - z);
       m.rod.inertia_about_wrist_pin = m_k * z * z + I_G;
       const double delta_I = m.rod.inertia_about_wrist_pin - l * z * m_k;
-      const auto [without, with, resolved] = worst(m);
-      t.rows.push_back({name, "delta_I_over_I_G", num(delta_I / I_G), num(without), num(with), resolved ? "1" : "0"});
+      for (const Engine* engine : listReferenceEngines()) {
+        const auto [without, with, resolved] = worst(*engine, m);
+        t.rows.push_back({name, "delta_I_over_I_G", num(delta_I / I_G), num(without), num(with), resolved ? "1" : "0", engine->name});
+      }
     }
   }
   return {{"rod_models", t}};
@@ -159,7 +170,11 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
                                              {"max_difference_rel", "-"}});
   for (size_t index = 0; index < scenes.size(); ++index) {
     const Mechanism& m = scenes[index];
-    simbody_models::KCrankModel model(m);
+    // The closed forms first, then each reference engine (engines.h).
+    std::vector<const Engine*> engines = {&getClosedFormEngine()};
+    for (const Engine* e : listReferenceEngines()) engines.push_back(e);
+    std::vector<std::unique_ptr<EngineModel>> models;
+    for (const Engine* e : engines) models.push_back(e->build(m));
     const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
     // The crank pin of cylinder 0 is at angle phi + beta_0 from +X (CONVENTIONS.md, layouts).
     auto crankFrame = [&m](const Evaluation& e) {
@@ -168,38 +183,46 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
       return std::pair{F[0] * std::cos(angle) + F[1] * std::sin(angle), -F[0] * std::sin(angle) + F[1] * std::cos(angle)};
     };
     const double scale = calcScales(m).force;
-    double worst_pin = 0.0, worst_bearing = 0.0;
+    // The largest |closed form - engine| over the samples, per engine (the closed form's own row: the largest of them).
+    std::vector<double> worst_pin(engines.size(), 0.0), worst_bearing(engines.size(), 0.0);
     const int samples = static_cast<int>(std::lround(degreesFromRadians(cycle) / step_deg));
-    std::map<std::string, std::vector<double>> magnitudes;  // engine + force -> |F| at the samples
+    std::vector<std::map<std::string, std::vector<double>>> magnitudes(engines.size());  // force -> |F| at the samples
     for (int i = 0; i < samples; ++i) {
       const double d = step_deg * i, phi = radiansFromDegrees(d);
-      const Evaluation a = analytic::calcEvaluation(m, phi), s = model.evaluate(phi);
-      for (const Evaluation* e : {&a, &s}) {
-        const auto [radial, tangential] = crankFrame(*e);
-        const std::string engine = e == &a ? "analytic" : "simbody";
-        polar.rows.push_back({std::to_string(first_index + static_cast<int>(index)), engine, num(d),
-                              num(radial), num(tangential), num(e->bearing_force[0]), num(e->bearing_force[1]), m.name});
-        magnitudes[engine + " crank_pin"].push_back(std::hypot(e->cylinders[0].crank_pin_force[0], e->cylinders[0].crank_pin_force[1]));
-        magnitudes[engine + " bearing"].push_back(std::hypot(e->bearing_force[0], e->bearing_force[1]));
+      std::vector<Evaluation> e;
+      for (const auto& model : models) e.push_back(model->evaluate(phi));
+      for (size_t j = 0; j < engines.size(); ++j) {
+        const auto [radial, tangential] = crankFrame(e[j]);
+        polar.rows.push_back({std::to_string(first_index + static_cast<int>(index)), engines[j]->name, num(d),
+                              num(radial), num(tangential), num(e[j].bearing_force[0]), num(e[j].bearing_force[1]), m.name});
+        magnitudes[j]["crank_pin"].push_back(std::hypot(e[j].cylinders[0].crank_pin_force[0], e[j].cylinders[0].crank_pin_force[1]));
+        magnitudes[j]["bearing"].push_back(std::hypot(e[j].bearing_force[0], e[j].bearing_force[1]));
+        if (j == 0) continue;
+        const Evaluation& a = e[0];
+        const double pin = std::hypot(a.cylinders[0].crank_pin_force[0] - e[j].cylinders[0].crank_pin_force[0],
+                                      a.cylinders[0].crank_pin_force[1] - e[j].cylinders[0].crank_pin_force[1]);
+        const double bearing = std::hypot(a.bearing_force[0] - e[j].bearing_force[0], a.bearing_force[1] - e[j].bearing_force[1]);
+        for (size_t into : {size_t{0}, j}) {
+          worst_pin[into] = std::max(worst_pin[into], pin);
+          worst_bearing[into] = std::max(worst_bearing[into], bearing);
+        }
       }
-      worst_pin = std::max(worst_pin, std::hypot(a.cylinders[0].crank_pin_force[0] - s.cylinders[0].crank_pin_force[0],
-                                                  a.cylinders[0].crank_pin_force[1] - s.cylinders[0].crank_pin_force[1]));
-      worst_bearing = std::max(worst_bearing, std::hypot(a.bearing_force[0] - s.bearing_force[0], a.bearing_force[1] - s.bearing_force[1]));
     }
     // The largest |force| over the working cycle, each engine alike: the samples, the best two refined by
     // Brent's method (the cycle mapped onto [0, 2 pi) for findMaxAbsOverTurn).
-    for (const char* engine : {"analytic", "simbody"})
+    for (size_t j = 0; j < engines.size(); ++j)
       for (const char* force : {"crank_pin", "bearing"}) {
-        const bool is_analytic = std::string(engine) == "analytic", is_pin = std::string(force) == "crank_pin";
+        const bool is_pin = std::string(force) == "crank_pin";
         const auto magnitude = [&](double u) {
           const double phi = u * cycle / (2.0 * M_PI);
-          const Evaluation e = is_analytic ? analytic::calcEvaluation(m, phi) : model.evaluate(phi);
+          const Evaluation e = models[j]->evaluate(phi);
           const Vec2& F = is_pin ? e.cylinders[0].crank_pin_force : e.bearing_force;
           return std::hypot(F[0], F[1]);
         };
-        const TurnMaximum best = findMaxAbsOverTurn(magnitude, magnitudes[std::string(engine) + " " + force], 2);
-        summary.rows.push_back({m.name, engine, force, num(best.value), num(degreesFromRadians(best.phi * cycle / (2.0 * M_PI))),
-                                num((is_pin ? worst_pin : worst_bearing) / scale)});
+        const TurnMaximum best = findMaxAbsOverTurn(magnitude, magnitudes[j][force], 2);
+        summary.rows.push_back({m.name, engines[j]->name, force, num(best.value),
+                                num(degreesFromRadians(best.phi * cycle / (2.0 * M_PI))),
+                                num((is_pin ? worst_pin[j] : worst_bearing[j]) / scale)});
       }
   }
   return {{"pin_load_polar", polar}, {"pin_load_polar_summary", summary}};

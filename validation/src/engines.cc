@@ -1,5 +1,6 @@
 #include "crankcheck/validation/engines.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "crankcheck/analytic/engine.h"
@@ -7,19 +8,49 @@
 #include "crankcheck/simbody_models/engine.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/profile.h"
+#include "crankcheck/validation/variants.h"
 
 namespace crankcheck::validation {
 
+namespace {
+
+// The engines registerExtraEngine added, and whether listEngines() has been built (after which none may be added).
+std::vector<Engine>& extraEngines() {
+  static std::vector<Engine> extra;
+  return extra;
+}
+bool registry_built = false;
+
+}  // namespace
+
+void registerExtraEngine(Engine engine) {
+  if (registry_built) throw std::logic_error("registerExtraEngine: the engine registry is already in use");
+  for (const Engine& e : extraEngines())
+    if (e.name == engine.name) throw std::logic_error("registerExtraEngine: engine \"" + engine.name + "\" twice");
+  extraEngines().push_back(std::move(engine));
+}
+
 const std::vector<Engine>& listEngines() {
   static const std::vector<Engine> engines = [] {
+    registry_built = true;
     std::vector<Engine> all;
     // One line per engine folder. A fourth engine (e.g. dart_models/) adds its line here.
     for (Engine& e : analytic::describeEngines()) all.push_back(std::move(e));
     for (Engine& e : simbody_models::describeEngines()) all.push_back(std::move(e));
     for (Engine& e : mujoco_models::describeEngines()) all.push_back(std::move(e));
+    for (const Engine& e : extraEngines()) {  // a test build's (registerExtraEngine)
+      for (const Engine& known : all)
+        if (known.name == e.name) throw std::logic_error("registerExtraEngine: engine \"" + e.name + "\" twice");
+      all.push_back(e);
+    }
     // Every build counted while profiling is on (profile.h); the engines' own models otherwise.
-    for (Engine& e : all)
+    for (Engine& e : all) {
       e.build = [build = std::move(e.build), name = e.name](const Mechanism& m) { return buildCounted(build, name, m); };
+      if (e.build_gravity)
+        e.build_gravity = [build = std::move(e.build_gravity), name = e.name](const Mechanism& m) {
+          return buildCounted(build, name, m);
+        };
+    }
     return all;
   }();
   return engines;
@@ -50,8 +81,30 @@ void checkEveryEngineBuilds(const Mechanism& m, const std::string& path) {
 std::vector<const Engine*> listReferenceEngines() {
   std::vector<const Engine*> references;
   for (const Engine& e : listEngines())
-    if (e.gated && e.name != "analytic") references.push_back(&e);
+    if (e.gated && !e.closed_form) references.push_back(&e);
   return references;
+}
+
+std::string joinEngineLibraries() {
+  std::vector<std::string> seen;
+  std::string out;
+  for (const Engine& e : listEngines()) {
+    if (e.closed_form || std::find(seen.begin(), seen.end(), e.library) != seen.end()) continue;
+    seen.push_back(e.library);
+    out += (out.empty() ? "" : ", ") + e.library;
+  }
+  return out;
+}
+
+const Engine& getClosedFormEngine() {
+  for (const Engine& e : listEngines())
+    if (e.closed_form) return e;
+  throw std::logic_error("the engine registry has no closed-form engine");
+}
+
+std::unique_ptr<EngineModel> buildGravityModel(const Engine& engine, const Mechanism& m) {
+  if (engine.build_gravity) return engine.build_gravity(m);
+  return engine.build(withSpeed(m, 0.0));
 }
 
 }  // namespace crankcheck::validation

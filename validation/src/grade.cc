@@ -17,7 +17,6 @@
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/scene/scene_writer.h"
-#include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/evaluation_json.h"
@@ -273,15 +272,29 @@ std::string regimeOf(const Mechanism& m) {
 // below 1) is shown as the largest double, never as inf.
 double finiteRatio(double x) { return std::min(x, std::numeric_limits<double>::max()); }
 
+// What a program is judged against, in the order of the tables' columns: the first reference engine (its error is the
+// program's `rel_error`), the closed forms, then the other reference engines (engines.h).
+}  // namespace
+
+std::vector<const Engine*> listGradeJudges() {
+  const std::vector<const Engine*> references = listReferenceEngines();
+  std::vector<const Engine*> judges = {references.front(), &getClosedFormEngine()};
+  judges.insert(judges.end(), references.begin() + 1, references.end());
+  return judges;
+}
+
+namespace {
+
 // What a grade found for one quantity in one regime.
 struct QuantityGrade {
   long long asked = 0, provided = 0;
   bool pass = true;
-  // The largest error / scale against each reference, and where the largest of the three is.
-  double largest_simbody = 0.0, largest_analytic = 0.0, largest_mujoco = 0.0, largest = -1.0;
+  // The largest error / scale against each judge (listGradeJudges), and where the largest of them is.
+  std::vector<double> largest_by;
+  double largest = -1.0;
   std::string largest_case;
   double largest_phi_deg = 0.0, largest_rpm = 0.0;
-  // Where error / tolerance (the largest of the three references) is worst: that error / scale, tolerance / scale.
+  // Where error / tolerance (the largest over the judges) is worst: that error / scale, tolerance / scale.
   double worst_ratio = -1.0, error_at_worst = 0.0, tolerance_rel = 0.0;
   std::string where_case;
   double where_phi_deg = 0.0, where_rpm = 0.0;
@@ -290,9 +303,8 @@ struct QuantityGrade {
     asked += q.asked;
     provided += q.provided;
     pass = pass && q.pass;
-    largest_simbody = std::max(largest_simbody, q.largest_simbody);
-    largest_analytic = std::max(largest_analytic, q.largest_analytic);
-    largest_mujoco = std::max(largest_mujoco, q.largest_mujoco);
+    largest_by.resize(std::max(largest_by.size(), q.largest_by.size()), 0.0);
+    for (size_t j = 0; j < q.largest_by.size(); ++j) largest_by[j] = std::max(largest_by[j], q.largest_by[j]);
     if (q.largest > largest) {
       largest = q.largest;
       largest_case = q.largest_case;
@@ -329,25 +341,23 @@ struct GradeState {
 
 void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, GradeState& state) {
   const Mechanism& m = c.mechanism;
-  simbody_models::KCrankModel model(m);
   const Scales scales = calcPositiveScales(m);  // positive at rest and without gravity too
   const std::string regime = regimeOf(m);
-  // The third reference: MuJoCo with exact multipliers (engines.h), built like the others from the case's scene.
-  const std::unique_ptr<EngineModel> mujoco = findEngine("mujoco").build(m);
+  // Every judge built from the case's scene: the first reference engine, the closed forms, the other references.
+  const std::vector<const Engine*> judges = listGradeJudges();
+  std::vector<std::unique_ptr<EngineModel>> models;
+  for (const Engine* judge : judges) models.push_back(judge->build(m));
   const double lambda = lambdaOf(m);
   for (size_t i = 0; i < c.phi_deg.size(); ++i) {
     const double phi = radiansFromDegrees(c.phi_deg[i]);
-    const Evaluation a = analytic::calcEvaluation(m, phi);
-    const Evaluation s = model.evaluate(phi);
-    const std::vector<Comparison> vs_simbody = compareEvaluations(m, scales, program[i], s);
-    const std::vector<Comparison> vs_analytic = compareEvaluations(m, scales, program[i], a);
-    const std::vector<Comparison> vs_mujoco = compareEvaluations(m, scales, program[i], mujoco->evaluate(phi));
-    const std::vector<Comparison> own = compareEvaluations(m, scales, a, s);  // the analytic engine's own error
+    std::vector<Evaluation> e;
+    for (const auto& model : models) e.push_back(model->evaluate(phi));
+    std::vector<std::vector<Comparison>> vs;  // the program against each judge
+    for (const Evaluation& judge : e) vs.push_back(compareEvaluations(m, scales, program[i], judge));
+    const std::vector<Comparison> own = compareEvaluations(m, scales, e[1], e[0]);  // the closed forms' own error
     int moment_component = 0;
-    for (size_t n = 0; n < vs_simbody.size(); ++n) {
-      const Comparison& cs = vs_simbody[n];
-      const Comparison& ca = vs_analytic[n];
-      const Comparison& cm = vs_mujoco[n];
+    for (size_t n = 0; n < vs[0].size(); ++n) {
+      const Comparison& cs = vs[0][n];
       // shaking_moment X and Y without axial positions are not defined: not asked, never graded.
       const bool defined =
           cs.quantity != "shaking_moment" || moment_component++ == 2 || hasAxialPositions(m);
@@ -359,33 +369,36 @@ void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, Grade
       if (!std::isnan(cs.a)) {  // provided
         value.provided = 1;
         le.provided = true;
-        value.largest_simbody = finiteRatio(cs.error() / cs.scale);
-        value.largest_analytic = finiteRatio(ca.error() / ca.scale);
-        value.largest_mujoco = finiteRatio(cm.error() / cm.scale);
-        value.largest = std::max({value.largest_simbody, value.largest_analytic, value.largest_mujoco});
+        double worst_error = 0.0;
+        value.pass = true;
+        for (const std::vector<Comparison>& v : vs) {
+          value.largest_by.push_back(finiteRatio(v[n].error() / v[n].scale));
+          worst_error = std::max(worst_error, v[n].error());
+          value.pass = value.pass && v[n].agrees();
+        }
+        value.largest = *std::max_element(value.largest_by.begin(), value.largest_by.end());
         value.largest_case = value.where_case = c.id;
         value.largest_phi_deg = value.where_phi_deg = c.phi_deg[i];
         value.largest_rpm = value.where_rpm = m.speed_rpm;
-        // The three tolerances are one (the scale and conditioning are the case's): the worst ratio is the largest error's.
-        value.worst_ratio = finiteRatio(std::max({cs.error(), ca.error(), cm.error()}) / cs.tolerance());
+        // The judges' tolerances are one (the scale and conditioning are the case's): the worst ratio is the largest error's.
+        value.worst_ratio = finiteRatio(worst_error / cs.tolerance());
         value.error_at_worst = value.largest;
         value.tolerance_rel = cs.tolerance() / cs.scale;
-        value.pass = cs.agrees() && ca.agrees() && cm.agrees();
-        le.program = std::max(le.program, value.largest_simbody);
+        le.program = std::max(le.program, value.largest_by[0]);
       }
       state.quantities[{cs.quantity, "all"}].merge(value);
       state.quantities[{cs.quantity, regime}].merge(value);
       if (value.provided == 0) continue;
-      const double rel_s = value.largest_simbody, ratio = value.worst_ratio;
-      const bool agrees = value.pass;
-      if (!agrees) {
+      const double rel_s = value.largest_by[0], ratio = value.worst_ratio;
+      if (!value.pass) {
         const std::string key = c.id + "\n" + cs.quantity + "\n" + std::to_string(cs.cylinder);
         Failure& f = state.failures[key];
         if (ratio > f.ratio) {
           f.ratio = ratio;
           f.row = {c.id, c.family, formatNumber(lambda), cs.quantity, cs.cylinder < 0 ? std::string() : std::to_string(cs.cylinder),
                    formatNumber(c.phi_deg[i]), formatNumber(m.speed_rpm), formatNumber(cs.a), formatNumber(cs.b),
-                   formatNumber(ca.b), formatNumber(rel_s), formatNumber(cs.tolerance() / cs.scale), formatNumber(cm.b)};
+                   formatNumber(vs[1][n].b), formatNumber(rel_s), formatNumber(cs.tolerance() / cs.scale)};
+          for (size_t j = 2; j < vs.size(); ++j) f.row.push_back(formatNumber(vs[j][n].b));
         }
       }
     }
@@ -523,13 +536,15 @@ TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& progr
   for (const GradeState& s : states) mergeInto(all, s);
   TableSet tables;
   Table& summary = tables["grade_summary"];
-  summary = Table("grade_summary", {{"quantity", kText}, {"regime", kText}, {"asked", "-"}, {"provided", "-"},
-                                    {"largest_rel_error", "-"}, {"largest_rel_error_simbody", "-"},
-                                    {"largest_rel_error_analytic", "-"}, {"largest_rel_error_mujoco", "-"},
-                                    {"largest_where_case", kText}, {"largest_where_phi_deg", "deg"},
-                                    {"largest_where_speed_rpm", "rpm"}, {"rel_error_at_worst_ratio", "-"},
-                                    {"worst_ratio", "-"}, {"tolerance_rel", "-"}, {"where_case", kText},
-                                    {"where_phi_deg", "deg"}, {"where_speed_rpm", "rpm"}, {"verdict", kText}});
+  const std::vector<const Engine*> judges = listGradeJudges();
+  std::vector<Column> summary_columns = {{"quantity", kText}, {"regime", kText}, {"asked", "-"}, {"provided", "-"},
+                                         {"largest_rel_error", "-"}};
+  for (const Engine* judge : judges) summary_columns.push_back({"largest_rel_error_" + judge->name, "-"});
+  summary_columns.insert(summary_columns.end(),
+                         {{"largest_where_case", kText}, {"largest_where_phi_deg", "deg"}, {"largest_where_speed_rpm", "rpm"},
+                          {"rel_error_at_worst_ratio", "-"}, {"worst_ratio", "-"}, {"tolerance_rel", "-"},
+                          {"where_case", kText}, {"where_phi_deg", "deg"}, {"where_speed_rpm", "rpm"}, {"verdict", kText}});
+  summary = Table("grade_summary", summary_columns);
   for (const std::string& quantity : getGradeQuantities())
     for (const GradeRegime& regime : getGradeRegimes()) {
       const auto it = all.quantities.find({quantity, regime.id});
@@ -537,12 +552,13 @@ TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& progr
       const QuantityGrade& q = it->second;
       const bool any = q.provided > 0;
       auto number = [any](double x) { return any ? formatNumber(x) : std::string(); };
-      summary.rows.push_back({quantity, regime.id, std::to_string(q.asked), std::to_string(q.provided), number(q.largest),
-                              number(q.largest_simbody), number(q.largest_analytic), number(q.largest_mujoco),
-                              any ? q.largest_case : "", number(q.largest_phi_deg), number(q.largest_rpm),
-                              number(q.error_at_worst), number(q.worst_ratio), number(q.tolerance_rel),
-                              any ? q.where_case : "", number(q.where_phi_deg), number(q.where_rpm),
-                              !any ? "not provided" : q.pass ? "pass" : "FAIL"});
+      std::vector<std::string> row = {quantity, regime.id, std::to_string(q.asked), std::to_string(q.provided), number(q.largest)};
+      for (size_t j = 0; j < judges.size(); ++j) row.push_back(number(j < q.largest_by.size() ? q.largest_by[j] : 0.0));
+      row.insert(row.end(), {any ? q.largest_case : "", number(q.largest_phi_deg), number(q.largest_rpm),
+                             number(q.error_at_worst), number(q.worst_ratio), number(q.tolerance_rel),
+                             any ? q.where_case : "", number(q.where_phi_deg), number(q.where_rpm),
+                             !any ? "not provided" : q.pass ? "pass" : "FAIL"});
+      summary.rows.push_back(row);
     }
   Table& by_lambda = tables["grade_error_vs_lambda"];
   by_lambda = Table("grade_error_vs_lambda", {{"quantity", kText}, {"lambda", "-"}, {"program_max_rel_error", "-"},
@@ -551,10 +567,13 @@ TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& progr
     if (e.provided)
       by_lambda.rows.push_back({key.first, formatNumber(key.second), formatNumber(e.program), formatNumber(e.analytic)});
   Table& failures = tables["grade_failures"];
-  failures = Table("grade_failures", {{"case", kText}, {"family", kText}, {"lambda", "-"}, {"quantity", kText},
-                                      {"cylinder", "-"}, {"phi_deg", "deg"}, {"speed_rpm", "rpm"},
-                                      {"program_value", "SI"}, {"simbody_value", "SI"}, {"analytic_value", "SI"},
-                                      {"rel_error", "-"}, {"tolerance_rel", "-"}, {"mujoco_value", "SI"}});
+  // program_value, the first two judges' values, the error against the first and its tolerance, the other judges'
+  std::vector<Column> failure_columns = {{"case", kText}, {"family", kText}, {"lambda", "-"}, {"quantity", kText},
+                                         {"cylinder", "-"}, {"phi_deg", "deg"}, {"speed_rpm", "rpm"}, {"program_value", "SI"},
+                                         {judges[0]->name + "_value", "SI"}, {judges[1]->name + "_value", "SI"},
+                                         {"rel_error", "-"}, {"tolerance_rel", "-"}};
+  for (size_t j = 2; j < judges.size(); ++j) failure_columns.push_back({judges[j]->name + "_value", "SI"});
+  failures = Table("grade_failures", failure_columns);
   for (const auto& [key, f] : all.failures) failures.rows.push_back(f.row);
   return tables;
 }

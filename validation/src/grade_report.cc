@@ -6,8 +6,7 @@
 #include <map>
 #include <set>
 
-#include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
-#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/report.h"
@@ -56,18 +55,19 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
   ReportDocument doc("crankcheck grade report");
   char line[512];
   std::snprintf(line, sizeof line,
-                "crankcheck %s, Simbody %s, MuJoCo %s, %s; %zu cases%s, %d job%s%s, %.1f s, timeout %.3g s per request.",
-                getCrankcheckVersion(), simbody_models::getSimbodyVersion().c_str(),
-                mujoco_models::getMujocoVersion().c_str(), today().c_str(), cases.size(),
+                "crankcheck %s, %s, %s; %zu cases%s, %d job%s%s, %.1f s, timeout %.3g s per request.",
+                getCrankcheckVersion(), joinEngineLibraries().c_str(), today().c_str(), cases.size(),
                 info.quick ? " (--quick)" : "", info.jobs, info.jobs == 1 ? "" : "s", info.batch ? ", --batch" : "",
                 info.seconds, info.timeout_seconds);
   doc.addParagraph("Graded program: `" + command + "`\n\n" + line);
+  const std::vector<const Engine*> judges = listGradeJudges();
+  std::string names;  // "simbody / analytic / mujoco"
+  for (const Engine* judge : judges) names += (names.empty() ? "" : " / ") + judge->name;
   doc.addParagraph(
-      "Each value the program provided is compared with Simbody's, the analytic engine's and MuJoCo's (exact "
-      "multipliers) by the gate's rule: |program - reference| <= 64 eps x scale x conditioning "
-      "(docs/CONVENTIONS-crankcheck.md, \"Tolerances\"). A quantity passes when every provided value agrees with all "
-      "three engines. What the program left out (or sent as "
-      "null) is *not provided*: never counted as wrong, never as right.");
+      "Each value the program provided is compared with every exact engine's (" + names + ") by the gate's rule: "
+      "|program - reference| <= 64 eps x scale x conditioning (docs/CONVENTIONS-crankcheck.md, \"Tolerances\"). A "
+      "quantity passes when every provided value agrees with all " + std::to_string(judges.size()) + " engines. What the "
+      "program left out (or sent as null) is *not provided*: never counted as wrong, never as right.");
 
   doc.addHeading(2, "Summary per quantity");
   const size_t regime = columnOf(summary, "regime"), verdict = columnOf(summary, "verdict");
@@ -83,8 +83,12 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
     if (row[regime] != "all" && cell(row, "provided") == "0") continue;  // a regime of a quantity not provided
     rows.push_back({row[regime] == "all" ? row[0] : "", describeGradeRegime(row[regime]),
                     cell(row, "provided") + " / " + cell(row, "asked"), shortNumber(cell(row, "largest_rel_error")),
-                    shortNumber(cell(row, "largest_rel_error_simbody")) + " / " + shortNumber(cell(row, "largest_rel_error_analytic")) +
-                        " / " + shortNumber(cell(row, "largest_rel_error_mujoco")),
+                    [&] {
+                      std::string by;
+                      for (const Engine* judge : judges)
+                        by += (by.empty() ? "" : " / ") + shortNumber(cell(row, ("largest_rel_error_" + judge->name).c_str()));
+                      return by;
+                    }(),
                     where(row, "largest_where_case", "largest_where_phi_deg"), shortNumber(cell(row, "rel_error_at_worst_ratio")),
                     shortNumber(cell(row, "tolerance_rel")), where(row, "where_case", "where_phi_deg"),
                     v == "FAIL" ? "**FAIL**" : v});
@@ -92,12 +96,12 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
   }
   doc.addParagraph(std::to_string(passed) + " quantities pass, " + std::to_string(failed) + " fail, " +
                    std::to_string(absent) + " not provided. Errors are relative to the quantity's scale. *Largest error* "
-                   "is the largest |program - reference| over every provided value and the three references (then "
-                   "against Simbody / analytic / MuJoCo); *error at worst ratio* is the error where error / tolerance is "
+                   "is the largest |program - reference| over every provided value and every engine (then "
+                   "against " + names + "); *error at worst ratio* is the error where error / tolerance is "
                    "largest, beside that tolerance (the tolerance grows near lambda = 1, so the two can be at different "
                    "cases). Each quantity is shown over all cases, then by regime: moving and at rest, lambda up to 0.4 "
                    "and beyond (a simulator's errors at rest and at speed can differ by orders of magnitude).");
-  doc.addTable({"quantity", "regime", "provided / asked", "largest error / scale", "largest vs Simbody / analytic / MuJoCo",
+  doc.addTable({"quantity", "regime", "provided / asked", "largest error / scale", "largest vs " + names,
                 "where the largest (case, crank angle)", "error at worst ratio / scale", "tolerance / scale",
                 "where the worst ratio (case, crank angle)", "verdict"},
                rows);
@@ -110,8 +114,9 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
     for (const std::string& q : provided) list += (list.empty() ? "" : " ") + q;
     drawFigure("grade_error_vs_lambda", dir, "quantities='" + list + "'");
     doc.addFigure("grade_error_vs_lambda",
-                  "The program's largest error against Simbody over each lambda, per quantity, relative to the "
-                  "quantity's scale, beside the analytic engine's own largest error against Simbody (black) and the "
+                  "The program's largest error against " + judges[0]->name + " over each lambda, per quantity, relative "
+                  "to the quantity's scale, beside the analytic engine's own largest error against " + judges[0]->name +
+                  " (black) and the "
                   "gate's tolerance 64 eps x the conditioning 1 / (1 - lambda^2) x (l + r) / r (dashed)");
   }
 
@@ -142,7 +147,7 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
       table.push_back({r[0], r[3] + (r[4].empty() ? "" : " [" + r[4] + "]"), r[5], r[7], r[8], shortNumber(r[10]),
                        "`crankcheck eval cases/" + r[0] + ".toml --phi-deg " + r[5] + " --engine all`"});
     }
-    doc.addTable({"case", "quantity [cylinder]", "phi [deg]", "program", "Simbody", "error [scale]", "reproduce"}, table);
+    doc.addTable({"case", "quantity [cylinder]", "phi [deg]", "program", judges[0]->name, "error [scale]", "reproduce"}, table);
   }
   writeNewFile(dir / "index.md", doc.toMarkdown());
   writeNewFile(dir / "index.html", doc.toHtml());

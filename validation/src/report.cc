@@ -21,8 +21,7 @@
 #include <atomic>
 #include <stdexcept>
 
-#include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
-#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/report_document.h"
 #include "crankcheck/validation/output_folder.h"
@@ -299,8 +298,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   std::vector<Block> doc;
   doc.push_back({Block::kHeading, info.title, {}, {}, "#"});
   std::ostringstream meta;
-  meta << "Generated " << today() << " by crankcheck " << getCrankcheckVersion() << " with Simbody " << simbody_models::getSimbodyVersion()
-       << ", MuJoCo " << mujoco_models::getMujocoVersion()
+  meta << "Generated " << today() << " by crankcheck " << getCrankcheckVersion() << " with " << joinEngineLibraries()
        << ", compiler " << __VERSION__ << ", " << info.gnuplot_version << ". Campaign: "
        << (info.quick ? "quick" : "full") << ", " << info.jobs << " job(s)" << (info.shards > 1 ? ", merged from " + std::to_string(info.shards) + " shards" : "")
        << (info.seconds > 0 ? ", " + shortNumber(info.seconds, 3) + " s" : "") << ".";

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,9 +15,7 @@
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/potential_energy.h"
-#include "crankcheck/simbody_models/free_run.h"
-#include "crankcheck/simbody_models/k_crank_gravity_model.h"
-#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/extremum.h"
@@ -162,22 +161,23 @@ TableSet calcErrataTables(const Mechanism& base) {
     add("Stanczak eq (12): U_w(0) of a standing three-cylinder two-stroke [J]", "sum of eq (3) per cylinder (U_w(0) != 0)",
         "a choice of zero level; crankcheck uses U = V(phi) - V(0); Q is the same", "U_w(0) [J]", offset, "not an error");
   }
-  {  // eq (13): correct; the naming
-    simbody_models::KCrankGravityModel model(rest);
+  // eq (13): correct; the naming. Norton 13.3e: an approximation. Each judged against every reference engine.
+  for (const Engine* engine : listReferenceEngines()) {
+    const std::unique_ptr<EngineModel> model = buildGravityModel(*engine, rest);
     const double value = findMaxAbsOverTurn([&](double phi) {
-      return analytic::calcGravityTorque(rest, phi) - model.calcHoldingTorque(phi); }, 72).value;
+      return analytic::calcGravityTorque(rest, phi) - model->calcQ(phi); }, 72).value;
     add("Stanczak eq (13): Q* = dU*/dphi, called the Lagrange force", "Q* = dU*/dphi",
         "correct as dU/dphi (the torque that holds the shaft); the force in Lagrange's equation is -dU/dphi",
-        "max |Q - Simbody's holding torque| / energy scale", value / calcEnergyScale(rest), "correct (naming)");
+        "max |Q - " + engine->name + "'s holding torque| / energy scale", value / calcEnergyScale(rest), "correct (naming)");
   }
-  {  // Norton 13.3e, against Simbody's piston acceleration
-    simbody_models::KCrankModel model(base);
+  for (const Engine* engine : listReferenceEngines()) {
+    const std::unique_ptr<EngineModel> model = engine->build(base);
     const double r = base.crank.radius, w = base.engine.speed;
     const double worst = findMaxAbsOverTurn([&](double phi) {
-      return analytic::calcPistonKinematicsNorton(base, phi).a_p - model.evaluate(phi).cylinders[0].a_p; }, 72).value;
+      return analytic::calcPistonKinematicsNorton(base, phi).a_p - model->evaluate(phi).cylinders[0].a_p; }, 72).value;
     std::snprintf(text, sizeof text, "Norton 13.3e: piston acceleration at lambda = %.3g", lambdaOf(base));
-    add(text, "-r w^2 (cos + lambda cos 2theta)", "exact (Simbody)", "max |a_two_term - a| / (r w^2)", worst / (r * w * w),
-        "approximation");
+    add(text, "-r w^2 (cos + lambda cos 2theta)", "exact (" + engine->name + ")",
+        "max |a_two_term - a (" + engine->name + ")| / (r w^2)", worst / (r * w * w), "approximation");
   }
   return {{"errata", t}, {"eq5_layouts", layouts}, {"eq15_coefficients", coefficients}, {"eq15_engines", engines}};
 }

@@ -1,7 +1,7 @@
 // Report part `flywheel` (15): flywheel sizing (Norton 13.9) judged.
 //
 // Tables (CSV stems, columns; reports/README.md):
-//   flywheel         scene,flywheel_inertia,exact_delta,simbody_delta
+//   flywheel         scene,flywheel_inertia,exact_delta, then ENGINE_delta per engine whose run takes loads
 //                    for each campaign scene with [gas] (the example scenes with gas in the default campaign), the
 //                    steady run's delta against the flywheel inertia I_f (exact energy integral; Simbody's run over a
 //                    working cycle at some of the points, empty elsewhere), I_f from 0.3 to 3 times the exact inertia
@@ -22,7 +22,7 @@
 #include <stdexcept>
 
 #include "crankcheck/analytic/flywheel.h"
-#include "crankcheck/simbody_models/free_run.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/engine_loads.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/variants.h"
@@ -34,12 +34,21 @@ constexpr double kFluctuation = 0.01;
 
 std::string num(double x) { return formatNumber(x); }
 
+// The reference engines whose free run takes the gas forces and the load (Engine::simulates_loads): Simbody's.
+std::vector<const Engine*> listLoadedRunEngines() {
+  std::vector<const Engine*> out;
+  for (const Engine* e : listReferenceEngines())
+    if (e->simulate && e->simulates_loads) out.push_back(e);
+  return out;
+}
+
 // The part's three tables, empty: each task fills its own rows, the campaign adds them up (appendTables).
 TableSet makeEmptyTables() {
   // The key columns first: sorted, each series' rows come together, in order (reports/flywheel.gp draws them so).
   TableSet t;
-  t["flywheel"] = Table("flywheel", {{"scene", kText}, {"flywheel_inertia", "kg m^2"}, {"exact_delta", "-"},
-                                     {"simbody_delta", "-"}});
+  std::vector<Column> curve = {{"scene", kText}, {"flywheel_inertia", "kg m^2"}, {"exact_delta", "-"}};
+  for (const Engine* e : listLoadedRunEngines()) curve.push_back({e->name + "_delta", "-"});  // each engine's run
+  t["flywheel"] = Table("flywheel", curve);
   t["flywheel_sizing"] = Table("flywheel_sizing", {{"scene", kText}, {"cycle", kText}, {"k", "-"}, {"speed_rpm", "rpm"},
                                                    {"exact_inertia", "kg m^2"}, {"norton_inertia", "kg m^2"},
                                                    {"norton_error", "-"}, {"norton_delta", "-"}});
@@ -90,18 +99,23 @@ TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, int point) {
     if (point < 0 ? run : i != point) continue;  // each point in one task: the runs alone, the rest together
     const double I = exact.exact_inertia * std::pow(10.0, -0.5 + static_cast<double>(i) / (points - 1));  // 0.3 .. 3
     const analytic::SteadyRun steady = analytic::calcSteadyRun(m, I, exact.load_torque);
-    std::string simbody;
-    if (run) {
+    std::vector<std::string> row = {m.name, num(I), num(steady.delta)};
+    for (const Engine* engine : listLoadedRunEngines()) {
+      if (!run) {
+        row.emplace_back();
+        continue;
+      }
       Mechanism with = m;
       with.flywheel_inertia = I;
-      simbody_models::FreeRunOptions options;
-      options.gas = true;
-      options.load_torque = exact.load_torque;
-      options.revolutions = 2;
-      options.accuracy = quick ? 1e-8 : 1e-10;
-      simbody = num(simbody_models::simulateFreeRun(with, steady.omega0, options).delta);
+      FreeRunSettings settings;
+      settings.integrator = engine->integrators.front();
+      settings.gas = true;
+      settings.load_torque = exact.load_torque;
+      settings.revolutions = 2;
+      settings.accuracy = quick ? 1e-8 : 1e-10;
+      row.push_back(num(engine->simulate(with, steady.omega0, settings).delta));
     }
-    curve.rows.push_back({m.name, num(I), num(steady.delta), simbody});
+    curve.rows.push_back(row);
   }
   return tables;
 }
@@ -172,13 +186,17 @@ ReportPart describeFlywheelPart(const TableSet& tables, const std::string& headi
   const auto curve = tables.find("flywheel");
   if (curve != tables.end()) {
     const Table& c = curve->second;
-    const size_t ed = columnOf(c, "exact_delta"), sd = columnOf(c, "simbody_delta");
-    double agreement = 0.0;
-    for (const auto& row : c.rows)
-      if (!row[sd].empty())
-        agreement = std::max(agreement, std::fabs(std::stod(row[sd]) / std::stod(row[ed]) - 1.0));
-    part.paragraphs.push_back("Simbody's run agrees with the exact energy integral's delta to " + shortNumber(agreement, 2) +
-                              " (relative) at every point it was run.");
+    const size_t ed = columnOf(c, "exact_delta");
+    for (const Engine* engine : listLoadedRunEngines()) {
+      const size_t sd = columnOf(c, engine->name + "_delta");
+      double agreement = 0.0;
+      for (const auto& row : c.rows)
+        if (!row[sd].empty())
+          agreement = std::max(agreement, std::fabs(std::stod(row[sd]) / std::stod(row[ed]) - 1.0));
+      part.paragraphs.push_back(engine->library.substr(0, engine->library.find(' ')) + "'s run agrees with the exact "
+                                "energy integral's delta to " + shortNumber(agreement, 2) +
+                                " (relative) at every point it was run.");
+    }
   }
   return part;
 }

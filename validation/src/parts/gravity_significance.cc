@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,9 +12,7 @@
 #include "../campaign_tables.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/reactions.h"
-#include "crankcheck/simbody_models/free_run.h"
-#include "crankcheck/simbody_models/k_crank_gravity_model.h"
-#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/extremum.h"
@@ -26,16 +25,19 @@ namespace {
 
 // ------------------------------------------------------------------------------------------------------------
 // gravity_significance: max |Q| against k, relative to k = 1 and to the inertia torque at the scene's speed. The
-// analytic maximum is that of Q's exact harmonics (no cancellation: exact however small); Simbody's is found on the
-// same grid, refined the same way (extremum.h); below the agreement tolerance Simbody's is a bound, not a value.
+// analytic maximum is that of Q's exact harmonics (no cancellation: exact however small); each reference engine's is
+// found on the same grid, refined the same way (extremum.h); below the agreement tolerance it is a bound, not a value.
 
 TableSet calcGravitySignificanceTables(const Mechanism& base, Cycle cycle) {
-  Table t("gravity_significance", {{"cycle", kText}, {"k", "-"}, {"max_abs_Q", "N m"}, {"ratio_to_k1", "-"},
-                                   {"max_inertia_torque", "N m"}, {"ratio_to_inertia", "-"},
-                                   {"simbody_max_abs_Q", "N m"}, {"resolved", kText}, {"first_order", "-"},
-                                   {"simbody_bound", "N m"}, {"simbody_ratio_to_k1", "-"},
-                                   {"paper_negligible", kText}});
-  double q1 = 0.0, q1_simbody = 0.0;
+  const std::vector<const Engine*> references = listReferenceEngines();
+  std::vector<Column> columns = {{"cycle", kText}, {"k", "-"}, {"max_abs_Q", "N m"}, {"ratio_to_k1", "-"},
+                                 {"max_inertia_torque", "N m"}, {"ratio_to_inertia", "-"}, {"first_order", "-"},
+                                 {"paper_negligible", kText}, {"rounding_bound", "N m"}};
+  for (const Engine* e : references)  // each reference engine's max |Q|, whether it resolves it, and its ratio to k = 1
+    columns.insert(columns.end(), {{e->name + "_max_abs_Q", "N m"}, {e->name + "_resolved", kText}, {e->name + "_ratio_to_k1", "-"}});
+  Table t("gravity_significance", columns);
+  double q1 = 0.0;
+  std::vector<double> q1_engine(references.size(), 0.0);
   for (int k = 1; k <= 12; ++k) {
     const Mechanism m = withGamma(withCylinders(base, k, cycle), 90.0);
     const auto harmonics = exactHarmonics(m);
@@ -44,20 +46,25 @@ TableSet calcGravitySignificanceTables(const Mechanism& base, Cycle cycle) {
     const double max_q = maxAbsOfHarmonics(harmonics);
     const double max_inertia = findMaxAbsOverTurn([&](double phi) {
       return analytic::calcReactions(m, phi).drive_torque - analytic::calcGravityTorque(m, phi); }, samples).value;
-    simbody_models::KCrankGravityModel model(withSpeed(m, 0.0));
-    // Every hump of |Q| is the same height to rounding (the first surviving harmonic dominates by 1 / lambda^2), so two
-    // refinements find the maximum.
-    const double max_q_simbody = findMaxAbsOverTurn([&](double phi) { return model.calcHoldingTorque(phi); }, samples, 2).value;
-    if (k == 1) q1 = max_q, q1_simbody = max_q_simbody;
+    if (k == 1) q1 = max_q;
     // Below the agreement tolerance an engine's Q(phi) is rounding, not physics (CONVENTIONS.md: tiny values are
-    // compared absolutely against the scale): Simbody then shows only that |Q| is below the bound.
+    // compared absolutely against the scale): the engine then shows only that |Q| is below the bound.
     const double bound = kAgreementMultiple * kEps * calcEnergyScale(m);
-    const bool resolved = max_q_simbody > bound;
     const bool paper_negligible = k == 7 || k == 9 || k == 11;  // Stanczak section 7
-    t.rows.push_back({toString(cycle), std::to_string(k), formatNumber(max_q), formatNumber(max_q / q1), formatNumber(max_inertia),
-                      formatNumber(max_inertia > 0 ? max_q / max_inertia : 0.0), formatNumber(max_q_simbody), resolved ? "yes" : "no",
-                      std::to_string(first), formatNumber(bound),
-                      formatNumber(resolved ? max_q_simbody / q1_simbody : bound / q1_simbody), paper_negligible ? "1" : "0"});
+    std::vector<std::string> row = {toString(cycle), std::to_string(k), formatNumber(max_q), formatNumber(max_q / q1),
+                                    formatNumber(max_inertia), formatNumber(max_inertia > 0 ? max_q / max_inertia : 0.0),
+                                    std::to_string(first), paper_negligible ? "1" : "0", formatNumber(bound)};
+    for (size_t i = 0; i < references.size(); ++i) {
+      const std::unique_ptr<EngineModel> model = buildGravityModel(*references[i], m);
+      // Every hump of |Q| is the same height to rounding (the first surviving harmonic dominates by 1 / lambda^2), so
+      // two refinements find the maximum.
+      const double max_q_engine = findMaxAbsOverTurn([&](double phi) { return model->calcQ(phi); }, samples, 2).value;
+      if (k == 1) q1_engine[i] = max_q_engine;
+      const bool resolved = max_q_engine > bound;
+      row.insert(row.end(), {formatNumber(max_q_engine), resolved ? "yes" : "no",
+                             formatNumber(resolved ? max_q_engine / q1_engine[i] : bound / q1_engine[i])});
+    }
+    t.rows.push_back(row);
   }
   return {{"gravity_significance", t}};
 }
@@ -148,13 +155,21 @@ class GravitySignificancePart final : public Part {
                            {}, {}, key()});
     part.blocks.push_back({ReportBlock::kParagraph,
                            "max |Q| is the maximum over the turn of Q's exact harmonics (no cancellation, so it is exact however "
-                           "small); Simbody's is found on the same grid (6 samples per period of the first surviving harmonic, at least 48) "
-                           "and refined the same way (Brent's method). Where Simbody's max |Q| is below its rounding bound (64 eps "
-                           "of the energy scale) it shows only that |Q| is below the bound: 'Simbody resolves' = no, and the "
-                           "figure draws the bound as an arrow down."});
-    part.blocks.push_back({ReportBlock::kTable, "", {"cycle", "k", "first order", "max |Q| [N m]", "/ k = 1", "max inertia torque [N m]", "max |Q| / inertia", "Simbody max |Q| [N m]", "Simbody resolves", "rounding bound [N m]"},
-                           formatRows(tables, key(), {"cycle", "k", "first_order", "max_abs_Q", "ratio_to_k1", "max_inertia_torque", "ratio_to_inertia", "simbody_max_abs_Q", "resolved", "simbody_bound"},
-                                      {false, false, false, true, true, true, true, true, false, true})});
+                           "small); each reference engine's is found on the same grid (6 samples per period of the first surviving "
+                           "harmonic, at least 48) and refined the same way (Brent's method). Where an engine's max |Q| is below "
+                           "the rounding bound (64 eps of the energy scale) it shows only that |Q| is below the bound: 'resolves' "
+                           "= no, and the figure draws the first reference engine's bound as an arrow down."});
+    std::vector<std::string> headings = {"cycle", "k", "first order", "max |Q| [N m]", "/ k = 1", "max inertia torque [N m]",
+                                         "max |Q| / inertia", "rounding bound [N m]"};
+    std::vector<std::string> names = {"cycle", "k", "first_order", "max_abs_Q", "ratio_to_k1", "max_inertia_torque",
+                                      "ratio_to_inertia", "rounding_bound"};
+    std::vector<bool> numeric = {false, false, false, true, true, true, true, true};
+    for (const Engine* e : listReferenceEngines()) {
+      headings.insert(headings.end(), {e->name + " max |Q| [N m]", e->name + " resolves"});
+      names.insert(names.end(), {e->name + "_max_abs_Q", e->name + "_resolved"});
+      numeric.insert(numeric.end(), {true, false});
+    }
+    part.blocks.push_back({ReportBlock::kTable, "", headings, formatRows(tables, key(), names, numeric)});
     addGravityClaims(part, tables);
     return part;
   }

@@ -1,4 +1,4 @@
-// Report part `integrator_pareto` (7): Simbody's integrators, cost against error in the free run. Needs the base
+// Report part `integrator_pareto` (7): the exact engines' integrators (Simbody's), cost against error in the free run. Needs the base
 // scene's flywheel: without one the part is left out (campaign.cc's notes say so).
 #include <benchmark/benchmark.h>
 
@@ -14,7 +14,7 @@
 
 #include "../campaign_tables.h"
 #include "crankcheck/analytic/motion.h"
-#include "crankcheck/simbody_models/free_run.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/part.h"
@@ -32,38 +32,42 @@ namespace {
 TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick) {
   const Mechanism m = withSpeed(base, 300.0);
   const analytic::FreeRun exact = analytic::calcFreeRun(m, m.engine.speed, true);
+  // Every gated reference engine that simulates (Engine::simulate: Simbody's), by each of its integrators.
   struct Run {
-    simbody_models::FreeRunOptions options;
+    const Engine* engine;
+    FreeRunSettings settings;
     std::string name;
   };
   std::vector<Run> runs;
   const std::vector<double> accuracies = quick ? std::vector<double>{1e-4, 1e-8} : std::vector<double>{1e-3, 1e-4, 1e-6, 1e-8, 1e-10};
-  for (simbody_models::IntegratorKind kind : {simbody_models::IntegratorKind::kRungeKuttaMerson, simbody_models::IntegratorKind::kCPodes,
-                                              simbody_models::IntegratorKind::kSemiExplicitEuler2})
-    for (double accuracy : accuracies) {
-      // SemiExplicitEuler2 is first order: below 1e-6 it needs millions of steps per revolution.
-      if (kind == simbody_models::IntegratorKind::kSemiExplicitEuler2 && accuracy < 1e-6) continue;
-      simbody_models::FreeRunOptions options;
-      options.integrator = kind;
-      options.accuracy = accuracy;
-          char name[64];
-      std::snprintf(name, sizeof name, "%s %.0e", simbody_models::toString(kind).c_str(), accuracy);
-      runs.push_back({options, name});
-    }
+  for (const Engine* engine : listReferenceEngines()) {
+    if (!engine->simulate) continue;
+    for (size_t i = 0; i < engine->integrators.size(); ++i)
+      for (double accuracy : accuracies) {
+        // A first-order integrator below 1e-6 needs millions of steps per revolution.
+        if (i < engine->integrator_orders.size() && engine->integrator_orders[i] == 1 && accuracy < 1e-6) continue;
+        FreeRunSettings settings;
+        settings.integrator = engine->integrators[i];
+        settings.accuracy = accuracy;
+        char name[96];
+        std::snprintf(name, sizeof name, "%s %s %.0e", engine->name.c_str(), settings.integrator.c_str(), accuracy);
+        runs.push_back({engine, settings, name});
+      }
+  }
   Table t("integrator_pareto", {{"integrator", kText}, {"accuracy", "-"}, {"ns_per_revolution", "ns"},
-                                {"delta_error", "-"}, {"energy_drift", "-"}, {"status", kText}});
+                                {"delta_error", "-"}, {"energy_drift", "-"}, {"status", kText}, {"engine", kText}});
   // Each run is timed by Google Benchmark and keeps its last result, so that no run is integrated twice just for
   // its error (a run that fails is reported as failed).
   std::vector<std::pair<std::string, std::function<void()>>> timed;
-  std::map<std::string, std::shared_ptr<simbody_models::FreeRunResult>> results;
+  std::map<std::string, std::shared_ptr<FreeRunResult>> results;
   std::map<std::string, std::shared_ptr<std::string>> failures;
   for (const Run& run : runs) {
-    auto result = results[run.name] = std::make_shared<simbody_models::FreeRunResult>();
+    auto result = results[run.name] = std::make_shared<FreeRunResult>();
     auto failure = failures[run.name] = std::make_shared<std::string>();
-    timed.emplace_back(run.name, [m, options = run.options, result, failure] {
+    timed.emplace_back(run.name, [m, engine = run.engine, settings = run.settings, result, failure] {
       if (!failure->empty()) return;
       try {
-        *result = simbody_models::simulateFreeRun(m, m.engine.speed, options);
+        *result = engine->simulate(m, m.engine.speed, settings);
       } catch (const std::exception& e) {
         *failure = e.what();
       }
@@ -72,15 +76,16 @@ TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick) {
   }
   const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, 0.01);
   for (const Run& run : runs) {
-    const std::string integrator = simbody_models::toString(run.options.integrator);
-    const simbody_models::FreeRunResult& result = *results[run.name];
+    const std::string& integrator = run.settings.integrator;
+    const FreeRunResult& result = *results[run.name];
     const auto time = ns.find(run.name);
     if (!failures[run.name]->empty() || time == ns.end()) {
-      t.rows.push_back({integrator, formatNumber(run.options.accuracy), "nan", "nan", "nan", "failed"});
+      t.rows.push_back({integrator, formatNumber(run.settings.accuracy), "nan", "nan", "nan", "failed", run.engine->name});
       continue;
     }
-    t.rows.push_back({integrator, formatNumber(run.options.accuracy), formatNumber(time->second / run.options.revolutions),
-                      formatNumber(std::fabs(result.delta - exact.delta) / exact.delta), formatNumber(result.energy_drift_per_revolution), "ok"});
+    t.rows.push_back({integrator, formatNumber(run.settings.accuracy), formatNumber(time->second / run.settings.revolutions),
+                      formatNumber(std::fabs(result.delta - exact.delta) / exact.delta),
+                      formatNumber(result.energy_drift_per_revolution), "ok", run.engine->name});
   }
   return {{"integrator_pareto", t}};
 }

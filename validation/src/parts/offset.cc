@@ -4,17 +4,17 @@
 // table (bore 2 r) at 6000 rpm and gravity, its pin offset delta swept over delta / r in [-0.5, 0.5] (production pin
 // offsets are |delta| / r = 0.01 .. 0.04; desaxe cylinders reach 0.5).
 // Tables (CSV stems, columns; reports/README.md):
-//   offset         quantity,offset_over_r,max_rel_error,simbody_max_rel_error
+//   offset         quantity,offset_over_r,max_rel_error, then ENGINE_max_rel_error per reference engine
 //                  the largest error over the working cycle of the centric form (delta = 0: x_p, a_p, wall_force,
 //                  drive_torque of the centric engine at the same crank angle) against the offset engine, relative
 //                  to the quantity's scale (x_p: the stroke; a_p: r omega^2; forces: the force scale; torque: the
-//                  torque scale), and the largest |analytic - Simbody| of the offset engine on the same samples
+//                  torque scale), and the largest |analytic - ENGINE| of the offset engine on the same samples
 //   offset_thrust  engine,offset_over_r,peak_major_thrust,peak_minor_thrust,thrust_reversal_deg,max_abs_drive_torque
 //                  the side thrust N_w over the working cycle: its largest value on the major-thrust side (N_w > 0:
 //                  the wall on -n, docs/CONVENTIONS-crankcheck.md "Pin offset"), its largest on the minor side (as a
 //                  positive number), the crank angle nearest the firing outer dead centre (within 90 degrees) where
-//                  N_w changes sign (the piston crosses over: slap), and the largest |drive torque|; engines
-//                  analytic and simbody
+//                  N_w changes sign (the piston crosses over: slap), and the largest |drive torque|; the closed
+//                  forms' and each reference engine's
 
 #include <algorithm>
 #include <cmath>
@@ -53,8 +53,10 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
   const double step = quick ? 2.0 : 0.25;
   Table cost, thrust;
   // The key column first: the sorted table then holds each series' rows together, in order of delta / r.
-  cost = Table("offset", {{"quantity", kText}, {"offset_over_r", "-"}, {"max_rel_error", "-"},
-                          {"simbody_max_rel_error", "-"}});
+  const std::vector<const Engine*> references = listReferenceEngines();
+  std::vector<Column> cost_columns = {{"quantity", kText}, {"offset_over_r", "-"}, {"max_rel_error", "-"}};
+  for (const Engine* e : references) cost_columns.push_back({e->name + "_max_rel_error", "-"});  // exact against each
+  cost = Table("offset", cost_columns);
   thrust = Table("offset_thrust", {{"engine", kText}, {"offset_over_r", "-"}, {"peak_major_thrust", "N"},
                                    {"peak_minor_thrust", "N"}, {"thrust_reversal_deg", "deg"},
                                    {"max_abs_drive_torque", "N m"}});
@@ -62,32 +64,44 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
   m.engine.pin_offsets = {f * r};
   const Scales sc = calcScales(m);
   const double stroke = analytic::calcDeadCentres(m, f * r).stroke;
-  const std::unique_ptr<EngineModel> simbody = findEngine("simbody").build(m);
-  std::map<std::string, double> worst, worst_simbody;
+  // The closed forms first, then each reference engine: the thrust of each, and each one's difference from the exact
+  // offset closed forms.
+  std::vector<const Engine*> engines = {&getClosedFormEngine()};
+  engines.insert(engines.end(), references.begin(), references.end());
+  std::vector<std::unique_ptr<EngineModel>> models;
+  for (const Engine* e : engines) models.push_back(e->build(m));
+  std::map<std::string, double> worst;
+  std::vector<std::map<std::string, double>> worst_engine(engines.size());
   struct Thrust {
     double major = 0.0, minor = 0.0, reversal = NAN, drive = 0.0, previous = NAN, previous_deg = 0.0;
   };
   std::map<std::string, Thrust> by_engine;
   for (double d = -360.0; d < 360.0; d += step) {
     const double phi = radiansFromDegrees(d);
-    const Evaluation exact = analytic::calcEvaluation(m, phi), centric = analytic::calcEvaluation(single, phi);
-    const Evaluation s = simbody->evaluate(phi);
-    const auto note = [&](const std::string& q, double a, double b, double sb, double scale) {
-      worst[q] = std::max(worst[q], std::fabs(b - a) / scale);
-      worst_simbody[q] = std::max(worst_simbody[q], std::fabs(sb - a) / scale);
-    };
-    const CylinderEvaluation &x = exact.cylinders[0], &c = centric.cylinders[0], &y = s.cylinders[0];
-    note("x_p", x.x_p, c.x_p, y.x_p, stroke);
-    note("a_p", x.a_p, c.a_p, y.a_p, r * m.engine.speed * m.engine.speed);
-    note("wall_force", x.wall_force, c.wall_force, y.wall_force, sc.force);
-    note("drive_torque", exact.drive_torque, centric.drive_torque, s.drive_torque, sc.torque);
-    for (const auto& [name, e] : {std::pair<std::string, const Evaluation&>{"analytic", exact},
-                                  std::pair<std::string, const Evaluation&>{"simbody", s}}) {
-      Thrust& t = by_engine[name];
-      const double n = e.cylinders[0].wall_force;
+    const Evaluation centric = analytic::calcEvaluation(single, phi);
+    std::vector<Evaluation> e;
+    for (const auto& model : models) e.push_back(model->evaluate(phi));
+    const Evaluation& exact = e[0];
+    const CylinderEvaluation &x = exact.cylinders[0], &c = centric.cylinders[0];
+    const double a_scale = r * m.engine.speed * m.engine.speed;
+    worst["x_p"] = std::max(worst["x_p"], std::fabs(c.x_p - x.x_p) / stroke);
+    worst["a_p"] = std::max(worst["a_p"], std::fabs(c.a_p - x.a_p) / a_scale);
+    worst["wall_force"] = std::max(worst["wall_force"], std::fabs(c.wall_force - x.wall_force) / sc.force);
+    worst["drive_torque"] = std::max(worst["drive_torque"], std::fabs(centric.drive_torque - exact.drive_torque) / sc.torque);
+    for (size_t j = 1; j < engines.size(); ++j) {
+      const CylinderEvaluation& y = e[j].cylinders[0];
+      std::map<std::string, double>& w = worst_engine[j];
+      w["x_p"] = std::max(w["x_p"], std::fabs(y.x_p - x.x_p) / stroke);
+      w["a_p"] = std::max(w["a_p"], std::fabs(y.a_p - x.a_p) / a_scale);
+      w["wall_force"] = std::max(w["wall_force"], std::fabs(y.wall_force - x.wall_force) / sc.force);
+      w["drive_torque"] = std::max(w["drive_torque"], std::fabs(e[j].drive_torque - exact.drive_torque) / sc.torque);
+    }
+    for (size_t j = 0; j < engines.size(); ++j) {
+      Thrust& t = by_engine[engines[j]->name];
+      const double n = e[j].cylinders[0].wall_force;
       t.major = std::max(t.major, n);
       t.minor = std::max(t.minor, -n);
-      t.drive = std::max(t.drive, std::fabs(e.drive_torque));
+      t.drive = std::max(t.drive, std::fabs(e[j].drive_torque));
       // the sign change nearest the firing outer dead centre (phi = 0 here), within 90 degrees: linear between samples
       if (std::fabs(d) <= 90.0 && !std::isnan(t.previous) && (t.previous > 0) != (n > 0)) {
         const double crossing = t.previous_deg + (d - t.previous_deg) * t.previous / (t.previous - n);
@@ -97,7 +111,11 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
       t.previous_deg = d;
     }
   }
-  for (const auto& [q, e] : worst) cost.rows.push_back({q, num(f), num(e), num(worst_simbody[q])});
+  for (const auto& [q, err] : worst) {
+    std::vector<std::string> row = {q, num(f), num(err)};
+    for (size_t j = 1; j < engines.size(); ++j) row.push_back(num(worst_engine[j][q]));
+    cost.rows.push_back(row);
+  }
   for (const auto& [name, t] : by_engine)
     thrust.rows.push_back({name, num(f), num(t.major), num(t.minor), std::isnan(t.reversal) ? "" : num(t.reversal), num(t.drive)});
   return {{"offset", cost}, {"offset_thrust", thrust}};
@@ -118,29 +136,30 @@ ReportPart describeOffsetPart(const TableSet& tables, const std::string& heading
       "lines and Simbody dots, against delta / r (negative: the pin toward the major-thrust side). The base scene's "
       "parts, one standing cylinder at 6000 rpm with the example spark-ignition pressures";
   const Table& c = cost->second;
-  const size_t f = columnOf(c, "offset_over_r"), q = columnOf(c, "quantity"), e = columnOf(c, "max_rel_error"),
-               sb = columnOf(c, "simbody_max_rel_error");
+  const size_t f = columnOf(c, "offset_over_r"), q = columnOf(c, "quantity"), e = columnOf(c, "max_rel_error");
+  std::vector<size_t> by_engine;  // each reference engine's difference from the exact offset engine
+  for (const Engine* engine : listReferenceEngines()) by_engine.push_back(columnOf(c, engine->name + "_max_rel_error"));
   // What the centric formula costs at a production offset (|delta| / r = 0.04) and at a desaxe one (0.5).
   for (double at : {0.04, 0.5}) {
     std::string s = "At |delta| / r = " + shortNumber(at) + " the centric forms are off by";
-    double worst_simbody = 0.0;
+    double worst_reference = 0.0;
     bool any = false;
     for (const auto& row : c.rows) {
       if (std::fabs(std::fabs(std::stod(row[f])) - at) > 1e-12 || std::stod(row[f]) < 0) continue;
       s += std::string(any ? "," : "") + " " + shortNumber(std::stod(row[e])) + " in " + row[q];
-      worst_simbody = std::max(worst_simbody, std::stod(row[sb]));
+      for (size_t column : by_engine) worst_reference = std::max(worst_reference, std::stod(row[column]));
       any = true;
     }
     if (any)
-      part.paragraphs.push_back(s + " (relative to each scale; the exact offset engine agrees with Simbody to " +
-                                shortNumber(worst_simbody) + ").");
+      part.paragraphs.push_back(s + " (relative to each scale; the exact offset engine agrees with every reference engine to " +
+                                shortNumber(worst_reference) + ").");
   }
   const Table& t = thrust->second;
   const size_t tf = columnOf(t, "offset_over_r"), te = columnOf(t, "engine"), major = columnOf(t, "peak_major_thrust"),
                minor = columnOf(t, "peak_minor_thrust"), rev = columnOf(t, "thrust_reversal_deg");
   std::map<double, std::vector<std::string>> analytic;
   for (const auto& row : t.rows)
-    if (row[te] == "analytic") analytic[std::stod(row[tf])] = row;
+    if (row[te] == getClosedFormEngine().name) analytic[std::stod(row[tf])] = row;
   if (analytic.count(0.0)) {
     const auto& centric = analytic[0.0];
     const double major0 = std::stod(centric[major]);

@@ -15,9 +15,7 @@
 #include "../campaign_tables.h"
 #include "crankcheck/analytic/batch.h"
 #include "crankcheck/analytic/gravity_torque.h"
-#include "crankcheck/simbody_models/grid_sweep.h"
-#include "crankcheck/simbody_models/k_crank_gravity_model.h"
-#include "crankcheck/simbody_models/k_crank_model.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/extremum.h"
@@ -46,32 +44,46 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
   struct Method {
     std::string name;
     std::function<double(double)> eval;   // Q at phi
-    std::shared_ptr<simbody_models::KCrankModel> model;
+    bool engine = false;                  // a reference engine's route: its error against the closed form
   };
   std::vector<Method> methods;
-  auto reduced = std::make_shared<simbody_models::KCrankGravityModel>(m);
-  methods.push_back({"simbody_reduced_tol_1e-12", [reduced](double phi) { return reduced->calcHoldingTorque(phi); }, nullptr});
-  methods.push_back({"exact_closed_form", [m](double phi) { return analytic::calcGravityTorque(m, phi); }, nullptr});
+  const std::vector<const Engine*> references = listReferenceEngines();
+  // Each reference engine's routes to Q (engine.h): its reduced gravity model, its full model at several constraint
+  // accuracies where it offers them, else its full model as it is.
+  for (const Engine* engine : references) {
+    if (engine->build_gravity) {
+      std::shared_ptr<EngineModel> reduced = engine->build_gravity(m);
+      methods.push_back({engine->name + "_reduced", [reduced](double phi) { return reduced->calcQ(phi); }, true});
+    }
+  }
+  methods.push_back({"exact_closed_form", [m](double phi) { return analytic::calcGravityTorque(m, phi); }});
   for (int order : {2, 4, 6, 8, 12}) {
     auto harmonics = std::make_shared<std::vector<analytic::TorqueHarmonic>>(analytic::calcGravityTorqueHarmonics(m, order));
     methods.push_back({"fourier_order_" + std::to_string(order),
-                       [harmonics](double phi) { return analytic::evaluateTorqueHarmonics(*harmonics, phi); }, nullptr});
+                       [harmonics](double phi) { return analytic::evaluateTorqueHarmonics(*harmonics, phi); }});
   }
   auto printed = std::make_shared<std::vector<analytic::TorqueHarmonic>>(
       analytic::calcGravityTorqueHarmonics(m, 12, LambdaSource::kAsPrinted));
-  methods.push_back({"paper_eq15_printed", [printed](double phi) { return analytic::evaluateTorqueHarmonics(*printed, phi); }, nullptr});
-  for (double tol : quick ? std::vector<double>{1e-4, 1e-12} : std::vector<double>{1e-4, 1e-6, 1e-8, 1e-10, 1e-12}) {
-    auto model = std::make_shared<simbody_models::KCrankModel>(m, simbody_models::ModelOptions{tol});
-    char name[48];
-    std::snprintf(name, sizeof name, "simbody_tol_%.0e", tol);
-    methods.push_back({name, [model](double phi) { return model->calcHoldingTorque(phi); }, model});
+  methods.push_back({"paper_eq15_printed", [printed](double phi) { return analytic::evaluateTorqueHarmonics(*printed, phi); }});
+  for (const Engine* engine : references) {
+    if (!engine->build_at_accuracy) {
+      std::shared_ptr<EngineModel> model = engine->build(m);
+      methods.push_back({engine->name, [model](double phi) { return model->calcQ(phi); }, true});
+      continue;
+    }
+    for (double tol : quick ? std::vector<double>{1e-4, 1e-12} : std::vector<double>{1e-4, 1e-6, 1e-8, 1e-10, 1e-12}) {
+      std::shared_ptr<EngineModel> model = engine->build_at_accuracy(m, tol);
+      char name[96];
+      std::snprintf(name, sizeof name, "%s_tol_%.0e", engine->name.c_str(), tol);
+      methods.push_back({name, [model](double phi) { return model->calcQ(phi); }, true});
+    }
   }
 
-  // Errors against the exact closed form (the closed form's own error against Simbody at 1e-12): the maximum over the
-  // turn, the same in the quick and the full campaign: the Fourier series' from the exact harmonics they leave out, the
-  // others by refining the best of 72 samples (extremum.h). resolved = 0: at rounding level, a bound.
+  // Errors against the exact closed form (the closed form's own error against the first reference engine): the maximum
+  // over the turn, the same in the quick and the full campaign: the Fourier series' from the exact harmonics they
+  // leave out, the others by refining the best of 72 samples (extremum.h). resolved = 0: at rounding level, a bound.
   std::map<std::string, std::pair<double, bool>> errors;
-  simbody_models::KCrankModel reference(m);
+  const std::unique_ptr<EngineModel> reference = references.front()->build(m);
   const auto exact_harmonics = exactHarmonics(m);
   for (const Method& method : methods) {
     double worst = 0.0;
@@ -84,7 +96,7 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
     } else {
       const bool closed_form = method.name == "exact_closed_form";
       worst = findMaxAbsOverTurn([&](double phi) {
-                return method.eval(phi) - (closed_form ? reference.calcHoldingTorque(phi) : analytic::calcGravityTorque(m, phi));
+                return method.eval(phi) - (closed_form ? reference->calcQ(phi) : analytic::calcGravityTorque(m, phi));
               }, 72).value;
       resolved = resolvedToOnePercent(worst / E, calcScales(m).conditioning);
     }
@@ -102,7 +114,7 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
   // uniform grid (batch.h), and Simbody over a grid by superposing one-cylinder models (grid_sweep.h). Each call
   // evaluates a whole batch; the table gives ns per angle.
   constexpr size_t kBatch = 4096;
-  const size_t simbody_grid = quick ? 72 : 360;
+  const size_t engine_grid = quick ? 72 : 360;
   auto batch_angles = std::make_shared<std::vector<double>>(kBatch);
   for (size_t i = 0; i < kBatch; ++i)  // the same turn, not a grid: each angle nudged off the sample
     (*batch_angles)[i] = angles[i % angles.size()] + 1e-3 * static_cast<double>(i / angles.size());
@@ -113,7 +125,7 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
     size_t angles_per_call;
     std::function<void()> run;  // fills *batch_out (Simbody: its own grid)
   };
-  const std::vector<BatchMethod> batch_methods = {
+  const std::vector<BatchMethod> kernel_methods = {
       {"exact_closed_form_batch", kBatch, [m, batch_angles, batch_out] {
          analytic::calcGravityTorqueBatch(m, *batch_angles, *batch_out);
          benchmark::DoNotOptimize(batch_out->data());
@@ -122,28 +134,36 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
          analytic::calcGravityTorqueOnGrid(m, 0.0, grid_step, *batch_out);
          benchmark::DoNotOptimize(batch_out->data());
        }},
-      {"simbody_grid_superposition", simbody_grid, [m, simbody_grid] {
-         benchmark::DoNotOptimize(simbody_models::calcHoldingTorqueOnGrid(m, 0.0, 2.0 * M_PI / static_cast<double>(simbody_grid), simbody_grid));
-       }},
   };
+  std::vector<BatchMethod> batch_methods = kernel_methods;
   {
-    // Their errors: the kernels against the scalar closed form (rounding: a bound), Simbody's sums against it.
+    // Their errors: the kernels against the scalar closed form (rounding: a bound), the engines' grids against it.
     std::vector<double> batch(kBatch), grid(kBatch);
     analytic::calcGravityTorqueBatch(m, *batch_angles, batch);
     analytic::calcGravityTorqueOnGrid(m, 0.0, grid_step, grid);
-    double worst_batch = 0.0, worst_grid = 0.0, worst_sweep = 0.0;
+    double worst_batch = 0.0, worst_grid = 0.0;
     for (size_t i = 0; i < kBatch; ++i) {
       worst_batch = std::max(worst_batch, std::fabs(batch[i] - analytic::calcGravityTorque(m, (*batch_angles)[i])));
       worst_grid = std::max(worst_grid, std::fabs(grid[i] - analytic::calcGravityTorque(m, static_cast<double>(i) * grid_step)));
     }
-    const std::vector<double> sweep =
-        simbody_models::calcHoldingTorqueOnGrid(m, 0.0, 2.0 * M_PI / static_cast<double>(simbody_grid), simbody_grid);
-    for (size_t i = 0; i < simbody_grid; ++i)
-      worst_sweep = std::max(worst_sweep, std::fabs(sweep[i] - analytic::calcGravityTorque(m, 2.0 * M_PI * static_cast<double>(i) /
-                                                                                               static_cast<double>(simbody_grid))));
     errors["exact_closed_form_batch"] = {worst_batch / E, false};
     errors["exact_closed_form_grid"] = {worst_grid / E, false};
-    errors["simbody_grid_superposition"] = {worst_sweep / E, resolvedToOnePercent(worst_sweep / E, calcScales(m).conditioning)};
+  }
+  // Each reference engine's route over a whole grid (Engine::calc_q_on_grid: Simbody's superposition of one-cylinder
+  // models, grid_sweep.h).
+  for (const Engine* engine : references) {
+    if (!engine->calc_q_on_grid) continue;
+    const double step = 2.0 * M_PI / static_cast<double>(engine_grid);
+    const std::string name = engine->name + "_grid_superposition";
+    batch_methods.push_back({name, engine_grid, [m, engine, engine_grid, step] {
+                               benchmark::DoNotOptimize(engine->calc_q_on_grid(m, 0.0, step, engine_grid));
+                             }});
+    const std::vector<double> sweep = engine->calc_q_on_grid(m, 0.0, step, engine_grid);
+    double worst_sweep = 0.0;
+    for (size_t i = 0; i < engine_grid; ++i)
+      worst_sweep = std::max(worst_sweep, std::fabs(sweep[i] - analytic::calcGravityTorque(m, 2.0 * M_PI * static_cast<double>(i) /
+                                                                                               static_cast<double>(engine_grid))));
+    errors[name] = {worst_sweep / E, resolvedToOnePercent(worst_sweep / E, calcScales(m).conditioning)};
   }
   for (const BatchMethod& b : batch_methods) timed.emplace_back(b.name, b.run);
   const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, quick ? 0.01 : 0.05);
@@ -177,8 +197,8 @@ class SpeedVsErrorPart final : public Part {
     part.heading = heading();
     part.blocks.push_back({ReportBlock::kFigure,
                            "Cost per evaluation of Q against its error, all measured in one run on this machine: the "
-                           "exact closed form, Fourier orders, the printed eq (15), Simbody at several projection "
-                           "tolerances; the Pareto front joined",
+                           "exact closed form, Fourier orders, the printed eq (15), each reference engine (Simbody at several "
+                           "projection tolerances and by its reduced gravity model); the Pareto front joined",
                            {}, {}, key()});
     part.blocks.push_back({ReportBlock::kTable, "", {"method", "time per evaluation [ns]", "max error / energy scale [-]", "resolved"},
                            formatRows(tables, key(), {"method", "ns_per_eval", "max_rel_error", "resolved"}, {false, true, true, false})});

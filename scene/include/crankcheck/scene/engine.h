@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,16 @@ class EngineModel {
   /// (engine.speed [rad/s]). Units and signs: CONVENTIONS.md.
   /// @throws std::invalid_argument if phi is not finite; std::runtime_error if the engine fails at phi.
   virtual Evaluation evaluate(double phi) = 0;
+  /// Q [N m] = dU/dphi at phi alone (the holding torque: the same Q as evaluate()'s, by the engine's cheapest route
+  /// to it). @throws as evaluate().
+  virtual double calcQ(double phi) { return evaluate(phi).Q; }
+  /// Q [N m] at phi by the engine's second route, independent of evaluate()'s (Engine::second_q_route says which:
+  /// Simbody's minus gravity's virtual power at unit crank speed).
+  /// @throws std::logic_error if the engine offers none (Engine::second_q_route empty).
+  virtual double calcSecondRouteQ(double phi) {
+    (void)phi;
+    throw std::logic_error("this engine has no second route to Q");
+  }
 };
 
 /// An engine, or one way of evaluating with an engine ("mujoco" and "mujoco-soft" are two ways of one library).
@@ -35,6 +46,9 @@ struct Engine {
   /// True when the engine claims exactness: the gate holds it to the agreement rule (64 eps x scale x conditioning)
   /// against every other gated engine. False: its errors are measured and reported, never gated (a soft solver).
   bool gated = true;
+  /// True for the closed forms under test (the analytic engine): the engine every other engine is compared with. The
+  /// others, gated, are its references (validation/engines.h listReferenceEngines).
+  bool closed_form = false;
   /// Builds the engine's model of m.
   /// @throws std::invalid_argument if the engine cannot build m (the message names the scene key and the rule);
   ///         std::runtime_error if the engine's library fails.
@@ -48,6 +62,23 @@ struct Engine {
   /// @throws std::invalid_argument for a mechanism without flywheel, omega0 <= 0 or an unknown integrator;
   ///         std::runtime_error if the run fails or the crank does not complete the revolutions.
   std::function<FreeRunResult(const Mechanism& m, double omega0, const FreeRunSettings& settings)> simulate;
+  std::vector<int> integrator_orders;  ///< the order of accuracy of each of `integrators` (1: first order)
+  /// True when simulate() takes FreeRunSettings::gas and load_torque (the flywheel's working cycle); false: it
+  /// refuses them with std::invalid_argument.
+  bool simulates_loads = false;
+
+  // Optional routes beyond build() and simulate(), each empty (or false) where the engine offers none. A report part
+  // asks which engines offer a route (validation/engines.h) and never names an engine.
+
+  /// What EngineModel::calcSecondRouteQ computes ("virtual power"); empty: no second route.
+  std::string second_q_route;
+  /// A cheaper model of gravity alone at rest: its evaluate() fills phi, U and Q only (the rest NaN). Where an engine
+  /// has none, build() of the scene at rest gives the same U and Q (validation/engines.h buildGravityModel).
+  BuildFunction build_gravity;
+  /// build() with the constraints solved to a relative `accuracy` instead of to rounding (a cost-accuracy trade).
+  std::function<std::unique_ptr<EngineModel>(const Mechanism& m, double accuracy)> build_at_accuracy;
+  /// Q [N m] at rest at phi_i = phi0 + i step, i = 0 .. n - 1, by a route that computes a whole grid at once.
+  std::function<std::vector<double>(const Mechanism& m, double phi0, double step, size_t n)> calc_q_on_grid;
 };
 
 }  // namespace crankcheck

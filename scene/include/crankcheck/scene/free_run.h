@@ -16,6 +16,11 @@ struct FreeRunSettings {
   double accuracy = 1e-10;
   int revolutions = 2;  ///< how far to integrate; every step is recorded
   bool gravity = true;
+  /// The flywheel's run (engines with Engine::simulates_loads): the scene's gas forces on the pistons and a constant
+  /// load torque [N m] against the crank; delta and the energy's return are then measured over the first working cycle
+  /// (720 degrees four-stroke, 360 two-stroke), which `revolutions` must cover.
+  bool gas = false;
+  double load_torque = 0.0;
 };
 
 struct FreeRunResult {

@@ -4,6 +4,7 @@
 /// campaign and the report loop over it. An engine is an Engine (crankcheck/scene/engine.h) described by its own
 /// folder; adding one is that folder plus one registration line in engines.cc (README, "Engines").
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,8 +25,25 @@ std::string joinEngineNames(const std::string& separator);
 /// @throws UsageError "PATH: --engine NAME: KEY: rule" (exit status 2) for the first engine that cannot.
 void checkEveryEngineBuilds(const Mechanism& m, const std::string& path);
 
-/// The gated (exact) engines other than "analytic": the references the analytic engine and graded programs are
-/// compared with (simbody, mujoco).
+/// The gated (exact) engines other than the closed forms: the references the analytic engine and graded programs are
+/// compared with (simbody, mujoco), in the registry's order.
 std::vector<const Engine*> listReferenceEngines();
+
+/// The engine of the closed forms under test (Engine::closed_form: "analytic"). @throws std::logic_error if the
+/// registry has none.
+const Engine& getClosedFormEngine();
+
+/// A model for U and Q alone: the engine's reduced gravity model where it offers one (Engine::build_gravity), else its
+/// full model of m at rest. @throws as Engine::build.
+std::unique_ptr<EngineModel> buildGravityModel(const Engine& engine, const Mechanism& m);
+
+/// The libraries behind the engines other than the closed forms, each once, with their versions: "Simbody 3.7.0,
+/// MuJoCo 2.2.2" (Engine::library), for a report's header.
+std::string joinEngineLibraries();
+
+/// Registers one more engine after the engine folders' (a test build shows with it that every engine-comparing part
+/// and the verdict take a new engine with no other change: tests/validation/extra_engine_test.cc). Call it before the
+/// first listEngines(). @throws std::logic_error once the registry is in use, or for a name it has already.
+void registerExtraEngine(Engine engine);
 
 }  // namespace crankcheck::validation

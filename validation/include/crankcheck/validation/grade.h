@@ -23,6 +23,8 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+
+#include "crankcheck/scene/engine.h"
 #include <vector>
 
 #include "crankcheck/scene/evaluation.h"
@@ -33,6 +35,10 @@ namespace crankcheck::validation {
 
 /// The quantities a program is asked for, with eval's JSON names (gas_force only for scenes with [gas]).
 const std::vector<std::string>& getGradeQuantities();
+
+/// What a program is judged against, in the order of the grade tables' columns: the first reference engine (the
+/// program's `rel_error` is against it), the closed forms, then the other reference engines (engines.h).
+std::vector<const Engine*> listGradeJudges();
 
 /// One request: a scene at one speed and its crank angles.
 struct GradeCase {
