@@ -77,8 +77,9 @@ TEST(PartsTest, GravitySignificanceTestsThePapersClaims) {
                                             {9, "1e-13"}, {10, "1e-5"}, {11, "1e-14"}, {12, "1e-6"}};
   Table t("gravity_significance", {{"cycle", kText}, {"k", "-"}, {"first_order", "-"}, {"max_abs_Q", "N m"},
                                    {"ratio_to_k1", "-"}, {"max_inertia_torque", "N m"}, {"ratio_to_inertia", "-"},
-                                   {"simbody_max_abs_Q", "N m"}, {"resolved", kText}, {"simbody_bound", "N m"}});
-  for (const auto& [k, r] : ratio) t.rows.push_back({"two-stroke", std::to_string(k), "1", r, r, "1", r, r, "1", "0"});
+                                   {"rounding_bound", "N m"}, {"simbody_max_abs_Q", "N m"}, {"simbody_resolved", kText},
+                                   {"mujoco_max_abs_Q", "N m"}, {"mujoco_resolved", kText}});
+  for (const auto& [k, r] : ratio) t.rows.push_back({"two-stroke", std::to_string(k), "1", r, r, "1", r, "0", r, "yes", r, "yes"});
   const ReportPart d = partNumbered(4).describe({{"gravity_significance", t}});
   EXPECT_EQ(d.heading, "4. When gravity matters");
   EXPECT_NE(findParagraph(d, "two-stroke: the weakest engine the paper says gravity matters for (k = 12) has 1e+06 times the "
@@ -129,8 +130,9 @@ TEST(PartsTest, EnginesReadCostsAndWorstErrors) {
 TEST(PartsTest, OffsetReadsTheCentricErrorAndTheThrust) {
   const TableSet tables = {
       {"offset", makeTable("offset", {{"quantity", kText}, {"offset_over_r", "-"}, {"max_rel_error", "-"},
-                                      {"simbody_max_rel_error", "-"}},
-                           {{"x_p", "0.04", "0.001", "1e-15"}, {"a_p", "0.04", "0.002", "2e-15"}, {"x_p", "-0.04", "0.5", "1"}})},
+                                      {"simbody_max_rel_error", "-"}, {"mujoco_max_rel_error", "-"}},
+                           {{"x_p", "0.04", "0.001", "1e-15", "3e-16"}, {"a_p", "0.04", "0.002", "2e-15", "1e-15"},
+                            {"x_p", "-0.04", "0.5", "1", "1"}})},
       {"offset_thrust", makeTable("offset_thrust", {{"engine", kText}, {"offset_over_r", "-"},
                                                     {"peak_major_thrust", "N"}, {"peak_minor_thrust", "N"},
                                                     {"thrust_reversal_deg", "deg"}, {"max_abs_drive_torque", "N m"}},
@@ -138,10 +140,11 @@ TEST(PartsTest, OffsetReadsTheCentricErrorAndTheThrust) {
                                    {"simbody", "0.04", "1", "1", "1", "1"}})}};
   const ReportPart d = partNumbered(14).describe(tables);
   EXPECT_EQ(d.heading, "14. Pin offset: what the centric formulas cost, what the offset buys");
-  // Only delta / r = +0.04 counts (the negative row is not read), and Simbody's worst of the two: 2e-15.
+  // Only delta / r = +0.04 counts (the negative row is not read), and the worst of the two rows over both reference
+  // engines: 2e-15.
   EXPECT_EQ(findParagraph(d, "At |delta| / r = 0.04"),
             "At |delta| / r = 0.04 the centric forms are off by 0.001 in x_p, 0.002 in a_p (relative to each scale; the "
-            "exact offset engine agrees with Simbody to 2e-15).");
+            "exact offset engine agrees with every reference engine to 2e-15).");
   // 1100 / 1000 - 1 = 10 %; the centric engine's thrust does not change sign within 90 degrees.
   EXPECT_EQ(findParagraph(d, "delta / r = 0.04:"),
             "delta / r = 0.04: the peak major thrust is 1100 N against 1000 N centric (10 %), the peak minor thrust 450 N "

@@ -1,5 +1,7 @@
 #include "crankcheck/validation/evaluation_json.h"
 
+#include "crankcheck/validation/engines.h"
+
 #include <cmath>
 
 #include "crankcheck/analytic/kinematics.h"
@@ -121,7 +123,7 @@ nlohmann::ordered_json balanceToJson(const std::vector<BalanceRow>& rows, bool a
   for (const BalanceRow& row : rows) {
     nlohmann::ordered_json h;
     h["n"] = row.n;
-    h["analytic"] = harmonicToJson(withExactZeros(row.analytic, row.symmetry), axial);
+    h[getClosedFormEngine().name] = harmonicToJson(withExactZeros(row.analytic, row.symmetry), axial);
     for (const auto& [engine, harmonic] : row.engines) h[engine] = harmonicToJson(harmonic, axial);
     const auto& s = row.symmetry;
     auto decided = [&](bool v) { return s.decided ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };

@@ -2,46 +2,36 @@
 
 namespace crankcheck::validation {
 
-// Each part's file, validation/src/parts/KEY.cc, defines its accessor.
+// The registry: one line per part, in report order. Each names the accessor `const Part& NAME()` that the part's own
+// file, validation/src/parts/KEY.cc, defines in namespace parts (README, "Adding a report part").
+#define CRANKCHECK_REPORT_PARTS(PART) \
+  PART(errorVsLambda)        /*  1 */ \
+  PART(speedVsError)         /*  2 */ \
+  PART(harmonics)            /*  3 */ \
+  PART(gravitySignificance)  /*  4 */ \
+  PART(nortonFigure)         /*  5 */ \
+  PART(deltaVsK)             /*  6 */ \
+  PART(integratorPareto)     /*  7 */ \
+  PART(errata)               /*  8 */ \
+  PART(balance)              /*  9 */ \
+  PART(torqueSplit)          /* 10 */ \
+  PART(rodModels)            /* 11 */ \
+  PART(pinLoadPolar)         /* 12 */ \
+  PART(engines)              /* 13 */ \
+  PART(offset)               /* 14 */ \
+  PART(flywheel)             /* 15 */ \
+  PART(balanceShafts)        /* 16 */
+
 namespace parts {
-const Part& errorVsLambda();
-const Part& speedVsError();
-const Part& harmonics();
-const Part& gravitySignificance();
-const Part& nortonFigure();
-const Part& deltaVsK();
-const Part& integratorPareto();
-const Part& errata();
-const Part& balance();
-const Part& torqueSplit();
-const Part& rodModels();
-const Part& pinLoadPolar();
-const Part& engines();
-const Part& offset();
-const Part& flywheel();
-const Part& balanceShafts();
+#define CRANKCHECK_DECLARE_PART(name) const Part& name();
+CRANKCHECK_REPORT_PARTS(CRANKCHECK_DECLARE_PART)
+#undef CRANKCHECK_DECLARE_PART
 }  // namespace parts
 
 const std::vector<const Part*>& listParts() {
-  // One line per part, in report order.
-  static const std::vector<const Part*> all = {
-      &parts::errorVsLambda(),        // 1
-      &parts::speedVsError(),         // 2
-      &parts::harmonics(),            // 3
-      &parts::gravitySignificance(),  // 4
-      &parts::nortonFigure(),         // 5
-      &parts::deltaVsK(),             // 6
-      &parts::integratorPareto(),     // 7
-      &parts::errata(),               // 8
-      &parts::balance(),              // 9
-      &parts::torqueSplit(),          // 10
-      &parts::rodModels(),            // 11
-      &parts::pinLoadPolar(),         // 12
-      &parts::engines(),              // 13
-      &parts::offset(),               // 14
-      &parts::flywheel(),             // 15
-      &parts::balanceShafts(),        // 16
-  };
+#define CRANKCHECK_LIST_PART(name) &parts::name(),
+  static const std::vector<const Part*> all = {CRANKCHECK_REPORT_PARTS(CRANKCHECK_LIST_PART)};
+#undef CRANKCHECK_LIST_PART
   return all;
 }
 

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <type_traits>
 
 namespace crankcheck::validation {
 
@@ -17,16 +18,22 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 class CountedModel : public EngineModel {
  public:
   CountedModel(std::unique_ptr<EngineModel> model, std::string engine) : model_(std::move(model)), engine_(std::move(engine)) {}
-  Evaluation evaluate(double phi) override {
+  Evaluation evaluate(double phi) override { return counted([&] { return model_->evaluate(phi); }); }
+  double calcQ(double phi) override { return counted([&] { return model_->calcQ(phi); }); }
+  double calcSecondRouteQ(double phi) override { return counted([&] { return model_->calcSecondRouteQ(phi); }); }
+
+ private:
+  // Every route of the model counts as one evaluation.
+  template <typename F>
+  std::invoke_result_t<F> counted(F&& f) {
     const auto start = std::chrono::steady_clock::now();
-    Evaluation e = model_->evaluate(phi);
+    auto result = f();
     EngineUse& use = getThreadEngineUse()[engine_];
     ++use.evaluations;
     use.evaluate_seconds += secondsSince(start);
-    return e;
+    return result;
   }
 
- private:
   std::unique_ptr<EngineModel> model_;
   std::string engine_;
 };

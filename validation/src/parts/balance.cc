@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "crankcheck/validation/balance.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/part.h"
 
 namespace crankcheck::validation {
@@ -23,18 +24,25 @@ void addBalancePart(ReportPart& part, const TableSet& tables, const std::string&
                  "the shaft (throws 0.1 m apart, the two cylinders of a shared pin 0.02 m apart, O in the middle). F1, F2: "
                  "primary and secondary shaking force [N]; M1, M2: primary and secondary couple about X and Y [N m]. "
                  "'Vanishes exactly' is decided in integers (sums of roots of unity over the throws), not read off a "
-                 "small number; the amplitudes are the closed form's, Simbody's and MuJoCo's (a DFT of each engine's own "
+                 "small number; the amplitudes are the closed form's and each reference engine's (a DFT of each engine's own "
                  "shaking force and moment over one revolution). The textbook column is the claim of the standard balance tables "
                  "(two-term piston motion, both cylinders of a pin in one plane). A DIFFERS is a finding, not a failure "
                  "of the engines (they agree, see the summary): for example the 0.02 m between the two cylinders of a "
                  "shared pin, which the tables ignore, gives a flat-plane V8 a secondary couple."});
-  part.blocks.push_back({ReportBlock::kTable, "",
-                 {"layout", "part", "textbook", "vanishes exactly", "amplitude (closed form)", "amplitude (Simbody)",
-                  "amplitude (MuJoCo)", "relative", "verdict"},
-                 formatRows(tables, "balance",
-                           {"layout", "part", "textbook", "vanishes_exactly", "analytic_amplitude", "simbody_amplitude",
-                            "mujoco_amplitude", "relative_amplitude", "verdict"},
-                           {false, false, false, false, true, true, true, true, false})});
+  {
+    std::vector<std::string> headings = {"layout", "part", "textbook", "vanishes exactly", "amplitude (closed form)"};
+    std::vector<std::string> names = {"layout", "part", "textbook", "vanishes_exactly", "analytic_amplitude"};
+    std::vector<bool> numeric = {false, false, false, false, true};
+    for (const Engine* e : listReferenceEngines()) {  // each reference engine's DFT
+      headings.push_back("amplitude (" + e->name + ")");
+      names.push_back(e->name + "_amplitude");
+      numeric.push_back(true);
+    }
+    headings.insert(headings.end(), {"relative", "verdict"});
+    names.insert(names.end(), {"relative_amplitude", "verdict"});
+    numeric.insert(numeric.end(), {true, false});
+    part.blocks.push_back({ReportBlock::kTable, "", headings, formatRows(tables, "balance", names, numeric)});
+  }
   // Beyond the two-term rules: the largest harmonic above 2 that the exact motion leaves, per layout.
   const auto it = tables.find("balance_harmonics");
   if (it != tables.end()) {

@@ -21,6 +21,7 @@
 
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/scales.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/variants.h"
 
@@ -34,7 +35,7 @@ constexpr int kOrder = 6;
 void addRows(Table& t, const std::string& kase, const std::string& shafts, const Mechanism& m, double force_scale) {
   for (const BalanceRow& row : calcBalance(m, kOrder)) {
     std::vector<std::pair<std::string, double>> amplitudes = {
-        {"analytic", withExactZeros(row.analytic, row.symmetry).calcForceAmplitude()}};
+        {getClosedFormEngine().name, withExactZeros(row.analytic, row.symmetry).calcForceAmplitude()}};
     for (const auto& [name, h] : row.engines) amplitudes.emplace_back(name, h.calcForceAmplitude());
     for (const auto& [engine, a] : amplitudes)
       t.rows.push_back({kase, shafts, engine, std::to_string(row.n), formatNumber(a), formatNumber(a / force_scale)});
@@ -105,7 +106,7 @@ ReportPart describeBalanceShaftPart(const TableSet& tables, const std::string& h
     Harmonic& h = cases[row[kase]][std::stoi(row[n])];
     const double a = std::stod(row[amplitude]), r = std::stod(row[rel]);
     if (r > 0.0) force_scale[row[kase]] = a / r;
-    if (row[engine] == "analytic") {
+    if (row[engine] == getClosedFormEngine().name) {
       (row[shafts] == "none" ? h.without : h.with) = a;
       if (row[shafts] == "none") h.without_rel = r;
     } else if (row[shafts] == "with" && r >= h.engine_worst) {

@@ -102,7 +102,7 @@ void deriveEngineTables(TableSet& tables) {
     if (best.row.empty() || toDouble(row[rel]) < toDouble(best.row[rel])) best.row = row;
   }
   for (const auto& [key, best] : analytic)
-    if (best.engines == listReferenceEngines().size()) note("analytic", best.row);
+    if (best.engines == listReferenceEngines().size()) note(getClosedFormEngine().name, best.row);
   std::map<std::pair<std::string, int>, double> ns;
   const Table& t = cost->second;
   const size_t ce = columnOf(t, "engine"), ck = columnOf(t, "k"), cns = columnOf(t, "ns_per_eval");
@@ -188,7 +188,7 @@ ReportPart describeEnginesPart(const TableSet& tables, const std::string& headin
       if (by_engine[name].worst <= accuracy && (best.empty() || by_engine[name].ns1 < by_engine[best].ns1)) best = name;
     std::string best_multibody;
     for (const std::string& name : names)
-      if (name != "analytic" && by_engine[name].worst <= accuracy &&
+      if (!findEngine(name).closed_form && by_engine[name].worst <= accuracy &&
           (best_multibody.empty() || by_engine[name].ns1 < by_engine[best_multibody].ns1))
         best_multibody = name;
     std::string s = "Within " + shortNumber(accuracy) + " of the scale on every quantity: ";

@@ -1,13 +1,108 @@
 // Report part `pin_load_polar` (12): pin loads over a working cycle as polar diagrams, of the user's scenes or the
-// example scenes (computed in engine_loads.cc).
+// example scenes.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
+#include "crankcheck/analytic/reactions.h"
+#include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/engine_loads.h"
+#include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/part.h"
+#include "crankcheck/validation/scales.h"
+#include "crankcheck/validation/variants.h"
 
 namespace crankcheck::validation {
 namespace {
+
+std::string num(double x) { return formatNumber(x); }
+
+//   pin_load_polar          scene_index,engine,phi_deg,crank_pin_radial,crank_pin_tangential,bearing_x,bearing_y,scene
+//                           over one working cycle (step_deg steps) at the scene's speed, with its gas and gravity:
+//                           the crank-pin force (crank on rod 0 at its crank pin) in the crank's own frame (radial:
+//                           outward along the throw of cylinder 0, tangential: 90 degrees ahead of it, the direction
+//                           of rotation), and the main-bearing force (frame on the crankshaft at O, all throws) in the
+//                           frame's X, Y: Norton's polar diagrams (Program ENGINE), the closed forms and each reference engine [N]
+//   pin_load_polar_summary  scene,engine,force,max_magnitude,phi_deg_at_max,max_difference_rel
+//                           the largest |force| over the cycle (refined, extremum.h) of each engine, and the largest
+//                           |analytic - engine| over the samples relative to the force scale (the analytic row: the largest
+//                           over the reference engines)
+// scene_index counts from first_index (so that scenes computed one per task keep their places); step_deg is the
+// sampling step (the campaign: 2 degrees, 4 with --quick; the maxima are refined, so they do not depend on it).
+TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index, double step_deg) {
+  Table polar, summary;
+  polar = Table("pin_load_polar", {{"scene_index", "-"}, {"engine", kText}, {"phi_deg", "deg"},
+                                   {"crank_pin_radial", "N"}, {"crank_pin_tangential", "N"}, {"bearing_x", "N"},
+                                   {"bearing_y", "N"}, {"scene", kText}});
+  summary = Table("pin_load_polar_summary", {{"scene", kText}, {"engine", kText}, {"force", kText},
+                                             {"max_magnitude", "N"}, {"phi_deg_at_max", "deg"},
+                                             {"max_difference_rel", "-"}});
+  for (size_t index = 0; index < scenes.size(); ++index) {
+    const Mechanism& m = scenes[index];
+    // The closed forms first, then each reference engine (engines.h).
+    std::vector<const Engine*> engines = {&getClosedFormEngine()};
+    for (const Engine* e : listReferenceEngines()) engines.push_back(e);
+    std::vector<std::unique_ptr<EngineModel>> models;
+    for (const Engine* e : engines) models.push_back(e->build(m));
+    const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
+    // The crank pin of cylinder 0 is at angle phi + beta_0 from +X (CONVENTIONS.md, layouts).
+    auto crankFrame = [&m](const Evaluation& e) {
+      const double angle = e.phi + getThrowAngle(m, 0);
+      const Vec2& F = e.cylinders[0].crank_pin_force;
+      return std::pair{F[0] * std::cos(angle) + F[1] * std::sin(angle), -F[0] * std::sin(angle) + F[1] * std::cos(angle)};
+    };
+    const double scale = calcScales(m).force;
+    // The largest |closed form - engine| over the samples, per engine (the closed form's own row: the largest of them).
+    std::vector<double> worst_pin(engines.size(), 0.0), worst_bearing(engines.size(), 0.0);
+    const int samples = static_cast<int>(std::lround(degreesFromRadians(cycle) / step_deg));
+    std::vector<std::map<std::string, std::vector<double>>> magnitudes(engines.size());  // force -> |F| at the samples
+    for (int i = 0; i < samples; ++i) {
+      const double d = step_deg * i, phi = radiansFromDegrees(d);
+      std::vector<Evaluation> e;
+      for (const auto& model : models) e.push_back(model->evaluate(phi));
+      for (size_t j = 0; j < engines.size(); ++j) {
+        const auto [radial, tangential] = crankFrame(e[j]);
+        polar.rows.push_back({std::to_string(first_index + static_cast<int>(index)), engines[j]->name, num(d),
+                              num(radial), num(tangential), num(e[j].bearing_force[0]), num(e[j].bearing_force[1]), m.name});
+        magnitudes[j]["crank_pin"].push_back(std::hypot(e[j].cylinders[0].crank_pin_force[0], e[j].cylinders[0].crank_pin_force[1]));
+        magnitudes[j]["bearing"].push_back(std::hypot(e[j].bearing_force[0], e[j].bearing_force[1]));
+        if (j == 0) continue;
+        const Evaluation& a = e[0];
+        const double pin = std::hypot(a.cylinders[0].crank_pin_force[0] - e[j].cylinders[0].crank_pin_force[0],
+                                      a.cylinders[0].crank_pin_force[1] - e[j].cylinders[0].crank_pin_force[1]);
+        const double bearing = std::hypot(a.bearing_force[0] - e[j].bearing_force[0], a.bearing_force[1] - e[j].bearing_force[1]);
+        for (size_t into : {size_t{0}, j}) {
+          worst_pin[into] = std::max(worst_pin[into], pin);
+          worst_bearing[into] = std::max(worst_bearing[into], bearing);
+        }
+      }
+    }
+    // The largest |force| over the working cycle, each engine alike: the samples, the best two refined by
+    // Brent's method (the cycle mapped onto [0, 2 pi) for findMaxAbsOverTurn).
+    for (size_t j = 0; j < engines.size(); ++j)
+      for (const char* force : {"crank_pin", "bearing"}) {
+        const bool is_pin = std::string(force) == "crank_pin";
+        const auto magnitude = [&](double u) {
+          const double phi = u * cycle / (2.0 * M_PI);
+          const Evaluation e = models[j]->evaluate(phi);
+          const Vec2& F = is_pin ? e.cylinders[0].crank_pin_force : e.bearing_force;
+          return std::hypot(F[0], F[1]);
+        };
+        const TurnMaximum best = findMaxAbsOverTurn(magnitude, magnitudes[j][force], 2);
+        summary.rows.push_back({m.name, engines[j]->name, force, num(best.value),
+                                num(degreesFromRadians(best.phi * cycle / (2.0 * M_PI))),
+                                num((is_pin ? worst_pin[j] : worst_bearing[j]) / scale)});
+      }
+  }
+  return {{"pin_load_polar", polar}, {"pin_load_polar_summary", summary}};
+}
+
 
 class PinLoadPolarPart final : public Part {
  public:

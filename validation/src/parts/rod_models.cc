@@ -1,13 +1,84 @@
-// Report part `rod_models` (11): what the two-mass rod costs against the rigid rod (computed in engine_loads.cc).
+// Report part `rod_models` (11): what the two-mass rod costs against the rigid rod.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "../campaign_tables.h"
+#include "crankcheck/analytic/reactions.h"
+#include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/engine_loads.h"
+#include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/part.h"
+#include "crankcheck/validation/scales.h"
+#include "crankcheck/validation/variants.h"
 
 namespace crankcheck::validation {
 namespace {
+
+std::string num(double x) { return formatNumber(x); }
+
+//   rod_models     engine,variable,x,two_mass_error,two_mass_delta_I_error,two_mass_delta_I_resolved,reference
+//                  the largest |drive torque of the two-mass rod - the `reference` engine's rigid rod| over the turn (refined,
+//                  extremum.h; with Delta_I rounding: resolved 0 marks the number as a bound), relative to the
+//                  torque scale, without and with the paper's Delta_I, against lambda (variable "lambda") and
+//                  against Delta_I / I_G (variable "delta_I_over_I_G", the rod's central inertia changed) for `car`
+//                  and `marine` at their speeds
+TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine) {
+  Table t("rod_models", {{"engine", kText}, {"variable", kText}, {"x", "SI"}, {"two_mass_error", "-"},
+                         {"two_mass_delta_I_error", "-"}, {"two_mass_delta_I_resolved", kText}, {"reference", kText}});
+  // The two-mass rod's error is a smooth function of phi: its maximum over the turn is refined from 48 samples
+  // (extremum.h). With Delta_I the error is rounding: the worst of the 48 samples, a bound (resolved 0) unless it
+  // exceeds 100 times the agreement tolerance.
+  // Against each reference engine's rigid rod (the `reference` column).
+  auto worst = [](const Engine& engine, const Mechanism& m) {
+    const std::unique_ptr<EngineModel> model = engine.build(m);
+    const Scales scales = calcScales(m);
+    auto error = [&](analytic::RodInertiaForm form) {
+      return [&model, &m, form](double phi) {
+        return analytic::calcReactions(m, phi, form).drive_torque - model->evaluate(phi).drive_torque;
+      };
+    };
+    const double without = findMaxAbsOverTurn(error(analytic::RodInertiaForm::kTwoMassWithoutDeltaI), 48).value;
+    const double with = findMaxAbsOverTurn(error(analytic::RodInertiaForm::kTwoMassWithDeltaI), 48, 0).value;
+    const bool with_resolved = with > 100.0 * kAgreementMultiple * kEps * scales.torque * scales.acceleration_conditioning;
+    return std::tuple{without / scales.torque, with / scales.torque, with_resolved};
+  };
+  for (const auto& [name, base] : {std::pair<std::string, Mechanism>{"car", withSpeed(withGamma(withCylinders(car, 1, Cycle::kFourStroke), 90.0), 6000.0)},
+                                   std::pair<std::string, Mechanism>{"marine", withGamma(withCylinders(marine, 1, Cycle::kTwoStroke), 90.0)}}) {
+    // Against lambda: the rod lengthened or shortened (r fixed), z_k at the same fraction, gyration radius scaled.
+    for (double lambda : {0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.5, 0.6}) {
+      Mechanism m = base;
+      const double scale = (base.crank.radius / lambda) / base.rod.length;
+      m.rod.length *= scale;
+      m.rod.com_from_wrist_pin *= scale;
+      m.rod.inertia_about_wrist_pin *= scale * scale;
+      for (const Engine* engine : listReferenceEngines()) {
+        const auto [without, with, resolved] = worst(*engine, m);
+        t.rows.push_back({name, "lambda", num(lambda), num(without), num(with), resolved ? "1" : "0", engine->name});
+      }
+    }
+    // Against Delta_I / I_G: the rod's central inertia I_G = f m_k z_k (l - z_k) (f = 1: the two-mass value, Delta_I = 0).
+    for (double f : {0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 2.0, 3.0}) {
+      Mechanism m = base;
+      const double l = m.rod.length, z = m.rod.com_from_wrist_pin, m_k = m.rod.mass;
+      const double I_G = f * m_k * z * (l - z);
+      m.rod.inertia_about_wrist_pin = m_k * z * z + I_G;
+      const double delta_I = m.rod.inertia_about_wrist_pin - l * z * m_k;
+      for (const Engine* engine : listReferenceEngines()) {
+        const auto [without, with, resolved] = worst(*engine, m);
+        t.rows.push_back({name, "delta_I_over_I_G", num(delta_I / I_G), num(without), num(with), resolved ? "1" : "0", engine->name});
+      }
+    }
+  }
+  return {{"rod_models", t}};
+}
+
 
 // The figure's caption.
 constexpr const char* kCaption =
