@@ -18,6 +18,8 @@
 
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/part.h"
+#include "crankcheck/validation/parts.h"
 #include "crankcheck/validation/report.h"
 #include "crankcheck/validation/scales.h"
 #include "run_cli.h"
@@ -35,27 +37,13 @@ std::string readFile(const fs::path& path) {
   return s.str();
 }
 
-// The columns that hold a maximum over a turn (or a quantity made of maxima), per table: its key columns, its
-// maximum columns, and the column (with the value) that marks a row's maxima as a bound.
-struct MaximumColumns {
-  std::string table;
-  std::vector<std::string> key, maxima;
-  std::string bound_column, bound_value;
-};
-const std::vector<MaximumColumns> kMaxima = {
-    {"error_vs_lambda", {"quantity", "method", "lambda"}, {"max_abs_error", "max_rel_error"}, "resolved", "0"},
-    {"speed_vs_error", {"method"}, {"max_rel_error"}, "resolved", "0"},
-    {"gravity_significance", {"cycle", "k"}, {"max_abs_Q", "ratio_to_k1", "max_inertia_torque", "ratio_to_inertia"}, "", ""},
-    {"gravity_significance", {"cycle", "k"}, {"simbody_max_abs_Q"}, "simbody_resolved", "no"},
-    {"gravity_significance", {"cycle", "k"}, {"mujoco_max_abs_Q"}, "mujoco_resolved", "no"},
-    {"errata", {"item", "measure"}, {"value"}, "", ""},
-    {"eq5_layouts", {"cycle", "k", "gamma_deg"}, {"max_abs_Q", "max_abs_Q_printed", "max_error_rel"}, "", ""},
-    {"eq15_engines", {"cycle", "k", "lambda"}, {"max_abs_Q", "max_abs_Q_printed", "max_error_rel"}, "", ""},
-    {"rod_models", {"engine", "variable", "x", "reference"}, {"two_mass_error"}, "", ""},
-    {"rod_models", {"engine", "variable", "x", "reference"}, {"two_mass_delta_I_error"}, "two_mass_delta_I_resolved", "0"},
-    {"delta_vs_k", {"cycle", "k", "speed_rpm"}, {"delta_gravity", "delta_no_gravity"}, "", ""},
-    {"pin_load_polar_summary", {"scene", "engine", "force"}, {"max_magnitude"}, "", ""},
-};
+// Every maximum the parts' tables state (Part::maxima, from the registry).
+std::vector<validation::ReportedMaximum> listMaxima() {
+  std::vector<validation::ReportedMaximum> out;
+  for (const validation::Part* part : validation::listParts())
+    for (validation::ReportedMaximum& m : part->maxima()) out.push_back(std::move(m));
+  return out;
+}
 
 fs::path report(const fs::path& folder, const std::string& name) { return folder / name; }
 
@@ -66,7 +54,7 @@ constexpr double kRelativeTolerance = 0.01;
 void checkEveryMaximumIsWithinOnePercentOrABound(const fs::path& folder) {
   const TableSet quick = validation::readTables(report(folder, "quick")), full = validation::readTables(report(folder, "full"));
   int compared = 0, bounds = 0;
-  for (const MaximumColumns& spec : kMaxima) {
+  for (const validation::ReportedMaximum& spec : listMaxima()) {
     SCOPED_TRACE(spec.table);
     const auto q = quick.find(spec.table), f = full.find(spec.table);
     ASSERT_TRUE(f != full.end()) << "the full report has no table " << spec.table;

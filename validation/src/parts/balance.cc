@@ -1,4 +1,4 @@
-// Report part `balance` (9): the balance of engine layouts, computed (balance.cc) beside the textbook's claims, what
+// Report part `balance` (9): the balance of engine layouts, computed (calcBalance, balance.h) beside the textbook's claims, what
 // the two-term rules miss, and the figure of every harmonic.
 #include <algorithm>
 #include <cmath>
@@ -9,10 +9,80 @@
 
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/layouts.h"
+#include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/part.h"
 
 namespace crankcheck::validation {
 namespace {
+
+// The report's balance tables for every layout of layouts.h, built on `parts` (its crank, rod and piston) at
+// 6000 rpm, and for each of `scenes` as it is (the user's scenes: harmonics only, no textbook claim), harmonics 1..8
+// from the closed forms and each reference engine:
+//   balance            layout,description,part,textbook,vanishes_exactly,analytic_amplitude,simbody_amplitude,
+//                      mujoco_amplitude,relative_amplitude,verdict (one <engine>_amplitude per reference engine)
+//                      (part F1, F2: primary and secondary force [N]; M1, M2: couples about X, Y [N m]; textbook
+//                      "vanishes" | "does not vanish" | "no claim"; relative to the force or moment scale of
+//                      scales.h; verdict "agrees" | "DIFFERS" | "-")
+//   balance_harmonics  layout_index,layout,n,force_relative,couple_relative,rocking_relative,force_vanishes,
+//                      couple_vanishes (amplitudes relative to the force and moment scales; exact zeros as 0)
+TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>& scenes) {
+  constexpr int kOrder = 8;
+  std::vector<Column> summary_columns = {{"layout", kText},   {"description", kText},      {"part", kText},
+                                         {"textbook", kText}, {"vanishes_exactly", kText}, {"analytic_amplitude", "N m"}};
+  // each reference engine's amplitude: a force (N) or a couple (N m), as the row's part says
+  for (const Engine* engine : listReferenceEngines()) summary_columns.push_back({engine->name + "_amplitude", "SI"});
+  summary_columns.insert(summary_columns.end(), {{"relative_amplitude", "-"}, {"verdict", kText}});
+  Table summary("balance", std::move(summary_columns));
+  Table harmonics("balance_harmonics", {{"layout_index", "-"}, {"layout", kText}, {"n", "-"}, {"force_relative", "-"},
+                                        {"couple_relative", "-"}, {"rocking_relative", "-"}, {"force_vanishes", kText},
+                                        {"couple_vanishes", kText}});
+  Mechanism base = parts;
+  base.speed_rpm = 6000.0;
+  base.engine.speed = 6000.0 * (M_PI / 30.0);
+  std::vector<Layout> layouts = getBalanceLayouts();
+  std::vector<Mechanism> mechanisms;
+  for (const Layout& layout : layouts) mechanisms.push_back(makeLayoutMechanism(layout, base));
+  for (const Mechanism& scene : scenes) {
+    layouts.push_back({scene.name, "scene " + scene.name, {}, {}});  // a user's scene: no textbook claim
+    mechanisms.push_back(scene);
+  }
+  for (size_t index = 0; index < layouts.size(); ++index) {
+    const Layout& layout = layouts[index];
+    const Mechanism& m = mechanisms[index];
+    const Scales sc = calcScales(m);
+    const std::vector<BalanceRow> rows = calcBalance(m, kOrder);
+    for (const BalanceRow& row : rows) {
+      const analytic::HarmonicSymmetry& s = row.symmetry;
+      const double force = s.force_cancels ? 0.0 : row.analytic.calcForceAmplitude();
+      const double couple = s.moment_xy_cancels ? 0.0
+                                                : std::hypot(row.analytic.calcMomentAmplitude(0), row.analytic.calcMomentAmplitude(1));
+      const double rocking = s.moment_z_cancels ? 0.0 : row.analytic.calcMomentAmplitude(2);
+      harmonics.rows.push_back({std::to_string(index), layout.name, std::to_string(row.n), formatNumber(force / sc.force),
+                                formatNumber(couple / sc.moment), formatNumber(rocking / sc.moment),
+                                s.force_cancels ? "1" : "0", s.moment_xy_cancels ? "1" : "0"});
+      if (row.n > 2 || index >= mechanisms.size() - scenes.size()) continue;  // the summary: the balance layouts
+      const std::optional<bool> claims[2] = {row.n == 1 ? layout.textbook.F1 : layout.textbook.F2,
+                                             row.n == 1 ? layout.textbook.M1 : layout.textbook.M2};
+      for (int part = 0; part < 2; ++part) {
+        const bool vanishes = part == 0 ? s.force_cancels : s.moment_xy_cancels;
+        const double analytic = part == 0 ? force : couple;
+        const std::optional<bool>& claim = claims[part];
+        std::vector<std::string> fields = {layout.name, layout.description, (part == 0 ? "F" : "M") + std::to_string(row.n),
+                                           !claim ? "no claim" : *claim ? "vanishes" : "does not vanish",
+                                           vanishes ? "yes" : "no", formatNumber(analytic)};
+        for (const auto& [name, h] : row.engines)
+          fields.push_back(formatNumber(part == 0 ? h.calcForceAmplitude()
+                                                  : std::hypot(h.calcMomentAmplitude(0), h.calcMomentAmplitude(1))));
+        fields.push_back(formatNumber(analytic / (part == 0 ? sc.force : sc.moment)));
+        fields.push_back(!claim ? "-" : *claim == vanishes ? "agrees" : "DIFFERS");
+        summary.rows.push_back(fields);
+      }
+    }
+  }
+  return {{"balance", summary}, {"balance_harmonics", harmonics}};
+}
+
 
 // A field as a number; an empty one as 0.
 double toDouble(const std::string& s) { return std::strtod(s.c_str(), nullptr); }

@@ -57,6 +57,9 @@ class DeltaVsKPart final : public Part {
   }
   ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
   std::vector<std::string> tables() const override { return {"delta_vs_k"}; }
+  std::vector<ReportedMaximum> maxima() const override {
+    return {{"delta_vs_k", {"cycle", "k", "speed_rpm"}, {"delta_gravity", "delta_no_gravity"}, "", ""}};
+  }
 };
 
 }  // namespace

@@ -282,6 +282,11 @@ class ErrataPart final : public Part {
     return part;
   }
   std::vector<std::string> tables() const override { return {"errata", "eq5_layouts", "eq15_coefficients", "eq15_engines"}; }
+  std::vector<ReportedMaximum> maxima() const override {
+    return {{"errata", {"item", "measure"}, {"value"}, "", ""},
+            {"eq5_layouts", {"cycle", "k", "gamma_deg"}, {"max_abs_Q", "max_abs_Q_printed", "max_error_rel"}, "", ""},
+            {"eq15_engines", {"cycle", "k", "lambda"}, {"max_abs_Q", "max_abs_Q_printed", "max_error_rel"}, "", ""}};
+  }
   std::vector<std::string> figures() const override { return {}; }
 };
 

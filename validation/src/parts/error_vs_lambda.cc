@@ -114,6 +114,9 @@ class ErrorVsLambdaPart final : public Part {
   }
   ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
   std::vector<std::string> tables() const override { return {"error_vs_lambda"}; }
+  std::vector<ReportedMaximum> maxima() const override {
+    return {{"error_vs_lambda", {"quantity", "method", "lambda"}, {"max_abs_error", "max_rel_error"}, "resolved", "0"}};
+  }
 };
 
 }  // namespace

@@ -174,6 +174,13 @@ class GravitySignificancePart final : public Part {
     return part;
   }
   std::vector<std::string> tables() const override { return {"gravity_significance"}; }
+  std::vector<ReportedMaximum> maxima() const override {
+    std::vector<ReportedMaximum> out = {
+        {"gravity_significance", {"cycle", "k"}, {"max_abs_Q", "ratio_to_k1", "max_inertia_torque", "ratio_to_inertia"}, "", ""}};
+    for (const Engine* e : listReferenceEngines())  // an engine's max |Q| below its rounding bound is a bound
+      out.push_back({"gravity_significance", {"cycle", "k"}, {e->name + "_max_abs_Q"}, e->name + "_resolved", "no"});
+    return out;
+  }
 };
 
 }  // namespace

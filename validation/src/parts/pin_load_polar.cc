@@ -137,6 +137,9 @@ class PinLoadPolarPart final : public Part {
     return part;
   }
   std::vector<std::string> tables() const override { return {"pin_load_polar", "pin_load_polar_summary"}; }
+  std::vector<ReportedMaximum> maxima() const override {
+    return {{"pin_load_polar_summary", {"scene", "engine", "force"}, {"max_magnitude"}, "", ""}};
+  }
 };
 
 }  // namespace

@@ -98,6 +98,10 @@ class RodModelsPart final : public Part {
   }
   ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
   std::vector<std::string> tables() const override { return {"rod_models"}; }
+  std::vector<ReportedMaximum> maxima() const override {
+    return {{"rod_models", {"engine", "variable", "x", "reference"}, {"two_mass_error"}, "", ""},
+            {"rod_models", {"engine", "variable", "x", "reference"}, {"two_mass_delta_I_error"}, "two_mass_delta_I_resolved", "0"}};
+  }
 };
 
 }  // namespace

@@ -46,16 +46,5 @@ analytic::ShakingHarmonic withExactZeros(analytic::ShakingHarmonic h, const anal
 /// @throws std::invalid_argument if n < 1 or a shaft of the scene has a ratio that is not a whole number.
 std::vector<BalanceShaftParams> designBalanceShafts(const Mechanism& m, int n);
 
-/// The report's balance tables for every layout of layouts.h, built on `parts` (its crank, rod and piston) at
-/// 6000 rpm, and for each of `scenes` as it is (the user's scenes: harmonics only, no textbook claim), harmonics 1..8
-/// from both engines:
-///   balance            layout,description,part,textbook,vanishes_exactly,analytic_amplitude,simbody_amplitude,
-///                      mujoco_amplitude,relative_amplitude,verdict (one <engine>_amplitude per reference engine)
-///                      (part F1, F2: primary and secondary force [N]; M1, M2: couples about X, Y [N m]; textbook
-///                      "vanishes" | "does not vanish" | "no claim"; relative to the force or moment scale of
-///                      scales.h; verdict "agrees" | "DIFFERS" | "-")
-///   balance_harmonics  layout_index,layout,n,force_relative,couple_relative,rocking_relative,force_vanishes,
-///                      couple_vanishes (amplitudes relative to the force and moment scales; exact zeros as 0)
-TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>& scenes = {});
 
 }  // namespace crankcheck::validation

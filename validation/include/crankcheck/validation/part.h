@@ -42,6 +42,16 @@ inline constexpr double kGateSweep = 1.0;    ///< the gate's sweep of one k and 
 inline constexpr double kShort = 0.0;        ///< the rest (seconds at most)
 }  // namespace task_cost
 
+/// Maxima over a turn (or a cycle) that a part's table states: found so that they do not depend on the sampling grid,
+/// the quick and the full campaign must give them within 1 % (tests/cli/quick_report_test.cc reads every part's).
+struct ReportedMaximum {
+  std::string table;                      ///< the CSV stem
+  std::vector<std::string> key;           ///< the columns that identify a row in both campaigns
+  std::vector<std::string> maxima;        ///< the columns that hold maxima
+  std::string bound_column, bound_value;  ///< a row whose bound_column is bound_value states a bound (rounding), not a
+                                          ///< maximum; empty: every row states values
+};
+
 /// One part of the report.
 class Part {
  public:
@@ -65,6 +75,8 @@ class Part {
   /// The figures it draws (stems of reports/NAME.gp, data/NAME.csv, NAME.png, NAME.svg); drawn when data/NAME.csv
   /// exists.
   virtual std::vector<std::string> figures() const { return {key()}; }
+  /// The maxima its tables state (ReportedMaximum). Default: none.
+  virtual std::vector<ReportedMaximum> maxima() const { return {}; }
 
   /// "N. title": the heading describe() gives.
   std::string heading() const { return std::to_string(number()) + ". " + title(); }
