@@ -1,12 +1,15 @@
 #include "crankcheck/validation/balance.h"
 
 #include <algorithm>
+#include <array>
 #include <complex>
 #include <tuple>
 #include <cmath>
 #include <memory>
 #include <optional>
 #include <stdexcept>
+
+#include <unsupported/Eigen/FFT>
 
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/scales.h"
@@ -33,29 +36,36 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples) 
     values.emplace_back(engine->name, std::move(turn));
   }
 
+  // Each engine's spectrum of the 7 signals (F_s X, Y; M_s X, Y, Z) by Eigen's FFT: X_n = sum_i f(phi_i) exp(-i n phi_i),
+  // so c_n = (2 / N) Re X_n and s_n = -(2 / N) Im X_n (n < N / 2).
+  std::vector<std::array<std::vector<std::complex<double>>, 7>> spectra;
+  Eigen::FFT<double> fft;
+  for (const auto& [name, turn] : values) {
+    std::array<std::vector<std::complex<double>>, 7>& spectrum = spectra.emplace_back();
+    std::vector<double> signal(samples);
+    for (int k = 0; k < 7; ++k) {
+      for (int i = 0; i < samples; ++i) signal[i] = k < 2 ? turn[i].shaking_force[k] : turn[i].shaking_moment[k - 2];
+      fft.fwd(spectrum[k], signal);
+    }
+  }
+  const double to_coefficient = 2.0 / samples;
   std::vector<BalanceRow> rows;
   for (int n = 1; n <= order; ++n) {
     BalanceRow row;
     row.n = n;
     row.analytic = closed[n - 1];
-    for (const auto& [name, turn] : values) {
+    for (size_t e = 0; e < values.size(); ++e) {
       analytic::ShakingHarmonic h;
       h.n = n;
-      for (int i = 0; i < samples; ++i) {
-        // The DFT: c_n = (2 / N) sum f(phi_i) cos(n phi_i), s_n likewise (n < N / 2). n i mod N keeps the angle exact.
-        const double angle = 2.0 * M_PI * static_cast<double>((static_cast<long long>(n) * i) % samples) / samples;
-        const double c = 2.0 * std::cos(angle) / samples, s = 2.0 * std::sin(angle) / samples;
-        const Evaluation& v = turn[i];
-        for (int k = 0; k < 2; ++k) {
-          h.force_cos[k] += v.shaking_force[k] * c;
-          h.force_sin[k] += v.shaking_force[k] * s;
-        }
-        for (int k = 0; k < 3; ++k) {
-          h.moment_cos[k] += v.shaking_moment[k] * c;
-          h.moment_sin[k] += v.shaking_moment[k] * s;
-        }
+      for (int k = 0; k < 2; ++k) {
+        h.force_cos[k] = to_coefficient * spectra[e][k][n].real();
+        h.force_sin[k] = -to_coefficient * spectra[e][k][n].imag();
       }
-      row.engines.emplace_back(name, h);
+      for (int k = 0; k < 3; ++k) {
+        h.moment_cos[k] = to_coefficient * spectra[e][k + 2][n].real();
+        h.moment_sin[k] = -to_coefficient * spectra[e][k + 2][n].imag();
+      }
+      row.engines.emplace_back(values[e].first, h);
     }
     row.symmetry = analytic::findHarmonicSymmetry(m, n);
     rows.push_back(row);

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <unsupported/Eigen/FFT>
+
 #include "../campaign_tables.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/validation/engines.h"
@@ -41,12 +43,10 @@ TableSet calcHarmonicsTables(const Mechanism& base, Cycle cycle) {
       const std::unique_ptr<EngineModel> model = buildGravityModel(*engine, m);
       std::vector<double> q(M);
       for (int i = 0; i < M; ++i) q[i] = model->calcQ(2.0 * M_PI * i / M);
+      std::vector<std::complex<double>> spectrum;  // X_n = sum_i q_i exp(-2 pi i n i / M): Eigen's FFT (kissfft)
+      Eigen::FFT<double>().fwd(spectrum, q);
       std::vector<double>& a = amplitude.emplace_back();
-      for (int n = 1; n <= max_order; ++n) {
-        std::complex<double> sum = 0.0;
-        for (int i = 0; i < M; ++i) sum += q[i] * std::polar(1.0, -2.0 * M_PI * n * i / M);
-        a.push_back(2.0 * std::abs(sum) / M);
-      }
+      for (int n = 1; n <= max_order; ++n) a.push_back(2.0 * std::abs(spectrum[n]) / M);
     }
     for (int n = 1; n <= max_order; ++n) {
       const std::optional<bool> claim = analytic::getPaperHarmonicClaim(k, cycle, n);
