@@ -15,6 +15,11 @@ class Model final : public EngineModel {
     if (!std::isfinite(phi)) throw std::invalid_argument("analytic: crank angle phi must be finite");
     return calcEvaluation(m_, phi);
   }
+  void setSpeed(double omega) override {
+    if (!std::isfinite(omega)) throw std::invalid_argument("analytic: crank speed omega must be finite");
+    m_.engine.speed = omega;
+    m_.speed_rpm = omega * (30.0 / M_PI);
+  }
 
  private:
   Mechanism m_;

@@ -9,6 +9,7 @@ class Model final : public EngineModel {
  public:
   Model(const Mechanism& m, Variant variant) : model_(m, variant) {}
   Evaluation evaluate(double phi) override { return model_.evaluate(phi); }
+  void setSpeed(double omega) override { model_.setSpeed(omega); }
 
  private:
   KCrankMujocoModel model_;

@@ -297,6 +297,11 @@ class KCrankMujocoModel::Impl {
   Impl(const Mechanism& m, Variant variant);
 
   Evaluation evaluate(double phi);
+  void setSpeed(double omega) {
+    if (!std::isfinite(omega)) throw std::invalid_argument("KCrankMujocoModel: crank speed omega must be finite");
+    m_.engine.speed = omega;
+    m_.speed_rpm = omega * (30.0 / M_PI);
+  }
   double potentialEnergy(double phi);
   double holdingTorque(double phi);
   double closureError() const { return closure_error_; }
@@ -709,6 +714,7 @@ KCrankMujocoModel::KCrankMujocoModel(KCrankMujocoModel&&) noexcept = default;
 KCrankMujocoModel& KCrankMujocoModel::operator=(KCrankMujocoModel&&) noexcept = default;
 
 Evaluation KCrankMujocoModel::evaluate(double phi) { return impl_->evaluate(phi); }
+void KCrankMujocoModel::setSpeed(double omega) { impl_->setSpeed(omega); }
 double KCrankMujocoModel::calcPotentialEnergy(double phi) { return impl_->potentialEnergy(phi); }
 double KCrankMujocoModel::calcHoldingTorque(double phi) { return impl_->holdingTorque(phi); }
 double KCrankMujocoModel::getLoopClosureError() const { return impl_->closureError(); }

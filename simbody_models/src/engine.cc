@@ -19,6 +19,7 @@ class Model final : public EngineModel {
  public:
   explicit Model(const Mechanism& m, ModelOptions options = {}) : model_(m, options) {}
   Evaluation evaluate(double phi) override { return model_.evaluate(phi); }
+  void setSpeed(double omega) override { model_.setSpeed(omega); }
   double calcQ(double phi) override { return model_.calcHoldingTorque(phi); }
   double calcSecondRouteQ(double phi) override { return model_.calcVirtualPowerQ(phi); }
 
@@ -45,6 +46,10 @@ class GravityModel final : public EngineModel {
     c.crank_pin_force = c.wrist_pin_force = {nan, nan};
     e.cylinders.assign(static_cast<size_t>(cylinders_), c);
     return e;
+  }
+  // U and Q do not depend on the speed: the reduced model has none.
+  void setSpeed(double omega) override {
+    if (!std::isfinite(omega)) throw std::invalid_argument("KCrankGravityModel: crank speed omega must be finite");
   }
   double calcQ(double phi) override { return model_.calcHoldingTorque(phi); }
   double calcSecondRouteQ(double phi) override { return model_.calcVirtualPowerQ(phi); }

@@ -33,6 +33,11 @@ class KCrankModel::Impl {
   /// Drive torque [N m] about +Z at the current (Acceleration-realized) state.
   double driveTorque() const;
   Evaluation evaluateAt(double phi, Diagnostics* diagnostics);
+  void setSpeed(double omega) {
+    if (!std::isfinite(omega)) throw std::invalid_argument("KCrankModel: crank speed omega must be finite");
+    m_.engine.speed = omega;
+    m_.speed_rpm = omega * (30.0 / M_PI);
+  }
   double potentialEnergy(double phi);
   double kineticEnergy(double phi);
   double holdingTorque(double phi);
@@ -358,6 +363,7 @@ KCrankModel::KCrankModel(KCrankModel&&) noexcept = default;
 KCrankModel& KCrankModel::operator=(KCrankModel&&) noexcept = default;
 
 Evaluation KCrankModel::evaluate(double phi) { return impl_->evaluateAt(phi, nullptr); }
+void KCrankModel::setSpeed(double omega) { impl_->setSpeed(omega); }
 
 Diagnostics KCrankModel::calcDiagnostics(double phi) {
   Diagnostics d;

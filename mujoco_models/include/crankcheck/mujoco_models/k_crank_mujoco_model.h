@@ -78,6 +78,10 @@ class KCrankMujocoModel {
   /// @throws std::runtime_error if the loop does not close at phi (Newton fails) or MuJoCo returns non-finite values.
   Evaluation evaluate(double phi);
 
+  /// Sets the crank speed omega [rad/s] of every later evaluation (the mechanism's engine.speed): the MJCF does not
+  /// depend on it. @throws std::invalid_argument if omega is not finite.
+  void setSpeed(double omega);
+
   /// U = V(phi) - V(0) [J] only (MuJoCo's mj_energyPos at the closed loop). @throws as evaluate().
   double calcPotentialEnergy(double phi);
 

@@ -26,6 +26,10 @@ class EngineModel {
   /// (engine.speed [rad/s]). Units and signs: CONVENTIONS.md.
   /// @throws std::invalid_argument if phi is not finite; std::runtime_error if the engine fails at phi.
   virtual Evaluation evaluate(double phi) = 0;
+  /// Sets the crank speed omega [rad/s] of every later evaluate() (the mechanism's engine.speed, and speed_rpm with
+  /// it): speed is a state, not a geometry, so one model serves every speed of its mechanism.
+  /// @throws std::invalid_argument if omega is not finite.
+  virtual void setSpeed(double omega) = 0;
   /// Q [N m] = dU/dphi at phi alone (the holding torque: the same Q as evaluate()'s, by the engine's cheapest route
   /// to it). @throws as evaluate().
   virtual double calcQ(double phi) { return evaluate(phi).Q; }

@@ -100,6 +100,10 @@ class KCrankModel {
   /// @throws std::runtime_error if Simbody cannot assemble the mechanism at phi or returns non-finite values.
   Evaluation evaluate(double phi);
 
+  /// Sets the crank speed omega [rad/s] of every later evaluation (the mechanism's engine.speed): the System does not
+  /// depend on it. @throws std::invalid_argument if omega is not finite.
+  void setSpeed(double omega);
+
   /// evaluate(phi) together with Simbody's own body kinematics and energies at the same state.
   /// @throws as evaluate().
   Diagnostics calcDiagnostics(double phi);
