@@ -18,6 +18,7 @@
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/output_folder.h"
+#include "crankcheck/validation/parts.h"
 #include "crankcheck/validation/report.h"
 #include "crankcheck/validation/profile.h"
 #include "crankcheck/validation/verdict.h"
@@ -44,6 +45,10 @@ void addValidateOptions(CLI::App& command, ValidateOptions& options) {
   command.add_option("--profile", options.profile,
                      "Write where the time goes to FILE (a new CSV file, never an existing one): per task and engine, "
                      "model builds, evaluations and seconds");
+  command.add_option("--parts", options.parts,
+                     "Run only these report parts, by key (comma-separated, e.g. pin_load_polar,offset; the keys are the "
+                     "figures' names in reports/); the cross-checks and the verdict always run")
+      ->delimiter(',');
   command.add_option("--jobs", options.jobs, "Worker threads (default: one per core)")->check(CLI::Range(1, 1024));
   command.add_option("--shard", options.shard,
                      "Run only part I of N (0-based) of the campaign and write its data for 'crankcheck report merge'");
@@ -177,6 +182,12 @@ int runValidate(const ValidateOptions& options) {
   // Everything that can be checked is checked before the campaign: scenes, flags, the output folder, gnuplot.
   validation::CampaignOptions campaign;
   campaign.quick = options.quick;
+  try {
+    validation::checkPartKeys(options.parts);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--parts: ") + e.what());
+  }
+  campaign.parts = options.parts;
   std::set<std::string> names;
   for (const std::string& path : options.scene_paths) {
     campaign.scenes.push_back(loadScene(path));
@@ -212,7 +223,7 @@ int runValidate(const ValidateOptions& options) {
   const std::vector<Task> all = validation::buildCampaign(campaign);
   // A shard's campaign is its scenes' content (the default campaign's built-in and example scenes too), --quick,
   // N and crankcheck's version: the merge refuses shards of campaigns that differ in any.
-  validation::ShardManifest manifest{shard_index, shard_count, options.quick, {}, static_cast<int>(all.size()),
+  validation::ShardManifest manifest{shard_index, shard_count, options.quick, {}, options.parts, static_cast<int>(all.size()),
                                      validation::getCrankcheckVersion(), {}};
   if (shard) {
     std::vector<Mechanism> scenes = campaign.scenes;
@@ -282,6 +293,14 @@ std::string findCampaignDifference(const validation::ShardManifest& shard, const
       return "scenes " + listNames(shard.scenes) + ", " + there + " has " + listNames(first.scenes);
     if (shard.scenes[i].checksum != first.scenes[i].checksum)
       return "scene " + shard.scenes[i].name + ": another scene than in " + there + " (the same name, other content)";
+  }
+  if (shard.parts != first.parts) {
+    auto list = [](const std::vector<std::string>& parts) {
+      std::string s;
+      for (const std::string& p : parts) s += (s.empty() ? "" : ",") + p;
+      return parts.empty() ? std::string("every part") : "--parts " + s;
+    };
+    return list(shard.parts) + ", " + there + " " + list(first.parts);
   }
   if (shard.tasks != first.tasks)
     return std::to_string(shard.tasks) + " tasks, " + there + " " + std::to_string(first.tasks) +

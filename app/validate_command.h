@@ -17,6 +17,7 @@ struct ValidateOptions {
   std::string shard;       ///< "I/N", empty = the whole campaign
   bool verbose = false;    ///< the families' table in full on the terminal (else only the families that failed)
   std::string profile;     ///< --profile FILE: where each task's time goes, by engine (a new CSV file); empty: none
+  std::vector<std::string> parts;  ///< --parts KEY,...: only these report parts (the cross-checks always); empty: all
 };
 
 struct MergeOptions {

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -254,11 +255,14 @@ TEST_F(MergeRefusalTest, ShardWithAChangedDataFileIsRefused) {
 }
 
 // A run that fails (here: the figure scripts cannot be found) leaves the previous good report exactly as it was.
+// One scene and one part with a figure: the rule is the output folder's, whatever the campaign.
 TEST_F(ValidateTest, FailedRunNeverReplacesAGoodReport) {
   const fs::path report = dir_ / "report";
-  ASSERT_EQ(run("validate --quick --out " + report.string()).exit_status, 0);
+  const std::string campaign =
+      "validate --quick " + std::string(CRANKCHECK_SCENES_DIR) + "/single_cylinder.toml --parts pin_load_polar --out ";
+  ASSERT_EQ(run(campaign + report.string()).exit_status, 0);
   const std::string before = readFile(report / "index.md");
-  const RunResult failed = run("validate --quick --out " + report.string(), {"CRANKCHECK_REPORTS_DIR=/nonexistent"});
+  const RunResult failed = run(campaign + report.string(), {"CRANKCHECK_REPORTS_DIR=/nonexistent"});
   EXPECT_EQ(failed.exit_status, 3) << "a missing tool is the environment's failure";
   EXPECT_NE(failed.err.find("gnuplot script not found"), std::string::npos) << failed.err;
   EXPECT_EQ(readFile(report / "index.md"), before);
@@ -281,6 +285,48 @@ TEST_F(ValidateTest, BadInputIsRefusedWithStatus2) {
   const RunResult not_a_shard = run("report merge " + dir_.string() + " --out " + (dir_ / "x").string());
   EXPECT_EQ(not_a_shard.exit_status, 2);
   EXPECT_NE(not_a_shard.err.find("shard.json"), std::string::npos) << not_a_shard.err;
+}
+
+// --parts runs those parts alone, with every cross-check: their tables, figures and headings and no other part's; the
+// report says so. An unknown or repeated key is refused before any work.
+TEST_F(ValidateTest, PartsRunsOnlyThoseParts) {
+  const std::string scene = std::string(CRANKCHECK_SCENES_DIR) + "/single_cylinder.toml";
+  const fs::path report = dir_ / "report";
+  const RunResult r = run("validate --quick " + scene + " --parts pin_load_polar,offset --out " + report.string());
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  std::set<std::string> written;
+  for (const auto& entry : fs::directory_iterator(report / "data")) written.insert(entry.path().stem().string());
+  std::set<std::string> expected = {"crosscheck", "scenes", "notes"};
+  for (const validation::Part* part : validation::listParts())
+    if (part->key() == "pin_load_polar" || part->key() == "offset")
+      for (const std::string& table : part->tables()) expected.insert(table);
+  EXPECT_EQ(written, expected);
+  EXPECT_TRUE(fs::exists(report / "pin_load_polar.png"));
+  EXPECT_TRUE(fs::exists(report / "offset.png"));
+  EXPECT_FALSE(fs::exists(report / "harmonics.png"));
+  const std::string index = readFile(report / "index.md");
+  EXPECT_NE(index.find("Only the report parts pin_load_polar, offset were run"), std::string::npos);
+  for (const validation::Part* part : validation::listParts())
+    EXPECT_EQ(index.find("## " + part->heading()) != std::string::npos,
+              part->key() == "pin_load_polar" || part->key() == "offset")
+        << part->heading();
+  for (const std::string& bad : {"nonsense", "offset,offset"}) {
+    const RunResult refused = run("validate --quick " + scene + " --parts " + bad + " --out " + (dir_ / "x").string());
+    EXPECT_EQ(refused.exit_status, 2) << refused.err;
+    EXPECT_EQ(refused.err.rfind("crankcheck: --parts: ", 0), 0u) << refused.err;
+    EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+    EXPECT_EQ(refused.out, "");
+    EXPECT_FALSE(fs::exists(dir_ / "x"));
+  }
+  // Shards of campaigns with other parts are not one campaign.
+  const fs::path s0 = dir_ / "s0", s1 = dir_ / "s1";
+  ASSERT_EQ(run("validate --quick " + scene + " --parts norton_fig13_8 --shard 0/2 --out " + s0.string()).exit_status, 0);
+  ASSERT_EQ(run("validate --quick " + scene + " --parts offset --shard 1/2 --out " + s1.string()).exit_status, 0);
+  const RunResult merge = run("report merge " + s0.string() + " " + s1.string() + " --out " + (dir_ / "m").string());
+  EXPECT_EQ(merge.exit_status, 2) << merge.err;
+  EXPECT_NE(merge.err.find("--parts offset, \"" + s0.string() + "\" --parts norton_fig13_8"), std::string::npos)
+      << merge.err;
+  EXPECT_FALSE(fs::exists(dir_ / "m"));
 }
 
 TEST_F(ValidateTest, SceneFilesAreTheirOwnFamilies) {

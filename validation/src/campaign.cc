@@ -432,11 +432,20 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
     notes.rows.push_back({"Parts 6 and 7 (the free run) are left out: the base scene " + base.name +
                           " has no [flywheel] inertia and crankcheck does not assume one. Give the first scene a "
                           "[flywheel] table to get them."});
+  if (!options.parts.empty()) {
+    std::string asked;
+    for (const std::string& key : options.parts) asked += (asked.empty() ? "" : ", ") + key;
+    notes.rows.push_back({"Only the report parts " + asked + " were run (validate --parts); the cross-checks and the "
+                          "verdict are whole."});
+  }
   if (!notes.rows.empty()) tasks.push_back({"notes", false, [notes] { return TableSet{{"notes", notes}}; }});
   // Every registered part's tasks (parts.h), in report order.
   const PartContext context{base, first, pin_scenes, options.scenes, families, quick};
-  for (const Part* part : listParts())
+  for (const Part* part : listParts()) {
+    if (!options.parts.empty() && std::find(options.parts.begin(), options.parts.end(), part->key()) == options.parts.end())
+      continue;  // validate --parts: not asked for
     for (Task& task : part->tasks(context)) tasks.push_back(std::move(task));
+  }
   // The longest tasks first, so that the jobs finish together (the order changes no table: they are sorted): the
   // flywheel sizings (one task per Simbody run), the offset sweep, then the cross-checks and the gate's sweep, largest
   // k first, then the rest in the order listed (Task::cost).

@@ -1,5 +1,8 @@
 #include "crankcheck/validation/parts.h"
 
+#include <algorithm>
+#include <stdexcept>
+
 namespace crankcheck::validation {
 
 // The registry: one line per part, in report order. Each names the accessor `const Part& NAME()` that the part's own
@@ -33,6 +36,18 @@ const std::vector<const Part*>& listParts() {
   static const std::vector<const Part*> all = {CRANKCHECK_REPORT_PARTS(CRANKCHECK_LIST_PART)};
 #undef CRANKCHECK_LIST_PART
   return all;
+}
+
+void checkPartKeys(const std::vector<std::string>& keys) {
+  std::string known;
+  for (const Part* part : listParts()) known += (known.empty() ? "" : ", ") + part->key();
+  for (size_t i = 0; i < keys.size(); ++i) {
+    const auto& all = listParts();
+    if (std::none_of(all.begin(), all.end(), [&](const Part* part) { return part->key() == keys[i]; }))
+      throw std::invalid_argument("no report part \"" + keys[i] + "\"; the parts are " + known);
+    if (std::find(keys.begin(), keys.begin() + static_cast<long>(i), keys[i]) != keys.begin() + static_cast<long>(i))
+      throw std::invalid_argument("part \"" + keys[i] + "\" is named twice");
+  }
 }
 
 }  // namespace crankcheck::validation

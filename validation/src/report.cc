@@ -396,7 +396,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
 namespace {
 
 // shard.json's format: 2 added the campaign's identity (version, scenes' content) and the data files' records.
-constexpr int kShardFormat = 2;
+constexpr int kShardFormat = 3;  // 3: the parts run (validate --parts)
 
 }  // namespace
 
@@ -407,7 +407,7 @@ void writeShardManifest(const ShardManifest& manifest, const fs::path& dir) {
     files.push_back({{"path", f.path}, {"header", f.header}, {"rows", f.rows}, {"fnv1a64", f.checksum}});
   nlohmann::json j = {{"crankcheck_shard", kShardFormat}, {"version", manifest.version}, {"index", manifest.index},
                       {"count", manifest.count},          {"quick", manifest.quick},     {"scenes", scenes},
-                      {"tasks", manifest.tasks},          {"files", files}};
+                      {"tasks", manifest.tasks},          {"files", files},              {"parts", manifest.parts}};
   writeNewFile(dir / "shard.json", j.dump(2) + "\n");
 }
 
@@ -429,6 +429,7 @@ ShardManifest readShardManifest(const fs::path& dir) {
     for (const auto& scene : j.at("scenes"))
       m.scenes.push_back({scene.at("name").get<std::string>(), scene.at("fnv1a64").get<std::string>()});
     m.tasks = j.at("tasks").get<int>();
+    m.parts = j.at("parts").get<std::vector<std::string>>();
     for (const auto& f : j.at("files"))
       m.files.push_back({f.at("path").get<std::string>(), f.at("header").get<std::string>(), f.at("rows").get<size_t>(),
                          f.at("fnv1a64").get<std::string>()});

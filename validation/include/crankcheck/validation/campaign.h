@@ -81,6 +81,9 @@ void sortTables(TableSet& tables);
 struct CampaignOptions {
   bool quick = false;               ///< fewer lambdas, angles and methods: a smoke test of the whole report
   std::vector<Mechanism> scenes;    ///< the families to cross-check; empty = the built-in default campaign
+  /// The keys of the report parts to run (`validate --parts`), each once; empty = every part. The cross-checks (the
+  /// verdict) always run. @see checkPartKeys
+  std::vector<std::string> parts;
 };
 
 /// One independent unit of work.

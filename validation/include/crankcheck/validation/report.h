@@ -78,11 +78,12 @@ struct ShardScene {
 };
 
 /// A shard's manifest (shard.json): which part of which campaign the folder holds, and what it wrote. Two shards
-/// are of one campaign when version, count, quick, scenes and tasks are the same.
+/// are of one campaign when version, count, quick, scenes, parts and tasks are the same.
 struct ShardManifest {
   int index = 0, count = 1;
   bool quick = false;
   std::vector<ShardScene> scenes;    ///< every scene the campaign uses (the default campaign's too), in order
+  std::vector<std::string> parts;    ///< validate --parts; empty: every part
   int tasks = 0;
   std::string version;               ///< the crankcheck that wrote it (getCrankcheckVersion)
   std::vector<DataFileRecord> files;  ///< every data file, by path
