@@ -36,14 +36,15 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples) 
     values.emplace_back(engine->name, std::move(turn));
   }
 
-  // Each engine's spectrum of the 7 signals (F_s X, Y; M_s X, Y, Z) by Eigen's FFT: X_n = sum_i f(phi_i) exp(-i n phi_i),
+  // Each engine's spectrum of the 5 signals (F_s X, Y; M_s X, Y, Z) by Eigen's FFT: X_n = sum_i f(phi_i) exp(-i n phi_i),
   // so c_n = (2 / N) Re X_n and s_n = -(2 / N) Im X_n (n < N / 2).
-  std::vector<std::array<std::vector<std::complex<double>>, 7>> spectra;
+  constexpr int kSignals = 5;
+  std::vector<std::array<std::vector<std::complex<double>>, kSignals>> spectra;
   Eigen::FFT<double> fft;
   for (const auto& [name, turn] : values) {
-    std::array<std::vector<std::complex<double>>, 7>& spectrum = spectra.emplace_back();
+    std::array<std::vector<std::complex<double>>, kSignals>& spectrum = spectra.emplace_back();
     std::vector<double> signal(samples);
-    for (int k = 0; k < 7; ++k) {
+    for (int k = 0; k < kSignals; ++k) {
       for (int i = 0; i < samples; ++i) signal[i] = k < 2 ? turn[i].shaking_force[k] : turn[i].shaking_moment[k - 2];
       fft.fwd(spectrum[k], signal);
     }
