@@ -3,8 +3,9 @@
 line is shown only on a terminal). Each update gives the tasks done of all, the elapsed time and an estimate of the
 time left; the last says every task is done with nothing left, and the line is cleared at the end.
 
-Usage (ctest, label cli): progress_test.py CRANKCHECK. Runs `validate --quick` in a fresh mkdtemp folder, removed
-at the end; the program is started without a shell.
+Usage (ctest, label cli): progress_test.py CRANKCHECK. Runs `validate --quick SCENE` (the example single cylinder:
+every part's tasks, one family's cross-check) in a fresh mkdtemp folder, removed at the end; the program is started
+without a shell.
 """
 
 import os
@@ -17,6 +18,7 @@ import tempfile
 import unittest
 
 CRANKCHECK = None
+SCENE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scenes", "single_cylinder.toml")
 UPDATE = re.compile(r"\r\x1b\[K\[ *(\d+)/(\d+)\] (\d+s|\d+m\d\ds|\d+h\d\dm) elapsed, about (\d+s|\d+m\d\ds|\d+h\d\dm) left: ")
 
 
@@ -25,7 +27,7 @@ class ProgressTest(unittest.TestCase):
         folder = tempfile.mkdtemp(prefix="crankcheck_test_")
         try:
             master, slave = pty.openpty()
-            process = subprocess.Popen([CRANKCHECK, "validate", "--quick", "--jobs", "2", "--out",
+            process = subprocess.Popen([CRANKCHECK, "validate", "--quick", SCENE, "--jobs", "2", "--out",
                                         os.path.join(folder, "report")],
                                        stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=slave)
             os.close(slave)
