@@ -48,7 +48,8 @@ void addValidateOptions(CLI::App& command, ValidateOptions& options) {
   command.add_option("--parts", options.parts,
                      "Run only these report parts, by key (comma-separated, e.g. pin_load_polar,offset; the keys are the "
                      "figures' names in reports/); the cross-checks and the verdict always run")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->allow_extra_args(false);  // one comma-separated value: the scene files after it stay scene files
   command.add_option("--jobs", options.jobs, "Worker threads (default: one per core)")->check(CLI::Range(1, 1024));
   command.add_option("--shard", options.shard,
                      "Run only part I of N (0-based) of the campaign and write its data for 'crankcheck report merge'");
