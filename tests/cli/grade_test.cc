@@ -138,7 +138,8 @@ TEST(GradeTest, TheAnalyticLibraryPassesWithEveryQuantityProvided) {
 
 struct Misbehaviour {
   std::string mode;
-  std::string expected;  // a part of the one-line message
+  std::string expected;      // a part of the one-line message
+  std::string timeout = "5";  // --timeout [s] per request
 };
 void PrintTo(const Misbehaviour& m, std::ostream* os) { *os << m.mode; }
 
@@ -147,9 +148,10 @@ class GradeMisbehaviourTest : public ::testing::TestWithParam<Misbehaviour> {};
 TEST_P(GradeMisbehaviourTest, ExitStatus3WithOneClearLine) {
   FreshFolder dir;
   const fs::path out = dir.path() / "report";
-  // 5 s per request: enough for 64 MiB through a pipe on a loaded machine, short enough for the hang.
-  const auto r = runCrankcheck({"grade", "--quick", "--timeout", "5", "--out", out.string(), "--", CRANKCHECK_FAKE_PROGRAM,
-                                GetParam().mode});
+  // 5 s per request: enough for 64 MiB through a pipe on a loaded machine; the two that hang wait out 1 s (their one
+  // request is a few hundred bytes each way).
+  const auto r = runCrankcheck({"grade", "--quick", "--timeout", GetParam().timeout, "--out", out.string(), "--",
+                                CRANKCHECK_FAKE_PROGRAM, GetParam().mode});
   EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
   EXPECT_NE(r.err.find(GetParam().expected), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
@@ -169,8 +171,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Misbehaviour{"string", "must be a number or null"},
                       Misbehaviour{"crash", "ended by signal 6"},
                       Misbehaviour{"exit7", "exited with status 7; its stderr: \"something went wrong"},
-                      Misbehaviour{"hang", "no complete answer within 5 s"},
-                      Misbehaviour{"answer-then-hang", "answered completely but did not exit within 5 s"},
+                      Misbehaviour{"hang", "no complete answer within 1 s", "1"},
+                      Misbehaviour{"answer-then-hang", "answered completely but did not exit within 1 s", "1"},
                       // The quote is closed, and ESC, NUL and tab are shown as escapes.
                       Misbehaviour{"control-bytes", "line 1: \"\\x1b[2J\\x1b[31mred\\x1b[0m\\x00\\tafter NUL\""},
                       Misbehaviour{"control-bytes-stderr", "its stderr: \"\\x1b]0;title\\x07\\x00hidden\""},
