@@ -95,25 +95,6 @@ void expectEvaluationsAgree(const Mechanism& m, const Evaluation& a, const Evalu
 
 class CrossCheckTest : public ::testing::TestWithParam<CaseSpec> {};
 
-// At the case's speed (3000 rpm two-stroke, 6000 rpm four-stroke) and at rest, around the full turn.
-TEST_P(CrossCheckTest, EveryQuantityAgrees) {
-  for (double rpm : {GetParam().rpm, 0.0}) {
-    CaseSpec spec = GetParam();
-    spec.rpm = rpm;
-    const Mechanism m = testing::makeMechanism(spec);
-    g_current_lambda = spec.lambda;
-    simbody_models::KCrankModel model(m);
-    const Scales sc = calcScales(m);
-    for (double phi_deg : testing::sweepPhisDeg()) {
-      SCOPED_TRACE(testing::caseName(spec) + " phi_deg " + std::to_string(phi_deg));
-      const double phi = radiansFromDegrees(phi_deg);
-      const Evaluation a = analytic::calcEvaluation(m, phi);
-      expectEvaluationsAgree(m, a, model.evaluate(phi));
-      if (rpm == 0.0) EXPECT_TRUE(agree("Q (virtual power)", a.Q, model.calcVirtualPowerQ(phi), sc.energy, sc.conditioning));
-    }
-  }
-}
-
 std::vector<CaseSpec> gateCases() {
   std::vector<CaseSpec> cases;
   for (int k = 1; k <= 12; ++k)
@@ -127,11 +108,6 @@ std::vector<CaseSpec> gateCases() {
   return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(Gate, CrossCheckTest, ::testing::ValuesIn(gateCases()),
-                         [](const auto& info) {
-                           const std::string name = testing::caseName(info.param);
-                           return name.substr(0, name.rfind('_'));  // the speed is implied by the stroke
-                         });
 
 // Every example scene, both engines, through the same scene files the CLI reads.
 // The three-way gate: every other exact engine of the registry (MuJoCo's hard multipliers; a fourth engine joins by
@@ -172,17 +148,44 @@ void expectThreeWayAgreement(const Mechanism& m, const std::vector<double>& phis
   }
 }
 
-class ThreeWayTest : public ::testing::TestWithParam<CaseSpec> {};
-
-TEST_P(ThreeWayTest, EveryExactEngineAgrees) {
+// The sweep: at the case's speed (3000 rpm two-stroke, 6000 rpm four-stroke) and at rest, around the full turn, the
+// analytic engine against Simbody (every quantity, and Simbody's second route to Q at rest), and every other exact
+// engine of the registry (MuJoCo) against both: the three-way gate in the same pass, so that Simbody's evaluations of
+// a case are made once. Each engine's model is built once per case and evaluated at both speeds (EngineModel::setSpeed).
+TEST_P(CrossCheckTest, EveryQuantityAgrees) {
+  std::vector<Mechanism> at_speed;
   for (double rpm : {GetParam().rpm, 0.0}) {
     CaseSpec spec = GetParam();
     spec.rpm = rpm;
-    expectThreeWayAgreement(testing::makeMechanism(spec), testing::sweepPhisDeg(), testing::caseName(spec));
+    at_speed.push_back(testing::makeMechanism(spec));
+  }
+  g_current_lambda = GetParam().lambda;
+  simbody_models::KCrankModel simbody(at_speed.front());
+  auto others = buildOtherExactEngines(at_speed.front());
+  ASSERT_FALSE(others.empty()) << "no third exact engine is registered";
+  for (double phi_deg : testing::sweepPhisDeg()) {
+    const double phi = radiansFromDegrees(phi_deg);
+    for (const Mechanism& m : at_speed) {
+      SCOPED_TRACE(testing::caseName(GetParam()) + " at " + std::to_string(m.speed_rpm) + " rpm, phi_deg " +
+                   std::to_string(phi_deg));
+      const Scales sc = calcScales(m);
+      simbody.setSpeed(m.engine.speed);
+      const Evaluation a = analytic::calcEvaluation(m, phi), s = simbody.evaluate(phi);
+      expectEvaluationsAgree(m, a, s);
+      if (m.speed_rpm == 0.0)
+        EXPECT_TRUE(agree("Q (virtual power)", a.Q, simbody.calcVirtualPowerQ(phi), sc.energy, sc.conditioning));
+      for (auto& [engine, model] : others) {
+        model->setSpeed(m.engine.speed);
+        const Evaluation e = model->evaluate(phi);
+        ASSERT_EQ(a.cylinders.size(), e.cylinders.size());
+        for (const Comparison& c : validation::compareEvaluations(m, a, e)) EXPECT_TRUE(agreeEngines(c, "analytic", engine->name));
+        for (const Comparison& c : validation::compareEvaluations(m, s, e)) EXPECT_TRUE(agreeEngines(c, "simbody", engine->name));
+      }
+    }
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Gate, ThreeWayTest, ::testing::ValuesIn(gateCases()),
+INSTANTIATE_TEST_SUITE_P(Gate, CrossCheckTest, ::testing::ValuesIn(gateCases()),
                          [](const auto& info) {
                            const std::string name = testing::caseName(info.param);
                            return name.substr(0, name.rfind('_'));  // the speed is implied by the stroke
