@@ -96,6 +96,12 @@ std::string joinEngineLibraries() {
   return out;
 }
 
+std::vector<const Engine*> listComparedEngines() {
+  std::vector<const Engine*> engines = {&getClosedFormEngine()};
+  for (const Engine* e : listReferenceEngines()) engines.push_back(e);
+  return engines;
+}
+
 const Engine& getClosedFormEngine() {
   for (const Engine& e : listEngines())
     if (e.closed_form) return e;

@@ -66,8 +66,7 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
   const double stroke = analytic::calcDeadCentres(m, f * r).stroke;
   // The closed forms first, then each reference engine: the thrust of each, and each one's difference from the exact
   // offset closed forms.
-  std::vector<const Engine*> engines = {&getClosedFormEngine()};
-  engines.insert(engines.end(), references.begin(), references.end());
+  const std::vector<const Engine*> engines = listComparedEngines();
   std::vector<std::unique_ptr<EngineModel>> models;
   for (const Engine* e : engines) models.push_back(e->build(m));
   std::map<std::string, double> worst;

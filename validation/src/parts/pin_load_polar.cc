@@ -46,8 +46,7 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
   for (size_t index = 0; index < scenes.size(); ++index) {
     const Mechanism& m = scenes[index];
     // The closed forms first, then each reference engine (engines.h).
-    std::vector<const Engine*> engines = {&getClosedFormEngine()};
-    for (const Engine* e : listReferenceEngines()) engines.push_back(e);
+    const std::vector<const Engine*> engines = listComparedEngines();
     std::vector<std::unique_ptr<EngineModel>> models;
     for (const Engine* e : engines) models.push_back(e->build(m));
     const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;

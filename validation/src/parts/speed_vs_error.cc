@@ -44,7 +44,6 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
   struct Method {
     std::string name;
     std::function<double(double)> eval;   // Q at phi
-    bool engine = false;                  // a reference engine's route: its error against the closed form
   };
   std::vector<Method> methods;
   const std::vector<const Engine*> references = listReferenceEngines();
@@ -53,7 +52,7 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
   for (const Engine* engine : references) {
     if (engine->build_gravity) {
       std::shared_ptr<EngineModel> reduced = engine->build_gravity(m);
-      methods.push_back({engine->name + "_reduced", [reduced](double phi) { return reduced->calcQ(phi); }, true});
+      methods.push_back({engine->name + "_reduced", [reduced](double phi) { return reduced->calcQ(phi); }});
     }
   }
   methods.push_back({"exact_closed_form", [m](double phi) { return analytic::calcGravityTorque(m, phi); }});
@@ -68,14 +67,14 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
   for (const Engine* engine : references) {
     if (!engine->build_at_accuracy) {
       std::shared_ptr<EngineModel> model = engine->build(m);
-      methods.push_back({engine->name, [model](double phi) { return model->calcQ(phi); }, true});
+      methods.push_back({engine->name, [model](double phi) { return model->calcQ(phi); }});
       continue;
     }
     for (double tol : quick ? std::vector<double>{1e-4, 1e-12} : std::vector<double>{1e-4, 1e-6, 1e-8, 1e-10, 1e-12}) {
       std::shared_ptr<EngineModel> model = engine->build_at_accuracy(m, tol);
       char name[96];
       std::snprintf(name, sizeof name, "%s_tol_%.0e", engine->name.c_str(), tol);
-      methods.push_back({name, [model](double phi) { return model->calcQ(phi); }, true});
+      methods.push_back({name, [model](double phi) { return model->calcQ(phi); }});
     }
   }
 

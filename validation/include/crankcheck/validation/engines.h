@@ -29,6 +29,9 @@ void checkEveryEngineBuilds(const Mechanism& m, const std::string& path);
 /// compared with (simbody, mujoco), in the registry's order.
 std::vector<const Engine*> listReferenceEngines();
 
+/// The closed forms first, then every reference engine: the engines a part that shows each engine's values lists.
+std::vector<const Engine*> listComparedEngines();
+
 /// The engine of the closed forms under test (Engine::closed_form: "analytic"). @throws std::logic_error if the
 /// registry has none.
 const Engine& getClosedFormEngine();
