@@ -20,6 +20,25 @@
 
 namespace crankcheck::simbody_models {
 
+namespace {
+
+// Refuses an evaluation with a non-finite value (a singular mass matrix); returns it otherwise.
+const Evaluation& checkFinite(const Evaluation& ev) {
+  bool finite = std::isfinite(ev.U) && std::isfinite(ev.Q) && std::isfinite(ev.drive_torque) &&
+                std::isfinite(ev.bearing_force[0]) && std::isfinite(ev.bearing_force[1]);
+  for (const CylinderEvaluation& c : ev.cylinders)
+    finite = finite && std::isfinite(c.x_p) && std::isfinite(c.v_p) && std::isfinite(c.a_p) &&
+             std::isfinite(c.crank_pin_force[0]) && std::isfinite(c.crank_pin_force[1]) &&
+             std::isfinite(c.wrist_pin_force[0]) && std::isfinite(c.wrist_pin_force[1]) &&
+             std::isfinite(c.wall_force);
+  if (!finite)
+    throw std::runtime_error("KCrankModel: Simbody returned non-finite results at phi = " + std::to_string(ev.phi) +
+                             " rad (singular mass matrix?)");
+  return ev;
+}
+
+}  // namespace
+
 class KCrankModel::Impl {
  public:
   Impl(const Mechanism& m, ModelOptions options);
@@ -49,6 +68,9 @@ class KCrankModel::Impl {
   BodyKinematics bodyKinematics(const SimTK::MobilizedBody& body) const;
   /// (dH_O/dt, dP/dt) of one body from Simbody's own accelerations and mass properties, at Acceleration stage.
   SimTK::SpatialVec momentumRate(const SimTK::MobilizedBody& body) const;
+  /// Reads the motion and loads of `ev` (drive torque, reactions, kinematics, shaking) off the Acceleration-realized
+  /// state; fills `reactions` (the mobilizer reactions) for the diagnostics.
+  void readMotion(Evaluation& ev, SimTK::Vector_<SimTK::SpatialVec>& reactions) const;
   void setReferenceGuess();
 
   // The static pass of the last evaluation (U, Q, the position error) at the angle the state is assembled at: an
@@ -56,6 +78,9 @@ class KCrankModel::Impl {
   struct StaticPass {
     bool valid = false;
     double phi = 0.0, U = 0.0, Q = 0.0, position_error = 0.0;
+    // Without gas the static pass is the dynamic pass at rest: its whole evaluation, read off the same solved state.
+    bool at_rest_valid = false;
+    Evaluation at_rest;
   };
   StaticPass static_pass_;
 
@@ -230,39 +255,10 @@ BodyKinematics KCrankModel::Impl::bodyKinematics(const SimTK::MobilizedBody& bod
   return b;
 }
 
-Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
-  Evaluation ev;
-  ev.engine = "simbody";
-  ev.phi = phi;
-
-  double position_error = 0.0;
-  if (static_pass_.valid && static_pass_.phi == phi && diagnostics == nullptr) {
-    // Assembled at this angle by the last evaluation, its static pass done: only the speed differs. The velocities
-    // start from zero as after an assembly, so the dynamic pass below computes what it computes after one.
-    ev.U = static_pass_.U;
-    ev.Q = static_pass_.Q;
-    position_error = static_pass_.position_error;
-    state_.updU() = 0;
-  } else {
-    assemble(phi);
-    position_error = calcMaxAbs(state_.getQErr());
-
-    // Static pass (omega = 0, gas off): the holding torque is Q, route 1.
-    drive_->gas = false;
-    solveMotion(0.0);
-    drive_->gas = true;
-    ev.U = system_.calcPotentialEnergy(state_) - reference_potential_;
-    ev.Q = driveTorque();
-    static_pass_ = {true, phi, ev.U, ev.Q, position_error};
-  }
-
-  // Dynamic pass at the scene's omega (also at omega = 0, so the two passes stay independent computations).
-  const double omega = m_.engine.speed;
-  solveMotion(omega);
+void KCrankModel::Impl::readMotion(Evaluation& ev, SimTK::Vector_<SimTK::SpatialVec>& reactions) const {
   ev.drive_torque = driveTorque();
 
   // Mobilizer reactions: force ON the child FROM its parent, at the child's M origin, in Ground.
-  SimTK::Vector_<SimTK::SpatialVec> reactions;
   matter_.calcMobilizerReactionForces(state_, reactions);
   // Constraint forces as applied forces (negated multipliers), at each body's origin, in Ground.
   SimTK::Vector_<SimTK::SpatialVec> constraint_body_forces;
@@ -304,17 +300,52 @@ Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
   for (const SimTK::MobilizedBody::Pin& shaft : shafts_) rate += momentumRate(shaft);
   ev.shaking_force = {-rate[1][0], -rate[1][1]};
   ev.shaking_moment = {-rate[0][0], -rate[0][1], -rate[0][2]};
+}
 
-  bool finite = std::isfinite(ev.U) && std::isfinite(ev.Q) && std::isfinite(ev.drive_torque) &&
-                std::isfinite(ev.bearing_force[0]) && std::isfinite(ev.bearing_force[1]);
-  for (const CylinderEvaluation& c : ev.cylinders)
-    finite = finite && std::isfinite(c.x_p) && std::isfinite(c.v_p) && std::isfinite(c.a_p) &&
-             std::isfinite(c.crank_pin_force[0]) && std::isfinite(c.crank_pin_force[1]) &&
-             std::isfinite(c.wrist_pin_force[0]) && std::isfinite(c.wrist_pin_force[1]) &&
-             std::isfinite(c.wall_force);
-  if (!finite)
-    throw std::runtime_error("KCrankModel: Simbody returned non-finite results at phi = " + std::to_string(phi) +
-                             " rad (singular mass matrix?)");
+Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
+  Evaluation ev;
+  ev.engine = "simbody";
+  ev.phi = phi;
+  const double omega = m_.engine.speed;
+  // Without a gas force the dynamic pass at rest solves the very problem of the static pass (omega = 0, gravity
+  // alone): its evaluation is the static pass's, read off the same solved state, not solved a second time.
+  const bool rest_is_static = omega == 0.0 && !m_.gas && diagnostics == nullptr;
+
+  double position_error = 0.0;
+  if (static_pass_.valid && static_pass_.phi == phi && diagnostics == nullptr) {
+    // Assembled at this angle by the last evaluation, its static pass done: only the speed differs. The velocities
+    // start from zero as after an assembly, so the dynamic pass below computes what it computes after one.
+    if (rest_is_static && static_pass_.at_rest_valid) return static_pass_.at_rest;
+    ev.U = static_pass_.U;
+    ev.Q = static_pass_.Q;
+    position_error = static_pass_.position_error;
+    state_.updU() = 0;
+  } else {
+    assemble(phi);
+    position_error = calcMaxAbs(state_.getQErr());
+
+    // Static pass (omega = 0, gas off): the holding torque is Q, route 1.
+    drive_->gas = false;
+    solveMotion(0.0);
+    drive_->gas = true;
+    ev.U = system_.calcPotentialEnergy(state_) - reference_potential_;
+    ev.Q = driveTorque();
+    static_pass_ = {true, phi, ev.U, ev.Q, position_error, false, {}};
+    if (!m_.gas && diagnostics == nullptr) {
+      // The at-rest evaluation, kept for the same angle's evaluation at rest (the cross-check's second speed).
+      SimTK::Vector_<SimTK::SpatialVec> reactions;
+      static_pass_.at_rest = ev;
+      readMotion(static_pass_.at_rest, reactions);
+      static_pass_.at_rest_valid = true;
+      if (rest_is_static) return checkFinite(static_pass_.at_rest);
+    }
+  }
+
+  // Dynamic pass at the scene's omega (also at omega = 0 with gas, so the two passes stay independent computations).
+  solveMotion(omega);
+  SimTK::Vector_<SimTK::SpatialVec> reactions;
+  readMotion(ev, reactions);
+  checkFinite(ev);
 
   if (diagnostics != nullptr) {
     Diagnostics& d = *diagnostics;
