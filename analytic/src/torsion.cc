@@ -5,32 +5,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "crankcheck/analytic/crank_train.h"
 #include "crankcheck/analytic/motion.h"
 
 namespace crankcheck::analytic {
 namespace {
-
-// The cylinders of one throw as a mechanism of their own: J(phi) of motion.h is then exactly J_j(psi).
-Mechanism throwMechanism(const Mechanism& m, int throw_index) {
-  const std::vector<std::vector<int>> throws = findThrows(m);
-  if (throw_index < 0 || throw_index >= static_cast<int>(throws.size()))
-    throw std::out_of_range("torsion: no throw " + std::to_string(throw_index) + " (the scene has " +
-                            std::to_string(throws.size()) + ")");
-  Mechanism one = m;
-  one.flywheel_inertia.reset();
-  one.balance_shafts.clear();
-  one.engine.crank_angles.clear();
-  one.engine.bank_angles.clear();
-  one.engine.axial_positions.clear();
-  one.engine.pin_offsets.clear();
-  for (int c : throws[static_cast<size_t>(throw_index)]) {
-    one.engine.crank_angles.push_back(m.engine.crank_angles.at(static_cast<size_t>(c)));
-    one.engine.bank_angles.push_back(getBankAngle(m, c));
-    one.engine.pin_offsets.push_back(getPinOffset(m, c));
-  }
-  one.engine.cylinders = static_cast<int>(one.engine.crank_angles.size());
-  return one;
-}
 
 // Neumaier's compensated sum: the rounding of the sum stays at about one ulp, whatever N.
 struct CompensatedSum {
@@ -46,11 +25,11 @@ struct CompensatedSum {
 }  // namespace
 
 double calcThrowReducedInertia(const Mechanism& m, int throw_index, double psi) {
-  return calcReducedInertia(throwMechanism(m, throw_index), psi).J;
+  return calcReducedInertia(makeThrowMechanism(m, throw_index), psi).J;
 }
 
 ThrowInertia calcThrowInertia(const Mechanism& m, int throw_index) {
-  const Mechanism one = throwMechanism(m, throw_index);
+  const Mechanism one = makeThrowMechanism(m, throw_index);
   ThrowInertia out;
   const double J_t = m.crankshaft ? m.crankshaft->throw_inertia : 0.0;
   // The mean of the periodic J_j: the trapezoidal sum over N points is exact up to J_j's Fourier terms of order

@@ -1,0 +1,44 @@
+#pragma once
+/// @file
+/// Holzer's forced response of the crank train (../shared/CONVENTIONS.md, "Holzer's model"): every throw a constant
+/// inertia J_eq,j (torsion.h, ThrowInertia::exact), the throws' torque in the rigid motion psi = omega t
+/// (crank_train.h, calcRigidThrowTorque: gas, inertia and gravity) expanded by order, and for each order n = p 2 pi /
+/// cycle (a multiple of 1/2 four-stroke, of 1 two-stroke)
+///   (K - (n omega)^2 J_eq + i n omega C) X_n = T_n,
+/// the bodies' deviations x(t) = Re sum_n X_n e^{i n omega t} summed over every order until the sum converges.
+///
+/// Convergence: the torque orders p = 0 .. P per cycle by quadrature (to about rounding, crank_train.h's split at the
+/// pressure table's corners), P doubled from 64 until every section's peak-to-peak twist changes by at most 1e-9 of
+/// the largest one (the corners make T_n fall as n^-2, so the response falls as n^-4 and the tail beyond P as P^-3:
+/// the last doubling's change bounds it). The textbook's sum cut at order 24 is given beside it.
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "crankcheck/analytic/crank_train.h"
+#include "crankcheck/scene/mechanism.h"
+
+namespace crankcheck::analytic {
+
+struct HolzerResponse {
+  std::vector<double> inertias;             ///< [kg m^2] J of the bodies: front mass, then J_eq,j
+  int orders = 0;                           ///< P, the harmonics per cycle summed (order P 2 pi / cycle)
+  /// Body i's deviation x_i [rad] over the cycle phase tau = 2 pi omega t / cycle.
+  std::vector<PeriodicSignal> bodies;
+  /// Section i's twist [rad] (crank_train.h), every order summed.
+  std::vector<PeriodicSignal> twists;
+  std::vector<double> peak_to_peak;         ///< [rad] per section, every order summed
+  std::vector<double> peak_to_peak_order24; ///< [rad] per section, the orders n <= 24 alone (the textbook's cut)
+  /// The throws' torque orders T_p [N m] (rows p = 0 .. P, columns the throws): T(psi) = Re sum_p T_p e^{i p tau}.
+  Eigen::MatrixXcd torque_orders;
+};
+
+/// @throws std::invalid_argument as makeCrankTrain, or if a body has no inertia;
+///         std::runtime_error if the sum has not converged with P = 2^14.
+HolzerResponse calcHolzerResponse(const Mechanism& m);
+
+/// The same on a train already built (the J_eq of its throws given, front first as the bodies are).
+HolzerResponse calcHolzerResponse(const CrankTrain& train, const std::vector<double>& inertias);
+
+}  // namespace crankcheck::analytic

@@ -1,0 +1,54 @@
+#pragma once
+/// @file
+/// The exact periodic steady state of the elastic crank train (../shared/CONVENTIONS.md, "Exact"): the full nonlinear
+/// equations of crank_train.h (each throw's variable inertia J_t + J_j(psi_j) and its J_j' psi_j'^2 term, the gas and
+/// gravity torques at the throw's own angle, the sections' springs and dampers, the throws' absolute damping), the
+/// flywheel driven at omega t, over one working cycle.
+///
+/// Method: shooting on the one-cycle map. With s = omega t and y = (x, dx/ds) the state at s = 0, P(y) is the state
+/// after one cycle (Boost.Odeint's Dormand-Prince 5(4), error per step below `tolerance` relative and `tolerance` x
+/// the twist scale absolute); Newton's method solves P(y) = y, each Jacobian dP/dy from the variational equations
+/// integrated beside the state (at 1e-8: a Newton step needs the Jacobian only roughly; the residual is always the
+/// accurate map's). Start: Holzer's response at s = 0 (torsion_forced.h). Converged when the periodicity residual is
+/// below 1000 x `tolerance` of the twist scale (the largest deviation |x| of Holzer's response): the map's own
+/// accuracy (measured on the example inline four at 6000 rpm: P at 1e-11 and at 1e-14 differ by 1e-9 of the scale).
+/// Runge-Kutta-Fehlberg 7(8) was tried first and rejected: its error estimate vanishes on the part of the equations
+/// that depends on time alone (the forcing), and its map at 1e-10 was off by 5e-6 of the scale.
+/// The twist over the cycle then comes from `samples` equally spaced states of the periodic orbit (each reached by the
+/// integrator exactly), expanded by FFT (order amplitudes) and its extremes refined on that series (crank_train.h).
+
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "crankcheck/analytic/crank_train.h"
+#include "crankcheck/scene/mechanism.h"
+
+namespace crankcheck::analytic {
+
+struct SteadyStateOptions {
+  double tolerance = 1e-11;  ///< the integrator's error per step, relative (and absolute x the twist scale)
+  int samples = 2048;        ///< states per cycle for the twist's series (even)
+};
+
+struct ExactSteadyState {
+  Eigen::VectorXd x0;        ///< [rad] the bodies' deviations at t = 0 on the periodic orbit
+  Eigen::VectorXd x_dot0;    ///< [rad/s] their rates at t = 0
+  std::vector<PeriodicSignal> bodies;  ///< body i's deviation over the cycle phase tau = 2 pi omega t / cycle
+  std::vector<PeriodicSignal> twists;  ///< section i's twist [rad] over tau
+  std::vector<double> peak_to_peak;    ///< [rad] per section
+  int newton_iterations = 0;
+  double residual = 0.0;     ///< max |P(y) - y| of the last step, in units of the twist scale
+  double twist_scale = 0.0;  ///< [rad] the largest |x| of Holzer's response (the residual's unit)
+  long steps = 0;            ///< the integrator's steps over the last cycle
+  /// [rad] max over sections of |peak-to-peak at `tolerance` - peak-to-peak at 100 x `tolerance`|, from the same
+  /// start: a bound on the integration's part of the error (the looser run's; the accurate run is closer).
+  double error_bound = 0.0;
+};
+
+/// @throws std::invalid_argument as makeCrankTrain or calcHolzerResponse;
+///         std::runtime_error if Newton's method has not converged in 30 iterations (a steady state that does not
+///         exist or is unstable: the shaft's twist running away, or the speed not kept).
+ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptions& options = {});
+
+}  // namespace crankcheck::analytic

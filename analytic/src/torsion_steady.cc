@@ -1,0 +1,217 @@
+#include "crankcheck/analytic/torsion_steady.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <boost/numeric/odeint.hpp>
+
+#include "crankcheck/analytic/torsion.h"
+#include "crankcheck/analytic/torsion_forced.h"
+
+namespace crankcheck::analytic {
+namespace {
+
+namespace odeint = boost::numeric::odeint;
+using State = std::vector<double>;
+
+// The train's equations in s = omega t, y = (x, x_s), x_s = dx/ds (crank_train.h):
+//   M_b omega^2 x_ss,b = L_b(psi_b) - (1/2) J_b'(psi_b) omega^2 (1 + x_s,b)^2 - (K x)_b - omega (C x_s)_b,
+// psi_b = s + x_b, M_b = J_t + J_b(psi_b) for a throw (J_F and no loads for the front mass), L = T_gas - Q.
+struct TrainEquations {
+  const CrankTrain& t;
+  Eigen::MatrixXd K, C;
+  int n;
+  std::vector<int> throw_of_body;  // -1: the front mass
+
+  explicit TrainEquations(const CrankTrain& train)
+      : t(train), K(calcStiffnessMatrix(train)), C(calcDampingMatrix(train)), n(train.countBodies()) {
+    throw_of_body.assign(static_cast<size_t>(n), -1);
+    for (int j = 0; j < static_cast<int>(t.throws.size()); ++j) throw_of_body[static_cast<size_t>(t.getThrowBody(j))] = j;
+  }
+
+  struct Body {
+    double M = 0.0, L = 0.0, dJ = 0.0;
+  };
+  Body body(int b, double psi) const {
+    const int j = throw_of_body[static_cast<size_t>(b)];
+    if (j < 0) return {t.front_inertia, 0.0, 0.0};
+    const ThrowLoads l = calcThrowLoads(t.throws[static_cast<size_t>(j)], psi);
+    return {t.throw_inertia + l.J, l.gas_torque - l.gravity_torque, l.dJ};
+  }
+
+  // x_ss of every body; `bodies` (optional) receives each body's loads.
+  void accelerations(const double* y, double s, double* x_ss, std::vector<Body>* bodies = nullptr) const {
+    const double w = t.omega, w2 = w * w;
+    for (int b = 0; b < n; ++b) {
+      const Body B = body(b, s + y[b]);
+      double f = B.L - 0.5 * B.dJ * w2 * (1.0 + y[n + b]) * (1.0 + y[n + b]);
+      for (int c = 0; c < n; ++c) f -= K(b, c) * y[c] + w * C(b, c) * y[n + c];
+      x_ss[b] = f / (B.M * w2);
+      if (bodies) bodies->push_back(B);
+    }
+  }
+
+  void operator()(const State& y, State& dy, double s) const {
+    for (int b = 0; b < n; ++b) dy[static_cast<size_t>(b)] = y[static_cast<size_t>(n + b)];
+    accelerations(y.data(), s, dy.data() + n);
+  }
+};
+
+// The state and its variational matrix Phi (2n x 2n, column-major after the state): Phi' = A Phi.
+struct VariationalEquations {
+  const TrainEquations& e;
+  void operator()(const State& y, State& dy, double s) const {
+    const int n = e.n, m = 2 * n;
+    for (int b = 0; b < n; ++b) dy[static_cast<size_t>(b)] = y[static_cast<size_t>(n + b)];
+    std::vector<TrainEquations::Body> bodies;
+    e.accelerations(y.data(), s, dy.data() + n, &bodies);
+    // A = [[0, I], [Dx, Dxs]]; the loads' derivatives in psi by central differences (the Jacobian need only be rough).
+    const double w = e.t.omega, w2 = w * w, h = 1e-5;
+    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(m, m);
+    for (int b = 0; b < n; ++b) {
+      A(b, n + b) = 1.0;
+      const TrainEquations::Body& B = bodies[static_cast<size_t>(b)];
+      const double psi = s + y[static_cast<size_t>(b)], v = 1.0 + y[static_cast<size_t>(n + b)];
+      const TrainEquations::Body up = e.body(b, psi + h), down = e.body(b, psi - h);
+      const double dL = (up.L - down.L) / (2 * h), ddJ = (up.dJ - down.dJ) / (2 * h);
+      for (int c = 0; c < n; ++c) {
+        A(n + b, c) = -e.K(b, c) / (B.M * w2);
+        A(n + b, n + c) = -w * e.C(b, c) / (B.M * w2);
+      }
+      const double x_ss = dy[static_cast<size_t>(n + b)];
+      A(n + b, b) += (dL - 0.5 * ddJ * w2 * v * v) / (B.M * w2) - x_ss * B.dJ / B.M;
+      A(n + b, n + b) += -B.dJ * v / B.M;
+    }
+    const Eigen::Map<const Eigen::MatrixXd> Phi(y.data() + m, m, m);
+    Eigen::Map<Eigen::MatrixXd> dPhi(dy.data() + m, m, m);
+    dPhi.noalias() = A * Phi;
+  }
+};
+
+struct Integrator {
+  const TrainEquations& e;
+  double period, abs_tol, rel_tol;
+
+  // One cycle from y by Dormand-Prince 5(4) (with dense output where it samples); with `samples` > 0 the states at the `samples` equally spaced phases are appended to `out`
+  // (sample k at s = period k / samples). Returns the steps taken.
+  long run(State& y, int samples, std::vector<State>* out) const {
+    auto stepper = odeint::make_controlled(abs_tol, rel_tol, odeint::runge_kutta_dopri5<State>());
+    const double dt = period / 512;
+    if (samples <= 0) return static_cast<long>(odeint::integrate_adaptive(stepper, e, y, 0.0, period, dt));
+    std::vector<double> times;
+    for (int k = 0; k <= samples; ++k) times.push_back(period * k / samples);
+    return static_cast<long>(odeint::integrate_times(
+        stepper, e, y, times.begin(), times.end(), dt, [&](const State& state, double s) {
+          if (s < period * (1.0 - 0.5 / samples)) out->push_back(state);
+        }));
+  }
+
+  Eigen::MatrixXd jacobian(const State& y0) const {
+    const int m = 2 * e.n;
+    State z(y0);
+    z.resize(static_cast<size_t>(m + m * m), 0.0);
+    for (int i = 0; i < m; ++i) z[static_cast<size_t>(m + i * m + i)] = 1.0;
+    auto stepper = odeint::make_controlled(1e-8 * abs_tol / rel_tol, 1e-8, odeint::runge_kutta_dopri5<State>());
+    odeint::integrate_adaptive(stepper, VariationalEquations{e}, z, 0.0, period, period / 512);
+    return Eigen::Map<const Eigen::MatrixXd>(z.data() + m, m, m);
+  }
+};
+
+}  // namespace
+
+ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptions& options) {
+  if (!(options.tolerance > 0.0) || options.samples < 16 || options.samples % 2 != 0)
+    throw std::invalid_argument("torsion: the steady state needs a tolerance > 0 and an even number of samples >= 16");
+  const CrankTrain t = makeCrankTrain(m);
+  std::vector<double> inertias;
+  if (t.has_front) inertias.push_back(t.front_inertia);
+  for (int j = 0; j < static_cast<int>(t.throws.size()); ++j) inertias.push_back(calcThrowInertia(m, j).exact);
+  const HolzerResponse holzer = calcHolzerResponse(t, inertias);
+  const int n = t.countBodies(), dim = 2 * n;
+
+  ExactSteadyState out;
+  // The start: Holzer's deviations and their rates at s = 0 (d/ds of Re c_p e^{i p tau}, tau = 2 pi s / cycle).
+  State y0(static_cast<size_t>(dim), 0.0);
+  double scale = 0.0;
+  for (int b = 0; b < n; ++b) {
+    const PeriodicSignal& x = holzer.bodies[static_cast<size_t>(b)];
+    const SignalExtremes ex = findSignalExtremes(x);
+    scale = std::max({scale, std::fabs(ex.min), std::fabs(ex.max)});
+    y0[static_cast<size_t>(b)] = x.evaluate(0.0);
+    double rate = 0.0;
+    for (size_t p = 0; p < x.coefficients.size(); ++p)
+      rate += (x.coefficients[p] * std::complex<double>(0.0, 2.0 * M_PI * static_cast<double>(p) / t.cycle)).real();
+    y0[static_cast<size_t>(n + b)] = rate;
+  }
+  out.twist_scale = scale;
+  const TrainEquations equations(t);
+  if (!(scale > 0.0)) {
+    // No torque on any throw in the rigid motion: the rigid motion itself is the steady state, exactly.
+    out.x0 = out.x_dot0 = Eigen::VectorXd::Zero(n);
+    out.bodies.assign(static_cast<size_t>(n), PeriodicSignal{{0.0}});
+    out.twists = out.bodies;
+    out.peak_to_peak.assign(static_cast<size_t>(n), 0.0);
+    return out;
+  }
+  const Integrator accurate{equations, t.cycle, options.tolerance * scale, options.tolerance};
+  for (int iteration = 1;; ++iteration) {
+    State yT(y0);
+    accurate.run(yT, 0, nullptr);
+    Eigen::VectorXd R(dim);
+    for (int i = 0; i < dim; ++i) R(i) = yT[static_cast<size_t>(i)] - y0[static_cast<size_t>(i)];
+    out.residual = R.cwiseAbs().maxCoeff() / scale;
+    out.newton_iterations = iteration;
+    if (out.residual <= 1000.0 * options.tolerance) break;
+    if (iteration >= 30 || !std::isfinite(out.residual))
+      throw std::runtime_error("torsion: no periodic steady state found (Newton's residual " +
+                               std::to_string(out.residual) + " of the twist scale after " +
+                               std::to_string(iteration) + " iterations)");
+    const Eigen::MatrixXd Phi = accurate.jacobian(y0);
+    const Eigen::VectorXd step = (Phi - Eigen::MatrixXd::Identity(dim, dim)).partialPivLu().solve(-R);
+    for (int i = 0; i < dim; ++i) y0[static_cast<size_t>(i)] += step(i);
+  }
+
+  // The periodic orbit sampled, its series and extremes; then the same at 100 x the tolerance for the error bound.
+  auto sampleTwists = [&](const Integrator& integrator, long* steps) {
+    State y(y0);
+    std::vector<State> states;
+    const long taken = integrator.run(y, options.samples, &states);
+    if (steps) *steps = taken;
+    std::vector<std::vector<double>> x(static_cast<size_t>(n)), twist(static_cast<size_t>(n));
+    for (const State& s : states) {
+      Eigen::VectorXd xs(n);
+      for (int b = 0; b < n; ++b) xs(b) = s[static_cast<size_t>(b)];
+      const Eigen::VectorXd tw = calcSectionTwists(xs);
+      for (int b = 0; b < n; ++b) {
+        x[static_cast<size_t>(b)].push_back(xs(b));
+        twist[static_cast<size_t>(b)].push_back(tw(b));
+      }
+    }
+    std::pair<std::vector<PeriodicSignal>, std::vector<PeriodicSignal>> signals;
+    for (int b = 0; b < n; ++b) {
+      signals.first.push_back(calcSignalFromSamples(x[static_cast<size_t>(b)]));
+      signals.second.push_back(calcSignalFromSamples(twist[static_cast<size_t>(b)]));
+    }
+    return signals;
+  };
+  auto [bodies, twists] = sampleTwists(accurate, &out.steps);
+  out.bodies = std::move(bodies);
+  out.twists = std::move(twists);
+  for (const PeriodicSignal& s : out.twists) out.peak_to_peak.push_back(findSignalExtremes(s).peakToPeak());
+  const Integrator loose{equations, t.cycle, 100.0 * options.tolerance * scale, 100.0 * options.tolerance};
+  const auto loose_signals = sampleTwists(loose, nullptr);
+  for (int i = 0; i < n; ++i)
+    out.error_bound = std::max(out.error_bound, std::fabs(findSignalExtremes(loose_signals.second[static_cast<size_t>(i)]).peakToPeak() -
+                                                          out.peak_to_peak[static_cast<size_t>(i)]));
+  out.x0.resize(n);
+  out.x_dot0.resize(n);
+  for (int b = 0; b < n; ++b) {
+    out.x0(b) = y0[static_cast<size_t>(b)];
+    out.x_dot0(b) = y0[static_cast<size_t>(n + b)] * t.omega;
+  }
+  return out;
+}
+
+}  // namespace crankcheck::analytic
