@@ -111,32 +111,36 @@ HolzerResponse solveWithOrders(const CrankTrain& t, const std::vector<double>& i
 
 }  // namespace
 
-HolzerResponse calcHolzerResponse(const CrankTrain& t, const std::vector<double>& inertias) {
+HolzerResponse calcHolzerResponse(const CrankTrain& t, const std::vector<double>& inertias,
+                                  const HolzerOptions& options) {
   if (static_cast<int>(inertias.size()) != t.countBodies())
     throw std::invalid_argument("torsion: " + std::to_string(inertias.size()) + " inertias for " +
                                 std::to_string(t.countBodies()) + " bodies");
   for (double J : inertias)
     if (!(J > 0.0 && std::isfinite(J))) throw std::invalid_argument("torsion: a body of the train has no inertia");
   HolzerResponse last = solveWithOrders(t, inertias, 64);
-  for (int P = 128; P <= (1 << 14); P *= 2) {
+  for (int P = 128; P <= options.max_harmonics; P *= 2) {
     HolzerResponse next = solveWithOrders(t, inertias, P);
     double largest = 0.0, change = 0.0;
     for (size_t i = 0; i < next.peak_to_peak.size(); ++i) {
       largest = std::max(largest, next.peak_to_peak[i]);
       change = std::max(change, std::fabs(next.peak_to_peak[i] - last.peak_to_peak[i]));
     }
-    if (change <= 1e-9 * largest) return next;  // (largest 0: no forcing, no twist: converged at once)
+    next.change = largest > 0.0 ? change / largest : 0.0;
+    if (change <= options.convergence * largest) return next;  // (largest 0: no forcing, no twist: converged at once)
     last = std::move(next);
   }
-  throw std::runtime_error("torsion: Holzer's sum over orders did not converge with 2^14 harmonics per cycle");
+  throw std::runtime_error("torsion: Holzer's sum over orders did not converge to " +
+                           std::to_string(options.convergence) + " with " + std::to_string(options.max_harmonics) +
+                           " harmonics per cycle");
 }
 
-HolzerResponse calcHolzerResponse(const Mechanism& m) {
+HolzerResponse calcHolzerResponse(const Mechanism& m, const HolzerOptions& options) {
   const CrankTrain t = makeCrankTrain(m);
   std::vector<double> inertias;
   if (t.has_front) inertias.push_back(t.front_inertia);
   for (int j = 0; j < static_cast<int>(t.throws.size()); ++j) inertias.push_back(calcThrowInertia(m, j).exact);
-  return calcHolzerResponse(t, inertias);
+  return calcHolzerResponse(t, inertias, options);
 }
 
 }  // namespace crankcheck::analytic

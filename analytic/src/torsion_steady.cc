@@ -128,7 +128,8 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptio
   std::vector<double> inertias;
   if (t.has_front) inertias.push_back(t.front_inertia);
   for (int j = 0; j < static_cast<int>(t.throws.size()); ++j) inertias.push_back(calcThrowInertia(m, j).exact);
-  const HolzerResponse holzer = calcHolzerResponse(t, inertias);
+  // Holzer's response only starts Newton's method and sets the scale: its sum to 1e-4 is enough.
+  const HolzerResponse holzer = calcHolzerResponse(t, inertias, {1e-4, 1 << 16});
   const int n = t.countBodies(), dim = 2 * n;
 
   ExactSteadyState out;

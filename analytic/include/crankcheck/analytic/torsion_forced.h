@@ -7,10 +7,12 @@
 ///   (K - (n omega)^2 J_eq + i n omega C) X_n = T_n,
 /// the bodies' deviations x(t) = Re sum_n X_n e^{i n omega t} summed over every order until the sum converges.
 ///
-/// Convergence: the torque orders p = 0 .. P per cycle by quadrature (to about rounding, crank_train.h's split at the
-/// pressure table's corners), P doubled from 64 until every section's peak-to-peak twist changes by at most 1e-9 of
-/// the largest one (the corners make T_n fall as n^-2, so the response falls as n^-4 and the tail beyond P as P^-3:
-/// the last doubling's change bounds it). The textbook's sum cut at order 24 is given beside it.
+/// Convergence: the torque orders p = 0 .. P per cycle (to about rounding: quadrature split at the pressure table's
+/// corners, torsion_forced.cc), P doubled from 64 until every section's peak-to-peak twist changes by at most
+/// HolzerOptions::convergence (1e-8) of the largest one (the corners make T_n fall as n^-2, so the response falls as
+/// n^-4 and the tail beyond P as P^-3: the last doubling's change bounds it). The lower the speed, the more orders
+/// lie below the natural frequencies: the example inline four needs P = 4096 at 6000 rpm, 16384 at 2000 rpm. The
+/// textbook's sum cut at order 24 is given beside it.
 
 #include <vector>
 
@@ -21,9 +23,15 @@
 
 namespace crankcheck::analytic {
 
+struct HolzerOptions {
+  double convergence = 1e-8;      ///< the last doubling's largest change of a peak-to-peak, relative to the largest
+  int max_harmonics = 1 << 16;    ///< P at most
+};
+
 struct HolzerResponse {
   std::vector<double> inertias;             ///< [kg m^2] J of the bodies: front mass, then J_eq,j
   int orders = 0;                           ///< P, the harmonics per cycle summed (order P 2 pi / cycle)
+  double change = 0.0;                      ///< the last doubling's change (HolzerOptions::convergence)
   /// Body i's deviation x_i [rad] over the cycle phase tau = 2 pi omega t / cycle.
   std::vector<PeriodicSignal> bodies;
   /// Section i's twist [rad] (crank_train.h), every order summed.
@@ -35,10 +43,11 @@ struct HolzerResponse {
 };
 
 /// @throws std::invalid_argument as makeCrankTrain, or if a body has no inertia;
-///         std::runtime_error if the sum has not converged with P = 2^14.
-HolzerResponse calcHolzerResponse(const Mechanism& m);
+///         std::runtime_error if the sum has not converged with P = max_harmonics.
+HolzerResponse calcHolzerResponse(const Mechanism& m, const HolzerOptions& options = {});
 
 /// The same on a train already built (the J_eq of its throws given, front first as the bodies are).
-HolzerResponse calcHolzerResponse(const CrankTrain& train, const std::vector<double>& inertias);
+HolzerResponse calcHolzerResponse(const CrankTrain& train, const std::vector<double>& inertias,
+                                  const HolzerOptions& options = {});
 
 }  // namespace crankcheck::analytic
