@@ -10,6 +10,7 @@
 #include "balance_command.h"
 #include "eval_command.h"
 #include "flywheel_command.h"
+#include "torsion_command.h"
 #include "motion_command.h"
 #include "grade_command.h"
 #include "interrupt.h"
@@ -71,6 +72,12 @@ int main(int argc, char** argv) {
       "balance", "Shaking force and moment harmonic by harmonic: closed form and Simbody, what vanishes by symmetry");
   crankcheck::app::addBalanceOptions(*balance_cmd, balance);
 
+  crankcheck::app::TorsionOptions torsion;
+  CLI::App* torsion_cmd = app.add_subcommand(
+      "torsion", "Torsional vibration of the [crankshaft]: Holzer's frequencies, critical speeds and twist against the "
+                 "exact steady state of the variable-inertia train");
+  crankcheck::app::addTorsionOptions(*torsion_cmd, torsion);
+
   crankcheck::app::ValidateOptions validate;
   CLI::App* validate_cmd = app.add_subcommand(
       "validate", "The main job: cross-check both engines over a campaign and write the report (figures, CSV, index)");
@@ -113,6 +120,7 @@ int main(int argc, char** argv) {
     if (motion_cmd->parsed()) output = crankcheck::app::runMotion(motion);
     if (balance_cmd->parsed()) output = crankcheck::app::runBalance(balance);
     if (flywheel_cmd->parsed()) output = crankcheck::app::runFlywheel(flywheel);
+    if (torsion_cmd->parsed()) output = crankcheck::app::runTorsion(torsion);
     std::fwrite(output.data(), 1, output.size(), stdout);  // only complete results are ever printed
     if (std::fflush(stdout) != 0) throw crankcheck::EnvironmentError("stdout: cannot write the results");
     return checks_hold ? 0 : 1;

@@ -229,6 +229,55 @@ TEST(Cli, FlywheelJsonAndRefusals) {
   }
 }
 
+// crankcheck torsion: the JSON's shape on the example four (its [crankshaft] table), a sweep of three speeds, the
+// critical speeds at 30 w / (pi n) of the natural frequencies it prints (to rounding: 8 eps), each listed order a
+// multiple of 1/2 (four-stroke) in the range asked, the steady state's difference from Holzer's sum as printed; and
+// the refusals: no [crankshaft], a bad --speeds, --speed <= 0, --speed with --speeds, one line each, status 2,
+// nothing printed. The numbers themselves are the analytic library's, tested in tests/analytic/torsion*_test.cc.
+TEST(Cli, TorsionJsonAndRefusals) {
+  const std::string scenes = CRANKCHECK_SCENES_DIR;
+  const RunResult r = testing::runCrankcheck(
+      {"torsion", scenes + "/inline4_four_stroke.toml", "--speeds", "5000:6000:500", "--format", "json"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc["throw_inertias"].size(), 4u);
+  ASSERT_EQ(doc["natural_frequencies"].size(), 5u);  // the front mass and four throws
+  ASSERT_EQ(doc["speeds"].size(), 3u);
+  EXPECT_EQ(doc["speeds"][2]["speed_rpm"].get<double>(), 6000.0);
+  EXPECT_FALSE(doc["critical_speeds"].empty());
+  for (const auto& c : doc["critical_speeds"]) {
+    const double w = doc["natural_frequencies"][c["mode"].get<int>() - 1]["omega"].get<double>();
+    const double n = c["order"].get<double>(), rpm = c["speed_rpm"].get<double>();
+    EXPECT_NEAR(rpm, 30 * w / (M_PI * n), 8 * validation::kEps * rpm);
+    EXPECT_EQ(std::fmod(2 * n, 1.0), 0.0);
+    EXPECT_GE(rpm, 5000.0);
+    EXPECT_LE(rpm, 6000.0);
+  }
+  for (const auto& at : doc["speeds"]) {
+    ASSERT_EQ(at["peak_to_peak_twist"].size(), 5u);
+    for (const auto& section : at["peak_to_peak_twist"]) {
+      EXPECT_GT(section["exact"].get<double>(), 0.0);
+      EXPECT_EQ(section["difference"].get<double>(),
+                section["exact"].get<double>() / section["holzer"].get<double>() - 1.0);
+    }
+  }
+  EXPECT_EQ(doc["speeds"][0]["peak_to_peak_twist"][4]["section"], "throw 3 / flywheel");
+  const std::string no_shaft = scenes + "/single_cylinder.toml";
+  for (const auto& [args, expected] :
+       {std::pair<std::vector<std::string>, std::string>{{"torsion", no_shaft}, "[crankshaft]: missing table"},
+        {{"torsion", scenes + "/inline4_four_stroke.toml", "--speeds", "6000:5000:100"}, "--speeds: needs 0 < FROM <= TO"},
+        {{"torsion", scenes + "/inline4_four_stroke.toml", "--speeds", "1000-2000"}, "--speeds: expected FROM:TO:STEP"},
+        {{"torsion", scenes + "/inline4_four_stroke.toml", "--speeds", "1:100000:1"}, "--speeds: 100000 speeds; at most"},
+        {{"torsion", scenes + "/inline4_four_stroke.toml", "--speed", "-5"}, "--speed: must be > 0"},
+        {{"torsion", scenes + "/inline4_four_stroke.toml", "--speed", "5", "--speeds", "1:2:1"}, "--speed"}}) {
+    const RunResult bad = testing::runCrankcheck(args);
+    EXPECT_EQ(bad.exit_status, 2) << bad.err;
+    EXPECT_EQ(bad.out, "");
+    EXPECT_NE(bad.err.find(expected), std::string::npos) << bad.err;
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  }
+}
+
 // 17 significant digits round-trip: the printed numbers are the library's doubles, bit for bit.
 TEST(Cli, JsonNumbersRoundTripExactly) {
   const auto scene = std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml";

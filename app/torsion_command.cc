@@ -1,0 +1,224 @@
+#include "torsion_command.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <vector>
+
+#include "crankcheck/analytic/crank_train.h"
+#include "crankcheck/analytic/torsion.h"
+#include "crankcheck/analytic/torsion_forced.h"
+#include "crankcheck/analytic/torsion_steady.h"
+#include "crankcheck/scene/scene_writer.h"
+#include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/variants.h"
+#include "json_output.h"
+#include "scene_input.h"
+
+namespace crankcheck::app {
+namespace {
+
+constexpr int kMaxSpeeds = 1000;
+constexpr double kTextbookOrder = 24.0;
+
+// FROM:TO:STEP [rpm] -> the speeds FROM, FROM + STEP, ... up to TO (within a millionth of a step).
+std::vector<double> parseSpeeds(const std::string& text) {
+  double from = 0, to = 0, step = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lf:%lf:%lf%c", &from, &to, &step, &tail) != 3)
+    throw UsageError("--speeds: expected FROM:TO:STEP in rpm (e.g. 1000:6000:250), got '" + text + "'");
+  if (!(std::isfinite(from) && std::isfinite(to) && std::isfinite(step) && from > 0 && to >= from && step > 0))
+    throw UsageError("--speeds: needs 0 < FROM <= TO and STEP > 0 (got '" + text + "')");
+  const double count = std::floor((to - from) / step + 1e-6) + 1;
+  if (count > kMaxSpeeds)
+    throw UsageError("--speeds: " + std::to_string(static_cast<long long>(count)) + " speeds; at most " +
+                     std::to_string(kMaxSpeeds));
+  std::vector<double> speeds;
+  for (int i = 0; i < static_cast<int>(count); ++i) speeds.push_back(from + i * step);
+  return speeds;
+}
+
+struct SpeedResult {
+  double rpm = 0.0;
+  analytic::HolzerResponse holzer;
+  analytic::ExactSteadyState exact;
+};
+
+struct CriticalSpeed {
+  int mode = 0;
+  double order = 0.0, rpm = 0.0;
+};
+
+}  // namespace
+
+void addTorsionOptions(CLI::App& command, TorsionOptions& options) {
+  command.add_option("scene", options.scene_path, "Scene file (TOML) with a [crankshaft] table")->required();
+  auto* speed = command.add_option("--speed", options.speed_rpm, "One speed [rpm] (default: the scene's speed_rpm)");
+  auto* speeds = command.add_option("--speeds", options.speeds, "A sweep FROM:TO:STEP [rpm], e.g. 1000:6000:250");
+  speed->excludes(speeds);
+  command.add_option("--format", options.format, "Output format")
+      ->check(CLI::IsMember({"table", "json"}))
+      ->capture_default_str();
+}
+
+std::string runTorsion(const TorsionOptions& options) {
+  // Everything that can be refused is refused before the first steady state is computed.
+  std::vector<double> speeds;
+  if (!options.speeds.empty()) speeds = parseSpeeds(options.speeds);
+  if (options.speed_rpm) {
+    if (!(std::isfinite(*options.speed_rpm) && *options.speed_rpm > 0))
+      throw UsageError("--speed: must be > 0 rpm (got " + formatShortest(*options.speed_rpm) + ")");
+    speeds = {*options.speed_rpm};
+  }
+  const Mechanism scene = loadScene(options.scene_path);
+  if (!scene.crankshaft)
+    throw UsageError(options.scene_path + ": [crankshaft]: missing table (the elastic crank train: throw_inertia, "
+                                          "stiffness, ...; docs/SCENE-FORMAT.md)");
+  if (speeds.empty()) {
+    if (!(scene.speed_rpm > 0))
+      throw UsageError(options.scene_path + ": [engine].speed_rpm: must be > 0 for torsion (the flywheel's driven "
+                                            "speed), or give --speed or --speeds");
+    speeds = {scene.speed_rpm};
+  }
+  analytic::TorsionModes modes;
+  std::vector<analytic::ThrowInertia> inertias;
+  try {
+    modes = analytic::calcTorsionModes(scene);
+    for (int j = 0; j < static_cast<int>(findThrows(scene).size()); ++j)
+      inertias.push_back(analytic::calcThrowInertia(scene, j));
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(options.scene_path + ": [crankshaft]: " + e.what());
+  } catch (const std::runtime_error& e) {
+    throw UncomputableError(options.scene_path + ": " + e.what());
+  }
+  const int bodies = static_cast<int>(modes.inertias.size());
+  const bool has_front = scene.crankshaft->front_inertia > 0.0;
+  const double order_step = scene.engine.cycle == Cycle::kFourStroke ? 0.5 : 1.0;
+
+  // Critical speeds of every order n <= 24 of every mode, in the range asked (one speed: half to twice it).
+  const double lo = speeds.size() > 1 ? speeds.front() : 0.5 * speeds.front();
+  const double hi = speeds.size() > 1 ? speeds.back() : 2.0 * speeds.front();
+  std::vector<CriticalSpeed> critical;
+  for (int i = 0; i < modes.frequencies.size(); ++i)
+    for (double n = order_step; n <= kTextbookOrder + 1e-9; n += order_step) {
+      const double rpm = modes.frequencies(i) / n * 30.0 / M_PI;
+      if (rpm >= lo && rpm <= hi) critical.push_back({i + 1, n, rpm});
+    }
+  std::sort(critical.begin(), critical.end(), [](const CriticalSpeed& a, const CriticalSpeed& b) { return a.rpm < b.rpm; });
+
+  std::vector<SpeedResult> results;
+  const bool progress = speeds.size() > 1 && ::isatty(STDERR_FILENO);
+  for (size_t s = 0; s < speeds.size(); ++s) {
+    if (progress) std::fprintf(stderr, "\r\033[Ktorsion: speed %zu of %zu (%g rpm)", s + 1, speeds.size(), speeds[s]);
+    const Mechanism m = validation::withSpeed(scene, speeds[s]);
+    SpeedResult r;
+    r.rpm = speeds[s];
+    try {
+      r.holzer = analytic::calcHolzerResponse(m);
+      r.exact = analytic::calcExactSteadyState(m);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(options.scene_path + ": " + e.what());
+    } catch (const std::runtime_error& e) {
+      throw UncomputableError(options.scene_path + " at " + formatShortest(speeds[s]) + " rpm: " + e.what());
+    }
+    results.push_back(std::move(r));
+  }
+  if (progress) std::fprintf(stderr, "\r\033[K");
+
+  auto sectionName = [&](int i) {
+    // Section i joins body i and body i + 1: front-0, 0-1, ..., (k-1)-flywheel.
+    auto body = [&](int b) {
+      if (b >= bodies) return std::string("flywheel");
+      if (has_front && b == 0) return std::string("front");
+      return "throw " + std::to_string(b - (has_front ? 1 : 0));
+    };
+    return body(i) + " / " + body(i + 1);
+  };
+
+  if (options.format == "json") {
+    nlohmann::ordered_json doc;
+    doc["scene"] = options.scene_path;
+    nlohmann::ordered_json throws = nlohmann::ordered_json::array();
+    for (size_t j = 0; j < inertias.size(); ++j)
+      throws.push_back({{"throw", j}, {"exact_inertia", inertias[j].exact},
+                        {"half_reciprocating", inertias[j].half_reciprocating},
+                        {"second_order", inertias[j].second_order}});
+    doc["throw_inertias"] = throws;
+    nlohmann::ordered_json freq = nlohmann::ordered_json::array();
+    for (int i = 0; i < modes.frequencies.size(); ++i)
+      freq.push_back({{"mode", i + 1}, {"omega", modes.frequencies(i)}, {"hz", modes.frequencies(i) / (2 * M_PI)}});
+    doc["natural_frequencies"] = freq;
+    nlohmann::ordered_json crit = nlohmann::ordered_json::array();
+    for (const CriticalSpeed& c : critical) crit.push_back({{"mode", c.mode}, {"order", c.order}, {"speed_rpm", c.rpm}});
+    doc["critical_speeds"] = crit;
+    nlohmann::ordered_json at = nlohmann::ordered_json::array();
+    for (const SpeedResult& r : results) {
+      nlohmann::ordered_json sections = nlohmann::ordered_json::array();
+      for (int i = 0; i < bodies; ++i)
+        sections.push_back({{"section", sectionName(i)},
+                            {"holzer", r.holzer.peak_to_peak[static_cast<size_t>(i)]},
+                            {"holzer_order24", r.holzer.peak_to_peak_order24[static_cast<size_t>(i)]},
+                            {"exact", r.exact.peak_to_peak[static_cast<size_t>(i)]},
+                            {"difference", r.exact.peak_to_peak[static_cast<size_t>(i)] /
+                                                   r.holzer.peak_to_peak[static_cast<size_t>(i)] - 1.0}});
+      at.push_back({{"speed_rpm", r.rpm},
+                    {"peak_to_peak_twist", sections},
+                    {"holzer_harmonics", r.holzer.orders},
+                    {"exact_newton_iterations", r.exact.newton_iterations},
+                    {"exact_error_bound", r.exact.error_bound}});
+    }
+    doc["speeds"] = at;
+    return dumpJson(doc);
+  }
+
+  std::string out;
+  char line[512];
+  std::snprintf(line, sizeof line, "torsion of %s: %d bodies clamped at the flywheel (driven at the speed)\n",
+                options.scene_path.c_str(), bodies);
+  out += line;
+  out += "\nthrow inertia for Holzer [kg m^2]: exact (J_t + mean of J over a turn), the textbook's shortcuts\n";
+  std::snprintf(line, sizeof line, "%-8s %18s %22s %22s\n", "throw", "exact", "half reciprocating", "second order");
+  out += line;
+  for (size_t j = 0; j < inertias.size(); ++j) {
+    std::snprintf(line, sizeof line, "%-8zu %18.12g %14.9g (%+.2e) %14.9g (%+.2e)\n", j, inertias[j].exact,
+                  inertias[j].half_reciprocating, inertias[j].half_reciprocating / inertias[j].exact - 1,
+                  inertias[j].second_order, inertias[j].second_order / inertias[j].exact - 1);
+    out += line;
+  }
+  out += "\nnatural frequencies (Holzer, clamped at the flywheel)\n";
+  for (int i = 0; i < modes.frequencies.size(); ++i) {
+    std::snprintf(line, sizeof line, "mode %-3d %18.12g rad/s %16.10g Hz\n", i + 1, modes.frequencies(i),
+                  modes.frequencies(i) / (2 * M_PI));
+    out += line;
+  }
+  std::snprintf(line, sizeof line, "\ncritical speeds of orders <= 24 from %g to %g rpm (rpm = 30 w / (pi n))\n", lo, hi);
+  out += line;
+  if (critical.empty()) out += "none\n";
+  for (const CriticalSpeed& c : critical) {
+    std::snprintf(line, sizeof line, "mode %-3d order %-5g %14.8g rpm\n", c.mode, c.order, c.rpm);
+    out += line;
+  }
+  for (const SpeedResult& r : results) {
+    std::snprintf(line, sizeof line,
+                  "\npeak-to-peak twist at %g rpm [rad]: Holzer (every order, %d harmonics; cut at order 24), exact "
+                  "steady state (error bound %.1e rad)\n",
+                  r.rpm, r.holzer.orders, r.exact.error_bound);
+    out += line;
+    std::snprintf(line, sizeof line, "%-22s %18s %18s %18s %12s\n", "section", "holzer", "holzer order<=24", "exact",
+                  "exact/holzer-1");
+    out += line;
+    for (int i = 0; i < bodies; ++i) {
+      const size_t k = static_cast<size_t>(i);
+      std::snprintf(line, sizeof line, "%-22s %18.10e %18.10e %18.10e %+12.4e\n", sectionName(i).c_str(),
+                    r.holzer.peak_to_peak[k], r.holzer.peak_to_peak_order24[k], r.exact.peak_to_peak[k],
+                    r.exact.peak_to_peak[k] / r.holzer.peak_to_peak[k] - 1.0);
+      out += line;
+    }
+  }
+  return out;
+}
+
+}  // namespace crankcheck::app
