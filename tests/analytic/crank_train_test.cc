@@ -14,6 +14,7 @@
 #include "crankcheck/analytic/crank_train.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
+#include "../support/crankshaft_scene.h"
 
 namespace crankcheck::analytic {
 namespace {
@@ -21,10 +22,7 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 Mechanism loadWithCrankshaft(const std::string& scene, const std::string& crankshaft_table) {
-  std::ifstream in(std::filesystem::path(CRANKCHECK_SCENES_DIR) / scene);
-  std::ostringstream text;
-  text << in.rdbuf() << "\n[crankshaft]\n" << crankshaft_table;
-  return parseScene(text.str(), scene);
+  return testing::loadSceneWithCrankshaft(std::filesystem::path(CRANKCHECK_SCENES_DIR) / scene, crankshaft_table);
 }
 
 // A torque scale of a throw at omega: its largest inertia, gravity and gas torques' sizes, summed over its cylinders:

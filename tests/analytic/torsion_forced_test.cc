@@ -17,6 +17,7 @@
 #include "crankcheck/analytic/torsion.h"
 #include "crankcheck/analytic/torsion_forced.h"
 #include "crankcheck/scene/scene_file.h"
+#include "../support/crankshaft_scene.h"
 
 namespace crankcheck::analytic {
 namespace {
@@ -24,10 +25,7 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 Mechanism loadWithCrankshaft(const std::string& scene, const std::string& crankshaft_table) {
-  std::ifstream in(std::filesystem::path(CRANKCHECK_SCENES_DIR) / scene);
-  std::ostringstream text;
-  text << in.rdbuf() << "\n[crankshaft]\n" << crankshaft_table;
-  return parseScene(text.str(), scene);
+  return testing::loadSceneWithCrankshaft(std::filesystem::path(CRANKCHECK_SCENES_DIR) / scene, crankshaft_table);
 }
 
 const char* kInline4Train =
