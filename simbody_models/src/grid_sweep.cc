@@ -76,6 +76,7 @@ Mechanism oneCylinder(const Mechanism& m, double gamma, double delta) {
   one.engine.axial_positions.clear();
   one.gas.reset();
   one.firing_angles.clear();
+  one.crankshaft.reset();  // rigid: a [crankshaft] has one section per throw of the scene it came with
   return one;
 }
 
