@@ -1,0 +1,222 @@
+// The elastic crank train in Simbody (crank_train.h). Never compiled with NDEBUG.
+#include "crankcheck/simbody_models/crank_train.h"
+
+#include <Simbody.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "crankcheck/scene/scene_file.h"
+#include "model_support.h"
+
+#ifdef NDEBUG
+#error "Simbody code must not be compiled with NDEBUG: Debian's Simbody was built without it (SIMBODY-NOTES.md)"
+#endif
+
+namespace crankcheck::simbody_models {
+namespace {
+
+// The cylinders on one crank pin (findThrows) as a mechanism of their own: the crankshaft body built for it is the
+// throw's, its pistons and rods the throw's.
+Mechanism throwOf(const Mechanism& m, const std::vector<int>& cylinders) {
+  Mechanism one = m;
+  one.flywheel_inertia.reset();
+  one.balance_shafts.clear();
+  one.crankshaft.reset();
+  one.engine.crank_angles.clear();
+  one.engine.bank_angles.clear();
+  one.engine.axial_positions.clear();
+  one.engine.pin_offsets.clear();
+  one.firing_angles.clear();
+  for (int c : cylinders) {
+    one.engine.crank_angles.push_back(m.engine.crank_angles.at(static_cast<size_t>(c)));
+    one.engine.bank_angles.push_back(getBankAngle(m, c));
+    one.engine.axial_positions.push_back(getAxialPosition(m, c));
+    one.engine.pin_offsets.push_back(getPinOffset(m, c));
+    if (m.gas) one.firing_angles.push_back(m.firing_angles.at(static_cast<size_t>(c)));
+  }
+  one.engine.cylinders = static_cast<int>(cylinders.size());
+  one.engine.explicit_crank_angles = true;
+  return one;
+}
+
+// The sections' springs and dampers and the throws' damping, as mobility forces on the pins (CONVENTIONS: K (psi_b -
+// psi_a) + C (psi_b' - psi_a') on a, the opposite on b; -c_t (psi' - omega) on a throw). The last section's far end
+// is the flywheel, at omega t.
+class ShaftForces : public SimTK::Force::Custom::Implementation {
+ public:
+  ShaftForces(std::vector<SimTK::MobilizedBody::Pin> bodies, std::vector<bool> is_throw, const CrankshaftParams& c,
+              std::vector<double> section_damping, double omega)
+      : bodies_(std::move(bodies)), is_throw_(std::move(is_throw)), stiffness_(c.stiffness),
+        damping_(std::move(section_damping)), throw_damping_(c.throw_damping), omega_(omega) {}
+  void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>&, SimTK::Vector_<SimTK::Vec3>&,
+                 SimTK::Vector& mobility_forces) const override {
+    const size_t n = bodies_.size();
+    const double t = state.getTime();
+    for (size_t i = 0; i < n; ++i) {
+      const double psi_a = bodies_[i].getQ(state), rate_a = bodies_[i].getU(state);
+      const bool flywheel = i + 1 == n;
+      const double psi_b = flywheel ? omega_ * t : bodies_[i + 1].getQ(state);
+      const double rate_b = flywheel ? omega_ : bodies_[i + 1].getU(state);
+      const double torque = stiffness_[i] * (psi_b - psi_a) + damping_[i] * (rate_b - rate_a);
+      bodies_[i].applyOneMobilityForce(state, SimTK::MobilizerUIndex(0), torque, mobility_forces);
+      if (!flywheel) bodies_[i + 1].applyOneMobilityForce(state, SimTK::MobilizerUIndex(0), -torque, mobility_forces);
+      if (is_throw_[i])
+        bodies_[i].applyOneMobilityForce(state, SimTK::MobilizerUIndex(0), -throw_damping_ * (rate_a - omega_),
+                                         mobility_forces);
+    }
+  }
+  SimTK::Real calcPotentialEnergy(const SimTK::State& state) const override {
+    double energy = 0.0;
+    for (size_t i = 0; i < bodies_.size(); ++i) {
+      const double psi_b = i + 1 == bodies_.size() ? omega_ * state.getTime() : bodies_[i + 1].getQ(state);
+      const double twist = psi_b - bodies_[i].getQ(state);
+      energy += 0.5 * stiffness_[i] * twist * twist;
+    }
+    return energy;
+  }
+
+ private:
+  std::vector<SimTK::MobilizedBody::Pin> bodies_;
+  std::vector<bool> is_throw_;
+  std::vector<double> stiffness_, damping_;
+  double throw_damping_, omega_;
+};
+
+}  // namespace
+
+CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrainRunOptions& options) {
+  checkModelInputs(m, ModelOptions{}, "simulateCrankTrainSteadyState");
+  if (!m.crankshaft) throw std::invalid_argument("simulateCrankTrainSteadyState: the scene has no [crankshaft] table");
+  const double omega = m.engine.speed;
+  if (!(omega > 0.0)) throw std::invalid_argument("simulateCrankTrainSteadyState: the train needs a speed > 0");
+  if (!(m.rod.mass > 0.0 && m.rod.inertia_about_wrist_pin > 0.0))
+    throw std::invalid_argument("simulateCrankTrainSteadyState: the Simbody model needs a rod with mass > 0 and "
+                                "inertia about the wrist pin > 0");
+  if (options.samples < 16 || options.samples % 2 != 0 || !(options.accuracy > 0.0) || !(options.periodicity > 0.0))
+    throw std::invalid_argument("simulateCrankTrainSteadyState: bad options");
+  const CrankshaftParams& c = *m.crankshaft;
+
+  SimTK::MultibodySystem system;
+  SimTK::SimbodyMatterSubsystem matter(system);
+  SimTK::GeneralForceSubsystem forces(system);
+  SimTK::Force::Gravity gravity(forces, matter, SimTK::UnitVec3(0, -1, 0), m.engine.gravity);
+  // Bodies along the shaft, front first: q of each pin is its angle psi (the throws' frames turned by gamma, as
+  // KCrankModel's crankshaft, whose q is phi; the front mass's too, so that all start at q = 0).
+  std::vector<SimTK::MobilizedBody::Pin> shaft;
+  std::vector<bool> is_throw;
+  std::vector<MechanismBodies> throws;
+  auto drive = std::make_shared<CrankDrive>();  // gas on; the pins are free (no Motion)
+  const SimTK::Transform X_GF(SimTK::Rotation(m.engine.cylinder_angle, SimTK::ZAxis), SimTK::Vec3(0));
+  if (c.front_inertia > 0.0) {
+    // A disk of polar inertia J_F; its unit mass sits on the axis (no torque from gravity, none on the twist).
+    const double J = c.front_inertia;
+    shaft.emplace_back(matter.Ground(), X_GF,
+                       SimTK::Body::Rigid(SimTK::MassProperties(1.0, SimTK::Vec3(0), SimTK::Inertia(0.5 * J, 0.5 * J, J))),
+                       SimTK::Transform());
+    is_throw.push_back(false);
+  }
+  for (const std::vector<int>& cylinders : findThrows(m)) {
+    const Mechanism tm = throwOf(m, cylinders);
+    const double J_t = c.throw_inertia;
+    throws.push_back(buildMechanismBodies(matter, tm, SimTK::Inertia(0.5 * J_t, 0.5 * J_t, J_t)));
+    shaft.push_back(throws.back().crank);
+    is_throw.push_back(true);
+    if (tm.gas) SimTK::Force::Custom(forces, new GasForce(tm, drive, matter, throws.back().crank, throws.back().pistons));
+  }
+  const int n = static_cast<int>(shaft.size());
+  if (static_cast<int>(c.stiffness.size()) != n)
+    throw std::invalid_argument("simulateCrankTrainSteadyState: [crankshaft].stiffness needs one value per section (" +
+                                std::to_string(n) + ")");
+  std::vector<double> section_damping;
+  for (int i = 0; i < n; ++i) section_damping.push_back(getSectionDamping(c, i));
+  SimTK::Force::Custom(forces, new ShaftForces(shaft, is_throw, c, section_damping, omega));
+  system.realizeTopology();
+  SimTK::State state = system.getDefaultState();
+
+  // The rigid motion at t = 0: every pin at 0 turning at omega, the pistons and rods assembled to it.
+  const double l = m.rod.length, r = m.crank.radius;
+  const double tolerance = 1e-12 * std::max(1.0, l + r);
+  for (const MechanismBodies& b : throws)
+    for (size_t j = 0; j < b.pistons.size(); ++j) {
+      b.pistons[j].setQ(state, l);
+      b.rods[j].setQ(state, 0.0);
+    }
+  for (const auto& pin : shaft) pin.lockAt(state, 0.0, SimTK::Motion::Position);
+  system.realizeModel(state);
+  system.projectQ(state, tolerance);
+  for (const auto& pin : shaft) pin.lockAt(state, omega, SimTK::Motion::Velocity);
+  system.realizeModel(state);
+  system.projectU(state, tolerance);
+  for (const auto& pin : shaft) pin.unlock(state);
+  system.realizeModel(state);
+  for (const MechanismBodies& b : throws)
+    for (const auto& piston : b.pistons)
+      if (!(piston.getQ(state) > 0.0))
+        throw std::runtime_error("simulateCrankTrainSteadyState: assembly landed on the unphysical branch");
+
+  SimTK::RungeKuttaMersonIntegrator integrator(system);
+  integrator.setAccuracy(options.accuracy);
+  integrator.setConstraintTolerance(std::min(options.accuracy, 1e-6));
+  integrator.setAllowInterpolation(false);  // every sample an integrated state
+  integrator.initialize(state);
+  const double period = (m.engine.cycle == Cycle::kFourStroke ? 4.0 : 2.0) * SimTK::Pi / omega;
+
+  auto deviations = [&](const SimTK::State& s, std::vector<double>& x, std::vector<double>& rate) {
+    x.resize(static_cast<size_t>(n));
+    rate.resize(static_cast<size_t>(n));
+    for (int i = 0; i < n; ++i) {
+      x[static_cast<size_t>(i)] = shaft[static_cast<size_t>(i)].getQ(s) - omega * s.getTime();
+      rate[static_cast<size_t>(i)] = shaft[static_cast<size_t>(i)].getU(s) - omega;
+    }
+  };
+  auto stepTo = [&](double t) {
+    const SimTK::Integrator::SuccessfulStepStatus status = integrator.stepTo(t);
+    if (status == SimTK::Integrator::EndOfSimulation)
+      throw std::runtime_error("simulateCrankTrainSteadyState: the integrator ended the run at t = " +
+                               std::to_string(integrator.getTime()));
+  };
+  CrankTrainRun out;
+  std::vector<double> x_start, rate_start, x, rate;
+  deviations(integrator.getState(), x_start, rate_start);
+  constexpr int kProbes = 64;  // the largest deviation of a cycle, sampled
+  for (int cycle = 1;; ++cycle) {
+    double largest = 0.0;
+    for (int k = 1; k <= kProbes; ++k) {
+      stepTo((cycle - 1 + static_cast<double>(k) / kProbes) * period);
+      deviations(integrator.getState(), x, rate);
+      for (double v : x) largest = std::max(largest, std::fabs(v));
+    }
+    double change = 0.0;
+    for (int i = 0; i < n; ++i)
+      change = std::max({change, std::fabs(x[static_cast<size_t>(i)] - x_start[static_cast<size_t>(i)]),
+                         std::fabs(rate[static_cast<size_t>(i)] - rate_start[static_cast<size_t>(i)]) / omega});
+    x_start = x;
+    rate_start = rate;
+    out.cycles = cycle;
+    out.cycle_change = largest > 0.0 ? change / largest : 0.0;
+    if (out.cycle_change <= options.periodicity) break;
+    if (cycle >= options.max_cycles)
+      throw std::runtime_error("simulateCrankTrainSteadyState: not periodic after " + std::to_string(cycle) +
+                               " cycles (cycle-to-cycle change " + std::to_string(out.cycle_change) +
+                               " of the twist): the train is too lightly damped to settle in this run");
+  }
+  // The sampled cycle.
+  out.twists.assign(static_cast<size_t>(n), {});
+  const double t0 = out.cycles * period;
+  for (int k = 0; k < options.samples; ++k) {
+    if (k > 0) stepTo(t0 + period * k / options.samples);
+    const SimTK::State& s = integrator.getState();
+    for (int i = 0; i < n; ++i) {
+      const double psi_b = i + 1 == n ? omega * s.getTime() : shaft[static_cast<size_t>(i + 1)].getQ(s);
+      out.twists[static_cast<size_t>(i)].push_back(psi_b - shaft[static_cast<size_t>(i)].getQ(s));
+    }
+  }
+  out.steps = integrator.getNumStepsTaken();
+  return out;
+}
+
+}  // namespace crankcheck::simbody_models
