@@ -13,6 +13,7 @@
 #include "crankcheck/analytic/torsion_forced.h"
 #include "crankcheck/analytic/torsion_steady.h"
 #include "crankcheck/scene/scene_writer.h"
+#include "crankcheck/simbody_models/crank_train.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/variants.h"
 #include "json_output.h"
@@ -45,6 +46,8 @@ struct SpeedResult {
   double rpm = 0.0;
   analytic::HolzerResponse holzer;
   analytic::ExactSteadyState exact;
+  std::vector<double> simbody;  ///< Simbody's peak-to-peak per section (with --engine simbody)
+  int simbody_cycles = 0;
 };
 
 struct CriticalSpeed {
@@ -59,6 +62,12 @@ void addTorsionOptions(CLI::App& command, TorsionOptions& options) {
   auto* speed = command.add_option("--speed", options.speed_rpm, "One speed [rpm] (default: the scene's speed_rpm)");
   auto* speeds = command.add_option("--speeds", options.speeds, "A sweep FROM:TO:STEP [rpm], e.g. 1000:6000:250");
   speed->excludes(speeds);
+  command.add_option("--engine", options.engines,
+                     "The exact steady states to show (comma-separated): analytic (default), simbody (its elastic "
+                     "train run to periodic: about 20 s a speed)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"analytic", "simbody"}))
+      ->capture_default_str();
   command.add_option("--format", options.format, "Output format")
       ->check(CLI::IsMember({"table", "json"}))
       ->capture_default_str();
@@ -109,8 +118,10 @@ std::string runTorsion(const TorsionOptions& options) {
     }
   std::sort(critical.begin(), critical.end(), [](const CriticalSpeed& a, const CriticalSpeed& b) { return a.rpm < b.rpm; });
 
+  const bool with_simbody =
+      std::find(options.engines.begin(), options.engines.end(), "simbody") != options.engines.end();
   std::vector<SpeedResult> results;
-  const bool progress = speeds.size() > 1 && ::isatty(STDERR_FILENO);
+  const bool progress = (speeds.size() > 1 || with_simbody) && ::isatty(STDERR_FILENO);
   for (size_t s = 0; s < speeds.size(); ++s) {
     if (progress) std::fprintf(stderr, "\r\033[Ktorsion: speed %zu of %zu (%g rpm)", s + 1, speeds.size(), speeds[s]);
     const Mechanism m = validation::withSpeed(scene, speeds[s]);
@@ -119,6 +130,12 @@ std::string runTorsion(const TorsionOptions& options) {
     try {
       r.holzer = analytic::calcHolzerResponse(m);
       r.exact = analytic::calcExactSteadyState(m);
+      if (with_simbody) {
+        const simbody_models::CrankTrainRun run = simbody_models::simulateCrankTrainSteadyState(m);
+        for (const std::vector<double>& twist : run.twists)
+          r.simbody.push_back(analytic::findSignalExtremes(analytic::calcSignalFromSamples(twist)).peakToPeak());
+        r.simbody_cycles = run.cycles;
+      }
     } catch (const std::invalid_argument& e) {
       throw UsageError(options.scene_path + ": " + e.what());
     } catch (const std::runtime_error& e) {
@@ -157,18 +174,25 @@ std::string runTorsion(const TorsionOptions& options) {
     nlohmann::ordered_json at = nlohmann::ordered_json::array();
     for (const SpeedResult& r : results) {
       nlohmann::ordered_json sections = nlohmann::ordered_json::array();
-      for (int i = 0; i < bodies; ++i)
+      for (int i = 0; i < bodies; ++i) {
         sections.push_back({{"section", sectionName(i)},
                             {"holzer", r.holzer.peak_to_peak[static_cast<size_t>(i)]},
                             {"holzer_order24", r.holzer.peak_to_peak_order24[static_cast<size_t>(i)]},
                             {"exact", r.exact.peak_to_peak[static_cast<size_t>(i)]},
                             {"difference", r.exact.peak_to_peak[static_cast<size_t>(i)] /
                                                    r.holzer.peak_to_peak[static_cast<size_t>(i)] - 1.0}});
+        if (with_simbody) {
+          sections.back()["simbody"] = r.simbody[static_cast<size_t>(i)];
+          sections.back()["simbody_difference"] =
+              r.simbody[static_cast<size_t>(i)] / r.holzer.peak_to_peak[static_cast<size_t>(i)] - 1.0;
+        }
+      }
       at.push_back({{"speed_rpm", r.rpm},
                     {"peak_to_peak_twist", sections},
                     {"holzer_harmonics", r.holzer.orders},
                     {"exact_newton_iterations", r.exact.newton_iterations},
                     {"exact_error_bound", r.exact.error_bound}});
+      if (with_simbody) at.back()["simbody_cycles"] = r.simbody_cycles;
     }
     doc["speeds"] = at;
     return dumpJson(doc);
@@ -207,15 +231,21 @@ std::string runTorsion(const TorsionOptions& options) {
                   "steady state (error bound %.1e rad)\n",
                   r.rpm, r.holzer.orders, r.exact.error_bound);
     out += line;
-    std::snprintf(line, sizeof line, "%-22s %18s %18s %18s %12s\n", "section", "holzer", "holzer order<=24", "exact",
-                  "exact/holzer-1");
+    std::snprintf(line, sizeof line, "%-22s %18s %18s %18s %15s", "section", "holzer", "holzer order<=24",
+                  "exact (analytic)", "exact/holzer-1");
     out += line;
+    out += with_simbody ? "            simbody  simbody/holzer-1\n" : "\n";
     for (int i = 0; i < bodies; ++i) {
       const size_t k = static_cast<size_t>(i);
-      std::snprintf(line, sizeof line, "%-22s %18.10e %18.10e %18.10e %+12.4e\n", sectionName(i).c_str(),
+      std::snprintf(line, sizeof line, "%-22s %18.10e %18.10e %18.10e %+15.4e", sectionName(i).c_str(),
                     r.holzer.peak_to_peak[k], r.holzer.peak_to_peak_order24[k], r.exact.peak_to_peak[k],
                     r.exact.peak_to_peak[k] / r.holzer.peak_to_peak[k] - 1.0);
       out += line;
+      if (with_simbody) {
+        std::snprintf(line, sizeof line, " %18.10e %+17.4e", r.simbody[k], r.simbody[k] / r.holzer.peak_to_peak[k] - 1.0);
+        out += line;
+      }
+      out += "\n";
     }
   }
   return out;

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// `crankcheck torsion SCENE [--speed RPM | --speeds FROM:TO:STEP] [--format table|json]`: the torsional vibration of
+/// `crankcheck torsion SCENE [--speed RPM | --speeds FROM:TO:STEP] [--engine analytic,simbody] [--format table|json]`:
+/// the torsional vibration of
 /// the scene's elastic crank train ([crankshaft], ../shared/CONVENTIONS.md "Torsion"):
 /// - each throw's constant inertia for Holzer's model, exact (the mean of J over a turn) beside the textbook's
 ///   shortcuts (half the reciprocating mass, with Norton's second-order term), analytic/torsion.h;
@@ -8,12 +9,15 @@
 ///   n <= 24 (multiples of 1/2 four-stroke, of 1 two-stroke) that fall in the speeds asked (one speed: half to twice it);
 /// - at each speed, each section's peak-to-peak twist by Holzer's summed orders (converged, and cut at order 24 as
 ///   often done) and by the exact periodic steady state of the variable-inertia train (analytic/torsion_steady.h),
-///   with their difference. Simbody's and MuJoCo's elastic trains are issue 30's next steps: not claimed here.
+///   with their difference; with `--engine simbody` also Simbody's elastic train run to its periodic state
+///   (simbody_models/crank_train.h: about 20 s a speed on the example four, a minute on the marine six). MuJoCo's
+///   train is issue 30's next step: not claimed here.
 /// A sweep shows a progress line on a terminal.
 
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace crankcheck::app {
 
@@ -21,6 +25,7 @@ struct TorsionOptions {
   std::string scene_path;
   std::optional<double> speed_rpm;
   std::string speeds;  ///< FROM:TO:STEP [rpm]
+  std::vector<std::string> engines{"analytic"};  ///< the exact steady states shown: analytic, simbody
   std::string format = "table";
 };
 

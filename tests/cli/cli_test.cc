@@ -232,7 +232,8 @@ TEST(Cli, FlywheelJsonAndRefusals) {
 // crankcheck torsion: the JSON's shape on the example four (its [crankshaft] table), a sweep of three speeds, the
 // critical speeds at 30 w / (pi n) of the natural frequencies it prints (to rounding: 8 eps), each listed order a
 // multiple of 1/2 (four-stroke) in the range asked, the steady state's difference from Holzer's sum as printed; and
-// the refusals: no [crankshaft], a bad --speeds, --speed <= 0, --speed with --speeds, one line each, status 2,
+// the refusals: no [crankshaft], a bad --speeds, --speed <= 0, --speed with --speeds, an engine without an elastic
+// train, one line each, status 2,
 // nothing printed. The numbers themselves are the analytic library's, tested in tests/analytic/torsion*_test.cc.
 TEST(Cli, TorsionJsonAndRefusals) {
   const std::string scenes = CRANKCHECK_SCENES_DIR;
@@ -269,7 +270,8 @@ TEST(Cli, TorsionJsonAndRefusals) {
         {{"torsion", scenes + "/inline4_four_stroke.toml", "--speeds", "1000-2000"}, "--speeds: expected FROM:TO:STEP"},
         {{"torsion", scenes + "/inline4_four_stroke.toml", "--speeds", "1:100000:1"}, "--speeds: 100000 speeds; at most"},
         {{"torsion", scenes + "/inline4_four_stroke.toml", "--speed", "-5"}, "--speed: must be > 0"},
-        {{"torsion", scenes + "/inline4_four_stroke.toml", "--speed", "5", "--speeds", "1:2:1"}, "--speed"}}) {
+        {{"torsion", scenes + "/inline4_four_stroke.toml", "--speed", "5", "--speeds", "1:2:1"}, "--speed"},
+        {{"torsion", scenes + "/inline4_four_stroke.toml", "--engine", "mujoco"}, "--engine: mujoco not in"}}) {
     const RunResult bad = testing::runCrankcheck(args);
     EXPECT_EQ(bad.exit_status, 2) << bad.err;
     EXPECT_EQ(bad.out, "");
