@@ -143,7 +143,7 @@ EvalOutput runEval(const EvalOptions& options) {
         text += line;
       }
     }
-    return {text, holds};
+    return {text + describeRigidShaft(m), holds};
   }
   nlohmann::ordered_json doc;
   doc["scene"] = sceneToJson(m);

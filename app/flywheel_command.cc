@@ -77,7 +77,7 @@ std::string runFlywheel(const FlywheelOptions& options) {
                 "flywheel inertia [kg m^2]", "fluctuation", "exact", s.exact_inertia, s.exact.delta, "norton",
                 s.norton_inertia, s.norton.delta, s.norton_energy, "simbody", s.exact_inertia, simbody.delta,
                 simbody.energy_drift_per_revolution);
-  return text;
+  return text + describeRigidShaft(m);
 }
 
 }  // namespace crankcheck::app

@@ -109,7 +109,7 @@ std::string runMotion(const MotionOptions& options) {
                   r.delta_gravity, r.delta_no_gravity, r.omega_min, r.omega_max, r.omega_mean, drift);
     out += buffer;
   }
-  return out + "(energy drift: max |E(t) - E(0)| / E(0) per revolution, gravity on)\n";
+  return out + "(energy drift: max |E(t) - E(0)| / E(0) per revolution, gravity on)\n" + describeRigidShaft(m);
 }
 
 }  // namespace crankcheck::app

@@ -263,6 +263,12 @@ TEST(Cli, TorsionJsonAndRefusals) {
     }
   }
   EXPECT_EQ(doc["speeds"][0]["peak_to_peak_twist"][4]["section"], "throw 3 / flywheel");
+  // The other commands keep the shaft rigid and say so in their tables when the scene has a [crankshaft] (not else).
+  const RunResult eval = testing::runCrankcheck({"eval", scenes + "/inline4_four_stroke.toml", "--phi-deg", "30"});
+  ASSERT_EQ(eval.exit_status, 0) << eval.err;
+  EXPECT_NE(eval.out.find("treats the shaft as rigid"), std::string::npos);
+  const RunResult single = testing::runCrankcheck({"eval", scenes + "/single_cylinder.toml", "--phi-deg", "30"});
+  EXPECT_EQ(single.out.find("treats the shaft as rigid"), std::string::npos);
   const std::string no_shaft = scenes + "/single_cylinder.toml";
   for (const auto& [args, expected] :
        {std::pair<std::vector<std::string>, std::string>{{"torsion", no_shaft}, "[crankshaft]: missing table"},
