@@ -64,7 +64,7 @@ void addTorsionOptions(CLI::App& command, TorsionOptions& options) {
   speed->excludes(speeds);
   command.add_option("--engine", options.engines,
                      "The exact steady states to show (comma-separated): analytic (default), simbody (its elastic "
-                     "train run to periodic: about 20 s a speed)")
+                     "train run to periodic: about 11 s a speed)")
       ->delimiter(',')
       ->check(CLI::IsMember({"analytic", "simbody"}))
       ->capture_default_str();

@@ -10,7 +10,7 @@
 /// - at each speed, each section's peak-to-peak twist by Holzer's summed orders (converged, and cut at order 24 as
 ///   often done) and by the exact periodic steady state of the variable-inertia train (analytic/torsion_steady.h),
 ///   with their difference; with `--engine simbody` also Simbody's elastic train run to its periodic state
-///   (simbody_models/crank_train.h: about 20 s a speed on the example four, a minute on the marine six). MuJoCo's
+///   (simbody_models/crank_train.h: about 11 s a speed on the example four, 25 s on the marine six). MuJoCo's
 ///   train is issue 30's next step: not claimed here.
 /// A sweep shows a progress line on a terminal.
 

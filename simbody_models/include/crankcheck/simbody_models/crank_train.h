@@ -8,12 +8,14 @@
 /// omega t; each throw's damping about omega; gravity and the gas (at the throw's own angle) as in KCrankModel.
 ///
 /// The periodic steady state: started from the rigid motion at t = 0 (every pin at 0 turning at omega, the rods and
-/// pistons assembled), integrated (RungeKuttaMerson at `accuracy`) cycle by cycle until the deviations psi_i - omega t
-/// and their rates at the start of a cycle change by less than `periodicity` of the largest deviation seen over that
-/// cycle; then one more cycle sampled at `samples` equal steps. The time of the transient is the shaft's lightest
+/// pistons assembled), integrated (RungeKuttaMerson) cycle by cycle, at 1000 x `accuracy` until the deviations
+/// psi_i - omega t and their rates at the start of a cycle change by less than 1000 x `periodicity` of the largest
+/// deviation seen over that cycle, then at `accuracy` until they change by less than `periodicity`; then one more
+/// cycle sampled at `samples` equal steps (the loose start halves the cost; the result is the same to 2e-8 of the
+/// twist scale). The time of the transient is the shaft's lightest
 /// damping's: about 1 / (zeta w) per mode. At accuracy 1e-10 the cycle-to-cycle change stops falling at about 1e-7 of
 /// the twist (the integration's own error per cycle, measured on the example four at 6000 rpm), hence `periodicity`
-/// 1e-6 by default: 16 cycles there, about 17 s; the peak-to-peak twists then agree with the analytic engine's exact
+/// 1e-6 by default: 16 cycles there, about 11 s; the peak-to-peak twists then agree with the analytic engine's exact
 /// steady state to 4e-7 (tests/gate/torsion_test.cc).
 
 #include <vector>
