@@ -16,26 +16,7 @@
 namespace crankcheck::analytic {
 
 Mechanism makeThrowMechanism(const Mechanism& m, int throw_index) {
-  const std::vector<std::vector<int>> throws = findThrows(m);
-  if (throw_index < 0 || throw_index >= static_cast<int>(throws.size()))
-    throw std::out_of_range("torsion: no throw " + std::to_string(throw_index) + " (the scene has " +
-                            std::to_string(throws.size()) + ")");
-  Mechanism one = m;
-  one.flywheel_inertia.reset();
-  one.balance_shafts.clear();
-  one.crankshaft.reset();
-  one.engine.crank_angles.clear();
-  one.engine.bank_angles.clear();
-  one.engine.axial_positions.clear();
-  one.engine.pin_offsets.clear();
-  one.firing_angles.clear();
-  for (int c : throws[static_cast<size_t>(throw_index)]) {
-    one.engine.crank_angles.push_back(m.engine.crank_angles.at(static_cast<size_t>(c)));
-    one.engine.bank_angles.push_back(getBankAngle(m, c));
-    one.engine.pin_offsets.push_back(getPinOffset(m, c));
-    if (m.gas) one.firing_angles.push_back(m.firing_angles.at(static_cast<size_t>(c)));
-  }
-  one.engine.cylinders = static_cast<int>(one.engine.crank_angles.size());
+  Mechanism one = selectThrow(m, throw_index);
   one.engine.speed = 1.0;  // v_p is then dx_p/dpsi
   one.speed_rpm = 30.0 / M_PI;
   return one;

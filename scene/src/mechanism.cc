@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 
 namespace crankcheck {
 
@@ -48,6 +49,32 @@ std::vector<std::vector<int>> findThrows(const Mechanism& m) {
     else throws.push_back({j});
   }
   return throws;
+}
+
+Mechanism selectThrow(const Mechanism& m, int throw_index) {
+  const std::vector<std::vector<int>> throws = findThrows(m);
+  if (throw_index < 0 || throw_index >= static_cast<int>(throws.size()))
+    throw std::out_of_range("torsion: no throw " + std::to_string(throw_index) + " (the scene has " +
+                            std::to_string(throws.size()) + ")");
+  Mechanism one = m;
+  one.flywheel_inertia.reset();
+  one.balance_shafts.clear();
+  one.crankshaft.reset();
+  one.engine.crank_angles.clear();
+  one.engine.bank_angles.clear();
+  one.engine.axial_positions.clear();
+  one.engine.pin_offsets.clear();
+  one.firing_angles.clear();
+  for (int c : throws[static_cast<size_t>(throw_index)]) {
+    one.engine.crank_angles.push_back(m.engine.crank_angles.at(static_cast<size_t>(c)));
+    one.engine.bank_angles.push_back(getBankAngle(m, c));
+    one.engine.axial_positions.push_back(getAxialPosition(m, c));
+    one.engine.pin_offsets.push_back(getPinOffset(m, c));
+    if (m.gas) one.firing_angles.push_back(m.firing_angles.at(static_cast<size_t>(c)));
+  }
+  one.engine.cylinders = static_cast<int>(one.engine.crank_angles.size());
+  one.engine.explicit_crank_angles = true;
+  return one;
 }
 
 int countShaftSections(const Mechanism& m) {

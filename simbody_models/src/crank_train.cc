@@ -19,30 +19,6 @@
 namespace crankcheck::simbody_models {
 namespace {
 
-// The cylinders on one crank pin (findThrows) as a mechanism of their own: the crankshaft body built for it is the
-// throw's, its pistons and rods the throw's.
-Mechanism throwOf(const Mechanism& m, const std::vector<int>& cylinders) {
-  Mechanism one = m;
-  one.flywheel_inertia.reset();
-  one.balance_shafts.clear();
-  one.crankshaft.reset();
-  one.engine.crank_angles.clear();
-  one.engine.bank_angles.clear();
-  one.engine.axial_positions.clear();
-  one.engine.pin_offsets.clear();
-  one.firing_angles.clear();
-  for (int c : cylinders) {
-    one.engine.crank_angles.push_back(m.engine.crank_angles.at(static_cast<size_t>(c)));
-    one.engine.bank_angles.push_back(getBankAngle(m, c));
-    one.engine.axial_positions.push_back(getAxialPosition(m, c));
-    one.engine.pin_offsets.push_back(getPinOffset(m, c));
-    if (m.gas) one.firing_angles.push_back(m.firing_angles.at(static_cast<size_t>(c)));
-  }
-  one.engine.cylinders = static_cast<int>(cylinders.size());
-  one.engine.explicit_crank_angles = true;
-  return one;
-}
-
 // The sections' springs and dampers and the throws' damping, as mobility forces on the pins (CONVENTIONS: K (psi_b -
 // psi_a) + C (psi_b' - psi_a') on a, the opposite on b; -c_t (psi' - omega) on a throw). The last section's far end
 // is the flywheel, at omega t.
@@ -119,8 +95,9 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
                        SimTK::Transform());
     is_throw.push_back(false);
   }
-  for (const std::vector<int>& cylinders : findThrows(m)) {
-    const Mechanism tm = throwOf(m, cylinders);
+  const int throw_count = static_cast<int>(findThrows(m).size());
+  for (int j = 0; j < throw_count; ++j) {
+    const Mechanism tm = selectThrow(m, j);
     const double J_t = c.throw_inertia;
     throws.push_back(buildMechanismBodies(matter, tm, SimTK::Inertia(0.5 * J_t, 0.5 * J_t, J_t)));
     shaft.push_back(throws.back().crank);

@@ -65,7 +65,9 @@ struct AbsoluteEquations {
 // through give the code's peak-to-peak values. Tolerances: the return within 1e-8 of the twist scale (angles) and
 // of omega times it (rates): Cash-Karp at 1e-12 over a cycle of about 1e4 steps errs by about 1e-10 of the scale,
 // and the code's orbit is periodic to 1000 x its tolerance 1e-11 = 1e-8 of the scale (torsion_steady.h). The
-// peak-to-peak twists within 1e-6 of each (issue 30's promise; the integration errors above are 1e-8 of the scale).
+// peak-to-peak twists within 2e-8 of the scale: what is left of a transient of 1e-8 moves each extreme by up to that,
+// the peak-to-peak by up to twice it (largest difference found: 1.2e-10 of the scale; CRANKCHECK_PRINT_RATIOS=1).
+// (Issue 30 promises 1e-6 of each value.)
 TEST(ExactSteadyState, AnotherIntegratorReturnsToThePeriodicState) {
   for (double rpm : {2000.0, 6000.0}) {
     SCOPED_TRACE(rpm);
@@ -101,7 +103,10 @@ TEST(ExactSteadyState, AnotherIntegratorReturnsToThePeriodicState) {
       EXPECT_NEAR(y[static_cast<size_t>(i)] - train.omega * period, y0[static_cast<size_t>(i)], 1e-8 * e.twist_scale);
       EXPECT_NEAR(y[static_cast<size_t>(n + i)], y0[static_cast<size_t>(n + i)], 1e-8 * e.twist_scale * train.omega);
       const double p2p = findSignalExtremes(calcSignalFromSamples(twists[static_cast<size_t>(i)])).peakToPeak();
-      EXPECT_NEAR(p2p, e.peak_to_peak[static_cast<size_t>(i)], 1e-6 * e.peak_to_peak[static_cast<size_t>(i)])
+      if (std::getenv("CRANKCHECK_PRINT_RATIOS"))
+        std::printf("%g rpm section %d: p2p differs by %.2e of the twist scale\n", rpm, i,
+                    std::fabs(p2p - e.peak_to_peak[static_cast<size_t>(i)]) / e.twist_scale);
+      EXPECT_NEAR(p2p, e.peak_to_peak[static_cast<size_t>(i)], 2e-8 * e.twist_scale)
           << "section " << i;
     }
   }

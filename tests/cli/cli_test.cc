@@ -39,6 +39,15 @@ RunResult run(const std::string& args) {
   return testing::runCrankcheck(argv);
 }
 
+// Bad input: status 2, nothing on stdout, one line on stderr that contains `expected`.
+void expectRefusedWithOneLine(const std::vector<std::string>& args, const std::string& expected) {
+  const RunResult bad = testing::runCrankcheck(args);
+  EXPECT_EQ(bad.exit_status, 2) << bad.err;
+  EXPECT_EQ(bad.out, "");
+  EXPECT_NE(bad.err.find(expected), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+}
+
 std::vector<std::filesystem::path> exampleScenes() {
   std::vector<std::filesystem::path> scenes;
   for (const auto& entry : std::filesystem::directory_iterator(CRANKCHECK_SCENES_DIR))
@@ -221,11 +230,7 @@ TEST(Cli, FlywheelJsonAndRefusals) {
        {std::pair<std::vector<std::string>, std::string>{{"flywheel", scenes + "/single_cylinder.toml", "--fluctuation", "0.01"}, "[gas]: missing table"},
         {{"flywheel", scenes + "/inline4_four_stroke.toml", "--fluctuation", "1.5"}, "--fluctuation: must be in (0, 1)"},
         {{"flywheel", scenes + "/inline4_four_stroke.toml", "--fluctuation", "0"}, "--fluctuation: must be in (0, 1)"}}) {
-    const RunResult bad = testing::runCrankcheck(args);
-    EXPECT_EQ(bad.exit_status, 2) << bad.err;
-    EXPECT_EQ(bad.out, "");
-    EXPECT_NE(bad.err.find(expected), std::string::npos) << bad.err;
-    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+    expectRefusedWithOneLine(args, expected);
   }
 }
 
@@ -278,11 +283,7 @@ TEST(Cli, TorsionJsonAndRefusals) {
         {{"torsion", scenes + "/inline4_four_stroke.toml", "--speed", "-5"}, "--speed: must be > 0"},
         {{"torsion", scenes + "/inline4_four_stroke.toml", "--speed", "5", "--speeds", "1:2:1"}, "--speed"},
         {{"torsion", scenes + "/inline4_four_stroke.toml", "--engine", "mujoco"}, "--engine: mujoco not in"}}) {
-    const RunResult bad = testing::runCrankcheck(args);
-    EXPECT_EQ(bad.exit_status, 2) << bad.err;
-    EXPECT_EQ(bad.out, "");
-    EXPECT_NE(bad.err.find(expected), std::string::npos) << bad.err;
-    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+    expectRefusedWithOneLine(args, expected);
   }
 }
 

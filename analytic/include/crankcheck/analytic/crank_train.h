@@ -20,8 +20,8 @@
 
 namespace crankcheck::analytic {
 
-/// The cylinders of throw `throw_index` (findThrows) as a mechanism of their own, at crank speed 1 rad/s, without
-/// flywheel, balance shafts or [crankshaft]: its J(phi), Q(phi), gas forces and kinematics are throw j's at psi = phi.
+/// The cylinders of throw `throw_index` (selectThrow, scene/mechanism.h) at crank speed 1 rad/s: its J(phi), Q(phi),
+/// gas forces and kinematics are throw j's at psi = phi.
 /// @throws std::out_of_range if there is no such throw.
 Mechanism makeThrowMechanism(const Mechanism& m, int throw_index);
 

@@ -132,6 +132,11 @@ double getPinOffset(const Mechanism& m, int j);
 /// four), and a V8 has four whether its scene lists the cylinders bank by bank (with axial positions) or pin by pin.
 /// The front is at the smallest z (next to the front mass), the flywheel beyond the largest.
 std::vector<std::vector<int>> findThrows(const Mechanism& m);
+/// The cylinders of throw `throw_index` (findThrows) as a mechanism of their own: their crank angles (explicit), banks,
+/// axial positions, pin offsets and firing angles, the same parts and speed; without flywheel, balance shafts or
+/// [crankshaft]. Each engine builds a throw of the elastic crank train from it (CONVENTIONS "Torsion").
+/// @throws std::out_of_range if there is no such throw.
+Mechanism selectThrow(const Mechanism& m, int throw_index);
 /// The number of sections of the crank train: throws + 1 with a front mass, throws without.
 int countShaftSections(const Mechanism& m);
 /// C_s [N m s/rad] of section i (0 = the front one): the one value given for all, or the i-th.
