@@ -64,7 +64,10 @@ class ShaftForces : public SimTK::Force::Custom::Implementation {
 
 }  // namespace
 
-CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrainRunOptions& options) {
+CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrainRunOptions& asked) {
+  CrankTrainRunOptions options = asked;
+  if (options.accuracy == 0.0) options.accuracy = kCrankTrainAccuracy;
+  if (options.periodicity == 0.0) options.periodicity = kCrankTrainPeriodicity;
   checkModelInputs(m, ModelOptions{}, "simulateCrankTrainSteadyState");
   if (!m.crankshaft) throw std::invalid_argument("simulateCrankTrainSteadyState: the scene has no [crankshaft] table");
   const double omega = m.engine.speed;

@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "crankcheck/simbody_models/crank_train.h"
 #include "crankcheck/simbody_models/free_run.h"
 #include "crankcheck/simbody_models/grid_sweep.h"
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
@@ -98,6 +99,13 @@ std::vector<Engine> describeEngines() {
   e.calc_q_on_grid = [](const Mechanism& m, double phi0, double step, size_t n) {
     return calcHoldingTorqueOnGrid(m, phi0, step, n);
   };
+  e.simulate_crank_train = [](const Mechanism& m, const CrankTrainRunOptions& options) {
+    return simulateCrankTrainSteadyState(m, options);
+  };
+  e.crank_train_method = "the throws as bodies on their own pins, rods and pistons closed on them, run from the rigid "
+                         "motion (RungeKuttaMerson) until periodic: accuracy 1e-10, cycle-to-cycle change 1e-6 of the "
+                         "twist by default (crank_train.h)";
+  e.crank_train_gated = true;
   return {e};
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "crankcheck/scene/crank_train_run.h"
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/free_run.h"
 #include "crankcheck/scene/mechanism.h"
@@ -83,6 +84,15 @@ struct Engine {
   std::function<std::unique_ptr<EngineModel>(const Mechanism& m, double accuracy)> build_at_accuracy;
   /// Q [N m] at rest at phi_i = phi0 + i step, i = 0 .. n - 1, by a route that computes a whole grid at once.
   std::function<std::vector<double>(const Mechanism& m, double phi0, double step, size_t n)> calc_q_on_grid;
+  /// The elastic crank train's periodic steady state (`crankcheck torsion`, report part 17) of a scene with
+  /// `[crankshaft]` at its speed. @throws std::invalid_argument if the engine cannot build the train (the message names
+  /// the rule); std::runtime_error if no periodic state is reached.
+  std::function<CrankTrainRun(const Mechanism& m, const CrankTrainRunOptions& options)> simulate_crank_train;
+  /// One line: how simulate_crank_train reaches the steady state and what its options' accuracy means, with defaults.
+  std::string crank_train_method;
+  /// True when simulate_crank_train claims the exact steady state (gated against the analytic engine's to the
+  /// integrators' accuracy); false: a soft solver's run, its difference reported, never gated.
+  bool crank_train_gated = false;
 };
 
 }  // namespace crankcheck

@@ -20,28 +20,18 @@
 
 #include <vector>
 
+#include "crankcheck/scene/crank_train_run.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::simbody_models {
 
-struct CrankTrainRunOptions {
-  double accuracy = 1e-10;     ///< the integrator's accuracy (relative error per step)
-  double periodicity = 1e-6;   ///< the cycle-to-cycle change at which the run is periodic, relative to the twist
-  int samples = 1024;          ///< equally spaced samples of the last cycle (even)
-  int max_cycles = 2000;       ///< refused beyond (a train too lightly damped to settle)
-};
-
-struct CrankTrainRun {
-  /// Section i's twist [rad] (CONVENTIONS: psi_b - psi_a, the last omega t - psi_{n-1}) at t_k = t0 + k T / samples,
-  /// k = 0 .. samples - 1, over the last cycle (t0 a whole number of cycles: omega t0 a multiple of the cycle angle).
-  std::vector<std::vector<double>> twists;
-  int cycles = 0;              ///< cycles run before the sampled one
-  double cycle_change = 0.0;   ///< the last cycle-to-cycle change, relative to the largest deviation
-  long long steps = 0;         ///< the integrator's steps in all
-};
+/// Simbody's defaults of CrankTrainRunOptions' fields left at 0.
+inline constexpr double kCrankTrainAccuracy = 1e-10;     ///< the integrator's accuracy (relative error per step)
+inline constexpr double kCrankTrainPeriodicity = 1e-6;   ///< the cycle-to-cycle change, relative to the twist
 
 /// @throws std::invalid_argument if the scene has no [crankshaft] or speed, or is not one Simbody builds (a massless
-///         rod, KCrankModel); std::runtime_error if the run has not become periodic in max_cycles cycles.
+///         rod, KCrankModel); std::runtime_error if the run has not become periodic in max_cycles cycles. Options at 0: the defaults
+///         above.
 CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrainRunOptions& options = {});
 
 }  // namespace crankcheck::simbody_models
