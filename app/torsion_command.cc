@@ -13,7 +13,7 @@
 #include "crankcheck/analytic/torsion_forced.h"
 #include "crankcheck/analytic/torsion_steady.h"
 #include "crankcheck/scene/scene_writer.h"
-#include "crankcheck/simbody_models/crank_train.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/variants.h"
 #include "json_output.h"
@@ -46,8 +46,8 @@ struct SpeedResult {
   double rpm = 0.0;
   analytic::HolzerResponse holzer;
   analytic::ExactSteadyState exact;
-  std::vector<double> simbody;  ///< Simbody's peak-to-peak per section (with --engine simbody)
-  int simbody_cycles = 0;
+  std::vector<std::vector<double>> trains;  ///< each --engine train's peak-to-peak per section
+  std::vector<int> train_cycles;            ///< the cycles each ran before its sampled one
 };
 
 struct CriticalSpeed {
@@ -62,11 +62,16 @@ void addTorsionOptions(CLI::App& command, TorsionOptions& options) {
   auto* speed = command.add_option("--speed", options.speed_rpm, "One speed [rpm] (default: the scene's speed_rpm)");
   auto* speeds = command.add_option("--speeds", options.speeds, "A sweep FROM:TO:STEP [rpm], e.g. 1000:6000:250");
   speed->excludes(speeds);
-  command.add_option("--engine", options.engines,
-                     "The exact steady states to show (comma-separated): analytic (default), simbody (its elastic "
-                     "train run to periodic: about 11 s a speed)")
+  std::vector<std::string> names;
+  std::string help = "The exact steady states to show (comma-separated; the analytic one is always computed):";
+  for (const Engine& e : validation::listEngines())
+    if (e.simulate_crank_train) {
+      names.push_back(e.name);
+      help += " " + e.name + " (" + e.crank_train_method + ")" + (e.crank_train_gated ? "" : " [soft: not gated]") + ";";
+    }
+  command.add_option("--engine", options.engines, help)
       ->delimiter(',')
-      ->check(CLI::IsMember({"analytic", "simbody"}))
+      ->check(CLI::IsMember(names))
       ->capture_default_str();
   command.add_option("--format", options.format, "Output format")
       ->check(CLI::IsMember({"table", "json"}))
@@ -118,10 +123,14 @@ std::string runTorsion(const TorsionOptions& options) {
     }
   std::sort(critical.begin(), critical.end(), [](const CriticalSpeed& a, const CriticalSpeed& b) { return a.rpm < b.rpm; });
 
-  const bool with_simbody =
-      std::find(options.engines.begin(), options.engines.end(), "simbody") != options.engines.end();
+  // The engines' own trains (every named engine but the closed forms, whose exact steady state is always shown).
+  std::vector<const Engine*> trains;
+  for (const std::string& name : options.engines) {
+    const Engine& e = validation::findEngine(name);
+    if (!e.closed_form && std::find(trains.begin(), trains.end(), &e) == trains.end()) trains.push_back(&e);
+  }
   std::vector<SpeedResult> results;
-  const bool progress = (speeds.size() > 1 || with_simbody) && ::isatty(STDERR_FILENO);
+  const bool progress = (speeds.size() > 1 || !trains.empty()) && ::isatty(STDERR_FILENO);
   for (size_t s = 0; s < speeds.size(); ++s) {
     if (progress) std::fprintf(stderr, "\r\033[Ktorsion: speed %zu of %zu (%g rpm)", s + 1, speeds.size(), speeds[s]);
     const Mechanism m = validation::withSpeed(scene, speeds[s]);
@@ -130,11 +139,12 @@ std::string runTorsion(const TorsionOptions& options) {
     try {
       r.holzer = analytic::calcHolzerResponse(m);
       r.exact = analytic::calcExactSteadyState(m);
-      if (with_simbody) {
-        const simbody_models::CrankTrainRun run = simbody_models::simulateCrankTrainSteadyState(m);
+      for (const Engine* e : trains) {
+        const CrankTrainRun run = e->simulate_crank_train(m, CrankTrainRunOptions{});
+        r.trains.emplace_back();
         for (const std::vector<double>& twist : run.twists)
-          r.simbody.push_back(analytic::findSignalExtremes(analytic::calcSignalFromSamples(twist)).peakToPeak());
-        r.simbody_cycles = run.cycles;
+          r.trains.back().push_back(analytic::findSignalExtremes(analytic::calcSignalFromSamples(twist)).peakToPeak());
+        r.train_cycles.push_back(run.cycles);
       }
     } catch (const std::invalid_argument& e) {
       throw UsageError(options.scene_path + ": " + e.what());
@@ -181,10 +191,10 @@ std::string runTorsion(const TorsionOptions& options) {
                             {"exact", r.exact.peak_to_peak[static_cast<size_t>(i)]},
                             {"difference", r.exact.peak_to_peak[static_cast<size_t>(i)] /
                                                    r.holzer.peak_to_peak[static_cast<size_t>(i)] - 1.0}});
-        if (with_simbody) {
-          sections.back()["simbody"] = r.simbody[static_cast<size_t>(i)];
-          sections.back()["simbody_difference"] =
-              r.simbody[static_cast<size_t>(i)] / r.holzer.peak_to_peak[static_cast<size_t>(i)] - 1.0;
+        for (size_t e = 0; e < trains.size(); ++e) {
+          sections.back()[trains[e]->name] = r.trains[e][static_cast<size_t>(i)];
+          sections.back()[trains[e]->name + "_difference"] =
+              r.trains[e][static_cast<size_t>(i)] / r.holzer.peak_to_peak[static_cast<size_t>(i)] - 1.0;
         }
       }
       at.push_back({{"speed_rpm", r.rpm},
@@ -192,7 +202,7 @@ std::string runTorsion(const TorsionOptions& options) {
                     {"holzer_harmonics", r.holzer.orders},
                     {"exact_newton_iterations", r.exact.newton_iterations},
                     {"exact_error_bound", r.exact.error_bound}});
-      if (with_simbody) at.back()["simbody_cycles"] = r.simbody_cycles;
+      for (size_t e = 0; e < trains.size(); ++e) at.back()[trains[e]->name + "_cycles"] = r.train_cycles[e];
     }
     doc["speeds"] = at;
     return dumpJson(doc);
@@ -234,15 +244,19 @@ std::string runTorsion(const TorsionOptions& options) {
     std::snprintf(line, sizeof line, "%-22s %18s %18s %18s %15s", "section", "holzer", "holzer order<=24",
                   "exact (analytic)", "exact/holzer-1");
     out += line;
-    out += with_simbody ? "            simbody  simbody/holzer-1\n" : "\n";
+    for (const Engine* e : trains) {
+      std::snprintf(line, sizeof line, " %18s %17s", e->name.c_str(), (e->name + "/holzer-1").c_str());
+      out += line;
+    }
+    out += "\n";
     for (int i = 0; i < bodies; ++i) {
       const size_t k = static_cast<size_t>(i);
       std::snprintf(line, sizeof line, "%-22s %18.10e %18.10e %18.10e %+15.4e", sectionName(i).c_str(),
                     r.holzer.peak_to_peak[k], r.holzer.peak_to_peak_order24[k], r.exact.peak_to_peak[k],
                     r.exact.peak_to_peak[k] / r.holzer.peak_to_peak[k] - 1.0);
       out += line;
-      if (with_simbody) {
-        std::snprintf(line, sizeof line, " %18.10e %+17.4e", r.simbody[k], r.simbody[k] / r.holzer.peak_to_peak[k] - 1.0);
+      for (size_t e = 0; e < trains.size(); ++e) {
+        std::snprintf(line, sizeof line, " %18.10e %+17.4e", r.trains[e][k], r.trains[e][k] / r.holzer.peak_to_peak[k] - 1.0);
         out += line;
       }
       out += "\n";

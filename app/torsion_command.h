@@ -25,7 +25,7 @@ struct TorsionOptions {
   std::string scene_path;
   std::optional<double> speed_rpm;
   std::string speeds;  ///< FROM:TO:STEP [rpm]
-  std::vector<std::string> engines{"analytic"};  ///< the exact steady states shown: analytic, simbody
+  std::vector<std::string> engines{"analytic"};  ///< the exact steady states shown: engines with Engine::simulate_crank_train
   std::string format = "table";
 };
 

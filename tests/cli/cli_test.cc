@@ -282,7 +282,7 @@ TEST(Cli, TorsionJsonAndRefusals) {
         {{"torsion", scenes + "/inline4_four_stroke.toml", "--speeds", "1:100000:1"}, "--speeds: 100000 speeds; at most"},
         {{"torsion", scenes + "/inline4_four_stroke.toml", "--speed", "-5"}, "--speed: must be > 0"},
         {{"torsion", scenes + "/inline4_four_stroke.toml", "--speed", "5", "--speeds", "1:2:1"}, "--speed"},
-        {{"torsion", scenes + "/inline4_four_stroke.toml", "--engine", "mujoco"}, "--engine: mujoco not in"}}) {
+        {{"torsion", scenes + "/inline4_four_stroke.toml", "--engine", "nosuch"}, "--engine: nosuch not in"}}) {
     expectRefusedWithOneLine(args, expected);
   }
 }
