@@ -1,5 +1,6 @@
 #include "crankcheck/mujoco_models/engine.h"
 
+#include "crankcheck/mujoco_models/crank_train.h"
 #include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
 
 namespace crankcheck::mujoco_models {
@@ -22,6 +23,16 @@ Engine describe(Variant variant, bool gated, std::string method) {
   e.method = std::move(method);
   e.gated = gated;
   e.build = [variant](const Mechanism& m) -> std::unique_ptr<EngineModel> { return std::make_unique<Model>(m, variant); };
+  if (variant == Variant::kExact) {  // the elastic crank train: MuJoCo's throws in the train's equations (crank_train.h)
+    e.simulate_crank_train = [](const Mechanism& m, const CrankTrainRunOptions& options) {
+      return simulateCrankTrainSteadyState(m, options);
+    };
+    e.crank_train_method = "each throw's inertia and torque from MuJoCo's exact closed loops (mass matrix, inverse "
+                           "dynamics), the train's equations by Dormand-Prince 5(4) from the rigid motion until "
+                           "periodic; accuracy: error per step relative (and x the deviations absolute), default 1e-10; "
+                           "periodicity default 1e-6 of the deviations";
+    e.crank_train_gated = true;
+  }
   if (variant != Variant::kExact) {  // MuJoCo's integrators step its soft constraints
     e.integrators = {"RK4", "Euler", "implicit"};
     e.accuracy_meaning = "the fixed time step as a fraction of one revolution at the release speed, default 1e-3";

@@ -304,6 +304,7 @@ class KCrankMujocoModel::Impl {
   }
   double potentialEnergy(double phi);
   double holdingTorque(double phi);
+  CrankTorqueLine crankTorqueLine(double phi, double phi_dot);
   double closureError() const { return closure_error_; }
   /// The exactly closed state at crank angle phi and crank speed omega: MuJoCo's qpos and qvel.
   void calcClosedState(double phi, double omega, std::vector<double>& qpos, std::vector<double>& qvel) {
@@ -328,7 +329,11 @@ class KCrankMujocoModel::Impl {
   /// Closes every loop at crank angle phi by Newton's method on the big end's gap (MuJoCo's kinematics and site
   /// Jacobians); leaves the kinematics and the Jacobian columns of the closed configuration.
   void close(double phi);
-  /// Dependent speeds for crank speed omega (J v = 0), then MuJoCo's velocity-dependent quantities (mj_comVel).
+  /// Every joint's velocity [rad/s, m/s] at crank speed omega with the loops closed (J v = 0: the dependent speeds
+  /// from the Jacobian columns of the last closure) into qvel (nv values).
+  void calcLoopVelocities(double omega, double* qvel) const;
+  /// Dependent speeds for crank speed omega (calcLoopVelocities), then MuJoCo's velocity-dependent quantities
+  /// (mj_comVel).
   void solveVelocities(double omega);
   /// Dependent accelerations at zero crank acceleration: J qacc = -(Jdot v), Jdot v from MuJoCo's site
   /// accelerations at qacc = 0.
@@ -365,6 +370,8 @@ class KCrankMujocoModel::Impl {
   std::vector<std::array<double, 2>> forces_;  // f_j: the crank on rod j at its crank pin (crank_pin_force)
   std::vector<double> jacobian_;               // 3 x nv scratch
   std::vector<double> rne_;                    // nv scratch
+  std::vector<double> unit_, mass_times_unit_; // nv scratch: u at unit crank speed, M u
+  double rotor_inertia_ = 0.0;                 // [kg m^2] the rotors' part of u^T M u (crankTorqueLine)
   double reference_potential_ = 0.0;           // V(0)
   double closure_error_ = 0.0;
   double closure_tolerance_ = 0.0;
@@ -415,6 +422,12 @@ KCrankMujocoModel::Impl::Impl(const Mechanism& m, Variant variant) : m_(m), vari
   }
   jacobian_.resize(3 * static_cast<size_t>(mm->nv));
   rne_.resize(static_cast<size_t>(mm->nv));
+  unit_.resize(static_cast<size_t>(mm->nv));
+  mass_times_unit_.resize(static_cast<size_t>(mm->nv));
+  // The isotropic rotor inertias calcMjcf gives the crankshaft (I_w or nominal) and the balance shafts (nominal):
+  // their Z component, at unit crank speed the shaft turning at its ratio.
+  rotor_inertia_ = mm->body_inertia[3 * crank_body_ + 2];
+  for (const Shaft& s : shafts_) rotor_inertia_ += s.ratio * s.ratio * mm->body_inertia[3 * s.body + 2];
   closure_tolerance_ = 4.0 * kEps * (m_.rod.length + m_.crank.radius);
   close(0.0);
   reference_potential_ = potential();
@@ -483,17 +496,20 @@ void KCrankMujocoModel::Impl::close(double phi) {
   closed_phi_ = phi;
 }
 
-void KCrankMujocoModel::Impl::solveVelocities(double omega) {
-  mjData* d = data_.get();
-  d->qvel[crank_v_] = omega;
-  for (const Shaft& s : shafts_) d->qvel[s.v] = s.ratio * omega;
+void KCrankMujocoModel::Impl::calcLoopVelocities(double omega, double* qvel) const {
+  qvel[crank_v_] = omega;
+  for (const Shaft& s : shafts_) qvel[s.v] = s.ratio * omega;
   for (const Cylinder& c : cylinders_) {
     // J_big_end,dep v_dep = J_crank_pin,crank omega
     const auto v = solve2(c.jb_s[0], c.jb_h[0], c.jb_s[1], c.jb_h[1], c.jc[0] * omega, c.jc[1] * omega);
-    d->qvel[c.slide_v] = v[0];
-    d->qvel[c.wrist_v] = v[1];
+    qvel[c.slide_v] = v[0];
+    qvel[c.wrist_v] = v[1];
   }
-  mj_comVel(model_.get(), d);
+}
+
+void KCrankMujocoModel::Impl::solveVelocities(double omega) {
+  calcLoopVelocities(omega, data_->qvel);
+  mj_comVel(model_.get(), data_.get());
 }
 
 void KCrankMujocoModel::Impl::solveAccelerations() {
@@ -661,6 +677,27 @@ double KCrankMujocoModel::Impl::holdingTorque(double phi) {
   return variant_ == Variant::kExact ? solveExactForces(phi, false) : solveSoftForces(phi, false);
 }
 
+CrankTorqueLine KCrankMujocoModel::Impl::crankTorqueLine(double phi, double phi_dot) {
+  if (variant_ != Variant::kExact)
+    throw std::invalid_argument("KCrankMujocoModel: the crank torque line is the exact variant's (hard multipliers)");
+  if (!std::isfinite(phi_dot)) throw std::invalid_argument("KCrankMujocoModel: crank speed phi_dot must be finite");
+  const mjModel* mm = model_.get();
+  mjData* d = data_.get();
+  close(phi);
+  // J = u^T M u: the kinetic energy's form at unit crank speed (the loop forces do no work along u).
+  calcLoopVelocities(1.0, unit_.data());
+  mj_crb(mm, d);
+  mj_mulM(mm, d, mass_times_unit_.data(), unit_.data());
+  CrankTorqueLine line;
+  line.inertia = mju_dot(unit_.data(), mass_times_unit_.data(), mm->nv) - rotor_inertia_;
+  solveVelocities(phi_dot);
+  solveAccelerations();
+  line.rest = solveExactForces(phi, true);
+  if (!(std::isfinite(line.inertia) && std::isfinite(line.rest)))
+    throw std::runtime_error("MuJoCo returned non-finite values at phi = " + num(phi) + " rad");
+  return line;
+}
+
 Evaluation KCrankMujocoModel::Impl::evaluate(double phi) {
   Evaluation e;
   e.engine = toString(variant_);
@@ -717,6 +754,9 @@ Evaluation KCrankMujocoModel::evaluate(double phi) { return impl_->evaluate(phi)
 void KCrankMujocoModel::setSpeed(double omega) { impl_->setSpeed(omega); }
 double KCrankMujocoModel::calcPotentialEnergy(double phi) { return impl_->potentialEnergy(phi); }
 double KCrankMujocoModel::calcHoldingTorque(double phi) { return impl_->holdingTorque(phi); }
+CrankTorqueLine KCrankMujocoModel::calcCrankTorqueLine(double phi, double phi_dot) {
+  return impl_->crankTorqueLine(phi, phi_dot);
+}
 double KCrankMujocoModel::getLoopClosureError() const { return impl_->closureError(); }
 const Mechanism& KCrankMujocoModel::mechanism() const { return impl_->mechanism(); }
 Variant KCrankMujocoModel::variant() const { return impl_->variant(); }

@@ -54,6 +54,16 @@ std::string toString(Variant variant);  ///< the engine name: "mujoco", "mujoco-
 /// @throws std::invalid_argument as KCrankMujocoModel.
 std::string calcMjcf(const Mechanism& m, Variant variant = Variant::kExact);
 
+/// The crank torque [N m] that moves the mechanism at crank angle phi, speed phi_dot and acceleration phi_ddot
+/// against its gas and gravity is affine in phi_ddot: inertia phi_ddot + rest (KCrankMujocoModel::calcCrankTorqueLine).
+struct CrankTorqueLine {
+  /// J(phi) [kg m^2]: the reduced inertia about the crank axis of the crankshaft's point masses, the rods, the pistons
+  /// (and the balance shafts' point masses), without the crankshaft's rotor (the flywheel I_w, or calcMjcf's nominal one)
+  double inertia = 0.0;
+  /// [N m] the torque at phi_ddot = 0: (1/2) J'(phi) phi_dot^2 + Q(phi) - T_gas(phi) (velocity terms, gravity, gas)
+  double rest = 0.0;
+};
+
 /// The k-crank mechanism in MuJoCo. Loads one model in the constructor and reuses it for every crank angle (the
 /// previous loop closure is the warm start of the next). Not thread-safe: one object per thread.
 class KCrankMujocoModel {
@@ -87,6 +97,16 @@ class KCrankMujocoModel {
 
   /// Q [N m] only: the static torque holding the crank at phi against gravity. @throws as evaluate().
   double calcHoldingTorque(double phi);
+
+  /// The crank torque as a line in the crank acceleration at crank angle phi [rad] and crank speed phi_dot [rad/s]
+  /// (kExact only; the scene's omega is not used): the loops closed at phi (Newton, as evaluate), u = MuJoCo's joint
+  /// velocities at unit crank speed (the loops' null space), inertia = u^T M u from MuJoCo's composite-rigid-body mass
+  /// matrix (mj_crb) minus the crankshaft body's own rotor (its body_inertia about Z, and each balance shaft's ratio^2
+  /// times its nominal one); rest = the exact multipliers' crank torque (as evaluate's drive torque) at phi_dot and
+  /// zero crank acceleration, gas at phi. For the elastic crank train (crank_train.h): one throw's J_j and torque.
+  /// @throws std::invalid_argument for a soft variant or a non-finite phi or phi_dot.
+  /// @throws std::runtime_error as evaluate().
+  CrankTorqueLine calcCrankTorqueLine(double phi, double phi_dot);
 
   /// Largest |gap| [m] between a rod's big end and its crank pin at the last closure (exact: rounding).
   double getLoopClosureError() const;

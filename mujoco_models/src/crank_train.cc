@@ -1,0 +1,211 @@
+// The elastic crank train in MuJoCo (crank_train.h). The exact route: MuJoCo's throws (KCrankMujocoModel, kExact)
+// give each throw's inertia and torque; the train's equations are integrated here by Boost.Odeint.
+#include "crankcheck/mujoco_models/crank_train.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <boost/numeric/odeint.hpp>
+
+#include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
+#include "crankcheck/scene/scene_file.h"
+
+namespace crankcheck::mujoco_models {
+namespace {
+
+namespace odeint = boost::numeric::odeint;
+using State = std::vector<double>;  // (x_0 .. x_{n-1}, dx_0/ds .. dx_{n-1}/ds), s = omega t
+
+constexpr int kProbes = 64;  // states per cycle at which the largest deviation is read (Simbody's)
+
+/// The train's bodies and sections (CONVENTIONS "Torsion"), front first; MuJoCo's model of each throw.
+struct Train {
+  std::vector<KCrankMujocoModel> throws;  // throw j at throw_body[j]
+  std::vector<int> throw_of_body;         // -1: the front mass
+  std::vector<double> stiffness;          // K_s [N m/rad] of section i (body i to body i + 1, the last to W)
+  std::vector<double> damping;            // C_s [N m s/rad]
+  double front_inertia = 0.0;             // J_F [kg m^2]
+  double throw_inertia = 0.0;             // J_t [kg m^2]
+  double throw_damping = 0.0;             // c_t [N m s/rad]
+  double omega = 0.0;                     // [rad/s]
+  int bodies() const { return static_cast<int>(throw_of_body.size()); }
+
+  /// dy/ds at s [rad] (the cycle's own s, from 0): x'' = (torques on the body) / (its inertia omega^2).
+  void calcRates(const State& y, State& dy, double s) {
+    const int n = bodies();
+    const double w = omega, w2 = w * w;
+    for (int b = 0; b < n; ++b) {
+      dy[static_cast<size_t>(b)] = y[static_cast<size_t>(n + b)];
+      dy[static_cast<size_t>(n + b)] = 0.0;
+    }
+    // Section i: K_i (x_b - x_a) + C_i omega (x_b' - x_a') on a = i, the opposite on b = i + 1 (x_W = x_W' = 0).
+    double* torque = dy.data() + n;
+    for (int i = 0; i < n; ++i) {
+      const bool flywheel = i + 1 == n;
+      const double twist = (flywheel ? 0.0 : y[static_cast<size_t>(i + 1)]) - y[static_cast<size_t>(i)];
+      const double rate = (flywheel ? 0.0 : y[static_cast<size_t>(n + i + 1)]) - y[static_cast<size_t>(n + i)];
+      const double t = stiffness[static_cast<size_t>(i)] * twist + damping[static_cast<size_t>(i)] * w * rate;
+      torque[i] += t;
+      if (!flywheel) torque[i + 1] -= t;
+    }
+    for (int b = 0; b < n; ++b) {
+      const int j = throw_of_body[static_cast<size_t>(b)];
+      if (j < 0) {
+        torque[b] /= front_inertia * w2;
+        continue;
+      }
+      const double x_s = y[static_cast<size_t>(n + b)];
+      const CrankTorqueLine line =
+          throws[static_cast<size_t>(j)].calcCrankTorqueLine(s + y[static_cast<size_t>(b)], w * (1.0 + x_s));
+      torque[b] = (torque[b] - throw_damping * w * x_s - line.rest) / ((throw_inertia + line.inertia) * w2);
+    }
+  }
+};
+
+/// Odeint's system: a handle on the train (steppers copy their system).
+struct TrainSystem {
+  Train* train;
+  void operator()(const State& y, State& dy, double s) const { train->calcRates(y, dy, s); }
+};
+
+/// Dormand-Prince 5(4) with step control, stepping exactly onto each target s (no interpolation).
+class Integration {
+ public:
+  Integration(Train& train, double cycle) : system_{&train}, cycle_(cycle), ds_(cycle / 512) {}
+
+  /// A new cycle at s = 0 at `accuracy` relative and accuracy x scale [rad] absolute per step.
+  void startCycle(double accuracy, double scale) {
+    stepper_ = odeint::make_controlled(accuracy * scale, accuracy, odeint::runge_kutta_dopri5<State>());
+    s_ = 0.0;
+  }
+  /// Steps until s = target [rad] (the last step shortened to land on it).
+  void stepTo(State& y, double target) {
+    while (s_ < target) {
+      const double remaining = target - s_;
+      double ds = std::min(ds_, remaining), tried = ds;
+      for (int fails = 0;; ++fails) {
+        tried = ds;
+        if (stepper_.try_step(system_, y, s_, ds) == odeint::success) break;  // else ds is cut
+        if (fails == 1000 || !(ds > 1e-14 * cycle_))
+          throw std::runtime_error("mujoco: the crank train's integration step collapsed at s = " + std::to_string(s_) +
+                                   " rad of the cycle (a train that runs away)");
+      }
+      ++steps_;
+      if (tried == remaining) s_ = target;    // landed: odeint's s_ + ds, to rounding
+      if (tried < remaining || ds > ds_) ds_ = ds;  // the controller's next step (a landing's only if larger)
+    }
+  }
+  long long steps() const { return steps_; }
+
+ private:
+  TrainSystem system_;
+  odeint::result_of::make_controlled<odeint::runge_kutta_dopri5<State>>::type stepper_;
+  double cycle_, ds_, s_ = 0.0;
+  long long steps_ = 0;
+};
+
+/// @throws std::invalid_argument "key: rule (MuJoCo's elastic crank train)".
+[[noreturn]] void refuse(const std::string& key, const std::string& rule) {
+  throw std::invalid_argument(key + ": " + rule + " (MuJoCo's elastic crank train)");
+}
+
+}  // namespace
+
+CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrainRunOptions& asked) {
+  if (!m.crankshaft) refuse("[crankshaft]", "missing table: the train's inertias, sections and damping");
+  if (!(m.engine.speed > 0.0))
+    refuse("[engine].speed_rpm", "must be > 0: the flywheel end turns at the scene's speed (CONVENTIONS \"Torsion\")");
+  try {
+    validateMechanism(m, m.name.empty() ? std::string("mechanism") : m.name);
+  } catch (const SceneError& error) {
+    refuse("invalid mechanism", error.what());
+  }
+  const CrankTrainRunOptions defaults;
+  CrankTrainRunOptions options = asked;
+  if (options.accuracy == 0.0) options.accuracy = kCrankTrainAccuracy;
+  if (options.periodicity == 0.0) options.periodicity = kCrankTrainPeriodicity;
+  if (options.samples == 0) options.samples = defaults.samples;
+  if (options.max_cycles == 0) options.max_cycles = defaults.max_cycles;
+  if (!(std::isfinite(options.accuracy) && options.accuracy > 0.0 && std::isfinite(options.periodicity) &&
+        options.periodicity > 0.0) ||
+      options.samples < 16 || options.samples % 2 != 0 || options.max_cycles < 1)
+    refuse("CrankTrainRunOptions", "accuracy and periodicity must be finite and >= 0, samples even and >= 16, "
+           "max_cycles >= 0 (each 0: the default)");
+
+  const CrankshaftParams& c = *m.crankshaft;
+  Train train;
+  train.omega = m.engine.speed;
+  train.front_inertia = c.front_inertia;
+  train.throw_inertia = c.throw_inertia;
+  train.throw_damping = c.throw_damping;
+  if (c.front_inertia > 0.0) train.throw_of_body.push_back(-1);
+  const int throw_count = static_cast<int>(findThrows(m).size());
+  for (int j = 0; j < throw_count; ++j) {
+    train.throw_of_body.push_back(j);
+    train.throws.emplace_back(selectThrow(m, j), Variant::kExact);
+  }
+  const int n = train.bodies();
+  train.stiffness = c.stiffness;  // validateMechanism: one per section
+  for (int i = 0; i < n; ++i) train.damping.push_back(getSectionDamping(c, i));
+
+  const double omega = train.omega;
+  const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
+  // The first cycle's deviation scale: the rigid motion's largest throw torques, summed, over the softest section.
+  double scale = 0.0;
+  for (KCrankMujocoModel& model : train.throws) {
+    double largest = 0.0;
+    for (int k = 0; k < kProbes; ++k)
+      largest = std::max(largest, std::fabs(model.calcCrankTorqueLine(cycle * k / kProbes, omega).rest));
+    scale += largest;
+  }
+  scale /= *std::min_element(train.stiffness.begin(), train.stiffness.end());
+  if (!(scale > 0.0)) scale = 1.0;  // no load at all: the deviations stay 0
+
+  Integration integration(train, cycle);
+  CrankTrainRun out;
+  State y(static_cast<size_t>(2 * n), 0.0);  // the rigid motion at t = 0
+  State start = y;
+  const double loose_accuracy = std::max(options.accuracy, 1000.0 * options.accuracy);
+  double accuracy = loose_accuracy;
+  for (int count = 1;; ++count) {
+    integration.startCycle(accuracy, scale);
+    double largest = 0.0;
+    for (int k = 1; k <= kProbes; ++k) {
+      integration.stepTo(y, cycle * k / kProbes);
+      for (int b = 0; b < n; ++b) largest = std::max(largest, std::fabs(y[static_cast<size_t>(b)]));
+    }
+    if (!std::isfinite(largest))
+      throw std::runtime_error("mujoco: the crank train's deviations became non-finite in cycle " + std::to_string(count));
+    double change = 0.0;
+    for (size_t i = 0; i < y.size(); ++i) change = std::max(change, std::fabs(y[i] - start[i]));  // x, and dx/ds
+    start = y;
+    out.cycles = count;
+    out.cycle_change = largest > 0.0 ? change / largest : 0.0;
+    if (largest > 0.0) scale = largest;
+    if (accuracy > options.accuracy && out.cycle_change <= 1000.0 * options.periodicity) {
+      accuracy = options.accuracy;
+      continue;
+    }
+    if (accuracy <= options.accuracy && out.cycle_change <= options.periodicity) break;
+    if (count >= options.max_cycles)
+      throw std::runtime_error("mujoco: the elastic crank train is not periodic after " + std::to_string(count) +
+                               " cycles (cycle-to-cycle change " + std::to_string(out.cycle_change) +
+                               " of the deviations): too lightly damped to settle in this run");
+  }
+  // The sampled cycle: twist i = x_{i+1} - x_i (psi_b - psi_a), the last -x_{n-1} (omega t - psi_{n-1}).
+  out.twists.assign(static_cast<size_t>(n), {});
+  integration.startCycle(accuracy, scale);
+  for (int k = 0; k < options.samples; ++k) {
+    if (k > 0) integration.stepTo(y, cycle * k / options.samples);
+    for (int i = 0; i < n; ++i)
+      out.twists[static_cast<size_t>(i)].push_back((i + 1 == n ? 0.0 : y[static_cast<size_t>(i + 1)]) -
+                                                   y[static_cast<size_t>(i)]);
+  }
+  out.steps = integration.steps();
+  return out;
+}
+
+}  // namespace crankcheck::mujoco_models
