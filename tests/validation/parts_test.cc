@@ -64,7 +64,7 @@ TEST(PartsTest, KeysAreUniqueAndNumbersFollowTheRegistrysOrder) {
       EXPECT_NE(std::find(own.begin(), own.end(), f), own.end()) << f << " is not among the part's tables";
     }
   }
-  EXPECT_EQ(parts.back()->number(), 16);
+  EXPECT_EQ(parts.back()->number(), 17);
 }
 
 TEST(PartsTest, EveryPartWithAFigureIsLeftOutWithoutItsTables) {
@@ -201,6 +201,70 @@ TEST(PartsTest, BalanceShaftsReadWhatTheShaftsCancel) {
             "single: harmonic 1 of the shaking force falls from 100 N (0.5 of the force scale) to 0 N in closed form; the "
             "largest residual of the other exact engines is 5e-16 of the force scale (simbody); the closed form of every "
             "other harmonic is unchanged.");
+}
+
+TEST(PartsTest, TorsionFindsTheResonancesAndReadsHolzersError) {
+  // One scene "s", three speeds. The exact curve peaks at 2000 rpm (1, 3, 2 mrad): the parabola through the three
+  // points has its vertex at 2000 + 500 (1 - 2) / (1 - 6 + 2) = 2166.67 rpm. Order 6 rises there (2 mrad against its
+  // neighbours' 0.5: +1.5), order 2 does not (1, 1, 1), so the peak is order 6 at 6 x 2166.67 / 60 = 216.67 Hz, nearest
+  // mode 2 (250 Hz; mode 1 is at 100 Hz), whose order-6 critical speed is 250 x 60 / 6 = 2500 rpm. Holzer's curve
+  // (1, 2, 3 mrad) rises throughout: no peak, so Holzer misses the exact one.
+  const std::vector<Column> sweep_columns = {{"scene", kText},        {"speed_rpm", "rpm"},    {"holzer", "rad"},
+                                             {"holzer_order24", "rad"}, {"exact", "rad"},       {"difference", "-"},
+                                             {"worst_difference", "-"}, {"section", kText},     {"worst_section", kText},
+                                             {"error_bound", "rad"}};
+  TableSet tables = {
+      {"torsion", makeTable("torsion", sweep_columns,
+                            {{"s", "1000", "0.001", "0.00101", "0.001", "0", "0.005", "a-b", "a-b", "1e-10"},
+                             {"s", "2000", "0.002", "0.002", "0.003", "0.5", "0.5", "a-b", "a-b", "1e-10"},
+                             {"s", "3000", "0.003", "0.003", "0.002", "-0.333", "-0.2", "a-b", "b-c", "1e-10"}})},
+      {"torsion_orders",
+       makeTable("torsion_orders", {{"scene", kText}, {"speed_rpm", "rpm"}, {"order", "-"}, {"holzer", "rad"}, {"exact", "rad"}},
+                 {{"s", "1000", "2", "0.001", "0.001"}, {"s", "1000", "6", "0.0005", "0.0005"},
+                  {"s", "2000", "2", "0.001", "0.001"}, {"s", "2000", "6", "0.0005", "0.002"},
+                  {"s", "3000", "2", "0.001", "0.001"}, {"s", "3000", "6", "0.0005", "0.0005"}})},
+      {"torsion_modes", makeTable("torsion_modes", {{"scene", kText}, {"mode", "-"}, {"holzer_hz", "Hz"}, {"min_hz", "Hz"},
+                                                    {"max_hz", "Hz"}, {"firings_per_turn", "-"}},
+                                  {{"s", "1", "100", "90", "110", "2"}, {"s", "2", "250", "240", "260", "2"}})},
+      {"torsion_inertia",
+       makeTable("torsion_inertia", {{"scene", kText}, {"throw", "-"}, {"exact_inertia", "kg m^2"}, {"min_inertia", "kg m^2"},
+                                     {"max_inertia", "kg m^2"}, {"half_reciprocating", "kg m^2"},
+                                     {"half_reciprocating_error", "-"}, {"second_order", "kg m^2"},
+                                     {"second_order_error", "-"}},
+                 {{"s", "0", "0.01", "0.009", "0.012", "0.0099", "-0.01", "0.01", "0"}})},
+      {"torsion_ratio",
+       makeTable("torsion_ratio", {{"scene", kText}, {"piston_mass_factor", "-"}, {"ratio", "-"}, {"order", "-"},
+                                   {"speed_rpm", "rpm"}, {"holzer", "rad"}, {"exact", "rad"}, {"worst_difference", "-"}},
+                 {{"s", "1", "0.5", "6", "1000", "0.001", "0.00102", "0.02"},
+                  {"s", "4", "2", "6", "800", "0.001", "0.0012", "0.2"},
+                  {"s", "16", "8", "6", "600", "0.001", "", ""}})},
+      {"torsion_cost", makeTable("torsion_cost", {{"scene", kText}, {"route", kText}, {"speed_rpm", "rpm"}, {"seconds", "s"}},
+                                 {{"s", "holzer", "1000", "0.1"}, {"s", "holzer", "2000", "0.3"}})}};
+  const Part& part = partNumbered(17);
+  part.derive(tables);
+  ASSERT_TRUE(tables.count("torsion_resonances"));
+  const Table& peaks = tables.at("torsion_resonances");
+  ASSERT_EQ(peaks.rows.size(), 1u);
+  EXPECT_EQ(peaks.rows[0][1], "exact");
+  EXPECT_EQ(peaks.rows[0][2], "6");
+  EXPECT_EQ(peaks.rows[0][3], "2");
+  EXPECT_NEAR(std::stod(peaks.rows[0][4]), 2000.0 + 500.0 / 3.0, 1e-9);
+  EXPECT_NEAR(std::stod(peaks.rows[0][5]), 6.0 * (2000.0 + 500.0 / 3.0) / 60.0, 1e-9);
+  EXPECT_NEAR(std::stod(peaks.rows[0][6]), 2500.0, 1e-9);
+  const ReportPart d = part.describe(tables);
+  EXPECT_EQ(d.heading, "17. Torsional vibration: Holzer's constant inertia against the exact crank train");
+  // |worst difference| 0.005 <= 1 % at 1000 rpm; 0.5 > 10 % at 2000; 0.2 > 10 % at 3000. The cut at 24: 1 % at 1000.
+  EXPECT_EQ(findParagraph(d, "3 speeds"),
+            "s, 3 speeds from 1000 to 3000 rpm: Holzer's peak-to-peak twist (every order summed) is within 1 % of the exact "
+            "steady state's on every section at 1 of them and off by more than 10 % on some section at 2; at worst 50 % "
+            "(a-b, 2000 rpm). The textbook's sum cut at order 24 differs from the converged sum by up to 1 % (at 1000 rpm).");
+  EXPECT_NE(findParagraph(d, "Holzer's sum has no peak at order 6 (mode 2) at 2167 rpm").size(), 0u);
+  // Mode 1: 100 Hz, band 90 .. 110 Hz: 20 %.
+  EXPECT_NE(findParagraph(d, "at 110 and 90 Hz: a spread of 20 %").size(), 0u);
+  // The ratio sweep: 2 % at 0.5, 20 % at 2 (the first beyond 10 %), no periodic state at 8.
+  EXPECT_NE(findParagraph(d, "off by 2 % at 0.5, 20 % at 2, no periodic state at 8. The constant-inertia model is off by "
+                             "more than 10 % from a ratio of 2 on.").size(), 0u);
+  EXPECT_NE(findParagraph(d, "holzer 0.2 s (2 points)").size(), 0u);
 }
 
 }  // namespace

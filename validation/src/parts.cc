@@ -23,7 +23,8 @@ namespace crankcheck::validation {
   PART(engines)              /* 13 */ \
   PART(offset)               /* 14 */ \
   PART(flywheel)             /* 15 */ \
-  PART(balanceShafts)        /* 16 */
+  PART(balanceShafts)        /* 16 */ \
+  PART(torsion)              /* 17 */
 
 namespace parts {
 #define CRANKCHECK_DECLARE_PART(name) const Part& name();
