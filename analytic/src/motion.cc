@@ -13,8 +13,12 @@
 namespace crankcheck::analytic {
 
 ReducedInertia calcReducedInertia(const Mechanism& m, double phi, RodInertiaForm form) {
-  Mechanism unit = m;
-  unit.engine.speed = 1.0;  // time derivatives at unit crank speed are the derivatives with respect to theta
+  // Time derivatives at unit crank speed are the derivatives with respect to theta. The kinematics read r, l and omega
+  // alone: a light copy of those (not of m's tables: the crank train calls this at every integration step).
+  Mechanism unit;
+  unit.crank = m.crank;
+  unit.rod = m.rod;
+  unit.engine.speed = 1.0;
   const double r = m.crank.radius, l = m.rod.length, z = m.rod.com_from_wrist_pin, mu = z / l;
   const double m_o = m.piston.mass, m_k = m.rod.mass, I_o = m.rod.inertia_about_wrist_pin;
   ReducedInertia out;
