@@ -138,7 +138,7 @@ std::string runTorsion(const TorsionOptions& options) {
     r.rpm = speeds[s];
     try {
       r.holzer = analytic::calcHolzerResponse(m);
-      r.exact = analytic::calcExactSteadyState(m);
+      r.exact = analytic::calcExactSteadyState(m, r.holzer);
       for (const Engine* e : trains) {
         const CrankTrainRun run = e->simulate_crank_train(m, CrankTrainRunOptions{});
         r.trains.emplace_back();

@@ -129,7 +129,17 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptio
   if (t.has_front) inertias.push_back(t.front_inertia);
   for (int j = 0; j < static_cast<int>(t.throws.size()); ++j) inertias.push_back(calcThrowInertia(m, j).exact);
   // Holzer's response only starts Newton's method and sets the scale: its sum to 1e-4 is enough.
-  const HolzerResponse holzer = calcHolzerResponse(t, inertias, {1e-4, 1 << 16});
+  return calcExactSteadyState(m, calcHolzerResponse(t, inertias, {1e-4, 1 << 16}), options);
+}
+
+ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& holzer,
+                                      const SteadyStateOptions& options) {
+  if (!(options.tolerance > 0.0) || options.samples < 16 || options.samples % 2 != 0)
+    throw std::invalid_argument("torsion: the steady state needs a tolerance > 0 and an even number of samples >= 16");
+  const CrankTrain t = makeCrankTrain(m);
+  if (static_cast<int>(holzer.bodies.size()) != t.countBodies())
+    throw std::invalid_argument("torsion: Holzer's start has " + std::to_string(holzer.bodies.size()) +
+                                " bodies for a train of " + std::to_string(t.countBodies()));
   const int n = t.countBodies(), dim = 2 * n;
 
   ExactSteadyState out;

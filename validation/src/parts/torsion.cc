@@ -154,7 +154,7 @@ TableSet calcSpeedTables(const Mechanism& scene, double rpm) {
   analytic::SteadyStateOptions exact_options;
   exact_options.tolerance = kExactTolerance;
   start = std::chrono::steady_clock::now();
-  const analytic::ExactSteadyState exact = analytic::calcExactSteadyState(m, exact_options);
+  const analytic::ExactSteadyState exact = analytic::calcExactSteadyState(m, holzer, exact_options);
   const double exact_seconds = seconds(start);
   const int n = static_cast<int>(exact.peak_to_peak.size());
   int most = 0, worst = 0;
@@ -273,7 +273,7 @@ TableSet calcRatioTables(const Mechanism& scene, double factor) {
   try {
     analytic::SteadyStateOptions exact_options;
     exact_options.tolerance = kExactTolerance;
-    const analytic::ExactSteadyState exact = analytic::calcExactSteadyState(m, exact_options);
+    const analytic::ExactSteadyState exact = analytic::calcExactSteadyState(m, holzer, exact_options);
     size_t worst = 0;
     for (size_t i = 0; i < exact.peak_to_peak.size(); ++i)
       if (std::fabs(exact.peak_to_peak[i] / holzer.peak_to_peak[i] - 1.0) >

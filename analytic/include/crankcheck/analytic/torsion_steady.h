@@ -22,6 +22,7 @@
 #include <Eigen/Dense>
 
 #include "crankcheck/analytic/crank_train.h"
+#include "crankcheck/analytic/torsion_forced.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::analytic {
@@ -50,5 +51,11 @@ struct ExactSteadyState {
 ///         std::runtime_error if Newton's method has not converged in 30 iterations (a steady state that does not
 ///         exist or is unstable: the shaft's twist running away, or the speed not kept).
 ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptions& options = {});
+
+/// The same from Holzer's response already computed (calcHolzerResponse of m at any convergence: it starts Newton's
+/// method and sets the twist scale), so that a caller who shows Holzer's response does not compute it twice.
+/// @throws std::invalid_argument if `holzer` has another number of bodies; otherwise as above.
+ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& holzer,
+                                      const SteadyStateOptions& options = {});
 
 }  // namespace crankcheck::analytic
