@@ -12,6 +12,7 @@
 
 #include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
 #include "crankcheck/scene/scene_file.h"
+#include "crank_train_run.h"
 
 namespace crankcheck::mujoco_models {
 namespace {
@@ -71,24 +72,28 @@ struct TrainSystem {
   void operator()(const State& y, State& dy, double s) const { train->calcRates(y, dy, s); }
 };
 
-/// Dormand-Prince 5(4) with step control, stepping exactly onto each target s (no interpolation).
-class Integration {
+/// Dormand-Prince 5(4) with step control, stepping exactly onto each target s (no interpolation): the exact route's
+/// CycleRun. Error per step below `accuracy` relative and accuracy x scale [rad] absolute, scale the largest deviation
+/// of the cycle before (the first cycle's: `first_scale`).
+class Integration final : public CycleRun {
  public:
-  Integration(Train& train, double cycle) : system_{&train}, cycle_(cycle), ds_(cycle / 512) {}
+  Integration(Train& train, double cycle, double accuracy, double first_scale)
+      : system_{&train}, cycle_(cycle), accuracy_(accuracy), scale_(first_scale), ds_(cycle / 512),
+        y_(static_cast<size_t>(2 * train.bodies()), 0.0) {}  // the rigid motion at t = 0
 
-  /// A new cycle at s = 0 at `accuracy` relative and accuracy x scale [rad] absolute per step.
-  void startCycle(double accuracy, double scale) {
-    stepper_ = odeint::make_controlled(accuracy * scale, accuracy, odeint::runge_kutta_dopri5<State>());
+  void startCycle(bool loose, double scale) override {
+    if (scale > 0.0) scale_ = scale;
+    const double accuracy = loose ? 1000.0 * accuracy_ : accuracy_;
+    stepper_ = odeint::make_controlled(accuracy * scale_, accuracy, odeint::runge_kutta_dopri5<State>());
     s_ = 0.0;
   }
-  /// Steps until s = target [rad] (the last step shortened to land on it).
-  void stepTo(State& y, double target) {
+  void stepTo(double target) override {
     while (s_ < target) {
       const double remaining = target - s_;
       double ds = std::min(ds_, remaining), tried = ds;
       for (int fails = 0;; ++fails) {
         tried = ds;
-        if (stepper_.try_step(system_, y, s_, ds) == odeint::success) break;  // else ds is cut
+        if (stepper_.try_step(system_, y_, s_, ds) == odeint::success) break;  // else ds is cut
         if (fails == 1000 || !(ds > 1e-14 * cycle_))
           throw std::runtime_error("mujoco: the crank train's integration step collapsed at s = " + std::to_string(s_) +
                                    " rad of the cycle (a train that runs away)");
@@ -98,42 +103,100 @@ class Integration {
       if (tried < remaining || ds > ds_) ds_ = ds;  // the controller's next step (a landing's only if larger)
     }
   }
-  long long steps() const { return steps_; }
+  void readState(std::vector<double>& x, std::vector<double>& x_s) const override {
+    const size_t n = y_.size() / 2;
+    x.assign(y_.begin(), y_.begin() + static_cast<long>(n));
+    x_s.assign(y_.begin() + static_cast<long>(n), y_.end());
+  }
+  long long countSteps() const override { return steps_; }
 
  private:
   TrainSystem system_;
   odeint::result_of::make_controlled<odeint::runge_kutta_dopri5<State>>::type stepper_;
-  double cycle_, ds_, s_ = 0.0;
+  double cycle_, accuracy_, scale_, ds_, s_ = 0.0;
+  State y_;
   long long steps_ = 0;
 };
 
-/// @throws std::invalid_argument "key: rule (MuJoCo's elastic crank train)".
-[[noreturn]] void refuse(const std::string& key, const std::string& rule) {
+}  // namespace
+
+void refuseCrankTrain(const std::string& key, const std::string& rule) {
   throw std::invalid_argument(key + ": " + rule + " (MuJoCo's elastic crank train)");
 }
 
-}  // namespace
-
-CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrainRunOptions& asked) {
-  if (!m.crankshaft) refuse("[crankshaft]", "missing table: the train's inertias, sections and damping");
+CrankTrainRunOptions resolveCrankTrainOptions(const Mechanism& m, const CrankTrainRunOptions& asked, double accuracy,
+                                              double periodicity) {
+  if (!m.crankshaft) refuseCrankTrain("[crankshaft]", "missing table: the train's inertias, sections and damping");
   if (!(m.engine.speed > 0.0))
-    refuse("[engine].speed_rpm", "must be > 0: the flywheel end turns at the scene's speed (CONVENTIONS \"Torsion\")");
+    refuseCrankTrain("[engine].speed_rpm",
+                     "must be > 0: the flywheel end turns at the scene's speed (CONVENTIONS \"Torsion\")");
   try {
     validateMechanism(m, m.name.empty() ? std::string("mechanism") : m.name);
   } catch (const SceneError& error) {
-    refuse("invalid mechanism", error.what());
+    refuseCrankTrain("invalid mechanism", error.what());
   }
   const CrankTrainRunOptions defaults;
   CrankTrainRunOptions options = asked;
-  if (options.accuracy == 0.0) options.accuracy = kCrankTrainAccuracy;
-  if (options.periodicity == 0.0) options.periodicity = kCrankTrainPeriodicity;
+  if (options.accuracy == 0.0) options.accuracy = accuracy;
+  if (options.periodicity == 0.0) options.periodicity = periodicity;
   if (options.samples == 0) options.samples = defaults.samples;
   if (options.max_cycles == 0) options.max_cycles = defaults.max_cycles;
   if (!(std::isfinite(options.accuracy) && options.accuracy > 0.0 && std::isfinite(options.periodicity) &&
         options.periodicity > 0.0) ||
       options.samples < 16 || options.samples % 2 != 0 || options.max_cycles < 1)
-    refuse("CrankTrainRunOptions", "accuracy and periodicity must be finite and >= 0, samples even and >= 16, "
-           "max_cycles >= 0 (each 0: the default)");
+    refuseCrankTrain("CrankTrainRunOptions", "accuracy and periodicity must be finite and >= 0, samples even and >= "
+                     "16, max_cycles >= 0 (each 0: the default)");
+  return options;
+}
+
+CrankTrainRun runToPeriodic(CycleRun& run, double cycle, const CrankTrainRunOptions& options, bool loose_start) {
+  CrankTrainRun out;
+  std::vector<double> x, x_s, start, start_s;
+  run.readState(start, start_s);
+  const size_t n = start.size();
+  bool loose = loose_start;
+  double scale = 0.0;
+  for (int count = 1;; ++count) {
+    run.startCycle(loose, scale);
+    double largest = 0.0;
+    for (int k = 1; k <= kProbes; ++k) {
+      run.stepTo(cycle * k / kProbes);
+      run.readState(x, x_s);
+      for (double v : x) largest = std::max(largest, std::fabs(v));
+    }
+    if (!std::isfinite(largest))
+      throw std::runtime_error("mujoco: the crank train's deviations became non-finite in cycle " + std::to_string(count));
+    double change = 0.0;
+    for (size_t i = 0; i < n; ++i) change = std::max({change, std::fabs(x[i] - start[i]), std::fabs(x_s[i] - start_s[i])});
+    start = x;
+    start_s = x_s;
+    out.cycles = count;
+    out.cycle_change = largest > 0.0 ? change / largest : 0.0;
+    if (largest > 0.0) scale = largest;
+    if (loose && out.cycle_change <= 1000.0 * options.periodicity) {
+      loose = false;
+      continue;
+    }
+    if (!loose && out.cycle_change <= options.periodicity) break;
+    if (count >= options.max_cycles)
+      throw std::runtime_error("mujoco: the elastic crank train is not periodic after " + std::to_string(count) +
+                               " cycles (cycle-to-cycle change " + std::to_string(out.cycle_change) +
+                               " of the deviations): too lightly damped to settle in this run");
+  }
+  // The sampled cycle: twist i = x_{i+1} - x_i (psi_b - psi_a), the last -x_{n-1} (omega t - psi_{n-1}).
+  out.twists.assign(n, {});
+  run.startCycle(false, scale);
+  for (int k = 0; k < options.samples; ++k) {
+    if (k > 0) run.stepTo(cycle * k / options.samples);
+    run.readState(x, x_s);
+    for (size_t i = 0; i < n; ++i) out.twists[i].push_back((i + 1 == n ? 0.0 : x[i + 1]) - x[i]);
+  }
+  out.steps = run.countSteps();
+  return out;
+}
+
+CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrainRunOptions& asked) {
+  const CrankTrainRunOptions options = resolveCrankTrainOptions(m, asked, kCrankTrainAccuracy, kCrankTrainPeriodicity);
 
   const CrankshaftParams& c = *m.crankshaft;
   Train train;
@@ -164,48 +227,8 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
   scale /= *std::min_element(train.stiffness.begin(), train.stiffness.end());
   if (!(scale > 0.0)) scale = 1.0;  // no load at all: the deviations stay 0
 
-  Integration integration(train, cycle);
-  CrankTrainRun out;
-  State y(static_cast<size_t>(2 * n), 0.0);  // the rigid motion at t = 0
-  State start = y;
-  const double loose_accuracy = std::max(options.accuracy, 1000.0 * options.accuracy);
-  double accuracy = loose_accuracy;
-  for (int count = 1;; ++count) {
-    integration.startCycle(accuracy, scale);
-    double largest = 0.0;
-    for (int k = 1; k <= kProbes; ++k) {
-      integration.stepTo(y, cycle * k / kProbes);
-      for (int b = 0; b < n; ++b) largest = std::max(largest, std::fabs(y[static_cast<size_t>(b)]));
-    }
-    if (!std::isfinite(largest))
-      throw std::runtime_error("mujoco: the crank train's deviations became non-finite in cycle " + std::to_string(count));
-    double change = 0.0;
-    for (size_t i = 0; i < y.size(); ++i) change = std::max(change, std::fabs(y[i] - start[i]));  // x, and dx/ds
-    start = y;
-    out.cycles = count;
-    out.cycle_change = largest > 0.0 ? change / largest : 0.0;
-    if (largest > 0.0) scale = largest;
-    if (accuracy > options.accuracy && out.cycle_change <= 1000.0 * options.periodicity) {
-      accuracy = options.accuracy;
-      continue;
-    }
-    if (accuracy <= options.accuracy && out.cycle_change <= options.periodicity) break;
-    if (count >= options.max_cycles)
-      throw std::runtime_error("mujoco: the elastic crank train is not periodic after " + std::to_string(count) +
-                               " cycles (cycle-to-cycle change " + std::to_string(out.cycle_change) +
-                               " of the deviations): too lightly damped to settle in this run");
-  }
-  // The sampled cycle: twist i = x_{i+1} - x_i (psi_b - psi_a), the last -x_{n-1} (omega t - psi_{n-1}).
-  out.twists.assign(static_cast<size_t>(n), {});
-  integration.startCycle(accuracy, scale);
-  for (int k = 0; k < options.samples; ++k) {
-    if (k > 0) integration.stepTo(y, cycle * k / options.samples);
-    for (int i = 0; i < n; ++i)
-      out.twists[static_cast<size_t>(i)].push_back((i + 1 == n ? 0.0 : y[static_cast<size_t>(i + 1)]) -
-                                                   y[static_cast<size_t>(i)]);
-  }
-  out.steps = integration.steps();
-  return out;
+  Integration integration(train, cycle, options.accuracy, scale);
+  return runToPeriodic(integration, cycle, options, true);
 }
 
 }  // namespace crankcheck::mujoco_models

@@ -33,6 +33,15 @@ Engine describe(Variant variant, bool gated, std::string method) {
                            "periodicity default 1e-6 of the deviations";
     e.crank_train_gated = true;
   }
+  if (variant != Variant::kExact) {  // the elastic crank train as MuJoCo's users build it: soft loops, RK4 (not gated)
+    e.simulate_crank_train = [variant](const Mechanism& m, const CrankTrainRunOptions& options) {
+      return simulateCrankTrainSoft(m, variant, options);
+    };
+    e.crank_train_method = "one MJCF: hinges with MuJoCo's joint stiffness and damping between neighbours, soft "
+                           "connect loops, throw damping as tendons, the flywheel reset on omega t; mj_step RK4; "
+                           "accuracy: the fixed step as a fraction of a cycle, default 1/4096; periodicity default 1e-6";
+    e.crank_train_gated = false;
+  }
   if (variant != Variant::kExact) {  // MuJoCo's integrators step its soft constraints
     e.integrators = {"RK4", "Euler", "implicit"};
     e.accuracy_meaning = "the fixed time step as a fraction of one revolution at the release speed, default 1e-3";

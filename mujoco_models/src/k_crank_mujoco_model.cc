@@ -16,12 +16,15 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "crankcheck/mujoco_models/crank_train.h"
 #include "crankcheck/scene/scene_file.h"
+#include "crank_train_run.h"
 
 namespace crankcheck::mujoco_models {
 namespace {
@@ -62,10 +65,13 @@ struct PointMass {
   std::array<double, 3> p;
 };
 
-/// The crankshaft's point masses (per cylinder: m_s at r_s on its throw, m_p at r_p opposite, in the plane z_j).
-std::vector<PointMass> crankPointMasses(const Mechanism& m) {
+/// The crankshaft's point masses (per cylinder: m_s at r_s on its throw, m_p at r_p opposite, in the plane z_j), of
+/// the cylinders listed (every cylinder when none are).
+std::vector<PointMass> crankPointMasses(const Mechanism& m, std::vector<int> cylinders = {}) {
+  if (cylinders.empty())
+    for (int j = 0; j < m.engine.cylinders; ++j) cylinders.push_back(j);
   std::vector<PointMass> points;
-  for (int j = 0; j < m.engine.cylinders; ++j) {
+  for (int j : cylinders) {
     const double beta = getThrowAngle(m, j);
     const double z = getAxialPosition(m, j);
     const double c = std::cos(beta), s = std::sin(beta);
@@ -129,10 +135,11 @@ std::string getMujocoVersion() {
   return std::to_string(v / 100) + "." + std::to_string(v / 10 % 10) + "." + std::to_string(v % 10);
 }
 
-std::string calcMjcf(const Mechanism& m, Variant variant) {
-  checkBuildable(m);
-  const int k = m.engine.cylinders;
-  const double l = m.rod.length, r = m.crank.radius;
+namespace {
+
+/// The model's head: compiler, options (gravity, contacts off, the constraint solver off for kExact), the constraint
+/// rows (`rows`), the soft variants' equality defaults; then <worldbody> opens.
+std::string writeMjcfHead(const Mechanism& m, Variant variant, int rows) {
   std::string x;
   x += "<mujoco model=\"crankcheck\">\n";
   // Inertias exactly as written: none from geometry, no lower bounds, no rebalancing.
@@ -143,61 +150,97 @@ std::string calcMjcf(const Mechanism& m, Variant variant) {
   x += std::string("    <flag contact=\"disable\" energy=\"enable\"") +
        (variant == Variant::kExact ? " constraint=\"disable\"" : "") + "/>\n";
   x += "  </option>\n";
-  // The constraint rows this model can have: 3 per connect (the loops), 1 per joint equality (the shafts' gears),
-  // a few to spare; no contacts. MuJoCo's defaults (njmax 500, a stack of 1.25e6 doubles: 10 MB per mjData, zeroed
-  // at every build) cost more than the whole evaluation. A full row table is checked after every solve (mjWARN_CNSTRFULL).
-  x += "  <size njmax=\"" + std::to_string(3 * k + static_cast<int>(m.balance_shafts.size()) + 8) + "\" nconmax=\"1\"/>\n";
+  // MuJoCo's defaults (njmax 500, a stack of 1.25e6 doubles: 10 MB per mjData, zeroed at every build) cost more than
+  // the whole evaluation. A full row table is checked after every solve (mjWARN_CNSTRFULL).
+  x += "  <size njmax=\"" + std::to_string(rows) + "\" nconmax=\"1\"/>\n";
   if (variant == Variant::kSoftStiff) {
     // The stiffest the solver accepts: impedance at its ceiling mjMAXIMP = 0.9999, time constant at the refsafe
     // floor of twice the time step.
     x += "  <default>\n    <equality solref=\"0.004 1\" solimp=\"0.9999 0.9999 0.001 0.5 2\"/>\n  </default>\n";
   }
   x += "  <worldbody>\n";
+  return x;
+}
 
-  // Crankshaft: the first point mass is the crank body's own inertial, with the flywheel I_w as an isotropic inertia
-  // about it (only I_zz ever acts, w x I w = 0 for an isotropic tensor; a nominal m r^2 without a flywheel: it never
-  // acts at a prescribed constant speed); every other point mass is a jointless child body with zero inertia. No
+/// A crankshaft body `name` on a hinge about +Z at O (`joint`: the hinge's extra attributes) carrying the point masses
+/// and crank-pin sites (crank_pin<j>) of `cylinders` (all when empty) and the isotropic rotor inertia `rotor` [kg m^2];
+/// `inner`: its child bodies. Indented by `indent`.
+std::string writeCrankBody(const Mechanism& m, const std::string& name, const std::vector<int>& cylinders, double rotor,
+                           const std::string& joint, const std::string& inner, const std::string& indent) {
+  // The first point mass is the body's own inertial, with the rotor as an isotropic inertia about it (only I_zz ever
+  // acts, w x I w = 0 for an isotropic tensor); every other point mass is a jointless child body with zero inertia. No
   // full inertia tensor: MuJoCo would diagonalize it, and its eigen-solver's rounding (1e-12 of the products of
   // inertia) showed in the V8's shaking moment.
-  const std::vector<PointMass> points = crankPointMasses(m);
-  double mass = 0.0;
-  for (const PointMass& p : points) mass += p.mass;
-  const double rotor = m.flywheel_inertia.value_or(mass * r * r);
-  x += "    <body name=\"crank\" pos=\"0 0 0\">\n";
-  x += "      <joint name=\"crank\" type=\"hinge\" axis=\"0 0 1\" pos=\"0 0 0\"/>\n";
-  x += "      <inertial pos=\"" + vec3(points[0].p[0], points[0].p[1], points[0].p[2]) + "\" mass=\"" + num(points[0].mass) +
-       "\" diaginertia=\"" + vec3(rotor, rotor, rotor) + "\"/>\n";
+  const std::vector<PointMass> points = crankPointMasses(m, cylinders);
+  const double r = m.crank.radius;
+  std::string x;
+  x += indent + "<body name=\"" + name + "\" pos=\"0 0 0\">\n";
+  x += indent + "  <joint name=\"" + name + "\" type=\"hinge\" axis=\"0 0 1\" pos=\"0 0 0\"" + joint + "/>\n";
+  x += indent + "  <inertial pos=\"" + vec3(points[0].p[0], points[0].p[1], points[0].p[2]) + "\" mass=\"" +
+       num(points[0].mass) + "\" diaginertia=\"" + vec3(rotor, rotor, rotor) + "\"/>\n";
   for (size_t i = 1; i < points.size(); ++i)
-    x += "      <body name=\"crank_mass" + std::to_string(i) + "\" pos=\"" + vec3(points[i].p[0], points[i].p[1], points[i].p[2]) +
-         "\"><inertial pos=\"0 0 0\" mass=\"" + num(points[i].mass) + "\" diaginertia=\"0 0 0\"/></body>\n";
-  for (int j = 0; j < k; ++j) {
+    x += indent + "  <body name=\"" + name + "_mass" + std::to_string(i) + "\" pos=\"" +
+         vec3(points[i].p[0], points[i].p[1], points[i].p[2]) + "\"><inertial pos=\"0 0 0\" mass=\"" +
+         num(points[i].mass) + "\" diaginertia=\"0 0 0\"/></body>\n";
+  for (int j = 0; j < m.engine.cylinders; ++j) {
+    if (!cylinders.empty() && std::find(cylinders.begin(), cylinders.end(), j) == cylinders.end()) continue;
     const double beta = getThrowAngle(m, j);
-    x += "      <site name=\"crank_pin" + std::to_string(j) + "\" pos=\"" +
+    x += indent + "  <site name=\"crank_pin" + std::to_string(j) + "\" pos=\"" +
          vec3(r * std::cos(beta), r * std::sin(beta), getAxialPosition(m, j)) + "\"/>\n";
   }
-  x += "    </body>\n";
+  x += inner;
+  x += indent + "</body>\n";
+  return x;
+}
 
-  // Pistons on slides along e_j (origin on the crank axis at z_j, moved by the pin offset delta_j along n_j: the slide
-  // coordinate is x_p), rods on hinges at the wrist pin pointing along -e_j at hinge angle 0.
+/// Piston j on a slide along e_j (origin on the crank axis at z_j, moved by the pin offset delta_j along n_j: the slide
+/// coordinate is x_p), its rod on a hinge at the wrist pin pointing along -e_j at hinge angle 0.
+std::string writeCylinder(const Mechanism& m, int j) {
+  const double l = m.rod.length, r = m.crank.radius;
   const double piston_nominal_inertia = m.piston.mass * r * r;
   const double rod_inertia = m.rod.inertia_about_wrist_pin - m.rod.mass * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
-  for (int j = 0; j < k; ++j) {
-    const std::string J = std::to_string(j);
-    const double gamma = getBankAngle(m, j);
-    const double ex = std::cos(gamma), ey = std::sin(gamma);
-    const double delta = getPinOffset(m, j);  // the wrist pin on x_p e_j + delta n_j
-    x += "    <body name=\"piston" + J + "\" pos=\"" + vec3(-delta * ey, delta * ex, getAxialPosition(m, j)) + "\">\n";
-    x += "      <joint name=\"slide" + J + "\" type=\"slide\" axis=\"" + vec3(ex, ey, 0.0) + "\" pos=\"0 0 0\"/>\n";
-    x += "      <inertial pos=\"0 0 0\" mass=\"" + num(m.piston.mass) + "\" diaginertia=\"" +
-         vec3(piston_nominal_inertia, piston_nominal_inertia, piston_nominal_inertia) + "\"/>\n";
-    x += "      <body name=\"rod" + J + "\" pos=\"0 0 0\">\n";
-    x += "        <joint name=\"wrist" + J + "\" type=\"hinge\" axis=\"0 0 1\" pos=\"0 0 0\"/>\n";
-    x += "        <inertial pos=\"" + vec3(-m.rod.com_from_wrist_pin * ex, -m.rod.com_from_wrist_pin * ey, 0.0) +
-         "\" mass=\"" + num(m.rod.mass) + "\" diaginertia=\"" + vec3(rod_inertia, rod_inertia, rod_inertia) + "\"/>\n";
-    x += "        <site name=\"big_end" + J + "\" pos=\"" + vec3(-l * ex, -l * ey, 0.0) + "\"/>\n";
-    x += "      </body>\n";
-    x += "    </body>\n";
-  }
+  const std::string J = std::to_string(j);
+  const double gamma = getBankAngle(m, j);
+  const double ex = std::cos(gamma), ey = std::sin(gamma);
+  const double delta = getPinOffset(m, j);  // the wrist pin on x_p e_j + delta n_j
+  std::string x;
+  x += "    <body name=\"piston" + J + "\" pos=\"" + vec3(-delta * ey, delta * ex, getAxialPosition(m, j)) + "\">\n";
+  x += "      <joint name=\"slide" + J + "\" type=\"slide\" axis=\"" + vec3(ex, ey, 0.0) + "\" pos=\"0 0 0\"/>\n";
+  x += "      <inertial pos=\"0 0 0\" mass=\"" + num(m.piston.mass) + "\" diaginertia=\"" +
+       vec3(piston_nominal_inertia, piston_nominal_inertia, piston_nominal_inertia) + "\"/>\n";
+  x += "      <body name=\"rod" + J + "\" pos=\"0 0 0\">\n";
+  x += "        <joint name=\"wrist" + J + "\" type=\"hinge\" axis=\"0 0 1\" pos=\"0 0 0\"/>\n";
+  x += "        <inertial pos=\"" + vec3(-m.rod.com_from_wrist_pin * ex, -m.rod.com_from_wrist_pin * ey, 0.0) +
+       "\" mass=\"" + num(m.rod.mass) + "\" diaginertia=\"" + vec3(rod_inertia, rod_inertia, rod_inertia) + "\"/>\n";
+  x += "        <site name=\"big_end" + J + "\" pos=\"" + vec3(-l * ex, -l * ey, 0.0) + "\"/>\n";
+  x += "      </body>\n";
+  x += "    </body>\n";
+  return x;
+}
+
+/// The loop of cylinder j: a `connect` between rod j's big end and the crank pin on body `crank` (the anchor on the
+/// crank is set after compiling: setCrankPinAnchors).
+std::string writeLoop(const Mechanism& m, int j, const std::string& crank) {
+  const double l = m.rod.length, gamma = getBankAngle(m, j);
+  return "    <connect name=\"loop" + std::to_string(j) + "\" body1=\"rod" + std::to_string(j) + "\" body2=\"" + crank +
+         "\" anchor=\"" + vec3(-l * std::cos(gamma), -l * std::sin(gamma), 0.0) + "\"/>\n";
+}
+
+}  // namespace
+
+std::string calcMjcf(const Mechanism& m, Variant variant) {
+  checkBuildable(m);
+  const int k = m.engine.cylinders;
+  const double r = m.crank.radius;
+  // The constraint rows this model can have: 3 per connect (the loops), 1 per joint equality (the shafts' gears),
+  // a few to spare; no contacts.
+  std::string x = writeMjcfHead(m, variant, 3 * k + static_cast<int>(m.balance_shafts.size()) + 8);
+  // Crankshaft: the flywheel I_w as its rotor (a nominal m r^2 without a flywheel: it never acts at a prescribed
+  // constant speed).
+  double mass = 0.0;
+  for (const PointMass& p : crankPointMasses(m)) mass += p.mass;
+  x += writeCrankBody(m, "crank", {}, m.flywheel_inertia.value_or(mass * r * r), "", "", "    ");
+  for (int j = 0; j < k; ++j) x += writeCylinder(m, j);
   // Balance shafts: a body on a hinge about Z through (x, y, z), its eccentric point mass at rho along the body's x
   // axis (at the hinge angle from +X), with a nominal isotropic inertia 1e-9 m rho^2 (MuJoCo needs one; at a constant
   // shaft speed an isotropic inertia never acts). The exact way couples it to the crank itself (hinge angle = ratio
@@ -217,11 +260,7 @@ std::string calcMjcf(const Mechanism& m, Variant variant) {
   for (size_t i = 0; i < m.balance_shafts.size(); ++i)  // shaft = phase + ratio crank
     x += "    <joint name=\"gear" + std::to_string(i) + "\" joint1=\"shaft" + std::to_string(i) + "\" joint2=\"crank\" polycoef=\"" +
          num(m.balance_shafts[i].phase) + " " + num(m.balance_shafts[i].ratio) + " 0 0 0\"/>\n";
-  for (int j = 0; j < k; ++j) {
-    const double gamma = getBankAngle(m, j);
-    x += "    <connect name=\"loop" + std::to_string(j) + "\" body1=\"rod" + std::to_string(j) +
-         "\" body2=\"crank\" anchor=\"" + vec3(-l * std::cos(gamma), -l * std::sin(gamma), 0.0) + "\"/>\n";
-  }
+  for (int j = 0; j < k; ++j) x += writeLoop(m, j, "crank");
   x += "  </equality>\n";
   x += "</mujoco>\n";
   return x;
@@ -837,6 +876,209 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, Variant variant
   for (double e : r.energy) drift = std::max(drift, std::fabs(e - r.energy[0]));
   r.energy_drift_per_revolution = drift / std::fabs(r.energy[0]) / settings.revolutions;
   return r;
+}
+
+namespace {
+
+/// The elastic crank train as MuJoCo's users build it (crank_train.h, simulateCrankTrainSoft): one MJCF, the bodies
+/// nested from the flywheel inward, each on a hinge relative to its neighbour toward W with that section's stiffness
+/// and damping, the throws' cylinders and loops as calcMjcf's, each throw's damping a fixed tendon over the hinges
+/// from W to it. `flywheel_inertia` [kg m^2]: W's.
+std::string calcTrainMjcf(const Mechanism& m, Variant variant, double flywheel_inertia) {
+  const CrankshaftParams& c = *m.crankshaft;
+  const std::vector<std::vector<int>> throws = findThrows(m);
+  const int front = c.front_inertia > 0.0 ? 1 : 0;
+  auto section = [&](int b) {  // body b's hinge to body b + 1: section b
+    return " stiffness=\"" + num(c.stiffness[static_cast<size_t>(b)]) + "\" damping=\"" + num(getSectionDamping(c, b)) + "\"";
+  };
+  std::string inner;
+  if (front)  // a disk of J_F with a unit mass on the axis (MuJoCo needs a mass; on the axis it has no torque)
+    inner = "    <body name=\"front\" pos=\"0 0 0\">\n      <joint name=\"front\" type=\"hinge\" axis=\"0 0 1\" "
+            "pos=\"0 0 0\"" + section(0) + "/>\n      <inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"" +
+            vec3(c.front_inertia, c.front_inertia, c.front_inertia) + "\"/>\n" + inner + "    </body>\n";
+  for (size_t j = 0; j < throws.size(); ++j)
+    inner = writeCrankBody(m, "throw" + std::to_string(j), throws[j], c.throw_inertia,
+                           section(static_cast<int>(j) + front), inner, "    ");
+  std::string x = writeMjcfHead(m, variant, 3 * m.engine.cylinders + 8);
+  x += "    <body name=\"flywheel\" pos=\"0 0 0\">\n      <joint name=\"flywheel\" type=\"hinge\" axis=\"0 0 1\" "
+       "pos=\"0 0 0\"/>\n      <inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"" +
+       vec3(flywheel_inertia, flywheel_inertia, flywheel_inertia) + "\"/>\n" + inner + "    </body>\n";
+  for (int j = 0; j < m.engine.cylinders; ++j) x += writeCylinder(m, j);
+  x += "  </worldbody>\n  <equality>\n";
+  for (size_t j = 0; j < throws.size(); ++j)
+    for (int cylinder : throws[j]) x += writeLoop(m, cylinder, "throw" + std::to_string(j));
+  x += "  </equality>\n";
+  if (c.throw_damping > 0.0) {
+    x += "  <tendon>\n";
+    for (size_t j = 0; j < throws.size(); ++j) {
+      x += "    <fixed name=\"bearing" + std::to_string(j) + "\" damping=\"" + num(c.throw_damping) + "\">";
+      for (size_t i = j; i < throws.size(); ++i) x += "<joint joint=\"throw" + std::to_string(i) + "\" coef=\"1\"/>";
+      x += "</fixed>\n";
+    }
+    x += "  </tendon>\n";
+  }
+  x += "</mujoco>\n";
+  return x;
+}
+
+/// MuJoCo's soft train stepped by mj_step (RK4) at a whole number of steps per cycle: the soft route's CycleRun.
+class SoftTrainRun final : public CycleRun {
+ public:
+  SoftTrainRun(const Mechanism& m, Variant variant, int steps_per_cycle);
+  ~SoftTrainRun() override;
+  void startCycle(bool, double) override;
+  void stepTo(double target) override;
+  void readState(std::vector<double>& x, std::vector<double>& x_s) const override;
+  long long countSteps() const override { return steps_; }
+  /// The gas forces at the current state (MuJoCo's control callback, at every stage of RK4).
+  void applyGas(const mjModel* model, mjData* d) const;
+  const mjModel* model() const { return model_.get(); }
+
+ private:
+  Mechanism m_;
+  ModelPtr model_;
+  DataPtr data_;
+  double omega_ = 0.0, cycle_ = 0.0;
+  int steps_per_cycle_ = 0, step_in_cycle_ = 0;
+  long long steps_ = 0;
+  int flywheel_q_ = 0, flywheel_v_ = 0;
+  std::vector<int> body_q_, body_v_;  // the bodies' relative hinges, front first
+  struct Gas {
+    int cylinder = 0, slide_v = 0, body = 0;  // body: the throw's index along the shaft
+  };
+  std::vector<Gas> gas_;
+};
+
+thread_local const SoftTrainRun* active_train = nullptr;
+void applyTrainGas(const mjModel* model, mjData* d) {
+  if (active_train && active_train->model() == model) active_train->applyGas(model, d);
+}
+
+SoftTrainRun::SoftTrainRun(const Mechanism& m, Variant variant, int steps_per_cycle)
+    : m_(m), steps_per_cycle_(steps_per_cycle) {
+  const CrankshaftParams& c = *m.crankshaft;
+  omega_ = m.engine.speed;
+  cycle_ = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
+  const std::vector<std::vector<int>> throws = findThrows(m);
+  const int front = c.front_inertia > 0.0 ? 1 : 0;
+  // W: 1e9 x the train's own inertias, so that within a step its speed moves by 1e-9 of what a throw's does; it is
+  // put back on omega t after every step (the bench's drive).
+  const double flywheel_inertia = 1e9 * (c.front_inertia + c.throw_inertia * static_cast<double>(throws.size()));
+  model_.reset(loadModel(calcTrainMjcf(m, variant, flywheel_inertia)));
+  setCrankPinAnchors(model_.get(), m);
+  model_->opt.integrator = mjINT_RK4;
+  model_->opt.timestep = cycle_ / omega_ / steps_per_cycle_;
+  if (variant == Variant::kSoftStiff)  // the refsafe floor at this step: a time constant of two steps
+    for (int e = 0; e < model_->neq; ++e) model_->eq_solref[2 * e] = 2.0 * model_->opt.timestep;
+  data_.reset(mj_makeData(model_.get()));
+  const mjModel* mm = model_.get();
+  auto joint = [&](const std::string& name) { return mj_name2id(mm, mjOBJ_JOINT, name.c_str()); };
+  flywheel_q_ = mm->jnt_qposadr[joint("flywheel")];
+  flywheel_v_ = mm->jnt_dofadr[joint("flywheel")];
+  std::vector<std::string> bodies;
+  if (front) bodies.push_back("front");
+  for (size_t j = 0; j < throws.size(); ++j) bodies.push_back("throw" + std::to_string(j));
+  for (const std::string& b : bodies) {
+    body_q_.push_back(mm->jnt_qposadr[joint(b)]);
+    body_v_.push_back(mm->jnt_dofadr[joint(b)]);
+  }
+  // The rigid motion at t = 0: every body at 0 turning at omega (relative hinges at rest), each throw's pistons and
+  // rods closed exactly on it (its exact model: slide = x_p, wrist hinge = -rod angle).
+  mjData* d = data_.get();
+  mju_zero(d->qpos, mm->nq);
+  mju_zero(d->qvel, mm->nv);
+  d->qvel[flywheel_v_] = omega_;
+  for (size_t j = 0; j < throws.size(); ++j) {
+    KCrankMujocoModel exact(selectThrow(m, static_cast<int>(j)));
+    const Evaluation e = exact.evaluate(0.0);
+    for (size_t k = 0; k < throws[j].size(); ++k) {
+      const std::string C = std::to_string(throws[j][k]);
+      const CylinderEvaluation& cylinder = e.cylinders[k];
+      d->qpos[mm->jnt_qposadr[joint("slide" + C)]] = cylinder.x_p;
+      d->qvel[mm->jnt_dofadr[joint("slide" + C)]] = cylinder.v_p;
+      d->qpos[mm->jnt_qposadr[joint("wrist" + C)]] = -cylinder.rod_angle;
+      d->qvel[mm->jnt_dofadr[joint("wrist" + C)]] = -cylinder.rod_omega;
+      if (m.gas) gas_.push_back({throws[j][k], mm->jnt_dofadr[joint("slide" + C)], static_cast<int>(j) + front});
+    }
+  }
+  static std::once_flag once;
+  std::call_once(once, [] { mjcb_control = applyTrainGas; });
+  active_train = this;
+}
+
+SoftTrainRun::~SoftTrainRun() {
+  if (active_train == this) active_train = nullptr;
+}
+
+void SoftTrainRun::applyGas(const mjModel*, mjData* d) const {
+  for (const Gas& g : gas_) {
+    double psi = d->qpos[flywheel_q_];  // the throw's absolute angle: W's plus the hinges from W to it
+    for (size_t b = static_cast<size_t>(g.body); b < body_q_.size(); ++b) psi += d->qpos[body_q_[b]];
+    d->qfrc_applied[g.slide_v] = -calcGasForce(m_, g.cylinder, psi);
+  }
+}
+
+void SoftTrainRun::startCycle(bool, double) {
+  // A new cycle: W back by one cycle (the same configuration: the gas repeats every cycle), time from 0.
+  mjData* d = data_.get();
+  step_in_cycle_ = 0;
+  d->time = 0.0;
+  d->qpos[flywheel_q_] = 0.0;
+  d->qvel[flywheel_v_] = omega_;
+}
+
+void SoftTrainRun::stepTo(double target) {
+  const mjModel* mm = model_.get();
+  mjData* d = data_.get();
+  const int last = static_cast<int>(std::lround(target / cycle_ * steps_per_cycle_));
+  while (step_in_cycle_ < last) {
+    mj_step(mm, d);
+    checkRowsFit(d);
+    ++step_in_cycle_;
+    ++steps_;
+    d->time = mm->opt.timestep * step_in_cycle_;
+    d->qpos[flywheel_q_] = omega_ * d->time;  // the drive
+    d->qvel[flywheel_v_] = omega_;
+  }
+}
+
+void SoftTrainRun::readState(std::vector<double>& x, std::vector<double>& x_s) const {
+  // x_b = psi_b - omega t: the hinges from W to body b (W on omega t); dx/ds = their rates / omega.
+  const mjData* d = data_.get();
+  const size_t n = body_q_.size();
+  x.assign(n, 0.0);
+  x_s.assign(n, 0.0);
+  double angle = d->qpos[flywheel_q_] - omega_ * d->time, rate = d->qvel[flywheel_v_] - omega_;
+  for (size_t b = n; b-- > 0;) {
+    angle += d->qpos[body_q_[b]];
+    rate += d->qvel[body_v_[b]];
+    x[b] = angle;
+    x_s[b] = rate / omega_;
+  }
+}
+
+}  // namespace
+
+CrankTrainRun simulateCrankTrainSoft(const Mechanism& m, Variant variant, const CrankTrainRunOptions& asked) {
+  if (variant == Variant::kExact)
+    refuseCrankTrain("variant", "the soft route is MuJoCo's soft constraints' (mujoco-soft, mujoco-soft-stiff)");
+  const CrankTrainRunOptions options = resolveCrankTrainOptions(m, asked, kSoftCrankTrainStep, kCrankTrainPeriodicity);
+  if (!(options.accuracy <= 0.01))
+    refuseCrankTrain("CrankTrainRunOptions", "the soft route's accuracy is its time step as a fraction of a cycle: "
+                     "at most 0.01");
+  const CrankshaftParams& c = *m.crankshaft;
+  if (!(c.throw_inertia >= mjMINVAL))
+    refuseCrankTrain("[crankshaft].throw_inertia", "MuJoCo's soft train needs J_t > 1e-15 kg m^2 (the throws' bodies "
+                     "on hinges need an inertia)");
+  if (c.front_inertia > 0.0 && !(c.front_inertia >= mjMINVAL))
+    refuseCrankTrain("[crankshaft].front_inertia", "MuJoCo needs 0 or > 1e-15 kg m^2");
+  // Whole steps per cycle, a multiple of the probes' (64) and the samples' spacing, at most `accuracy` of a cycle.
+  const long long grain = std::lcm(64LL, static_cast<long long>(options.samples));
+  const long long steps = std::max(1LL, static_cast<long long>(std::ceil(1.0 / options.accuracy / grain))) * grain;
+  if (steps > (1LL << 24)) refuseCrankTrain("CrankTrainRunOptions", "the soft route's step is too small (over 2^24 a cycle)");
+  SoftTrainRun run(m, variant, static_cast<int>(steps));
+  const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
+  return runToPeriodic(run, cycle, options, false);
 }
 
 }  // namespace crankcheck::mujoco_models

@@ -25,6 +25,7 @@
 /// throw's torque line about 2 us); the marine six at 105 rpm 66 cycles (its 2 %-damped first mode), 6.8 s; every
 /// sample of every twist within 5e-8 of the twist scale of the analytic engine's exact steady state.
 
+#include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
 #include "crankcheck/scene/crank_train_run.h"
 #include "crankcheck/scene/mechanism.h"
 
@@ -43,5 +44,30 @@ inline constexpr double kCrankTrainPeriodicity = 1e-6;   ///< the cycle-to-cycle
 /// @throws std::runtime_error if the run has not become periodic in max_cycles cycles, or the integrator's step
 ///         collapses (a train that runs away).
 CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrainRunOptions& options = {});
+
+/// The soft route's default time step, as a fraction of a cycle (accuracy in its sense).
+inline constexpr double kSoftCrankTrainStep = 1.0 / 4096;
+
+/// The soft route (engines "mujoco-soft" and "mujoco-soft-stiff", reported, not gated): the train as MuJoCo's users build it. One MJCF: the
+/// flywheel W a body on a hinge from the world; inside it throw n-1 on a hinge relative to W, inside that throw n-2
+/// relative to throw n-1, ..., the front mass innermost: each hinge's MuJoCo joint stiffness and damping are the
+/// section's K_s and C_s (hinge angle psi_b - psi_a = minus the twist); each throw body carries its cylinders' crank
+/// point masses and pins (calcMjcf's construction) and J_t as its rotor; the pistons and rods on the world, their loops
+/// MuJoCo's soft `connect` equalities (kSoftDefault: its default solref/solimp; kSoftStiff: solimp 0.9999 and solref
+/// at its floor of two steps); each throw's damping c_t a fixed tendon over the
+/// hinges from W to it (its rate psi_j' - omega) with MuJoCo's tendon damping; gravity MuJoCo's; the gas a force on
+/// each slide written by MuJoCo's control callback (mjcb_control) at every stage of a step from the throw's angle.
+/// W is driven: its inertia 1e9 x the train's (J_F + n J_t), so its speed hardly moves within a step, and its angle and
+/// speed are set back to (omega t, omega) after every step. Stepped by mj_step with MuJoCo's RK4 at a fixed step:
+/// `accuracy` is that step as a fraction of a cycle (default 1/4096; the cycle a whole number of steps, a multiple of
+/// the samples' and the 64 probes' spacing); run to periodic as the exact route, without its loose start (the step is
+/// fixed: the cycle-to-cycle change falls to rounding on MuJoCo's own discrete map).
+/// Measured against the exact route (the example four at 6000 rpm, the default step 1/4096): kSoftDefault differs by
+/// 0.85 of the largest twist (its loops, time constant 0.02 s, a whole cycle, give way; 32 cycles, 3.9 s), kSoftStiff
+/// by 3.3e-4 (16 cycles, 2.0 s; 1.3e-3 at 1/2048: it falls as the step squared, its time constant two steps);
+/// tests/mujoco/crank_train_test.cc holds both.
+/// @throws as simulateCrankTrainSteadyState; also std::invalid_argument for the exact variant, an accuracy above 0.01
+///         (100 steps a cycle) or J_t below 1e-15 kg m^2. One run at a time per thread (the gas callback's context).
+CrankTrainRun simulateCrankTrainSoft(const Mechanism& m, Variant variant, const CrankTrainRunOptions& options = {});
 
 }  // namespace crankcheck::mujoco_models
