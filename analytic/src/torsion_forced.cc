@@ -22,7 +22,15 @@ namespace {
 // enters the twist through gains below 1 / (p omega)^2 J, far above the natural frequencies: below 1e-12 of it.
 constexpr int kQuadratureOrders = 256;
 
-std::vector<std::complex<double>> calcTorqueOrders(const CrankTrain& t, int j, int P) {
+// What the doublings of P share, per throw: the quadrature of the orders p <= kQuadratureOrders (the same for every
+// P >= kQuadratureOrders) and the last FFT grid's torque samples (every other sample of the next grid).
+struct TorqueOrderCache {
+  std::vector<std::vector<std::complex<double>>> quadrature;
+  std::vector<std::vector<double>> samples;
+};
+
+// The sums (cycle / 2) T_p' of the orders p = 0 .. Q by the quadrature above (T_p = 2 sum_p / cycle, T_0 = sum_0 / cycle).
+std::vector<std::complex<double>> calcQuadratureSums(const CrankTrain& t, int j, int Q) {
   const Mechanism& tm = t.throws[static_cast<size_t>(j)];
   std::vector<double> cuts = {0.0, t.cycle};
   if (tm.gas)
@@ -32,7 +40,6 @@ std::vector<std::complex<double>> calcTorqueOrders(const CrankTrain& t, int j, i
   using Rule = boost::math::quadrature::gauss<double, 10>;
   const auto& x = Rule::abscissa();  // the positive half: nodes +-x_i
   const auto& wq = Rule::weights();
-  const int Q = std::min(P, kQuadratureOrders);
   std::vector<std::complex<double>> sum(static_cast<size_t>(Q + 1), 0.0);
   const double panel = t.cycle / (2.0 * std::max(Q, 1));
   for (size_t c = 0; c + 1 < cuts.size(); ++c) {
@@ -57,21 +64,38 @@ std::vector<std::complex<double>> calcTorqueOrders(const CrankTrain& t, int j, i
         }
     }
   }
+  return sum;
+}
+
+std::vector<std::complex<double>> calcTorqueOrders(const CrankTrain& t, int j, int P, TorqueOrderCache& cache) {
+  const Mechanism& tm = t.throws[static_cast<size_t>(j)];
+  const size_t throw_index = static_cast<size_t>(j);
+  cache.quadrature.resize(t.throws.size());
+  cache.samples.resize(t.throws.size());
+  const int Q = std::min(P, kQuadratureOrders);
+  std::vector<std::complex<double>>& sum = cache.quadrature[throw_index];
+  if (static_cast<int>(sum.size()) != Q + 1) sum = calcQuadratureSums(t, j, Q);
   std::vector<std::complex<double>> orders(static_cast<size_t>(P + 1));
   orders[0] = sum[0].real() / t.cycle;
   for (int p = 1; p <= Q; ++p) orders[static_cast<size_t>(p)] = 2.0 * sum[static_cast<size_t>(p)] / t.cycle;
   if (P > Q) {
     const int N = 4 * P;
+    std::vector<double>& last = cache.samples[throw_index];
     std::vector<double> samples(static_cast<size_t>(N));
-    for (int k = 0; k < N; ++k) samples[static_cast<size_t>(k)] = calcRigidThrowTorque(tm, t.cycle * k / N, t.omega);
+    // The angle cycle k / N is bit for bit the last grid's cycle (k / 2) / (N / 2) at even k: reused.
+    const bool halves = static_cast<int>(last.size()) * 2 == N;
+    for (int k = 0; k < N; ++k)
+      samples[static_cast<size_t>(k)] = halves && k % 2 == 0 ? last[static_cast<size_t>(k / 2)]
+                                                              : calcRigidThrowTorque(tm, t.cycle * k / N, t.omega);
     const PeriodicSignal fft = calcSignalFromSamples(samples);
+    last = std::move(samples);
     for (int p = Q + 1; p <= P; ++p) orders[static_cast<size_t>(p)] = fft.coefficients[static_cast<size_t>(p)];
   }
   return orders;
 }
 
 // One pass with the orders p = 0 .. P per cycle: the bodies' and sections' signals, the peak-to-peaks.
-HolzerResponse solveWithOrders(const CrankTrain& t, const std::vector<double>& inertias, int P) {
+HolzerResponse solveWithOrders(const CrankTrain& t, const std::vector<double>& inertias, int P, TorqueOrderCache& cache) {
   const int n = t.countBodies();
   const int throws = static_cast<int>(t.throws.size());
   HolzerResponse out;
@@ -79,7 +103,7 @@ HolzerResponse solveWithOrders(const CrankTrain& t, const std::vector<double>& i
   out.orders = P;
   out.torque_orders.resize(P + 1, throws);
   for (int j = 0; j < throws; ++j) {
-    const std::vector<std::complex<double>> T = calcTorqueOrders(t, j, P);
+    const std::vector<std::complex<double>> T = calcTorqueOrders(t, j, P, cache);
     for (int p = 0; p <= P; ++p) out.torque_orders(p, j) = T[static_cast<size_t>(p)];
   }
   const Eigen::MatrixXd K = calcStiffnessMatrix(t), C = calcDampingMatrix(t);
@@ -118,9 +142,10 @@ HolzerResponse calcHolzerResponse(const CrankTrain& t, const std::vector<double>
                                 std::to_string(t.countBodies()) + " bodies");
   for (double J : inertias)
     if (!(J > 0.0 && std::isfinite(J))) throw std::invalid_argument("torsion: a body of the train has no inertia");
-  HolzerResponse last = solveWithOrders(t, inertias, 64);
+  TorqueOrderCache cache;
+  HolzerResponse last = solveWithOrders(t, inertias, 64, cache);
   for (int P = 128; P <= options.max_harmonics; P *= 2) {
-    HolzerResponse next = solveWithOrders(t, inertias, P);
+    HolzerResponse next = solveWithOrders(t, inertias, P, cache);
     double largest = 0.0, change = 0.0;
     for (size_t i = 0; i < next.peak_to_peak.size(); ++i) {
       largest = std::max(largest, next.peak_to_peak[i]);
