@@ -2,7 +2,8 @@
 // exact, variable-inertia train (../shared/CONVENTIONS.md, "Torsion"; docs/CONVENTIONS-crankcheck.md).
 //
 // The scenes: every campaign scene with a [crankshaft] table (the example inline four and marine six in the default
-// campaign), each swept over speed from 0.25 to 1.25 times its own speed (17 speeds; --quick: 0.5, 0.75 and 1).
+// campaign), each swept over speed from 0.25 to 1.25 times its own speed (17 speeds, and 5 around each of Holzer's
+// critical speeds of the lowest major orders: listSweepSpeeds; --quick: 0.5, 0.75 and 1).
 // Accuracy of the sweep: Holzer's sum converged to 1e-6 of the largest peak-to-peak (HolzerOptions), the exact steady
 // state integrated at 1e-9 (SteadyStateOptions; its error bound, a few 1e-7 of the twist scale, is in the table): both
 // far below the percent differences the part is about, at a third of the cost of `crankcheck torsion`'s 1e-8 / 1e-11.
@@ -77,8 +78,13 @@ std::vector<const Mechanism*> listTrainScenes(const std::vector<Mechanism>& scen
   return out;
 }
 
-// The sweep's speeds [rpm]: 0.25 .. 1.25 of the scene's speed in 16 steps (quick: 0.5, 0.75, 1). A resonance of the
-// example scenes is about 0.1 of the speed wide at half height: the grid puts two or three points on each.
+// The working cycle's order step: 1/2 (four-stroke), 1 (two-stroke).
+double getOrderStep(const Mechanism& m) { return m.engine.cycle == Cycle::kFourStroke ? 0.5 : 1.0; }
+
+// The sweep's speeds [rpm], ascending: 0.25 .. 1.25 of the scene's speed in 16 steps, and around each of Holzer's
+// critical speeds of mode 1 and the four lowest major orders in that range (findMajorOrder) the speeds at 0.96, 0.98,
+// 1, 1.02 and 1.04 of it, so that those resonances are located to about 1 % in both routes (a resonance of the example
+// scenes is about 0.1 of its speed wide at half height). --quick: 0.5, 0.75 and 1 of the scene's speed.
 std::vector<double> listSweepSpeeds(const Mechanism& m, bool quick) {
   std::vector<double> out;
   if (quick) {
@@ -86,11 +92,18 @@ std::vector<double> listSweepSpeeds(const Mechanism& m, bool quick) {
     return out;
   }
   for (int i = 0; i <= 16; ++i) out.push_back(m.speed_rpm * (0.25 + i / 16.0));
+  const double mode1 = analytic::calcTorsionModes(m).frequencies(0);
+  const double firings = m.engine.cylinders * getOrderStep(m);
+  int refined = 0;
+  for (double p = firings; p <= kTextbookOrder + 1e-9 && refined < 4; p += firings) {
+    const double critical = mode1 / p * 30.0 / M_PI;
+    if (critical > 1.25 * m.speed_rpm || critical < 0.25 * m.speed_rpm) continue;
+    for (double f : {0.96, 0.98, 1.0, 1.02, 1.04}) out.push_back(f * critical);
+    ++refined;
+  }
+  std::sort(out.begin(), out.end());
   return out;
 }
-
-// The working cycle's order step: 1/2 (four-stroke), 1 (two-stroke).
-double getOrderStep(const Mechanism& m) { return m.engine.cycle == Cycle::kFourStroke ? 0.5 : 1.0; }
 
 // The engine's major orders are the multiples of its firings per turn (cylinders / 2 four-stroke, cylinders
 // two-stroke): where the gas torques of evenly spaced firings add. The lowest one whose mode-1 critical speed is at
@@ -301,7 +314,7 @@ struct SweepPoint {
   double rpm = 0.0, holzer = 0.0, exact = 0.0;
 };
 
-// Local maxima of one route's curve (interior grid points above both neighbours), each placed by the parabola through
+// Local maxima of one route's curve (interior grid points 1 % above both neighbours), each placed by the parabola through
 // the three points; its order the one whose amplitude rises most there (above the mean of its neighbours') among the
 // orders within 25 % of a natural frequency, its mode the nearest (mode and critical speed empty when no such order
 // rises: the order that rises most, no resonance).
@@ -310,11 +323,14 @@ void addResonances(Table& out, const std::string& scene, const std::string& rout
   const bool exact = route != "holzer";
   auto value = [&](size_t i) { return exact ? sweep[i].exact : sweep[i].holzer; };
   for (size_t i = 1; i + 1 < sweep.size(); ++i) {
-    if (!(value(i) > value(i - 1) && value(i) > value(i + 1))) continue;
-    // The vertex of the parabola through (x_{i-1}, y_{i-1}), (x_i, y_i), (x_{i+1}, y_{i+1}) on an even grid.
-    const double h = sweep[i + 1].rpm - sweep[i].rpm;
+    // A resonance stands out: at least 1 % above both neighbours (the example scenes' stand 7 % to 86 % above them on
+    // this grid; what is below are ripples of the sum's shoulders, 0.04 % on the example four).
+    if (!(value(i) > 1.01 * value(i - 1) && value(i) > 1.01 * value(i + 1))) continue;
+    // The vertex of the parabola through (x_{i-1}, y_{i-1}), (x_i, y_i), (x_{i+1}, y_{i+1}).
+    const double x0 = sweep[i - 1].rpm, x1 = sweep[i].rpm, x2 = sweep[i + 1].rpm;
     const double y0 = value(i - 1), y1 = value(i), y2 = value(i + 1);
-    const double rpm = sweep[i].rpm + 0.5 * h * (y0 - y2) / (y0 - 2 * y1 + y2);
+    const double rpm = x1 - 0.5 * ((x1 - x0) * (x1 - x0) * (y1 - y2) - (x1 - x2) * (x1 - x2) * (y1 - y0)) /
+                                ((x1 - x0) * (y1 - y2) - (x1 - x2) * (y1 - y0));
     const auto at = amplitudes.find(sweep[i].rpm), before = amplitudes.find(sweep[i - 1].rpm),
                after = amplitudes.find(sweep[i + 1].rpm);
     if (at == amplitudes.end() || before == amplitudes.end() || after == amplitudes.end()) continue;
@@ -418,24 +434,34 @@ void describeResonances(const TableSet& tables, ReportPart& part) {
   if (it == tables.end()) return;
   const Table& r = it->second;
   const size_t rs = columnOf(r, "scene"), rr = columnOf(r, "route"), ro = columnOf(r, "order"),
-               rm = columnOf(r, "mode"), rv = columnOf(r, "speed_rpm");
+               rm = columnOf(r, "mode"), rv = columnOf(r, "speed_rpm"), rc = columnOf(r, "critical_rpm");
   std::map<std::string, std::vector<const std::vector<std::string>*>> exact, holzer;
   for (const auto& row : r.rows) (row[rr] == "holzer" ? holzer : exact)[row[rs]].push_back(&row);
+  auto join = [](std::string& list, const std::string& item) { list += (list.empty() ? "" : ", ") + item; };
   for (const auto& [scene, peaks] : exact) {
     std::string found, missed;
     for (const auto* peak : peaks) {
       const double rpm = std::stod((*peak)[rv]);
-      const std::string what = "order " + (*peak)[ro] + " (" + ((*peak)[rm].empty() ? "no mode near its frequency" : "mode " + (*peak)[rm]) + ") at " + shortNumber(rpm, 4) + " rpm";
+      std::string what = "order " + (*peak)[ro] + " at " + shortNumber(rpm, 4) + " rpm";
+      if ((*peak)[rm].empty()) {
+        what += " (no mode near its frequency)";
+      } else {
+        const double critical = std::stod((*peak)[rc]);
+        what += " (mode " + (*peak)[rm] + "; Holzer's critical speed " + shortNumber(critical, 4) + " rpm, " +
+                (rpm >= critical ? "+" : "") + percent(rpm / critical - 1.0) + ")";
+      }
       bool matched = false;
       for (const auto* h : holzer[scene])
         if ((*h)[ro] == (*peak)[ro] && std::fabs(std::stod((*h)[rv]) / rpm - 1.0) < 0.05) matched = true;
-      (matched ? found : missed) += (found.empty() && matched) || (missed.empty() && !matched) ? what : ", " + what;
+      join(matched ? found : missed, what);
     }
     std::string sentence = scene + ": the exact steady state peaks at ";
-    sentence += found.empty() ? "no speed Holzer also peaks at" : found + " where Holzer's sum peaks too (within 5 %)";
-    sentence += missed.empty() ? "; Holzer misses none of its peaks on this grid."
-                               : "; Holzer's sum has no peak at " + missed +
-                                     ": a resonance the constant-inertia model misses (or moves by more than 5 %).";
+    if (!found.empty()) sentence += found + ", where Holzer's sum peaks too (within 5 %)" + (missed.empty() ? "; it misses none of them" : "");
+    if (!missed.empty())
+      sentence += (found.empty() ? "" : "; and at ") + missed +
+                  ", where Holzer's sum has no peak within 5 %: a resonance the constant-inertia model misses or moves";
+    sentence += ". (Peaks: the parabola through three points of the sweep, whose grid is refined to 2 % of the speed "
+                "around Holzer's critical speeds of the lowest major orders.)";
     part.paragraphs.push_back(sentence);
   }
 }
