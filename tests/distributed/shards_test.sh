@@ -67,11 +67,11 @@ else
 fi
 [[ -z $skip ]] || echo "SKIP (the Slurm part): $skip"
 
-# The timing tables: their ns_per_* columns are measurements (never identical from run to run); the merge keeps them
+# The timing tables: their ns_per_* and seconds columns are measurements (never identical from run to run); the merge keeps them
 # as the shards measured them. Everything else in them is computed and must match.
-timing_tables="speed_vs_error.csv integrator_pareto.csv engine_cost.csv engines.csv engines_league.csv"
+timing_tables="speed_vs_error.csv integrator_pareto.csv engine_cost.csv engines.csv engines_league.csv torsion_cost.csv"
 drop_timings() {
-  awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; ++i) t[i] = ($i ~ /^ns_per_/) }
+  awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; ++i) t[i] = ($i ~ /^(ns_per_|seconds)/) }
                     { s = ""; n = 0; for (i = 1; i <= NF; ++i) if (!t[i]) s = s (n++ ? OFS : "") $i; print s }' "$1"
 }
 
@@ -86,7 +86,7 @@ compare_data() {
     name=${file##*/}
     count=$((count + 1))
     if [[ " $timing_tables " == *" $name "* ]]; then
-      head -n 1 "$file" | grep -q ',ns_per_' || fail "$name: no timing column"
+      head -n 1 "$file" | grep -qE ',(ns_per_|seconds)' || fail "$name: no timing column"
       cmp -s <(drop_timings "$file") <(drop_timings "$merged/data/$name") || fail "$merged/data/$name: differs beyond timings"
     else
       cmp -s "$file" "$merged/data/$name" || fail "$merged/data/$name: differs from one run's"
