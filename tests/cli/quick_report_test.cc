@@ -23,6 +23,7 @@
 #include "crankcheck/validation/report.h"
 #include "crankcheck/validation/scales.h"
 #include "run_cli.h"
+#include "train_report.h"
 
 namespace crankcheck {
 namespace {
@@ -155,6 +156,10 @@ TEST(QuickReportTest, QuickReportDrawsTheFullReportsConclusions) {
   {
     SCOPED_TRACE("the same conclusions");
     checkSameConclusions(folder.path());
+  }
+  {
+    SCOPED_TRACE("part 17's engine trains in the full report (the quick one: QuickRunWritesEveryPartOfTheReport)");
+    testing::expectGatedTrainsAgree(report(folder.path(), "full"));
   }
 }
 

@@ -17,6 +17,7 @@
 #include "crankcheck/validation/parts.h"
 #include "crankcheck/validation/scales.h"
 #include "run_cli.h"
+#include "train_report.h"
 
 namespace crankcheck {
 namespace {
@@ -112,24 +113,8 @@ TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
     ++checked;
   }
   EXPECT_EQ(checked, 6) << "analytic, simbody and mujoco, without and with the pair:\n" << shafts;
-  // Part 17: each gated engine's own elastic train against the analytic steady state, every section within twice the
-  // periodicity it was run to (of the twist scale): a run stopped at a cycle-to-cycle change c keeps about c of its
-  // transient, and a peak-to-peak is a difference of two such values.
-  const std::string trains = readFile(report / "data/torsion_engines.csv");
-  std::stringstream train_lines(trains);
-  std::set<std::string> engines_seen;
-  for (std::string line; std::getline(train_lines, line);) {
-    if (line.rfind("scene,", 0) == 0) continue;
-    std::vector<std::string> f;
-    std::stringstream fields(line);
-    for (std::string x; std::getline(fields, x, ',');) f.push_back(x);
-    ASSERT_EQ(f.size(), 10u) << line;  // scene,engine,speed_rpm,section,peak_to_peak,exact,difference,cycles,accuracy,periodicity
-    if (!validation::findEngine(f[1]).crank_train_gated) continue;
-    EXPECT_LE(std::fabs(std::stod(f[6])), 2 * std::stod(f[9])) << line;
-    engines_seen.insert(f[1]);
-  }
-  for (const Engine& e : validation::listEngines())
-    if (e.simulate_crank_train && e.crank_train_gated && !e.closed_form) EXPECT_TRUE(engines_seen.count(e.name)) << e.name;
+  // Part 17: each gated engine's own elastic train against the analytic steady state (train_report.h).
+  testing::expectGatedTrainsAgree(report);
   // Nothing but the report next to it: no staging folder left behind.
   for (const auto& entry : fs::directory_iterator(dir_))
     EXPECT_EQ(entry.path().filename().string().find("partial"), std::string::npos) << entry.path();
