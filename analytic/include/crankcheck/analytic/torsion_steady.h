@@ -29,7 +29,10 @@ namespace crankcheck::analytic {
 
 struct SteadyStateOptions {
   double tolerance = 1e-11;  ///< the integrator's error per step, relative (and absolute x the twist scale)
-  int samples = 2048;        ///< states per cycle for the twist's series (even)
+  /// States per cycle for the twist's series (even). The series of N samples aliases what lies above N / 2: measured on
+  /// the example four at 3000 rpm, 2048 samples put a small section's peak-to-peak (the front's) 2.4e-7 off its value,
+  /// 8192 within 1e-8 (16384 agrees).
+  int samples = 8192;
 };
 
 struct ExactSteadyState {

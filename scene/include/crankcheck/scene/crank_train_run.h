@@ -13,7 +13,11 @@ namespace crankcheck {
 struct CrankTrainRunOptions {
   double accuracy = 0.0;     ///< the integration's accuracy in the engine's sense (relative error per step)
   double periodicity = 0.0;  ///< the cycle-to-cycle change at which a run is periodic, relative to the twist
-  int samples = 1024;        ///< equally spaced samples of the cycle (even)
+  /// Equally spaced samples of the cycle (even). 1024 give the twist over the cycle; a peak-to-peak read from them
+  /// (through their Fourier series) carries their aliasing: 1e-5 of a small section's value on the example four at
+  /// 3000 rpm, 2e-7 with 8192 (`crankcheck torsion` asks the exact routes for 8192). A soft route at a fixed step
+  /// needs at least as many steps a cycle as samples.
+  int samples = 1024;
   int max_cycles = 2000;     ///< refused beyond (a train too lightly damped to settle)
 };
 
