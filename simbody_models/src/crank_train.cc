@@ -139,8 +139,7 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
         throw std::runtime_error("simulateCrankTrainSteadyState: assembly landed on the unphysical branch");
 
   SimTK::RungeKuttaMersonIntegrator integrator(system);
-  // The transient first at a looser accuracy (its error per cycle stays 1000 x below the change it measures), then
-  // at `accuracy` from where the loose run's own error stops the change falling.
+  // The transient first at a looser accuracy, tightened as the change falls (below).
   const double loose_accuracy = std::max(options.accuracy, 1000.0 * options.accuracy);
   integrator.setAccuracy(loose_accuracy);
   integrator.setConstraintTolerance(std::min(options.accuracy, 1e-6));
@@ -181,8 +180,14 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
     rate_start = rate;
     out.cycles = cycle;
     out.cycle_change = largest > 0.0 ? change / largest : 0.0;
-    if (integrator.getAccuracyInUse() > options.accuracy && out.cycle_change <= 1000.0 * options.periodicity) {
-      integrator.setAccuracy(options.accuracy);
+    // The accuracy follows the change down a decade at a time, accuracy / periodicity of it (from 1000 x `accuracy`
+    // to `accuracy`): the run's own error per cycle, about 1000 x its accuracy (measured), stays a tenth of the change
+    // it measures, as at the last stage.
+    const double wanted = std::max(options.accuracy, std::min(loose_accuracy, out.cycle_change * options.accuracy /
+                                                                                   options.periodicity));
+    if (wanted <= 0.1 * integrator.getAccuracyInUse() + 1e-300 ||
+        (integrator.getAccuracyInUse() > options.accuracy && wanted == options.accuracy)) {
+      integrator.setAccuracy(std::max(options.accuracy, std::pow(10.0, std::ceil(std::log10(wanted) - 1e-9))));
       integrator.initialize(integrator.getState());
       continue;
     }
