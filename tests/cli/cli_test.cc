@@ -241,19 +241,26 @@ TEST(Cli, FlywheelJsonAndRefusals) {
 // train, one line each, status 2,
 // nothing printed. The numbers themselves are the analytic library's, tested in tests/analytic/torsion*_test.cc.
 // `crankcheck torsion --engine mujoco`: MuJoCo's exact train (its own loops, mass matrix and inverse dynamics; never
-// the analytic formulas) gives every section's peak-to-peak twist within 1e-6 of the analytic steady state's value
-// (issue 30's promise) at the command's settings (accuracy 1e-11, periodicity 1e-7, 8192 samples), on the example four
-// at 3000 rpm, where the front section twists an eighth of the most (the hardest of its speeds for the promise: a
-// run's leftover transient is relative to the largest twist). Found 1.8e-9.
+// the analytic formulas) against the analytic steady state, on the example four at 3000 rpm, where the front section
+// twists an eighth of the most (the hardest of its speeds for a per-section promise). Two tolerances, each with its
+// scale: (1) the run's own rule: stopped at a cycle-to-cycle change of 1e-7 (the command's periodicity) of the twist,
+// what is left of its transient moves each extreme by about that, a peak-to-peak by twice it, so 2e-7 x the largest
+// section's peak-to-peak (the twist scale of the output); (2) issue 30's promise to the user, 1e-6 of each section's own
+// value. Found 1.8e-9 of the front section's value.
 TEST(Cli, TorsionEngineTrainAgreesWithinAMillionthOfEachSection) {
   const RunResult r = testing::runCrankcheck({"torsion", std::string(CRANKCHECK_SCENES_DIR) + "/inline4_four_stroke.toml",
                                               "--speed", "3000", "--engine", "mujoco", "--format", "json"});
   ASSERT_EQ(r.exit_status, 0) << r.err;
   const nlohmann::json doc = nlohmann::json::parse(r.out);
-  ASSERT_EQ(doc["speeds"][0]["peak_to_peak_twist"].size(), 5u);
-  for (const auto& section : doc["speeds"][0]["peak_to_peak_twist"])
-    EXPECT_NEAR(section["mujoco"].get<double>(), section["exact"].get<double>(), 1e-6 * section["exact"].get<double>())
-        << section["section"];
+  const nlohmann::json& sections = doc["speeds"][0]["peak_to_peak_twist"];
+  ASSERT_EQ(sections.size(), 5u);
+  double twist_scale = 0.0;
+  for (const auto& section : sections) twist_scale = std::max(twist_scale, section["exact"].get<double>());
+  for (const auto& section : sections) {
+    const double engine = section["mujoco"].get<double>(), exact = section["exact"].get<double>();
+    EXPECT_NEAR(engine, exact, 2 * 1e-7 * twist_scale) << section["section"];
+    EXPECT_NEAR(engine, exact, 1e-6 * exact) << section["section"];
+  }
 }
 
 TEST(Cli, TorsionJsonAndRefusals) {
