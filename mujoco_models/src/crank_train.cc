@@ -20,7 +20,7 @@ namespace {
 namespace odeint = boost::numeric::odeint;
 using State = std::vector<double>;  // (x_0 .. x_{n-1}, dx_0/ds .. dx_{n-1}/ds), s = omega t
 
-constexpr int kProbes = 64;  // states per cycle at which the largest deviation is read (Simbody's)
+constexpr int kProbes = 64;  // states per cycle at which the first cycle's scale is read
 
 /// The train's bodies and sections (CONVENTIONS "Torsion"), front first; MuJoCo's model of each throw.
 struct Train {
@@ -77,13 +77,12 @@ struct TrainSystem {
 /// of the cycle before (the first cycle's: `first_scale`).
 class Integration final : public CycleRun {
  public:
-  Integration(Train& train, double cycle, double accuracy, double first_scale)
-      : system_{&train}, cycle_(cycle), accuracy_(accuracy), scale_(first_scale), ds_(cycle / 512),
+  Integration(Train& train, double cycle, double first_scale)
+      : system_{&train}, cycle_(cycle), scale_(first_scale), ds_(cycle / 512),
         y_(static_cast<size_t>(2 * train.bodies()), 0.0) {}  // the rigid motion at t = 0
 
-  void startCycle(bool loose, double scale) override {
+  void startCycle(double accuracy, double scale) override {
     if (scale > 0.0) scale_ = scale;
-    const double accuracy = loose ? 1000.0 * accuracy_ : accuracy_;
     stepper_ = odeint::make_controlled(accuracy * scale_, accuracy, odeint::runge_kutta_dopri5<State>());
     s_ = 0.0;
   }
@@ -108,12 +107,18 @@ class Integration final : public CycleRun {
     x.assign(y_.begin(), y_.begin() + static_cast<long>(n));
     x_s.assign(y_.begin() + static_cast<long>(n), y_.end());
   }
+  bool moveTo(const std::vector<double>& x, const std::vector<double>& x_s) override {
+    std::copy(x.begin(), x.end(), y_.begin());
+    std::copy(x_s.begin(), x_s.end(), y_.begin() + static_cast<long>(x.size()));
+    s_ = 0.0;
+    return true;
+  }
   long long countSteps() const override { return steps_; }
 
  private:
   TrainSystem system_;
   odeint::result_of::make_controlled<odeint::runge_kutta_dopri5<State>>::type stepper_;
-  double cycle_, accuracy_, scale_, ds_, s_ = 0.0;
+  double cycle_, scale_, ds_, s_ = 0.0;
   State y_;
   long long steps_ = 0;
 };
@@ -149,52 +154,6 @@ CrankTrainRunOptions resolveCrankTrainOptions(const Mechanism& m, const CrankTra
   return options;
 }
 
-CrankTrainRun runToPeriodic(CycleRun& run, double cycle, const CrankTrainRunOptions& options, bool loose_start) {
-  CrankTrainRun out;
-  std::vector<double> x, x_s, start, start_s;
-  run.readState(start, start_s);
-  const size_t n = start.size();
-  bool loose = loose_start;
-  double scale = 0.0;
-  for (int count = 1;; ++count) {
-    run.startCycle(loose, scale);
-    double largest = 0.0;
-    for (int k = 1; k <= kProbes; ++k) {
-      run.stepTo(cycle * k / kProbes);
-      run.readState(x, x_s);
-      for (double v : x) largest = std::max(largest, std::fabs(v));
-    }
-    if (!std::isfinite(largest))
-      throw std::runtime_error("mujoco: the crank train's deviations became non-finite in cycle " + std::to_string(count));
-    double change = 0.0;
-    for (size_t i = 0; i < n; ++i) change = std::max({change, std::fabs(x[i] - start[i]), std::fabs(x_s[i] - start_s[i])});
-    start = x;
-    start_s = x_s;
-    out.cycles = count;
-    out.cycle_change = largest > 0.0 ? change / largest : 0.0;
-    if (largest > 0.0) scale = largest;
-    if (loose && out.cycle_change <= 1000.0 * options.periodicity) {
-      loose = false;
-      continue;
-    }
-    if (!loose && out.cycle_change <= options.periodicity) break;
-    if (count >= options.max_cycles)
-      throw std::runtime_error("mujoco: the elastic crank train is not periodic after " + std::to_string(count) +
-                               " cycles (cycle-to-cycle change " + std::to_string(out.cycle_change) +
-                               " of the deviations): too lightly damped to settle in this run");
-  }
-  // The sampled cycle: twist i = x_{i+1} - x_i (psi_b - psi_a), the last -x_{n-1} (omega t - psi_{n-1}).
-  out.twists.assign(n, {});
-  run.startCycle(false, scale);
-  for (int k = 0; k < options.samples; ++k) {
-    if (k > 0) run.stepTo(cycle * k / options.samples);
-    run.readState(x, x_s);
-    for (size_t i = 0; i < n; ++i) out.twists[i].push_back((i + 1 == n ? 0.0 : x[i + 1]) - x[i]);
-  }
-  out.steps = run.countSteps();
-  return out;
-}
-
 CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrainRunOptions& asked) {
   const CrankTrainRunOptions options = resolveCrankTrainOptions(m, asked, kCrankTrainAccuracy, kCrankTrainPeriodicity);
 
@@ -227,8 +186,9 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
   scale /= *std::min_element(train.stiffness.begin(), train.stiffness.end());
   if (!(scale > 0.0)) scale = 1.0;  // no load at all: the deviations stay 0
 
-  Integration integration(train, cycle, options.accuracy, scale);
-  return runToPeriodic(integration, cycle, options, true);
+  Integration integration(train, cycle, scale);
+  return runToPeriodic(integration, cycle, options, PeriodicPolicy{1000.0 * options.accuracy, kExtrapolationWindow},
+                       "mujoco");
 }
 
 }  // namespace crankcheck::mujoco_models

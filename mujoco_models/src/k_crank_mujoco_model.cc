@@ -926,7 +926,8 @@ class SoftTrainRun final : public CycleRun {
  public:
   SoftTrainRun(const Mechanism& m, Variant variant, int steps_per_cycle);
   ~SoftTrainRun() override;
-  void startCycle(bool, double) override;
+  void startCycle(double, double) override;
+  bool moveTo(const std::vector<double>&, const std::vector<double>&) override { return false; }  // not assembled here
   void stepTo(double target) override;
   void readState(std::vector<double>& x, std::vector<double>& x_s) const override;
   long long countSteps() const override { return steps_; }
@@ -1018,7 +1019,7 @@ void SoftTrainRun::applyGas(const mjModel*, mjData* d) const {
   }
 }
 
-void SoftTrainRun::startCycle(bool, double) {
+void SoftTrainRun::startCycle(double, double) {
   // A new cycle: W back by one cycle (the same configuration: the gas repeats every cycle), time from 0.
   mjData* d = data_.get();
   step_in_cycle_ = 0;
@@ -1078,7 +1079,7 @@ CrankTrainRun simulateCrankTrainSoft(const Mechanism& m, Variant variant, const 
   if (steps > (1LL << 24)) refuseCrankTrain("CrankTrainRunOptions", "the soft route's step is too small (over 2^24 a cycle)");
   SoftTrainRun run(m, variant, static_cast<int>(steps));
   const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
-  return runToPeriodic(run, cycle, options, false);
+  return runToPeriodic(run, cycle, options, PeriodicPolicy{options.accuracy, 0}, "mujoco");  // one stage: a fixed step
 }
 
 }  // namespace crankcheck::mujoco_models

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "crankcheck/scene/periodic_run.h"
 #include "crankcheck/scene/scene_file.h"
 #include "model_support.h"
 
@@ -60,6 +61,78 @@ class ShaftForces : public SimTK::Force::Custom::Implementation {
   std::vector<bool> is_throw_;
   std::vector<double> stiffness_, damping_;
   double throw_damping_, omega_;
+};
+
+
+// Simbody's integration of the train (RungeKuttaMerson, every probe and sample an integrated state), cycle by cycle:
+// crankcheck/scene/periodic_run.h's CycleRun. Time runs on (t = t0 + s / omega, t0 the cycle's start).
+class TrainRun final : public CycleRun {
+ public:
+  TrainRun(SimTK::MultibodySystem& system, const std::vector<SimTK::MobilizedBody::Pin>& shaft,
+           const std::vector<MechanismBodies>& throws, double omega, double constraint_tolerance,
+           double assembly_tolerance, const SimTK::State& state)
+      : system_(system), shaft_(shaft), throws_(throws), omega_(omega), assembly_tolerance_(assembly_tolerance),
+        integrator_(system) {
+    integrator_.setConstraintTolerance(constraint_tolerance);
+    integrator_.setAllowInterpolation(false);  // every sample an integrated state
+    state_ = state;
+  }
+  void startCycle(double accuracy, double) override {
+    if (!started_ || accuracy != accuracy_) {
+      steps_ += started_ ? integrator_.getNumStepsTaken() : 0;
+      integrator_.setAccuracy(accuracy);
+      integrator_.initialize(started_ ? integrator_.getState() : state_);
+      accuracy_ = accuracy;
+      started_ = true;
+    }
+    t0_ = integrator_.getTime();
+  }
+  void stepTo(double target) override {
+    const SimTK::Integrator::SuccessfulStepStatus status = integrator_.stepTo(t0_ + target / omega_);
+    if (status == SimTK::Integrator::EndOfSimulation)
+      throw std::runtime_error("simbody: the integrator ended the crank train's run at t = " +
+                               std::to_string(integrator_.getTime()));
+  }
+  void readState(std::vector<double>& x, std::vector<double>& x_s) const override {
+    const SimTK::State& s = started_ ? integrator_.getState() : state_;
+    x.clear();
+    x_s.clear();
+    for (const SimTK::MobilizedBody::Pin& pin : shaft_) {
+      x.push_back(pin.getQ(s) - omega_ * s.getTime());
+      x_s.push_back((pin.getU(s) - omega_) / omega_);
+    }
+  }
+  bool moveTo(const std::vector<double>& x, const std::vector<double>& x_s) override {
+    // The pins locked at their new angles and rates, the pistons and rods assembled to them (as at t = 0).
+    SimTK::State s = integrator_.getState();
+    const double t = s.getTime();
+    for (size_t i = 0; i < shaft_.size(); ++i) shaft_[i].lockAt(s, x[i] + omega_ * t, SimTK::Motion::Position);
+    system_.realizeModel(s);
+    system_.projectQ(s, assembly_tolerance_);
+    for (size_t i = 0; i < shaft_.size(); ++i) shaft_[i].lockAt(s, omega_ * (1.0 + x_s[i]), SimTK::Motion::Velocity);
+    system_.realizeModel(s);
+    system_.projectU(s, assembly_tolerance_);
+    for (const auto& pin : shaft_) pin.unlock(s);
+    system_.realizeModel(s);
+    for (const MechanismBodies& b : throws_)
+      for (const auto& piston : b.pistons)
+        if (!(piston.getQ(s) > 0.0)) return false;  // the unphysical branch: stay where the run is
+    steps_ += integrator_.getNumStepsTaken();
+    integrator_.initialize(s);
+    return true;
+  }
+  long long countSteps() const override { return steps_ + integrator_.getNumStepsTaken(); }
+
+ private:
+  SimTK::MultibodySystem& system_;
+  const std::vector<SimTK::MobilizedBody::Pin>& shaft_;
+  const std::vector<MechanismBodies>& throws_;
+  double omega_, assembly_tolerance_;
+  SimTK::RungeKuttaMersonIntegrator integrator_;
+  SimTK::State state_;  // the start, before the first cycle
+  bool started_ = false;
+  double accuracy_ = 0.0, t0_ = 0.0;
+  long long steps_ = 0;
 };
 
 }  // namespace
@@ -138,78 +211,9 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
       if (!(piston.getQ(state) > 0.0))
         throw std::runtime_error("simulateCrankTrainSteadyState: assembly landed on the unphysical branch");
 
-  SimTK::RungeKuttaMersonIntegrator integrator(system);
-  // The transient first at a looser accuracy, tightened as the change falls (below).
-  const double loose_accuracy = std::max(options.accuracy, 1000.0 * options.accuracy);
-  integrator.setAccuracy(loose_accuracy);
-  integrator.setConstraintTolerance(std::min(options.accuracy, 1e-6));
-  integrator.setAllowInterpolation(false);  // every sample an integrated state
-  integrator.initialize(state);
-  const double period = (m.engine.cycle == Cycle::kFourStroke ? 4.0 : 2.0) * SimTK::Pi / omega;
-
-  auto deviations = [&](const SimTK::State& s, std::vector<double>& x, std::vector<double>& rate) {
-    x.resize(static_cast<size_t>(n));
-    rate.resize(static_cast<size_t>(n));
-    for (int i = 0; i < n; ++i) {
-      x[static_cast<size_t>(i)] = shaft[static_cast<size_t>(i)].getQ(s) - omega * s.getTime();
-      rate[static_cast<size_t>(i)] = shaft[static_cast<size_t>(i)].getU(s) - omega;
-    }
-  };
-  auto stepTo = [&](double t) {
-    const SimTK::Integrator::SuccessfulStepStatus status = integrator.stepTo(t);
-    if (status == SimTK::Integrator::EndOfSimulation)
-      throw std::runtime_error("simulateCrankTrainSteadyState: the integrator ended the run at t = " +
-                               std::to_string(integrator.getTime()));
-  };
-  CrankTrainRun out;
-  std::vector<double> x_start, rate_start, x, rate;
-  deviations(integrator.getState(), x_start, rate_start);
-  constexpr int kProbes = 64;  // the largest deviation of a cycle, sampled
-  for (int cycle = 1;; ++cycle) {
-    double largest = 0.0;
-    for (int k = 1; k <= kProbes; ++k) {
-      stepTo((cycle - 1 + static_cast<double>(k) / kProbes) * period);
-      deviations(integrator.getState(), x, rate);
-      for (double v : x) largest = std::max(largest, std::fabs(v));
-    }
-    double change = 0.0;
-    for (int i = 0; i < n; ++i)
-      change = std::max({change, std::fabs(x[static_cast<size_t>(i)] - x_start[static_cast<size_t>(i)]),
-                         std::fabs(rate[static_cast<size_t>(i)] - rate_start[static_cast<size_t>(i)]) / omega});
-    x_start = x;
-    rate_start = rate;
-    out.cycles = cycle;
-    out.cycle_change = largest > 0.0 ? change / largest : 0.0;
-    // The accuracy follows the change down a decade at a time, accuracy / periodicity of it (from 1000 x `accuracy`
-    // to `accuracy`): the run's own error per cycle, about 1000 x its accuracy (measured), stays a tenth of the change
-    // it measures, as at the last stage.
-    const double wanted = std::max(options.accuracy, std::min(loose_accuracy, out.cycle_change * options.accuracy /
-                                                                                   options.periodicity));
-    if (wanted <= 0.1 * integrator.getAccuracyInUse() + 1e-300 ||
-        (integrator.getAccuracyInUse() > options.accuracy && wanted == options.accuracy)) {
-      integrator.setAccuracy(std::max(options.accuracy, std::pow(10.0, std::ceil(std::log10(wanted) - 1e-9))));
-      integrator.initialize(integrator.getState());
-      continue;
-    }
-    if (integrator.getAccuracyInUse() <= options.accuracy && out.cycle_change <= options.periodicity) break;
-    if (cycle >= options.max_cycles)
-      throw std::runtime_error("simulateCrankTrainSteadyState: not periodic after " + std::to_string(cycle) +
-                               " cycles (cycle-to-cycle change " + std::to_string(out.cycle_change) +
-                               " of the twist): the train is too lightly damped to settle in this run");
-  }
-  // The sampled cycle.
-  out.twists.assign(static_cast<size_t>(n), {});
-  const double t0 = out.cycles * period;
-  for (int k = 0; k < options.samples; ++k) {
-    if (k > 0) stepTo(t0 + period * k / options.samples);
-    const SimTK::State& s = integrator.getState();
-    for (int i = 0; i < n; ++i) {
-      const double psi_b = i + 1 == n ? omega * s.getTime() : shaft[static_cast<size_t>(i + 1)].getQ(s);
-      out.twists[static_cast<size_t>(i)].push_back(psi_b - shaft[static_cast<size_t>(i)].getQ(s));
-    }
-  }
-  out.steps = integrator.getNumStepsTaken();
-  return out;
+  TrainRun run(system, shaft, throws, omega, std::min(options.accuracy, 1e-6), tolerance, state);
+  const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * SimTK::Pi : 2.0 * SimTK::Pi;
+  return runToPeriodic(run, cycle, options, PeriodicPolicy{1000.0 * options.accuracy, kExtrapolationWindow}, "simbody");
 }
 
 }  // namespace crankcheck::simbody_models

@@ -16,14 +16,16 @@
 ///   on a, the opposite on b (x_W = 0), integrated by Boost.Odeint's Dormand-Prince 5(4) (error per step below
 /// `accuracy` relative and `accuracy` x the deviation scale absolute: the largest |x| of the cycle before, the first
 /// cycle's from the rigid motion's torques over the softest section), every probe and sample an integrated state.
-/// Run to periodic with Simbody's policy (simbody_models/crank_train.h): from the rigid motion (x = 0, x' = 0 at
-/// t = 0), cycle by cycle, at 1000 x `accuracy` until the deviations and their rates (x' = dx/ds) at the start of a
-/// cycle change by less than 1000 x `periodicity` of the largest deviation over that cycle (64 probes), then at
-/// `accuracy` until they change by less than `periodicity`; then one more cycle sampled at `samples` equal steps.
+/// Run to periodic by every engine's one policy (crankcheck/scene/periodic_run.h, as Simbody's): from the rigid motion
+/// (x = 0, x' = 0 at t = 0), cycle by cycle, at 1000 x `accuracy` until the deviations and their rates (x' = dx/ds) at
+/// the start of a cycle change by less than 1000 x `periodicity` of the largest deviation over that cycle (64 probes),
+/// then at `accuracy` until they change by less than `periodicity`, the run moved to the extrapolated fixed point of
+/// its cycle starts every 6 cycles at one accuracy; then one more cycle sampled at `samples` equal steps.
 /// Each cycle runs in its own time from 0 (the equations repeat every cycle), so no angle grows with the run.
-/// Measured (tests/gate/torsion_test.cc, defaults): the example four at 6000 rpm 16 cycles, 46000 steps, 2.5 s (a
-/// throw's torque line about 2 us); the marine six at 105 rpm 66 cycles (its 2 %-damped first mode), 6.8 s; every
-/// sample of every twist within 5e-8 of the twist scale of the analytic engine's exact steady state.
+/// Measured (tests/gate/torsion_test.cc, defaults): the example four at 6000 rpm 10 cycles, 1.5 s (a throw's torque
+/// line about 2 us; 16 cycles, 2.5 s without the extrapolation); the marine six at 105 rpm 14 cycles, 1.7 s (66 and
+/// 6.8 s: its 2 %-damped first mode); every
+/// sample of every twist within 2e-8 of the twist scale of the analytic engine's exact steady state.
 
 #include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
 #include "crankcheck/scene/crank_train_run.h"
@@ -61,7 +63,8 @@ inline constexpr double kSoftCrankTrainStep = 1.0 / 4096;
 /// speed are set back to (omega t, omega) after every step. Stepped by mj_step with MuJoCo's RK4 at a fixed step:
 /// `accuracy` is that step as a fraction of a cycle (default 1/4096; the cycle a whole number of steps, a multiple of
 /// the samples' and the 64 probes' spacing); run to periodic as the exact route, without its loose start (the step is
-/// fixed: the cycle-to-cycle change falls to rounding on MuJoCo's own discrete map).
+/// fixed: the cycle-to-cycle change falls to rounding on MuJoCo's own discrete map) and without the extrapolation (the
+/// chain's pistons and rods are not reassembled here to a moved state: CycleRun::moveTo says no).
 /// Measured against the exact route (the example four at 6000 rpm, the default step 1/4096): kSoftDefault differs by
 /// 0.85 of the largest twist (its loops, time constant 0.02 s, a whole cycle, give way; 32 cycles, 3.9 s), kSoftStiff
 /// by 3.3e-4 (16 cycles, 2.0 s; 1.3e-3 at 1/2048: it falls as the step squared, its time constant two steps);

@@ -8,18 +8,18 @@
 /// omega t; each throw's damping about omega; gravity and the gas (at the throw's own angle) as in KCrankModel.
 ///
 /// The periodic steady state: started from the rigid motion at t = 0 (every pin at 0 turning at omega, the rods and
-/// pistons assembled), integrated (RungeKuttaMerson) cycle by cycle, first at 1000 x `accuracy`, then a decade tighter
-/// each time the deviations psi_i - omega t and their rates at the start of a cycle change by less than
-/// periodicity / accuracy times the accuracy in use (of the largest deviation seen over that cycle), down to `accuracy`,
-/// until they change by less than `periodicity`; then one more cycle sampled at `samples` equal steps. The stages keep
-/// the run's own error per cycle (about 1000 x its accuracy) a tenth of the change it measures, at a fraction of the
-/// cost of the whole transient at `accuracy`: the marine six 15.7 s against 24.8 s with one loose stage (and 40.7 s
-/// with none), the agreement with the analytic steady state 4e-8 of the twist scale (1.1e-7 on the example four). The
-/// time of the transient is the shaft's lightest damping's: about 1 / (zeta w) per mode. At accuracy 1e-10 the
-/// cycle-to-cycle change stops falling at about 1e-7 of the twist (the integration's own error per cycle, measured on
-/// the example four at 6000 rpm), hence `periodicity` 1e-6 by default: 22 cycles there, about 11 s; the peak-to-peak
-/// twists then agree with the analytic engine's exact
-/// steady state to 4e-7 (tests/gate/torsion_test.cc).
+/// pistons assembled), integrated (RungeKuttaMerson, every probe and sample an integrated state) cycle by cycle by every
+/// engine's one policy (crankcheck/scene/periodic_run.h): at 1000 x `accuracy` until the deviations psi_i - omega t and
+/// their rates at a cycle's start change by less than 1000 x periodicity of the largest deviation over the cycle, then at
+/// `accuracy` until they change by less than `periodicity`; every 6 cycles at one accuracy the run is moved to the
+/// extrapolated fixed point of their starts (the pins locked at the extrapolated angles and rates, the pistons and rods
+/// assembled to them, as at t = 0); then one more cycle sampled at `samples` equal steps. Measured on the gate's cases
+/// (tests/gate/torsion_test.cc): the example four at 6000 rpm 11 cycles, 7.5 s (22 cycles, 11.8 s run out without the
+/// extrapolation, the accuracy staged a decade at a time); at 5450 rpm 12 cycles, 9.2 s (20, 11.0 s); the marine six at
+/// 105 rpm, whose first mode is damped 2 %, 14 cycles, 6.6 s (69, 15.8 s). The cycle-to-cycle change at accuracy 1e-10
+/// stops falling at about 1e-7 of the twist (the integration's own error per cycle, the example four at 6000 rpm), hence
+/// `periodicity` 1e-6 by default; the twists then agree with the analytic engine's exact steady state to 1.6e-7 of the
+/// twist scale.
 
 #include <vector>
 
