@@ -61,11 +61,17 @@ constexpr double kTextbookOrder = 24.0;
 // The engines' trains in the report: a check of the figure's exact curve on the first scene at its own speed, not the
 // gate (tests/gate/torsion_test.cc holds them to 2e-6 of the twist scale at their defaults on both example scenes and
 // three speeds). At a cycle-to-cycle change of `periodicity` what is left of the transient is about that much of the
-// twist scale: 1e-4 in the full campaign, 1e-2 in the quick one (a smoke test of the route).
+// twist scale: 1e-4 in the full campaign, 1e-2 in the quick one (a smoke test of the route). Samples of the cycle:
+// 1024 in the full campaign; 256 in the quick one, whose peak-to-peaks then carry their aliasing, about 1e-4 of the
+// twist scale on the example four (1e-5 at 1024), far below its periodicity (every sample a step end: at 1024 the
+// sampled cycle was half of Simbody's quick run).
 struct EngineRunSettings {
   double accuracy, periodicity;
+  int samples;
 };
-EngineRunSettings getEngineRunSettings(bool quick) { return quick ? EngineRunSettings{1e-6, 1e-2} : EngineRunSettings{1e-8, 1e-4}; }
+EngineRunSettings getEngineRunSettings(bool quick) {
+  return quick ? EngineRunSettings{1e-6, 1e-2, 256} : EngineRunSettings{1e-8, 1e-4, 1024};
+}
 
 std::string num(double x) { return formatNumber(x); }
 
@@ -240,12 +246,14 @@ TableSet calcEngineTables(const Mechanism& m, const Engine& engine, bool quick) 
   TableSet tables = makeEmptyTables();
   analytic::SteadyStateOptions exact_options;
   exact_options.tolerance = kExactTolerance;
+  exact_options.samples = kExactSamples;
   const analytic::ExactSteadyState exact = analytic::calcExactSteadyState(m, exact_options);
   CrankTrainRunOptions options;
   // A gated route's accuracy is its integrator's error per step; a soft route's is its own (MuJoCo's: the fixed time
   // step, Engine::crank_train_method): it runs at its default, as its users run it.
   options.accuracy = engine.crank_train_gated ? getEngineRunSettings(quick).accuracy : 0.0;
   options.periodicity = getEngineRunSettings(quick).periodicity;
+  options.samples = getEngineRunSettings(quick).samples;
   const auto start = std::chrono::steady_clock::now();
   const CrankTrainRun run = engine.simulate_crank_train(m, options);
   const double run_seconds = seconds(start);
