@@ -16,6 +16,7 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/parts.h"
 #include "crankcheck/validation/scales.h"
+#include "campaign_fixture.h"
 #include "run_cli.h"
 #include "train_report.h"
 
@@ -63,9 +64,12 @@ std::vector<std::string> listTables() {
 const std::vector<std::string> kFigures = listFigures();
 const std::vector<std::string> kTables = listTables();
 
+// The default quick campaign, run once for its readers (campaign_fixture.h: under ctest the fixture quick_campaign,
+// also read by QuickReportTest and the browser test): every check here reads its report and what it printed.
 TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
-  const fs::path report = dir_ / "report";
-  const RunResult r = run("validate --quick --out " + report.string());
+  const testing::CampaignRun campaign = testing::getQuickCampaign();
+  const fs::path report = campaign.report;
+  const RunResult& r = campaign.result;
   ASSERT_EQ(r.exit_status, 0) << r.err << r.out;
   // The verdict first (verdict.h): a passing run ends with one line per engine and ctest's closing line, no table.
   EXPECT_NE(r.out.find("\n100% of comparisons agree, 0 failed out of "), std::string::npos) << r.out;
@@ -115,8 +119,8 @@ TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   EXPECT_EQ(checked, 6) << "analytic, simbody and mujoco, without and with the pair:\n" << shafts;
   // Part 17: each gated engine's own elastic train against the analytic steady state (train_report.h).
   testing::expectGatedTrainsAgree(report);
-  // Nothing but the report next to it: no staging folder left behind.
-  for (const auto& entry : fs::directory_iterator(dir_))
+  // Nothing but the report next to it (and the fixture's record of the run): no staging folder left behind.
+  for (const auto& entry : fs::directory_iterator(campaign.folder))
     EXPECT_EQ(entry.path().filename().string().find("partial"), std::string::npos) << entry.path();
 }
 
