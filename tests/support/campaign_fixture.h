@@ -60,4 +60,11 @@ inline CampaignRun getCampaign(const char* variable, const std::vector<std::stri
 /// QuickRunWritesEveryPartOfTheReport, QuickReportTest and the browser test (fixture quick_campaign).
 inline CampaignRun getQuickCampaign() { return getCampaign("CRANKCHECK_QUICK_CAMPAIGN", {"validate", "--quick"}); }
 
+/// One example scene's quick campaign on one thread, `crankcheck validate --quick SCENE --jobs 1` (every part and
+/// table, one family's cross-check): the one run that shards are compared with, by ShardsMergeIntoTheSameReportAsOneRun
+/// and tests/distributed/shards_test.sh (fixture one_scene_campaign, SCENE scenes/inline4_four_stroke.toml).
+inline CampaignRun getOneSceneCampaign(const std::string& scene) {
+  return getCampaign("CRANKCHECK_ONE_SCENE_CAMPAIGN", {"validate", "--quick", scene, "--jobs", "1"});
+}
+
 }  // namespace crankcheck::testing
