@@ -237,6 +237,9 @@ SelectTypeParameters=CR_CPU
 MpiDefault=none
 ReturnToService=2
 MailProg=/bin/true
+# Jobs scheduled when they are submitted, released or freed by a dependency (Slurm's default lets a busy cluster put
+# it off by up to 3 s a time; here it was 5-9 s of the test's waiting, issue 28).
+SchedulerParameters=batch_sched_delay=0
 $node NodeAddr=127.0.0.1 State=UNKNOWN
 PartitionName=crankcheck Nodes=$host Default=YES MaxTime=INFINITE State=UP
 EOF
