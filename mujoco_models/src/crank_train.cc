@@ -107,9 +107,8 @@ class Integration final : public CycleRun {
     x.assign(y_.begin(), y_.begin() + static_cast<long>(n));
     x_s.assign(y_.begin() + static_cast<long>(n), y_.end());
   }
-  bool moveTo(const std::vector<double>& x, const std::vector<double>& x_s) override {
-    std::copy(x.begin(), x.end(), y_.begin());
-    std::copy(x_s.begin(), x_s.end(), y_.begin() + static_cast<long>(x.size()));
+  bool moveTo(const std::vector<double>& y) override {  // y = (x, x_s): the train's whole state
+    y_ = y;
     s_ = 0.0;
     return true;
   }

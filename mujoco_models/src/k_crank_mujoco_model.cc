@@ -927,7 +927,8 @@ class SoftTrainRun final : public CycleRun {
   SoftTrainRun(const Mechanism& m, Variant variant, int steps_per_cycle);
   ~SoftTrainRun() override;
   void startCycle(double, double) override;
-  bool moveTo(const std::vector<double>&, const std::vector<double>&) override { return false; }  // not assembled here
+  std::vector<double> readCycleState() const override;
+  bool moveTo(const std::vector<double>& cycle_state) override;
   void stepTo(double target) override;
   void readState(std::vector<double>& x, std::vector<double>& x_s) const override;
   long long countSteps() const override { return steps_; }
@@ -1043,6 +1044,35 @@ void SoftTrainRun::stepTo(double target) {
   }
 }
 
+// The soft chain's own state: every joint's position and speed but the flywheel's (driven: reset each cycle), the
+// loops' give included (soft constraints hold no state of their own; MuJoCo's solver warm start only speeds it).
+std::vector<double> SoftTrainRun::readCycleState() const {
+  const mjModel* mm = model_.get();
+  const mjData* d = data_.get();
+  std::vector<double> y;
+  for (int i = 0; i < mm->nq; ++i)
+    if (i != flywheel_q_) y.push_back(d->qpos[i]);
+  for (int i = 0; i < mm->nv; ++i)
+    if (i != flywheel_v_) y.push_back(d->qvel[i]);
+  return y;
+}
+
+bool SoftTrainRun::moveTo(const std::vector<double>& y) {
+  const mjModel* mm = model_.get();
+  mjData* d = data_.get();
+  if (static_cast<int>(y.size()) != mm->nq + mm->nv - 2) return false;
+  size_t k = 0;
+  for (int i = 0; i < mm->nq; ++i)
+    if (i != flywheel_q_) d->qpos[i] = y[k++];
+  for (int i = 0; i < mm->nv; ++i)
+    if (i != flywheel_v_) d->qvel[i] = y[k++];
+  step_in_cycle_ = 0;
+  d->time = 0.0;
+  d->qpos[flywheel_q_] = 0.0;
+  d->qvel[flywheel_v_] = omega_;
+  return true;
+}
+
 void SoftTrainRun::readState(std::vector<double>& x, std::vector<double>& x_s) const {
   // x_b = psi_b - omega t: the hinges from W to body b (W on omega t); dx/ds = their rates / omega.
   const mjData* d = data_.get();
@@ -1079,7 +1109,8 @@ CrankTrainRun simulateCrankTrainSoft(const Mechanism& m, Variant variant, const 
   if (steps > (1LL << 24)) refuseCrankTrain("CrankTrainRunOptions", "the soft route's step is too small (over 2^24 a cycle)");
   SoftTrainRun run(m, variant, static_cast<int>(steps));
   const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
-  return runToPeriodic(run, cycle, options, PeriodicPolicy{options.accuracy, 0}, "mujoco");  // one stage: a fixed step
+  // One stage (a fixed step), moved to the extrapolation of its cycle starts' whole states as the exact routes.
+  return runToPeriodic(run, cycle, options, PeriodicPolicy{options.accuracy, kExtrapolationWindow}, "mujoco");
 }
 
 }  // namespace crankcheck::mujoco_models

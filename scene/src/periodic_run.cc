@@ -38,6 +38,13 @@ std::optional<std::vector<double>> findExtrapolatedFixedPoint(const std::vector<
   return out;
 }
 
+std::vector<double> CycleRun::readCycleState() const {
+  std::vector<double> x, x_s;
+  readState(x, x_s);
+  x.insert(x.end(), x_s.begin(), x_s.end());
+  return x;
+}
+
 CrankTrainRun runToPeriodic(CycleRun& run, double cycle, const CrankTrainRunOptions& options,
                             const PeriodicPolicy& policy, const char* what) {
   constexpr int kProbes = 64;  // the largest deviation of a cycle, sampled
@@ -49,12 +56,7 @@ CrankTrainRun runToPeriodic(CycleRun& run, double cycle, const CrankTrainRunOpti
   std::vector<double> x, x_s, start, start_s;
   run.readState(start, start_s);
   const size_t n = start.size();
-  auto joined = [&](const std::vector<double>& a, const std::vector<double>& b) {
-    std::vector<double> y(a);
-    y.insert(y.end(), b.begin(), b.end());
-    return y;
-  };
-  std::deque<std::vector<double>> window{joined(start, start_s)};  // cycle starts at the accuracy in use
+  std::deque<std::vector<double>> window{run.readCycleState()};  // cycle starts at the accuracy in use
   double in_use = policy.first_accuracy, scale = 0.0;
   for (int count = 1;; ++count) {
     run.startCycle(in_use, scale);
@@ -79,7 +81,7 @@ CrankTrainRun runToPeriodic(CycleRun& run, double cycle, const CrankTrainRunOpti
     if (in_use > options.accuracy &&
         out.cycle_change <= policy.first_accuracy / options.accuracy * options.periodicity) {
       in_use = options.accuracy;
-      window.assign(1, joined(start, start_s));
+      window.assign(1, run.readCycleState());
       continue;
     }
     if (in_use <= options.accuracy && out.cycle_change <= options.periodicity) break;
@@ -88,17 +90,15 @@ CrankTrainRun runToPeriodic(CycleRun& run, double cycle, const CrankTrainRunOpti
                                " cycles (cycle-to-cycle change " + std::to_string(out.cycle_change) +
                                " of the deviations): too lightly damped to settle in this run");
     if (policy.extrapolation_window < 2) continue;
-    window.push_back(joined(start, start_s));
-    if (static_cast<int>(window.size()) < policy.extrapolation_window + 1) continue;
+    window.push_back(run.readCycleState());
+    if (static_cast<int>(window.size()) < std::min(4, policy.extrapolation_window) + 1) continue;
     const std::optional<std::vector<double>> fixed =
         findExtrapolatedFixedPoint(std::vector<std::vector<double>>(window.begin(), window.end()));
-    window.pop_front();
+    if (static_cast<int>(window.size()) > policy.extrapolation_window) window.pop_front();
     if (!fixed) continue;
-    const std::vector<double> fixed_x(fixed->begin(), fixed->begin() + static_cast<long>(n)),
-        fixed_s(fixed->begin() + static_cast<long>(n), fixed->end());
-    if (!run.moveTo(fixed_x, fixed_s)) continue;
+    if (!run.moveTo(*fixed)) continue;
     run.readState(start, start_s);  // as the engine assembled it
-    window.assign(1, joined(start, start_s));
+    window.assign(1, run.readCycleState());
   }
   // The sampled cycle: twist i = x_{i+1} - x_i (psi_b - psi_a), the last -x_{n-1} (omega t - psi_{n-1}).
   out.twists.assign(n, {});

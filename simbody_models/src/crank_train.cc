@@ -102,14 +102,15 @@ class TrainRun final : public CycleRun {
       x_s.push_back((pin.getU(s) - omega_) / omega_);
     }
   }
-  bool moveTo(const std::vector<double>& x, const std::vector<double>& x_s) override {
-    // The pins locked at their new angles and rates, the pistons and rods assembled to them (as at t = 0).
+  bool moveTo(const std::vector<double>& y) override {
+    // y = (x, x_s): the pins locked at their new angles and rates, the pistons and rods assembled to them (as at t = 0).
+    const size_t n = shaft_.size();
     SimTK::State s = integrator_.getState();
     const double t = s.getTime();
-    for (size_t i = 0; i < shaft_.size(); ++i) shaft_[i].lockAt(s, x[i] + omega_ * t, SimTK::Motion::Position);
+    for (size_t i = 0; i < n; ++i) shaft_[i].lockAt(s, y[i] + omega_ * t, SimTK::Motion::Position);
     system_.realizeModel(s);
     system_.projectQ(s, assembly_tolerance_);
-    for (size_t i = 0; i < shaft_.size(); ++i) shaft_[i].lockAt(s, omega_ * (1.0 + x_s[i]), SimTK::Motion::Velocity);
+    for (size_t i = 0; i < n; ++i) shaft_[i].lockAt(s, omega_ * (1.0 + y[n + i]), SimTK::Motion::Velocity);
     system_.realizeModel(s);
     system_.projectU(s, assembly_tolerance_);
     for (const auto& pin : shaft_) pin.unlock(s);

@@ -79,7 +79,7 @@ TEST(TorsionGate, ThrowInertiaIsTheMeanOfSimbodysKineticEnergy) {
 // (the largest deviation of the analytic orbit), periodicity = 1e-6: Simbody's run stops when its cycle-to-cycle
 // change is below periodicity x the largest deviation, so what is left of its transient is about that, moving a
 // sample or an extreme by up to it and a peak-to-peak by up to twice it; its integration error per cycle (1e-7 of the
-// twist at accuracy 1e-10) and the analytic engine's (1e-9) are below. The largest difference found: 1.6e-7 of the scale
+// twist at accuracy 1e-10) and the analytic engine's (1e-9) are below. The largest difference found: 1.4e-7 of the scale
 // (CRANKCHECK_PRINT_RATIOS=1 prints them; the run's extrapolation of its cycle starts, periodic_run.h, does not change the
 // stopping rule: what is left after it is measured over whole integrated cycles).
 struct SteadyCase {
@@ -121,8 +121,8 @@ TEST_P(TorsionSteadyGateTest, SimbodyAgreesWithTheAnalyticSteadyState) {
 // periodicity = 1e-6 (MuJoCo's default, as Simbody's): the run stops when its cycle-to-cycle change is below
 // periodicity x the largest deviation, so what is left of its transient moves a sample by up to about that (twice it
 // for a twist, a difference of two deviations); its integration error per cycle (Dormand-Prince at 1e-10 per step)
-// and the analytic engine's (1e-9 of the scale) are below. Worst found: 1.5e-8 of the scale (CRANKCHECK_PRINT_RATIOS=1
-// prints it and the seconds per case: 1.5, 1.6 and 1.7 s; the marine six runs 14 cycles, its first mode damped 2 %,
+// and the analytic engine's (1e-9 of the scale) are below. Worst found: 4.9e-8 of the scale (CRANKCHECK_PRINT_RATIOS=1
+// prints it and the seconds per case: 1.6, 1.6 and 1.4 s; the marine six runs 13 cycles, its first mode damped 2 %,
 // 66 without the extrapolation of its cycle starts).
 TEST_P(TorsionSteadyGateTest, MujocoAgreesWithTheAnalyticSteadyState) {
   Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / GetParam().scene);

@@ -88,8 +88,8 @@ class MapRun final : public CycleRun {
     x = {y_(0), y_(1)};
     x_s = {y_(2), y_(3)};
   }
-  bool moveTo(const std::vector<double>& x, const std::vector<double>& x_s) override {
-    y_ << x[0], x[1], x_s[0], x_s[1];
+  bool moveTo(const std::vector<double>& y) override {
+    y_ << y[0], y[1], y[2], y[3];
     return true;
   }
   long long countSteps() const override { return cycles_; }

@@ -20,10 +20,11 @@
 /// (x = 0, x' = 0 at t = 0), cycle by cycle, at 1000 x `accuracy` until the deviations and their rates (x' = dx/ds) at
 /// the start of a cycle change by less than 1000 x `periodicity` of the largest deviation over that cycle (64 probes),
 /// then at `accuracy` until they change by less than `periodicity`, the run moved to the extrapolated fixed point of
-/// its cycle starts every 6 cycles at one accuracy; then one more cycle sampled at `samples` equal steps.
+/// its last cycle starts (x, x') from the 4th cycle at one accuracy on; then one more cycle sampled at `samples` equal
+/// steps.
 /// Each cycle runs in its own time from 0 (the equations repeat every cycle), so no angle grows with the run.
-/// Measured (tests/gate/torsion_test.cc, defaults): the example four at 6000 rpm 10 cycles, 1.5 s (a throw's torque
-/// line about 2 us; 16 cycles, 2.5 s without the extrapolation); the marine six at 105 rpm 14 cycles, 1.7 s (66 and
+/// Measured (tests/gate/torsion_test.cc, defaults): the example four at 6000 rpm 9 cycles, 1.6 s (a throw's torque
+/// line about 2 us; 16 cycles, 2.5 s without the extrapolation); the marine six at 105 rpm 13 cycles, 1.4 s (66 and
 /// 6.8 s: its 2 %-damped first mode); every
 /// sample of every twist within 2e-8 of the twist scale of the analytic engine's exact steady state.
 
@@ -63,11 +64,12 @@ inline constexpr double kSoftCrankTrainStep = 1.0 / 4096;
 /// speed are set back to (omega t, omega) after every step. Stepped by mj_step with MuJoCo's RK4 at a fixed step:
 /// `accuracy` is that step as a fraction of a cycle (default 1/4096; the cycle a whole number of steps, a multiple of
 /// the samples' and the 64 probes' spacing); run to periodic as the exact route, without its loose start (the step is
-/// fixed: the cycle-to-cycle change falls to rounding on MuJoCo's own discrete map) and without the extrapolation (the
-/// chain's pistons and rods are not reassembled here to a moved state: CycleRun::moveTo says no).
+/// fixed: the cycle-to-cycle change falls to rounding on MuJoCo's own discrete map), its extrapolation over the chain's
+/// whole state (every joint's position and speed but the flywheel's: the loops' give is state of its own).
 /// Measured against the exact route (the example four at 6000 rpm, the default step 1/4096): kSoftDefault differs by
-/// 0.85 of the largest twist (its loops, time constant 0.02 s, a whole cycle, give way; 32 cycles, 3.9 s), kSoftStiff
-/// by 3.3e-4 (16 cycles, 2.0 s; 1.3e-3 at 1/2048: it falls as the step squared, its time constant two steps);
+/// 0.85 of the largest twist (its loops, time constant 0.02 s, a whole cycle, give way; 13 cycles at periodicity 1e-4,
+/// 23 without the extrapolation), kSoftStiff by 3.3e-4 (7 cycles, 11 without; 1.3e-3 at 1/2048: it falls as the step
+/// squared, its time constant two steps);
 /// tests/mujoco/crank_train_test.cc holds both.
 /// @throws as simulateCrankTrainSteadyState; also std::invalid_argument for the exact variant, an accuracy above 0.01
 ///         (100 steps a cycle) or J_t below 1e-15 kg m^2. One run at a time per thread (the gas callback's context).

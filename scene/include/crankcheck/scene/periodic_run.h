@@ -24,14 +24,18 @@ class CycleRun {
   virtual void stepTo(double target) = 0;
   /// The bodies' deviations x = psi - omega t [rad] and their rates dx/ds [rad/rad], front first.
   virtual void readState(std::vector<double>& x, std::vector<double>& x_s) const = 0;
-  /// Puts the run at a cycle's start (s = 0) with these deviations and rates (the engine's own assembly of what
-  /// hangs on the bodies). False, with the state unchanged, for a route that cannot (MuJoCo's soft chains).
-  virtual bool moveTo(const std::vector<double>& x, const std::vector<double>& x_s) = 0;
+  /// The state the cycle map acts on, at a cycle's start: by default the deviations and their rates joined (x, x_s),
+  /// where the engine assembles the rest from them (Simbody's pistons and rods); a route whose bodies carry state of
+  /// their own gives all of it (MuJoCo's soft chains: every joint's position and speed but the driven flywheel's).
+  virtual std::vector<double> readCycleState() const;
+  /// Puts the run at a cycle's start (s = 0) in this state (readCycleState's form). False, with the state unchanged,
+  /// for one the engine cannot assemble.
+  virtual bool moveTo(const std::vector<double>& cycle_state) = 0;
   virtual long long countSteps() const = 0;
 };
 
 /// Reduced rank extrapolation of a cycle map's fixed point from its iterates y_0 .. y_{k+1} (states at successive
-/// cycle starts; at least 3, of one size): the weights gamma (sum 1) that make sum gamma_j (y_{j+1} - y_j) least in
+/// cycle starts, CycleRun::readCycleState; at least 3, of one size): the weights gamma (sum 1) that make sum gamma_j (y_{j+1} - y_j) least in
 /// the 2-norm, and the estimate sum gamma_j y_{j+1}. For a linear map y -> M y + b with M - I invertible and k + 1 at
 /// least the degree of M's minimal polynomial on y_0's error it is the fixed point, exactly; near a fixed point of a
 /// smooth map, the error of the iterates' slowest modes (a lightly damped train's) is removed to first order.
@@ -47,19 +51,21 @@ struct PeriodicPolicy {
   /// Simbody's and MuJoCo's trains) kept a tenth of the change it measures, to options.accuracy. Equal to
   /// options.accuracy: one stage (a fixed-step route).
   double first_accuracy = 0.0;
-  /// Cycle starts between extrapolations (findExtrapolatedFixedPoint over that many + 1); 0: none.
+  /// The most cycles whose starts an extrapolation reads (findExtrapolatedFixedPoint over that many + 1): from the
+  /// 4th cycle at one accuracy (or since the last move) each cycle tries the last up to this many; 0: none.
   int extrapolation_window = 0;
 };
 
-/// The cycle-to-cycle window of extrapolation that the routes use (findExtrapolatedFixedPoint's k + 1): measured on
-/// the gate's trains (the example four at 6000 and 5450 rpm, the marine six at 105 rpm).
+/// The window of extrapolation that the routes use (findExtrapolatedFixedPoint's k + 1 at most), measured on the
+/// gate's trains (the example four at 6000 and 5450 rpm, the marine six at 105 rpm; Simbody 21 s for the three, 23 s
+/// with every extrapolation over exactly 6 cycles, 38 s with none).
 inline constexpr int kExtrapolationWindow = 6;
 
 /// From the run's state at s = 0, cycle by cycle (64 probes each: the largest deviation of the cycle), until the
 /// deviations and rates at a cycle's start change by less than options.periodicity of that largest deviation at
-/// options.accuracy; the accuracy staged (PeriodicPolicy::first_accuracy); after every `extrapolation_window` cycles
-/// at one accuracy the run is moved to the extrapolated fixed point of their starts (when trusted and the route can
-/// move): the stopping rule is the same, measured over whole integrated cycles after the last move. Then one more
+/// options.accuracy; the accuracy staged (PeriodicPolicy::first_accuracy); from the 4th cycle at one accuracy the run
+/// is moved to the extrapolated fixed point of the last cycles' starts when it is trusted and the engine can assemble
+/// it: the stopping rule is the same, measured over whole integrated cycles after the last move. Then one more
 /// cycle sampled at options.samples equal steps into the twists (section i: x_{i+1} - x_i, the last -x_{n-1}).
 /// `what` starts the messages ("mujoco", "simbody").
 /// @throws std::runtime_error if not periodic after options.max_cycles cycles or the deviations become non-finite.

@@ -11,14 +11,14 @@
 /// pistons assembled), integrated (RungeKuttaMerson, every probe and sample an integrated state) cycle by cycle by every
 /// engine's one policy (crankcheck/scene/periodic_run.h): at 1000 x `accuracy` until the deviations psi_i - omega t and
 /// their rates at a cycle's start change by less than 1000 x periodicity of the largest deviation over the cycle, then at
-/// `accuracy` until they change by less than `periodicity`; every 6 cycles at one accuracy the run is moved to the
-/// extrapolated fixed point of their starts (the pins locked at the extrapolated angles and rates, the pistons and rods
-/// assembled to them, as at t = 0); then one more cycle sampled at `samples` equal steps. Measured on the gate's cases
-/// (tests/gate/torsion_test.cc): the example four at 6000 rpm 11 cycles, 7.5 s (22 cycles, 11.8 s run out without the
-/// extrapolation, the accuracy staged a decade at a time); at 5450 rpm 12 cycles, 9.2 s (20, 11.0 s); the marine six at
-/// 105 rpm, whose first mode is damped 2 %, 14 cycles, 6.6 s (69, 15.8 s). The cycle-to-cycle change at accuracy 1e-10
+/// `accuracy` until they change by less than `periodicity`; from the 4th cycle at one accuracy on, the run is moved to
+/// the extrapolated fixed point of its last cycle starts (the pins locked at the extrapolated angles and rates, the
+/// pistons and rods assembled to them, as at t = 0); then one more cycle sampled at `samples` equal steps. Measured on
+/// the gate's cases (tests/gate/torsion_test.cc): the example four at 6000 rpm 10 cycles, 7.7 s (22 cycles, 11.8 s run
+/// out without the extrapolation, the accuracy staged a decade at a time); at 5450 rpm 10 cycles, 8.3 s (20, 11.0 s);
+/// the marine six at 105 rpm, whose first mode is damped 2 %, 13 cycles, 5.1 s (69, 15.8 s). The cycle-to-cycle change at accuracy 1e-10
 /// stops falling at about 1e-7 of the twist (the integration's own error per cycle, the example four at 6000 rpm), hence
-/// `periodicity` 1e-6 by default; the twists then agree with the analytic engine's exact steady state to 1.6e-7 of the
+/// `periodicity` 1e-6 by default; the twists then agree with the analytic engine's exact steady state to 1.4e-7 of the
 /// twist scale.
 
 #include <vector>
