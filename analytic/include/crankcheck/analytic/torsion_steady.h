@@ -7,10 +7,11 @@
 ///
 /// Method: shooting on the one-cycle map. With s = omega t and y = (x, dx/ds) the state at s = 0, P(y) is the state
 /// after one cycle (Boost.Odeint's Dormand-Prince 5(4), error per step below `tolerance` relative and `tolerance` x
-/// the twist scale absolute); Newton's method solves P(y) = y, each Jacobian dP/dy from the variational equations
-/// integrated beside the state (at 1e-8: a Newton step needs the Jacobian only roughly; the residual is always the
-/// accurate map's). Start: Holzer's response at s = 0 (torsion_forced.h). Converged when the periodicity residual is
-/// below 1000 x `tolerance` of the twist scale (the largest deviation |x| of Holzer's response): the map's own
+/// the twist scale absolute); Newton's method solves P(y) = y, the Jacobian dP/dy from the variational equations
+/// integrated beside the state at 1e-6 (a Newton step needs it only roughly; the residual is always the accurate
+/// map's) and kept while each step cuts the residual at least tenfold (computed anew at the current start otherwise).
+/// Start: Holzer's response at s = 0 (torsion_forced.h). Converged when the periodicity residual is below 1000 x
+/// `tolerance` of the twist scale (the largest deviation |x| of Holzer's response): the map's own
 /// accuracy (measured on the example inline four at 6000 rpm: P at 1e-11 and at 1e-14 differ by 1e-9 of the scale).
 /// Runge-Kutta-Fehlberg 7(8) was tried first and rejected: its error estimate vanishes on the part of the equations
 /// that depends on time alone (the forcing), and its map at 1e-10 was off by 5e-6 of the scale.
