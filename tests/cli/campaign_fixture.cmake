@@ -9,7 +9,8 @@ file(REMOVE_RECURSE ${DIR})
 file(MAKE_DIRECTORY ${DIR})
 separate_arguments(args UNIX_COMMAND "${ARGS}")
 execute_process(COMMAND ${CRANKCHECK} ${args} --out ${DIR}/report RESULT_VARIABLE status
-                OUTPUT_FILE ${DIR}/stdout.txt ERROR_FILE ${DIR}/stderr.txt)
+                OUTPUT_FILE ${DIR}/stdout.txt ERROR_FILE ${DIR}/stderr.txt
+                TIMEOUT 600)  # never waited on without a limit (a full campaign takes about 30 s)
 file(WRITE ${DIR}/status.txt "${status}\n")
 if(NOT status EQUAL 0)
   file(READ ${DIR}/stdout.txt out)
