@@ -64,6 +64,27 @@ class ShaftForces : public SimTK::Force::Custom::Implementation {
 };
 
 
+// Puts the train in `state` (at its time t) with every pin at psi_i = x_i + omega t turning at omega (1 + x_s,i): the
+// pins locked there, the pistons and rods assembled to them from what `state` holds, the pins unlocked. False when a
+// piston lands inside the crank circle (the unphysical branch).
+bool assembleTrain(const SimTK::MultibodySystem& system, const std::vector<SimTK::MobilizedBody::Pin>& shaft,
+                   const std::vector<MechanismBodies>& throws, double omega, const std::vector<double>& x,
+                   const std::vector<double>& x_s, double tolerance, SimTK::State& state) {
+  const double t = state.getTime();
+  for (size_t i = 0; i < shaft.size(); ++i) shaft[i].lockAt(state, x[i] + omega * t, SimTK::Motion::Position);
+  system.realizeModel(state);
+  system.projectQ(state, tolerance);
+  for (size_t i = 0; i < shaft.size(); ++i) shaft[i].lockAt(state, omega * (1.0 + x_s[i]), SimTK::Motion::Velocity);
+  system.realizeModel(state);
+  system.projectU(state, tolerance);
+  for (const auto& pin : shaft) pin.unlock(state);
+  system.realizeModel(state);
+  for (const MechanismBodies& b : throws)
+    for (const auto& piston : b.pistons)
+      if (!(piston.getQ(state) > 0.0)) return false;
+  return true;
+}
+
 // Simbody's integration of the train (RungeKuttaMerson, every probe and sample an integrated state), cycle by cycle:
 // crankcheck/scene/periodic_run.h's CycleRun. Time runs on (t = t0 + s / omega, t0 the cycle's start).
 class TrainRun final : public CycleRun {
@@ -103,21 +124,12 @@ class TrainRun final : public CycleRun {
     }
   }
   bool moveTo(const std::vector<double>& y) override {
-    // y = (x, x_s): the pins locked at their new angles and rates, the pistons and rods assembled to them (as at t = 0).
+    // y = (x, x_s): assembled as at t = 0 (assembleTrain); on the unphysical branch the run stays where it is.
     const size_t n = shaft_.size();
     SimTK::State s = integrator_.getState();
-    const double t = s.getTime();
-    for (size_t i = 0; i < n; ++i) shaft_[i].lockAt(s, y[i] + omega_ * t, SimTK::Motion::Position);
-    system_.realizeModel(s);
-    system_.projectQ(s, assembly_tolerance_);
-    for (size_t i = 0; i < n; ++i) shaft_[i].lockAt(s, omega_ * (1.0 + y[n + i]), SimTK::Motion::Velocity);
-    system_.realizeModel(s);
-    system_.projectU(s, assembly_tolerance_);
-    for (const auto& pin : shaft_) pin.unlock(s);
-    system_.realizeModel(s);
-    for (const MechanismBodies& b : throws_)
-      for (const auto& piston : b.pistons)
-        if (!(piston.getQ(s) > 0.0)) return false;  // the unphysical branch: stay where the run is
+    if (!assembleTrain(system_, shaft_, throws_, omega_, std::vector<double>(y.begin(), y.begin() + static_cast<long>(n)),
+                       std::vector<double>(y.begin() + static_cast<long>(n), y.end()), assembly_tolerance_, s))
+      return false;
     steps_ += integrator_.getNumStepsTaken();
     integrator_.initialize(s);
     return true;
@@ -199,18 +211,9 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
       b.pistons[j].setQ(state, l);
       b.rods[j].setQ(state, 0.0);
     }
-  for (const auto& pin : shaft) pin.lockAt(state, 0.0, SimTK::Motion::Position);
-  system.realizeModel(state);
-  system.projectQ(state, tolerance);
-  for (const auto& pin : shaft) pin.lockAt(state, omega, SimTK::Motion::Velocity);
-  system.realizeModel(state);
-  system.projectU(state, tolerance);
-  for (const auto& pin : shaft) pin.unlock(state);
-  system.realizeModel(state);
-  for (const MechanismBodies& b : throws)
-    for (const auto& piston : b.pistons)
-      if (!(piston.getQ(state) > 0.0))
-        throw std::runtime_error("simulateCrankTrainSteadyState: assembly landed on the unphysical branch");
+  const std::vector<double> rigid(shaft.size(), 0.0);  // x = 0, x_s = 0 at t = 0
+  if (!assembleTrain(system, shaft, throws, omega, rigid, rigid, tolerance, state))
+    throw std::runtime_error("simulateCrankTrainSteadyState: assembly landed on the unphysical branch");
 
   TrainRun run(system, shaft, throws, omega, std::min(options.accuracy, 1e-6), tolerance, state);
   const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * SimTK::Pi : 2.0 * SimTK::Pi;
