@@ -1066,10 +1066,7 @@ bool SoftTrainRun::moveTo(const std::vector<double>& y) {
     if (i != flywheel_q_) d->qpos[i] = y[k++];
   for (int i = 0; i < mm->nv; ++i)
     if (i != flywheel_v_) d->qvel[i] = y[k++];
-  step_in_cycle_ = 0;
-  d->time = 0.0;
-  d->qpos[flywheel_q_] = 0.0;
-  d->qvel[flywheel_v_] = omega_;
+  startCycle(0.0, 0.0);  // at a cycle's start: time 0, W at 0 turning at omega
   return true;
 }
 
