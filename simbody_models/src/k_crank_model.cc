@@ -84,6 +84,14 @@ class KCrankModel::Impl {
   };
   StaticPass static_pass_;
 
+  // Gravity's power per unit crank speed at the assembled angle, from the last dynamic pass at omega != 0 (velocities are
+  // linear in omega): the second route to Q (virtualPowerQ) reads it instead of solving the velocities again.
+  struct UnitPower {
+    bool valid = false;
+    double phi = 0.0, power = 0.0;
+  };
+  UnitPower unit_power_;
+
   Mechanism m_;
   ModelOptions options_;
   int k_ = 0;
@@ -178,6 +186,7 @@ void KCrankModel::Impl::assemble(double phi) {
   // Warm start from the previous solution when it is near; otherwise from the crude guess.
   const bool warm = assembled_ && std::abs(wrappedDifference(phi, assembled_phi_)) <= 1.0;
   if (!warm) setReferenceGuess();
+  unit_power_.valid = false;
   drive_->phi = phi;
   // u's are irrelevant to positions but zero them so nothing stale survives a failed attempt.
   state_.updU() = 0;
@@ -220,6 +229,7 @@ void KCrankModel::Impl::solveMotion(double omega) {
     throw std::runtime_error("KCrankModel: Simbody failed to solve the motion at phi = " +
                              std::to_string(drive_->phi) + " rad: " + error.what());
   }
+  if (omega != 0.0) unit_power_ = {true, assembled_phi_, calcGravityPower(matter_, gravity_, state_) / omega};
 }
 
 double KCrankModel::Impl::driveTorque() const {
@@ -396,6 +406,8 @@ double KCrankModel::Impl::holdingTorque(double phi) {
 }
 
 double KCrankModel::Impl::virtualPowerQ(double phi) {
+  // Power of gravity = -dV/dt = -Q dphi/dt: per unit crank speed, -Q.
+  if (assembled_ && assembled_phi_ == phi && unit_power_.valid && unit_power_.phi == phi) return -unit_power_.power;
   assemble(phi);
   // Unit crank speed: every body's velocity is then its velocity per unit dphi/dt.
   drive_->omega = 1.0;

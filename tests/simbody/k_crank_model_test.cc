@@ -178,6 +178,22 @@ TEST_P(KCrankModelTest, HoldingTorqueEqualsVirtualPower) {
   }
 }
 
+// Route 2 read off an evaluation at the scene's speed (the velocities there, per unit omega: the model keeps gravity's
+// power of its dynamic pass) against route 2 solved afresh at unit crank speed by a model that evaluated nothing.
+// The velocity solve is linear in omega, so the two differ by the roundoff of the scaling and of two projections:
+// the same 32 eps T_g as above (seen: below 1 eps T_g).
+TEST_P(KCrankModelTest, VirtualPowerAfterAnEvaluationEqualsAFreshOne) {
+  const double tolerance = 32 * kEps * scales_.torque_gravity;
+  for (double phi : kAngles) {
+    SCOPED_TRACE("phi = " + std::to_string(phi));
+    KCrankModel fresh(model_.mechanism());
+    const double unit_speed = fresh.calcVirtualPowerQ(phi);
+    model_.evaluate(phi);
+    EXPECT_WITHIN("Q virtual power after evaluate vs fresh", model_.calcVirtualPowerQ(phi), unit_speed, tolerance,
+                  scales_.torque_gravity);
+  }
+}
+
 // Q route 3: central difference of U = V - V(0). Error = truncation h^2/6 |Q'''| + roundoff.
 //  - Truncation: Q is periodic; its harmonic n has amplitude <~ T_g lambda^(n-1), so
 //    |Q'''| <= T_g sum n^3 lambda^(n-1) ~ 10 T_g for lambda = 0.3 (an overestimate: ~0.2 T_g is typical).
