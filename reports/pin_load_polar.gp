@@ -31,7 +31,16 @@ npanels = nscenes > 8 ? 8 : nscenes
 array TITLE[8]
 do for [i = 1:8] { TITLE[i] = sprintf("scene %d", i) }
 if (nscenes > 0) { stats file skip 1 using (column(1) < 8 ? TITLE[int(column(1)) + 1] = strcol(8) : 0, 0) nooutput }
-sel(i, eng, c) = (int(column(1)) == i && strcol(2) eq eng) ? column(c) : NaN
+# The rows of each (scene, engine) run together in the sorted CSV: their first and last row (after the header) found
+# in one pass, so that each curve reads only its own rows (every ::first::last), not the whole file through a filter.
+array FIRST_A[8]
+array LAST_A[8]
+array FIRST_S[8]
+array LAST_S[8]
+do for [i = 1:8] { FIRST_A[i] = -1; LAST_A[i] = -2; FIRST_S[i] = -1; LAST_S[i] = -2 }
+mark(i, eng, row) = (i < 8 ? (eng eq "analytic" ? (FIRST_A[i + 1] < 0 ? FIRST_A[i + 1] = row : 0, LAST_A[i + 1] = row) \
+                                                : eng eq "simbody" ? (FIRST_S[i + 1] < 0 ? FIRST_S[i + 1] = row : 0, LAST_S[i + 1] = row) : 0) : 0)
+if (nscenes > 0) { stats file skip 1 using (mark(int(column(1)), strcol(2), int($0)), 0) nooutput }
 
 if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) { pngterm = "pngcairo" } else { pngterm = "png" }
 cols = npanels > 4 ? int((npanels + 1) / 2) : (npanels > 0 ? npanels : 1)
@@ -67,10 +76,13 @@ do for [fmt in "svg png"] {
         if (p == 1) {
             if (npanels % 2 == 1 && npanels > 4) { set key at screen 0.985, screen 0.3 right center vertical font ",9" samplen 2 } else { set key at screen 0.5, screen 0.03 center center horizontal font ",9" samplen 2 }
         } else { unset key }
-        plot file skip 1 using (sel(i, "analytic", 4)):(sel(i, "analytic", 5)) with lines lw 1.5 lc rgb "#1f77b4" title "crank pin (analytic)", \
-             file skip 1 every 3 using (sel(i, "simbody", 4)):(sel(i, "simbody", 5)) with points pt 7 ps 0.3 lc rgb "#0b3d91" title "crank pin (Simbody)", \
-             file skip 1 using (sel(i, "analytic", 6)):(sel(i, "analytic", 7)) with lines lw 1.5 lc rgb "#d62728" title "main bearing (analytic)", \
-             file skip 1 every 3 using (sel(i, "simbody", 6)):(sel(i, "simbody", 7)) with points pt 7 ps 0.3 lc rgb "#7f0000" title "main bearing (Simbody)"
+        # An engine without rows in this scene: one row read, its values NaN (every with a negative bound reads all).
+        ok_a = FIRST_A[p] >= 0; a0 = ok_a ? FIRST_A[p] : 0; a1 = ok_a ? LAST_A[p] : 0
+        ok_s = FIRST_S[p] >= 0; s0 = ok_s ? FIRST_S[p] : 0; s1 = ok_s ? LAST_S[p] : 0
+        plot file skip 1 every ::a0::a1 using (ok_a ? $4 : NaN):5 with lines lw 1.5 lc rgb "#1f77b4" title "crank pin (analytic)", \
+             file skip 1 every 3::s0::s1 using (ok_s ? $4 : NaN):5 with points pt 7 ps 0.3 lc rgb "#0b3d91" title "crank pin (Simbody)", \
+             file skip 1 every ::a0::a1 using (ok_a ? $6 : NaN):7 with lines lw 1.5 lc rgb "#d62728" title "main bearing (analytic)", \
+             file skip 1 every 3::s0::s1 using (ok_s ? $6 : NaN):7 with points pt 7 ps 0.3 lc rgb "#7f0000" title "main bearing (Simbody)"
     }
     unset multiplot
     unset output
