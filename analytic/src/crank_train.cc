@@ -28,13 +28,7 @@ ThrowLoads calcThrowLoads(const Mechanism& tm, double psi) {
   out.J = J.J;
   out.dJ = J.dJ;
   out.gravity_torque = calcGravityTorque(tm, psi);
-  if (tm.gas)
-    for (int c = 0; c < tm.engine.cylinders; ++c) {
-      // The gas pushes piston c with -p A e_c: its power -p A x_p' psi', so its torque on the shaft is -p A x_p'.
-      const double dx_dpsi = calcPistonKinematics(tm, psi + tm.engine.crank_angles[static_cast<size_t>(c)],
-                                                  getPinOffset(tm, c)).v_p / tm.engine.speed;
-      out.gas_torque -= calcGasForce(tm, c, psi) * dx_dpsi;
-    }
+  out.gas_torque = calcGasTorque(tm, psi);
   return out;
 }
 

@@ -7,8 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "crankcheck/analytic/exact_trig.h"
-#include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/analytic/reactions.h"
@@ -17,32 +15,6 @@ namespace crankcheck::analytic {
 namespace {
 
 double cycleOf(const Mechanism& m) { return m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI; }
-
-// The gas's torque on the shaft by virtual work (calcGasTorque), with what does not depend on phi prepared once: the
-// scene at unit crank speed (so that v_p is dx_p/dphi), sin and cos of every throw's alpha_j, every pin offset.
-class GasTorque {
- public:
-  explicit GasTorque(const Mechanism& m) : unit_(m) {
-    unit_.engine.speed = 1.0;
-    for (int j = 0; j < m.engine.cylinders; ++j) {
-      alpha_.push_back(calcSinCos(m.engine.crank_angles.at(static_cast<size_t>(j))));
-      offset_.push_back(getPinOffset(m, j));
-    }
-  }
-  double operator()(double phi) const {
-    const SinCos p = calcSinCos(phi);
-    double torque = 0.0;
-    for (size_t j = 0; j < alpha_.size(); ++j)
-      torque -= calcGasForce(unit_, static_cast<int>(j), phi) *
-                calcPistonKinematics(unit_, addAngles(p, alpha_[j]), offset_[j]).v_p;  // theta_j as calcThrowSinCos
-    return torque;
-  }
-
- private:
-  Mechanism unit_;
-  std::vector<SinCos> alpha_;
-  std::vector<double> offset_;
-};
 
 // The cycle's grid: 0.1 degree steps and the pressure table's corners of every cylinder, sorted, from 0 to the cycle.
 std::vector<double> cycleGrid(const Mechanism& m) {
@@ -77,11 +49,10 @@ CycleData calcCycleData(const Mechanism& m) {
   Mechanism bare = m;
   bare.flywheel_inertia = 0.0;  // the flywheel is I_f, added below
   std::vector<double> W(d.phi.size(), 0.0);
-  const GasTorque gasTorque(m);
   for (size_t i = 1; i < d.phi.size(); ++i) {
     const double a = d.phi[i - 1], b = d.phi[i], half = 0.5 * (b - a), mid = 0.5 * (a + b);
     double sum = 0.0;
-    for (int q = 0; q < 8; ++q) sum += kWeights[q] * gasTorque(mid + half * kNodes[q]);
+    for (int q = 0; q < 8; ++q) sum += kWeights[q] * calcGasTorque(m, mid + half * kNodes[q]);
     W[i] = W[i - 1] + half * sum;
   }
   d.load_torque = W.back() / d.cycle;
@@ -162,8 +133,6 @@ void checkInputs(const Mechanism& m) {
 }
 
 }  // namespace
-
-double calcGasTorque(const Mechanism& m, double phi) { return GasTorque(m)(phi); }
 
 SteadyRun calcSteadyRun(const Mechanism& m, double flywheel_inertia, double load_torque) {
   return calcSteadyRuns(m, {flywheel_inertia}, load_torque).front();

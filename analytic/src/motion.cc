@@ -54,6 +54,20 @@ ReducedInertia calcReducedInertia(const Mechanism& m, double phi, RodInertiaForm
   return out;
 }
 
+double calcGasTorque(const Mechanism& m, double phi) {
+  if (!m.gas) return 0.0;
+  if (!(m.engine.speed > 0.0))
+    throw std::invalid_argument("calcGasTorque: the crank speed must be > 0 (dx_p/dphi is read as v_p / omega)");
+  double torque = 0.0;
+  for (int c = 0; c < m.engine.cylinders; ++c) {
+    // The gas pushes piston c with -p A e_c: its power -p A x_p' phi', so its torque on the shaft is -p A x_p'.
+    const double dx_dphi = calcPistonKinematics(m, phi + m.engine.crank_angles[static_cast<size_t>(c)],
+                                                getPinOffset(m, c)).v_p / m.engine.speed;
+    torque -= calcGasForce(m, c, phi) * dx_dphi;
+  }
+  return torque;
+}
+
 double calcCrankAcceleration(const Mechanism& m, double phi, double phi_dot, double net_torque, bool gravity) {
   const ReducedInertia inertia = calcReducedInertia(m, phi);
   const double Q = gravity ? calcGravityTorque(m, phi) : 0.0;

@@ -1,15 +1,19 @@
-// Reduced inertia and the free run against independent routes: the paper's two-mass rod with Delta_I (an identity),
-// finite differences of J, the Newton-Euler drive torque (Lagrange's equation at constant speed), and a direct
-// Runge-Kutta integration of Lagrange's equation for the free run.
+// Reduced inertia, the gas torque and the free run against independent routes: the paper's two-mass rod with Delta_I
+// (an identity), finite differences of J, the Newton-Euler drive torque (Lagrange's equation at constant speed; the gas
+// alone for the gas torque), and a direct Runge-Kutta integration of Lagrange's equation for the free run.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <string>
 
 #include "../support/cases.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/reactions.h"
+#include "crankcheck/scene/scene_file.h"
 
 namespace crankcheck::analytic {
 namespace {
@@ -128,6 +132,45 @@ TEST(FreeRun, RefusesARunThatCannotCompleteARevolution) {
   EXPECT_THROW(calcFreeRun(m, m.engine.speed, true), std::domain_error);
   m.flywheel_inertia.reset();
   EXPECT_THROW(calcFreeRun(m, 10.0, true), std::invalid_argument);
+}
+
+// The gas torque by virtual work (calcGasTorque, -sum F_gas dx_p/dphi) against minus the drive torque of the gas alone
+// from the force balance of every body (reactions.h), on the example scenes with [gas] (the V8's two banks, the inline
+// four, the pin-offset four), over their whole working cycle, on and off the pressure table's corners. Tolerance: both
+// sum k terms of size F_gas,max r; the force balance takes about ten roundings per term (the rod's moment, the two
+// components of F_A, F_B, the cross product), the virtual work three: 32 eps x k x F_gas,max r covers both (seen:
+// 0.89 eps x k x F_gas,max r).
+class GasTorqueTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(GasTorqueTest, VirtualWorkEqualsMinusTheDriveTorqueOfTheGasAlone) {
+  const Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / GetParam());
+  ASSERT_TRUE(m.gas.has_value()) << GetParam() << " has no [gas]";
+  const Mechanism gas_only = withLoads(m, true, false, false);
+  const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
+  double largest = 0.0;  // the largest gas force of any cylinder over the cycle
+  for (int i = 0; i < 1440; ++i)
+    for (int j = 0; j < m.engine.cylinders; ++j) largest = std::max(largest, std::fabs(calcGasForce(m, j, cycle * i / 1440)));
+  const double scale = m.engine.cylinders * largest * m.crank.radius;
+  ASSERT_GT(scale, 0.0);
+  for (int i = 0; i <= 1440; ++i)
+    for (double off : {0.0, 1e-3}) {
+      const double phi = cycle * i / 1440 + off;
+      EXPECT_NEAR(calcGasTorque(m, phi), -calcReactions(gas_only, phi).drive_torque, 32.0 * kEps * scale) << phi;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, GasTorqueTest,
+                         ::testing::Values("v8_cross_plane.toml", "inline4_four_stroke.toml", "inline4_pin_offset.toml"),
+                         [](const ::testing::TestParamInfo<std::string>& info) {
+                           return info.param.substr(0, info.param.find('.'));
+                         });
+
+// Without [gas] the gas torque is 0; a scene at rest cannot give dx_p/dphi as v_p / omega and is refused.
+TEST(GasTorque, ZeroWithoutGasAndRefusedAtRest) {
+  Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
+  Mechanism no_gas = withLoads(m, false, true, true);
+  EXPECT_EQ(calcGasTorque(no_gas, 0.3), 0.0);
+  EXPECT_THROW(calcGasTorque(withLoads(m, true, false, true), 0.3), std::invalid_argument);
 }
 
 }  // namespace

@@ -7,10 +7,10 @@
 /// The steady run (gravity on): with the mechanism's own reduced inertia J(phi) (motion.h; the scene's flywheel
 /// replaced by I_f, not added) the energy integral
 ///   (1/2) (J(phi) + I_f) phi_dot^2 = (1/2) (J(0) + I_f) phi_dot(0)^2 + W(phi) - T_L phi - U(phi),
-/// W(phi) the work of the gas on the shaft since phi = 0 (the integral of the gas's torque calcGasTorque, by virtual
-/// work; the same as minus the gas part of reactions.h's drive torque, tests/analytic/flywheel_test.cc), U the potential (potential_energy.h), T_L the load: the cycle mean of the gas torque,
-/// so that the run is periodic over the working cycle (720 degrees four-stroke, 360 two-stroke). phi_dot(0) is chosen
-/// so that the mean speed (cycle angle over cycle time) is the scene's omega. No time stepping: W by 8-point
+/// W(phi) the work of the gas on the shaft since phi = 0 (the integral of the gas's torque, motion.h's calcGasTorque),
+/// U the potential (potential_energy.h), T_L the load: the cycle mean of the gas torque, so that the run is periodic
+/// over the working cycle (720 degrees four-stroke, 360 two-stroke). phi_dot(0) is chosen so that the mean speed
+/// (cycle angle over cycle time) is the scene's omega. No time stepping: W by 8-point
 /// Gauss-Legendre on every interval of a 0.1-degree grid split at the pressure table's corners (the gas torque is smooth
 /// between them), the cycle time by Simpson's rule on the same grid, the extremes of phi_dot refined by a parabola
 /// through the best sample and its neighbours. The root in I_f (delta falls as I_f grows) and the one in phi_dot(0) are
@@ -55,9 +55,5 @@ SteadyRun calcSteadyRun(const Mechanism& m, double flywheel_inertia, double load
 /// @throws as calcSteadyRun.
 std::vector<SteadyRun> calcSteadyRuns(const Mechanism& m, const std::vector<double>& flywheel_inertias,
                                       double load_torque);
-
-/// [N m] The gas's torque on the crankshaft at crank angle phi: the power of every cylinder's gas force per unit crank
-/// speed, -sum_j F_gas,j dx_p,j/dphi (virtual work; 0 without [gas]).
-double calcGasTorque(const Mechanism& m, double phi);
 
 }  // namespace crankcheck::analytic

@@ -28,6 +28,13 @@ struct ReducedInertia {
 
 ReducedInertia calcReducedInertia(const Mechanism& m, double phi, RodInertiaForm form = RodInertiaForm::kTrueInertia);
 
+/// [N m] The gas forces' torque on the crankshaft about +Z at crank angle phi: their power per unit crank speed,
+/// -sum_j F_gas,j dx_p,j/dphi (virtual work; the same as minus the drive torque of the gas alone, reactions.h, held
+/// to it in tests/analytic/motion_test.cc). 0 without [gas]. The one formula of the flywheel's work (flywheel.h) and of
+/// each throw's gas torque in the crank train (crank_train.h).
+/// @throws std::invalid_argument if the scene's crank speed is not > 0 (dx_p/dphi is read as v_p / omega).
+double calcGasTorque(const Mechanism& m, double phi);
+
 /// phi'' [rad/s^2] from Lagrange's equation at (phi, phi_dot) with a net external torque T_drive - T_load [N m].
 double calcCrankAcceleration(const Mechanism& m, double phi, double phi_dot, double net_torque, bool gravity = true);
 
