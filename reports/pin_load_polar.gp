@@ -11,7 +11,8 @@
 # in the crank's own frame (x: radial, outward along the throw; y: tangential, the direction of rotation) in blue,
 # the main-bearing force in the frame's X, Y in red; analytic as lines, Simbody (engine "simbody") as dots. Equal
 # axes, in N (SI prefixes: k, M). The scene's name (last column, so that a name with a comma cannot shift the numbers) is the panel's
-# title. At most 8 panels (2 rows); rows may come in any order within a scene's engine (sorted by phi_deg).
+# title. At most 8 panels (2 rows). The rows of each (scene, engine) come together, in order of phi_deg (crankcheck
+# writes its tables sorted: scene_index, engine, phi_deg).
 
 if (!exists("in_dir"))  in_dir  = "."
 if (!exists("out_dir")) out_dir = "."
