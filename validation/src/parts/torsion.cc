@@ -5,8 +5,9 @@
 // campaign), each swept over speed from 0.25 to 1.25 times its own speed (17 speeds, and 3 around each of Holzer's
 // critical speeds of the lowest major orders: listSweepSpeeds; --quick: 0.5, 0.75 and 1).
 // Accuracy of the sweep: Holzer's sum converged to 1e-6 of the largest peak-to-peak (HolzerOptions), the exact steady
-// state integrated at 1e-8 (SteadyStateOptions; its error bound, about 1e-6 of the twist scale, is in the table): both
-// far below the percent differences the part is about, at a third of the cost of `crankcheck torsion`'s 1e-8 / 1e-11.
+// state integrated at 1e-8 (SteadyStateOptions; its error bound, at most 2e-5 of the largest peak-to-peak, is in the
+// table): both far below the percent differences the part is about, at a third of the cost of `crankcheck torsion`'s
+// 1e-8 / 1e-11.
 //
 // Tables (CSV stems, columns; reports/README.md):
 //   torsion           scene,speed_rpm,holzer,holzer_order24,exact,difference,worst_difference,section,worst_section,

@@ -46,8 +46,12 @@ struct ExactSteadyState {
   double residual = 0.0;     ///< max |P(y) - y| of the last step, in units of the twist scale
   double twist_scale = 0.0;  ///< [rad] the largest |x| of Holzer's response (the residual's unit)
   long steps = 0;            ///< the integrator's steps over the last cycle
-  /// [rad] max over sections of |peak-to-peak at `tolerance` - peak-to-peak at 100 x `tolerance`|, from the same
-  /// start: a bound on the integration's part of the error (the looser run's; the accurate run is closer).
+  /// [rad] max over sections of |peak-to-peak reported - peak-to-peak of a run at 100 x `tolerance` from a start three
+  /// times as far from the periodic orbit (y0 - 2 delta, delta the Newton step the last residual asks for)|: a bound on
+  /// both the integration's part of the error (the looser run's; the accurate run is closer) and the periodicity's (to
+  /// first order twice the reported orbit's). The looser run takes the steps its own error control chooses and reads
+  /// the samples off its dense output (at step ends it took the samples' spacing wherever that was below its steps:
+  /// the same computation as the accurate run, and from the same start the "bound" read 0 on the marine six).
   double error_bound = 0.0;
 };
 
