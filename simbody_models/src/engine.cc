@@ -20,6 +20,7 @@ class Model final : public EngineModel {
  public:
   explicit Model(const Mechanism& m, ModelOptions options = {}) : model_(m, options) {}
   Evaluation evaluate(double phi) override { return model_.evaluate(phi); }
+  Evaluation evaluateMotion(double phi) override { return model_.evaluateMotion(phi); }
   void setSpeed(double omega) override { model_.setSpeed(omega); }
   double calcQ(double phi) override { return model_.calcHoldingTorque(phi); }
   double calcSecondRouteQ(double phi) override { return model_.calcVirtualPowerQ(phi); }

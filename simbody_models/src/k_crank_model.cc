@@ -51,7 +51,8 @@ class KCrankModel::Impl {
   void solveMotion(double omega);
   /// Drive torque [N m] about +Z at the current (Acceleration-realized) state.
   double driveTorque() const;
-  Evaluation evaluateAt(double phi, Diagnostics* diagnostics);
+  /// With `motion_only`, no static pass (U and Q NaN): EngineModel::evaluateMotion.
+  Evaluation evaluateAt(double phi, Diagnostics* diagnostics, bool motion_only = false);
   void setSpeed(double omega) {
     if (!std::isfinite(omega)) throw std::invalid_argument("KCrankModel: crank speed omega must be finite");
     m_.engine.speed = omega;
@@ -312,11 +313,30 @@ void KCrankModel::Impl::readMotion(Evaluation& ev, SimTK::Vector_<SimTK::Spatial
   ev.shaking_moment = {-rate[0][0], -rate[0][1], -rate[0][2]};
 }
 
-Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics) {
+Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics, bool motion_only) {
   Evaluation ev;
   ev.engine = "simbody";
   ev.phi = phi;
   const double omega = m_.engine.speed;
+  if (motion_only && diagnostics == nullptr) {
+    // The dynamic pass alone, from the assembled positions and zero velocities, as evaluate()'s after its static pass
+    // (which leaves u = 0: at rest the velocities project to zero). The assembly as evaluate()'s: reused where its
+    // static pass was made at this angle, else made.
+    ev.U = ev.Q = std::numeric_limits<double>::quiet_NaN();
+    if (!(static_pass_.valid && static_pass_.phi == phi)) assemble(phi);
+    state_.updU() = 0;
+    solveMotion(omega);
+    SimTK::Vector_<SimTK::SpatialVec> reactions;
+    readMotion(ev, reactions);
+    for (const CylinderEvaluation& c : ev.cylinders)
+      if (!(std::isfinite(c.x_p) && std::isfinite(c.a_p) && std::isfinite(c.wall_force)))
+        throw std::runtime_error("KCrankModel: Simbody returned non-finite results at phi = " + std::to_string(phi) +
+                                 " rad (singular mass matrix?)");
+    if (!(std::isfinite(ev.drive_torque) && std::isfinite(ev.bearing_force[0]) && std::isfinite(ev.bearing_force[1])))
+      throw std::runtime_error("KCrankModel: Simbody returned non-finite results at phi = " + std::to_string(phi) +
+                               " rad (singular mass matrix?)");
+    return ev;
+  }
   // Without a gas force the dynamic pass at rest solves the very problem of the static pass (omega = 0, gravity
   // alone): its evaluation is the static pass's, read off the same solved state, not solved a second time.
   const bool rest_is_static = omega == 0.0 && !m_.gas && diagnostics == nullptr;
@@ -426,6 +446,7 @@ KCrankModel::KCrankModel(KCrankModel&&) noexcept = default;
 KCrankModel& KCrankModel::operator=(KCrankModel&&) noexcept = default;
 
 Evaluation KCrankModel::evaluate(double phi) { return impl_->evaluateAt(phi, nullptr); }
+Evaluation KCrankModel::evaluateMotion(double phi) { return impl_->evaluateAt(phi, nullptr, true); }
 void KCrankModel::setSpeed(double omega) { impl_->setSpeed(omega); }
 
 Diagnostics KCrankModel::calcDiagnostics(double phi) {

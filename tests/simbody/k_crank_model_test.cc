@@ -194,6 +194,37 @@ TEST_P(KCrankModelTest, VirtualPowerAfterAnEvaluationEqualsAFreshOne) {
   }
 }
 
+// evaluateMotion skips the static pass and nothing else: against evaluate() of a second model taken through the same
+// angles (so that both assemble from the same warm starts), every field but U and Q is the same number, bit for bit
+// (the dynamic pass starts from the same positions and zero velocities), and U and Q are NaN.
+TEST_P(KCrankModelTest, MotionOnlyEvaluationIsTheEvaluationWithoutUAndQ) {
+  KCrankModel full(mechanism_);
+  for (double phi : kAngles) {
+    SCOPED_TRACE("phi = " + std::to_string(phi));
+    const Evaluation a = full.evaluate(phi), b = model_.evaluateMotion(phi);
+    EXPECT_TRUE(std::isnan(b.U));
+    EXPECT_TRUE(std::isnan(b.Q));
+    EXPECT_EQ(b.drive_torque, a.drive_torque);
+    EXPECT_EQ(b.bearing_force, a.bearing_force);
+    EXPECT_EQ(b.shaking_force, a.shaking_force);
+    EXPECT_EQ(b.shaking_moment, a.shaking_moment);
+    ASSERT_EQ(b.cylinders.size(), a.cylinders.size());
+    for (size_t j = 0; j < a.cylinders.size(); ++j) {
+      const CylinderEvaluation &x = a.cylinders[j], &y = b.cylinders[j];
+      EXPECT_EQ(y.x_p, x.x_p);
+      EXPECT_EQ(y.v_p, x.v_p);
+      EXPECT_EQ(y.a_p, x.a_p);
+      EXPECT_EQ(y.crank_pin_force, x.crank_pin_force);
+      EXPECT_EQ(y.wrist_pin_force, x.wrist_pin_force);
+      EXPECT_EQ(y.wall_force, x.wall_force);
+      EXPECT_EQ(y.gas_force, x.gas_force);
+      EXPECT_EQ(y.rod_angle, x.rod_angle);
+      EXPECT_EQ(y.rod_omega, x.rod_omega);
+      EXPECT_EQ(y.rod_alpha, x.rod_alpha);
+    }
+  }
+}
+
 // Q route 3: central difference of U = V - V(0). Error = truncation h^2/6 |Q'''| + roundoff.
 //  - Truncation: Q is periodic; its harmonic n has amplitude <~ T_g lambda^(n-1), so
 //    |Q'''| <= T_g sum n^3 lambda^(n-1) ~ 10 T_g for lambda = 0.3 (an overestimate: ~0.2 T_g is typical).
@@ -507,6 +538,38 @@ TEST_P(SceneFileTest, QRoutesAndCrankshaftBalance) {
     EXPECT_WITHIN("scene: Euler crankshaft about O", moment, 0.0, 16 * (k + 2) * kEps * s.torque, s.torque);
   }
 }
+
+// evaluateMotion on the example scenes (with gas, two banks, pin offsets: the parts that call it run them: the offset
+// sweep, the pin loads, the balance): the same numbers as evaluate() of a model taken through the same angles, bit for
+// bit, U and Q NaN.
+class MotionOnlySceneTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(MotionOnlySceneTest, MotionOnlyEvaluationIsTheEvaluationWithoutUAndQ) {
+  const Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / (GetParam() + ".toml"));
+  KCrankModel full(m), motion(m);
+  for (double phi : kAngles) {
+    SCOPED_TRACE("phi = " + std::to_string(phi));
+    const Evaluation a = full.evaluate(phi), b = motion.evaluateMotion(phi);
+    EXPECT_TRUE(std::isnan(b.U) && std::isnan(b.Q));
+    EXPECT_EQ(b.drive_torque, a.drive_torque);
+    EXPECT_EQ(b.bearing_force, a.bearing_force);
+    EXPECT_EQ(b.shaking_force, a.shaking_force);
+    EXPECT_EQ(b.shaking_moment, a.shaking_moment);
+    for (size_t j = 0; j < a.cylinders.size(); ++j) {
+      EXPECT_EQ(b.cylinders[j].x_p, a.cylinders[j].x_p);
+      EXPECT_EQ(b.cylinders[j].a_p, a.cylinders[j].a_p);
+      EXPECT_EQ(b.cylinders[j].crank_pin_force, a.cylinders[j].crank_pin_force);
+      EXPECT_EQ(b.cylinders[j].wrist_pin_force, a.cylinders[j].wrist_pin_force);
+      EXPECT_EQ(b.cylinders[j].wall_force, a.cylinders[j].wall_force);
+      EXPECT_EQ(b.cylinders[j].gas_force, a.cylinders[j].gas_force);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, MotionOnlySceneTest,
+                         ::testing::Values("single_cylinder", "inline4_four_stroke", "inline4_pin_offset",
+                                           "v8_cross_plane", "inline6_two_stroke_marine"),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 INSTANTIATE_TEST_SUITE_P(Scenes, SceneFileTest,
                          ::testing::Values("single_cylinder", "inline3_lying_two_stroke", "inline4_four_stroke",

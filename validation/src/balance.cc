@@ -32,7 +32,7 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples) 
       throw std::invalid_argument("--engine " + engine->name + ": " + e.what());
     }
     std::vector<Evaluation> turn;
-    for (int i = 0; i < samples; ++i) turn.push_back(model->evaluate(2.0 * M_PI * i / samples));
+    for (int i = 0; i < samples; ++i) turn.push_back(model->evaluateMotion(2.0 * M_PI * i / samples));  // shaking alone
     values.emplace_back(engine->name, std::move(turn));
   }
 

@@ -19,6 +19,7 @@ class CountedModel : public EngineModel {
  public:
   CountedModel(std::unique_ptr<EngineModel> model, std::string engine) : model_(std::move(model)), engine_(std::move(engine)) {}
   Evaluation evaluate(double phi) override { return counted([&] { return model_->evaluate(phi); }); }
+  Evaluation evaluateMotion(double phi) override { return counted([&] { return model_->evaluateMotion(phi); }); }
   void setSpeed(double omega) override { model_->setSpeed(omega); }
   double calcQ(double phi) override { return counted([&] { return model_->calcQ(phi); }); }
   double calcSecondRouteQ(double phi) override { return counted([&] { return model_->calcSecondRouteQ(phi); }); }

@@ -79,7 +79,7 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
     const double phi = radiansFromDegrees(d);
     const Evaluation centric = analytic::calcEvaluation(single, phi);
     std::vector<Evaluation> e;
-    for (const auto& model : models) e.push_back(model->evaluate(phi));
+    for (const auto& model : models) e.push_back(model->evaluateMotion(phi));  // no U, no Q read here
     const Evaluation& exact = e[0];
     const CylinderEvaluation &x = exact.cylinders[0], &c = centric.cylinders[0];
     const double a_scale = r * m.engine.speed * m.engine.speed;

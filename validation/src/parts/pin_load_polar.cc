@@ -64,7 +64,7 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
     for (int i = 0; i < samples; ++i) {
       const double d = step_deg * i, phi = radiansFromDegrees(d);
       std::vector<Evaluation> e;
-      for (const auto& model : models) e.push_back(model->evaluate(phi));
+      for (const auto& model : models) e.push_back(model->evaluateMotion(phi));  // forces alone: no U, no Q
       for (size_t j = 0; j < engines.size(); ++j) {
         const auto [radial, tangential] = crankFrame(e[j]);
         polar.rows.push_back({std::to_string(first_index + static_cast<int>(index)), engines[j]->name, num(d),
@@ -89,7 +89,7 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
         const bool is_pin = std::string(force) == "crank_pin";
         const auto magnitude = [&](double u) {
           const double phi = u * cycle / (2.0 * M_PI);
-          const Evaluation e = models[j]->evaluate(phi);
+          const Evaluation e = models[j]->evaluateMotion(phi);
           const Vec2& F = is_pin ? e.cylinders[0].crank_pin_force : e.bearing_force;
           return std::hypot(F[0], F[1]);
         };

@@ -41,7 +41,7 @@ TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine) {
     const Scales scales = calcScales(m);
     auto error = [&](analytic::RodInertiaForm form) {
       return [&model, &m, form](double phi) {
-        return analytic::calcReactions(m, phi, form).drive_torque - model->evaluate(phi).drive_torque;
+        return analytic::calcReactions(m, phi, form).drive_torque - model->evaluateMotion(phi).drive_torque;
       };
     };
     const double without = findMaxAbsOverTurn(error(analytic::RodInertiaForm::kTwoMassWithoutDeltaI), 48).value;

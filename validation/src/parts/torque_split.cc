@@ -67,7 +67,7 @@ TableSet calcTorqueSplitTables(const Mechanism& car, const Mechanism& marine) {
       const double phi = radiansFromDegrees(d);
       const Parts p = splitAt(m, phi);
       std::vector<std::string> row = {name, num(d), num(p.drive), num(p.gas), num(p.inertia), num(p.gravity)};
-      for (const auto& model : models) row.push_back(num(model->evaluate(phi).drive_torque));
+      for (const auto& model : models) row.push_back(num(model->evaluateMotion(phi).drive_torque));
       split.rows.push_back(row);
     }
   }

@@ -27,6 +27,11 @@ class EngineModel {
   /// (engine.speed [rad/s]). Units and signs: CONVENTIONS.md.
   /// @throws std::invalid_argument if phi is not finite; std::runtime_error if the engine fails at phi.
   virtual Evaluation evaluate(double phi) = 0;
+  /// evaluate(phi) for a caller that reads no U and no Q: the motion and the loads at the scene's speed (every other
+  /// field, the same numbers as evaluate()'s). An engine whose U and Q cost a solve of their own (Simbody's static pass
+  /// at rest: a fifth of its evaluation) skips them and sets both NaN; the others return evaluate()'s.
+  /// @throws as evaluate().
+  virtual Evaluation evaluateMotion(double phi) { return evaluate(phi); }
   /// Sets the crank speed omega [rad/s] of every later evaluate() (the mechanism's engine.speed, and speed_rpm with
   /// it): speed is a state, not a geometry, so one model serves every speed of its mechanism.
   /// @throws std::invalid_argument if omega is not finite.

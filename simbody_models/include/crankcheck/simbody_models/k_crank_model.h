@@ -100,6 +100,11 @@ class KCrankModel {
   /// @throws std::runtime_error if Simbody cannot assemble the mechanism at phi or returns non-finite values.
   Evaluation evaluate(double phi);
 
+  /// evaluate(phi) without its static pass (the solve at rest that gives Q, and U with it): U and Q are NaN, every other
+  /// field the same numbers (the dynamic pass starts from the same assembled positions and zero velocities).
+  /// @throws as evaluate().
+  Evaluation evaluateMotion(double phi);
+
   /// Sets the crank speed omega [rad/s] of every later evaluation (the mechanism's engine.speed): the System does not
   /// depend on it. @throws std::invalid_argument if omega is not finite.
   void setSpeed(double omega);
