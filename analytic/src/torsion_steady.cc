@@ -115,8 +115,9 @@ struct Integrator {
       if (s < period * (1.0 - 0.5 / samples)) out->push_back(state);
     };
     if (sampling == Sampling::kDenseOutput)
-      return static_cast<long>(odeint::integrate_times(odeint::make_dense_output(abs_tol, rel_tol, odeint::runge_kutta_dopri5<State>()),
-                                                       e, y, times.begin(), times.end(), dt, observe));
+      return static_cast<long>(
+          odeint::integrate_times(odeint::make_dense_output(abs_tol, rel_tol, odeint::runge_kutta_dopri5<State>()), e,
+                                  y, times.begin(), times.end(), dt, observe));
     return static_cast<long>(odeint::integrate_times(stepper, e, y, times.begin(), times.end(), dt, observe));
   }
 
@@ -245,10 +246,10 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& 
   // The error bound: the same from y0 - 2 delta, at 100 x the tolerance, taking the steps its own error control chooses
   // (dense output). Worse on both counts than the orbit reported, its difference bounds both the integration's part of
   // the error (the looser run's) and the periodicity's: to first order the peak-to-peaks move with the start, and its
-  // start's offset from the orbit, -3 delta, is twice as far from y0's, -delta, as y0's own. Before, the looser run started at y0 and took the samples' spacing wherever it was below its
-  // own steps (the marine six: 2048 samples, fewer steps): the same computation as the accurate run, blind to the
-  // periodicity Newton stopped at; it read 0 on the marine six at 105 rpm, whose peak-to-peaks at 1e-8 were 2.2e-7 of
-  // the scale off those at 1e-11.
+  // start's offset from the orbit, -3 delta, is twice as far from y0's, -delta, as y0's own. Before, the looser run
+  // started at y0 and took the samples' spacing wherever it was below its own steps (the marine six: 2048 samples,
+  // fewer steps): the same computation as the accurate run, blind to the periodicity Newton stopped at; it read 0 on
+  // the marine six at 105 rpm, whose peak-to-peaks at 1e-8 were 2.2e-7 of the scale off those at 1e-11.
   const Integrator loose{equations, t.cycle, 100.0 * options.tolerance * scale, 100.0 * options.tolerance};
   const auto loose_signals = sampleTwists(loose, Integrator::Sampling::kDenseOutput, farther, nullptr);
   for (int i = 0; i < n; ++i)
