@@ -9,9 +9,12 @@
 #include <boost/math/tools/minima.hpp>
 #include <unsupported/Eigen/FFT>
 
+#include "crankcheck/analytic/balance_shafts.h"
+#include "crankcheck/analytic/exact_trig.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/motion.h"
+#include "cylinder_terms.h"
 
 namespace crankcheck::analytic {
 
@@ -23,11 +26,24 @@ Mechanism makeThrowMechanism(const Mechanism& m, int throw_index) {
 }
 
 ThrowLoads calcThrowLoads(const Mechanism& tm, double psi) {
+  // calcReducedInertia(tm, psi) and calcGravityTorque(tm, psi), the same sums of the same terms (cylinder_terms.h), with
+  // each cylinder's angle and the shafts' loads computed once for both (bit for bit the same: crank_train_test.cc).
+  const BalanceShaftLoads shafts = calcBalanceShaftLoads(tm, psi);
+  const Mechanism unit = makeUnitSpeedCopy(tm);
+  const GravityCoefficients c = calcGravityCoefficients(tm);
+  ReducedInertia J;
+  J.J = tm.flywheel_inertia.value_or(0.0) + shafts.inertia;
+  double Q = 0.0;
+  const SinCos angle = calcSinCos(psi);
+  for (int j = 0; j < tm.engine.cylinders; ++j) {
+    const SinCos theta = addAngles(angle, calcSinCos(tm.engine.crank_angles[static_cast<size_t>(j)]));  // calcThrowSinCos
+    addCylinderInertia(tm, unit, j, theta, RodInertiaForm::kTrueInertia, J);
+    Q += calcCylinderGravityTorque(tm, j, theta, c);
+  }
   ThrowLoads out;
-  const ReducedInertia J = calcReducedInertia(tm, psi);
   out.J = J.J;
   out.dJ = J.dJ;
-  out.gravity_torque = calcGravityTorque(tm, psi);
+  out.gravity_torque = Q + shafts.Q;
   out.gas_torque = calcGasTorque(tm, psi);
   return out;
 }

@@ -9,6 +9,7 @@
 
 #include "crankcheck/analytic/exact_trig.h"
 #include "crankcheck/analytic/fourier_series.h"
+#include "cylinder_terms.h"
 
 namespace crankcheck::analytic {
 namespace {
@@ -53,19 +54,21 @@ SinCos sumOverThrows(const Mechanism& m, int n) {
 
 }  // namespace
 
-double calcGravityTorque(const Mechanism& m, double phi, Eq5Form form) {
-  const auto [U1, U2] = calcGravityCoefficients(m, form);
+double calcCylinderGravityTorque(const Mechanism& m, int j, const SinCos& theta, const GravityCoefficients& c) {
   const double lambda = m.crank.radius / m.rod.length;
+  const SinCos gamma = calcSinCos(getBankAngle(m, j));
+  // s = sin(beta) = lambda sin - delta / l with the pin offset delta (0: centric, the paper's case).
+  const double s = lambda * theta.sin - getPinOffset(m, j) / m.rod.length;
+  const double root = std::sqrt((1.0 - s) * (1.0 + s));
+  // Stanczak eq (13), dx_p/dtheta / r = -(sin + cos s / root); centric: lambda sin 2theta / (2 root) = lambda sin cos / root.
+  return c.U2 * (theta.cos * gamma.cos - theta.sin * gamma.sin) - c.U1 * (theta.sin + s * theta.cos / root) * gamma.sin;
+}
+
+double calcGravityTorque(const Mechanism& m, double phi, Eq5Form form) {
+  const GravityCoefficients c = calcGravityCoefficients(m, form);
   double Q = 0.0;
-  for (int j = 0; j < m.engine.cylinders; ++j) {
-    const SinCos gamma = calcSinCos(getBankAngle(m, j));
-    const SinCos theta = calcThrowSinCos(phi, m.engine.crank_angles[j]);
-    // s = sin(beta) = lambda sin - delta / l with the pin offset delta (0: centric, the paper's case).
-    const double s = lambda * theta.sin - getPinOffset(m, j) / m.rod.length;
-    const double root = std::sqrt((1.0 - s) * (1.0 + s));
-    // Stanczak eq (13), dx_p/dtheta / r = -(sin + cos s / root); centric: lambda sin 2theta / (2 root) = lambda sin cos / root.
-    Q += U2 * (theta.cos * gamma.cos - theta.sin * gamma.sin) - U1 * (theta.sin + s * theta.cos / root) * gamma.sin;
-  }
+  for (int j = 0; j < m.engine.cylinders; ++j)
+    Q += calcCylinderGravityTorque(m, j, calcThrowSinCos(phi, m.engine.crank_angles[j]), c);
   return Q + calcBalanceShaftLoads(m, phi).Q;  // the balance shafts' masses (balance_shafts.h)
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "crankcheck/analytic/balance_shafts.h"
+#include "cylinder_terms.h"
 #include "crankcheck/analytic/exact_trig.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/kinematics.h"
@@ -12,45 +13,53 @@
 
 namespace crankcheck::analytic {
 
-ReducedInertia calcReducedInertia(const Mechanism& m, double phi, RodInertiaForm form) {
-  // Time derivatives at unit crank speed are the derivatives with respect to theta. The kinematics read r, l and omega
-  // alone: a light copy of those (not of m's tables: the crank train calls this at every integration step).
+Mechanism makeUnitSpeedCopy(const Mechanism& m) {
   Mechanism unit;
   unit.crank = m.crank;
   unit.rod = m.rod;
   unit.engine.speed = 1.0;
+  return unit;
+}
+
+void addCylinderInertia(const Mechanism& m, const Mechanism& unit, int j, const SinCos& t, RodInertiaForm form,
+                        ReducedInertia& out) {
   const double r = m.crank.radius, l = m.rod.length, z = m.rod.com_from_wrist_pin, mu = z / l;
   const double m_o = m.piston.mass, m_k = m.rod.mass, I_o = m.rod.inertia_about_wrist_pin;
-  ReducedInertia out;
-  out.J = m.flywheel_inertia.value_or(0.0) + calcBalanceShaftLoads(m, phi).inertia;  // shafts: m rho^2 ratio^2 each
-  for (int j = 0; j < m.engine.cylinders; ++j) {
-    const SinCos t = calcThrowSinCos(phi, m.engine.crank_angles[static_cast<size_t>(j)]);
-    const PistonKinematics p = calcPistonKinematics(unit, t, getPinOffset(m, j));   // v_p = x', a_p = x''
-    const RodKinematics rod = calcRodKinematics(unit, t, getPinOffset(m, j));       // beta', beta''
-    const double crank = m.crank.mass * m.crank.com_radius * m.crank.com_radius +
-                         m.crank.counterweight_mass * m.crank.counterweight_radius * m.crank.counterweight_radius;
-    out.J += crank;
-    switch (form) {
-      case RodInertiaForm::kTrueInertia: {
-        // G' = (1 - mu) A' + mu B' in the cylinder frame; B' = r (-sin, cos), B'' = -r (cos, sin).
-        const double Ge = (1 - mu) * p.v_p - mu * r * t.sin, Gn = mu * r * t.cos;
-        const double Gee = (1 - mu) * p.a_p - mu * r * t.cos, Gnn = -mu * r * t.sin;
-        const double I_G = I_o - m_k * z * z;
-        out.J += m_o * p.v_p * p.v_p + m_k * (Ge * Ge + Gn * Gn) + I_G * rod.beta_dot * rod.beta_dot;
-        out.dJ += 2.0 * (m_o * p.v_p * p.a_p + m_k * (Ge * Gee + Gn * Gnn) + I_G * rod.beta_dot * rod.beta_ddot);
-        break;
-      }
-      case RodInertiaForm::kTwoMassWithDeltaI:
-      case RodInertiaForm::kTwoMassWithoutDeltaI: {
-        // Eq (2): m_k1 = m_k (l - z_k)/l at A, m_k3 = m_k z_k / l at B (moving at r per radian), Delta_I = I_o - l z_k m_k.
-        const double m_k1 = m_k * (l - z) / l, m_k3 = m_k * z / l;
-        const double delta_I = form == RodInertiaForm::kTwoMassWithDeltaI ? I_o - l * z * m_k : 0.0;
-        out.J += (m_o + m_k1) * p.v_p * p.v_p + m_k3 * r * r + delta_I * rod.beta_dot * rod.beta_dot;
-        out.dJ += 2.0 * ((m_o + m_k1) * p.v_p * p.a_p + delta_I * rod.beta_dot * rod.beta_ddot);
-        break;
-      }
+  const PistonKinematics p = calcPistonKinematics(unit, t, getPinOffset(m, j));   // v_p = x', a_p = x''
+  const RodKinematics rod = calcRodKinematics(unit, t, getPinOffset(m, j));       // beta', beta''
+  const double crank = m.crank.mass * m.crank.com_radius * m.crank.com_radius +
+                       m.crank.counterweight_mass * m.crank.counterweight_radius * m.crank.counterweight_radius;
+  out.J += crank;
+  switch (form) {
+    case RodInertiaForm::kTrueInertia: {
+      // G' = (1 - mu) A' + mu B' in the cylinder frame; B' = r (-sin, cos), B'' = -r (cos, sin).
+      const double Ge = (1 - mu) * p.v_p - mu * r * t.sin, Gn = mu * r * t.cos;
+      const double Gee = (1 - mu) * p.a_p - mu * r * t.cos, Gnn = -mu * r * t.sin;
+      const double I_G = I_o - m_k * z * z;
+      out.J += m_o * p.v_p * p.v_p + m_k * (Ge * Ge + Gn * Gn) + I_G * rod.beta_dot * rod.beta_dot;
+      out.dJ += 2.0 * (m_o * p.v_p * p.a_p + m_k * (Ge * Gee + Gn * Gnn) + I_G * rod.beta_dot * rod.beta_ddot);
+      break;
+    }
+    case RodInertiaForm::kTwoMassWithDeltaI:
+    case RodInertiaForm::kTwoMassWithoutDeltaI: {
+      // Eq (2): m_k1 = m_k (l - z_k)/l at A, m_k3 = m_k z_k / l at B (moving at r per radian), Delta_I = I_o - l z_k m_k.
+      const double m_k1 = m_k * (l - z) / l, m_k3 = m_k * z / l;
+      const double delta_I = form == RodInertiaForm::kTwoMassWithDeltaI ? I_o - l * z * m_k : 0.0;
+      out.J += (m_o + m_k1) * p.v_p * p.v_p + m_k3 * r * r + delta_I * rod.beta_dot * rod.beta_dot;
+      out.dJ += 2.0 * ((m_o + m_k1) * p.v_p * p.a_p + delta_I * rod.beta_dot * rod.beta_ddot);
+      break;
     }
   }
+}
+
+ReducedInertia calcReducedInertia(const Mechanism& m, double phi, RodInertiaForm form) {
+  // Time derivatives at unit crank speed are the derivatives with respect to theta. The kinematics read r, l and omega
+  // alone: a light copy of those (not of m's tables: the crank train calls this at every integration step).
+  const Mechanism unit = makeUnitSpeedCopy(m);
+  ReducedInertia out;
+  out.J = m.flywheel_inertia.value_or(0.0) + calcBalanceShaftLoads(m, phi).inertia;  // shafts: m rho^2 ratio^2 each
+  for (int j = 0; j < m.engine.cylinders; ++j)
+    addCylinderInertia(m, unit, j, calcThrowSinCos(phi, m.engine.crank_angles[static_cast<size_t>(j)]), form, out);
   return out;
 }
 

@@ -10,8 +10,11 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 #include "crankcheck/analytic/crank_train.h"
+#include "crankcheck/analytic/gravity_torque.h"
+#include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
 #include "../support/crankshaft_scene.h"
@@ -78,6 +81,31 @@ TEST(CrankTrainLoads, GasTorqueIsMinusTheDriveTorqueOfTheGasAlone) {
       const double psi = 4.0 * M_PI * i / 720.0;
       EXPECT_NEAR(calcThrowLoads(train.throws[j], psi).gas_torque, -calcReactions(gas_only, psi).drive_torque,
                   256 * kEps * scale);
+    }
+  }
+}
+
+// calcThrowLoads computes each cylinder's angle once for the inertia and gravity's sums (cylinder_terms.h): a route
+// equivalence, so bit for bit the separate functions' values (each held against other formulations above and in
+// motion_test.cc), on every throw of every example scene (one and two cylinders a throw, banks, pin offsets, gas or
+// none) at 720 angles over two turns and at quarter turns (the exact sin and cos of exact_trig.h).
+TEST(CrankTrainLoads, ThrowLoadsAreTheSeparateFunctionsBitForBit) {
+  for (const auto& entry : std::filesystem::directory_iterator(CRANKCHECK_SCENES_DIR)) {
+    SCOPED_TRACE(entry.path().filename().string());
+    const Mechanism m = loadSceneFile(entry.path());
+    for (size_t j = 0; j < findThrows(m).size(); ++j) {
+      const Mechanism tm = makeThrowMechanism(m, static_cast<int>(j));
+      std::vector<double> angles;
+      for (int i = 0; i < 720; ++i) angles.push_back(4.0 * M_PI * i / 720.0 + 1e-3);
+      for (int q = -8; q <= 8; ++q) angles.push_back(q * M_PI_2);
+      for (double psi : angles) {
+        const ThrowLoads loads = calcThrowLoads(tm, psi);
+        const ReducedInertia J = calcReducedInertia(tm, psi);
+        EXPECT_EQ(loads.J, J.J) << "throw " << j << " psi " << psi;
+        EXPECT_EQ(loads.dJ, J.dJ) << "throw " << j << " psi " << psi;
+        EXPECT_EQ(loads.gravity_torque, calcGravityTorque(tm, psi)) << "throw " << j << " psi " << psi;
+        EXPECT_EQ(loads.gas_torque, calcGasTorque(tm, psi)) << "throw " << j << " psi " << psi;
+      }
     }
   }
 }

@@ -39,9 +39,16 @@ TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine) {
   auto worst = [](const Engine& engine, const Mechanism& m) {
     const std::unique_ptr<EngineModel> model = engine.build(m);
     const Scales scales = calcScales(m);
+    // The engine's drive torque at each angle asked, evaluated once: both rod forms read the same 48 samples.
+    std::map<double, double> engine_torque;
+    auto engineTorque = [&](double phi) {
+      const auto [it, added] = engine_torque.try_emplace(phi, 0.0);
+      if (added) it->second = model->evaluateMotion(phi).drive_torque;
+      return it->second;
+    };
     auto error = [&](analytic::RodInertiaForm form) {
-      return [&model, &m, form](double phi) {
-        return analytic::calcReactions(m, phi, form).drive_torque - model->evaluateMotion(phi).drive_torque;
+      return [&engineTorque, &m, form](double phi) {
+        return analytic::calcReactions(m, phi, form).drive_torque - engineTorque(phi);
       };
     };
     const double without = findMaxAbsOverTurn(error(analytic::RodInertiaForm::kTwoMassWithoutDeltaI), 48).value;

@@ -38,6 +38,8 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -245,13 +247,31 @@ TableSet calcModeTables(const Mechanism& m) {
   return tables;
 }
 
+// The analytic steady state at the first scene's own speed, which every engine's train is held against: computed once
+// for the engines' tasks, by the first that needs it (each asks after its own run, so the others rarely wait).
+class SharedSteadyState {
+ public:
+  explicit SharedSteadyState(Mechanism m) : m_(std::move(m)) {}
+  /// @throws as analytic::calcExactSteadyState (the next caller then tries again).
+  const analytic::ExactSteadyState& get() {
+    std::call_once(once_, [this] {
+      analytic::SteadyStateOptions exact_options;
+      exact_options.tolerance = kExactTolerance;
+      exact_options.samples = kExactSamples;
+      state_ = analytic::calcExactSteadyState(m_, exact_options);
+    });
+    return state_;
+  }
+
+ private:
+  const Mechanism m_;
+  std::once_flag once_;
+  analytic::ExactSteadyState state_;
+};
+
 // An exact engine's train at the scene's own speed against the analytic steady state.
-TableSet calcEngineTables(const Mechanism& m, const Engine& engine, bool quick) {
+TableSet calcEngineTables(const Mechanism& m, const Engine& engine, bool quick, SharedSteadyState& analytic_state) {
   TableSet tables = makeEmptyTables();
-  analytic::SteadyStateOptions exact_options;
-  exact_options.tolerance = kExactTolerance;
-  exact_options.samples = kExactSamples;
-  const analytic::ExactSteadyState exact = analytic::calcExactSteadyState(m, exact_options);
   CrankTrainRunOptions options;
   // A gated route's accuracy is its integrator's error per step; a soft route's is its own (MuJoCo's: the fixed time
   // step, Engine::crank_train_method): it runs at its default, as its users run it.
@@ -261,6 +281,7 @@ TableSet calcEngineTables(const Mechanism& m, const Engine& engine, bool quick) 
   const auto start = std::chrono::steady_clock::now();
   const CrankTrainRun run = engine.simulate_crank_train(m, options);
   const double run_seconds = seconds(start);
+  const analytic::ExactSteadyState& exact = analytic_state.get();
   const int n = static_cast<int>(run.twists.size());
   for (int i = 0; i < n; ++i) {
     const double p2p = analytic::findSignalExtremes(analytic::calcSignalFromSamples(run.twists[i])).peakToPeak();
@@ -635,10 +656,13 @@ class TorsionPart final : public Part {
         out.push_back({"torsion " + m.name + " " + num(rpm) + " rpm", false, [m, rpm] { return calcSpeedTables(m, rpm); },
                        task_cost::kShort});
       if (s > 0) continue;
+      const auto analytic_state = std::make_shared<SharedSteadyState>(m);
       for (const Engine& engine : listEngines())
         if (engine.simulate_crank_train && !engine.closed_form && (engine.crank_train_gated || !context.quick))
           out.push_back({"torsion " + m.name + " " + engine.name, false,
-                         [m, &engine, quick = context.quick] { return calcEngineTables(m, engine, quick); },
+                         [m, &engine, quick = context.quick, analytic_state] {
+                           return calcEngineTables(m, engine, quick, *analytic_state);
+                         },
                          task_cost::kSimbodyRun});
     }
     if (!scenes.empty())
