@@ -8,7 +8,7 @@
 /// Method: shooting on the one-cycle map. With s = omega t and y = (x, dx/ds) the state at s = 0, P(y) is the state
 /// after one cycle (Boost.Odeint's Dormand-Prince 5(4), error per step below `tolerance` relative and `tolerance` x
 /// the twist scale absolute); Newton's method solves P(y) = y, the Jacobian dP/dy from the variational equations
-/// integrated beside the state at 1e-6 (a Newton step needs it only roughly; the residual is always the accurate
+/// integrated beside the state at 1e-5 (a Newton step needs it only roughly; the residual is always the accurate
 /// map's) and kept while each step cuts the residual at least tenfold (computed anew at the current start otherwise).
 /// Start: Holzer's response at s = 0 (torsion_forced.h). Converged when the periodicity residual is below 1000 x
 /// `tolerance` of the twist scale (the largest deviation |x| of Holzer's response): the map's own
