@@ -144,6 +144,7 @@ std::string runTorsion(const TorsionOptions& options) {
     if (!e.closed_form && std::find(trains.begin(), trains.end(), &e) == trains.end()) trains.push_back(&e);
   }
   std::vector<SpeedResult> results;
+  analytic::ThrowLoadOrders load_orders;  // the throws' speed-free torque orders, computed once for every speed
   const bool progress = (speeds.size() > 1 || !trains.empty()) && ::isatty(STDERR_FILENO);
   for (size_t s = 0; s < speeds.size(); ++s) {
     if (progress) std::fprintf(stderr, "\r\033[Ktorsion: speed %zu of %zu (%g rpm)", s + 1, speeds.size(), speeds[s]);
@@ -151,7 +152,7 @@ std::string runTorsion(const TorsionOptions& options) {
     SpeedResult r;
     r.rpm = speeds[s];
     try {
-      r.holzer = analytic::calcHolzerResponse(m);
+      r.holzer = analytic::calcHolzerResponse(m, {}, load_orders);
       r.exact = analytic::calcExactSteadyState(m, r.holzer);
       for (const Engine* e : trains) {
         const CrankTrainRun run = e->simulate_crank_train(m, makeTrainOptions(*e));

@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <map>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <boost/math/quadrature/gauss.hpp>
 
@@ -20,17 +23,14 @@ namespace {
 // table angle), between which the torque is smooth: each to about rounding, where an FFT of samples would carry the
 // corners' aliasing (falling only as N^-2). The orders above by an FFT of 4P samples: their aliasing, about T_1 / P^2,
 // enters the twist through gains below 1 / (p omega)^2 J, far above the natural frequencies: below 1e-12 of it.
+// T = A - (1/2) omega^2 B with the speed-free A = T_gas - Q and B = J': their orders are computed (and kept by
+// ThrowLoadOrders for every speed of a sweep), T_p = A_p - (1/2) omega^2 B_p.
 constexpr int kQuadratureOrders = 256;
 
-// What the doublings of P share, per throw: the quadrature of the orders p <= kQuadratureOrders (the same for every
-// P >= kQuadratureOrders) and the last FFT grid's torque samples (every other sample of the next grid).
-struct TorqueOrderCache {
-  std::vector<std::vector<std::complex<double>>> quadrature;
-  std::vector<std::vector<double>> samples;
-};
-
-// The sums (cycle / 2) T_p' of the orders p = 0 .. Q by the quadrature above (T_p = 2 sum_p / cycle, T_0 = sum_0 / cycle).
-std::vector<std::complex<double>> calcQuadratureSums(const CrankTrain& t, int j, int Q) {
+// The sums (cycle / 2) A_p' and (cycle / 2) B_p' of throw j's speed-free loads A = T_gas - Q and B = J' for the
+// orders p = 0 .. Q by the quadrature above (A_p = 2 sum_p / cycle, A_0 = sum_0 / cycle; B alike).
+std::pair<std::vector<std::complex<double>>, std::vector<std::complex<double>>> calcQuadratureSums(const CrankTrain& t,
+                                                                                                   int j, int Q) {
   const Mechanism& tm = t.throws[static_cast<size_t>(j)];
   std::vector<double> cuts = {0.0, t.cycle};
   if (tm.gas)
@@ -40,7 +40,7 @@ std::vector<std::complex<double>> calcQuadratureSums(const CrankTrain& t, int j,
   using Rule = boost::math::quadrature::gauss<double, 10>;
   const auto& x = Rule::abscissa();  // the positive half: nodes +-x_i
   const auto& wq = Rule::weights();
-  std::vector<std::complex<double>> sum(static_cast<size_t>(Q + 1), 0.0);
+  std::vector<std::complex<double>> sum_a(static_cast<size_t>(Q + 1), 0.0), sum_b(static_cast<size_t>(Q + 1), 0.0);
   const double panel = t.cycle / (2.0 * std::max(Q, 1));
   for (size_t c = 0; c + 1 < cuts.size(); ++c) {
     const double length = cuts[c + 1] - cuts[c];
@@ -52,59 +52,124 @@ std::vector<std::complex<double>> calcQuadratureSums(const CrankTrain& t, int j,
       for (size_t i = 0; i < x.size(); ++i)
         for (double sign : {-1.0, 1.0}) {
           const double psi = mid + sign * 0.5 * h * x[i];
-          const double weight = 0.5 * h * wq[i] * calcRigidThrowTorque(tm, psi, t.omega);
+          const ThrowLoads loads = calcThrowLoads(tm, psi);
+          const double weight_a = 0.5 * h * wq[i] * (loads.gas_torque - loads.gravity_torque);
+          const double weight_b = 0.5 * h * wq[i] * loads.dJ;
           const double tau = 2.0 * M_PI * psi / t.cycle;
           const std::complex<double> step = std::polar(1.0, -tau);
           std::complex<double> z(1.0, 0.0);
           for (int p = 0; p <= Q; ++p) {
             if (p % 64 == 0) z = std::polar(1.0, -p * tau);  // renormalized against the recurrence's drift
-            sum[static_cast<size_t>(p)] += weight * z;
+            sum_a[static_cast<size_t>(p)] += weight_a * z;
+            sum_b[static_cast<size_t>(p)] += weight_b * z;
             z *= step;
           }
         }
     }
   }
-  return sum;
+  return {std::move(sum_a), std::move(sum_b)};
 }
 
-std::vector<std::complex<double>> calcTorqueOrders(const CrankTrain& t, int j, int P, TorqueOrderCache& cache) {
-  const Mechanism& tm = t.throws[static_cast<size_t>(j)];
-  const size_t throw_index = static_cast<size_t>(j);
-  cache.quadrature.resize(t.throws.size());
-  cache.samples.resize(t.throws.size());
-  const int Q = std::min(P, kQuadratureOrders);
-  std::vector<std::complex<double>>& sum = cache.quadrature[throw_index];
-  if (static_cast<int>(sum.size()) != Q + 1) sum = calcQuadratureSums(t, j, Q);
-  std::vector<std::complex<double>> orders(static_cast<size_t>(P + 1));
-  orders[0] = sum[0].real() / t.cycle;
-  for (int p = 1; p <= Q; ++p) orders[static_cast<size_t>(p)] = 2.0 * sum[static_cast<size_t>(p)] / t.cycle;
-  if (P > Q) {
-    const int N = 4 * P;
-    std::vector<double>& last = cache.samples[throw_index];
-    std::vector<double> samples(static_cast<size_t>(N));
-    // The angle cycle k / N is bit for bit the last grid's cycle (k / 2) / (N / 2) at even k: reused.
-    const bool halves = static_cast<int>(last.size()) * 2 == N;
-    for (int k = 0; k < N; ++k)
-      samples[static_cast<size_t>(k)] = halves && k % 2 == 0 ? last[static_cast<size_t>(k / 2)]
-                                                              : calcRigidThrowTorque(tm, t.cycle * k / N, t.omega);
-    const PeriodicSignal fft = calcSignalFromSamples(samples);
-    last = std::move(samples);
-    for (int p = Q + 1; p <= P; ++p) orders[static_cast<size_t>(p)] = fft.coefficients[static_cast<size_t>(p)];
-  }
-  return orders;
+// Loads at two angles that no pressure table corner or quarter turn is likely to hit: the fingerprint by which a
+// ThrowLoadOrders knows the throws it serves.
+std::vector<double> calcFingerprint(const CrankTrain& t) {
+  std::vector<double> out = {t.cycle, static_cast<double>(t.throws.size())};
+  for (const Mechanism& tm : t.throws)
+    for (double psi : {0.7310585786300049, 3.9261228373}) {
+      const ThrowLoads l = calcThrowLoads(tm, psi);
+      out.insert(out.end(), {l.J, l.dJ, l.gas_torque, l.gravity_torque});
+    }
+  return out;
 }
+
+}  // namespace
+
+struct ThrowLoadOrders::Impl {
+  std::mutex mutex;
+  std::vector<double> fingerprint;  // empty until the first train
+  // Per throw: the quadrature sums by Q, the orders by P, and the largest FFT grid's samples of A and B so far.
+  struct Throw {
+    std::map<int, std::pair<std::vector<std::complex<double>>, std::vector<std::complex<double>>>> sums;
+    std::map<int, Orders> orders;
+    std::vector<double> samples_a, samples_b;
+  };
+  std::vector<Throw> throws;
+};
+
+ThrowLoadOrders::ThrowLoadOrders() : impl_(std::make_unique<Impl>()) {}
+ThrowLoadOrders::~ThrowLoadOrders() = default;
+
+const ThrowLoadOrders::Orders& ThrowLoadOrders::getOrders(const CrankTrain& t, int j, int P) {
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  if (impl_->fingerprint.empty()) {
+    impl_->fingerprint = calcFingerprint(t);
+    impl_->throws.resize(t.throws.size());
+  } else if (calcFingerprint(t) != impl_->fingerprint) {
+    throw std::invalid_argument("torsion: the shared torque orders serve another scene's crank train");
+  }
+  Impl::Throw& cache = impl_->throws.at(static_cast<size_t>(j));
+  const auto found = cache.orders.find(P);
+  if (found != cache.orders.end()) return found->second;
+
+  const Mechanism& tm = t.throws[static_cast<size_t>(j)];
+  const int Q = std::min(P, kQuadratureOrders);
+  auto sums = cache.sums.find(Q);
+  if (sums == cache.sums.end()) sums = cache.sums.emplace(Q, calcQuadratureSums(t, j, Q)).first;
+  Orders orders;
+  for (auto [sum, out] : {std::pair{&sums->second.first, &orders.A}, std::pair{&sums->second.second, &orders.B}}) {
+    out->assign(static_cast<size_t>(P + 1), 0.0);
+    (*out)[0] = (*sum)[0].real() / t.cycle;
+    for (int p = 1; p <= Q; ++p) (*out)[static_cast<size_t>(p)] = 2.0 * (*sum)[static_cast<size_t>(p)] / t.cycle;
+  }
+  if (P > Q) {
+    // The orders above by an FFT of N = 4P samples of each load; the angle cycle k / N is bit for bit the cycle
+    // (k / s) / (N / s) of a grid s times coarser at k a multiple of s (s a power of 2): those samples are reused.
+    const int N = 4 * P;
+    std::vector<double> a(static_cast<size_t>(N)), b(static_cast<size_t>(N));
+    const int known = static_cast<int>(cache.samples_a.size());
+    const bool coarser = known > 0 && known < N && N % known == 0;
+    const bool finer = known >= N && known % N == 0;
+    for (int k = 0; k < N; ++k) {
+      if (finer) {
+        a[static_cast<size_t>(k)] = cache.samples_a[static_cast<size_t>(k * (known / N))];
+        b[static_cast<size_t>(k)] = cache.samples_b[static_cast<size_t>(k * (known / N))];
+      } else if (coarser && k % (N / known) == 0) {
+        a[static_cast<size_t>(k)] = cache.samples_a[static_cast<size_t>(k / (N / known))];
+        b[static_cast<size_t>(k)] = cache.samples_b[static_cast<size_t>(k / (N / known))];
+      } else {
+        const ThrowLoads loads = calcThrowLoads(tm, t.cycle * k / N);
+        a[static_cast<size_t>(k)] = loads.gas_torque - loads.gravity_torque;
+        b[static_cast<size_t>(k)] = loads.dJ;
+      }
+    }
+    const PeriodicSignal fft_a = calcSignalFromSamples(a), fft_b = calcSignalFromSamples(b);
+    for (int p = Q + 1; p <= P; ++p) {
+      orders.A[static_cast<size_t>(p)] = fft_a.coefficients[static_cast<size_t>(p)];
+      orders.B[static_cast<size_t>(p)] = fft_b.coefficients[static_cast<size_t>(p)];
+    }
+    if (!finer) {
+      cache.samples_a = std::move(a);
+      cache.samples_b = std::move(b);
+    }
+  }
+  return cache.orders.emplace(P, std::move(orders)).first->second;
+}
+
+namespace {
 
 // One pass with the orders p = 0 .. P per cycle: the bodies' and sections' signals, the peak-to-peaks.
-HolzerResponse solveWithOrders(const CrankTrain& t, const std::vector<double>& inertias, int P, TorqueOrderCache& cache) {
+HolzerResponse solveWithOrders(const CrankTrain& t, const std::vector<double>& inertias, int P, ThrowLoadOrders& shared) {
   const int n = t.countBodies();
   const int throws = static_cast<int>(t.throws.size());
   HolzerResponse out;
   out.inertias = inertias;
   out.orders = P;
   out.torque_orders.resize(P + 1, throws);
+  const double half_omega2 = 0.5 * t.omega * t.omega;
   for (int j = 0; j < throws; ++j) {
-    const std::vector<std::complex<double>> T = calcTorqueOrders(t, j, P, cache);
-    for (int p = 0; p <= P; ++p) out.torque_orders(p, j) = T[static_cast<size_t>(p)];
+    const ThrowLoadOrders::Orders& loads = shared.getOrders(t, j, P);  // T_p = A_p - (1/2) omega^2 B_p
+    for (int p = 0; p <= P; ++p)
+      out.torque_orders(p, j) = loads.A[static_cast<size_t>(p)] - half_omega2 * loads.B[static_cast<size_t>(p)];
   }
   const Eigen::MatrixXd K = calcStiffnessMatrix(t), C = calcDampingMatrix(t);
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n);
@@ -136,16 +201,15 @@ HolzerResponse solveWithOrders(const CrankTrain& t, const std::vector<double>& i
 }  // namespace
 
 HolzerResponse calcHolzerResponse(const CrankTrain& t, const std::vector<double>& inertias,
-                                  const HolzerOptions& options) {
+                                  const HolzerOptions& options, ThrowLoadOrders& shared) {
   if (static_cast<int>(inertias.size()) != t.countBodies())
     throw std::invalid_argument("torsion: " + std::to_string(inertias.size()) + " inertias for " +
                                 std::to_string(t.countBodies()) + " bodies");
   for (double J : inertias)
     if (!(J > 0.0 && std::isfinite(J))) throw std::invalid_argument("torsion: a body of the train has no inertia");
-  TorqueOrderCache cache;
-  HolzerResponse last = solveWithOrders(t, inertias, 64, cache);
+  HolzerResponse last = solveWithOrders(t, inertias, 64, shared);
   for (int P = 128; P <= options.max_harmonics; P *= 2) {
-    HolzerResponse next = solveWithOrders(t, inertias, P, cache);
+    HolzerResponse next = solveWithOrders(t, inertias, P, shared);
     double largest = 0.0, change = 0.0;
     for (size_t i = 0; i < next.peak_to_peak.size(); ++i) {
       largest = std::max(largest, next.peak_to_peak[i]);
@@ -160,12 +224,23 @@ HolzerResponse calcHolzerResponse(const CrankTrain& t, const std::vector<double>
                            " harmonics per cycle");
 }
 
-HolzerResponse calcHolzerResponse(const Mechanism& m, const HolzerOptions& options) {
+HolzerResponse calcHolzerResponse(const CrankTrain& t, const std::vector<double>& inertias,
+                                  const HolzerOptions& options) {
+  ThrowLoadOrders orders;
+  return calcHolzerResponse(t, inertias, options, orders);
+}
+
+HolzerResponse calcHolzerResponse(const Mechanism& m, const HolzerOptions& options, ThrowLoadOrders& shared) {
   const CrankTrain t = makeCrankTrain(m);
   std::vector<double> inertias;
   if (t.has_front) inertias.push_back(t.front_inertia);
   for (int j = 0; j < static_cast<int>(t.throws.size()); ++j) inertias.push_back(calcThrowInertia(m, j).exact);
-  return calcHolzerResponse(t, inertias, options);
+  return calcHolzerResponse(t, inertias, options, shared);
+}
+
+HolzerResponse calcHolzerResponse(const Mechanism& m, const HolzerOptions& options) {
+  ThrowLoadOrders orders;
+  return calcHolzerResponse(m, options, orders);
 }
 
 }  // namespace crankcheck::analytic

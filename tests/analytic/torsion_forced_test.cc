@@ -11,8 +11,11 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
+#include <vector>
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <unsupported/Eigen/FFT>
 
 #include "crankcheck/analytic/torsion.h"
 #include "crankcheck/analytic/torsion_forced.h"
@@ -92,6 +95,57 @@ TEST(HolzerResponse, EveryOrderSolvesTheLinearEquations) {
     for (int i = 0; i < n; ++i) {
       const std::complex<double> twist = i + 1 < n ? X(i + 1) - X(i) : -X(i);
       EXPECT_EQ(h.twists[static_cast<size_t>(i)].coefficients[static_cast<size_t>(p)], twist);
+    }
+  }
+}
+
+// A sweep's shared orders (ThrowLoadOrders: A_p and B_p kept across speeds, T_p = A_p - (1/2) omega^2 B_p) give every
+// speed the sum a fresh computation gives, bit for bit (the same quadratures, and the FFT grids' samples at the same
+// angles: a route equivalence), with the speeds out of order so that grids are reused both finer and coarser.
+TEST(HolzerResponse, SharedLoadOrdersGiveEachSpeedItsOwnSum) {
+  const Mechanism scene = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
+  ThrowLoadOrders shared;
+  for (double rpm : {6000.0, 1500.0, 3000.0, 7500.0}) {
+    SCOPED_TRACE(rpm);
+    Mechanism m = scene;
+    m.speed_rpm = rpm;
+    m.engine.speed = rpm * M_PI / 30.0;
+    const HolzerResponse fresh = calcHolzerResponse(m), kept = calcHolzerResponse(m, {}, shared);
+    ASSERT_EQ(kept.orders, fresh.orders);
+    EXPECT_EQ(kept.peak_to_peak, fresh.peak_to_peak);
+    EXPECT_TRUE(kept.torque_orders == fresh.torque_orders);
+  }
+  // Another scene's train is refused, not summed with the first one's loads.
+  const Mechanism marine = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline6_two_stroke_marine.toml");
+  EXPECT_THROW(calcHolzerResponse(marine, {}, shared), std::invalid_argument);
+}
+
+// The orders above the quadrature's (p > 256: the FFT of 4P samples) as A_p - (1/2) omega^2 B_p against the FFT of the
+// rigid torque's own samples (calcRigidThrowTorque, the test's own grid and Eigen's FFT), at a speed whose sum goes past
+// p = 256. Tolerance 64 eps x the samples' largest term |T_gas - Q| + (1/2) omega^2 |J'|: each sample of the two routes
+// differs by a few roundings of its terms, and an FFT passes that on within log2 N eps.
+TEST(HolzerResponse, OrdersAboveTheQuadratureAgreeWithAnFftOfTheTorque) {
+  const Mechanism m = loadWithCrankshaft("inline4_four_stroke.toml", kInline4Train);
+  const CrankTrain train = makeCrankTrain(m);
+  const HolzerResponse h = calcHolzerResponse(m);
+  ASSERT_GT(h.orders, 256);
+  const int N = 4 * h.orders;
+  for (int j : {0, 3}) {
+    const Mechanism& tm = train.throws[static_cast<size_t>(j)];
+    std::vector<double> samples(static_cast<size_t>(N));
+    double scale = 0.0;
+    for (int k = 0; k < N; ++k) {
+      const double psi = train.cycle * k / N;
+      samples[static_cast<size_t>(k)] = calcRigidThrowTorque(tm, psi, train.omega);
+      const ThrowLoads l = calcThrowLoads(tm, psi);
+      scale = std::max(scale, std::fabs(l.gas_torque - l.gravity_torque) + 0.5 * train.omega * train.omega * std::fabs(l.dJ));
+    }
+    Eigen::FFT<double> fft;
+    std::vector<std::complex<double>> spectrum;
+    fft.fwd(spectrum, samples);
+    for (int p : {257, 300, 512, h.orders}) {
+      const std::complex<double> expected = 2.0 * spectrum[static_cast<size_t>(p)] / static_cast<double>(N);
+      EXPECT_LT(std::abs(h.torque_orders(p, j) - expected), 64 * kEps * scale) << "throw " << j << " p " << p;
     }
   }
 }

@@ -170,13 +170,13 @@ TableSet makeEmptyTables() {
 
 // One speed point of a scene: Holzer and the exact steady state, every section, the orders of the section that twists
 // most, and the cost of each route.
-TableSet calcSpeedTables(const Mechanism& scene, double rpm) {
+TableSet calcSpeedTables(const Mechanism& scene, double rpm, analytic::ThrowLoadOrders& load_orders) {
   TableSet tables = makeEmptyTables();
   const Mechanism m = withSpeed(scene, rpm);
   analytic::HolzerOptions holzer_options;
   holzer_options.convergence = kHolzerConvergence;
   auto start = std::chrono::steady_clock::now();
-  const analytic::HolzerResponse holzer = analytic::calcHolzerResponse(m, holzer_options);
+  const analytic::HolzerResponse holzer = analytic::calcHolzerResponse(m, holzer_options, load_orders);
   const double holzer_seconds = seconds(start);
   analytic::SteadyStateOptions exact_options;
   exact_options.tolerance = kExactTolerance;
@@ -652,9 +652,11 @@ class TorsionPart final : public Part {
     for (size_t s = 0; s < scenes.size(); ++s) {
       const Mechanism& m = *scenes[s];
       out.push_back({"torsion modes " + m.name, false, [m] { return calcModeTables(m); }});
+      // The throws' speed-free torque orders, computed once for the scene's speed points (torsion_forced.h).
+      const auto load_orders = std::make_shared<analytic::ThrowLoadOrders>();
       for (double rpm : listSweepSpeeds(m, context.quick))
-        out.push_back({"torsion " + m.name + " " + num(rpm) + " rpm", false, [m, rpm] { return calcSpeedTables(m, rpm); },
-                       task_cost::kShort});
+        out.push_back({"torsion " + m.name + " " + num(rpm) + " rpm", false,
+                       [m, rpm, load_orders] { return calcSpeedTables(m, rpm, *load_orders); }, task_cost::kShort});
       if (s > 0) continue;
       const auto analytic_state = std::make_shared<SharedSteadyState>(m);
       for (const Engine& engine : listEngines())

@@ -14,6 +14,8 @@
 /// lie below the natural frequencies: the example inline four needs P = 4096 at 6000 rpm, 16384 at 2000 rpm. The
 /// textbook's sum cut at order 24 is given beside it.
 
+#include <complex>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -42,12 +44,44 @@ struct HolzerResponse {
   Eigen::MatrixXcd torque_orders;
 };
 
+/// What the torque orders of a train's throws share across speeds. Throw j's torque in the rigid motion at omega is
+/// T(psi) = A(psi) - (1/2) omega^2 B(psi) with A = T_gas - Q and B = J' (crank_train.h, calcThrowLoads), neither of
+/// which depends on omega; so are their orders A_p, B_p (the quadrature and FFT above), and T_p = A_p - (1/2) omega^2
+/// B_p. An object keeps every A_p, B_p a sum has asked for, for each P, so that a sweep over speed computes them once
+/// (part 17's speed points, `crankcheck torsion`). Safe to share between threads. It serves the trains of one scene
+/// at any speed: the first train it serves fixes its throws; another's (other loads at two test angles, another cycle
+/// or count of throws) is refused.
+class ThrowLoadOrders {
+ public:
+  ThrowLoadOrders();
+  ~ThrowLoadOrders();
+  ThrowLoadOrders(const ThrowLoadOrders&) = delete;
+  ThrowLoadOrders& operator=(const ThrowLoadOrders&) = delete;
+
+  struct Orders {
+    std::vector<std::complex<double>> A, B;  ///< [N m], [kg m^2/rad]: p = 0 .. P (A(psi) = Re sum_p A_p e^{i p tau})
+  };
+  /// Throw j's orders p = 0 .. P of `train` (computed at the first call for that P and kept).
+  /// @throws std::invalid_argument if `train` is not a train of the scene this object serves.
+  const Orders& getOrders(const CrankTrain& train, int j, int P);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 /// @throws std::invalid_argument as makeCrankTrain, or if a body has no inertia;
 ///         std::runtime_error if the sum has not converged with P = max_harmonics.
 HolzerResponse calcHolzerResponse(const Mechanism& m, const HolzerOptions& options = {});
 
+/// The same, the torque orders' speed-free parts read from (and added to) `shared`, an object that serves m's scene.
+/// @throws std::invalid_argument also if `shared` serves another scene.
+HolzerResponse calcHolzerResponse(const Mechanism& m, const HolzerOptions& options, ThrowLoadOrders& shared);
+
 /// The same on a train already built (the J_eq of its throws given, front first as the bodies are).
 HolzerResponse calcHolzerResponse(const CrankTrain& train, const std::vector<double>& inertias,
                                   const HolzerOptions& options = {});
+HolzerResponse calcHolzerResponse(const CrankTrain& train, const std::vector<double>& inertias,
+                                  const HolzerOptions& options, ThrowLoadOrders& shared);
 
 }  // namespace crankcheck::analytic
