@@ -22,6 +22,9 @@ class Model final : public EngineModel {
   Evaluation evaluate(double phi) override { return model_.evaluate(phi); }
   Evaluation evaluateMotion(double phi) override { return model_.evaluateMotion(phi); }
   void setSpeed(double omega) override { model_.setSpeed(omega); }
+  void startAssemblyFrom(const EngineModel& donor) override {
+    if (const auto* same = dynamic_cast<const Model*>(&donor)) model_.startAssemblyFrom(same->model_);
+  }
   double calcQ(double phi) override { return model_.calcHoldingTorque(phi); }
   double calcSecondRouteQ(double phi) override { return model_.calcVirtualPowerQ(phi); }
 

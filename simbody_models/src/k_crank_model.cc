@@ -66,6 +66,8 @@ class KCrankModel::Impl {
 
   const Mechanism& mechanism() const { return m_; }
 
+  void startAssemblyFrom(const Impl& donor);
+
  private:
   BodyKinematics bodyKinematics(const SimTK::MobilizedBody& body) const;
   /// (dH_O/dt, dP/dt) of one body from Simbody's own accelerations and mass properties, at Acceleration stage.
@@ -180,6 +182,26 @@ void KCrankModel::Impl::setReferenceGuess() {
     pistons_[j].setQ(state_, m_.rod.length);
     rods_[j].setQ(state_, 0.0);
   }
+}
+
+void KCrankModel::Impl::startAssemblyFrom(const Impl& donor) {
+  if (&donor == this || !donor.assembled_) return;
+  const Mechanism& d = donor.m_;
+  // The coordinates depend on the geometry in each cylinder's own frame alone (theta_j = phi + alpha_j, r, l, delta_j).
+  const bool same = d.engine.cylinders == m_.engine.cylinders && d.engine.crank_angles == m_.engine.crank_angles &&
+                    d.crank.radius == m_.crank.radius && d.rod.length == m_.rod.length &&
+                    d.engine.pin_offsets == m_.engine.pin_offsets && shafts_.size() == donor.shafts_.size();
+  if (!same) return;
+  for (int j = 0; j < k_; ++j) {
+    pistons_[j].setQ(state_, donor.pistons_[j].getQ(donor.state_));
+    rods_[j].setQ(state_, donor.rods_[j].getQ(donor.state_));
+  }
+  for (size_t i = 0; i < shafts_.size(); ++i) shafts_[i].setQ(state_, donor.shafts_[i].getQ(donor.state_));
+  // The next assembly starts here (warm) and clears what was kept of the last angle.
+  assembled_ = true;
+  assembled_phi_ = donor.assembled_phi_;
+  static_pass_.valid = false;
+  unit_power_.valid = false;
 }
 
 void KCrankModel::Impl::assemble(double phi) {
@@ -441,6 +463,7 @@ KCrankModel& KCrankModel::operator=(KCrankModel&&) noexcept = default;
 
 Evaluation KCrankModel::evaluate(double phi) { return impl_->evaluateAt(phi, nullptr); }
 Evaluation KCrankModel::evaluateMotion(double phi) { return impl_->evaluateAt(phi, nullptr, true); }
+void KCrankModel::startAssemblyFrom(const KCrankModel& donor) { impl_->startAssemblyFrom(*donor.impl_); }
 void KCrankModel::setSpeed(double omega) { impl_->setSpeed(omega); }
 
 Diagnostics KCrankModel::calcDiagnostics(double phi) {

@@ -449,6 +449,51 @@ TEST_P(KCrankModelTest, ResultIndependentOfHistory) {
   }
 }
 
+// An assembly started from another bank angle's model (startAssemblyFrom: the campaign's sweep over gamma assembles once
+// per angle) against this model's own warm starts from the angle before, at every test angle: the same evaluation to
+// the history's roundoff (as ResultIndependentOfHistory: 16 eps of each quantity's scale), since the donor's joint
+// coordinates solve this model's loops to roundoff and the assembly still converges to its own tolerance.
+TEST_P(KCrankModelTest, AssemblyStartedFromAnotherBankAngleGivesTheSameEvaluation) {
+  Case donor_case = GetParam();
+  donor_case.gamma_deg += 53.0;
+  KCrankModel donor(makeMechanism(donor_case)), seeded(mechanism_);
+  const double F = scales_.force;
+  for (double phi : kAngles) {
+    SCOPED_TRACE(phi);
+    donor.evaluate(phi);
+    seeded.startAssemblyFrom(donor);
+    const Evaluation got = seeded.evaluate(phi), own = model_.evaluate(phi);
+    EXPECT_WITHIN("seeded: drive torque", got.drive_torque, own.drive_torque, 16 * kEps * scales_.torque, scales_.torque);
+    EXPECT_WITHIN("seeded: Q", got.Q, own.Q, 16 * kEps * scales_.torque_gravity, scales_.torque_gravity);
+    EXPECT_WITHIN("seeded: U", got.U, own.U, 16 * kEps * scales_.energy, scales_.energy);
+    for (int i = 0; i < 2; ++i)
+      EXPECT_WITHIN("seeded: bearing", got.bearing_force[i], own.bearing_force[i], 16 * kEps * F, F);
+    for (std::size_t j = 0; j < own.cylinders.size(); ++j) {
+      EXPECT_WITHIN("seeded: x_p", got.cylinders[j].x_p, own.cylinders[j].x_p, 16 * kEps * (scales_.l + scales_.r),
+                    scales_.l + scales_.r);
+      EXPECT_WITHIN("seeded: wall", got.cylinders[j].wall_force, own.cylinders[j].wall_force, 16 * kEps * F, F);
+      EXPECT_WITHIN("seeded: crank pin", got.cylinders[j].crank_pin_force[0], own.cylinders[j].crank_pin_force[0],
+                    16 * kEps * F, F);
+    }
+  }
+}
+
+// A donor of another geometry (a longer rod) is ignored: the model walks the angles exactly as it would alone, bit
+// for bit.
+TEST_P(KCrankModelTest, AssemblyStartIgnoresAnotherGeometry) {
+  Mechanism other = mechanism_;
+  other.rod.length *= 1.1;
+  KCrankModel donor(other), seeded(mechanism_);
+  for (double phi : kAngles) {
+    donor.evaluate(phi);
+    seeded.startAssemblyFrom(donor);
+    const Evaluation got = seeded.evaluate(phi), own = model_.evaluate(phi);
+    EXPECT_EQ(got.drive_torque, own.drive_torque) << phi;
+    EXPECT_EQ(got.Q, own.Q) << phi;
+    for (std::size_t j = 0; j < own.cylinders.size(); ++j) EXPECT_EQ(got.cylinders[j].x_p, own.cylinders[j].x_p) << phi;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Cases, KCrankModelTest, ::testing::ValuesIn(allCases()),
                          [](const ::testing::TestParamInfo<Case>& info) { return caseName(info.param); });
 

@@ -138,61 +138,87 @@ struct WorstComparison {
 };
 
 // `measure_soft`: the engines that are measured, not gated (Engine::gated false: MuJoCo's soft ways) take part too.
-TableSet crossCheckCase(const std::string& family, const Mechanism& m, const std::vector<double>& angles_deg,
-                        bool measure_soft = true) {
-  std::map<std::pair<std::string, std::string>, WorstComparison> worst;  // (engine, quantity)
-  auto note = [&](const std::string& engine, const Comparison& c, double phi_deg, double rpm) {
-    WorstComparison& w = worst[{engine, c.quantity}];
-    const double ratio = c.error() / c.tolerance();
-    w.pass = w.pass && c.agrees();
-    if (ratio > w.ratio_to_tolerance) {
-      w.ratio_to_tolerance = ratio;
-      w.rel_error = c.error() / c.scale;
-      w.tolerance_rel = c.tolerance() / c.scale;
-      w.phi_deg = phi_deg;
-      w.rpm = rpm;
-    }
+// Several `variants` of one mechanism that differ in gamma alone (the gate's sweep) are cross-checked in lockstep: angle
+// by angle, variant by variant, each engine's model of a later variant starting its assembly from the first variant's
+// at the same angle (EngineModel::startAssemblyFrom: Simbody then assembles once per angle, not once per gamma). Every
+// model is asked what it would be asked alone, in the same order; the tables are each variant's, as if alone.
+TableSet crossCheckCases(const std::string& family, const std::vector<Mechanism>& variants,
+                         const std::vector<double>& angles_deg, bool measure_soft = true) {
+  struct Case {
+    std::map<std::pair<std::string, std::string>, WorstComparison> worst;  // (engine, quantity)
+    std::vector<Mechanism> at_speed;  // the case at the scene's speed and at rest
+    std::vector<Scales> scales;
+    std::unique_ptr<EngineModel> closed_form;
+    std::vector<std::pair<const Engine*, std::unique_ptr<EngineModel>>> others;
   };
-  // Every engine's model built once for the case and evaluated at both speeds (speed is a state: EngineModel::setSpeed),
-  // the speeds inner, so that the second speed finds each model assembled at the same angle.
-  std::vector<Mechanism> at_speed;  // the case at the scene's speed and at rest
-  for (double rpm : m.speed_rpm > 0.0 ? std::vector<double>{m.speed_rpm, 0.0} : std::vector<double>{0.0})
-    at_speed.push_back(withSpeed(m, rpm));
-  std::vector<Scales> scales;
-  for (const Mechanism& case_m : at_speed) scales.push_back(calcScales(case_m));
-  // The closed forms against every other registered engine, exact or soft (engines.h), with its second route to Q
-  // where it offers one (Engine::second_q_route), at rest.
-  const std::unique_ptr<EngineModel> closed_form = getClosedFormEngine().build(at_speed.front());
-  std::vector<std::pair<const Engine*, std::unique_ptr<EngineModel>>> others;
-  for (const Engine& engine : listEngines())
-    if (!engine.closed_form && (engine.gated || measure_soft)) others.emplace_back(&engine, engine.build(at_speed.front()));
+  std::vector<Case> cases(variants.size());
+  for (size_t v = 0; v < variants.size(); ++v) {
+    const Mechanism& m = variants[v];
+    Case& c = cases[v];
+    // Every engine's model built once for the case and evaluated at both speeds (speed is a state:
+    // EngineModel::setSpeed), the speeds inner, so that the second speed finds each model assembled at the same angle.
+    for (double rpm : m.speed_rpm > 0.0 ? std::vector<double>{m.speed_rpm, 0.0} : std::vector<double>{0.0})
+      c.at_speed.push_back(withSpeed(m, rpm));
+    for (const Mechanism& case_m : c.at_speed) c.scales.push_back(calcScales(case_m));
+    // The closed forms against every other registered engine, exact or soft (engines.h), with its second route to Q
+    // where it offers one (Engine::second_q_route), at rest.
+    c.closed_form = getClosedFormEngine().build(c.at_speed.front());
+    for (const Engine& engine : listEngines())
+      if (!engine.closed_form && (engine.gated || measure_soft)) c.others.emplace_back(&engine, engine.build(c.at_speed.front()));
+  }
   for (double phi_deg : angles_deg) {
     const double phi = radiansFromDegrees(phi_deg);
-    for (size_t s = 0; s < at_speed.size(); ++s) {
-      const Mechanism& case_m = at_speed[s];
-      const double rpm = case_m.speed_rpm;
-      closed_form->setSpeed(case_m.engine.speed);
-      const Evaluation a = closed_form->evaluate(phi);
-      for (auto& [engine, other] : others) {
-        other->setSpeed(case_m.engine.speed);
-        for (const Comparison& c : compareEvaluations(case_m, a, other->evaluate(phi))) note(engine->name, c, phi_deg, rpm);
-        if (rpm == 0.0 && !engine->second_q_route.empty())
-          note(engine->name, {"Q (" + engine->second_q_route + ")", -1, a.Q, other->calcSecondRouteQ(phi),
-                              scales[s].energy, scales[s].conditioning},
-               phi_deg, rpm);
+    for (size_t v = 0; v < cases.size(); ++v) {
+      Case& c = cases[v];
+      auto note = [&](const std::string& engine, const Comparison& cmp, double rpm) {
+        WorstComparison& w = c.worst[{engine, cmp.quantity}];
+        const double ratio = cmp.error() / cmp.tolerance();
+        w.pass = w.pass && cmp.agrees();
+        if (ratio > w.ratio_to_tolerance) {
+          w.ratio_to_tolerance = ratio;
+          w.rel_error = cmp.error() / cmp.scale;
+          w.tolerance_rel = cmp.tolerance() / cmp.scale;
+          w.phi_deg = phi_deg;
+          w.rpm = rpm;
+        }
+      };
+      if (v > 0)
+        for (size_t e = 0; e < c.others.size(); ++e) c.others[e].second->startAssemblyFrom(*cases.front().others[e].second);
+      for (size_t s = 0; s < c.at_speed.size(); ++s) {
+        const Mechanism& case_m = c.at_speed[s];
+        const double rpm = case_m.speed_rpm;
+        c.closed_form->setSpeed(case_m.engine.speed);
+        const Evaluation a = c.closed_form->evaluate(phi);
+        for (auto& [engine, other] : c.others) {
+          other->setSpeed(case_m.engine.speed);
+          for (const Comparison& cmp : compareEvaluations(case_m, a, other->evaluate(phi))) note(engine->name, cmp, rpm);
+          if (rpm == 0.0 && !engine->second_q_route.empty())
+            note(engine->name, {"Q (" + engine->second_q_route + ")", -1, a.Q, other->calcSecondRouteQ(phi),
+                                c.scales[s].energy, c.scales[s].conditioning},
+                 rpm);
+        }
       }
     }
   }
   Table t("crosscheck", {{"family", kText}, {"engine", kText}, {"case", kText}, {"lambda", "-"}, {"quantity", kText},
                          {"worst_rel_error", "-"}, {"where_phi_deg", "deg"}, {"where_speed_rpm", "rpm"},
                          {"tolerance_rel", "-"}, {"pass", kText}});
-  char case_name[160];
-  std::snprintf(case_name, sizeof case_name, "%s lambda=%.4g", m.name.c_str(), lambdaOf(m));
-  for (const auto& [key, w] : worst)
-    t.rows.push_back({family, key.first, case_name, num(lambdaOf(m)), key.second, num(w.rel_error), num(w.phi_deg),
-                      num(w.rpm), num(w.tolerance_rel),
-                      findEngine(key.first).gated ? (w.pass ? "pass" : "FAIL") : "reported"});
+  for (size_t v = 0; v < variants.size(); ++v) {
+    const Mechanism& m = variants[v];
+    char case_name[160];
+    std::snprintf(case_name, sizeof case_name, "%s lambda=%.4g", m.name.c_str(), lambdaOf(m));
+    for (const auto& [key, w] : cases[v].worst)
+      t.rows.push_back({family, key.first, case_name, num(lambdaOf(m)), key.second, num(w.rel_error), num(w.phi_deg),
+                        num(w.rpm), num(w.tolerance_rel),
+                        findEngine(key.first).gated ? (w.pass ? "pass" : "FAIL") : "reported"});
+  }
   return {{"crosscheck", t}};
+}
+
+// Cross-check of one case.
+TableSet crossCheckCase(const std::string& family, const Mechanism& m, const std::vector<double>& angles_deg,
+                        bool measure_soft = true) {
+  return crossCheckCases(family, {m}, angles_deg, measure_soft);
 }
 
 }  // namespace
@@ -413,14 +439,18 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
                          [family, kbase, k, two, sweep_lambdas, sweep_gammas, gate_angles,
                           soft = std::find(soft_ks.begin(), soft_ks.end(), k) != soft_ks.end()] {
                            TableSet out;
-                           for (double lambda : sweep_lambdas)
+                           for (double lambda : sweep_lambdas) {
+                             // The gammas of one lambda in lockstep (crossCheckCases: one assembly per angle).
+                             std::vector<Mechanism> variants;
                              for (double gamma : sweep_gammas) {
                                Mechanism variant = withGamma(withLambda(kbase, lambda), gamma);
                                char name[96];
                                std::snprintf(name, sizeof name, "k%d_%s_%s", k, two ? "two" : "four", gammaTag(gamma).c_str());
                                variant.name = name;
-                               appendTables(out, crossCheckCase(family, variant, gate_angles, soft));
+                               variants.push_back(std::move(variant));
                              }
+                             appendTables(out, crossCheckCases(family, variants, gate_angles, soft));
+                           }
                            return out;
                          },
                          task_cost::kGateSweep});

@@ -21,6 +21,10 @@ class CountedModel : public EngineModel {
   Evaluation evaluate(double phi) override { return counted([&] { return model_->evaluate(phi); }); }
   Evaluation evaluateMotion(double phi) override { return counted([&] { return model_->evaluateMotion(phi); }); }
   void setSpeed(double omega) override { model_->setSpeed(omega); }
+  void startAssemblyFrom(const EngineModel& donor) override {
+    const auto* counted_donor = dynamic_cast<const CountedModel*>(&donor);
+    model_->startAssemblyFrom(counted_donor ? *counted_donor->model_ : donor);
+  }
   double calcQ(double phi) override { return counted([&] { return model_->calcQ(phi); }); }
   double calcSecondRouteQ(double phi) override { return counted([&] { return model_->calcSecondRouteQ(phi); }); }
 

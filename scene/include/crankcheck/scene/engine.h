@@ -32,6 +32,11 @@ class EngineModel {
   /// at rest: a fifth of its evaluation) skips them and sets both NaN; the others return evaluate()'s.
   /// @throws as evaluate().
   virtual Evaluation evaluateMotion(double phi) { return evaluate(phi); }
+  /// A warm start for an engine that assembles its mechanism at each angle (Simbody): the next assembly starts from
+  /// `donor`'s configuration where the donor was last evaluated, when the donor is the same engine's model of the same
+  /// mechanism up to its bank angles (a sweep over gamma: the joint coordinates are each cylinder's own). Changes no
+  /// converged result beyond roundoff, only what the assembly has left to iterate; the others ignore it.
+  virtual void startAssemblyFrom(const EngineModel& donor) { (void)donor; }
   /// Sets the crank speed omega [rad/s] of every later evaluate() (the mechanism's engine.speed, and speed_rpm with
   /// it): speed is a state, not a geometry, so one model serves every speed of its mechanism.
   /// @throws std::invalid_argument if omega is not finite.
