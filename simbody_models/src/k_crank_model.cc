@@ -96,6 +96,15 @@ class KCrankModel::Impl {
   };
   UnitPower unit_power_;
 
+  // The velocities of a dynamic pass (every u: joint rates, each cylinder's own, and the crank's omega): this model's last
+  // one, and one taken from a donor (startAssemblyFrom) that starts the velocity projection at the same angle and speed.
+  struct MotionStart {
+    bool valid = false;
+    double phi = 0.0, omega = 0.0;
+    SimTK::Vector u;
+  };
+  MotionStart last_motion_, seeded_motion_;
+
   Mechanism m_;
   ModelOptions options_;
   int k_ = 0;
@@ -197,11 +206,14 @@ void KCrankModel::Impl::startAssemblyFrom(const Impl& donor) {
     rods_[j].setQ(state_, donor.rods_[j].getQ(donor.state_));
   }
   for (size_t i = 0; i < shafts_.size(); ++i) shafts_[i].setQ(state_, donor.shafts_[i].getQ(donor.state_));
-  // The next assembly starts here (warm) and clears what was kept of the last angle.
+  // The next assembly starts here (warm) and clears what was kept of the last angle; the donor's last dynamic pass at
+  // this angle starts the velocity projection at the same speed (solveMotion).
   assembled_ = true;
   assembled_phi_ = donor.assembled_phi_;
   static_pass_.valid = false;
   unit_power_.valid = false;
+  seeded_motion_ = donor.last_motion_.valid && donor.last_motion_.phi == donor.assembled_phi_ ? donor.last_motion_
+                                                                                               : MotionStart{};
 }
 
 void KCrankModel::Impl::assemble(double phi) {
@@ -244,6 +256,10 @@ void KCrankModel::Impl::assemble(double phi) {
 
 void KCrankModel::Impl::solveMotion(double omega) {
   drive_->omega = omega;
+  if (omega != 0.0 && seeded_motion_.valid && seeded_motion_.phi == assembled_phi_ && seeded_motion_.omega == omega) {
+    state_.updU() = seeded_motion_.u;  // a donor's solution (startAssemblyFrom): the projection has nothing to iterate
+    seeded_motion_.valid = false;
+  }
   // The prescribed qdot is evaluated at Stage::Position: invalidate it (the q's stay as assembled).
   state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Position);
   try {
@@ -253,7 +269,10 @@ void KCrankModel::Impl::solveMotion(double omega) {
     throw std::runtime_error("KCrankModel: Simbody failed to solve the motion at phi = " +
                              std::to_string(drive_->phi) + " rad: " + error.what());
   }
-  if (omega != 0.0) unit_power_ = {true, assembled_phi_, calcGravityPower(matter_, gravity_, state_) / omega};
+  if (omega != 0.0) {
+    unit_power_ = {true, assembled_phi_, calcGravityPower(matter_, gravity_, state_) / omega};
+    last_motion_ = {true, assembled_phi_, omega, state_.getU()};
+  }
 }
 
 double KCrankModel::Impl::driveTorque() const {

@@ -113,9 +113,10 @@ class KCrankModel {
   /// it was last assembled) when both are of the same mechanism up to the bank angles (the same cylinder count, crank
   /// angles, pin offsets, crank radius, rod length and balance shafts): those coordinates are measured from each
   /// cylinder's own axis, so the donor's solution is this model's to roundoff and the assembly at the donor's angle has
-  /// nothing left to iterate (a sweep over gamma assembles once per angle). A warm start, as the previous angle's is: the
-  /// assembly still converges to this model's own tolerance. Nothing changes if the mechanisms differ otherwise or the
-  /// donor has not been assembled.
+  /// nothing left to iterate (a sweep over gamma assembles once per angle); the donor's last velocities at that angle
+  /// (its dynamic pass) start the velocity projection of this model's at the same speed alike. Warm starts, as the
+  /// previous angle's is: the projections still converge to this model's own tolerance. Nothing changes if the
+  /// mechanisms differ otherwise or the donor has not been assembled.
   void startAssemblyFrom(const KCrankModel& donor);
 
   /// evaluate(phi) together with Simbody's own body kinematics and energies at the same state.
