@@ -5,11 +5,11 @@
 #include <vector>
 
 #include "crankcheck/analytic/balance_shafts.h"
-#include "cylinder_terms.h"
 #include "crankcheck/analytic/exact_trig.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/potential_energy.h"
+#include "cylinder_terms.h"
 
 namespace crankcheck::analytic {
 

@@ -271,7 +271,10 @@ void KCrankModel::Impl::solveMotion(double omega) {
   }
   if (omega != 0.0) {
     unit_power_ = {true, assembled_phi_, calcGravityPower(matter_, gravity_, state_) / omega};
-    last_motion_ = {true, assembled_phi_, omega, state_.getU()};
+    last_motion_.valid = true;  // fields assigned, so that u's storage is reused at every pass
+    last_motion_.phi = assembled_phi_;
+    last_motion_.omega = omega;
+    last_motion_.u = state_.getU();
   }
 }
 

@@ -155,6 +155,23 @@ std::vector<Case> allCases() {
 class KCrankModelTest : public ::testing::TestWithParam<Case> {
  protected:
   KCrankModelTest() : mechanism_(makeMechanism(GetParam())), scales_(scalesOf(mechanism_)), model_(mechanism_) {}
+  // Two converged assemblies of the same angle (another start, another history): the same evaluation to roundoff, 16 eps
+  // of each quantity's scale (two Newton solutions differ at roundoff; seen <= 2 eps).
+  void expectSameToRoundoff(const std::string& what, const Evaluation& got, const Evaluation& expected) const {
+    const double F = scales_.force, L = scales_.l + scales_.r;
+    EXPECT_WITHIN(what + ": drive torque", got.drive_torque, expected.drive_torque, 16 * kEps * scales_.torque,
+                  scales_.torque);
+    EXPECT_WITHIN(what + ": Q", got.Q, expected.Q, 16 * kEps * scales_.torque_gravity, scales_.torque_gravity);
+    EXPECT_WITHIN(what + ": U", got.U, expected.U, 16 * kEps * scales_.energy, scales_.energy);
+    for (int i = 0; i < 2; ++i)
+      EXPECT_WITHIN(what + ": bearing", got.bearing_force[i], expected.bearing_force[i], 16 * kEps * F, F);
+    for (std::size_t j = 0; j < expected.cylinders.size(); ++j) {
+      EXPECT_WITHIN(what + ": x_p", got.cylinders[j].x_p, expected.cylinders[j].x_p, 16 * kEps * L, L);
+      EXPECT_WITHIN(what + ": wall", got.cylinders[j].wall_force, expected.cylinders[j].wall_force, 16 * kEps * F, F);
+      EXPECT_WITHIN(what + ": crank pin", got.cylinders[j].crank_pin_force[0], expected.cylinders[j].crank_pin_force[0],
+                    16 * kEps * F, F);
+    }
+  }
   Mechanism mechanism_;
   Scales scales_;
   KCrankModel model_;
@@ -428,25 +445,15 @@ TEST_P(KCrankModelTest, WallForceIsNormalToTheCylinder) {
   }
 }
 
-// The result must not depend on where the previous assembly was (warm start vs cold start from far away).
-// Allowed: 16 eps of each quantity's scale (two converged Newton solutions differ at roundoff; seen <= 2 eps).
+// The result must not depend on where the previous assembly was (warm start vs cold start from far away): the same
+// evaluation to roundoff (expectSameToRoundoff).
 TEST_P(KCrankModelTest, ResultIndependentOfHistory) {
   const double phi = 1.234;
   model_.evaluate(phi + 0.01);
   const Evaluation warm = model_.evaluate(phi);
   model_.evaluate(phi + 3.0);
   const Evaluation cold = model_.evaluate(phi);
-  const double F = scales_.force;
-  EXPECT_WITHIN("history: drive torque", warm.drive_torque, cold.drive_torque, 16 * kEps * scales_.torque,
-                scales_.torque);
-  EXPECT_WITHIN("history: Q", warm.Q, cold.Q, 16 * kEps * scales_.torque_gravity, scales_.torque_gravity);
-  for (int i = 0; i < 2; ++i)
-    EXPECT_WITHIN("history: bearing", warm.bearing_force[i], cold.bearing_force[i], 16 * kEps * F, F);
-  for (std::size_t j = 0; j < warm.cylinders.size(); ++j) {
-    EXPECT_WITHIN("history: x_p", warm.cylinders[j].x_p, cold.cylinders[j].x_p, 16 * kEps * (scales_.l + scales_.r),
-                  scales_.l + scales_.r);
-    EXPECT_WITHIN("history: wall", warm.cylinders[j].wall_force, cold.cylinders[j].wall_force, 16 * kEps * F, F);
-  }
+  expectSameToRoundoff("history", warm, cold);
 }
 
 // An assembly started from another bank angle's model (startAssemblyFrom: the campaign's sweep over gamma assembles once
@@ -457,24 +464,12 @@ TEST_P(KCrankModelTest, AssemblyStartedFromAnotherBankAngleGivesTheSameEvaluatio
   Case donor_case = GetParam();
   donor_case.gamma_deg += 53.0;
   KCrankModel donor(makeMechanism(donor_case)), seeded(mechanism_);
-  const double F = scales_.force;
   for (double phi : kAngles) {
     SCOPED_TRACE(phi);
     donor.evaluate(phi);
     seeded.startAssemblyFrom(donor);
     const Evaluation got = seeded.evaluate(phi), own = model_.evaluate(phi);
-    EXPECT_WITHIN("seeded: drive torque", got.drive_torque, own.drive_torque, 16 * kEps * scales_.torque, scales_.torque);
-    EXPECT_WITHIN("seeded: Q", got.Q, own.Q, 16 * kEps * scales_.torque_gravity, scales_.torque_gravity);
-    EXPECT_WITHIN("seeded: U", got.U, own.U, 16 * kEps * scales_.energy, scales_.energy);
-    for (int i = 0; i < 2; ++i)
-      EXPECT_WITHIN("seeded: bearing", got.bearing_force[i], own.bearing_force[i], 16 * kEps * F, F);
-    for (std::size_t j = 0; j < own.cylinders.size(); ++j) {
-      EXPECT_WITHIN("seeded: x_p", got.cylinders[j].x_p, own.cylinders[j].x_p, 16 * kEps * (scales_.l + scales_.r),
-                    scales_.l + scales_.r);
-      EXPECT_WITHIN("seeded: wall", got.cylinders[j].wall_force, own.cylinders[j].wall_force, 16 * kEps * F, F);
-      EXPECT_WITHIN("seeded: crank pin", got.cylinders[j].crank_pin_force[0], own.cylinders[j].crank_pin_force[0],
-                    16 * kEps * F, F);
-    }
+    expectSameToRoundoff("seeded", got, own);
   }
 }
 
