@@ -40,6 +40,12 @@ const Evaluation& checkFinite(const Evaluation& ev, bool with_static_pass = true
 
 }  // namespace
 
+// The largest crank step [rad] over which an assembly starts from the last dynamic pass's Taylor step (assemble).
+// Measured (k = 1 and 12, 4 turns at even steps): steps of 0.25 degrees took 2.8 (k = 1) to 3.8 (k = 12) Newton steps per
+// assembly from the last angle's q, 1.0 from the Taylor start; 15 degrees 3.0 -> 2.0; 45 and 60 degrees 3.9 -> 3.0
+// (k = 12); at 75 degrees and beyond it saves none.
+constexpr double kTaylorStartLimit = 1.1;
+
 class KCrankModel::Impl {
  public:
   Impl(const Mechanism& m, ModelOptions options);
@@ -98,10 +104,12 @@ class KCrankModel::Impl {
 
   // The velocities of a dynamic pass (every u: joint rates, each cylinder's own, and the crank's omega): this model's last
   // one, and one taken from a donor (startAssemblyFrom) that starts the velocity projection at the same angle and speed.
+  // The last one also keeps qdot and qdotdot (the motion at constant crank speed), from which the next assembly near it
+  // starts (assemble: the Taylor step of the motion to the next angle).
   struct MotionStart {
     bool valid = false;
     double phi = 0.0, omega = 0.0;
-    SimTK::Vector u;
+    SimTK::Vector u, qdot, qdotdot;
   };
   MotionStart last_motion_, seeded_motion_;
 
@@ -149,7 +157,11 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
   }
   const double r = m_.crank.radius;
   const double l = m_.rod.length;
-  polish_threshold_ = 8.0 * std::numeric_limits<double>::epsilon() * (l + r);
+  // 2 eps (l + r): the closure is left at the rounding of the mechanism's size. At 8 eps, a projection whose last Newton
+  // step from a near start (the Taylor start of assemble) ended just below it left up to 7.6 eps (l + r): at lambda =
+  // 1e-6 (l + r = 50 km) 1e-9 of r omega^2 in a_p. Measured over the campaign's cross-checks (2026-11-26): Simbody's
+  // worst comparison 0.12 -> 0.043 of its tolerance.
+  polish_threshold_ = 2.0 * std::numeric_limits<double>::epsilon() * (l + r);
   // Simbody's projections measure constraint errors in absolute units (m, m/s). A very long mechanism (a 50 km
   // rod at lambda = 1e-6) cannot close its loop to 1e-12 m: roundoff alone is eps l = 1e-11 m. The tolerance is
   // therefore relative to the mechanism's size, and never tighter than the absolute value for machines below 1 m.
@@ -220,8 +232,17 @@ void KCrankModel::Impl::assemble(double phi) {
   if (!std::isfinite(phi)) throw std::invalid_argument("KCrankModel: crank angle phi must be finite");
   static_pass_.valid = false;
   // Warm start from the previous solution when it is near; otherwise from the crude guess.
-  const bool warm = assembled_ && std::abs(wrappedDifference(phi, assembled_phi_)) <= 1.0;
+  const double step = wrappedDifference(phi, assembled_phi_);  // [rad]
+  const bool taylor = assembled_ && std::abs(step) <= kTaylorStartLimit && last_motion_.valid && last_motion_.phi == assembled_phi_;
+  const bool warm = taylor || (assembled_ && std::abs(step) <= 1.0);
   if (!warm) setReferenceGuess();
+  if (taylor) {
+    // Near the last dynamic pass: the start is Simbody's own motion carried on to phi, q + qdot t + qdotdot t^2 / 2 with
+    // t = step / omega (the crank turns at constant omega), not the q of the last angle: the projection then needs
+    // about one Newton step where it needed two or three.
+    const double t = step / last_motion_.omega;
+    state_.updQ() += t * last_motion_.qdot + (0.5 * t * t) * last_motion_.qdotdot;
+  }
   unit_power_.valid = false;
   drive_->phi = phi;
   // u's are irrelevant to positions but zero them so nothing stale survives a failed attempt.
@@ -275,6 +296,8 @@ void KCrankModel::Impl::solveMotion(double omega) {
     last_motion_.phi = assembled_phi_;
     last_motion_.omega = omega;
     last_motion_.u = state_.getU();
+    last_motion_.qdot = state_.getQDot();
+    last_motion_.qdotdot = state_.getQDotDot();
   }
 }
 

@@ -4,7 +4,7 @@
 //
 // Tolerances: validation/scales.h (the rule shared with `crankcheck validate`): |a - b| <= 64 eps x scale x
 // conditioning, with the scales of docs/CONVENTIONS-crankcheck.md. Both engines round each quantity at the level
-// of a few eps of its scale; Simbody adds its position projection (solved to 8 eps (l + r)) and a k-body
+// of a few eps of its scale; Simbody adds its position projection (solved to 2 eps (l + r)) and a k-body
 // articulated solve. Conditioning: near lambda = 1 the loop's condition number 1/(1 - lambda^2); for tiny lambda
 // Simbody's coordinates are of size l = r / lambda, so its rounding relative to crank-scale quantities grows like
 // 1/lambda. The worst ratios are printed with CRANKCHECK_PRINT_RATIOS=1 and listed in the README.

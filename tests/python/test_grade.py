@@ -75,7 +75,15 @@ def test_norton_fails_where_the_clis_norton_example_fails(tmp_path):
             # math.radians): the errors at speed, of order 1e-3 of the scale, agree far beyond rounding of the values.
             for column in ("largest_rel_error_simbody", "rel_error_at_worst_ratio"):
                 assert row[column] == pytest.approx(float(c[column]), rel=1e-9), column
-            assert row["where_case"] == c["where_case"] and row["largest_where_case"] == c["largest_where_case"]
+            # Where: the same case, or one tied with it. Norton's error relative to r omega^2 depends on lambda and the
+            # angle alone, so every scene at lambda = 0.9 has the same worst values to rounding (0.0890809627472250 of
+            # the scale), and the last digits of the two computations pick among them. Each side's case must reach,
+            # in the other side's failures, the worst ratio and the largest error it reports.
+            for mine, theirs, their_failures in ((row, c, failures), (c, row, result.failures)):
+                for case_key, value, of in (("where_case", "worst_ratio", lambda f: float(f["rel_error"]) / float(f["tolerance_rel"])),
+                                            ("largest_where_case", "largest_rel_error", lambda f: float(f["rel_error"]))):
+                    reached = [of(f) for f in their_failures if f["case"] == mine[case_key] and f["quantity"] == row["quantity"]]
+                    assert reached and max(reached) == pytest.approx(float(theirs[value]), rel=1e-9), (case_key, mine[case_key])
     assert result.verdict("a_p") == "FAIL" and result.verdict("U") == "not provided"
     # The summary names what it shows: the largest error, and the error where error / tolerance is worst.
     a_p = {row["regime"]: row for row in result.summary if row["quantity"] == "a_p"}

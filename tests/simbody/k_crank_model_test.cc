@@ -456,6 +456,20 @@ TEST_P(KCrankModelTest, ResultIndependentOfHistory) {
   expectSameToRoundoff("history", warm, cold);
 }
 
+// An assembly started from the last dynamic pass's motion carried on to the new angle (the Taylor start, up to 1.1 rad)
+// against one started from the crude guess (the angle before 3 rad away): the same evaluation to the history's roundoff,
+// at the steps the campaign takes (the offset sweep's 0.25 degrees, the cross-check's 15, the gate's up to 61).
+TEST_P(KCrankModelTest, AssemblyStartedFromTheLastMotionGivesTheSameEvaluation) {
+  for (double phi : kAngles)
+    for (double step_deg : {0.25, 15.0, 61.0}) {
+      SCOPED_TRACE(std::to_string(phi) + " rad after a step of " + std::to_string(step_deg) + " degrees");
+      model_.evaluate(phi - radiansFromDegrees(step_deg));
+      const Evaluation taylor = model_.evaluate(phi);
+      model_.evaluate(phi + 3.0);
+      expectSameToRoundoff("taylor", taylor, model_.evaluate(phi));
+    }
+}
+
 // An assembly started from another bank angle's model (startAssemblyFrom: the campaign's sweep over gamma assembles once
 // per angle) against this model's own warm starts from the angle before, at every test angle: the same evaluation to
 // the history's roundoff (as ResultIndependentOfHistory: 16 eps of each quantity's scale), since the donor's joint
