@@ -278,8 +278,7 @@ void checkRowsFit(const mjData* d) {
 /// MJCF text -> mjModel through MuJoCo's virtual file system (2.2.2 has no mj_loadXMLString). One file system per
 /// thread, kept: mjVFS holds 2000 file names of 1000 bytes, and zeroing a new one (mj_defaultVFS) was a quarter of
 /// a one-cylinder model's build (0.41 ms). The file is removed again after each load, whatever happens.
-mjModel* loadModel(const std::string& xml) {
-  installHandlers();
+mjModel* compileModel(const std::string& xml) {
   thread_local const std::unique_ptr<mjVFS> vfs = [] {
     auto fresh = std::make_unique<mjVFS>();  // large: on the heap
     mj_defaultVFS(fresh.get());
@@ -303,6 +302,29 @@ mjModel* loadModel(const std::string& xml) {
     throw std::runtime_error("MuJoCo could not compile the model: " + text);
   }
   return model;
+}
+
+/// MJCF text -> a model of its own (the caller may change it): a copy of the same text's compiled model when one of
+/// the thread's last few loads had it. The cross-checks build each case's exact model three times (MuJoCo's exact way,
+/// and under each soft way's own model), and the compiler is deterministic, so a copy (mj_copyModel) is what a new
+/// compile would give, at a small part of its cost.
+mjModel* loadModel(const std::string& xml) {
+  installHandlers();
+  constexpr size_t kKept = 4;
+  struct Compiled {
+    std::string xml;
+    std::unique_ptr<mjModel, void (*)(mjModel*)> model;
+  };
+  thread_local std::vector<Compiled> kept;
+  auto found = std::find_if(kept.begin(), kept.end(), [&](const Compiled& c) { return c.xml == xml; });
+  if (found == kept.end()) {
+    if (kept.size() == kKept) kept.erase(kept.begin());
+    kept.push_back({xml, {compileModel(xml), mj_deleteModel}});
+    found = kept.end() - 1;
+  }
+  mjModel* copy = mj_copyModel(nullptr, found->model.get());
+  if (!copy) throw std::runtime_error("MuJoCo: could not copy a compiled model");
+  return copy;
 }
 
 struct ModelDeleter {
