@@ -628,10 +628,15 @@ double KCrankMujocoModel::Impl::solveSoftForces(double phi, bool gas) {
   for (size_t j = 0; j < cylinders_.size(); ++j)
     s->qfrc_applied[cylinders_[j].slide_v] = gas ? -calcGasForce(m_, static_cast<int>(j), phi) : 0.0;
   // The solver's crank acceleration is linear in the crank torque (equality constraints only: one quadratic
-  // problem); two solves give the line, a third the state at the torque where it crosses zero.
+  // problem); two solves give the line, a third the state at the torque where it crosses zero. The torque is an
+  // applied force: only the acceleration stage depends on it, so the second and third solves redo that stage alone
+  // (mj_forwardSkip past mjSTAGE_VEL: the positions and velocities are the first solve's).
+  bool first_solve = true;
   auto crankAcceleration = [&](double tau) {
     s->qfrc_applied[crank_v_] = tau;
-    mj_forward(sm, s);
+    if (first_solve) mj_forward(sm, s);
+    else mj_forwardSkip(sm, s, mjSTAGE_VEL, 1);
+    first_solve = false;
     checkRowsFit(s);
     return s->qacc[crank_v_];
   };
