@@ -7,6 +7,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include <boost/math/quadrature/gauss.hpp>
@@ -26,6 +27,13 @@ namespace {
 // T = A - (1/2) omega^2 B with the speed-free A = T_gas - Q and B = J': their orders are computed (and kept by
 // ThrowLoadOrders for every speed of a sweep), T_p = A_p - (1/2) omega^2 B_p.
 constexpr int kQuadratureOrders = 256;
+
+// Throw tm's speed-free loads at psi: A = T_gas - Q [N m] and B = J' [kg m^2/rad], of which its rigid torque at any
+// omega is T = A - (1/2) omega^2 B (calcRigidThrowTorque).
+std::pair<double, double> calcSpeedFreeLoads(const Mechanism& tm, double psi) {
+  const ThrowLoads loads = calcThrowLoads(tm, psi);
+  return {loads.gas_torque - loads.gravity_torque, loads.dJ};
+}
 
 // The sums (cycle / 2) A_p' and (cycle / 2) B_p' of throw j's speed-free loads A = T_gas - Q and B = J' for the
 // orders p = 0 .. Q by the quadrature above (A_p = 2 sum_p / cycle, A_0 = sum_0 / cycle; B alike).
@@ -52,9 +60,9 @@ std::pair<std::vector<std::complex<double>>, std::vector<std::complex<double>>> 
       for (size_t i = 0; i < x.size(); ++i)
         for (double sign : {-1.0, 1.0}) {
           const double psi = mid + sign * 0.5 * h * x[i];
-          const ThrowLoads loads = calcThrowLoads(tm, psi);
-          const double weight_a = 0.5 * h * wq[i] * (loads.gas_torque - loads.gravity_torque);
-          const double weight_b = 0.5 * h * wq[i] * loads.dJ;
+          const auto [A, B] = calcSpeedFreeLoads(tm, psi);
+          const double weight_a = 0.5 * h * wq[i] * A;
+          const double weight_b = 0.5 * h * wq[i] * B;
           const double tau = 2.0 * M_PI * psi / t.cycle;
           const std::complex<double> step = std::polar(1.0, -tau);
           std::complex<double> z(1.0, 0.0);
@@ -137,9 +145,7 @@ const ThrowLoadOrders::Orders& ThrowLoadOrders::getOrders(const CrankTrain& t, i
         a[static_cast<size_t>(k)] = cache.samples_a[static_cast<size_t>(k / (N / known))];
         b[static_cast<size_t>(k)] = cache.samples_b[static_cast<size_t>(k / (N / known))];
       } else {
-        const ThrowLoads loads = calcThrowLoads(tm, t.cycle * k / N);
-        a[static_cast<size_t>(k)] = loads.gas_torque - loads.gravity_torque;
-        b[static_cast<size_t>(k)] = loads.dJ;
+        std::tie(a[static_cast<size_t>(k)], b[static_cast<size_t>(k)]) = calcSpeedFreeLoads(tm, t.cycle * k / N);
       }
     }
     const PeriodicSignal fft_a = calcSignalFromSamples(a), fft_b = calcSignalFromSamples(b);

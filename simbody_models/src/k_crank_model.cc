@@ -231,7 +231,8 @@ void KCrankModel::Impl::startAssemblyFrom(const Impl& donor) {
 void KCrankModel::Impl::assemble(double phi) {
   if (!std::isfinite(phi)) throw std::invalid_argument("KCrankModel: crank angle phi must be finite");
   static_pass_.valid = false;
-  // Warm start from the previous solution when it is near; otherwise from the crude guess.
+  // The start: near the last dynamic pass, its motion carried on to phi (below); else the previous solution when it is
+  // near; else the crude guess.
   const double step = wrappedDifference(phi, assembled_phi_);  // [rad]
   const bool taylor = assembled_ && std::abs(step) <= kTaylorStartLimit && last_motion_.valid && last_motion_.phi == assembled_phi_;
   const bool warm = taylor || (assembled_ && std::abs(step) <= 1.0);
