@@ -74,9 +74,12 @@ std::string formatDuration(double seconds) {
   return text;
 }
 
-// Runs the tasks, those that measure time alone after the others; shows progress when stderr is a terminal: tasks
-// done, the elapsed time and an estimate of the time left (the mean time per task so far times the tasks left; the
-// tasks differ in cost, so it settles as the run goes on).
+// Runs the tasks; shows progress when stderr is a terminal: tasks done, the elapsed time and an estimate of the time
+// left (the mean time per task so far times the tasks left; the tasks differ in cost, so it settles as the run goes on).
+// The tasks that measure time (Task::measures_time) run one after the other on a core of their own: when every worker
+// has a core (jobs <= the machine's cores), on the first worker before it takes other tasks, the other workers
+// computing beside it (on this project's 2-core VM a busy neighbour core moves Google Benchmark's times by no more than
+// run-to-run noise, a few %: bench/README.md, "Seventh session"); with more workers than cores, alone after the others.
 // With `profile`, each task's seconds and what each engine did in it (profile.h) go to profile->at(i).
 struct TaskProfile {
   double seconds = 0.0;
@@ -114,15 +117,20 @@ TableSet runTasks(const std::vector<Task>& tasks, int jobs, std::vector<TaskProf
       std::fflush(stderr);
     }
   };
-  std::vector<size_t> parallel, serial;
-  for (size_t i = 0; i < tasks.size(); ++i) (tasks[i].measures_time ? serial : parallel).push_back(i);
+  std::vector<size_t> parallel, timed;
+  for (size_t i = 0; i < tasks.size(); ++i) (tasks[i].measures_time ? timed : parallel).push_back(i);
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const bool beside = jobs <= cores;  // each worker on a core of its own
   std::vector<std::thread> workers;
   for (int w = 0; w < jobs; ++w)
-    workers.emplace_back([&] {
+    workers.emplace_back([&, w] {
+      if (beside && w == 0)
+        for (size_t i : timed) runOne(i);
       for (size_t n; (n = next++) < parallel.size();) runOne(parallel[n]);
     });
   for (auto& worker : workers) worker.join();
-  for (size_t i : serial) runOne(i);
+  if (!beside)
+    for (size_t i : timed) runOne(i);
   if (progress) std::fprintf(stderr, "\r\033[K");
   if (!errors.empty()) {
     std::string message = "the campaign could not run:";

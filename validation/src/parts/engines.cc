@@ -40,7 +40,7 @@ struct Worst {
 };
 
 // The timed task: ns per evaluation of every registered engine at k = 1 and k = 12 (the base scene's parts, its
-// stroke and speed, standing). Runs alone (Task::measures_time).
+// stroke and speed, standing). Times itself on a core of its own (Task::measures_time).
 Task buildEngineCostTask(const Mechanism& base, bool quick) {
   return {"engine_cost", true, [base, quick] {
             std::vector<std::pair<std::string, std::function<void()>>> timed;

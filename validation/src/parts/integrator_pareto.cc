@@ -95,7 +95,7 @@ class IntegratorParetoPart final : public Part {
   std::string key() const override { return "integrator_pareto"; }
   int number() const override { return 7; }
   std::string title() const override { return "Simbody's integrators"; }
-  // One task that times: it runs alone (Task::measures_time); none without the base scene's flywheel.
+  // One task that times: on a core of its own (Task::measures_time); none without the base scene's flywheel.
   std::vector<Task> tasks(const PartContext& context) const override {
     if (!context.base.flywheel_inertia) return {};
     return {{"integrator_pareto", true,

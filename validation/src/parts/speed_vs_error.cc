@@ -186,7 +186,7 @@ class SpeedVsErrorPart final : public Part {
   std::string key() const override { return "speed_vs_error"; }
   int number() const override { return 2; }
   std::string title() const override { return "Speed against error"; }
-  // One task that times: it runs alone (Task::measures_time).
+  // One task that times: on a core of its own (Task::measures_time).
   std::vector<Task> tasks(const PartContext& context) const override {
     return {{"speed_vs_error", true, [base = context.base, quick = context.quick] { return calcSpeedVsErrorTables(base, quick); }}};
   }

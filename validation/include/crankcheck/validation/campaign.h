@@ -89,7 +89,9 @@ struct CampaignOptions {
 /// One independent unit of work.
 struct Task {
   std::string id;                   ///< e.g. "crosscheck inline4_four_gamma90 lambda=0.3"
-  bool measures_time = false;       ///< must run alone (its timings would suffer from parallel work)
+  /// Times itself (Google Benchmark): run on a core of its own, never beside another such task (validate's runTasks:
+  /// on one worker while the others compute, when every worker has a core; else after the others).
+  bool measures_time = false;
   std::function<TableSet()> run;
   double cost = 0.0;                ///< estimated, relative (part.h's task_cost): buildCampaign lists the largest first
 };
