@@ -189,13 +189,23 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& 
   bool have_jacobian = false;
   double last_residual = 0.0;
   Eigen::VectorXd R(dim);
+  // From the second iteration on, the run that measures the residual is the sampled one (a step end at every sample,
+  // the last at s = cycle): the one that converges is then the orbit reported, not integrated again. The first is
+  // not sampled: Holzer's start is seldom periodic to the tolerance (a sampled run takes up to twice the steps on the
+  // marine six), a Newton step from it usually is.
+  std::vector<State> orbit;  // the last sampled run's states at the samples' phases
   for (int iteration = 1;; ++iteration) {
     State yT(y0);
-    accurate.run(yT, 0, nullptr);
+    orbit.clear();
+    const bool sampled = iteration > 1;
+    const long taken = accurate.run(yT, sampled ? options.samples : 0, sampled ? &orbit : nullptr);
     for (int i = 0; i < dim; ++i) R(i) = yT[static_cast<size_t>(i)] - y0[static_cast<size_t>(i)];
     out.residual = R.cwiseAbs().maxCoeff() / scale;
     out.newton_iterations = iteration;
-    if (out.residual <= 1000.0 * options.tolerance) break;
+    if (out.residual <= 1000.0 * options.tolerance) {
+      out.steps = taken;
+      break;
+    }
     if (iteration >= 30 || !std::isfinite(out.residual))
       throw std::runtime_error("torsion: no periodic steady state found (Newton's residual " +
                                std::to_string(out.residual) + " of the twist scale after " +
@@ -217,12 +227,8 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& 
   State farther(y0);
   for (int i = 0; i < dim; ++i) farther[static_cast<size_t>(i)] -= 2.0 * delta(i);
 
-  // An orbit sampled from `start`, its series and extremes.
-  auto sampleTwists = [&](const Integrator& integrator, Integrator::Sampling sampling, const State& start, long* steps) {
-    State y(start);
-    std::vector<State> states;
-    const long taken = integrator.run(y, options.samples, &states, sampling);
-    if (steps) *steps = taken;
+  // An orbit's states at the samples' phases: its series (the bodies' deviations, the sections' twists).
+  auto calcSignals = [&](const std::vector<State>& states) {
     std::vector<std::vector<double>> x(static_cast<size_t>(n)), twist(static_cast<size_t>(n));
     for (const State& s : states) {
       Eigen::VectorXd xs(n);
@@ -240,7 +246,11 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& 
     }
     return signals;
   };
-  auto signals = sampleTwists(accurate, Integrator::Sampling::kStepEnds, y0, &out.steps);
+  if (orbit.empty()) {  // converged at Holzer's start: the orbit from it, sampled
+    State y(y0);
+    out.steps = accurate.run(y, options.samples, &orbit);
+  }
+  auto signals = calcSignals(orbit);
   auto& [bodies, twists] = signals;
   out.bodies = std::move(bodies);
   out.twists = std::move(twists);
@@ -253,7 +263,9 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& 
   // fewer steps): the same computation as the accurate run, blind to the periodicity Newton stopped at; it read 0 on
   // the marine six at 105 rpm, whose peak-to-peaks at 1e-8 were 2.2e-7 of the scale off those at 1e-11.
   const Integrator loose{equations, t.cycle, 100.0 * options.tolerance * scale, 100.0 * options.tolerance};
-  const auto loose_signals = sampleTwists(loose, Integrator::Sampling::kDenseOutput, farther, nullptr);
+  std::vector<State> loose_orbit;
+  loose.run(farther, options.samples, &loose_orbit, Integrator::Sampling::kDenseOutput);
+  const auto loose_signals = calcSignals(loose_orbit);
   for (int i = 0; i < n; ++i)
     out.error_bound = std::max(out.error_bound, std::fabs(findSignalExtremes(loose_signals.second[static_cast<size_t>(i)]).peakToPeak() -
                                                           out.peak_to_peak[static_cast<size_t>(i)]));
