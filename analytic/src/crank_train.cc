@@ -25,20 +25,33 @@ Mechanism makeThrowMechanism(const Mechanism& m, int throw_index) {
   return one;
 }
 
-ThrowLoads calcThrowLoads(const Mechanism& tm, double psi) {
+PreparedThrow prepareThrow(const Mechanism& tm) {
+  PreparedThrow p;
+  p.mechanism = tm;
+  p.unit = makeUnitSpeedCopy(tm);
+  p.gravity = calcGravityCoefficients(tm);
+  for (int j = 0; j < tm.engine.cylinders; ++j) {
+    p.crank_angles.push_back(calcSinCos(tm.engine.crank_angles[static_cast<size_t>(j)]));
+    p.bank_angles.push_back(calcSinCos(getBankAngle(tm, j)));
+  }
+  return p;
+}
+
+ThrowLoads calcThrowLoads(const Mechanism& tm, double psi) { return calcThrowLoads(prepareThrow(tm), psi); }
+
+ThrowLoads calcThrowLoads(const PreparedThrow& p, double psi) {
   // calcReducedInertia(tm, psi) and calcGravityTorque(tm, psi), the same sums of the same terms (cylinder_terms.h), with
   // each cylinder's angle and the shafts' loads computed once for both (bit for bit the same: crank_train_test.cc).
+  const Mechanism& tm = p.mechanism;
   const BalanceShaftLoads shafts = calcBalanceShaftLoads(tm, psi);
-  const Mechanism unit = makeUnitSpeedCopy(tm);
-  const GravityCoefficients c = calcGravityCoefficients(tm);
   ReducedInertia J;
   J.J = tm.flywheel_inertia.value_or(0.0) + shafts.inertia;
   double Q = 0.0;
   const SinCos angle = calcSinCos(psi);
   for (int j = 0; j < tm.engine.cylinders; ++j) {
-    const SinCos theta = addAngles(angle, calcSinCos(tm.engine.crank_angles[static_cast<size_t>(j)]));  // calcThrowSinCos
-    addCylinderInertia(tm, unit, j, theta, RodInertiaForm::kTrueInertia, J);
-    Q += calcCylinderGravityTorque(tm, j, theta, c);
+    const SinCos theta = addAngles(angle, p.crank_angles[static_cast<size_t>(j)]);  // calcThrowSinCos
+    addCylinderInertia(tm, p.unit, j, theta, RodInertiaForm::kTrueInertia, J);
+    Q += calcCylinderGravityTorque(tm, j, theta, p.bank_angles[static_cast<size_t>(j)], p.gravity);
   }
   ThrowLoads out;
   out.J = J.J;

@@ -23,5 +23,8 @@ void addCylinderInertia(const Mechanism& m, const Mechanism& unit, int j, const 
 
 /// [N m] Cylinder j's part of Q, Stanczak eq (13) in its own bank; c = calcGravityCoefficients(m, form).
 double calcCylinderGravityTorque(const Mechanism& m, int j, const SinCos& theta, const GravityCoefficients& c);
+/// The same with the cylinder's bank angle given as gamma = calcSinCos(getBankAngle(m, j)).
+double calcCylinderGravityTorque(const Mechanism& m, int j, const SinCos& theta, const SinCos& gamma,
+                                 const GravityCoefficients& c);
 
 }  // namespace crankcheck::analytic

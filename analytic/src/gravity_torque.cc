@@ -55,8 +55,12 @@ SinCos sumOverThrows(const Mechanism& m, int n) {
 }  // namespace
 
 double calcCylinderGravityTorque(const Mechanism& m, int j, const SinCos& theta, const GravityCoefficients& c) {
+  return calcCylinderGravityTorque(m, j, theta, calcSinCos(getBankAngle(m, j)), c);
+}
+
+double calcCylinderGravityTorque(const Mechanism& m, int j, const SinCos& theta, const SinCos& gamma,
+                                 const GravityCoefficients& c) {
   const double lambda = m.crank.radius / m.rod.length;
-  const SinCos gamma = calcSinCos(getBankAngle(m, j));
   // s = sin(beta) = lambda sin - delta / l with the pin offset delta (0: centric, the paper's case).
   const double s = lambda * theta.sin - getPinOffset(m, j) / m.rod.length;
   const double root = std::sqrt((1.0 - s) * (1.0 + s));

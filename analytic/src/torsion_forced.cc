@@ -30,7 +30,7 @@ constexpr int kQuadratureOrders = 256;
 
 // Throw tm's speed-free loads at psi: A = T_gas - Q [N m] and B = J' [kg m^2/rad], of which its rigid torque at any
 // omega is T = A - (1/2) omega^2 B (calcRigidThrowTorque).
-std::pair<double, double> calcSpeedFreeLoads(const Mechanism& tm, double psi) {
+std::pair<double, double> calcSpeedFreeLoads(const PreparedThrow& tm, double psi) {
   const ThrowLoads loads = calcThrowLoads(tm, psi);
   return {loads.gas_torque - loads.gravity_torque, loads.dJ};
 }
@@ -40,6 +40,7 @@ std::pair<double, double> calcSpeedFreeLoads(const Mechanism& tm, double psi) {
 std::pair<std::vector<std::complex<double>>, std::vector<std::complex<double>>> calcQuadratureSums(const CrankTrain& t,
                                                                                                    int j, int Q) {
   const Mechanism& tm = t.throws[static_cast<size_t>(j)];
+  const PreparedThrow prepared = prepareThrow(tm);
   std::vector<double> cuts = {0.0, t.cycle};
   if (tm.gas)
     for (double firing : tm.firing_angles)
@@ -60,7 +61,7 @@ std::pair<std::vector<std::complex<double>>, std::vector<std::complex<double>>> 
       for (size_t i = 0; i < x.size(); ++i)
         for (double sign : {-1.0, 1.0}) {
           const double psi = mid + sign * 0.5 * h * x[i];
-          const auto [A, B] = calcSpeedFreeLoads(tm, psi);
+          const auto [A, B] = calcSpeedFreeLoads(prepared, psi);
           const double weight_a = 0.5 * h * wq[i] * A;
           const double weight_b = 0.5 * h * wq[i] * B;
           const double tau = 2.0 * M_PI * psi / t.cycle;
@@ -119,7 +120,6 @@ const ThrowLoadOrders::Orders& ThrowLoadOrders::getOrders(const CrankTrain& t, i
   const auto found = cache.orders.find(P);
   if (found != cache.orders.end()) return found->second;
 
-  const Mechanism& tm = t.throws[static_cast<size_t>(j)];
   const int Q = std::min(P, kQuadratureOrders);
   auto sums = cache.sums.find(Q);
   if (sums == cache.sums.end()) sums = cache.sums.emplace(Q, calcQuadratureSums(t, j, Q)).first;
@@ -137,6 +137,7 @@ const ThrowLoadOrders::Orders& ThrowLoadOrders::getOrders(const CrankTrain& t, i
     const int known = static_cast<int>(cache.samples_a.size());
     const bool coarser = known > 0 && known < N && N % known == 0;
     const bool finer = known >= N && known % N == 0;
+    const PreparedThrow tm = prepareThrow(t.throws[static_cast<size_t>(j)]);
     for (int k = 0; k < N; ++k) {
       if (finer) {
         a[static_cast<size_t>(k)] = cache.samples_a[static_cast<size_t>(k * (known / N))];

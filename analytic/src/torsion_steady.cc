@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -24,11 +25,15 @@ struct TrainEquations {
   Eigen::MatrixXd K, C;
   int n;
   std::vector<int> throw_of_body;  // -1: the front mass
+  std::vector<PreparedThrow> throws;
 
   explicit TrainEquations(const CrankTrain& train)
       : t(train), K(calcStiffnessMatrix(train)), C(calcDampingMatrix(train)), n(train.countBodies()) {
     throw_of_body.assign(static_cast<size_t>(n), -1);
-    for (int j = 0; j < static_cast<int>(t.throws.size()); ++j) throw_of_body[static_cast<size_t>(t.getThrowBody(j))] = j;
+    for (int j = 0; j < static_cast<int>(t.throws.size()); ++j) {
+      throw_of_body[static_cast<size_t>(t.getThrowBody(j))] = j;
+      throws.push_back(prepareThrow(t.throws[static_cast<size_t>(j)]));
+    }
   }
 
   struct Body {
@@ -37,7 +42,7 @@ struct TrainEquations {
   Body body(int b, double psi) const {
     const int j = throw_of_body[static_cast<size_t>(b)];
     if (j < 0) return {t.front_inertia, 0.0, 0.0};
-    const ThrowLoads l = calcThrowLoads(t.throws[static_cast<size_t>(j)], psi);
+    const ThrowLoads l = calcThrowLoads(throws[static_cast<size_t>(j)], psi);
     return {t.throw_inertia + l.J, l.gas_torque - l.gravity_torque, l.dJ};
   }
 
@@ -110,7 +115,8 @@ struct Integrator {
   long run(State& y, int samples, std::vector<State>* out, Sampling sampling = Sampling::kStepEnds) const {
     auto stepper = odeint::make_controlled(abs_tol, rel_tol, odeint::runge_kutta_dopri5<State>());
     const double dt = period / 512;
-    if (samples <= 0) return static_cast<long>(odeint::integrate_adaptive(stepper, e, y, 0.0, period, dt));
+    // The equations by reference: odeint copies a system given by value at every step.
+    if (samples <= 0) return static_cast<long>(odeint::integrate_adaptive(stepper, std::cref(e), y, 0.0, period, dt));
     std::vector<double> times;
     for (int k = 0; k <= samples; ++k) times.push_back(period * k / samples);
     auto observe = [&](const State& state, double s) {
@@ -118,9 +124,9 @@ struct Integrator {
     };
     if (sampling == Sampling::kDenseOutput)
       return static_cast<long>(
-          odeint::integrate_times(odeint::make_dense_output(abs_tol, rel_tol, odeint::runge_kutta_dopri5<State>()), e,
-                                  y, times.begin(), times.end(), dt, observe));
-    return static_cast<long>(odeint::integrate_times(stepper, e, y, times.begin(), times.end(), dt, observe));
+          odeint::integrate_times(odeint::make_dense_output(abs_tol, rel_tol, odeint::runge_kutta_dopri5<State>()),
+                                  std::cref(e), y, times.begin(), times.end(), dt, observe));
+    return static_cast<long>(odeint::integrate_times(stepper, std::cref(e), y, times.begin(), times.end(), dt, observe));
   }
 
   Eigen::MatrixXd jacobian(const State& y0) const {

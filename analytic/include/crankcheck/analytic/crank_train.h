@@ -16,6 +16,8 @@
 
 #include <Eigen/Dense>
 
+#include "crankcheck/analytic/exact_trig.h"
+#include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::analytic {
@@ -33,8 +35,23 @@ struct ThrowLoads {
   double gravity_torque = 0.0;  ///< [N m] Q_j = dU_j/dpsi (so gravity's torque on the throw is -Q_j)
 };
 
+/// A throw mechanism (makeThrowMechanism) with what its loads read of it at every angle worked out once: the copy at
+/// unit speed its kinematics use, gravity's coefficients (Stanczak eq 5) and each cylinder's crank angle alpha_j and
+/// bank angle as sine and cosine. The crank train's integrations evaluate the loads at every step
+/// (torsion_steady.h, torsion_forced.h).
+struct PreparedThrow {
+  Mechanism mechanism;                  ///< the throw mechanism
+  Mechanism unit;                       ///< its kinematics' copy at unit speed
+  GravityCoefficients gravity;          ///< calcGravityCoefficients(mechanism)
+  std::vector<SinCos> crank_angles;     ///< alpha_j per cylinder
+  std::vector<SinCos> bank_angles;      ///< getBankAngle per cylinder
+};
+PreparedThrow prepareThrow(const Mechanism& throw_mechanism);
+
 /// Throw loads of a throw mechanism (makeThrowMechanism) at psi.
 ThrowLoads calcThrowLoads(const Mechanism& throw_mechanism, double psi);
+/// The same, bit for bit, from its prepared form.
+ThrowLoads calcThrowLoads(const PreparedThrow& prepared, double psi);
 
 /// [N m] The torque the throw's cylinders put on the shaft in the rigid motion psi = omega t at constant omega:
 /// T_gas - Q - (1/2) J' omega^2 (minus the drive torque that would hold the throw alone at omega, reactions.h).
