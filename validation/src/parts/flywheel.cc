@@ -18,6 +18,8 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 
@@ -76,6 +78,43 @@ std::optional<analytic::FlywheelSizing> sized(const Mechanism& m) {
 // The points of the curve delta(I_f): 0.3 to 3 times the exact inertia, log spaced.
 int calcPointCount(bool quick) { return quick ? 5 : 13; }
 
+// A scene's sizing (sized) and the steady runs of its curve's points (calcSteadyRuns: the cycle's integrals once for
+// all of them), computed once for all of the scene's tasks by the first that asks (each asks first thing; with two or
+// more workers the scene's first two tasks run side by side, so one of them waits for the other).
+class SharedCurve {
+ public:
+  SharedCurve(Mechanism m, bool quick) : m_(std::move(m)), quick_(quick) {}
+  /// The sizing, empty when the scene needs no flywheel for C (or none is possible).
+  /// @throws as calcFlywheelSizing and calcSteadyRuns, but std::domain_error (the next caller then tries again).
+  const std::optional<analytic::FlywheelSizing>& getSizing() {
+    calc();
+    return sizing_;
+  }
+  /// The curve's point i: its inertia [kg m^2] and steady run. Only after getSizing() gave a sizing.
+  std::pair<double, const analytic::SteadyRun&> getPoint(int i) {
+    calc();
+    return {inertias_.at(static_cast<size_t>(i)), runs_.at(static_cast<size_t>(i))};
+  }
+
+ private:
+  void calc() {
+    std::call_once(once_, [this] {
+      sizing_ = sized(m_);
+      if (!sizing_) return;
+      const int points = calcPointCount(quick_);
+      for (int i = 0; i < points; ++i)
+        inertias_.push_back(sizing_->exact_inertia * std::pow(10.0, -0.5 + static_cast<double>(i) / (points - 1)));
+      runs_ = analytic::calcSteadyRuns(m_, inertias_, sizing_->load_torque);
+    });
+  }
+  const Mechanism m_;
+  const bool quick_;
+  std::once_flag once_;
+  std::optional<analytic::FlywheelSizing> sizing_;
+  std::vector<double> inertias_;  // 0.3 .. 3 times the exact inertia
+  std::vector<analytic::SteadyRun> runs_;
+};
+
 // The points of a scene's curve (`flywheel`) at which Simbody runs: every third of 13, the exact inertia among
 // them; with `quick`, the exact inertia's alone.
 std::vector<int> listFlywheelRunPoints(bool quick) {
@@ -88,11 +127,11 @@ std::vector<int> listFlywheelRunPoints(bool quick) {
 // The part's three tables with rows of one scene (none when it has no [gas] or needs no flywheel for C = 0.01):
 // `point` < 0: its `flywheel_sizing` row and the curve's points Simbody does not run; else the curve's point `point`
 // (one of listFlywheelRunPoints) with Simbody's run.
-TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, int point) {
+TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, int point, SharedCurve& shared) {
   TableSet tables = makeEmptyTables();
   Table &curve = tables["flywheel"], &sizing = tables["flywheel_sizing"];
   if (!m.gas || !(m.engine.speed > 0.0)) return tables;
-  const std::optional<analytic::FlywheelSizing> s = sized(m);
+  const std::optional<analytic::FlywheelSizing>& s = shared.getSizing();
   if (!s) return tables;
   const analytic::FlywheelSizing& exact = *s;
   const std::vector<int> runs = listFlywheelRunPoints(quick);
@@ -100,17 +139,10 @@ TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, int point) {
     sizing.rows.push_back({m.name, toString(m.engine.cycle), std::to_string(m.engine.cylinders), num(m.speed_rpm),
                            num(exact.exact_inertia), num(exact.norton_inertia),
                            num(exact.norton_inertia / exact.exact_inertia - 1.0), num(exact.norton.delta)});
-  const int points = calcPointCount(quick);
-  std::vector<double> inertias;  // this task's points: the runs alone, the rest together
-  for (int i = 0; i < points; ++i) {
-    const bool run = std::find(runs.begin(), runs.end(), i) != runs.end();
-    if (point < 0 ? run : i != point) continue;
-    inertias.push_back(exact.exact_inertia * std::pow(10.0, -0.5 + static_cast<double>(i) / (points - 1)));  // 0.3 .. 3
-  }
-  const std::vector<analytic::SteadyRun> steady_runs = analytic::calcSteadyRuns(m, inertias, exact.load_torque);
-  for (size_t p = 0; p < inertias.size(); ++p) {
-    const double I = inertias[p];
-    const analytic::SteadyRun& steady = steady_runs[p];
+  for (int i = 0; i < calcPointCount(quick); ++i) {  // this task's points: the runs alone, the rest together
+    const bool run_here = std::find(runs.begin(), runs.end(), i) != runs.end();
+    if (point < 0 ? run_here : i != point) continue;
+    const auto [I, steady] = shared.getPoint(i);
     const bool run = point >= 0;
     std::vector<std::string> row = {m.name, num(I), num(steady.delta)};
     for (const Engine* engine : listLoadedRunEngines()) {
@@ -226,11 +258,14 @@ class FlywheelPart final : public Part {
     const bool quick = context.quick;
     for (const Mechanism& m : context.scenes) {
       if (!m.gas) continue;
-      out.push_back({"flywheel " + m.name, false, [m, quick] { return calcFlywheelSceneTables(m, quick, -1); },
+      auto sizing = std::make_shared<SharedCurve>(m, quick);
+      out.push_back({"flywheel " + m.name, false,
+                     [m, quick, sizing] { return calcFlywheelSceneTables(m, quick, -1, *sizing); },
                      task_cost::kSimbodyRun});
       for (int point : listFlywheelRunPoints(quick))
         out.push_back({"flywheel " + m.name + " run " + std::to_string(point), false,
-                       [m, quick, point] { return calcFlywheelSceneTables(m, quick, point); }, task_cost::kSimbodyRun});
+                       [m, quick, point, sizing] { return calcFlywheelSceneTables(m, quick, point, *sizing); },
+                       task_cost::kSimbodyRun});
     }
     out.push_back({"flywheel_norton", false, [base = context.base, quick] { return calcFlywheelNortonTables(base, quick); }});
     return out;
