@@ -458,10 +458,11 @@ TEST_P(KCrankModelTest, ResultIndependentOfHistory) {
 
 // An assembly started from the last dynamic pass's motion carried on to the new angle (the Taylor start, up to 1.1 rad)
 // against one started from the crude guess (the angle before 3 rad away): the same evaluation to the history's roundoff,
-// at the steps the campaign takes (the offset sweep's 0.25 degrees, the cross-check's 15, the gate's up to 61).
+// at the steps the campaign takes (a refinement's last ones, about 1e-6 degrees; the offset sweep's 1 degree, the
+// cross-check's 15, the gate's up to 61).
 TEST_P(KCrankModelTest, AssemblyStartedFromTheLastMotionGivesTheSameEvaluation) {
   for (double phi : kAngles)
-    for (double step_deg : {0.25, 15.0, 61.0}) {
+    for (double step_deg : {1e-6, 1.0, 15.0, 61.0}) {
       SCOPED_TRACE(std::to_string(phi) + " rad after a step of " + std::to_string(step_deg) + " degrees");
       model_.evaluate(phi - radiansFromDegrees(step_deg));
       const Evaluation taylor = model_.evaluate(phi);

@@ -17,16 +17,21 @@
 //                  forms' and each reference engine's
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
 #include <stdexcept>
 
+#include <boost/math/tools/toms748_solve.hpp>
+
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/validation/engine_loads.h"
 #include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/variants.h"
@@ -43,14 +48,17 @@ std::vector<double> listOffsetFractions(bool quick) {
                                      0.01, 0.02, 0.04, 0.06, 0.1, 0.2, 0.3, 0.5};
 }
 
-// The part's tables on `parts` (its crank, rod, piston and flywheel) at one offset delta / r = `f`; the 0.25-degree
-// samples of one working cycle (2 degrees with `quick`).
+// The part's tables on `parts` (its crank, rod, piston and flywheel) at one offset delta / r = `f`, from 1-degree
+// samples of one working cycle (2 degrees with `quick`): the errors the largest over the samples; each engine's thrust
+// peaks and largest drive torque refined from the samples by Brent's method (extremum.h, the two best humps) and its
+// thrust reversal by TOMS 748 between the samples that bracket it, each on that engine's own evaluations, so that
+// they do not depend on the grid (the 0.25-degree samples of before put the peaks up to 1e-5 below them).
 TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
   const Mechanism single = withSpeed(withGasAtDeadCentres(withGamma(withCylinders(parts, 1, Cycle::kFourStroke), 90.0),
                                                           makeExampleGas(Cycle::kFourStroke, 2.0 * parts.crank.radius)),
                                      6000.0);
   const double r = single.crank.radius;
-  const double step = quick ? 2.0 : 0.25;
+  const double step = quick ? 2.0 : 1.0;
   Table cost, thrust;
   // The key column first: the sorted table then holds each series' rows together, in order of delta / r.
   const std::vector<const Engine*> references = listReferenceEngines();
@@ -71,10 +79,13 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
   for (const Engine* e : engines) models.push_back(e->build(m));
   std::map<std::string, double> worst;
   std::vector<std::map<std::string, double>> worst_engine(engines.size());
+  // Per engine: N_w and the drive torque at every sample, and the samples [deg] that bracket N_w's sign change nearest
+  // the firing outer dead centre (phi = 0 here).
   struct Thrust {
-    double major = 0.0, minor = 0.0, reversal = NAN, drive = 0.0, previous = NAN, previous_deg = 0.0;
+    std::vector<double> wall, drive;
+    double previous = NAN, previous_deg = 0.0, bracket_a = NAN, bracket_b = NAN, wall_a = 0.0, wall_b = 0.0;
   };
-  std::map<std::string, Thrust> by_engine;
+  std::vector<Thrust> by_engine(engines.size());
   for (double d = -360.0; d < 360.0; d += step) {
     const double phi = radiansFromDegrees(d);
     const Evaluation centric = analytic::calcEvaluation(single, phi);
@@ -96,15 +107,18 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
       w["drive_torque"] = std::max(w["drive_torque"], std::fabs(e[j].drive_torque - exact.drive_torque) / sc.torque);
     }
     for (size_t j = 0; j < engines.size(); ++j) {
-      Thrust& t = by_engine[engines[j]->name];
+      Thrust& t = by_engine[j];
       const double n = e[j].cylinders[0].wall_force;
-      t.major = std::max(t.major, n);
-      t.minor = std::max(t.minor, -n);
-      t.drive = std::max(t.drive, std::fabs(e[j].drive_torque));
-      // the sign change nearest the firing outer dead centre (phi = 0 here), within 90 degrees: linear between samples
-      if (std::fabs(d) <= 90.0 && !std::isnan(t.previous) && (t.previous > 0) != (n > 0)) {
-        const double crossing = t.previous_deg + (d - t.previous_deg) * t.previous / (t.previous - n);
-        if (std::isnan(t.reversal) || std::fabs(crossing) < std::fabs(t.reversal)) t.reversal = crossing;
+      t.wall.push_back(n);
+      t.drive.push_back(e[j].drive_torque);
+      // the sign change nearest the firing outer dead centre, by its nearer sample (refined below)
+      if (std::fabs(d) <= 90.0 + step && !std::isnan(t.previous) && (t.previous > 0) != (n > 0) &&
+          (std::isnan(t.bracket_a) || std::min(std::fabs(d), std::fabs(t.previous_deg)) <
+                                          std::min(std::fabs(t.bracket_a), std::fabs(t.bracket_b)))) {
+        t.bracket_a = t.previous_deg;
+        t.bracket_b = d;
+        t.wall_a = t.previous;
+        t.wall_b = n;
       }
       t.previous = n;
       t.previous_deg = d;
@@ -115,8 +129,39 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
     for (size_t j = 1; j < engines.size(); ++j) row.push_back(num(worst_engine[j][q]));
     cost.rows.push_back(row);
   }
-  for (const auto& [name, t] : by_engine)
-    thrust.rows.push_back({name, num(f), num(t.major), num(t.minor), std::isnan(t.reversal) ? "" : num(t.reversal), num(t.drive)});
+  for (size_t j = 0; j < engines.size(); ++j) {
+    const Thrust& t = by_engine[j];
+    EngineModel& model = *models[j];
+    // The cycle [-360, 360) degrees as one turn u in [0, 2 pi) (phi = 2 u - 2 pi), so that the samples are
+    // findMaxAbsOverTurn's.
+    auto wallAt = [&](double u) { return model.evaluateMotion(2.0 * u - 2.0 * M_PI).cylinders[0].wall_force; };
+    std::vector<double> positive, negative, drive;
+    for (size_t i = 0; i < t.wall.size(); ++i) {
+      positive.push_back(std::max(0.0, t.wall[i]));
+      negative.push_back(std::max(0.0, -t.wall[i]));
+      drive.push_back(std::fabs(t.drive[i]));
+    }
+    const double major = findMaxAbsOverTurn([&](double u) { return std::max(0.0, wallAt(u)); }, positive, 2).value;
+    const double minor = findMaxAbsOverTurn([&](double u) { return std::max(0.0, -wallAt(u)); }, negative, 2).value;
+    const double max_drive =
+        findMaxAbsOverTurn([&](double u) { return model.evaluateMotion(2.0 * u - 2.0 * M_PI).drive_torque; }, drive, 2)
+            .value;
+    std::string reversal;
+    if (!std::isnan(t.bracket_a)) {
+      auto wallAtDeg = [&](double deg) { return model.evaluateMotion(radiansFromDegrees(deg)).cylinders[0].wall_force; };
+      // A sample whose N_w is zero to rounding (64 eps of the force scale: the centric engine at phi = 0) is the crossing.
+      const double zero = 64.0 * std::numeric_limits<double>::epsilon() * sc.force;
+      double crossing = std::fabs(t.wall_a) <= zero ? t.bracket_a : t.bracket_b;
+      if (std::fabs(t.wall_a) > zero && std::fabs(t.wall_b) > zero) {
+        std::uintmax_t iterations = 64;
+        const auto [lo, hi] = boost::math::tools::toms748_solve(wallAtDeg, t.bracket_a, t.bracket_b, t.wall_a, t.wall_b,
+                                                                 boost::math::tools::eps_tolerance<double>(48), iterations);
+        crossing = 0.5 * (lo + hi);
+      }
+      if (std::fabs(crossing) <= 90.0) reversal = num(crossing);
+    }
+    thrust.rows.push_back({engines[j]->name, num(f), num(major), num(minor), reversal, num(max_drive)});
+  }
   return {{"offset", cost}, {"offset_thrust", thrust}};
 }
 

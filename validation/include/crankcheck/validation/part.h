@@ -36,7 +36,7 @@ struct PartContext {
 /// order changes no table: they are sorted). Ties keep the order in which the parts list them.
 namespace task_cost {
 inline constexpr double kSimbodyRun = 4.0;   ///< a Simbody run over a working cycle at fine steps (flywheel)
-inline constexpr double kCycleSweep = 3.0;   ///< both engines over a working cycle at 0.25 degrees (offset)
+inline constexpr double kCycleSweep = 3.0;   ///< every engine over a working cycle at 1 degree, refined (offset)
 inline constexpr double kCrossCheck = 2.0;   ///< every engine on one case at every angle and speed
 inline constexpr double kGateSweep = 1.0;    ///< the gate's sweep of one k and stroke over lambda and gamma
 inline constexpr double kShort = 0.0;        ///< the rest (seconds at most)
