@@ -17,10 +17,10 @@
 //                  forms' and each reference engine's
 
 #include <algorithm>
-#include <cstdint>
-#include <limits>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <memory>
 #include <stdexcept>
