@@ -19,7 +19,6 @@
 #include <cstdio>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <stdexcept>
 
@@ -79,41 +78,23 @@ std::optional<analytic::FlywheelSizing> sized(const Mechanism& m) {
 int calcPointCount(bool quick) { return quick ? 5 : 13; }
 
 // A scene's sizing (sized) and the steady runs of its curve's points (calcSteadyRuns: the cycle's integrals once for
-// all of them), computed once for all of the scene's tasks by the first that asks (each asks first thing; with two or
-// more workers the scene's first two tasks run side by side, so one of them waits for the other).
-class SharedCurve {
- public:
-  SharedCurve(Mechanism m, bool quick) : m_(std::move(m)), quick_(quick) {}
-  /// The sizing, empty when the scene needs no flywheel for C (or none is possible).
-  /// @throws as calcFlywheelSizing and calcSteadyRuns, but std::domain_error (the next caller then tries again).
-  const std::optional<analytic::FlywheelSizing>& getSizing() {
-    calc();
-    return sizing_;
-  }
-  /// The curve's point i: its inertia [kg m^2] and steady run. Only after getSizing() gave a sizing.
-  std::pair<double, const analytic::SteadyRun&> getPoint(int i) {
-    calc();
-    return {inertias_.at(static_cast<size_t>(i)), runs_.at(static_cast<size_t>(i))};
-  }
-
- private:
-  void calc() {
-    std::call_once(once_, [this] {
-      sizing_ = sized(m_);
-      if (!sizing_) return;
-      const int points = calcPointCount(quick_);
-      for (int i = 0; i < points; ++i)
-        inertias_.push_back(sizing_->exact_inertia * std::pow(10.0, -0.5 + static_cast<double>(i) / (points - 1)));
-      runs_ = analytic::calcSteadyRuns(m_, inertias_, sizing_->load_torque);
-    });
-  }
-  const Mechanism m_;
-  const bool quick_;
-  std::once_flag once_;
-  std::optional<analytic::FlywheelSizing> sizing_;
-  std::vector<double> inertias_;  // 0.3 .. 3 times the exact inertia
-  std::vector<analytic::SteadyRun> runs_;
+// all of them), computed once for all of the scene's tasks (SharedResult: with two or more workers the scene's first
+// two tasks run side by side, so one of them waits for the other).
+struct Curve {
+  std::optional<analytic::FlywheelSizing> sizing;  // empty when the scene needs no flywheel for C (or none is possible)
+  std::vector<double> inertias;                    // [kg m^2] 0.3 .. 3 times the exact inertia
+  std::vector<analytic::SteadyRun> runs;           // at each of them
 };
+Curve calcCurve(const Mechanism& m, bool quick) {
+  Curve c;
+  c.sizing = sized(m);
+  if (!c.sizing) return c;
+  const int points = calcPointCount(quick);
+  for (int i = 0; i < points; ++i)
+    c.inertias.push_back(c.sizing->exact_inertia * std::pow(10.0, -0.5 + static_cast<double>(i) / (points - 1)));
+  c.runs = analytic::calcSteadyRuns(m, c.inertias, c.sizing->load_torque);
+  return c;
+}
 
 // The points of a scene's curve (`flywheel`) at which Simbody runs: every third of 13, the exact inertia among
 // them; with `quick`, the exact inertia's alone.
@@ -127,11 +108,12 @@ std::vector<int> listFlywheelRunPoints(bool quick) {
 // The part's three tables with rows of one scene (none when it has no [gas] or needs no flywheel for C = 0.01):
 // `point` < 0: its `flywheel_sizing` row and the curve's points Simbody does not run; else the curve's point `point`
 // (one of listFlywheelRunPoints) with Simbody's run.
-TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, int point, SharedCurve& shared) {
+TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, int point, SharedResult<Curve>& shared) {
   TableSet tables = makeEmptyTables();
   Table &curve = tables["flywheel"], &sizing = tables["flywheel_sizing"];
   if (!m.gas || !(m.engine.speed > 0.0)) return tables;
-  const std::optional<analytic::FlywheelSizing>& s = shared.getSizing();
+  const Curve& c = shared.get();
+  const std::optional<analytic::FlywheelSizing>& s = c.sizing;
   if (!s) return tables;
   const analytic::FlywheelSizing& exact = *s;
   const std::vector<int> runs = listFlywheelRunPoints(quick);
@@ -142,7 +124,8 @@ TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, int point, Shar
   for (int i = 0; i < calcPointCount(quick); ++i) {  // this task's points: the runs alone, the rest together
     const bool run_here = std::find(runs.begin(), runs.end(), i) != runs.end();
     if (point < 0 ? run_here : i != point) continue;
-    const auto [I, steady] = shared.getPoint(i);
+    const double I = c.inertias[static_cast<size_t>(i)];
+    const analytic::SteadyRun& steady = c.runs[static_cast<size_t>(i)];
     const bool run = point >= 0;
     std::vector<std::string> row = {m.name, num(I), num(steady.delta)};
     for (const Engine* engine : listLoadedRunEngines()) {
@@ -258,7 +241,7 @@ class FlywheelPart final : public Part {
     const bool quick = context.quick;
     for (const Mechanism& m : context.scenes) {
       if (!m.gas) continue;
-      auto sizing = std::make_shared<SharedCurve>(m, quick);
+      auto sizing = std::make_shared<SharedResult<Curve>>([m, quick] { return calcCurve(m, quick); });
       out.push_back({"flywheel " + m.name, false,
                      [m, quick, sizing] { return calcFlywheelSceneTables(m, quick, -1, *sizing); },
                      task_cost::kSimbodyRun});

@@ -39,7 +39,6 @@
 #include <cmath>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -249,25 +248,13 @@ TableSet calcModeTables(const Mechanism& m) {
 
 // The analytic steady state at the first scene's own speed, which every engine's train is held against: computed once
 // for the engines' tasks, by the first that needs it (each asks after its own run, so the others rarely wait).
-class SharedSteadyState {
- public:
-  explicit SharedSteadyState(Mechanism m) : m_(std::move(m)) {}
-  /// @throws as analytic::calcExactSteadyState (the next caller then tries again).
-  const analytic::ExactSteadyState& get() {
-    std::call_once(once_, [this] {
-      analytic::SteadyStateOptions exact_options;
-      exact_options.tolerance = kExactTolerance;
-      exact_options.samples = kExactSamples;
-      state_ = analytic::calcExactSteadyState(m_, exact_options);
-    });
-    return state_;
-  }
-
- private:
-  const Mechanism m_;
-  std::once_flag once_;
-  analytic::ExactSteadyState state_;
-};
+using SharedSteadyState = SharedResult<analytic::ExactSteadyState>;
+analytic::ExactSteadyState calcTrainReference(const Mechanism& m) {
+  analytic::SteadyStateOptions exact_options;
+  exact_options.tolerance = kExactTolerance;
+  exact_options.samples = kExactSamples;
+  return analytic::calcExactSteadyState(m, exact_options);
+}
 
 // An exact engine's train at the scene's own speed against the analytic steady state.
 TableSet calcEngineTables(const Mechanism& m, const Engine& engine, bool quick, SharedSteadyState& analytic_state) {
@@ -658,7 +645,7 @@ class TorsionPart final : public Part {
         out.push_back({"torsion " + m.name + " " + num(rpm) + " rpm", false,
                        [m, rpm, load_orders] { return calcSpeedTables(m, rpm, *load_orders); }, task_cost::kShort});
       if (s > 0) continue;
-      const auto analytic_state = std::make_shared<SharedSteadyState>(m);
+      const auto analytic_state = std::make_shared<SharedSteadyState>([m] { return calcTrainReference(m); });
       for (const Engine& engine : listEngines())
         if (engine.simulate_crank_train && !engine.closed_form && (engine.crank_train_gated || !context.quick))
           out.push_back({"torsion " + m.name + " " + engine.name, false,

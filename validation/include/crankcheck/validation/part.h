@@ -6,6 +6,8 @@
 /// (campaign.h) collects every part's tasks; the report (report.h) draws and places every part. The whole contract of
 /// a part is the abstract class below (after Google Benchmark's reporters: a few virtual methods, one file each).
 
+#include <functional>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,6 +43,24 @@ inline constexpr double kCrossCheck = 2.0;   ///< every engine on one case at ev
 inline constexpr double kGateSweep = 1.0;    ///< the gate's sweep of one k and stroke over lambda and gamma
 inline constexpr double kShort = 0.0;        ///< the rest (seconds at most)
 }  // namespace task_cost
+
+/// A value that several of a part's tasks read, computed once by the first that asks (the others wait for it): the
+/// tasks share it through a std::shared_ptr made in Part::tasks. If the computation throws, the exception goes to that
+/// caller and the next one tries again (std::call_once).
+template <class T>
+class SharedResult {
+ public:
+  explicit SharedResult(std::function<T()> calc) : calc_(std::move(calc)) {}
+  const T& get() {
+    std::call_once(once_, [this] { value_ = calc_(); });
+    return value_;
+  }
+
+ private:
+  const std::function<T()> calc_;
+  std::once_flag once_;
+  T value_{};
+};
 
 /// Maxima over a turn (or a cycle) that a part's table states: found so that they do not depend on the sampling grid,
 /// the quick and the full campaign must give them within 1 % (tests/cli/quick_report_test.cc reads every part's).
