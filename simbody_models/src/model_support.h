@@ -91,6 +91,8 @@ struct MechanismBodies {
   std::vector<SimTK::Vec3> crank_pins_in_crank;  // B_j in the crankshaft body frame
   SimTK::Vec3 rod_big_end_in_rod;                // B in the rod body frame
   std::vector<SimTK::MobilizedBody::Pin> shafts; // the balance shafts, geared to the crank by coupler constraints
+  std::vector<SimTK::Constraint::PointOnLine> loops;           // loop j's closure (2 equations: piston j, rod j)
+  std::vector<SimTK::Constraint::CoordinateCoupler> couplers;  // shaft i's gearing (1 equation: shaft i)
 };
 
 /// Builds the crankshaft (a 3D body: throw j's point masses and crank pin in the plane z_j of its cylinder, plus
@@ -141,8 +143,8 @@ MechanismBodies buildMechanismBodies(SimTK::SimbodyMatterSubsystem& matter, cons
     b.pistons.emplace_back(matter.Ground(), X_GF, piston_body, SimTK::Transform());
     b.rods.emplace_back(b.pistons.back(), SimTK::Transform(), rod_body, SimTK::Transform());
     // Loop closure: the rod's big end on the line through B_j parallel to Z (2 equations, planar).
-    SimTK::Constraint::PointOnLine(b.crank, SimTK::UnitVec3(SimTK::ZAxis), b.crank_pins_in_crank[j], b.rods.back(),
-                                   b.rod_big_end_in_rod);
+    b.loops.emplace_back(b.crank, SimTK::UnitVec3(SimTK::ZAxis), b.crank_pins_in_crank[j], b.rods.back(),
+                         b.rod_big_end_in_rod);
   }
   // Balance shafts: a body on a pin about Z through (x, y, z) from Ground, its eccentric point mass at (rho, 0, 0) of
   // the body (at angle q from +X), geared to the crank by a coordinate coupler q_shaft - ratio q_crank - phase = 0 (the
@@ -158,7 +160,7 @@ MechanismBodies buildMechanismBodies(SimTK::SimbodyMatterSubsystem& matter, cons
     coefficients[2] = -s.phase;
     SimTK::Array_<SimTK::MobilizedBodyIndex> bodies{b.crank.getMobilizedBodyIndex(), b.shafts.back().getMobilizedBodyIndex()};
     SimTK::Array_<SimTK::MobilizerQIndex> coordinates{SimTK::MobilizerQIndex(0), SimTK::MobilizerQIndex(0)};
-    SimTK::Constraint::CoordinateCoupler(matter, new SimTK::Function::Linear(coefficients), bodies, coordinates);
+    b.couplers.emplace_back(matter, new SimTK::Function::Linear(coefficients), bodies, coordinates);
   }
   return b;
 }

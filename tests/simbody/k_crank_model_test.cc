@@ -504,6 +504,57 @@ TEST_P(KCrankModelTest, AssemblyStartIgnoresAnotherGeometry) {
   }
 }
 
+// The loops closed by Newton's method on Simbody's own constraint errors (the default) against Simbody's projections
+// (ModelOptions::simbody_projections) along the same walk of angles, with steps of 1e-6, 1, 15 and 61 degrees (those the
+// campaign takes) and the crude start between walks: the same evaluation to roundoff, 16 eps of each quantity's scale
+// (two converged solutions of the same loops), the velocities' scale r omega (1 + lambda). The velocities also within
+// what Simbody's projection leaves (it stops at an RMS error of 0.1 of its tolerance, 1e-13 m/s for a machine up to 1 m:
+// up to sqrt(m) times that on one of its m equations; seen 4 eps of the scale on the pin-offset four).
+void expectLoopsNewtonIsSimbodysProjection(const Mechanism& m) {
+  const Scales s = scalesOf(m);
+  ModelOptions simbody_options;
+  simbody_options.simbody_projections = true;
+  KCrankModel newton(m), simbody(m, simbody_options);
+  const double F = s.force, L = s.l + s.r, v = s.r * std::abs(s.omega) * (1.0 + s.lambda);
+  const double equations = 2.0 * m.engine.cylinders + static_cast<double>(m.balance_shafts.size());
+  const double v_tolerance =
+      16 * kEps * v + 0.1 * simbody_options.projection_tolerance * std::max(1.0, L) * std::sqrt(equations);
+  for (double phi : kAngles)
+    for (double step_deg : {1e-6, 1.0, 15.0, 61.0}) {
+      SCOPED_TRACE(std::to_string(phi) + " rad after a step of " + std::to_string(step_deg) + " degrees");
+      for (double at : {phi + 3.0, phi - radiansFromDegrees(step_deg)}) {
+        newton.evaluate(at);
+        simbody.evaluate(at);
+      }
+      const Evaluation got = newton.evaluate(phi), expected = simbody.evaluate(phi);
+      EXPECT_WITHIN("drive torque", got.drive_torque, expected.drive_torque, 16 * kEps * s.torque, s.torque);
+      EXPECT_WITHIN("Q", got.Q, expected.Q, 16 * kEps * s.torque_gravity, s.torque_gravity);
+      EXPECT_WITHIN("U", got.U, expected.U, 16 * kEps * s.energy, s.energy);
+      for (int i = 0; i < 2; ++i) {
+        EXPECT_WITHIN("bearing", got.bearing_force[i], expected.bearing_force[i], 16 * kEps * F, F);
+        EXPECT_WITHIN("shaking force", got.shaking_force[i], expected.shaking_force[i], 16 * kEps * F, F);
+      }
+      for (std::size_t j = 0; j < expected.cylinders.size(); ++j) {
+        const CylinderEvaluation &a = got.cylinders[j], &b = expected.cylinders[j];
+        EXPECT_WITHIN("x_p", a.x_p, b.x_p, 16 * kEps * L, L);
+        if (v > 0.0) {
+          EXPECT_WITHIN("v_p", a.v_p, b.v_p, v_tolerance, v);
+          EXPECT_WITHIN("rod_omega", a.rod_omega * s.l, b.rod_omega * s.l, v_tolerance, v);
+        } else {  // at rest both solve u = 0
+          EXPECT_EQ(a.v_p, 0.0);
+          EXPECT_EQ(b.v_p, 0.0);
+        }
+        EXPECT_WITHIN("wall", a.wall_force, b.wall_force, 16 * kEps * F, F);
+        for (int i = 0; i < 2; ++i) {
+          EXPECT_WITHIN("crank pin", a.crank_pin_force[i], b.crank_pin_force[i], 16 * kEps * F, F);
+          EXPECT_WITHIN("wrist pin", a.wrist_pin_force[i], b.wrist_pin_force[i], 16 * kEps * F, F);
+        }
+      }
+    }
+}
+
+TEST_P(KCrankModelTest, LoopsNewtonGivesSimbodysProjection) { expectLoopsNewtonIsSimbodysProjection(mechanism_); }
+
 INSTANTIATE_TEST_SUITE_P(Cases, KCrankModelTest, ::testing::ValuesIn(allCases()),
                          [](const ::testing::TestParamInfo<Case>& info) { return caseName(info.param); });
 
@@ -593,6 +644,20 @@ TEST_P(SceneFileTest, QRoutesAndCrankshaftBalance) {
     EXPECT_WITHIN("scene: Euler crankshaft about O", moment, 0.0, 16 * (k + 2) * kEps * s.torque, s.torque);
   }
 }
+
+// The loops' Newton on the example scenes (a balance shaft's gearing, pin offsets, two banks, gas, a 3 m marine engine).
+class LoopsSceneTest : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(LoopsSceneTest, LoopsNewtonGivesSimbodysProjection) {
+  expectLoopsNewtonIsSimbodysProjection(
+      loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / (GetParam() + ".toml")));
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, LoopsSceneTest,
+                         ::testing::Values("single_cylinder", "inline3_lying_two_stroke", "inline4_four_stroke",
+                                           "inline4_pin_offset", "v8_cross_plane", "inline6_two_stroke_marine",
+                                           "compressor2_explicit_angles"),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 // evaluateMotion on the example scenes (with gas, two banks, pin offsets: the parts that call it run them: the offset
 // sweep, the pin loads, the balance): the same numbers as evaluate() of a model taken through the same angles, bit for
