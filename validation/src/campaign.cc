@@ -137,6 +137,27 @@ struct WorstComparison {
   bool pass = true;
 };
 
+// One engine's worst comparison per quantity in one case, in the order first met. The comparisons of an evaluation come
+// in the same order at every angle (compareEvaluations), so the slot of the i-th is remembered and only confirmed by its
+// name (a short string) instead of a map lookup on (engine, quantity) per comparison.
+class WorstByQuantity {
+ public:
+  WorstComparison& at(size_t i, const std::string& quantity) {
+    if (i < slot_of_.size() && slots_[slot_of_[i]].first == quantity) return slots_[slot_of_[i]].second;
+    size_t slot = 0;
+    while (slot < slots_.size() && slots_[slot].first != quantity) ++slot;
+    if (slot == slots_.size()) slots_.emplace_back(quantity, WorstComparison{});
+    if (i >= slot_of_.size()) slot_of_.resize(i + 1, 0);
+    slot_of_[i] = slot;
+    return slots_[slot].second;
+  }
+  const std::vector<std::pair<std::string, WorstComparison>>& slots() const { return slots_; }
+
+ private:
+  std::vector<std::pair<std::string, WorstComparison>> slots_;
+  std::vector<size_t> slot_of_;
+};
+
 // `measure_soft`: the engines that are measured, not gated (Engine::gated false: MuJoCo's soft ways) take part too.
 // Several `variants` of one mechanism that differ in gamma alone (the gate's sweep) are cross-checked in lockstep: angle
 // by angle, variant by variant, each engine's model of a later variant starting its assembly from the first variant's
@@ -145,7 +166,7 @@ struct WorstComparison {
 TableSet crossCheckCases(const std::string& family, const std::vector<Mechanism>& variants,
                          const std::vector<double>& angles_deg, bool measure_soft = true) {
   struct Case {
-    std::map<std::pair<std::string, std::string>, WorstComparison> worst;  // (engine, quantity)
+    std::vector<WorstByQuantity> worst;  // per engine of `others`
     std::vector<Mechanism> at_speed;  // the case at the scene's speed and at rest
     std::vector<Scales> scales;
     std::unique_ptr<EngineModel> closed_form;
@@ -165,13 +186,13 @@ TableSet crossCheckCases(const std::string& family, const std::vector<Mechanism>
     c.closed_form = getClosedFormEngine().build(c.at_speed.front());
     for (const Engine& engine : listEngines())
       if (!engine.closed_form && (engine.gated || measure_soft)) c.others.emplace_back(&engine, engine.build(c.at_speed.front()));
+    c.worst.resize(c.others.size());
   }
   for (double phi_deg : angles_deg) {
     const double phi = radiansFromDegrees(phi_deg);
     for (size_t v = 0; v < cases.size(); ++v) {
       Case& c = cases[v];
-      auto note = [&](const std::string& engine, const Comparison& cmp, double rpm) {
-        WorstComparison& w = c.worst[{engine, cmp.quantity}];
+      auto note = [&](WorstComparison& w, const Comparison& cmp, double rpm) {
         const double ratio = cmp.error() / cmp.tolerance();
         w.pass = w.pass && cmp.agrees();
         if (ratio > w.ratio_to_tolerance) {
@@ -189,13 +210,17 @@ TableSet crossCheckCases(const std::string& family, const std::vector<Mechanism>
         const double rpm = case_m.speed_rpm;
         c.closed_form->setSpeed(case_m.engine.speed);
         const Evaluation a = c.closed_form->evaluate(phi);
-        for (auto& [engine, other] : c.others) {
+        for (size_t e = 0; e < c.others.size(); ++e) {
+          auto& [engine, other] = c.others[e];
           other->setSpeed(case_m.engine.speed);
-          for (const Comparison& cmp : compareEvaluations(case_m, a, other->evaluate(phi))) note(engine->name, cmp, rpm);
-          if (rpm == 0.0 && !engine->second_q_route.empty())
-            note(engine->name, {"Q (" + engine->second_q_route + ")", -1, a.Q, other->calcSecondRouteQ(phi),
-                                c.scales[s].energy, c.scales[s].conditioning},
-                 rpm);
+          const std::vector<Comparison> comparisons = compareEvaluations(case_m, c.scales[s], a, other->evaluate(phi));
+          for (size_t i = 0; i < comparisons.size(); ++i)
+            note(c.worst[e].at(i, comparisons[i].quantity), comparisons[i], rpm);
+          if (rpm == 0.0 && !engine->second_q_route.empty()) {
+            const Comparison second{"Q (" + engine->second_q_route + ")", -1, a.Q, other->calcSecondRouteQ(phi),
+                                    c.scales[s].energy, c.scales[s].conditioning};
+            note(c.worst[e].at(comparisons.size(), second.quantity), second, rpm);
+          }
         }
       }
     }
@@ -207,10 +232,14 @@ TableSet crossCheckCases(const std::string& family, const std::vector<Mechanism>
     const Mechanism& m = variants[v];
     char case_name[160];
     std::snprintf(case_name, sizeof case_name, "%s lambda=%.4g", m.name.c_str(), lambdaOf(m));
-    for (const auto& [key, w] : cases[v].worst)
-      t.rows.push_back({family, key.first, case_name, num(lambdaOf(m)), key.second, num(w.rel_error), num(w.phi_deg),
-                        num(w.rpm), num(w.tolerance_rel),
-                        findEngine(key.first).gated ? (w.pass ? "pass" : "FAIL") : "reported"});
+    // In (engine, quantity) order, as before the slots.
+    std::map<std::pair<std::string, std::string>, const WorstComparison*> ordered;
+    for (size_t e = 0; e < cases[v].others.size(); ++e)
+      for (const auto& [quantity, w] : cases[v].worst[e].slots()) ordered[{cases[v].others[e].first->name, quantity}] = &w;
+    for (const auto& [key, w] : ordered)
+      t.rows.push_back({family, key.first, case_name, num(lambdaOf(m)), key.second, num(w->rel_error), num(w->phi_deg),
+                        num(w->rpm), num(w->tolerance_rel),
+                        findEngine(key.first).gated ? (w->pass ? "pass" : "FAIL") : "reported"});
   }
   return {{"crosscheck", t}};
 }
