@@ -5,9 +5,12 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "block_newton.h"
 #include "model_support.h"
 #include "crankcheck/scene/scene_file.h"
 
@@ -31,6 +34,7 @@ class KCrankGravityModel::Impl {
     if (!(wrist_mass > 0.0))
       throw std::invalid_argument("KCrankGravityModel: the piston with its share of the rod has no mass; use KCrankModel");
     tolerance_ = options.projection_tolerance * std::max(1.0, l + r);  // as KCrankModel: relative above 1 m
+    simbody_projections_ = options.simbody_projections;
     const double gamma = m_.engine.cylinder_angle;
 
     gravity_ = SimTK::Force::Gravity(forces_, matter_, SimTK::UnitVec3(0, -1, 0), m_.engine.gravity);
@@ -61,10 +65,18 @@ class KCrankGravityModel::Impl {
       pistons_.emplace_back(matter_.Ground(),
                             SimTK::Transform(cylinder_rotation, SimTK::Vec3(-delta_j * std::sin(gamma), delta_j * std::cos(gamma), 0.0)),
                             piston_body, SimTK::Transform());
-      SimTK::Constraint::Rod(crank_, pins[j], pistons_.back(), SimTK::Vec3(0), l);  // |B_j - A_j| = l: 1 equation
+      rods_.emplace_back(crank_, pins[j], pistons_.back(), SimTK::Vec3(0), l);  // |B_j - A_j| = l: 1 equation
     }
     system_.realizeTopology();
     state_ = system_.getDefaultState();
+    system_.realize(state_, SimTK::Stage::Instance);
+    // Near a known solution the rods are closed by Newton's method on Simbody's own errors (block_newton.h): rod j's
+    // one equation involves piston j's slide alone (the crank is prescribed).
+    std::vector<BlockNewton::Block> blocks;
+    for (size_t j = 0; j < pistons_.size(); ++j)
+      blocks.push_back({{pistons_[j].getFirstQIndex(state_)}, {pistons_[j].getFirstUIndex(state_)},
+                        {BlockNewton::kStep * (l + r)}, rods_[j]});
+    newton_ = std::make_unique<BlockNewton>(std::move(blocks), state_);
     assemble(0.0);
     system_.realize(state_, SimTK::Stage::Dynamics);
     reference_potential_ = system_.calcPotentialEnergy(state_);
@@ -78,7 +90,7 @@ class KCrankGravityModel::Impl {
     // positions of lambda -> 1, where both roots of the loop closure are close), start again from x = l + r cos theta,
     // from which Newton's iteration on the convex closure equation can only reach the physical root.
     const bool warm = assembled_ && std::abs(std::remainder(phi - assembled_phi_, 2.0 * SimTK::Pi)) <= 1.0;
-    if (!(warm && project() && physical())) {
+    if (!(warm && ((!simbody_projections_ && closeNear()) || project()) && physical())) {
       for (size_t j = 0; j < pistons_.size(); ++j)
         pistons_[j].setQ(state_, m_.rod.length + m_.crank.radius * std::cos(phi + m_.engine.crank_angles[j]));
       if (!project() || !physical()) {
@@ -91,13 +103,28 @@ class KCrankGravityModel::Impl {
     assembled_phi_ = phi;
   }
 
+  // From the previous solution: the rods closed by the blocks' Newton (to the polish threshold; stalled at rounding,
+  // accepted where Simbody's projection stops); false (the start restored) where it did not converge.
+  bool closeNear() {
+    state_.updU() = 0;
+    state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Time);
+    const SimTK::Vector start = state_.getQ();
+    system_.realize(state_, SimTK::Stage::Time);
+    system_.prescribeQ(state_);
+    if (newton_->closePositions(system_, state_, polishThreshold(), 0.1 * tolerance_)) return true;
+    state_.updQ() = start;
+    return false;
+  }
+  double polishThreshold() const {
+    return 8.0 * std::numeric_limits<double>::epsilon() * (m_.rod.length + m_.crank.radius);
+  }
+
   // Projects the positions; false (with error_ set) if Simbody could not.
   bool project() {
     state_.updU() = 0;
     state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Time);
     try {
-      projectPositions(system_, state_, tolerance_,
-                       8.0 * std::numeric_limits<double>::epsilon() * (m_.rod.length + m_.crank.radius));
+      projectPositions(system_, state_, tolerance_, polishThreshold());
     } catch (const std::exception& e) {
       error_ = e.what();
       return false;
@@ -143,6 +170,7 @@ class KCrankGravityModel::Impl {
  private:
   Mechanism m_;
   double tolerance_ = 0.0;
+  bool simbody_projections_ = false;  // ModelOptions::simbody_projections
   std::shared_ptr<CrankDrive> drive_ = std::make_shared<CrankDrive>();
   SimTK::MultibodySystem system_;
   SimTK::SimbodyMatterSubsystem matter_{system_};
@@ -150,6 +178,8 @@ class KCrankGravityModel::Impl {
   SimTK::Force::Gravity gravity_;
   SimTK::MobilizedBody::Pin crank_;
   std::vector<SimTK::MobilizedBody::Slider> pistons_;
+  std::vector<SimTK::Constraint::Rod> rods_;
+  std::unique_ptr<BlockNewton> newton_;
   std::vector<SimTK::Vec3> pins_;  // B_j in the crankshaft frame
   std::string error_;              // Simbody's message of the last failed projection
   SimTK::State state_;

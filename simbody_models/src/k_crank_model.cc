@@ -5,16 +5,16 @@
 
 #include <Simbody.h>
 
-#include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <memory>
 #include <utility>
 #include <vector>
 
 #include "crankcheck/scene/scene_file.h"
+#include "block_newton.h"
 #include "model_support.h"
 
 #ifdef NDEBUG
@@ -48,13 +48,6 @@ const Evaluation& checkFinite(const Evaluation& ev, bool with_static_pass = true
 // assembly from the last angle's q, 1.0 from the Taylor start; 15 degrees 3.0 -> 2.0; 45 and 60 degrees 3.9 -> 3.0
 // (k = 12); at 75 degrees and beyond it saves none.
 constexpr double kTaylorStartLimit = 1.1;
-
-// The loops' own Newton (ModelOptions::simbody_projections false). The finite-difference step of the Jacobian, relative
-// to l + r for a slide and in radians for a pin: about sqrt(eps), so that a column carries about 1e-8 of relative error
-// and each Newton step, position or velocity, cuts the error by about that much. At most kLoopNewtonSteps steps; one that
-// does not halve the error ends the iteration (then accepted only at Simbody's own acceptance, below).
-constexpr double kJacobianStep = 1.5e-8;
-constexpr int kLoopNewtonSteps = 8;
 
 class KCrankModel::Impl {
  public:
@@ -92,24 +85,6 @@ class KCrankModel::Impl {
   /// state; fills `reactions` (the mobilizer reactions) for the diagnostics.
   void readMotion(Evaluation& ev, SimTK::Vector_<SimTK::SpatialVec>& reactions) const;
   void setReferenceGuess();
-
-  // The loops closed by Newton's method on Simbody's own errors (ModelOptions::simbody_projections false): each loop's
-  // two errors depend on its piston's slide and its rod's pin alone (the crank is prescribed), each shaft's gearing on
-  // the shaft's pin alone, so the constraint Jacobian is block diagonal and its blocks come from three realizations of
-  // Stage::Position (every piston moved, every rod turned, every shaft turned).
-  /// Simbody's errors at the realized state: loop j's two at 2j and 2j + 1, then each shaft's gearing. Position errors
-  /// [m, rad] at Stage::Position; with `velocity`, velocity errors [m/s, rad/s] at Stage::Velocity.
-  void readLoopErrors(bool velocity, std::vector<double>& e) const;
-  /// The blocks of the Jacobian at the current positions (realized through Position on return, q unchanged).
-  void calcLoopJacobian();
-  /// Newton on the positions from the current q (the crank's prescribed); true when closed to polish_threshold_ (or
-  /// stalled at Simbody's own acceptance); false when it did not converge (q then undefined).
-  bool closeLoopsByNewton();
-  /// Newton on the free velocities at the assembled positions (the crank's u prescribed); true when solved to
-  /// 2 eps r |omega| (or stalled at Simbody's acceptance), false otherwise (u then undefined).
-  bool solveVelocitiesByNewton(double omega);
-  /// One Newton step from `e` with the Jacobian's blocks, on q (positions) or u (velocities).
-  void takeLoopStep(const std::vector<double>& e, bool velocity);
 
   // The static pass of the last evaluation (U, Q, the position error) at the angle the state is assembled at: an
   // evaluation at the same angle (the cross-check's second speed) reuses the assembly and it. Any assembly clears it.
@@ -156,22 +131,9 @@ class KCrankModel::Impl {
   std::vector<SimTK::MobilizedBody::Slider> pistons_;
   std::vector<SimTK::MobilizedBody::Pin> rods_;
   std::vector<SimTK::MobilizedBody::Pin> shafts_;  // balance shafts (coupled to the crank)
-  std::vector<SimTK::Constraint::PointOnLine> loops_;           // loop j: piston j's slide and rod j's pin
-  std::vector<SimTK::Constraint::CoordinateCoupler> couplers_;  // shaft i's gearing to the crank
-  std::vector<SimTK::QIndex> piston_q_, rod_q_, shaft_q_;
-  std::vector<SimTK::UIndex> piston_u_, rod_u_, shaft_u_;
-  // The Jacobian's blocks: loop j's d(e_2j, e_2j+1)/d(slide, pin) row by row; shaft i's d e / d q. Valid for the
-  // positions of the current assembly (near enough for its velocities: they are linear, the Newton steps exact to
-  // the blocks' error).
-  struct LoopJacobian {
-    bool valid = false;
-    double closure = 0.0;  // [m] the largest position error where computed (its relative error: about that / (l + r))
-    std::vector<std::array<double, 4>> loops;
-    std::vector<double> shafts;
-  };
-  LoopJacobian jacobian_;
-  std::vector<double> loop_errors_, perturbed_errors_;  // scratch of the loops' Newton
-  SimTK::Vector q_scratch_;
+  // The loops closed by Newton's method on Simbody's own errors near a known solution (block_newton.h): loop j's block
+  // is piston j's slide and rod j's pin, shaft i's its pin.
+  std::unique_ptr<BlockNewton> newton_;
   std::vector<SimTK::Vec3> crank_pins_in_crank_;  // B_j in the crankshaft body frame
   SimTK::Vec3 rod_big_end_in_rod_;                // B in the rod body frame
   SimTK::State state_;
@@ -221,8 +183,6 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
     pistons_ = std::move(bodies.pistons);
     rods_ = std::move(bodies.rods);
     shafts_ = std::move(bodies.shafts);
-    loops_ = std::move(bodies.loops);
-    couplers_ = std::move(bodies.couplers);
     crank_pins_in_crank_ = std::move(bodies.crank_pins_in_crank);
     rod_big_end_in_rod_ = bodies.rod_big_end_in_rod;
     if (m_.gas) SimTK::Force::Custom(forces_, new GasForce(m_, drive_, matter_, crank_, pistons_));
@@ -230,16 +190,18 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
     system_.realizeTopology();
     state_ = system_.getDefaultState();
     system_.realizeModel(state_);
-    for (int j = 0; j < k_; ++j) {
-      piston_q_.push_back(pistons_[j].getFirstQIndex(state_));
-      piston_u_.push_back(pistons_[j].getFirstUIndex(state_));
-      rod_q_.push_back(rods_[j].getFirstQIndex(state_));
-      rod_u_.push_back(rods_[j].getFirstUIndex(state_));
-    }
-    for (const SimTK::MobilizedBody::Pin& shaft : shafts_) {
-      shaft_q_.push_back(shaft.getFirstQIndex(state_));
-      shaft_u_.push_back(shaft.getFirstUIndex(state_));
-    }
+    const double slide_step = BlockNewton::kStep * (m_.rod.length + m_.crank.radius);
+    std::vector<BlockNewton::Block> blocks;
+    for (int j = 0; j < k_; ++j)
+      blocks.push_back({{pistons_[j].getFirstQIndex(state_), rods_[j].getFirstQIndex(state_)},
+                        {pistons_[j].getFirstUIndex(state_), rods_[j].getFirstUIndex(state_)},
+                        {slide_step, BlockNewton::kStep},
+                        bodies.loops[j]});
+    for (size_t i = 0; i < shafts_.size(); ++i)
+      blocks.push_back({{shafts_[i].getFirstQIndex(state_)}, {shafts_[i].getFirstUIndex(state_)}, {BlockNewton::kStep},
+                        bodies.couplers[i]});
+    system_.realize(state_, SimTK::Stage::Instance);
+    newton_ = std::make_unique<BlockNewton>(std::move(blocks), state_);
   } catch (const std::invalid_argument&) {
     throw;
   } catch (const std::exception& error) {
@@ -301,7 +263,7 @@ void KCrankModel::Impl::assemble(double phi) {
     state_.updQ() += t * last_motion_.qdot + (0.5 * t * t) * last_motion_.qdotdot;
   }
   unit_power_.valid = false;
-  jacobian_.valid = false;
+  newton_->invalidate();
   drive_->phi = phi;
   // u's are irrelevant to positions but zero them so nothing stale survives a failed attempt.
   state_.updU() = 0;
@@ -314,9 +276,10 @@ void KCrankModel::Impl::assemble(double phi) {
       const SimTK::Vector start = state_.getQ();
       system_.realize(state_, SimTK::Stage::Time);
       system_.prescribeQ(state_);
-      if (closeLoopsByNewton()) return;
+      // Closed to 2 eps (l + r); stalled at rounding, accepted where Simbody's projection stops (RMS 0.1 tol).
+      if (newton_->closePositions(system_, state_, polish_threshold_, 0.1 * projection_tolerance_)) return;
       state_.updQ() = start;
-      jacobian_.valid = false;
+      newton_->invalidate();
       state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Time);
     }
     projectPositions(system_, state_, projection_tolerance_, polish_threshold_);
@@ -345,139 +308,6 @@ void KCrankModel::Impl::assemble(double phi) {
   assembled_phi_ = phi;
 }
 
-void KCrankModel::Impl::readLoopErrors(bool velocity, std::vector<double>& e) const {
-  e.resize(static_cast<size_t>(2 * k_) + couplers_.size());
-  for (int j = 0; j < k_; ++j) {
-    const SimTK::Vec2 v = velocity ? loops_[j].getVelocityErrors(state_) : loops_[j].getPositionErrors(state_);
-    e[2 * j] = v[0];
-    e[2 * j + 1] = v[1];
-  }
-  for (size_t i = 0; i < couplers_.size(); ++i)
-    e[2 * k_ + i] = (velocity ? couplers_[i].getVelocityErrorsAsVector(state_)
-                              : couplers_[i].getPositionErrorsAsVector(state_))[0];
-}
-
-namespace {
-double calcMaxAbs(const std::vector<double>& v) {
-  double result = 0.0;
-  for (double x : v) result = std::max(result, std::abs(x));
-  return std::isfinite(result) ? result : std::numeric_limits<double>::infinity();
-}
-}  // namespace
-
-void KCrankModel::Impl::calcLoopJacobian() {
-  system_.realize(state_, SimTK::Stage::Position);
-  readLoopErrors(false, loop_errors_);
-  q_scratch_ = state_.getQ();
-  const double h_slide = kJacobianStep * (m_.rod.length + m_.crank.radius), h_pin = kJacobianStep;
-  jacobian_.loops.assign(static_cast<size_t>(k_), {});
-  jacobian_.shafts.assign(couplers_.size(), 1.0);
-  // Moves every coordinate of `indices` by about h (each by its own exact step), realizes and reads the errors; calls
-  // column(i, step_i) for each; restores q.
-  auto perturb = [&](const std::vector<SimTK::QIndex>& indices, double h, auto column) {
-    if (indices.empty()) return;
-    std::vector<double> steps(indices.size());
-    {
-      SimTK::Vector& q = state_.updQ();
-      for (size_t i = 0; i < indices.size(); ++i) {
-        const double before = q[indices[i]];
-        q[indices[i]] = before + h;
-        steps[i] = q[indices[i]] - before;
-      }
-    }
-    system_.realize(state_, SimTK::Stage::Position);
-    readLoopErrors(false, perturbed_errors_);
-    for (size_t i = 0; i < indices.size(); ++i) column(i, steps[i]);
-    state_.updQ() = q_scratch_;
-  };
-  auto difference = [&](size_t row, double step) { return (perturbed_errors_[row] - loop_errors_[row]) / step; };
-  perturb(piston_q_, h_slide, [&](size_t j, double step) {
-    jacobian_.loops[j][0] = difference(2 * j, step);
-    jacobian_.loops[j][2] = difference(2 * j + 1, step);
-  });
-  perturb(rod_q_, h_pin, [&](size_t j, double step) {
-    jacobian_.loops[j][1] = difference(2 * j, step);
-    jacobian_.loops[j][3] = difference(2 * j + 1, step);
-  });
-  perturb(shaft_q_, h_pin, [&](size_t i, double step) { jacobian_.shafts[i] = difference(2 * k_ + i, step); });
-  system_.realize(state_, SimTK::Stage::Position);
-  jacobian_.valid = true;
-  jacobian_.closure = calcMaxAbs(loop_errors_);
-}
-
-void KCrankModel::Impl::takeLoopStep(const std::vector<double>& e, bool velocity) {
-  SimTK::Vector& x = velocity ? state_.updU() : state_.updQ();
-  for (int j = 0; j < k_; ++j) {
-    const std::array<double, 4>& J = jacobian_.loops[j];
-    const double det = J[0] * J[3] - J[1] * J[2];
-    const double d_slide = -(e[2 * j] * J[3] - J[1] * e[2 * j + 1]) / det;
-    const double d_pin = -(J[0] * e[2 * j + 1] - J[2] * e[2 * j]) / det;
-    x[velocity ? int(piston_u_[j]) : int(piston_q_[j])] += d_slide;
-    x[velocity ? int(rod_u_[j]) : int(rod_q_[j])] += d_pin;
-  }
-  for (size_t i = 0; i < couplers_.size(); ++i)
-    x[velocity ? int(shaft_u_[i]) : int(shaft_q_[i])] -= e[2 * k_ + i] / jacobian_.shafts[i];
-}
-
-bool KCrankModel::Impl::closeLoopsByNewton() {
-  system_.realize(state_, SimTK::Stage::Position);
-  readLoopErrors(false, loop_errors_);
-  double error = calcMaxAbs(loop_errors_);
-  if (error <= polish_threshold_) return true;
-  calcLoopJacobian();  // leaves loop_errors_ those of the start
-  bool fresh = true;   // the Jacobian is the one of the point the next step starts from
-  for (int step = 0; step < kLoopNewtonSteps; ++step) {
-    takeLoopStep(loop_errors_, false);
-    system_.realize(state_, SimTK::Stage::Position);
-    readLoopErrors(false, loop_errors_);
-    const double next = calcMaxAbs(loop_errors_);
-    if (next <= polish_threshold_) return true;
-    if (next > 1e-4 * error) {
-      // A step that cut the error less than 1e4-fold. With the Jacobian of its own start and not even halving it, the
-      // error is Simbody's rounding (a balance shaft's gearing in radians, a rod kilometres long): accepted where
-      // Simbody's projection stops (RMS below 0.1 of its tolerance), else left to it. With an older Jacobian (a start
-      // 10 degrees off or more), computed again here, where the next step starts.
-      if (fresh && !(next <= 0.5 * error)) return next <= 0.1 * projection_tolerance_;
-      calcLoopJacobian();
-      fresh = true;
-    } else {
-      fresh = false;
-    }
-    error = next;
-  }
-  return false;
-}
-
-bool KCrankModel::Impl::solveVelocitiesByNewton(double omega) {
-  system_.realize(state_, SimTK::Stage::Position);
-  system_.prescribeU(state_);
-  system_.realize(state_, SimTK::Stage::Velocity);
-  readLoopErrors(true, loop_errors_);
-  // The velocities' errors are differences of terms of about r omega (the crank pin's, the slide's, the rod's swing
-  // about its far end): solved to 2 eps r |omega|, their rounding.
-  const double threshold = 2.0 * std::numeric_limits<double>::epsilon() * m_.crank.radius * std::abs(omega);
-  double error = calcMaxAbs(loop_errors_);
-  if (error <= threshold) return true;
-  // The velocities are linear: with the Jacobian of the assembled positions (or of a start within 1e-6 (l + r) of
-  // them) each step cuts their error by its relative error, about 1e-8.
-  if (!jacobian_.valid || jacobian_.closure > 1e-6 * (m_.rod.length + m_.crank.radius)) {
-    calcLoopJacobian();  // at the assembled positions (the u's are kept; the velocity stage is realized again)
-    system_.realize(state_, SimTK::Stage::Velocity);
-    readLoopErrors(true, loop_errors_);
-  }
-  for (int step = 0; step < kLoopNewtonSteps; ++step) {
-    takeLoopStep(loop_errors_, true);
-    system_.realize(state_, SimTK::Stage::Velocity);
-    readLoopErrors(true, loop_errors_);
-    const double next = calcMaxAbs(loop_errors_);
-    if (next <= threshold) return true;
-    // A step that does not halve the error: rounding (as for the positions).
-    if (!(next <= 0.5 * error)) return next <= 0.1 * projection_tolerance_;
-    error = next;
-  }
-  return false;
-}
-
 void KCrankModel::Impl::solveMotion(double omega) {
   drive_->omega = omega;
   if (omega != 0.0 && seeded_motion_.valid && seeded_motion_.phi == assembled_phi_ && seeded_motion_.omega == omega) {
@@ -486,9 +316,19 @@ void KCrankModel::Impl::solveMotion(double omega) {
   }
   // The prescribed qdot is evaluated at Stage::Position: invalidate it (the q's stay as assembled).
   state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Position);
+  // The velocities' errors are differences of terms of about r omega (the crank pin's, the slide's, the rod's swing
+  // about its far end): solved to 2 eps r |omega|, their rounding, with the assembly's Jacobian when it was computed
+  // within 1e-6 (l + r) of closure (its relative error then about 1e-6: three steps at most).
+  auto solveVelocitiesByNewton = [&]() {
+    system_.realize(state_, SimTK::Stage::Position);
+    system_.prescribeU(state_);
+    return newton_->solveVelocities(system_, state_,
+                                    2.0 * std::numeric_limits<double>::epsilon() * m_.crank.radius * std::abs(omega),
+                                    0.1 * projection_tolerance_, 1e-6 * (m_.rod.length + m_.crank.radius));
+  };
   try {
     // Prescribes crank u = omega and solves the rest: by the loops' Newton, else by Simbody's projection.
-    if (!options_.simbody_projections && !solveVelocitiesByNewton(omega)) {
+    if (!options_.simbody_projections && !solveVelocitiesByNewton()) {
       state_.updU() = 0;  // Simbody's projection from rest (the Newton's u may be anywhere)
       system_.projectU(state_, projection_tolerance_);
     } else if (options_.simbody_projections) {

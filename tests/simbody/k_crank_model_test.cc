@@ -26,6 +26,7 @@
 
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/scene/scene_file.h"
+#include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 
 namespace crankcheck::simbody_models {
@@ -554,6 +555,26 @@ void expectLoopsNewtonIsSimbodysProjection(const Mechanism& m) {
 }
 
 TEST_P(KCrankModelTest, LoopsNewtonGivesSimbodysProjection) { expectLoopsNewtonIsSimbodysProjection(mechanism_); }
+
+// The reduced gravity model (KCrankGravityModel: one rod constraint per cylinder, closed by the same Newton near a known
+// solution) against itself with Simbody's projections, along the same walk: U and Q to 16 eps of their scales.
+TEST_P(KCrankModelTest, ReducedModelNewtonGivesSimbodysProjection) {
+  ModelOptions simbody_options;
+  simbody_options.simbody_projections = true;
+  KCrankGravityModel newton(mechanism_), simbody(mechanism_, simbody_options);
+  for (double phi : kAngles)
+    for (double step_deg : {1e-6, 1.0, 15.0, 57.0}) {
+      SCOPED_TRACE(std::to_string(phi) + " rad after a step of " + std::to_string(step_deg) + " degrees");
+      for (double at : {phi + 3.0, phi - radiansFromDegrees(step_deg)}) {
+        newton.calcHoldingTorque(at);
+        simbody.calcHoldingTorque(at);
+      }
+      EXPECT_WITHIN("Q", newton.calcHoldingTorque(phi), simbody.calcHoldingTorque(phi),
+                    16 * kEps * scales_.torque_gravity, scales_.torque_gravity);
+      EXPECT_WITHIN("U", newton.calcPotentialEnergy(phi), simbody.calcPotentialEnergy(phi), 16 * kEps * scales_.energy,
+                    scales_.energy);
+    }
+}
 
 INSTANTIATE_TEST_SUITE_P(Cases, KCrankModelTest, ::testing::ValuesIn(allCases()),
                          [](const ::testing::TestParamInfo<Case>& info) { return caseName(info.param); });
