@@ -446,6 +446,17 @@ class KCrankMujocoModel::Impl {
   double closure_tolerance_ = 0.0;
   bool closed_ = false;
   double closed_phi_ = 0.0;
+  // The motion of the last exact kinematics at crank speed != 0, per unit crank angle: each cylinder's slide and hinge
+  // rates dq/dphi = qvel / omega and dq^2/dphi^2 = qacc / omega^2 (constant crank speed) at `phi`. The next closure
+  // near it starts from q + dq h + dq^2 h^2 / 2 (close).
+  struct AngleMotion {
+    bool valid = false;
+    double phi = 0.0;
+    std::vector<std::array<double, 4>> rates;  // per cylinder: slide dq, slide dq^2, hinge dq, hinge dq^2
+  };
+  AngleMotion motion_;
+  /// Keeps the motion of the kinematics just solved (solveVelocities and solveAccelerations at omega != 0).
+  void keepMotion(double omega);
 };
 
 KCrankMujocoModel::Impl::Impl(const Mechanism& m, Variant variant) : m_(m), variant_(variant) {
@@ -509,11 +520,23 @@ void KCrankMujocoModel::Impl::close(double phi) {
   const double l = m_.rod.length;
   // Warm start from the previous closure when it is near; otherwise a crude guess that is no solution: the piston at
   // x = l, the rod along -e (its big end at O). Newton's first step from there puts the piston on the outer branch.
-  const bool warm = closed_ && std::fabs(std::remainder(phi - closed_phi_, 2.0 * M_PI)) <= 1.0;
+  const double step = std::remainder(phi - closed_phi_, 2.0 * M_PI);
+  const bool warm = closed_ && std::fabs(step) <= 1.0;
   if (!warm) {
     for (Cylinder& c : cylinders_) {
       d->qpos[c.slide_q] = l;
       d->qpos[c.wrist_q] = 0.0;
+    }
+  } else if (motion_.valid && motion_.phi == closed_phi_) {
+    // Near the last motion: MuJoCo's own motion carried on to phi (its second-order Taylor step), not the last angle's
+    // q: Newton then needs about one step fewer. A hinge carried out of (-pi/2, pi/2) keeps the last angle's q.
+    for (size_t j = 0; j < cylinders_.size(); ++j) {
+      const Cylinder& c = cylinders_[j];
+      const std::array<double, 4>& r = motion_.rates[j];
+      const double hinge = d->qpos[c.wrist_q] + r[2] * step + 0.5 * r[3] * step * step;
+      if (!(std::fabs(hinge) < M_PI_2)) continue;
+      d->qpos[c.slide_q] += r[0] * step + 0.5 * r[1] * step * step;
+      d->qpos[c.wrist_q] = hinge;
     }
   }
   d->qpos[crank_q_] = phi;
@@ -563,6 +586,19 @@ void KCrankMujocoModel::Impl::close(double phi) {
   }
   closed_ = true;
   closed_phi_ = phi;
+}
+
+void KCrankMujocoModel::Impl::keepMotion(double omega) {
+  if (omega == 0.0) return;
+  const mjData* d = data_.get();
+  motion_.valid = true;
+  motion_.phi = closed_phi_;
+  motion_.rates.resize(cylinders_.size());
+  for (size_t j = 0; j < cylinders_.size(); ++j) {
+    const Cylinder& c = cylinders_[j];
+    motion_.rates[j] = {d->qvel[c.slide_v] / omega, d->qacc[c.slide_v] / (omega * omega), d->qvel[c.wrist_v] / omega,
+                        d->qacc[c.wrist_v] / (omega * omega)};
+  }
 }
 
 void KCrankMujocoModel::Impl::calcLoopVelocities(double omega, double* qvel) const {
@@ -766,6 +802,7 @@ CrankTorqueLine KCrankMujocoModel::Impl::crankTorqueLine(double phi, double phi_
   line.inertia = mju_dot(unit_.data(), mass_times_unit_.data(), mm->nv) - rotor_inertia_;
   solveVelocities(phi_dot);
   solveAccelerations();
+  keepMotion(phi_dot);
   line.rest = solveExactForces(phi, true);
   if (!(std::isfinite(line.inertia) && std::isfinite(line.rest)))
     throw std::runtime_error("MuJoCo returned non-finite values at phi = " + num(phi) + " rad");
@@ -788,6 +825,7 @@ Evaluation KCrankMujocoModel::Impl::evaluate(double phi) {
   // At speed: the exact kinematics, then forces by the variant's rule.
   solveVelocities(omega);
   solveAccelerations();
+  keepMotion(omega);
   e.drive_torque = exact ? solveExactForces(phi, true) : solveSoftForces(phi, true);
   const mjData* d = data_.get();
   for (size_t j = 0; j < cylinders_.size(); ++j) {

@@ -106,6 +106,49 @@ TEST(MujocoModel, RatesAgreeWithFiniteDifferencesOfItsOwnPositions) {
   }
 }
 
+// A closure started from MuJoCo's own last motion carried on to the next angle (its Taylor step, within 1 rad) against
+// one started from the last angle's q (the motion at rest is none: the static walk) and one from the crude guess (the
+// angle before 3 rad away): the same evaluation to rounding, 16 eps of each quantity's scale (three converged closures
+// to 4 eps (l + r) each; the velocities and accelerations solved from the same closed positions), times the loop's
+// conditioning: near lambda = 1 the rod swings almost across the cylinder (cos beta down to sqrt(1 - lambda^2)), a
+// closure's rounding moves the piston by 1 / cos beta of it and the loads by up to 1 / cos^3 beta (the plain warm start
+// differs from the crude one by 250 eps of the force scale at lambda = 0.999, 90 degrees; the bound there is 1.1e4 x
+// 16 eps). Steps of 1e-6 to 57 degrees (a refinement's last, the offset sweep's, the cross-check's, the gate's), a long
+// and a short rod, four cylinders at a bank angle.
+TEST(MujocoModel, ClosureStartedFromItsLastMotionGivesTheSameEvaluation) {
+  for (double lambda : {0.05, 0.3, 0.999}) {
+    Mechanism m = single(lambda, 3000.0, 37.0);
+    m.engine.cylinders = 4;
+    m.engine.crank_angles = {0.0, M_PI, M_PI, 0.0};
+    const double w = m.engine.speed, r = m.crank.radius, L = m.rod.length + r;
+    const double mass = 4 * (m.piston.mass + m.rod.mass + m.crank.mass + m.crank.counterweight_mass);
+    const double F = mass * (m.engine.gravity + r * w * w * (1 + lambda)), T = F * r, v = r * w * (1 + lambda);
+    const double closure = 1.0 / std::sqrt(1.0 - lambda * lambda), c = 16 * kEps * std::pow(closure, 3);
+    KCrankMujocoModel taylor(m), cold(m);
+    for (double deg : {0.0, 17.0, 90.0, 133.0, 222.5, 300.0})
+      for (double step_deg : {1e-6, 1.0, 15.0, 57.0}) {
+        SCOPED_TRACE("lambda " + std::to_string(lambda) + ", " + std::to_string(deg) + " degrees after a step of " +
+                     std::to_string(step_deg));
+        const double phi = radiansFromDegrees(deg);
+        taylor.evaluate(phi - radiansFromDegrees(step_deg));
+        const Evaluation a = taylor.evaluate(phi);
+        cold.evaluate(phi + 3.0);
+        const Evaluation b = cold.evaluate(phi);
+        EXPECT_NEAR(a.drive_torque, b.drive_torque, c * T);
+        EXPECT_NEAR(a.Q, b.Q, c * T);
+        for (int i = 0; i < 2; ++i) EXPECT_NEAR(a.bearing_force[i], b.bearing_force[i], c * F);
+        for (size_t j = 0; j < a.cylinders.size(); ++j) {
+          const CylinderEvaluation &x = a.cylinders[j], &y = b.cylinders[j];
+          EXPECT_NEAR(x.x_p, y.x_p, 16 * kEps * closure * L);
+          EXPECT_NEAR(x.v_p, y.v_p, c * v);
+          EXPECT_NEAR(x.a_p, y.a_p, c * v * w);
+          EXPECT_NEAR(x.wall_force, y.wall_force, c * F);
+          for (int i = 0; i < 2; ++i) EXPECT_NEAR(x.crank_pin_force[i], y.crank_pin_force[i], c * F);
+        }
+      }
+  }
+}
+
 // A standing engine mirrored about its axis: phi -> -phi leaves x_p and the wall force's size, and turns Q and the
 // rod angle into their negatives (exactly in the mechanics; to a few eps of their scales in MuJoCo).
 TEST(MujocoModel, StandingEngineIsMirrorSymmetric) {
