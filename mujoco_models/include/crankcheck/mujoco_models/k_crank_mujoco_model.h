@@ -64,8 +64,9 @@ struct CrankTorqueLine {
   double rest = 0.0;
 };
 
-/// The k-crank mechanism in MuJoCo. Loads one model in the constructor and reuses it for every crank angle (the
-/// previous loop closure is the warm start of the next). Not thread-safe: one object per thread.
+/// The k-crank mechanism in MuJoCo. Loads one model in the constructor and reuses it for every crank angle: within
+/// 1 rad of the previous closure the next starts from it, carried on to the new angle by the last motion solved at
+/// speed (q + dq/dphi h + d2q/dphi2 h^2 / 2) when there is one. Not thread-safe: one object per thread.
 class KCrankMujocoModel {
  public:
   /// @throws std::invalid_argument if m is not a valid mechanism, or MuJoCo cannot build it: MuJoCo refuses a body
