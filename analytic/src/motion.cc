@@ -1,8 +1,13 @@
 #include "crankcheck/analytic/motion.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
+#include <utility>
 #include <vector>
+
+#include <boost/math/tools/toms748_solve.hpp>
 
 #include "crankcheck/analytic/balance_shafts.h"
 #include "crankcheck/analytic/exact_trig.h"
@@ -132,25 +137,25 @@ FreeRun calcFreeRun(const Mechanism& m, double omega0, bool gravity) {
   double period = 0.0;
   for (int i = 0; i < n; ++i) period += h / std::sqrt(v2[i]);
   run.omega_mean = 2.0 * M_PI / period;
-  // Extremes: the zeros of the slope of phi_dot^2, bracketed by sign changes between samples, refined by bisection.
+  // Extremes: the zeros of the slope of phi_dot^2, bracketed by sign changes between samples, refined by TOMS 748
+  // (Boost.Math) to the bracket's rounding (about 6 evaluations where bisection took 50).
   double vmax = v2[0], vmin = v2[0];
   for (int i = 0; i < n; ++i) {
     vmax = std::max(vmax, v2[i]);
     vmin = std::min(vmin, v2[i]);
     const int j = (i + 1) % n;
     if ((slope[i] > 0.0) == (slope[j] > 0.0) || slope[i] == 0.0) continue;
-    double a = i * h, b = (i + 1) * h, fa = slope[i];
-    for (int it = 0; it < 60 && b - a > 1e-15 * (1.0 + std::fabs(a)); ++it) {
-      const double mid = 0.5 * (a + b);
-      const double fm = speedSquared(m, E, mid, gravity).slope;
-      if ((fm > 0.0) == (fa > 0.0)) {
-        a = mid;
-        fa = fm;
-      } else {
-        b = mid;
-      }
+    const double a = i * h, b = (i + 1) * h;
+    std::pair<double, double> root{a, b};
+    if (slope[j] != 0.0) {
+      std::uintmax_t iterations = 60;
+      root = boost::math::tools::toms748_solve([&](double phi) { return speedSquared(m, E, phi, gravity).slope; }, a,
+                                               b, slope[i], slope[j], boost::math::tools::eps_tolerance<double>(52),
+                                               iterations);
+    } else {
+      root = {b, b};
     }
-    const double v = speedSquared(m, E, 0.5 * (a + b), gravity).value;
+    const double v = speedSquared(m, E, 0.5 * (root.first + root.second), gravity).value;
     vmax = std::max(vmax, v);
     vmin = std::min(vmin, v);
   }
