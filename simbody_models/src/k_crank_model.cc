@@ -8,8 +8,8 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <string>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -328,10 +328,10 @@ void KCrankModel::Impl::solveMotion(double omega) {
   };
   try {
     // Prescribes crank u = omega and solves the rest: by the loops' Newton, else by Simbody's projection.
-    if (!options_.simbody_projections && !solveVelocitiesByNewton()) {
-      state_.updU() = 0;  // Simbody's projection from rest (the Newton's u may be anywhere)
+    if (options_.simbody_projections) {
       system_.projectU(state_, projection_tolerance_);
-    } else if (options_.simbody_projections) {
+    } else if (!solveVelocitiesByNewton()) {
+      state_.updU() = 0;  // Simbody's projection from rest (the Newton's u may be anywhere)
       system_.projectU(state_, projection_tolerance_);
     }
     system_.realize(state_, SimTK::Stage::Acceleration);
