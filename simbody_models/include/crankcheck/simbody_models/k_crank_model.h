@@ -1,9 +1,10 @@
 #pragma once
 /// @file
 /// The k-crank mechanism of ../shared/CONVENTIONS.md (any layout) built as a Simbody multibody system: the second,
-/// independent engine of crankcheck. Simbody assembles the positions, solves the velocities and computes the
-/// accelerations and reactions itself; no closed-form kinematics is used anywhere in this library, and it never
-/// includes the analytic library.
+/// independent engine of crankcheck. The positions and velocities satisfy Simbody's own constraint errors (closed by
+/// Newton's method on them loop by loop near a known solution, by Simbody's projections elsewhere: ModelOptions), and
+/// Simbody computes the accelerations and reactions itself; no closed-form kinematics is used anywhere in this library,
+/// and it never includes the analytic library.
 ///
 /// Simbody stays behind a pimpl: this header pulls in no Simbody header, so translation units that only use the
 /// model compile fast and never see SimTK names (see SIMBODY-NOTES.md: Simbody headers must not be compiled with
