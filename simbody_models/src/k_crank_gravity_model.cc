@@ -90,10 +90,10 @@ class KCrankGravityModel::Impl {
     // positions of lambda -> 1, where both roots of the loop closure are close), start again from x = l + r cos theta,
     // from which Newton's iteration on the convex closure equation can only reach the physical root.
     const bool warm = assembled_ && std::abs(std::remainder(phi - assembled_phi_, 2.0 * SimTK::Pi)) <= 1.0;
-    if (!(warm && ((!simbody_projections_ && closeNear()) || project()) && physical())) {
+    if (!(warm && ((!simbody_projections_ && closeByNewton()) || project()) && physical())) {
       for (size_t j = 0; j < pistons_.size(); ++j)
         pistons_[j].setQ(state_, m_.rod.length + m_.crank.radius * std::cos(phi + m_.engine.crank_angles[j]));
-      if (!project() || !physical()) {
+      if (!((!simbody_projections_ && closeByNewton()) || (project() && physical()))) {
         assembled_ = false;
         throw std::runtime_error("KCrankGravityModel: Simbody could not assemble the physical branch at phi = " +
                                  std::to_string(phi) + (error_.empty() ? "" : ": " + error_));
@@ -103,15 +103,16 @@ class KCrankGravityModel::Impl {
     assembled_phi_ = phi;
   }
 
-  // From the previous solution: the rods closed by the blocks' Newton (to the polish threshold; stalled at rounding,
-  // accepted where Simbody's projection stops); false (the start restored) where it did not converge.
-  bool closeNear() {
+  // The rods closed by the blocks' Newton from the current start (to the polish threshold; stalled at rounding,
+  // accepted where Simbody's projection stops) onto the physical branch; false (the start restored) otherwise.
+  bool closeByNewton() {
     state_.updU() = 0;
     state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Time);
     const SimTK::Vector start = state_.getQ();
     system_.realize(state_, SimTK::Stage::Time);
     system_.prescribeQ(state_);
-    if (newton_->closePositions(system_, state_, polishThreshold(), 0.1 * tolerance_)) return true;
+    newton_->invalidate();
+    if (newton_->closePositions(system_, state_, polishThreshold(), 0.1 * tolerance_) && physical()) return true;
     state_.updQ() = start;
     return false;
   }

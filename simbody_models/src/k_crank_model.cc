@@ -269,25 +269,28 @@ void KCrankModel::Impl::assemble(double phi) {
   state_.updU() = 0;
   state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Time);
 
-  // Prescribes crank q = phi and closes the loops, to roundoff: near a known solution by the loops' own Newton on
-  // Simbody's errors, else (and where that does not converge) by Simbody's projection (model_support.h).
+  auto physical = [&]() {
+    for (const auto& piston : pistons_)
+      if (!(piston.getQ(state_) > 0.0)) return false;
+    return true;
+  };
+  // Prescribes crank q = phi and closes the loops, to roundoff: by the loops' own Newton on Simbody's errors (from
+  // either start: from the crude one its Jacobian is computed again after each slow step, a full Newton), else (where
+  // that does not converge or lands off the physical branch) by Simbody's projection from the same start
+  // (model_support.h).
   auto project = [&]() {
-    if (warm && !options_.simbody_projections) {
+    if (!options_.simbody_projections) {
       const SimTK::Vector start = state_.getQ();
       system_.realize(state_, SimTK::Stage::Time);
       system_.prescribeQ(state_);
       // Closed to 2 eps (l + r); stalled at rounding, accepted where Simbody's projection stops (RMS 0.1 tol).
-      if (newton_->closePositions(system_, state_, polish_threshold_, 0.1 * projection_tolerance_)) return;
+      if (newton_->closePositions(system_, state_, polish_threshold_, 0.1 * projection_tolerance_) && physical())
+        return;
       state_.updQ() = start;
       newton_->invalidate();
       state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Time);
     }
     projectPositions(system_, state_, projection_tolerance_, polish_threshold_);
-  };
-  auto physical = [&]() {
-    for (const auto& piston : pistons_)
-      if (!(piston.getQ(state_) > 0.0)) return false;
-    return true;
   };
   try {
     project();
