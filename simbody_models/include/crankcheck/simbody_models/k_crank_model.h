@@ -40,13 +40,12 @@ struct ModelOptions {
   /// mechanism up to 1 m; multiplied by l + r above that (roundoff of a long rod is eps l). Simbody's default (1e-4) leaves
   /// 0.2 N of reaction error; 1e-12..1e-13 is tight, 1e-14 hits roundoff and Simbody throws.
   double projection_tolerance = 1e-12;
-  /// How the loops are closed near a known solution (the next angle of a sweep, the same angle at another speed or
-  /// bank angle). false (the default): Newton's method on Simbody's own constraint errors, loop by loop (each loop's
-  /// closure involves its piston and rod alone: a 2 x 2 Jacobian per loop, by finite differences of Simbody's errors,
-  /// all loops at once), to 2 eps (l + r) of closure and 2 eps (l + r) |omega| of velocity error; System::projectQ and
-  /// projectU where it does not converge and from the crude start. true: Simbody's projections at every angle, the
-  /// reference the default is tested against (System::projectQ forms the whole m x m constraint matrix,
-  /// O(k^2) for k cylinders).
+  /// How the loops are closed. false (the default): Newton's method on Simbody's own constraint errors, loop by loop
+  /// (each loop's closure involves its piston and rod alone: a 2 x 2 Jacobian per loop, by finite differences of
+  /// Simbody's errors, all loops at once), to 2 eps (l + r) of closure and 2 eps r |omega| of velocity error;
+  /// System::projectQ and projectU where it does not converge or lands off the physical branch. true: Simbody's
+  /// projections at every angle, the reference the default is tested against (System::projectQ forms the whole m x m
+  /// constraint matrix, O(k^2) for k cylinders).
   bool simbody_projections = false;
 };
 
