@@ -53,7 +53,8 @@ void BlockNewton::calcJacobian(const SimTK::System& system, SimTK::State& state)
   system.realize(state, SimTK::Stage::Position);
   readErrors(state, false, errors_);
   q_start_ = state.getQ();
-  std::vector<double> moved(blocks_.size());
+  std::vector<double>& moved = moved_;
+  moved.resize(blocks_.size());
   for (int c = 0; c < colors_; ++c) {
     // Coordinate c of every block moved at once (each by its exact floating-point step): the blocks are independent.
     {

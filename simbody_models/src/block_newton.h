@@ -63,7 +63,7 @@ class BlockNewton {
   bool jacobian_valid_ = false;
   double jacobian_closure_ = 0.0;  // the largest position error where the Jacobian was computed
   int colors_ = 0;                 // the largest block's coordinates
-  std::vector<double> errors_, perturbed_;
+  std::vector<double> errors_, perturbed_, moved_;  // scratch, kept: an assembly's hot path allocates nothing
   SimTK::Vector q_start_;
 };
 

@@ -111,7 +111,6 @@ class KCrankGravityModel::Impl {
     const SimTK::Vector start = state_.getQ();
     system_.realize(state_, SimTK::Stage::Time);
     system_.prescribeQ(state_);
-    newton_->invalidate();
     if (newton_->closePositions(system_, state_, polishThreshold(), 0.1 * tolerance_) && physical()) return true;
     state_.updQ() = start;
     return false;
