@@ -67,5 +67,25 @@ TEST(TableTest, AppendRefusesTheSameColumnInAnotherUnit) {
   EXPECT_THROW(appendTables(into, from), std::runtime_error);
 }
 
+// The report's order (campaign.h: sortTables): column by column, numerically where both fields are numbers ("9" before
+// "10", "1e-3" before "0.01"), else as text ("" first); a row that is another's start first; rows equal in every
+// column ("1" and "1.0") keep the order they came in. The expected order is written out by hand.
+TEST(TableTest, SortOrdersRowsColumnByColumnNumbersAsNumbers) {
+  TableSet tables;
+  Table t("crosscheck", {{"engine", kText}, {"value", "-"}, {"note", kText}});
+  t.rows = {{"simbody", "10", "b"}, {"mujoco", "0.01", "a"}, {"simbody", "9", "c"},  {"mujoco", "1e-3", "z"},
+            {"simbody", "1.0", "first"}, {"simbody", "1", "first"}, {"analytic", "", "x"}, {"analytic", "text", "x"},
+            {"analytic", "2"}, {"analytic", "2", "y"}};
+  tables["crosscheck"] = t;
+  sortTables(tables);
+  const std::vector<std::vector<std::string>> expected = {
+      {"analytic", "", "x"},  {"analytic", "2"},       {"analytic", "2", "y"},      {"analytic", "text", "x"},
+      {"mujoco", "1e-3", "z"}, {"mujoco", "0.01", "a"}, {"simbody", "1.0", "first"}, {"simbody", "1", "first"},
+      {"simbody", "9", "c"},  {"simbody", "10", "b"}};
+  EXPECT_EQ(tables["crosscheck"].rows, expected);
+  sortTables(tables);  // sorted already: unchanged
+  EXPECT_EQ(tables["crosscheck"].rows, expected);
+}
+
 }  // namespace
 }  // namespace crankcheck::validation

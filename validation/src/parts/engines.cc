@@ -59,7 +59,7 @@ Task buildEngineCostTask(const Mechanism& base, bool quick) {
                 });
               }
             }
-            const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, quick ? 0.01 : 0.05);
+            const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, getTimingSeconds(quick));
             Table t("engine_cost", {{"engine", kText}, {"k", "-"}, {"ns_per_eval", "ns"}});
             for (const auto& [engine, k] : keys) {
               const auto it = ns.find(engine + " k=" + std::to_string(k));

@@ -165,7 +165,7 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
     errors[name] = {worst_sweep / E, resolvedToOnePercent(worst_sweep / E, calcScales(m).conditioning)};
   }
   for (const BatchMethod& b : batch_methods) timed.emplace_back(b.name, b.run);
-  const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, quick ? 0.01 : 0.05);
+  const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, getTimingSeconds(quick));
   Table t("speed_vs_error", {{"method", kText}, {"ns_per_eval", "ns"}, {"max_rel_error", "-"}, {"resolved", kText}});
   for (const Method& method : methods) {
     const auto it = ns.find(method.name);

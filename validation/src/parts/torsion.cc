@@ -66,16 +66,22 @@ constexpr double kTextbookOrder = 24.0;
 // twist scale: 1e-4 in the full campaign, 1e-2 in the quick one (a smoke test of the route). Samples of the cycle:
 // 1024 in the full campaign; 256 in the quick one, whose peak-to-peaks then carry their aliasing, about 1e-4 of the
 // twist scale on the example four (1e-5 at 1024), far below its periodicity (every sample a step end: at 1024 the
-// sampled cycle was half of Simbody's quick run). The gated routes' accuracy (their integrators' error per step): 1e-8
-// in the full campaign, 1e-5 in the quick one, whose differences to the analytic orbit it leaves at what the
-// periodicity leaves (5e-4 to 1e-3 of the twist scale on the example four at 1e-6 and at 1e-5 alike; 2026-11-26), at
-// 0.7 of the cost of 1e-6 (Simbody 0.89 -> 0.60 s, MuJoCo 0.25 -> 0.20 s).
+// sampled cycle was half of Simbody's quick run). The gated routes' accuracy (their integrators' error per step): 1e-7
+// in the full campaign, which leaves their differences to the analytic orbit at 8e-6 (Simbody) and 5e-7 (MuJoCo) of
+// the twist scale on the example four, far below the periodicity and the part's percent differences, at 0.81 and 0.61
+// of the cost of 1e-8 (9e-7 and 3e-7; 2026-11-26, bench/README.md "Ninth session"); 1e-5 in the quick one, whose
+// differences it leaves at what the periodicity leaves (5e-4 to 1e-3 of the twist scale at 1e-6 and at 1e-5 alike),
+// at 0.7 of the cost of 1e-6. The soft routes (measured, not gated) at a fixed step of 1/2048 of a cycle in the full
+// campaign (not run in the quick one): kSoftDefault's difference, its loops' give (0.12 of the twist scale), is the
+// same as at its default 1/4096, kSoftStiff's (its loops' time constant two steps) 3.9e-4 instead of 9e-5, at half
+// the cost.
 struct EngineRunSettings {
   double accuracy, periodicity;
   int samples;
+  double soft_step;  // the soft routes' fixed step, a fraction of a cycle (their `accuracy`)
 };
 EngineRunSettings getEngineRunSettings(bool quick) {
-  return quick ? EngineRunSettings{1e-5, 1e-2, 256} : EngineRunSettings{1e-8, 1e-4, 1024};
+  return quick ? EngineRunSettings{1e-5, 1e-2, 256, 0.0} : EngineRunSettings{1e-7, 1e-4, 1024, 1.0 / 2048};
 }
 
 std::string num(double x) { return formatNumber(x); }
@@ -261,8 +267,8 @@ TableSet calcEngineTables(const Mechanism& m, const Engine& engine, bool quick, 
   TableSet tables = makeEmptyTables();
   CrankTrainRunOptions options;
   // A gated route's accuracy is its integrator's error per step; a soft route's is its own (MuJoCo's: the fixed time
-  // step, Engine::crank_train_method): it runs at its default, as its users run it.
-  options.accuracy = engine.crank_train_gated ? getEngineRunSettings(quick).accuracy : 0.0;
+  // step as a fraction of a cycle, Engine::crank_train_method).
+  options.accuracy = engine.crank_train_gated ? getEngineRunSettings(quick).accuracy : getEngineRunSettings(quick).soft_step;
   options.periodicity = getEngineRunSettings(quick).periodicity;
   options.samples = getEngineRunSettings(quick).samples;
   const auto start = std::chrono::steady_clock::now();
@@ -541,18 +547,24 @@ void describeEnginesAndCost(const TableSet& tables, ReportPart& part) {
                  ea = columnOf(e, "accuracy"), ep = columnOf(e, "periodicity"), er = columnOf(e, "speed_rpm");
     std::map<std::string, double> worst;
     std::map<std::string, std::string> where;
+    auto isGated = [](const std::string& engine) {
+      for (const Engine& known : listEngines())
+        if (known.name == engine) return known.crank_train_gated;
+      return true;
+    };
     for (const auto& row : e.rows) {
       worst[row[ee]] = std::max(worst[row[ee]], std::fabs(std::stod(row[ed])));
       const double accuracy = std::stod(row[ea]);
-      where[row[ee]] = row[es] + " at " + shortNumber(std::stod(row[er]), 4) + " rpm (" +
-                       (accuracy > 0.0 ? "accuracy " + shortNumber(accuracy, 1) : std::string("its default step")) +
+      // A soft route's accuracy is its fixed step as a fraction of a cycle.
+      const std::string how = !(accuracy > 0.0)     ? std::string("its default step")
+                              : isGated(row[ee]) ? "accuracy " + shortNumber(accuracy, 1)
+                                                 : "a fixed step of 1/" + shortNumber(1.0 / accuracy, 6) + " of a cycle";
+      where[row[ee]] = row[es] + " at " + shortNumber(std::stod(row[er]), 4) + " rpm (" + how +
                        ", run until the cycle-to-cycle change is below " + shortNumber(std::stod(row[ep]), 1) +
                        " of the twist)";
     }
     for (const auto& [engine, w] : worst) {
-      bool gated = true;
-      for (const Engine& known : listEngines())
-        if (known.name == engine) gated = known.crank_train_gated;
+      const bool gated = isGated(engine);
       part.paragraphs.push_back(engine + "'s own elastic train " +
                                 (gated ? "agrees with the analytic steady state's peak-to-peak twists to "
                                        : "(a soft solver: measured, not gated) differs from the analytic steady state's "
