@@ -148,7 +148,7 @@ SignalExtremes findSignalExtremes(const PeriodicSignal& s) {
     X[M - p] = std::conj(X[p]);
   }
   std::vector<double> v;
-  Eigen::FFT<double> fft;
+  thread_local Eigen::FFT<double> fft;  // kept: its plans (twiddles) are made once per size, not at every call
   fft.inv(v, X);
   const int grid = static_cast<int>(M);
   const double h = 2.0 * M_PI / grid;
@@ -174,7 +174,7 @@ SignalExtremes findSignalExtremes(const PeriodicSignal& s) {
 PeriodicSignal calcSignalFromSamples(const std::vector<double>& samples) {
   const size_t N = samples.size();
   if (N < 2 || N % 2 != 0) throw std::invalid_argument("calcSignalFromSamples: an even number of samples is needed");
-  Eigen::FFT<double> fft;
+  thread_local Eigen::FFT<double> fft;  // kept: its plans (twiddles) are made once per size, not at every call
   std::vector<std::complex<double>> X;
   fft.fwd(X, samples);
   PeriodicSignal s;

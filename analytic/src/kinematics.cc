@@ -12,50 +12,13 @@ PistonKinematics calcPistonKinematics(const Mechanism& m, double theta, double p
   return calcPistonKinematics(m, calcSinCos(theta), pin_offset);
 }
 
-PistonKinematics calcPistonKinematics(const Mechanism& m, const SinCos& theta, double pin_offset) {
-  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed;
-  const double lambda = r / l;
-  const auto [s1, c1] = theta;
-  const double s = lambda * s1 - pin_offset / l;       // sin(beta)
-  const double c = std::sqrt((1.0 - s) * (1.0 + s));   // cos(beta), no cancellation
-  const double c3 = c * c * c, c5 = c3 * c * c;
-  const double t = s / c;                              // tan(beta)
-  PistonKinematics k;
-  k.x_p = r * c1 + l * c;  // Norton 13.1d (centric); the wrist pin on x_p e + delta n
-  k.v_p = -r * w * (s1 + c1 * t);
-  if (pin_offset == 0.0) {
-    // The centric forms in sin 2theta, cos 2theta (the batch kernels compute the same expressions):
-    // d2x/dtheta2 = -r (cos + lambda cos2 / root + lambda^3 sin^2 2 / (4 root^3)),
-    // d3x/dtheta3 = r (sin + 2 lambda sin2 / root - (3/2) lambda^3 sin2 cos2 / root^3 - (3/8) lambda^5 sin^3 2 / root^5).
-    const double s2 = 2.0 * s1 * c1, c2 = (c1 - s1) * (c1 + s1);
-    const double l3 = lambda * lambda * lambda, l5 = l3 * lambda * lambda;
-    k.v_p = -r * w * (s1 + lambda * s2 / (2.0 * c));
-    k.a_p = -r * w * w * (c1 + lambda * c2 / c + l3 * s2 * s2 / (4.0 * c3));
-    k.j_p = r * w * w * w * (s1 + 2.0 * lambda * s2 / c - 1.5 * l3 * s2 * c2 / c3 - 0.375 * l5 * s2 * s2 * s2 / c5);
-    return k;
-  }
-  k.a_p = r * w * w * (-c1 + s1 * t - lambda * c1 * c1 / c3);
-  k.j_p = r * w * w * w * (s1 + c1 * t + 3.0 * lambda * s1 * c1 / c3 - 3.0 * lambda * lambda * s * c1 * c1 * c1 / c5);
-  return k;
-}
-
 RodKinematics calcRodKinematics(const Mechanism& m, double theta, double pin_offset) {
   return calcRodKinematics(m, calcSinCos(theta), pin_offset);
 }
 
 RodKinematics calcRodKinematics(const Mechanism& m, const SinCos& theta, double pin_offset) {
-  const double lambda = m.crank.radius / m.rod.length, w = m.engine.speed;
-  const auto [s1, c1] = theta;
-  const double s = lambda * s1 - pin_offset / m.rod.length;
-  const double cos_beta = std::sqrt((1.0 - s) * (1.0 + s));
-  const double cos3 = cos_beta * cos_beta * cos_beta;
-  RodKinematics k;
-  k.beta = std::asin(s);
-  k.beta_dot = w * lambda * c1 / cos_beta;
-  if (pin_offset == 0.0)  // centric: the two terms in one, -lambda (1 - lambda^2) sin / c^3
-    k.beta_ddot = -w * w * lambda * (1.0 - lambda) * (1.0 + lambda) * s1 / cos3;
-  else
-    k.beta_ddot = w * w * lambda * (-s1 / cos_beta + lambda * s * c1 * c1 / cos3);
+  RodKinematics k = calcRodRates(m, theta, pin_offset);
+  k.beta = std::asin(m.crank.radius / m.rod.length * theta.sin - pin_offset / m.rod.length);  // the rates' sin(beta)
   return k;
 }
 

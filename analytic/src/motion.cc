@@ -31,7 +31,7 @@ void addCylinderInertia(const Mechanism& m, const Mechanism& unit, int j, const 
   const double r = m.crank.radius, l = m.rod.length, z = m.rod.com_from_wrist_pin, mu = z / l;
   const double m_o = m.piston.mass, m_k = m.rod.mass, I_o = m.rod.inertia_about_wrist_pin;
   const PistonKinematics p = calcPistonKinematics(unit, t, getPinOffset(m, j));   // v_p = x', a_p = x''
-  const RodKinematics rod = calcRodKinematics(unit, t, getPinOffset(m, j));       // beta', beta''
+  const RodKinematics rod = calcRodRates(unit, t, getPinOffset(m, j));            // beta', beta''
   const double crank = m.crank.mass * m.crank.com_radius * m.crank.com_radius +
                        m.crank.counterweight_mass * m.crank.counterweight_radius * m.crank.counterweight_radius;
   out.J += crank;

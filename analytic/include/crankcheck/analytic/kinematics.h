@@ -11,6 +11,7 @@
 /// Time derivatives are at the scene's constant omega = m.engine.speed: v_p = omega dx_p/dtheta, etc.
 
 #include <Eigen/Core>
+#include <cmath>
 #include <vector>
 
 #include "crankcheck/analytic/exact_trig.h"
@@ -58,14 +59,57 @@ std::vector<CylinderMotion> calcCylinderMotions(const Mechanism& m, double phi);
 ///   x' = -r (sin + cos s / c),  x'' = -r cos + r sin s / c - r lambda cos^2 / c^3,
 ///   x''' = r sin + r cos s / c + 3 r lambda sin cos / c^3 - 3 r lambda^2 s cos^3 / c^5.
 PistonKinematics calcPistonKinematics(const Mechanism& m, double theta, double pin_offset = 0.0);
-/// The same from sin and cos of theta (e.g. calcThrowSinCos(phi, alpha_j)).
-PistonKinematics calcPistonKinematics(const Mechanism& m, const SinCos& theta, double pin_offset = 0.0);
+/// The same from sin and cos of theta (e.g. calcThrowSinCos(phi, alpha_j)). Inline: the crank train's integration
+/// (torsion_steady.h) asks for it at every step of every throw and reads v_p and a_p alone, so the compiler drops the
+/// rest (the jerk's divisions); the same operations, bit for bit, wherever it is compiled.
+inline PistonKinematics calcPistonKinematics(const Mechanism& m, const SinCos& theta, double pin_offset = 0.0) {
+  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed;
+  const double lambda = r / l;
+  const auto [s1, c1] = theta;
+  const double s = lambda * s1 - pin_offset / l;       // sin(beta)
+  const double c = std::sqrt((1.0 - s) * (1.0 + s));   // cos(beta), no cancellation
+  const double c3 = c * c * c, c5 = c3 * c * c;
+  const double t = s / c;                              // tan(beta)
+  PistonKinematics k;
+  k.x_p = r * c1 + l * c;  // Norton 13.1d (centric); the wrist pin on x_p e + delta n
+  k.v_p = -r * w * (s1 + c1 * t);
+  if (pin_offset == 0.0) {
+    // The centric forms in sin 2theta, cos 2theta (the batch kernels compute the same expressions):
+    // d2x/dtheta2 = -r (cos + lambda cos2 / root + lambda^3 sin^2 2 / (4 root^3)),
+    // d3x/dtheta3 = r (sin + 2 lambda sin2 / root - (3/2) lambda^3 sin2 cos2 / root^3 - (3/8) lambda^5 sin^3 2 / root^5).
+    const double s2 = 2.0 * s1 * c1, c2 = (c1 - s1) * (c1 + s1);
+    const double l3 = lambda * lambda * lambda, l5 = l3 * lambda * lambda;
+    k.v_p = -r * w * (s1 + lambda * s2 / (2.0 * c));
+    k.a_p = -r * w * w * (c1 + lambda * c2 / c + l3 * s2 * s2 / (4.0 * c3));
+    k.j_p = r * w * w * w * (s1 + 2.0 * lambda * s2 / c - 1.5 * l3 * s2 * c2 / c3 - 0.375 * l5 * s2 * s2 * s2 / c5);
+    return k;
+  }
+  k.a_p = r * w * w * (-c1 + s1 * t - lambda * c1 * c1 / c3);
+  k.j_p = r * w * w * w * (s1 + c1 * t + 3.0 * lambda * s1 * c1 / c3 - 3.0 * lambda * lambda * s * c1 * c1 * c1 / c5);
+  return k;
+}
 
 /// Exact rod angle and its derivatives (per radian of crank; times omega, omega^2): beta' = lambda cos / cos(beta),
 /// beta'' = -lambda sin / cos(beta) + lambda^2 sin(beta) cos^2 / cos^3(beta); centric: -lambda (1 - lambda^2) sin /
 /// cos^3(beta).
 RodKinematics calcRodKinematics(const Mechanism& m, double theta, double pin_offset = 0.0);
 RodKinematics calcRodKinematics(const Mechanism& m, const SinCos& theta, double pin_offset = 0.0);
+/// beta_dot and beta_ddot alone (beta left 0: no asin), the same operations as calcRodKinematics: for a caller that
+/// reads the rates only (the reduced inertia, at every step of the crank train's integration).
+inline RodKinematics calcRodRates(const Mechanism& m, const SinCos& theta, double pin_offset = 0.0) {
+  const double lambda = m.crank.radius / m.rod.length, w = m.engine.speed;
+  const auto [s1, c1] = theta;
+  const double s = lambda * s1 - pin_offset / m.rod.length;
+  const double cos_beta = std::sqrt((1.0 - s) * (1.0 + s));
+  const double cos3 = cos_beta * cos_beta * cos_beta;
+  RodKinematics k;
+  k.beta_dot = w * lambda * c1 / cos_beta;
+  if (pin_offset == 0.0)  // centric: the two terms in one, -lambda (1 - lambda^2) sin / c^3
+    k.beta_ddot = -w * w * lambda * (1.0 - lambda) * (1.0 + lambda) * s1 / cos3;
+  else
+    k.beta_ddot = w * w * lambda * (-s1 / cos_beta + lambda * s * c1 * c1 / cos3);
+  return k;
+}
 
 /// The dead centres of a cylinder with pin offset delta: the crank angles theta at which the piston reverses (crank
 /// and rod in line: sin(theta_outer) = delta / (l + r), theta_inner = pi + asin(delta / (l - r))), and the stroke
