@@ -482,12 +482,12 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
     const std::vector<double> sweep_gammas = quick ? std::vector<double>{90.0, 37.0} : std::vector<double>{0.0, 180.0, 90.0, -90.0, 37.0};
     const std::vector<double> gate_angles = {0.0, 17.0, 45.0, 90.0, 133.0, 180.0, 222.5, 270.0, 300.0, 359.0, -60.0};
     // The soft ways are measured on k = 1 and 2 of the sweep and on its four-stroke k = 12 (every lambda and gamma of
-    // them), not gated: the full sweep of 2026-11-25 put every one of their worst errors per quantity on k = 1, 2 and 12
-    // (the single cylinder's loads on one loop: Q, a_p, the pin and bearing forces, rod_alpha, shaking moment; the
-    // twin's and the twelve's shaking force and a_p), except the rounding-level ones (x_p, v_p, rod angle and speed,
-    // U: 5e-15 anywhere); on that subset (2026-11-26) the two-stroke k = 12 held none that k = 1 does not equal
+    // them), not gated: the full sweep of 2026-11-25 put every one of their worst errors per quantity on k = 1, 2 and
+    // 12 (the single cylinder's loads on one loop: Q, a_p, the pin and bearing forces, rod_alpha, shaking moment; the
+    // twin's and the twelve's shaking force and a_p), except the rounding-level ones (x_p, v_p, rod angle and speed, U:
+    // 5e-15 anywhere); on that subset (2026-11-26) the two-stroke k = 12 held none that k = 1 does not equal
     // (mujoco-soft's a_p, 1.07 of its scale on both), the four-stroke k = 12 mujoco-soft-stiff's a_p (0.61).
-    // bench/README.md, "The soft ways on a subset" and "Ninth session", has the tables; a fifth of their sweep cost.
+    // bench/README.md, "Faster" (step 3) and "Ninth session", has the tables; a sixth of their whole sweep's cost.
     auto measuresSoft = [](int k, Cycle cycle) { return k <= 2 || (k == 12 && cycle == Cycle::kFourStroke); };
     for (int k = 12; k >= 1; --k)
       for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke}) {

@@ -268,9 +268,10 @@ TableSet calcEngineTables(const Mechanism& m, const Engine& engine, bool quick, 
   CrankTrainRunOptions options;
   // A gated route's accuracy is its integrator's error per step; a soft route's is its own (MuJoCo's: the fixed time
   // step as a fraction of a cycle, Engine::crank_train_method).
-  options.accuracy = engine.crank_train_gated ? getEngineRunSettings(quick).accuracy : getEngineRunSettings(quick).soft_step;
-  options.periodicity = getEngineRunSettings(quick).periodicity;
-  options.samples = getEngineRunSettings(quick).samples;
+  const EngineRunSettings settings = getEngineRunSettings(quick);
+  options.accuracy = engine.crank_train_gated ? settings.accuracy : settings.soft_step;
+  options.periodicity = settings.periodicity;
+  options.samples = settings.samples;
   const auto start = std::chrono::steady_clock::now();
   const CrankTrainRun run = engine.simulate_crank_train(m, options);
   const double run_seconds = seconds(start);
@@ -556,9 +557,10 @@ void describeEnginesAndCost(const TableSet& tables, ReportPart& part) {
       worst[row[ee]] = std::max(worst[row[ee]], std::fabs(std::stod(row[ed])));
       const double accuracy = std::stod(row[ea]);
       // A soft route's accuracy is its fixed step as a fraction of a cycle.
-      const std::string how = !(accuracy > 0.0)     ? std::string("its default step")
-                              : isGated(row[ee]) ? "accuracy " + shortNumber(accuracy, 1)
-                                                 : "a fixed step of 1/" + shortNumber(1.0 / accuracy, 6) + " of a cycle";
+      std::string how = "its default step";
+      if (accuracy > 0.0)
+        how = isGated(row[ee]) ? "accuracy " + shortNumber(accuracy, 1)
+                               : "a fixed step of 1/" + shortNumber(1.0 / accuracy, 6) + " of a cycle";
       where[row[ee]] = row[es] + " at " + shortNumber(std::stod(row[er]), 4) + " rpm (" + how +
                        ", run until the cycle-to-cycle change is below " + shortNumber(std::stod(row[ep]), 1) +
                        " of the twist)";
