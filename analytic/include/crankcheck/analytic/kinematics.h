@@ -61,7 +61,8 @@ std::vector<CylinderMotion> calcCylinderMotions(const Mechanism& m, double phi);
 PistonKinematics calcPistonKinematics(const Mechanism& m, double theta, double pin_offset = 0.0);
 /// The same from sin and cos of theta (e.g. calcThrowSinCos(phi, alpha_j)). Inline: the crank train's integration
 /// (torsion_steady.h) asks for it at every step of every throw and reads v_p and a_p alone, so the compiler drops the
-/// rest (the jerk's divisions); the same operations, bit for bit, wherever it is compiled.
+/// rest (the jerk's divisions); the same operations wherever it is inlined (bit for bit while the build contracts no
+/// multiply-adds: the project sets no -march, and x86-64's baseline has no FMA).
 inline PistonKinematics calcPistonKinematics(const Mechanism& m, const SinCos& theta, double pin_offset = 0.0) {
   const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed;
   const double lambda = r / l;
