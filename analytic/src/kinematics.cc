@@ -18,7 +18,7 @@ RodKinematics calcRodKinematics(const Mechanism& m, double theta, double pin_off
 
 RodKinematics calcRodKinematics(const Mechanism& m, const SinCos& theta, double pin_offset) {
   RodKinematics k = calcRodRates(m, theta, pin_offset);
-  k.beta = std::asin(m.crank.radius / m.rod.length * theta.sin - pin_offset / m.rod.length);  // the rates' sin(beta)
+  k.beta = std::asin(calcRodSine(m, theta, pin_offset));
   return k;
 }
 

@@ -95,12 +95,16 @@ inline PistonKinematics calcPistonKinematics(const Mechanism& m, const SinCos& t
 /// cos^3(beta).
 RodKinematics calcRodKinematics(const Mechanism& m, double theta, double pin_offset = 0.0);
 RodKinematics calcRodKinematics(const Mechanism& m, const SinCos& theta, double pin_offset = 0.0);
+/// sin(beta) = lambda sin(theta) - delta / l: the rod's angle (calcRodKinematics) and its rates read the same one.
+inline double calcRodSine(const Mechanism& m, const SinCos& theta, double pin_offset) {
+  return m.crank.radius / m.rod.length * theta.sin - pin_offset / m.rod.length;
+}
 /// beta_dot and beta_ddot alone (beta left 0: no asin), the same operations as calcRodKinematics: for a caller that
 /// reads the rates only (the reduced inertia, at every step of the crank train's integration).
 inline RodKinematics calcRodRates(const Mechanism& m, const SinCos& theta, double pin_offset = 0.0) {
   const double lambda = m.crank.radius / m.rod.length, w = m.engine.speed;
   const auto [s1, c1] = theta;
-  const double s = lambda * s1 - pin_offset / m.rod.length;
+  const double s = calcRodSine(m, theta, pin_offset);
   const double cos_beta = std::sqrt((1.0 - s) * (1.0 + s));
   const double cos3 = cos_beta * cos_beta * cos_beta;
   RodKinematics k;
