@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(g++ cmake make pkg-config libeigen3-dev libsimbody-dev libcli11-dev libtomlplusplus-dev munge slurm-client
+packages=(g++ cmake make pkg-config libeigen3-dev libboost-dev libsimbody-dev libcli11-dev libtomlplusplus-dev munge slurm-client
           nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox libhwy-dev libsleef-dev
           libcmark-gfm-dev libcmark-gfm-extensions-dev python3 chromium python3-jsonschema parallel slurmctld slurmd
           libmujoco-dev libqhull-dev  # libqhull-dev: the include folder Debian's mujoco::mujoco target names
