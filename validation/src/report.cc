@@ -18,7 +18,6 @@
 #include <exception>
 #include <thread>
 #include <mutex>
-#include <atomic>
 #include <stdexcept>
 
 #include "crankcheck/validation/engines.h"
@@ -269,27 +268,28 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   sortTables(tables);
   writeTables(tables, dir);
 
-  // One gnuplot per figure, up to info.jobs at a time (each writes only its own NAME.svg and NAME.png).
+  // The figures dealt out in turn to up to info.jobs gnuplots at a time, each drawing its share one after the other
+  // (drawFigures; each figure writes only its own NAME.svg and NAME.png).
   std::vector<std::string> to_draw;
   for (const Part* part : listParts())
     for (const std::string& figure : part->figures())
       if (tables.count(figure)) to_draw.push_back(figure);
-  std::atomic<size_t> next{0};
+  const size_t drawer_count = std::min(static_cast<size_t>(std::max(info.jobs, 1)), to_draw.size());
+  std::vector<std::vector<std::string>> shares(drawer_count);
+  for (size_t i = 0; i < to_draw.size(); ++i) shares[i % drawer_count].push_back(to_draw[i]);
   std::mutex error_mutex;
   std::exception_ptr error;
-  auto drawer = [&] {
-    for (size_t i = next++; i < to_draw.size(); i = next++) {
-      try {
-        drawFigure(to_draw[i], dir);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-      }
+  auto drawer = [&](size_t j) {
+    try {
+      drawFigures(shares[j], dir);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
     }
   };
   std::vector<std::thread> drawers;
-  for (int j = 1; j < std::min<int>(std::max(info.jobs, 1), static_cast<int>(to_draw.size())); ++j) drawers.emplace_back(drawer);
-  drawer();
+  for (size_t j = 1; j < drawer_count; ++j) drawers.emplace_back(drawer, j);
+  if (drawer_count > 0) drawer(0);
   for (std::thread& t : drawers) t.join();
   if (error) std::rethrow_exception(error);
 

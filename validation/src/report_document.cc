@@ -3,6 +3,7 @@
 #include <cmark-gfm-core-extensions.h>
 #include <cmark-gfm.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
@@ -139,6 +140,28 @@ void drawFigure(const std::string& name, const fs::path& dir, const std::string&
                            " s; gnuplot was ended");
   if (r.exit_status != 0 || !fs::exists(dir / (name + ".svg")) || !fs::exists(dir / (name + ".png")))
     throw EnvironmentError("gnuplot failed on " + quotePath(script) + ":\n" + r.out + r.err);
+}
+
+void drawFigures(const std::vector<std::string>& names, const fs::path& dir) {
+  if (names.size() > 1) {
+    ProgramCall call{{"gnuplot"}, dir};
+    bool found = true;
+    for (const std::string& name : names) {
+      const fs::path script = fs::absolute(findReportsDir() / (name + ".gp"));
+      found = found && fs::is_regular_file(script);
+      // "reset session" on its own: gnuplot 5.4 refuses it followed by other commands on one line.
+      call.argv.insert(call.argv.end(), {"-e", "reset session", "-e", "in_dir='data'; out_dir='.'", script.string()});
+    }
+    call.timeout_seconds = kGnuplotFigureSeconds * static_cast<double>(names.size());
+    if (found) {
+      const ProgramResult r = runProgram(call);
+      const bool drawn = std::all_of(names.begin(), names.end(), [&](const std::string& name) {
+        return fs::exists(dir / (name + ".svg")) && fs::exists(dir / (name + ".png"));
+      });
+      if (!r.timed_out && r.exit_status == 0 && drawn) return;
+    }
+  }
+  for (const std::string& name : names) drawFigure(name, dir);
 }
 
 }  // namespace crankcheck::validation

@@ -49,4 +49,13 @@ constexpr double kGnuplotFigureSeconds = 120.0;
 /// kGnuplotFigureSeconds (then it is ended).
 void drawFigure(const std::string& name, const std::filesystem::path& dir, const std::string& definitions = "");
 
+/// Draws the figures `names` (drawFigure's, without definitions) by one gnuplot, one script after the other, each after
+/// `reset session` (no setting or variable of one script reaches the next: on a report's data the PNGs are
+/// drawFigure's byte for byte, the SVGs differ at most in the stroke attribute of an empty group). One process saves
+/// gnuplot's start and its cairo and fonts set-up, about 30 ms of CPU a figure on this project's VM (bench/README.md,
+/// "Tenth session"). Where it fails (a script's error, a missing file, kGnuplotFigureSeconds a figure
+/// passed), every figure of `names` is drawn again on its own by drawFigure, whose error names the failing script.
+/// @throws EnvironmentError as drawFigure.
+void drawFigures(const std::vector<std::string>& names, const std::filesystem::path& dir);
+
 }  // namespace crankcheck::validation
