@@ -39,7 +39,9 @@ TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick) {
     std::string name;
   };
   std::vector<Run> runs;
-  const std::vector<double> accuracies = quick ? std::vector<double>{1e-4, 1e-8} : std::vector<double>{1e-3, 1e-4, 1e-6, 1e-8, 1e-10};
+  // --quick: two of them, a decade either side of the middle (1e-7: the first-order integrator is skipped there, whose
+  // 1e-4 run cost as much as the other four runs; issue 28).
+  const std::vector<double> accuracies = quick ? std::vector<double>{1e-3, 1e-7} : std::vector<double>{1e-3, 1e-4, 1e-6, 1e-8, 1e-10};
   for (const Engine* engine : listReferenceEngines()) {
     if (!engine->simulate) continue;
     for (size_t i = 0; i < engine->integrators.size(); ++i)
