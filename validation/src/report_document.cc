@@ -155,10 +155,17 @@ void drawFigures(const std::vector<std::string>& names, const fs::path& dir) {
     call.timeout_seconds = kGnuplotFigureSeconds * static_cast<double>(names.size());
     if (found) {
       const ProgramResult r = runProgram(call);
+      if (r.timed_out) {  // not drawn again: a gnuplot that hangs would hang again, a figure at a time
+        std::string scripts;
+        for (const std::string& name : names) scripts += (scripts.empty() ? "" : ", ") + name + ".gp";
+        throw EnvironmentError("gnuplot: " + quotePath(findReportsDir()) + ": no figures within " +
+                               std::to_string(static_cast<int>(call.timeout_seconds)) + " s for " + scripts +
+                               "; gnuplot was ended");
+      }
       const bool drawn = std::all_of(names.begin(), names.end(), [&](const std::string& name) {
         return fs::exists(dir / (name + ".svg")) && fs::exists(dir / (name + ".png"));
       });
-      if (!r.timed_out && r.exit_status == 0 && drawn) return;
+      if (r.exit_status == 0 && drawn) return;
     }
   }
   for (const std::string& name : names) drawFigure(name, dir);
