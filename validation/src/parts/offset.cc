@@ -49,16 +49,17 @@ std::vector<double> listOffsetFractions(bool quick) {
 }
 
 // The part's tables on `parts` (its crank, rod, piston and flywheel) at one offset delta / r = `f`, from 1-degree
-// samples of one working cycle (4 degrees with `quick`): the errors the largest over the samples; each engine's thrust
-// peaks and largest drive torque refined from the samples by Brent's method (extremum.h, the two best humps) and its
-// thrust reversal by TOMS 748 between the samples that bracket it, each on that engine's own evaluations, so that
-// they do not depend on the grid (the 0.25-degree samples of before put the peaks up to 1e-5 below them).
+// samples of one working cycle (2 degrees with `quick`; at 4, N_w's two sign changes near -5.7 degrees at delta / r =
+// -0.04 fell in one cell and the reversal was read 80 degrees off): the errors the largest over the samples; each
+// engine's thrust peaks and largest drive torque refined from the samples by Brent's method (extremum.h, the two best
+// humps) and its thrust reversal by TOMS 748 between the samples that bracket it, each on that engine's own
+// evaluations, so that they do not depend on the grid (the 0.25-degree samples of before put the peaks up to 1e-5 below them).
 TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
   const Mechanism single = withSpeed(withGasAtDeadCentres(withGamma(withCylinders(parts, 1, Cycle::kFourStroke), 90.0),
                                                           makeExampleGas(Cycle::kFourStroke, 2.0 * parts.crank.radius)),
                                      6000.0);
   const double r = single.crank.radius;
-  const double step = quick ? 4.0 : 1.0;
+  const double step = quick ? 2.0 : 1.0;
   Table cost, thrust;
   // The key column first: the sorted table then holds each series' rows together, in order of delta / r.
   const std::vector<const Engine*> references = listReferenceEngines();
