@@ -129,44 +129,54 @@ std::string ReportDocument::toHtml() const {
          fragment + "</body>\n</html>\n";
 }
 
-void drawFigure(const std::string& name, const fs::path& dir, const std::string& definitions) {
+namespace {
+
+// Every figure script reads its data from data/ and writes into the report's folder (gnuplot runs there).
+constexpr const char* kFigureFolders = "in_dir='data'; out_dir='.'";
+
+// reports/NAME.gp, absolute. @throws EnvironmentError if it is not there.
+fs::path findFigureScript(const std::string& name) {
   const fs::path script = fs::absolute(findReportsDir() / (name + ".gp"));
   if (!fs::is_regular_file(script)) throw EnvironmentError("gnuplot script not found: " + quotePath(script));
-  ProgramCall call{{"gnuplot", "-e", "in_dir='data'; out_dir='.'; " + definitions, script.string()}, dir};
+  return script;
+}
+
+// Both of figure NAME's files are in `dir`.
+bool isDrawn(const fs::path& dir, const std::string& name) {
+  return fs::exists(dir / (name + ".svg")) && fs::exists(dir / (name + ".png"));
+}
+
+}  // namespace
+
+void drawFigure(const std::string& name, const fs::path& dir, const std::string& definitions) {
+  const fs::path script = findFigureScript(name);
+  ProgramCall call{{"gnuplot", "-e", std::string(kFigureFolders) + "; " + definitions, script.string()}, dir};
   call.timeout_seconds = kGnuplotFigureSeconds;
   const ProgramResult r = runProgram(call);
   if (r.timed_out)
     throw EnvironmentError("gnuplot: " + quotePath(script) + ": no figure within " + std::to_string(static_cast<int>(kGnuplotFigureSeconds)) +
                            " s; gnuplot was ended");
-  if (r.exit_status != 0 || !fs::exists(dir / (name + ".svg")) || !fs::exists(dir / (name + ".png")))
+  if (r.exit_status != 0 || !isDrawn(dir, name))
     throw EnvironmentError("gnuplot failed on " + quotePath(script) + ":\n" + r.out + r.err);
 }
 
 void drawFigures(const std::vector<std::string>& names, const fs::path& dir) {
   if (names.size() > 1) {
     ProgramCall call{{"gnuplot"}, dir};
-    bool found = true;
-    for (const std::string& name : names) {
-      const fs::path script = fs::absolute(findReportsDir() / (name + ".gp"));
-      found = found && fs::is_regular_file(script);
-      // "reset session" on its own: gnuplot 5.4 refuses it followed by other commands on one line.
-      call.argv.insert(call.argv.end(), {"-e", "reset session", "-e", "in_dir='data'; out_dir='.'", script.string()});
-    }
+    for (const std::string& name : names)  // "reset session" on its own: gnuplot 5.4 refuses more on its line
+      call.argv.insert(call.argv.end(), {"-e", "reset session", "-e", kFigureFolders, findFigureScript(name).string()});
     call.timeout_seconds = kGnuplotFigureSeconds * static_cast<double>(names.size());
-    if (found) {
-      const ProgramResult r = runProgram(call);
-      if (r.timed_out) {  // not drawn again: a gnuplot that hangs would hang again, a figure at a time
-        std::string scripts;
-        for (const std::string& name : names) scripts += (scripts.empty() ? "" : ", ") + name + ".gp";
-        throw EnvironmentError("gnuplot: " + quotePath(findReportsDir()) + ": no figures within " +
-                               std::to_string(static_cast<int>(call.timeout_seconds)) + " s for " + scripts +
-                               "; gnuplot was ended");
-      }
-      const bool drawn = std::all_of(names.begin(), names.end(), [&](const std::string& name) {
-        return fs::exists(dir / (name + ".svg")) && fs::exists(dir / (name + ".png"));
-      });
-      if (r.exit_status == 0 && drawn) return;
+    const ProgramResult r = runProgram(call);
+    if (r.timed_out) {  // not drawn again: a gnuplot that hangs would hang again, a figure at a time
+      std::string scripts;
+      for (const std::string& name : names) scripts += (scripts.empty() ? "" : ", ") + name + ".gp";
+      throw EnvironmentError("gnuplot: " + quotePath(findReportsDir()) + ": no figures within " +
+                             std::to_string(static_cast<int>(call.timeout_seconds)) + " s for " + scripts +
+                             "; gnuplot was ended");
     }
+    if (r.exit_status == 0 &&
+        std::all_of(names.begin(), names.end(), [&](const std::string& name) { return isDrawn(dir, name); }))
+      return;
   }
   for (const std::string& name : names) drawFigure(name, dir);
 }

@@ -251,7 +251,9 @@ class FlywheelPart final : public Part {
                      task_cost::kSimbodyRun});
       for (int point : runs)
         out.push_back({"flywheel " + m.name + " run " + std::to_string(point), false,
-                       [m, quick, runs, point, sizing] { return calcFlywheelSceneTables(m, quick, runs, point, *sizing); },
+                       [m, quick, runs, point, sizing] {
+                         return calcFlywheelSceneTables(m, quick, runs, point, *sizing);
+                       },
                        task_cost::kSimbodyRun});
     }
     out.push_back({"flywheel_norton", false, [base = context.base, quick] { return calcFlywheelNortonTables(base, quick); }});

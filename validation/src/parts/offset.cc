@@ -53,7 +53,8 @@ std::vector<double> listOffsetFractions(bool quick) {
 // -0.04 fell in one cell and the reversal was read 80 degrees off): the errors the largest over the samples; each
 // engine's thrust peaks and largest drive torque refined from the samples by Brent's method (extremum.h, the two best
 // humps) and its thrust reversal by TOMS 748 between the samples that bracket it, each on that engine's own
-// evaluations, so that they do not depend on the grid (the 0.25-degree samples of before put the peaks up to 1e-5 below them).
+// evaluations, so that they do not depend on the grid (the 0.25-degree samples of before put the peaks up to 1e-5
+// below them).
 TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
   const Mechanism single = withSpeed(withGasAtDeadCentres(withGamma(withCylinders(parts, 1, Cycle::kFourStroke), 90.0),
                                                           makeExampleGas(Cycle::kFourStroke, 2.0 * parts.crank.radius)),

@@ -55,7 +55,7 @@ void drawFigure(const std::string& name, const std::filesystem::path& dir, const
 /// gnuplot's start and its cairo and fonts set-up, about 30 ms of CPU a figure on this project's VM (bench/README.md,
 /// "Tenth session"). Where a script fails (its error, a missing file), every figure of `names` is drawn again on
 /// its own by drawFigure, whose error names the failing script.
-/// @throws EnvironmentError as drawFigure; when gnuplot has not finished within kGnuplotFigureSeconds a figure (then
+/// @throws EnvironmentError as drawFigure (a missing script before gnuplot starts); when gnuplot has not finished within kGnuplotFigureSeconds a figure (then
 /// it is ended, and nothing is drawn again).
 void drawFigures(const std::vector<std::string>& names, const std::filesystem::path& dir);
 
