@@ -72,23 +72,27 @@ TableSet calcTorqueSplitTables(const Mechanism& car, const Mechanism& marine) {
     }
   }
   for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke})
-    for (int k = 1; k <= 12; ++k)
+    for (int k = 1; k <= 12; ++k) {
+      const Mechanism standing = withGasAtDeadCentres(inlineOf(car, k, cycle), makeExampleGas(cycle, 2.0 * car.crank.radius));
+      const double cycle_deg = cycle == Cycle::kFourStroke ? 720.0 : 360.0;
+      // The gravity torque alone does not depend on the speed (withLoads stands the engine still): summed once.
+      const Mechanism gravity_only = withLoads(standing, false, false, true);
+      double gravity = 0.0;
+      for (double d = 0.0; d < cycle_deg; d += 1.0)
+        gravity += std::fabs(analytic::calcReactions(gravity_only, radiansFromDegrees(d)).drive_torque);
       for (double rpm : {600.0, 1500.0, 3000.0, 6000.0}) {
-        const Mechanism m = withSpeed(withGasAtDeadCentres(inlineOf(car, k, cycle), makeExampleGas(cycle, 2.0 * car.crank.radius)), rpm);
-        const double cycle_deg = cycle == Cycle::kFourStroke ? 720.0 : 360.0;
-        double drive = 0.0, gravity = 0.0;
+        const Mechanism m = withSpeed(standing, rpm);
+        double drive = 0.0;
         int n = 0;
-        for (double d = 0.0; d < cycle_deg; d += 1.0, ++n) {
-          const double phi = radiansFromDegrees(d);
-          drive += std::fabs(analytic::calcReactions(m, phi).drive_torque);
-          gravity += std::fabs(analytic::calcReactions(withLoads(m, false, false, true), phi).drive_torque);
-        }
+        for (double d = 0.0; d < cycle_deg; d += 1.0, ++n)
+          drive += std::fabs(analytic::calcReactions(m, radiansFromDegrees(d)).drive_torque);
         // A gravity torque below 64 eps of the energy scale is rounding (k = 7, 9, 11 four-stroke: gravity's harmonics
         // cancel up to the 14th), not a torque: marked, not drawn as physics.
         const bool resolved = gravity / n > kAgreementMultiple * kEps * calcEnergyScale(m);
         share.rows.push_back({toString(cycle), std::to_string(k), num(rpm), num(drive / n), num(gravity / n), num(gravity / drive),
                               resolved ? "1" : "0"});
       }
+    }
   return {{"torque_split", split}, {"gravity_share", share}};
 }
 
