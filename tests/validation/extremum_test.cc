@@ -43,9 +43,35 @@ TEST(ExtremumTest, GridOnTheZerosIsAvoidedByThreeSamplesPerPeriod) {
   for (int samples : {18, 36, 72}) EXPECT_NEAR(findMaxAbsOverTurn(f, samples).value, 7.3e-6, 4 * kEps * 7.3e-6) << samples;
 }
 
+// The quick campaign's angle tolerance (getAngleTolerance(true), 1e-6 rad) on the two-harmonic maximum of the test
+// above, known in closed form: the value within f'' tol^2 / 2 ~ 1e-12 of it (relative; f'' ~ 3.7 here), at fewer
+// evaluations of f than the full campaign's 1e-10; at a kink (a corner, not a parabola) the value moves by about the
+// slope times the tolerance.
+TEST(ExtremumTest, TheQuickToleranceCostsLessAndMovesASmoothMaximumByItsSquare) {
+  const double c = std::sqrt(1.7 / 3.6), s = std::sqrt(1.0 - c * c);
+  const double expected = s + 0.3 * (3.0 * s - 4.0 * s * s * s);
+  int fine_calls = 0, quick_calls = 0;
+  const TurnMaximum fine = findMaxAbsOverTurn(
+      [&](double phi) { ++fine_calls; return std::sin(phi) + 0.3 * std::sin(3.0 * phi); }, 24, 4, kFineAngleTolerance);
+  const TurnMaximum quick = findMaxAbsOverTurn(
+      [&](double phi) { ++quick_calls; return std::sin(phi) + 0.3 * std::sin(3.0 * phi); }, 24, 4, getAngleTolerance(true));
+  EXPECT_EQ(getAngleTolerance(false), kFineAngleTolerance);
+  EXPECT_NEAR(fine.value, expected, 4 * kEps * expected);
+  EXPECT_NEAR(quick.value, expected, 1e-12 * expected);  // 3.7 x (1e-6)^2 / 2 = 2e-12 at most, from below
+  EXPECT_LE(quick.value, fine.value + 4 * kEps * expected);
+  EXPECT_LT(quick_calls, fine_calls);
+  // A corner: f = 1 - |sin((phi - 1) / 2)| (2 pi periodic, slope 1/2 on either side of its maximum 1 at phi = 1).
+  const auto corner = [](double phi) { return 1.0 - std::fabs(std::sin(0.5 * (phi - 1.0))); };
+  EXPECT_NEAR(findMaxAbsOverTurn(corner, 48, 1, getAngleTolerance(true)).value, 1.0, 2e-6);
+  EXPECT_NEAR(findMaxAbsOverTurn(corner, 48, 1, kFineAngleTolerance).value, 1.0, 2e-10);
+}
+
 TEST(ExtremumTest, BadArgumentsAreRefused) {
   EXPECT_THROW(findMaxAbsOverTurn([](double) { return 1.0; }, 2), std::invalid_argument);
   EXPECT_THROW(findMaxAbsOverTurn([](double) { return 1.0; }, 10, -1), std::invalid_argument);
+  EXPECT_THROW(findMaxAbsOverTurn([](double) { return 1.0; }, 10, 1, 0.0), std::invalid_argument);
+  EXPECT_THROW(findMaxAbsOverTurn([](double) { return 1.0; }, std::vector<double>(10, 1.0), 1, -1e-6),
+               std::invalid_argument);
 }
 
 }  // namespace

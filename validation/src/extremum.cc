@@ -56,18 +56,21 @@ TurnMaximum refineMaxAbs(const std::function<double(double)>& f, double a, doubl
   return best;
 }
 
-TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, int samples, int refinements) {
+TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, int samples, int refinements, double tolerance) {
   if (samples < 3) throw std::invalid_argument("findMaxAbsOverTurn: samples must be >= 3");
   if (refinements < 0) throw std::invalid_argument("findMaxAbsOverTurn: refinements must be >= 0");
+  if (!(tolerance > 0.0)) throw std::invalid_argument("findMaxAbsOverTurn: tolerance must be > 0");
   std::vector<double> y(samples);
   for (int i = 0; i < samples; ++i) y[i] = f(2.0 * M_PI * i / samples);
-  return findMaxAbsOverTurn(f, y, refinements);
+  return findMaxAbsOverTurn(f, y, refinements, tolerance);
 }
 
-TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, const std::vector<double>& values, int refinements) {
+TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, const std::vector<double>& values, int refinements,
+                               double tolerance) {
   const int samples = static_cast<int>(values.size());
   if (samples < 3) throw std::invalid_argument("findMaxAbsOverTurn: samples must be >= 3");
   if (refinements < 0) throw std::invalid_argument("findMaxAbsOverTurn: refinements must be >= 0");
+  if (!(tolerance > 0.0)) throw std::invalid_argument("findMaxAbsOverTurn: tolerance must be > 0");
   const double h = 2.0 * M_PI / samples;
   std::vector<double> y(samples);
   for (int i = 0; i < samples; ++i) y[i] = std::fabs(values[i]);
@@ -81,7 +84,7 @@ TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, const std
   std::sort(peaks.begin(), peaks.end(), [&](int a, int b) { return y[a] > y[b]; });
   if (static_cast<int>(peaks.size()) > refinements) peaks.resize(refinements);
   for (int i : peaks) {
-    const TurnMaximum refined = refineMaxAbs(f, (i - 1) * h, (i + 1) * h);
+    const TurnMaximum refined = refineMaxAbs(f, (i - 1) * h, (i + 1) * h, tolerance);
     if (refined.value > best.value) best = refined;
   }
   best.phi = std::fmod(best.phi, 2.0 * M_PI);

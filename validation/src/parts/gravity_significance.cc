@@ -28,7 +28,7 @@ namespace {
 // analytic maximum is that of Q's exact harmonics (no cancellation: exact however small); each reference engine's is
 // found on the same grid, refined the same way (extremum.h); below the agreement tolerance it is a bound, not a value.
 
-TableSet calcGravitySignificanceTables(const Mechanism& base, Cycle cycle) {
+TableSet calcGravitySignificanceTables(const Mechanism& base, Cycle cycle, bool quick) {
   const std::vector<const Engine*> references = listReferenceEngines();
   std::vector<Column> columns = {{"cycle", kText}, {"k", "-"}, {"max_abs_Q", "N m"}, {"ratio_to_k1", "-"},
                                  {"max_inertia_torque", "N m"}, {"ratio_to_inertia", "-"}, {"first_order", "-"},
@@ -58,7 +58,8 @@ TableSet calcGravitySignificanceTables(const Mechanism& base, Cycle cycle) {
       const std::unique_ptr<EngineModel> model = buildGravityModel(*references[i], m);
       // Every hump of |Q| is the same height to rounding (the first surviving harmonic dominates by 1 / lambda^2), so
       // two refinements find the maximum.
-      const double max_q_engine = findMaxAbsOverTurn([&](double phi) { return model->calcQ(phi); }, samples, 2).value;
+      const double max_q_engine =
+          findMaxAbsOverTurn([&](double phi) { return model->calcQ(phi); }, samples, 2, getAngleTolerance(quick)).value;
       if (k == 1) q1_engine[i] = max_q_engine;
       const bool resolved = max_q_engine > bound;
       row.insert(row.end(), {formatNumber(max_q_engine), resolved ? "yes" : "no",
@@ -143,7 +144,9 @@ class GravitySignificancePart final : public Part {
     std::vector<Task> out;
     for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke})
       out.push_back({"gravity_significance " + toString(cycle), false,
-                     [base = context.base, cycle] { return calcGravitySignificanceTables(base, cycle); }});
+                     [base = context.base, cycle, quick = context.quick] {
+                       return calcGravitySignificanceTables(base, cycle, quick);
+                     }});
     return out;
   }
   ReportPart describe(const TableSet& tables) const override {

@@ -131,6 +131,7 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
     for (size_t j = 1; j < engines.size(); ++j) row.push_back(num(worst_engine[j][q]));
     cost.rows.push_back(row);
   }
+  const double angle_tolerance = getAngleTolerance(quick);
   for (size_t j = 0; j < engines.size(); ++j) {
     const Thrust& t = by_engine[j];
     EngineModel& model = *models[j];
@@ -143,10 +144,13 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
       negative.push_back(std::max(0.0, -t.wall[i]));
       drive.push_back(std::fabs(t.drive[i]));
     }
-    const double major = findMaxAbsOverTurn([&](double u) { return std::max(0.0, wallAt(u)); }, positive, 2).value;
-    const double minor = findMaxAbsOverTurn([&](double u) { return std::max(0.0, -wallAt(u)); }, negative, 2).value;
+    const double major =
+        findMaxAbsOverTurn([&](double u) { return std::max(0.0, wallAt(u)); }, positive, 2, angle_tolerance).value;
+    const double minor =
+        findMaxAbsOverTurn([&](double u) { return std::max(0.0, -wallAt(u)); }, negative, 2, angle_tolerance).value;
     const double max_drive =
-        findMaxAbsOverTurn([&](double u) { return model.evaluateMotion(2.0 * u - 2.0 * M_PI).drive_torque; }, drive, 2)
+        findMaxAbsOverTurn([&](double u) { return model.evaluateMotion(2.0 * u - 2.0 * M_PI).drive_torque; }, drive, 2,
+                           angle_tolerance)
             .value;
     std::string reversal;
     if (!std::isnan(t.bracket_a)) {

@@ -34,8 +34,9 @@ std::string num(double x) { return formatNumber(x); }
 //                           |analytic - engine| over the samples relative to the force scale (the analytic row: the largest
 //                           over the reference engines)
 // scene_index counts from first_index (so that scenes computed one per task keep their places); step_deg is the
-// sampling step (the campaign: 2 degrees, 8 with --quick; the maxima are refined, so they do not depend on it).
-TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index, double step_deg) {
+// sampling step (the campaign: 2 degrees, 8 with --quick; the maxima are refined, so they do not depend on it),
+// angle_tolerance Brent's (extremum.h, getAngleTolerance).
+TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index, double step_deg, double angle_tolerance) {
   Table polar, summary;
   polar = Table("pin_load_polar", {{"scene_index", "-"}, {"engine", kText}, {"phi_deg", "deg"},
                                    {"crank_pin_radial", "N"}, {"crank_pin_tangential", "N"}, {"bearing_x", "N"},
@@ -93,7 +94,7 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
           const Vec2& F = is_pin ? e.cylinders[0].crank_pin_force : e.bearing_force;
           return std::hypot(F[0], F[1]);
         };
-        const TurnMaximum best = findMaxAbsOverTurn(magnitude, magnitudes[j][force], 2);
+        const TurnMaximum best = findMaxAbsOverTurn(magnitude, magnitudes[j][force], 2, angle_tolerance);
         summary.rows.push_back({m.name, engines[j]->name, force, num(best.value),
                                 num(degreesFromRadians(best.phi * cycle / (2.0 * M_PI))),
                                 num((is_pin ? worst_pin[j] : worst_bearing[j]) / scale)});
@@ -114,7 +115,7 @@ class PinLoadPolarPart final : public Part {
     for (size_t i = 0; i < context.scenes.size(); ++i)
       out.push_back({"pin_load_polar " + context.scenes[i].name, false,
                      [m = context.scenes[i], i, quick = context.quick] {
-                       return calcPinLoadTables({m}, static_cast<int>(i), quick ? 8.0 : 2.0);
+                       return calcPinLoadTables({m}, static_cast<int>(i), quick ? 8.0 : 2.0, getAngleTolerance(quick));
                      }});
     return out;
   }

@@ -36,7 +36,7 @@ TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine, bool 
   // (extremum.h). With Delta_I the error is rounding: the worst of the 48 samples, a bound (resolved 0) unless it
   // exceeds 100 times the agreement tolerance.
   // Against each reference engine's rigid rod (the `reference` column).
-  auto worst = [](const Engine& engine, const Mechanism& m) {
+  auto worst = [angle_tolerance = getAngleTolerance(quick)](const Engine& engine, const Mechanism& m) {
     const std::unique_ptr<EngineModel> model = engine.build(m);
     const Scales scales = calcScales(m);
     // The engine's drive torque at each angle asked, evaluated once: both rod forms read the same 48 samples.
@@ -51,7 +51,8 @@ TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine, bool 
         return analytic::calcReactions(m, phi, form).drive_torque - engineTorque(phi);
       };
     };
-    const double without = findMaxAbsOverTurn(error(analytic::RodInertiaForm::kTwoMassWithoutDeltaI), 48).value;
+    const double without =
+        findMaxAbsOverTurn(error(analytic::RodInertiaForm::kTwoMassWithoutDeltaI), 48, 4, angle_tolerance).value;
     const double with = findMaxAbsOverTurn(error(analytic::RodInertiaForm::kTwoMassWithDeltaI), 48, 0).value;
     const bool with_resolved = with > 100.0 * kAgreementMultiple * kEps * scales.torque * scales.acceleration_conditioning;
     return std::tuple{without / scales.torque, with / scales.torque, with_resolved};

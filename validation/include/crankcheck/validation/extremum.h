@@ -16,24 +16,38 @@ struct TurnMaximum {
   double phi = 0.0;    ///< [rad] where, in [0, 2 pi)
 };
 
+/// Brent's angle tolerance [rad] of the full campaign: a smooth maximum's value exact to rounding.
+inline constexpr double kFineAngleTolerance = 1e-10;
+
+/// Brent's angle tolerance [rad] of a campaign: kFineAngleTolerance in the full one; 1e-6 in the quick one (a smoke
+/// run), at 16-41 % fewer evaluations of the engines in the parts that refine (part 4's engine max |Q|, the pin loads,
+/// the pin offset, the rod models). Measured on the quick report (2026-11-26, bench/README.md "Eleventh session"): a
+/// smooth maximum moves by at most 1e-13 relative (1e-14 on the O(1) ones), a maximum at a kink (a gas table's corner:
+/// the pin loads' at 20 degrees) by up to 3.1e-7, a rounding-level one (an engine's max |Q| at k = 7) by its own
+/// rounding noise; of two equal peaks (to 1e-14) another may be named.
+inline double getAngleTolerance(bool quick) { return quick ? 1e-6 : kFineAngleTolerance; }
+
 /// max over phi in [0, 2 pi) of |f(phi)|, f 2 pi periodic. `samples` (>= 3) evenly spaced angles, then each of the
 /// `refinements` largest sampled local maxima of |f| is refined by Brent's method on [phi_{i-1}, phi_{i+1}] to an
-/// angle tolerance of 1e-10 rad (for a smooth maximum the value is then exact to rounding). The result does not
-/// depend on the grid as long as the grid puts at least one sample on the hump that holds the maximum, i.e. has
+/// angle tolerance of `tolerance` [rad] (at 1e-10 the value of a smooth maximum is exact to rounding). The result does
+/// not depend on the grid as long as the grid puts at least one sample on the hump that holds the maximum, i.e. has
 /// at least 3 samples per period of the highest harmonic that matters. Costs samples + about 30 x refinements
-/// evaluations of f. @throws std::invalid_argument if samples < 3 or refinements < 0.
-TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, int samples, int refinements = 4);
+/// evaluations of f (about 20 at 1e-6). @throws std::invalid_argument if samples < 3, refinements < 0 or
+/// tolerance <= 0.
+TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, int samples, int refinements = 4,
+                               double tolerance = kFineAngleTolerance);
 
 /// The same from samples already taken: values[i] = f(2 pi i / values.size()) (at least 3), so that a caller that
 /// needs the samples anyway (a table over the turn) evaluates f only for the refinement.
 TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, const std::vector<double>& values,
-                               int refinements = 4);
+                               int refinements = 4, double tolerance = kFineAngleTolerance);
 
 /// max |f| over [a, b] by Brent's method (f unimodal in |f| there), never below max(|f(a)|, |f(b)|).
 /// Hand-written (Brent's localmin) rather than Boost.Math's brent_find_minima, measured on a full campaign: Boost caps
 /// its stopping tolerance at half of double's digits (2^-25 of the angle), which moved the report's smooth maxima by up
 /// to 2e-8 relative (Norton's x_p error) and 1.2e-9 (a bearing force); this one stops at `tolerance` [rad] and gives
 /// them to rounding.
-TurnMaximum refineMaxAbs(const std::function<double(double)>& f, double a, double b, double tolerance = 1e-10);
+TurnMaximum refineMaxAbs(const std::function<double(double)>& f, double a, double b,
+                         double tolerance = kFineAngleTolerance);
 
 }  // namespace crankcheck::validation
