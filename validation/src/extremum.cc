@@ -65,8 +65,8 @@ TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, int sampl
   return findMaxAbsOverTurn(f, y, refinements, tolerance);
 }
 
-TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, const std::vector<double>& values, int refinements,
-                               double tolerance) {
+TurnMaximum findMaxAbsOverTurn(const std::function<double(double)>& f, const std::vector<double>& values,
+                               int refinements, double tolerance) {
   const int samples = static_cast<int>(values.size());
   if (samples < 3) throw std::invalid_argument("findMaxAbsOverTurn: samples must be >= 3");
   if (refinements < 0) throw std::invalid_argument("findMaxAbsOverTurn: refinements must be >= 0");
