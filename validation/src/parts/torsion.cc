@@ -69,14 +69,14 @@ constexpr double kTextbookOrder = 24.0;
 // 1024 in the full campaign; 256 in the quick one, whose peak-to-peaks then carry their aliasing, about 1e-4 of the
 // twist scale on the example four (1e-5 at 1024), far below its periodicity (every sample a step end: at 1024 the
 // sampled cycle was half of Simbody's quick run). The gated routes' accuracy (their integrators' error per step): 1e-7
-// in the full campaign, which leaves their differences to the analytic orbit at 8e-6 (Simbody) and 5e-7 (MuJoCo) of
-// the twist scale on the example four, far below the periodicity and the part's percent differences, at 0.81 and 0.61
-// of the cost of 1e-8 (9e-7 and 3e-7; 2026-11-26, bench/README.md "Ninth session"); 1e-5 in the quick one, whose
+// in the full campaign, which leaves their differences to the analytic orbit at 8e-6 (Simbody) and 5e-7 (MuJoCo) of the
+// twist scale on the example four, far below the periodicity and the part's percent differences, at 0.81 and 0.61 of
+// the cost of 1e-8 (9e-7 and 3e-7; 2026-11-26, bench/README.md "Ninth session"); 1e-5 in the quick one, whose
 // differences it leaves at what the periodicity leaves (at 1e-2: 5e-4 to 1e-3 of the twist scale at 1e-6 and at 1e-5
-// alike), at 0.7 of the cost of 1e-6. The soft routes (measured, not gated) at a fixed step of 1/1024 of a cycle in the full
-// campaign (not run in the quick one; at least a step per sample): kSoftDefault's difference, its loops' give (0.12
-// of the twist scale), is the same as at its default 1/4096; kSoftStiff's, its loops' time constant two steps, 1.7e-3
-// instead of 9e-5 (3.9e-4 at 1/2048), still a fiftieth of kSoftDefault's; at a quarter of the cost.
+// alike), at 0.7 of the cost of 1e-6. The soft routes (measured, not gated) at a fixed step of 1/1024 of a cycle in the
+// full campaign (not run in the quick one; at least a step per sample): kSoftDefault's difference, its loops' give
+// (0.12 of the twist scale), is the same as at its default 1/4096; kSoftStiff's, its loops' time constant two steps,
+// 1.7e-3 instead of 9e-5 (3.9e-4 at 1/2048), still a fiftieth of kSoftDefault's; at a quarter of the cost.
 struct EngineRunSettings {
   double accuracy, periodicity;
   int samples;
