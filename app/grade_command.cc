@@ -11,6 +11,7 @@
 
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
+#include "flag_checks.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/process.h"
@@ -32,7 +33,7 @@ void addGradeOptions(CLI::App& command, GradeOptions& options) {
   command.add_option("--jobs", options.jobs, "Programs run at once (default: one per core)")
       ->check(CLI::Range(1, 256));
   command.add_option("--timeout", options.timeout_seconds, "Seconds the program may take per request")
-      ->check(CLI::Range(0.001, 1e6))
+      ->check(FiniteRange(0.001, 1e6))
       ->capture_default_str();
   command.footer(
       "The program follows `--`: crankcheck grade [SCENE...] [options] -- PROGRAM [ARG...]. It is started without a "

@@ -2,13 +2,16 @@
 // maps every failure to one message on stderr and its exit status (kExitStatus below, README "Exit status").
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <new>
 
 #include "balance_command.h"
 #include "eval_command.h"
+#include "flag_checks.h"
 #include "flywheel_command.h"
 #include "torsion_command.h"
 #include "motion_command.h"
@@ -41,6 +44,19 @@ std::string parseErrorMessage(const CLI::ParseError& e) {
   for (char& c : message)
     if (c == '\n') c = ' ';
   return message;
+}
+
+// `status`, once everything written to stdout has reached it; else EnvironmentError. A write that fails while stdio's
+// buffer fills (output over 4 KiB to a full disk) is seen only in the stream's error flag: fflush alone then succeeds
+// on an empty buffer and the lost results went unnoticed with status 0.
+int checkStdout(int status) {
+  std::cout.flush();
+  errno = 0;
+  const bool flushed = std::fflush(stdout) == 0;
+  if (!flushed || std::ferror(stdout) || !std::cout.good())
+    throw crankcheck::EnvironmentError(std::string("stdout: cannot write the results") +
+                                       (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string()));
+  return status;
 }
 
 }  // namespace
@@ -107,9 +123,11 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (validate_cmd->parsed()) return crankcheck::app::runValidate(validate);
-    if (merge_cmd->parsed()) return crankcheck::app::runMerge(merge);
-    if (grade_cmd->parsed()) return crankcheck::app::runGrade(grade);
+    crankcheck::app::checkNoEmptyValues(app, args);
+    // validate, merge and grade print their verdict as they go; the other commands print only complete results.
+    if (validate_cmd->parsed()) return checkStdout(crankcheck::app::runValidate(validate));
+    if (merge_cmd->parsed()) return checkStdout(crankcheck::app::runMerge(merge));
+    if (grade_cmd->parsed()) return checkStdout(crankcheck::app::runGrade(grade));
     std::string output;
     bool checks_hold = true;  // eval --split checks that its parts add up to the whole
     if (eval_cmd->parsed()) {
@@ -122,8 +140,7 @@ int main(int argc, char** argv) {
     if (flywheel_cmd->parsed()) output = crankcheck::app::runFlywheel(flywheel);
     if (torsion_cmd->parsed()) output = crankcheck::app::runTorsion(torsion);
     std::fwrite(output.data(), 1, output.size(), stdout);  // only complete results are ever printed
-    if (std::fflush(stdout) != 0) throw crankcheck::EnvironmentError("stdout: cannot write the results");
-    return checks_hold ? 0 : 1;
+    return checkStdout(checks_hold ? 0 : 1);
   } catch (const crankcheck::UsageError& e) {
     std::cerr << "crankcheck: " << e.what() << "\n";
     return 2;

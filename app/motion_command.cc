@@ -8,6 +8,7 @@
 #include "json_output.h"
 #include "scene_input.h"
 #include "crankcheck/validation/errors.h"
+#include "flag_checks.h"
 
 namespace crankcheck::app {
 
@@ -21,14 +22,14 @@ void addMotionOptions(CLI::App& command, MotionOptions& options) {
       ->check(CLI::IsMember({"RungeKuttaMerson", "CPodes", "SemiExplicitEuler2"}))
       ->capture_default_str();
   command.add_option("--accuracy", options.accuracy, "Simbody integrator accuracy")
-      ->check(CLI::Range(1e-14, 1e-1))
+      ->check(FiniteRange(1e-14, 1e-1))
       ->capture_default_str();
   command.add_option("--mujoco-integrator", options.mujoco_integrator, "MuJoCo integrator (mujoco-soft, mujoco-soft-stiff)")
       ->check(CLI::IsMember({"RK4", "Euler", "implicit"}))
       ->capture_default_str();
   command.add_option("--mujoco-step", options.mujoco_step,
                      "MuJoCo's fixed time step as a fraction of one revolution at the release speed")
-      ->check(CLI::Range(1e-6, 1e-1))
+      ->check(FiniteRange(1e-6, 1e-1))
       ->capture_default_str();
 }
 

@@ -64,6 +64,9 @@ void addMergeOptions(CLI::App& command, MergeOptions& options) {
 
 namespace {
 
+// The most shards of one campaign (as scripts/parallel-shards.sh and scripts/slurm/submit.sh): far above its tasks.
+constexpr int kMaxShards = 100000;
+
 // A duration for the progress line: "42s", "3m07s", "1h05m".
 std::string formatDuration(double seconds) {
   const long s = std::lround(std::max(0.0, seconds));
@@ -208,20 +211,24 @@ int runValidate(const ValidateOptions& options) {
   }
   int shard_index = 0, shard_count = 1;
   if (!options.shard.empty()) {
-    char extra = 0;
-    if (std::sscanf(options.shard.c_str(), "%d/%d%c", &shard_index, &shard_count, &extra) != 2 || shard_count < 1 ||
-        shard_index < 0 || shard_index >= shard_count)
-      throw UsageError("--shard: " + options.shard + ": expected I/N with 0 <= I < N, e.g. --shard 0/4");
+    // Digits only, each number read whole: sscanf's %d took " 0/2", "-0/2" and an N past INT_MAX (undefined).
+    const auto slash = options.shard.find('/');
+    auto isCount = [](const std::string& s) {
+      return !s.empty() && s.size() <= 6 && s.find_first_not_of("0123456789") == std::string::npos;
+    };
+    const std::string i_text = options.shard.substr(0, slash);
+    const std::string n_text = slash == std::string::npos ? std::string() : options.shard.substr(slash + 1);
+    if (isCount(i_text) && isCount(n_text)) {
+      shard_index = std::stoi(i_text);
+      shard_count = std::stoi(n_text);
+    }
+    if (!isCount(i_text) || !isCount(n_text) || shard_count < 1 || shard_count > kMaxShards || shard_index >= shard_count)
+      throw UsageError("--shard: " + options.shard + ": expected I/N with 0 <= I < N <= " + std::to_string(kMaxShards) +
+                       ", e.g. --shard 0/4");
   }
   const bool shard = shard_count > 1;
-  if (!options.profile.empty()) {  // a new file, in a folder that exists: checked before the campaign
-    struct stat st {};
-    const fs::path path = fs::absolute(options.profile);
-    if (::lstat(path.c_str(), &st) == 0)
-      throw UsageError("--profile: " + quotePath(options.profile) + ": exists; crankcheck never overwrites a file");
-    if (!fs::is_directory(path.parent_path()))
-      throw UsageError("--profile: " + quotePath(options.profile) + ": its folder does not exist");
-  }
+  // A new file, in a folder that exists, outside the report: checked before the campaign.
+  if (!options.profile.empty()) validation::checkNewFile(options.profile, "--profile", {options.out});
   const int jobs = options.jobs > 0 ? options.jobs : std::max(1u, std::thread::hardware_concurrency());
   validation::OutputFolder out(options.out, "--out");
   validation::ReportInfo info;

@@ -56,6 +56,43 @@ std::vector<std::filesystem::path> exampleScenes() {
   return scenes;
 }
 
+// Issue 46: NaN passed CLI11's range checks (both comparisons are false): `grade --timeout nan` ended with status 3,
+// `motion --accuracy nan` on Simbody's assertion (134). An empty value was taken as "not given" (`--shard ''` ran
+// a whole report, `--parts offset,,torsion` two parts), and `--shard` read past INT_MAX. Each is bad input: status 2,
+// one line naming the flag, before any work.
+TEST(Cli, NumbersAndEmptyValuesOfEveryFlagAreChecked) {
+  const std::string scene = std::string(CRANKCHECK_SCENES_DIR) + "/inline4_four_stroke.toml";
+  testing::FreshFolder folder;
+  const std::string out = (folder.path() / "never").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"grade", "--quick", "--timeout", "nan", "--", "true"}, "--timeout: Value nan is not a finite number"},
+      {{"grade", "--quick", "--timeout", "inf", "--", "true"}, "--timeout: Value inf is not a finite number"},
+      {{"motion", scene, "--accuracy", "nan"}, "--accuracy: Value nan is not a finite number"},
+      {{"motion", scene, "--accuracy", "-inf"}, "--accuracy: Value -inf is not a finite number"},
+      {{"motion", scene, "--mujoco-step", "nan"}, "--mujoco-step: Value nan is not a finite number"},
+      {{"torsion", scene, "--speed", ""}, "--speed: an empty value"},
+      {{"torsion", scene, "--speeds", ""}, "--speeds: an empty value"},
+      {{"torsion", scene, "--engine", "simbody,"}, "--engine: an empty list or an empty item in it"},
+      {{"validate", "--quick", scene, "--shard", "", "--out", out}, "--shard: an empty value"},
+      {{"validate", "--quick", scene, "--profile", "", "--out", out}, "--profile: an empty value"},
+      {{"validate", "--quick", scene, "--parts", "offset,,torsion", "--out", out}, "--parts: an empty list or an empty"},
+      {{"validate", "--quick", scene, "--parts=", "--out", out}, "--parts: an empty"},
+      {{"validate", "--quick", "--out=", scene}, "--out: an empty value"},
+      {{"validate", "--quick", scene, "--out="}, "crankcheck: --out: "},
+      {{"validate", "--quick", scene, "--out", ""}, "--out: an empty value"},
+      {{"validate", "--quick", scene, "--shard", "0/99999999999", "--out", out}, "--shard: 0/99999999999: expected I/N"},
+      {{"validate", "--quick", scene, "--shard", " 0/2", "--out", out}, "expected I/N with 0 <= I < N <= 100000"},
+      {{"validate", "--quick", scene, "--shard", "-0/2", "--out", out}, "expected I/N with 0 <= I < N <= 100000"},
+      {{"eval", scene, "--phi-deg", "0", "--engine", ""}, "crankcheck: --engine: "},
+      {{"report", "merge", out, "--out", ""}, "--out: an empty value"},
+  };
+  for (const auto& [args, expected] : cases) {
+    SCOPED_TRACE(args[0] + " " + args[args.size() - 2] + " " + args.back());
+    expectRefusedWithOneLine(args, expected);
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 TEST(Cli, EvalJsonForEveryExampleSceneWithBothEngines) {
   for (const auto& scene : exampleScenes()) {
     SCOPED_TRACE(scene.string());

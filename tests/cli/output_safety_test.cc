@@ -49,14 +49,15 @@ size_t lines(const std::string& s) { return static_cast<size_t>(std::count(s.beg
 
 class OutputSafetyTest : public ::testing::Test {
  protected:
-  // A refusal: status 2, one line in the form "crankcheck: --flag: ...", nothing on stdout, the disk unchanged.
-  void expectRefused(const std::vector<std::string>& args, const std::string& expected) {
+  // A refusal: status 2, one line in the form "crankcheck: FLAG: ...", nothing on stdout, the disk unchanged.
+  void expectRefused(const std::vector<std::string>& args, const std::string& expected,
+                     const std::string& flag = "--out") {
     const auto before = snapshot(dir_);
     const ProgramResult r = testing::runCrankcheck(args);
     EXPECT_EQ(r.exit_status, 2) << r.err;
     EXPECT_EQ(r.out, "");
     EXPECT_EQ(lines(r.err), 1u) << r.err;
-    EXPECT_EQ(r.err.rfind("crankcheck: --out: ", 0), 0u) << r.err;
+    EXPECT_EQ(r.err.rfind("crankcheck: " + flag + ": ", 0), 0u) << r.err;
     EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
     EXPECT_EQ(snapshot(dir_), before) << "nothing changed on disk";
   }
@@ -238,6 +239,82 @@ TEST_F(OutputSafetyTest, AFailedWriteIsStatus3AndKeepsThePreviousReport) {
   EXPECT_NE(r.err.find(": cannot write: File too large"), std::string::npos) << r.err;
   EXPECT_EQ(lines(r.err), 1u) << r.err;
   EXPECT_EQ(snapshot(dir_), before);
+}
+
+// Issue 46: where a run would write into a report crankcheck wrote (a profile or an --out inside it, a profile in the
+// run's own --out), the report then held a file crankcheck did not write and refused every later run or merge; and
+// a name the file system cannot hold ended with status 3 after the check. All refused before any work, status 2.
+TEST_F(OutputSafetyTest, NothingIsWrittenInsideAReportOrUnderANameTooLong) {
+  const fs::path shard = dir_ / "shard", other = dir_ / "other";
+  ASSERT_EQ(writeShard(shard).exit_status, 0);
+  ASSERT_EQ(writeShard(other, "1/2").exit_status, 0);
+  const std::string scene = (fs::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml").string();
+  auto validate = [&](const fs::path& out, const fs::path& profile) {
+    return std::vector<std::string>{"validate", "--quick", scene, "--parts", "norton_fig13_8", "--shard", "0/2",
+                                    "--out", out.string(), "--profile", profile.string()};
+  };
+  const std::string inside = "a folder crankcheck wrote (it holds crankcheck-manifest.json)";
+  // The profile inside the --out report being replaced, inside another report, or the --out folder itself.
+  expectRefused(validate(shard, shard / "profile.csv"), inside, "--profile");
+  expectRefused(validate(dir_ / "new", other / "data" / "profile.csv"), inside, "--profile");
+  expectRefused(validate(dir_ / "new", dir_ / "new"), "is inside the output folder", "--profile");
+  expectRefused(validate(dir_ / "new", dir_ / "new" / "p.csv"), "", "--profile");
+  // --out inside a report (validate), inside a shard being merged (report merge), through a link into one.
+  expectRefused({"validate", "--quick", scene, "--out", (shard / "data" / "new").string()}, inside);
+  expectRefused({"report", "merge", shard.string(), other.string(), "--out", (other / "data" / "new").string()}, inside);
+  fs::create_directory_symlink(shard / "data", dir_ / "link");
+  expectRefused({"validate", "--quick", scene, "--out", (dir_ / "link" / "new").string()}, inside);
+  // NAME_MAX (255 on Linux) less the staging folder's ".NAME.crankcheck-partial-XXXXXX" (27 more bytes): 228.
+  expectRefused({"validate", "--quick", scene, "--out", (dir_ / std::string(229, 'x')).string()}, "a name of 229 bytes");
+  expectRefused({"report", "merge", shard.string(), other.string(), "--out", (dir_ / std::string(300, 'x')).string()},
+                "a name of 300 bytes");
+  expectRefused({"grade", "--quick", "--out", (dir_ / std::string(229, 'x')).string(), "--", "true"}, "a name of 229");
+  expectRefused(validate(dir_ / "new", dir_ / std::string(256, 'p')), "a name of 256 bytes", "--profile");
+  // Just within: a 228-byte --out is written.
+  const ProgramResult longest = writeShard(dir_ / std::string(228, 'x'));
+  EXPECT_EQ(longest.exit_status, 0) << longest.err;
+}
+
+// Issue 46: a profile that cannot be written (here: past the file size limit, as on a full disk) left an empty file
+// that the next run refused as "exists"; the write now removes what it began. Status 3, one line.
+TEST_F(OutputSafetyTest, AProfileThatCannotBeWrittenIsRemoved) {
+  const std::string scene = (fs::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml").string();
+  const auto before = snapshot(dir_);
+  rlimit old_limit{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old_limit), 0);
+  // 32 bytes: the profile's header line alone is 61; the profile is the first file a shard writes.
+  const rlimit small{32, old_limit.rlim_max};
+  auto old_handler = ::signal(SIGXFSZ, SIG_IGN);  // the write then fails with EFBIG instead of killing
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  const ProgramResult r = testing::runCrankcheck({"validate", "--quick", scene, "--parts", "norton_fig13_8", "--shard",
+                                                  "0/2", "--out", (dir_ / "s").string(), "--profile",
+                                                  (dir_ / "profile.csv").string()});
+  ::setrlimit(RLIMIT_FSIZE, &old_limit);
+  ::signal(SIGXFSZ, old_handler);
+  EXPECT_EQ(r.exit_status, 3) << r.err;
+  EXPECT_NE(r.err.find("profile.csv\": cannot write: File too large"), std::string::npos) << r.err;
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_EQ(snapshot(dir_), before);
+}
+
+// Issue 46: results larger than stdio's buffer (4 KiB) written to a full device ended with status 0: the failed
+// write was seen only in the stream's error flag. Each command's results to /dev/full: status 3, one line.
+TEST(StdoutTest, ResultsThatCannotBeWrittenAreStatus3) {
+  const std::string scene = (fs::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml").string();
+  std::string angles = "0";
+  for (int deg = 5; deg < 720; deg += 5) angles += "," + std::to_string(deg);
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"eval", scene, "--phi-deg", angles}, {"eval", scene, "--phi-deg", "0"},
+        {"balance", scene, "--format", "json"}, {"torsion", scene}}) {
+    // The shell here is the test's own fixed words; the program and its arguments are passed as "$@".
+    validation::ProgramCall call{{"/bin/sh", "-c", "exec \"$@\" > /dev/full", "sh", CRANKCHECK_BINARY}};
+    call.argv.insert(call.argv.end(), args.begin(), args.end());
+    call.timeout_seconds = testing::kCliRunSeconds;
+    const ProgramResult r = validation::runProgram(call);
+    EXPECT_EQ(r.exit_status, 3) << args[0] << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("crankcheck: stdout: cannot write the results", 0), 0u) << args[0] << ": " << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+  }
 }
 
 // SIGINT and SIGTERM in the middle of a run: status 128 + the signal, the previous report as it was, the partial

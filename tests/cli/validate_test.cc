@@ -347,6 +347,20 @@ TEST_F(ValidateTest, PartsRunsOnlyThoseParts) {
   EXPECT_FALSE(fs::exists(dir_ / "m"));
 }
 
+// Issue 46: a part with nothing to show for the scenes given is never left out without a word: `--parts torsion` on a
+// scene without [crankshaft] exited 0 with no torsion section and no reason (a full run dropped part 17 the same way).
+TEST_F(ValidateTest, APartLeftOutForItsScenesSaysWhy) {
+  const std::string scene = std::string(CRANKCHECK_SCENES_DIR) + "/single_cylinder.toml";
+  const fs::path report = dir_ / "report";
+  const RunResult r = run("validate --quick " + scene + " --parts torsion --out " + report.string());
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const std::string index = readFile(report / "index.md");
+  EXPECT_NE(index.find("Part 17 (torsion) is left out: no scene (single_cylinder) has a [crankshaft] table"),
+            std::string::npos)
+      << index;
+  EXPECT_FALSE(fs::exists(report / "data" / "torsion.csv"));
+}
+
 TEST_F(ValidateTest, SceneFilesAreTheirOwnFamilies) {
   const std::string scenes = CRANKCHECK_SCENES_DIR;
   // One part beside the cross-checks: the families are the cross-checks' (and the scenes table's).

@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <climits>
+#include <string>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -76,11 +78,57 @@ bool parentsListed(const std::string& relative_dir, const std::set<std::string>&
   return std::any_of(files.begin(), files.end(), [&](const std::string& f) { return f.rfind(prefix, 0) == 0; });
 }
 
+// The staging folder's name beside a target NAME: ".NAME" + this + 6 random characters (createStaging).
+constexpr const char* kStagingSuffix = ".crankcheck-partial-";
+constexpr size_t kStagingExtra = 1 + std::char_traits<char>::length(kStagingSuffix) + 6;
+
+// A path the file system cannot hold is the user's input, not the environment's failure: refused before any work.
+// `extra`: bytes crankcheck adds to the last name (the staging folder's).
+void checkNameLengths(const std::string& flag, const fs::path& target, const fs::path& path, size_t extra) {
+  if (path.string().size() + extra >= PATH_MAX)
+    refuse(flag, target, "a path of " + std::to_string(path.string().size()) + " bytes; the file system takes " +
+                             std::to_string(PATH_MAX - 1 - extra) + " here");
+  for (const fs::path& name : path) {
+    const size_t allowed = NAME_MAX - (name == path.filename() ? extra : 0);
+    if (name.string().size() > allowed)
+      refuse(flag, target, "a name of " + std::to_string(name.string().size()) + " bytes; the file system takes " +
+                               std::to_string(allowed) + " here" +
+                               (extra > 0 && name == path.filename() ? " (crankcheck stages the folder beside it "
+                                                                       "under a longer name)"
+                                                                     : ""));
+  }
+}
+
+// The innermost folder above `path` (not `path` itself) that holds a crankcheck manifest: a report or shard crankcheck
+// wrote; empty if none. Symbolic links in the parents are followed, so a link into a report is seen as in it.
+fs::path findEnclosingReport(const fs::path& path) {
+  std::error_code ec;
+  fs::path resolved = fs::weakly_canonical(path, ec);
+  if (ec) resolved = path;
+  struct stat st {};
+  for (fs::path p = resolved.parent_path(); !p.empty(); p = p.parent_path()) {
+    if (::lstat((p / kManifestName).c_str(), &st) == 0) return p;
+    if (p == p.root_path()) break;
+  }
+  return {};
+}
+
+void checkNotInsideReport(const std::string& flag, const fs::path& target, const fs::path& path) {
+  const fs::path report = findEnclosingReport(path);
+  if (!report.empty())
+    refuse(flag, target, "is inside " + quotePath(report.string()) +
+                             ", a folder crankcheck wrote (it holds crankcheck-manifest.json): writing there would "
+                             "make it hold a file crankcheck did not write, and every later run or merge would refuse "
+                             "it; choose a place outside it");
+}
+
 }  // namespace
 
 void checkOutputFolder(const fs::path& target, const std::string& flag) {
   if (target.empty()) throw UsageError(flag + ": must name a folder");
   const fs::path path = normalTarget(target);
+  checkNameLengths(flag, target, path, kStagingExtra);
+  checkNotInsideReport(flag, target, path);
   struct stat st {};
   if (::lstat(path.c_str(), &st) != 0) {
     if (errno == ENOENT) return;
@@ -115,9 +163,36 @@ void checkOutputFolder(const fs::path& target, const std::string& flag) {
   }
 }
 
+void checkNewFile(const fs::path& file, const std::string& flag, const std::vector<fs::path>& outputs) {
+  if (file.empty()) throw UsageError(flag + ": must name a file");
+  const fs::path path = normalTarget(file);
+  checkNameLengths(flag, file, path, 0);
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0)
+    refuse(flag, file, "exists; crankcheck never overwrites a file");
+  if (errno == ENOTDIR) refuse(flag, file, "a part of the path is a file, not a folder");
+  if (!fs::is_directory(path.parent_path())) refuse(flag, file, "its folder does not exist");
+  checkNotInsideReport(flag, file, path);
+  std::error_code ec;
+  const fs::path resolved = fs::weakly_canonical(path, ec);
+  for (const fs::path& output : outputs) {
+    const fs::path folder = fs::weakly_canonical(normalTarget(output), ec);
+    const auto [end, _] = std::mismatch(folder.begin(), folder.end(), resolved.begin(), resolved.end());
+    if (end == folder.end())
+      refuse(flag, file, "is inside the output folder " + quotePath(output) +
+                             ", which holds only what crankcheck writes there; choose a place outside it");
+  }
+}
+
 void writeNewFile(const fs::path& path, std::string_view content) {
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
   if (fd < 0) throw EnvironmentError(quotePath(path) + ": cannot write: " + std::strerror(errno));
+  // The file is ours (O_EXCL made it): a write that fails removes it, so that no empty or cut file is left for the
+  // next run to refuse as "exists".
+  auto fail = [&](int error) {
+    ::unlink(path.c_str());
+    throw EnvironmentError(quotePath(path) + ": cannot write: " + std::strerror(error));
+  };
   size_t done = 0;
   while (done < content.size()) {
     const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
@@ -125,11 +200,11 @@ void writeNewFile(const fs::path& path, std::string_view content) {
     if (n <= 0) {
       const int error = n < 0 ? errno : EIO;
       ::close(fd);
-      throw EnvironmentError(quotePath(path) + ": cannot write: " + std::strerror(error));
+      fail(error);
     }
     done += static_cast<size_t>(n);
   }
-  if (::close(fd) != 0) throw EnvironmentError(quotePath(path) + ": cannot write: " + std::strerror(errno));
+  if (::close(fd) != 0) fail(errno);
 }
 
 OutputFolder::OutputFolder(fs::path target, std::string flag) : target_(std::move(target)), flag_(std::move(flag)) {
@@ -158,7 +233,7 @@ void OutputFolder::createStaging() {
     }
     created_parents_.push_back(p);
   }
-  std::string name = (path.parent_path() / ("." + path.filename().string() + ".crankcheck-partial-XXXXXX")).string();
+  std::string name = (path.parent_path() / ("." + path.filename().string() + kStagingSuffix + "XXXXXX")).string();
   if (::mkdtemp(name.data()) == nullptr) {
     const int error = errno;
     for (auto it = created_parents_.rbegin(); it != created_parents_.rend(); ++it) ::rmdir(it->c_str());

@@ -677,6 +677,13 @@ class TorsionPart final : public Part {
                        [m = *scenes.front(), factor] { return calcRatioTables(m, factor); }, task_cost::kShort});
     return out;
   }
+  std::string findOmission(const PartContext& context) const override {
+    if (!listTrainScenes(context.scenes).empty()) return {};
+    std::string names;
+    for (const Mechanism& m : context.scenes) names += (names.empty() ? "" : ", ") + m.name;
+    return "no scene (" + names + ") has a [crankshaft] table with [engine].speed_rpm > 0, the elastic crank train "
+           "it analyses. Give a scene one (docs/SCENE-FORMAT.md, \"[crankshaft]\") to get it.";
+  }
   void derive(TableSet& tables) const override { deriveTorsion(tables); }
   ReportPart describe(const TableSet& tables) const override { return describeTorsionPart(tables, heading()); }
   std::vector<std::string> tables() const override {

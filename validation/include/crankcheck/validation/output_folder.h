@@ -26,12 +26,21 @@ inline constexpr const char* kManifestName = "crankcheck-manifest.json";
 /// crankcheck's version, from the project's `project(VERSION)` in CMake.
 const char* getCrankcheckVersion();
 
-/// Checks `--out` against the rule above without touching the disk.
+/// Checks `--out` against the rule above without touching the disk. Also refused: a target inside a folder crankcheck
+/// wrote (a report or shard: it would then hold a file crankcheck did not write and refuse every later run), and a
+/// path the file system cannot hold (a name over NAME_MAX with the staging folder's suffix, a path over PATH_MAX).
 /// @throws UsageError "FLAG: PATH: rule" when the rule refuses it.
 void checkOutputFolder(const std::filesystem::path& target, const std::string& flag);
 
+/// Checks a new file a flag names (`validate --profile FILE`) before any work: it must not exist, its folder must, its
+/// names must fit the file system, and it must lie neither inside a folder crankcheck wrote nor inside any of
+/// `outputs` (the run's own output folders, which may not exist yet).
+/// @throws UsageError "FLAG: PATH: rule".
+void checkNewFile(const std::filesystem::path& file, const std::string& flag,
+                  const std::vector<std::filesystem::path>& outputs);
+
 /// Creates `path` (which must not exist) and writes `content` into it: O_CREAT | O_EXCL | O_NOFOLLOW, every byte
-/// checked, closed with its error checked.
+/// checked, closed with its error checked; a failed write removes the file again.
 /// @throws EnvironmentError "PATH: cannot write: reason" (disk full, write refused, ...).
 void writeNewFile(const std::filesystem::path& path, std::string_view content);
 

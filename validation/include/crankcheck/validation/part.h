@@ -97,6 +97,12 @@ class Part {
   virtual std::vector<std::string> figures() const { return {key()}; }
   /// The maxima its tables state (ReportedMaximum). Default: none.
   virtual std::vector<ReportedMaximum> maxima() const { return {}; }
+  /// Why the part has nothing to show for these scenes (a sentence for the report's notes: what is missing and how to
+  /// get the part), or empty when it has. A part left out for its scenes is never left out without a word.
+  virtual std::string findOmission(const PartContext& context) const {
+    (void)context;
+    return {};
+  }
 
   /// "N. title": the heading describe() gives.
   std::string heading() const { return std::to_string(number()) + ". " + title(); }
