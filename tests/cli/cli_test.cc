@@ -399,7 +399,7 @@ INSTANTIATE_TEST_SUITE_P(
     Refusals, CliBadInputTest,
     ::testing::Values(BadRun{"missing_scene_file", {"eval", "SCENES/no_such_scene.toml"}, "no_such_scene.toml: file"},
                       BadRun{"bad_angle_list", {"eval", kSingle, "--phi-deg", "0,abc"}, "--phi-deg: item 2"},
-                      BadRun{"empty_angle_list", {"eval", kSingle, "--phi-deg", ""}, "--phi-deg: empty"},
+                      BadRun{"empty_angle_list", {"eval", kSingle, "--phi-deg", ""}, "--phi-deg: an empty value"},
                       BadRun{"empty_angle_item", {"eval", kSingle, "--phi-deg", "0,,90"}, "--phi-deg: item 2 of \"0,,90\": empty"},
                       BadRun{"trailing_comma", {"eval", kSingle, "--phi-deg", "0,"}, "--phi-deg: item 2"},
                       BadRun{"bad_engine", {"eval", kSingle, "--engine", "maple"}, "--engine"},

@@ -529,14 +529,16 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   }
   // Every registered part's tasks (parts.h), in report order; a part with nothing to show for these scenes says why.
   const PartContext context{base, first, pin_scenes, options.scenes, families, quick};
-  for (const Part* part : listParts()) {
-    if (!options.parts.empty() && std::find(options.parts.begin(), options.parts.end(), part->key()) == options.parts.end())
-      continue;  // validate --parts: not asked for
+  std::vector<const Part*> selected;
+  for (const Part* part : listParts())
+    if (options.parts.empty() || std::find(options.parts.begin(), options.parts.end(), part->key()) != options.parts.end())
+      selected.push_back(part);  // validate --parts: only those asked for
+  for (const Part* part : selected)
     if (const std::string why = part->findOmission(context); !why.empty())
       notes.rows.push_back({"Part " + std::to_string(part->number()) + " (" + part->key() + ") is left out: " + why});
-    for (Task& task : part->tasks(context)) tasks.push_back(std::move(task));
-  }
   if (!notes.rows.empty()) tasks.push_back({"notes", false, [notes] { return TableSet{{"notes", notes}}; }});
+  for (const Part* part : selected)
+    for (Task& task : part->tasks(context)) tasks.push_back(std::move(task));
   // The longest tasks first, so that the jobs finish together (the order changes no table: they are sorted): the
   // flywheel sizings (one task per Simbody run), the offset sweep, then the cross-checks and the gate's sweep, largest
   // k first, then the rest in the order listed (Task::cost).
