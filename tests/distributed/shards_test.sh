@@ -142,6 +142,56 @@ status=0
 "$src/scripts/parallel-shards.sh" --crankcheck "$crankcheck" 2 "$tmp/mine" -- --quick >"$tmp/bad.log" 2>&1 || status=$?
 [[ $status == 2 && -f $tmp/mine.shards/notes.txt && ! -e $tmp/mine.shards/shard-0 ]] || fail "a folder of mine: status $status"
 
+# Hostile names (issue 46): a scene or OUT with {}, {= ... =}, quotes, a newline or a leading - reaches crankcheck as
+# it is, never as GNU parallel's template nor as Perl (a scene x{=system(...)=}.toml once created PWNED; a{}b.toml
+# once became a0b.toml). Relative scenes, from a folder whose own name is hostile; one part (pin_load_polar, 0.1 s).
+hostile=$tmp/$'h{}{1}{.}%\\ \'" :::\nd'
+mkdir "$hostile"
+scene_perl='x{=system(q(touch),q(PWNED))=}.toml' scene_braces='a{}b.toml'
+cp "$src/scenes/single_cylinder.toml" "$hostile/$scene_perl"
+cp "$src/scenes/single_cylinder.toml" "$hostile/$scene_braces"
+cp "$src/scenes/single_cylinder.toml" "$hostile/-dash.toml"
+hostile_out='o{} {=system(q(touch),q(PWNED))=} :::'
+status=0
+(cd "$hostile" && "$src/scripts/parallel-shards.sh" --crankcheck "$crankcheck" 2 "$hostile_out" -- --quick --parts pin_load_polar \
+  "$scene_perl" "$scene_braces") >"$tmp/hostile.log" 2>&1 || status=$?
+[[ $status == 0 && -f $hostile/$hostile_out/index.md ]] || { cat "$tmp/hostile.log"; fail "hostile names: exit status $status"; }
+[[ -z $(find "$tmp" -name PWNED) ]] || fail "hostile names: a scene's name ran as Perl (PWNED)"
+grep -q "^a{}b," "$hostile/$hostile_out/data/scenes.csv" 2>/dev/null &&
+  grep -qF "\"${scene_perl%.toml}\"," "$hostile/$hostile_out/data/scenes.csv" ||
+  fail "hostile names: the merged report's scenes: $(cat "$hostile/$hostile_out/data/scenes.csv" 2>&1)"
+# N with a leading zero is decimal (010 was octal 8: 8 shards of "/010", and the merge refused); a `--` in
+# VALIDATE-ARGS, then a scene whose name starts with -, is theirs (the script's --shard and --out once came after
+# it, as scenes).
+status=0
+(cd "$hostile" && "$src/scripts/parallel-shards.sh" --crankcheck "$crankcheck" 010 "$tmp/decimal" -- --quick \
+  --parts pin_load_polar -- -dash.toml) >"$tmp/decimal.log" 2>&1 || status=$?
+[[ $status == 0 && $(tail -n +2 "$tmp/decimal.shards/parallel-joblog.txt" | wc -l) == 10 ]] &&
+  grep -q '^-dash,' "$tmp/decimal/data/scenes.csv" || { cat "$tmp/decimal.log"; fail "N = 010 and -- -dash.toml: exit status $status"; }
+
+# VALIDATE-ARGS the script cannot pass to every shard, and arguments it cannot use: exit status 2 and one line
+# naming the flag, before anything is created or run (--profile once ran every shard, then failed with 3).
+refused_up_front() {  # refused_up_front WHAT MESSAGE ARGS...: parallel-shards.sh ARGS (OUT $tmp/upfront) refuses so
+  local what=$1 message=$2 status=0
+  shift 2
+  rm -rf -- "$tmp/upfront" "$tmp/upfront.shards"  # what an earlier case left (a failure, said there)
+  "$src/scripts/parallel-shards.sh" --crankcheck "$crankcheck" "$@" >"$tmp/upfront.log" 2>&1 || status=$?
+  [[ $status == 2 && $(wc -l <"$tmp/upfront.log") == 1 && ! -e $tmp/upfront && ! -e $tmp/upfront.shards ]] &&
+    grep -qF -- "$message" "$tmp/upfront.log" || { cat "$tmp/upfront.log"; fail "$what: exit status $status"; }
+}
+refused_up_front "--profile" "VALIDATE-ARGS: --profile: every shard would write the one FILE" \
+  2 "$tmp/upfront" -- --quick "$campaign_scene" --profile "$tmp/profile.csv"
+[[ ! -e $tmp/profile.csv ]] || fail "--profile: written"
+refused_up_front "--profile=FILE" "VALIDATE-ARGS: --profile:" 2 "$tmp/upfront" -- --quick --profile="$tmp/profile.csv"
+refused_up_front "--out" "VALIDATE-ARGS: --out:" 2 "$tmp/upfront" -- --quick --out "$tmp/elsewhere"
+refused_up_front "--shard" "VALIDATE-ARGS: --shard:" 2 "$tmp/upfront" -- --quick --shard=0/2
+refused_up_front "--help" "VALIDATE-ARGS: --help:" 2 "$tmp/upfront" -- --help
+refused_up_front "N = 100001" "N: 100001: expected a number of shards from 2" 100001 "$tmp/upfront"
+refused_up_front "an empty OUT" "OUT: empty" 2 ""
+refused_up_front "an empty --shards" "--shards: empty" --shards "" 2 "$tmp/upfront"
+refused_up_front "--shards OUT" "the same folder as OUT" --shards "$tmp/upfront" 2 "$tmp/upfront"
+refused_up_front "OUT in --shards" "one inside the other" --shards "$tmp/upfront.shards" 2 "$tmp/upfront.shards/report"
+
 if [[ -n $skip ]]; then
   if ((failures)); then
     echo "$failures failure(s)" >&2
