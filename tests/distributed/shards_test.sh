@@ -24,6 +24,7 @@ src=$2
 one=${3:+$(realpath -- "$3")}
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/crankcheck_test_XXXXXX")
 daemons=()  # "name pid" of each daemon started here, in the order they started
+relative_jobs=() percent_jobs=()
 submitted=()  # the Slurm jobs submitted here
 
 stop_cluster() {
@@ -420,6 +421,64 @@ grep -q "sbatch: error: .*[Ii]nvalid partition" "$tmp/refused.log" &&
   grep -q "submit.sh: sbatch refused the shards' job array .*nothing submitted" "$tmp/refused.log" ||
   fail "a refused job: $(cat "$tmp/refused.log")"
 [[ $(scontrol -o show job | wc -l) == "$records" ]] || fail "a refused job: submitted all the same"
+
+# 5. What a user gives reaches the jobs as it is (issue 46). a) Relative scene paths, run in the submitting folder
+# (sbatch --chdir; its name has %, a backslash, braces, quotes and a newline): submit.sh once made every argument
+# naming a file absolute, so in a folder holding a file `offset`, --parts offset became --parts /.../offset and every
+# shard failed. b) An OUT with % (sbatch's filename patterns): out%j once gave each job a log folder that did not
+# exist (JobLaunchFailure, no log, submit.sh exit status 0). One part each (0.1 s); both submitted, then awaited.
+workdir=$tmp/$'w%j\\b%%x {} \' "\nd'
+mkdir "$workdir"
+cp "$src/scenes/single_cylinder.toml" "$workdir/scene.toml"
+touch "$workdir/offset"
+percent=$tmp/$'pct%j%a%%x %N'
+cd "$workdir"
+submit 2 "$tmp/relative" -- --quick --parts offset scene.toml && relative_jobs=("$array_job" "$merge_job")
+cd "$tmp"
+submit 2 "$percent" -- --quick --parts offset "$workdir/scene.toml" && percent_jobs=("$array_job" "$merge_job")
+if ((${#relative_jobs[@]})) && await 60 "jobs ${relative_jobs[*]}" ended "${relative_jobs[@]}"; then
+  expect "${relative_jobs[0]}_0" COMPLETED 0:0
+  expect "${relative_jobs[0]}_1" COMPLETED 0:0
+  expect "${relative_jobs[1]}" COMPLETED 0:0
+  grep -q "^scene," "$tmp/relative/data/scenes.csv" 2>/dev/null && [[ -f $tmp/relative/offset.svg ]] ||
+    fail "relative paths: no merged report of scene.toml: $(cat "$tmp"/relative.shards/logs/*.out 2>&1)"
+fi
+if ((${#percent_jobs[@]})) && await 60 "jobs ${percent_jobs[*]}" ended "${percent_jobs[@]}"; then
+  expect "${percent_jobs[0]}_0" COMPLETED 0:0
+  expect "${percent_jobs[0]}_1" COMPLETED 0:0
+  expect "${percent_jobs[1]}" COMPLETED 0:0
+  grep -q "Shard 1/2" "$percent.shards/logs/shard-1.out" 2>/dev/null &&
+    grep -q "^100% of comparisons agree" "$percent.shards/logs/merge.out" && [[ -f $percent/index.md ]] ||
+    fail "% in OUT: no logs or report at \"$percent\": $(find "$tmp" -maxdepth 1 -name 'pct*')"
+fi
+
+# 6. What submit.sh cannot give every task, or that would make sbatch misread it: exit status 2 and one line naming
+# the argument, nothing submitted, no folder made (--profile was once submitted: every task wrote the one FILE).
+records=$(scontrol -o show job | wc -l)
+submit_refuses() {  # submit_refuses WHAT MESSAGE ARGS...: submit.sh ARGS refuses so (OUT $tmp/upfront)
+  local what=$1 message=$2 status=0
+  shift 2
+  rm -rf -- "$tmp/upfront" "$tmp/upfront.shards"  # what an earlier case left (a failure, said there)
+  "$src/scripts/slurm/submit.sh" --crankcheck "$crankcheck" --sbatch --partition=crankcheck "$@" >"$tmp/upfront.log" 2>&1 ||
+    status=$?
+  [[ $status == 2 && $(wc -l <"$tmp/upfront.log") == 1 && ! -e $tmp/upfront && ! -e $tmp/upfront.shards ]] &&
+    grep -qF -- "$message" "$tmp/upfront.log" || { cat "$tmp/upfront.log"; fail "submit.sh, $what: exit status $status"; }
+}
+submit_refuses "--profile" "VALIDATE-ARGS: --profile: every shard would write the one FILE" \
+  2 "$tmp/upfront" -- --quick "$campaign_scene" --profile "$tmp/profile.csv"
+submit_refuses "--out" "VALIDATE-ARGS: --out:" 2 "$tmp/upfront" -- --quick --out="$tmp/elsewhere"
+submit_refuses "--shard" "VALIDATE-ARGS: --shard:" 2 "$tmp/upfront" -- --quick --shard 0/2
+submit_refuses "--sbatch WORD" "--sbatch: \"short\": not an option" --sbatch -p --sbatch short 2 "$tmp/upfront"
+submit_refuses "--sbatch --output" "--sbatch: --output=x.out: submit.sh sets" --sbatch --output=x.out 2 "$tmp/upfront"
+submit_refuses "--sbatch --outp" "--sbatch: --outp=x.out: submit.sh sets" --sbatch --outp=x.out 2 "$tmp/upfront"
+submit_refuses "--sbatch -ox" "--sbatch: -ox.out: submit.sh sets" --sbatch -ox.out 2 "$tmp/upfront"
+submit_refuses "--sbatch --dependency" "--sbatch: --dependency=singleton:" --sbatch --dependency=singleton 2 "$tmp/upfront"
+submit_refuses "a backslash in SHARDS" "has a backslash" --shards "$tmp/up\\front.shards" 2 "$tmp/upfront"
+[[ ! -e $tmp/up\\front.shards ]] || fail "submit.sh, a backslash in SHARDS: the folder was made"
+submit_refuses "N = 100001" "N: 100001: expected a number of shards from 2" 100001 "$tmp/upfront"
+submit_refuses "an empty OUT" "OUT: empty" 2 ""
+submit_refuses "--shards OUT" "the same folder as OUT" --shards "$tmp/upfront" 2 "$tmp/upfront"
+[[ $(scontrol -o show job | wc -l) == "$records" ]] || fail "submit.sh: a refused campaign was submitted all the same"
 
 if ((failures)); then
   echo "$failures failure(s)" >&2
