@@ -6,7 +6,11 @@
 # columns (ns_per_*) of the timing tables, whose other columns must still match. On Slurm, a shard that fails (a bad
 # scene) or is cancelled (scancel) makes the merge job refuse, naming the shard; a job sbatch refuses is not left
 # submitted. Bad input stops the recipes with exit status 2 and nothing merged; so does a shard changed after it was
-# written.
+# written. What a user gives reaches crankcheck as it is, on both engines (issue 46): scenes, OUT and the working
+# folder with {}, {= ... =}, %, a backslash, quotes, a newline or a leading -, relative scenes and a `--` in
+# VALIDATE-ARGS; and what the recipes cannot give every shard (--profile, --out, --shard; on Slurm also --sbatch
+# words that are not options or set its own options) is refused up front: exit status 2, one line, nothing run,
+# submitted or created.
 #
 #   shards_test.sh CRANKCHECK SOURCE_DIR [ONE]
 #
