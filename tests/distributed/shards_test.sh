@@ -6,7 +6,11 @@
 # columns (ns_per_*) of the timing tables, whose other columns must still match. On Slurm, a shard that fails (a bad
 # scene) or is cancelled (scancel) makes the merge job refuse, naming the shard; a job sbatch refuses is not left
 # submitted. Bad input stops the recipes with exit status 2 and nothing merged; so does a shard changed after it was
-# written.
+# written. What a user gives reaches crankcheck as it is, on both engines (issue 46): scenes, OUT and the working
+# folder with {}, {= ... =}, %, a backslash, quotes, a newline or a leading -, relative scenes and a `--` in
+# VALIDATE-ARGS; and what the recipes cannot give every shard (--profile, --out, --shard; on Slurm also --sbatch
+# words that are not options or set its own options) is refused up front: exit status 2, one line, nothing run,
+# submitted or created.
 #
 #   shards_test.sh CRANKCHECK SOURCE_DIR [ONE]
 #
@@ -24,6 +28,7 @@ src=$2
 one=${3:+$(realpath -- "$3")}
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/crankcheck_test_XXXXXX")
 daemons=()  # "name pid" of each daemon started here, in the order they started
+relative_jobs=() percent_jobs=()
 submitted=()  # the Slurm jobs submitted here
 
 stop_cluster() {
@@ -141,6 +146,56 @@ mkdir "$tmp/mine.shards" && touch "$tmp/mine.shards/notes.txt"
 status=0
 "$src/scripts/parallel-shards.sh" --crankcheck "$crankcheck" 2 "$tmp/mine" -- --quick >"$tmp/bad.log" 2>&1 || status=$?
 [[ $status == 2 && -f $tmp/mine.shards/notes.txt && ! -e $tmp/mine.shards/shard-0 ]] || fail "a folder of mine: status $status"
+
+# Hostile names (issue 46): a scene or OUT with {}, {= ... =}, quotes, a newline or a leading - reaches crankcheck as
+# it is, never as GNU parallel's template nor as Perl (a scene x{=system(...)=}.toml once created PWNED; a{}b.toml
+# once became a0b.toml). Relative scenes, from a folder whose own name is hostile; one part (pin_load_polar, 0.1 s).
+hostile=$tmp/$'h{}{1}{.}%\\ \'" :::\nd'
+mkdir "$hostile"
+scene_perl='x{=system(q(touch),q(PWNED))=}.toml' scene_braces='a{}b.toml'
+cp "$src/scenes/single_cylinder.toml" "$hostile/$scene_perl"
+cp "$src/scenes/single_cylinder.toml" "$hostile/$scene_braces"
+cp "$src/scenes/single_cylinder.toml" "$hostile/-dash.toml"
+hostile_out='o{} {=system(q(touch),q(PWNED))=} :::'
+status=0
+(cd "$hostile" && "$src/scripts/parallel-shards.sh" --crankcheck "$crankcheck" 2 "$hostile_out" -- --quick --parts pin_load_polar \
+  "$scene_perl" "$scene_braces") >"$tmp/hostile.log" 2>&1 || status=$?
+[[ $status == 0 && -f $hostile/$hostile_out/index.md ]] || { cat "$tmp/hostile.log"; fail "hostile names: exit status $status"; }
+[[ -z $(find "$tmp" -name PWNED) ]] || fail "hostile names: a scene's name ran as Perl (PWNED)"
+grep -q "^a{}b," "$hostile/$hostile_out/data/scenes.csv" 2>/dev/null &&
+  grep -qF "\"${scene_perl%.toml}\"," "$hostile/$hostile_out/data/scenes.csv" ||
+  fail "hostile names: the merged report's scenes: $(cat "$hostile/$hostile_out/data/scenes.csv" 2>&1)"
+# N with a leading zero is decimal (010 was octal 8: 8 shards of "/010", and the merge refused); a `--` in
+# VALIDATE-ARGS, then a scene whose name starts with -, is theirs (the script's --shard and --out once came after
+# it, as scenes).
+status=0
+(cd "$hostile" && "$src/scripts/parallel-shards.sh" --crankcheck "$crankcheck" 010 "$tmp/decimal" -- --quick \
+  --parts pin_load_polar -- -dash.toml) >"$tmp/decimal.log" 2>&1 || status=$?
+[[ $status == 0 && $(tail -n +2 "$tmp/decimal.shards/parallel-joblog.txt" | wc -l) == 10 ]] &&
+  grep -q '^-dash,' "$tmp/decimal/data/scenes.csv" || { cat "$tmp/decimal.log"; fail "N = 010 and -- -dash.toml: exit status $status"; }
+
+# VALIDATE-ARGS the script cannot pass to every shard, and arguments it cannot use: exit status 2 and one line
+# naming the flag, before anything is created or run (--profile once ran every shard, then failed with 3).
+refused_up_front() {  # refused_up_front WHAT MESSAGE ARGS...: parallel-shards.sh ARGS (OUT $tmp/upfront) refuses so
+  local what=$1 message=$2 status=0
+  shift 2
+  rm -rf -- "$tmp/upfront" "$tmp/upfront.shards"  # what an earlier case left (a failure, said there)
+  "$src/scripts/parallel-shards.sh" --crankcheck "$crankcheck" "$@" >"$tmp/upfront.log" 2>&1 || status=$?
+  [[ $status == 2 && $(wc -l <"$tmp/upfront.log") == 1 && ! -e $tmp/upfront && ! -e $tmp/upfront.shards ]] &&
+    grep -qF -- "$message" "$tmp/upfront.log" || { cat "$tmp/upfront.log"; fail "$what: exit status $status"; }
+}
+refused_up_front "--profile" "VALIDATE-ARGS: --profile: every shard would write the one FILE" \
+  2 "$tmp/upfront" -- --quick "$campaign_scene" --profile "$tmp/profile.csv"
+[[ ! -e $tmp/profile.csv ]] || fail "--profile: written"
+refused_up_front "--profile=FILE" "VALIDATE-ARGS: --profile:" 2 "$tmp/upfront" -- --quick --profile="$tmp/profile.csv"
+refused_up_front "--out" "VALIDATE-ARGS: --out:" 2 "$tmp/upfront" -- --quick --out "$tmp/elsewhere"
+refused_up_front "--shard" "VALIDATE-ARGS: --shard:" 2 "$tmp/upfront" -- --quick --shard=0/2
+refused_up_front "--help" "VALIDATE-ARGS: --help:" 2 "$tmp/upfront" -- --help
+refused_up_front "N = 100001" "N: 100001: expected a number of shards from 2" 100001 "$tmp/upfront"
+refused_up_front "an empty OUT" "OUT: empty" 2 ""
+refused_up_front "an empty --shards" "--shards: empty" --shards "" 2 "$tmp/upfront"
+refused_up_front "--shards OUT" "the same folder as OUT" --shards "$tmp/upfront" 2 "$tmp/upfront"
+refused_up_front "OUT in --shards" "one inside the other" --shards "$tmp/upfront.shards" 2 "$tmp/upfront.shards/report"
 
 if [[ -n $skip ]]; then
   if ((failures)); then
@@ -370,6 +425,64 @@ grep -q "sbatch: error: .*[Ii]nvalid partition" "$tmp/refused.log" &&
   grep -q "submit.sh: sbatch refused the shards' job array .*nothing submitted" "$tmp/refused.log" ||
   fail "a refused job: $(cat "$tmp/refused.log")"
 [[ $(scontrol -o show job | wc -l) == "$records" ]] || fail "a refused job: submitted all the same"
+
+# 5. What a user gives reaches the jobs as it is (issue 46). a) Relative scene paths, run in the submitting folder
+# (sbatch --chdir; its name has %, a backslash, braces, quotes and a newline): submit.sh once made every argument
+# naming a file absolute, so in a folder holding a file `offset`, --parts offset became --parts /.../offset and every
+# shard failed. b) An OUT with % (sbatch's filename patterns): out%j once gave each job a log folder that did not
+# exist (JobLaunchFailure, no log, submit.sh exit status 0). One part each (0.1 s); both submitted, then awaited.
+workdir=$tmp/$'w%j\\b%%x {} \' "\nd'
+mkdir "$workdir"
+cp "$src/scenes/single_cylinder.toml" "$workdir/scene.toml"
+touch "$workdir/offset"
+percent=$tmp/$'pct%j%a%%x %N'
+cd "$workdir"
+submit 2 "$tmp/relative" -- --quick --parts offset scene.toml && relative_jobs=("$array_job" "$merge_job")
+cd "$tmp"
+submit 2 "$percent" -- --quick --parts offset "$workdir/scene.toml" && percent_jobs=("$array_job" "$merge_job")
+if ((${#relative_jobs[@]})) && await 60 "jobs ${relative_jobs[*]}" ended "${relative_jobs[@]}"; then
+  expect "${relative_jobs[0]}_0" COMPLETED 0:0
+  expect "${relative_jobs[0]}_1" COMPLETED 0:0
+  expect "${relative_jobs[1]}" COMPLETED 0:0
+  grep -q "^scene," "$tmp/relative/data/scenes.csv" 2>/dev/null && [[ -f $tmp/relative/offset.svg ]] ||
+    fail "relative paths: no merged report of scene.toml: $(cat "$tmp"/relative.shards/logs/*.out 2>&1)"
+fi
+if ((${#percent_jobs[@]})) && await 60 "jobs ${percent_jobs[*]}" ended "${percent_jobs[@]}"; then
+  expect "${percent_jobs[0]}_0" COMPLETED 0:0
+  expect "${percent_jobs[0]}_1" COMPLETED 0:0
+  expect "${percent_jobs[1]}" COMPLETED 0:0
+  grep -q "Shard 1/2" "$percent.shards/logs/shard-1.out" 2>/dev/null &&
+    grep -q "^100% of comparisons agree" "$percent.shards/logs/merge.out" && [[ -f $percent/index.md ]] ||
+    fail "% in OUT: no logs or report at \"$percent\": $(find "$tmp" -maxdepth 1 -name 'pct*')"
+fi
+
+# 6. What submit.sh cannot give every task, or that would make sbatch misread it: exit status 2 and one line naming
+# the argument, nothing submitted, no folder made (--profile was once submitted: every task wrote the one FILE).
+records=$(scontrol -o show job | wc -l)
+submit_refuses() {  # submit_refuses WHAT MESSAGE ARGS...: submit.sh ARGS refuses so (OUT $tmp/upfront)
+  local what=$1 message=$2 status=0
+  shift 2
+  rm -rf -- "$tmp/upfront" "$tmp/upfront.shards"  # what an earlier case left (a failure, said there)
+  "$src/scripts/slurm/submit.sh" --crankcheck "$crankcheck" --sbatch --partition=crankcheck "$@" >"$tmp/upfront.log" 2>&1 ||
+    status=$?
+  [[ $status == 2 && $(wc -l <"$tmp/upfront.log") == 1 && ! -e $tmp/upfront && ! -e $tmp/upfront.shards ]] &&
+    grep -qF -- "$message" "$tmp/upfront.log" || { cat "$tmp/upfront.log"; fail "submit.sh, $what: exit status $status"; }
+}
+submit_refuses "--profile" "VALIDATE-ARGS: --profile: every shard would write the one FILE" \
+  2 "$tmp/upfront" -- --quick "$campaign_scene" --profile "$tmp/profile.csv"
+submit_refuses "--out" "VALIDATE-ARGS: --out:" 2 "$tmp/upfront" -- --quick --out="$tmp/elsewhere"
+submit_refuses "--shard" "VALIDATE-ARGS: --shard:" 2 "$tmp/upfront" -- --quick --shard 0/2
+submit_refuses "--sbatch WORD" "--sbatch: \"short\": not an option" --sbatch -p --sbatch short 2 "$tmp/upfront"
+submit_refuses "--sbatch --output" "--sbatch: --output=x.out: submit.sh sets" --sbatch --output=x.out 2 "$tmp/upfront"
+submit_refuses "--sbatch --outp" "--sbatch: --outp=x.out: submit.sh sets" --sbatch --outp=x.out 2 "$tmp/upfront"
+submit_refuses "--sbatch -ox" "--sbatch: -ox.out: submit.sh sets" --sbatch -ox.out 2 "$tmp/upfront"
+submit_refuses "--sbatch --dependency" "--sbatch: --dependency=singleton:" --sbatch --dependency=singleton 2 "$tmp/upfront"
+submit_refuses "a backslash in SHARDS" "has a backslash" --shards "$tmp/up\\front.shards" 2 "$tmp/upfront"
+[[ ! -e $tmp/up\\front.shards ]] || fail "submit.sh, a backslash in SHARDS: the folder was made"
+submit_refuses "N = 100001" "N: 100001: expected a number of shards from 2" 100001 "$tmp/upfront"
+submit_refuses "an empty OUT" "OUT: empty" 2 ""
+submit_refuses "--shards OUT" "the same folder as OUT" --shards "$tmp/upfront" 2 "$tmp/upfront"
+[[ $(scontrol -o show job | wc -l) == "$records" ]] || fail "submit.sh: a refused campaign was submitted all the same"
 
 if ((failures)); then
   echo "$failures failure(s)" >&2
