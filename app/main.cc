@@ -142,22 +142,22 @@ int main(int argc, char** argv) {
     std::fwrite(output.data(), 1, output.size(), stdout);  // only complete results are ever printed
     return checkStdout(checks_hold ? 0 : 1);
   } catch (const crankcheck::UsageError& e) {
-    std::cerr << "crankcheck: " << e.what() << "\n";
+    std::cerr << "crankcheck: " << crankcheck::formatOneLine(e.what()) << "\n";
     return 2;
   } catch (const crankcheck::UncomputableError& e) {
-    std::cerr << "crankcheck: " << e.what() << "\n";
+    std::cerr << "crankcheck: " << crankcheck::formatOneLine(e.what()) << "\n";
     return 1;
   } catch (const crankcheck::EnvironmentError& e) {
-    std::cerr << "crankcheck: " << e.what() << "\n";
+    std::cerr << "crankcheck: " << crankcheck::formatOneLine(e.what()) << "\n";
     return 3;
   } catch (const std::filesystem::filesystem_error& e) {
-    std::cerr << "crankcheck: " << e.what() << "\n";
+    std::cerr << "crankcheck: " << crankcheck::formatOneLine(e.what()) << "\n";
     return 3;
   } catch (const std::bad_alloc&) {
     std::cerr << "crankcheck: out of memory\n";
     return 3;
   } catch (const std::exception& e) {  // not the user's input: the harness itself could not complete
-    std::cerr << "crankcheck: could not complete: " << e.what() << "\n";
+    std::cerr << "crankcheck: could not complete: " << crankcheck::formatOneLine(e.what()) << "\n";
     return 3;
   }
 }

@@ -259,7 +259,7 @@ int runValidate(const ValidateOptions& options) {
   try {
     tables = runTasks(mine, jobs, options.profile.empty() ? nullptr : &profile);
   } catch (const std::runtime_error& e) {
-    std::cerr << "crankcheck: " << e.what() << "\n";
+    std::cerr << "crankcheck: " << formatOneLine(e.what()) << "\n";
     return 1;
   }
   if (!options.profile.empty()) validation::writeNewFile(options.profile, formatProfile(mine, profile));

@@ -219,6 +219,11 @@ TEST(Cli, ResultsThatCannotBeComputedAreRefusedWithOneLine) {
   EXPECT_EQ(flywheel.out, "");
   EXPECT_EQ(flywheel.err.rfind("crankcheck: " + crawl.string() + ": flywheel sizing: ", 0), 0u) << flywheel.err;
   EXPECT_EQ(std::count(flywheel.err.begin(), flywheel.err.end(), '\n'), 1) << flywheel.err;
+  // Issue 46: the same crawl in balance: Simbody's exception (three lines) is passed on as one line.
+  const RunResult crawl_balance = run("balance " + crawl.string());
+  EXPECT_EQ(crawl_balance.exit_status, 1) << crawl_balance.err;
+  EXPECT_EQ(crawl_balance.out, "");
+  EXPECT_EQ(std::count(crawl_balance.err.begin(), crawl_balance.err.end(), '\n'), 1) << crawl_balance.err;
 }
 
 // balance --design 2 on the inline four: a Lanchester pair (ratios 2 and -2) whose TOML reads back as the same shafts,

@@ -1,5 +1,6 @@
 #include "crankcheck/validation/errors.h"
 
+#include <cctype>
 #include <cstdio>
 
 namespace crankcheck {
@@ -59,6 +60,21 @@ std::string escapeText(const std::string& text) {
     }
     ++i;
   }
+  return out;
+}
+
+std::string formatOneLine(const std::string& message) {
+  std::string out;
+  for (size_t i = 0; i < message.size(); ++i) {
+    if (message[i] != '\n' && message[i] != '\r') {
+      out += message[i];
+      continue;
+    }
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    while (i + 1 < message.size() && std::isspace(static_cast<unsigned char>(message[i + 1]))) ++i;
+    if (!out.empty() && i + 1 < message.size()) out += "; ";
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
   return out;
 }
 

@@ -45,4 +45,8 @@ std::string quoteText(const std::string& text);
 /// not part of valid UTF-8 or encodes a C1 control (U+0080..U+009F) as \xHH. UTF-8 letters stay as they are.
 std::string escapeText(const std::string& text);
 
+/// A message as one line, as every refusal is printed: an engine's exception (Simbody's spans several lines) with
+/// its line breaks and the indentation after them as "; ".
+std::string formatOneLine(const std::string& message);
+
 }  // namespace crankcheck
