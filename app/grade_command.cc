@@ -61,6 +61,8 @@ int runGrade(const GradeOptions& options) {
   // folder, gnuplot.
   if (options.program.empty())
     throw UsageError("grade: no program given; put it after `--`: crankcheck grade [SCENE...] -- PROGRAM [ARG...]");
+  if (options.program.front().empty())
+    throw UsageError("grade: the program after `--` is an empty word; name the program to grade");
   if (validation::findProgram(options.program.front()).empty())
     throw EnvironmentError(options.program.front() + ": cannot be run (not found, or not an executable file; a name "
                            "without '/' is looked up on PATH)");

@@ -85,10 +85,34 @@ TEST(Cli, NumbersAndEmptyValuesOfEveryFlagAreChecked) {
       {{"validate", "--quick", scene, "--shard", "-0/2", "--out", out}, "expected I/N with 0 <= I < N <= 100000"},
       {{"eval", scene, "--phi-deg", "0", "--engine", ""}, "crankcheck: --engine: "},
       {{"report", "merge", out, "--out", ""}, "--out: an empty value"},
+      {{"grade", "--quick", "--", ""}, "grade: the program after `--` is an empty word"},
   };
   for (const auto& [args, expected] : cases) {
     SCOPED_TRACE(args[0] + " " + args[args.size() - 2] + " " + args.back());
     expectRefusedWithOneLine(args, expected);
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// Issue 46's round: CRANKCHECK_SCENES_DIR set empty ran the default campaign on the scenes of the current folder, and
+// CRANKCHECK_REPORTS_DIR empty or missing failed only after the campaign. A variable that is set names the folder:
+// empty or not a folder, refused before any work (status 2, one line naming the variable).
+TEST(Cli, DataFolderVariablesThatNameNoFolderAreRefused) {
+  testing::FreshFolder folder;
+  const std::string out = (folder.path() / "never").string();
+  const std::string scene = std::string(CRANKCHECK_SCENES_DIR) + "/single_cylinder.toml";
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"CRANKCHECK_SCENES_DIR=", {"validate", "--quick", "--out", out}},
+      {"CRANKCHECK_SCENES_DIR=" + (folder.path() / "missing").string(), {"validate", "--quick", "--out", out}},
+      {"CRANKCHECK_REPORTS_DIR=", {"validate", "--quick", scene, "--out", out}},
+      {"CRANKCHECK_REPORTS_DIR=" + scene, {"validate", "--quick", scene, "--out", out}},
+  };
+  for (const auto& [variable, args] : cases) {
+    const RunResult r = testing::runCrankcheck(args, {variable});
+    EXPECT_EQ(r.exit_status, 2) << variable << ": " << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err.rfind("crankcheck: " + variable.substr(0, variable.find('=')) + ": ", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(out));
 }

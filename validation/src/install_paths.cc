@@ -15,10 +15,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// share/crankcheck/NAME beside the program, or where the install put it; the environment variable first.
+// share/crankcheck/NAME beside the program, or where the install put it; the environment variable first. A variable
+// that is set names the folder: empty or not a folder, it is the user's mistake (an empty one read the current
+// folder's scenes as the examples), never passed over for another folder.
 fs::path findDataDir(const std::string& name, const char* variable, const std::string& what) {
-  if (const char* env = std::getenv(variable)) return env;
   std::error_code ec;
+  if (const char* env = std::getenv(variable)) {
+    if (*env == '\0') throw UsageError(std::string(variable) + ": set but empty; unset it, or set it to the folder of " + what);
+    if (!fs::is_directory(env, ec))
+      throw UsageError(std::string(variable) + ": " + quotePath(env) + ": not a folder (it should hold " + what + ")");
+    return env;
+  }
   const fs::path program = fs::read_symlink("/proc/self/exe", ec);
   fs::path beside_program;
   if (!ec) {

@@ -22,6 +22,7 @@
 
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/install_paths.h"
 #include "crankcheck/validation/report_document.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/parts.h"
@@ -517,6 +518,7 @@ std::string checkGnuplot() {
   while (!version.empty() && (version.back() == '\n' || version.back() == '\r')) version.pop_back();
   if (r.exit_status != 0 || version.empty())
     throw EnvironmentError("gnuplot: 'gnuplot --version' failed: " + r.err);
+  findReportsDir();  // the figures' scripts too, before the work (a CRANKCHECK_REPORTS_DIR that names no folder)
   return version;
 }
 

@@ -12,16 +12,18 @@
 namespace crankcheck::validation {
 
 /// The folder of the gnuplot scripts, the first of:
-///  1. the environment variable CRANKCHECK_REPORTS_DIR, when set (used as it is, even if it does not exist, so
-///     that a wrong setting is reported instead of silently replaced);
+///  1. the environment variable CRANKCHECK_REPORTS_DIR, when set (never passed over for another folder: set to an
+///     empty value or to what is not a folder, it is refused, so that a wrong setting is reported instead of
+///     silently replaced);
 ///  2. ../share/crankcheck/reports relative to the running program's folder (/proc/self/exe), when it exists;
 ///  3. the folder `cmake --install` put them in for the configured prefix, when it exists (a program of the user's
 ///     that links crankcheck::validation from an install tree).
-/// @throws EnvironmentError naming the places looked at when none exists.
+/// @throws EnvironmentError naming the places looked at when none exists; UsageError "VARIABLE: ..." for a variable
+///         set empty or to what is not a folder.
 std::filesystem::path findReportsDir();
 
 /// The folder of the example scenes: as findReportsDir, with CRANKCHECK_SCENES_DIR and share/crankcheck/scenes.
-/// @throws EnvironmentError naming the places looked at when none exists.
+/// @throws as findReportsDir.
 std::filesystem::path findScenesDir();
 
 }  // namespace crankcheck::validation

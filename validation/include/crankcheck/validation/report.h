@@ -42,9 +42,10 @@ struct ReportInfo {
 /// (a wrapper waiting on a display, a hung install) is ended and crankcheck stops before the campaign.
 constexpr double kGnuplotVersionSeconds = 10.0;
 
-/// Finds gnuplot on PATH and asks its version: the check made before a campaign that ends in figures (well under
-/// a second). @return gnuplot's version line. @throws EnvironmentError when gnuplot is missing, does not run or
-/// does not answer within kGnuplotVersionSeconds.
+/// Finds gnuplot on PATH and asks its version, and finds the figures' scripts (findReportsDir): the check made before
+/// a campaign that ends in figures (well under a second). @return gnuplot's version line. @throws EnvironmentError
+/// when gnuplot is missing, does not run or does not answer within kGnuplotVersionSeconds, or the scripts are not
+/// found; UsageError as findReportsDir.
 std::string checkGnuplot();
 
 /// The checksum of a file's or a scene's bytes: FNV-1a 64 as 16 hex digits. It finds a changed, truncated or
