@@ -3,10 +3,11 @@
 #   crankcheck::scene, crankcheck::analytic                     (need toml++ and Eigen)
 #   crankcheck::simbody_models                                  (needs Simbody)
 #   crankcheck::mujoco_models                                   (needs MuJoCo, Debian libmujoco-dev)
-#   crankcheck::validation,
-#   crankcheck::crankcheck (the CLI, an imported executable)    (need both engines, Google Benchmark, nlohmann-json)
-# One export set per engine and one for the harness, so that a consumer of the analytic library needs neither Simbody
-# nor MuJoCo installed, and a consumer of one engine not the other.
+#   crankcheck::validation                                      (needs both engines, Google Benchmark, nlohmann-json)
+#   crankcheck::crankcheck (the CLI, an imported executable)    (needs nothing: a grade gate needs no compiler)
+# One export set per engine, one for the harness and one for the program, so that a consumer of the analytic library
+# needs neither Simbody nor MuJoCo installed, a consumer of one engine not the other, and a project that only runs
+# the CLI (crankcheck_add_grade_test) none of the libraries' dependencies.
 include(CMakePackageConfigHelpers)
 
 set(CRANKCHECK_CMAKE_INSTALL_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/crankcheck)
@@ -17,9 +18,9 @@ install(TARGETS crankcheck_simbody_models EXPORT crankcheckSimbodyTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS crankcheck_mujoco_models EXPORT crankcheckMujocoTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
-install(TARGETS crankcheck_validation crankcheck EXPORT crankcheckHarnessTargets
-        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-        RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS crankcheck_validation EXPORT crankcheckHarnessTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(TARGETS crankcheck EXPORT crankcheckProgramTargets RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 foreach(part scene analytic simbody_models mujoco_models validation)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${part}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()
@@ -32,9 +33,11 @@ install(EXPORT crankcheckCoreTargets NAMESPACE crankcheck:: DESTINATION ${CRANKC
 install(EXPORT crankcheckSimbodyTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
 install(EXPORT crankcheckMujocoTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
 install(EXPORT crankcheckHarnessTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
+install(EXPORT crankcheckProgramTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/crankcheckConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/crankcheckConfig.cmake
-                              INSTALL_DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
+                              INSTALL_DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR}
+                              PATH_VARS CMAKE_INSTALL_BINDIR CRANKCHECK_DATA_INSTALL_DIR)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/crankcheckConfigVersion.cmake
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/crankcheckConfig.cmake ${PROJECT_BINARY_DIR}/crankcheckConfigVersion.cmake

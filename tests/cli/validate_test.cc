@@ -280,7 +280,10 @@ TEST_F(ValidateTest, FailedRunNeverReplacesAGoodReport) {
       "validate --quick " + std::string(CRANKCHECK_SCENES_DIR) + "/single_cylinder.toml --parts pin_load_polar --out ";
   ASSERT_EQ(run(campaign + report.string()).exit_status, 0);
   const std::string before = readFile(report / "index.md");
-  const RunResult failed = run(campaign + report.string(), {"CRANKCHECK_REPORTS_DIR=/nonexistent"});
+  // A folder without the figures' scripts: the run fails when it draws them, after the campaign. (A variable naming
+  // no folder at all is refused before any work: Cli.DataFolderVariablesThatNameNoFolderAreRefused.)
+  fs::create_directories(dir_ / "no_scripts");
+  const RunResult failed = run(campaign + report.string(), {"CRANKCHECK_REPORTS_DIR=" + (dir_ / "no_scripts").string()});
   EXPECT_EQ(failed.exit_status, 3) << "a missing tool is the environment's failure";
   EXPECT_NE(failed.err.find("gnuplot script not found"), std::string::npos) << failed.err;
   EXPECT_EQ(readFile(report / "index.md"), before);

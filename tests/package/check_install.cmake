@@ -7,10 +7,13 @@
 # 4. the installed CLI: its --version is the project's, and `validate --quick --parts ...` draws the figures with the gnuplot
 #    scripts it finds relative to itself (the build's install prefix is not WORK_DIR/prefix, so no compiled-in
 #    path can be what found them);
-# 5. examples/consumer configured with add_subdirectory(SOURCE_DIR) (ALIAS targets, no tests of crankcheck's own).
+# 5. examples/consumer configured with add_subdirectory(SOURCE_DIR) (ALIAS targets, no tests of crankcheck's own);
+# 6. examples/grade_gate, a project with LANGUAGES NONE that only runs the grade gate, configured with every library
+#    dependency hidden (toml++, Eigen, Simbody, MuJoCo, Google Benchmark, nlohmann-json) and its ctest run on
+#    GRADE_PROGRAM; crankcheck_EXECUTABLE is the installed program.
 # Every step stops the test with the step's output on failure. Commands are run without a shell.
 cmake_minimum_required(VERSION 3.25)
-foreach(v BUILD_DIR SOURCE_DIR WORK_DIR VERSION)
+foreach(v BUILD_DIR SOURCE_DIR WORK_DIR VERSION GRADE_PROGRAM)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "check_install.cmake: -D${v}=... is required")
   endif()
@@ -70,4 +73,17 @@ run("add_subdirectory consumer: configure" ${CMAKE_COMMAND} -S ${consumer} -B ${
     -DCRANKCHECK_SOURCE_DIR=${SOURCE_DIR})
 if(EXISTS ${WORK_DIR}/from_source/crankcheck/tests)
   message(FATAL_ERROR "add_subdirectory consumer: crankcheck's own tests were configured in a consumer's build")
+endif()
+
+run("grade gate (LANGUAGES NONE, no library dependency): configure" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/grade_gate
+    -B ${WORK_DIR}/grade_gate -DCMAKE_PREFIX_PATH=${prefix} -DGRADED_PROGRAM=${GRADE_PROGRAM}
+    -DCMAKE_DISABLE_FIND_PACKAGE_tomlplusplus=ON -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON
+    -DCMAKE_DISABLE_FIND_PACKAGE_Simbody=ON -DCMAKE_DISABLE_FIND_PACKAGE_mujoco=ON
+    -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON -DCMAKE_DISABLE_FIND_PACKAGE_nlohmann_json=ON)
+if(NOT run_output MATCHES "crankcheck: ${prefix}/bin/crankcheck")
+  message(FATAL_ERROR "grade gate: crankcheck_EXECUTABLE is not ${prefix}/bin/crankcheck:\n${run_output}")
+endif()
+run("grade gate: ctest" ${CMAKE_CTEST_COMMAND} --test-dir ${WORK_DIR}/grade_gate --output-on-failure)
+if(NOT run_output MATCHES "100% tests passed, 0 tests failed out of 1")
+  message(FATAL_ERROR "grade gate: ctest ran no grade:\n${run_output}")
 endif()
