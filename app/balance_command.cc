@@ -15,7 +15,7 @@ namespace crankcheck::app {
 
 void addBalanceOptions(CLI::App& command, BalanceOptions& options) {
   command.add_option("scene", options.scene_path, "Scene file (TOML), see docs/SCENE-FORMAT.md")->required();
-  command.add_option("--order", options.order, "Highest harmonic n")->check(CLI::Range(1, 64))->capture_default_str();
+  command.add_option("--order", options.order, "Highest harmonic n (n times the crank speed)")->check(CLI::Range(1, 64))->capture_default_str();
   command.add_option("--format", options.format, "Output format")
       ->check(CLI::IsMember({"table", "json"}))
       ->capture_default_str();

@@ -14,7 +14,7 @@ namespace crankcheck::app {
 
 void addEvalOptions(CLI::App& command, EvalOptions& options) {
   command.add_option("scene", options.scene_path, "Scene file (TOML), see docs/SCENE-FORMAT.md")->required();
-  command.add_option("--phi-deg", options.phi_deg, "Crank angles of cylinder 0 in degrees, comma separated")
+  command.add_option("--phi-deg", options.phi_deg, "Crank angles of cylinder 0 [deg], comma separated; any size (reduced exactly modulo 720)")
       ->capture_default_str();
   std::vector<std::string> choices{"both", "all"};
   for (const Engine& e : validation::listEngines()) choices.push_back(e.name);

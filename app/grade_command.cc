@@ -37,9 +37,21 @@ void addGradeOptions(CLI::App& command, GradeOptions& options) {
       ->capture_default_str();
   command.footer(
       "The program follows `--`: crankcheck grade [SCENE...] [options] -- PROGRAM [ARG...]. It is started without a "
-      "shell, reads one JSON request on stdin and writes one JSON response on stdout (README, \"Grade your own "
-      "code\"). Exit status 0: every value it provided agrees with every reference engine; 1: some do not (or none was "
-      "provided); 3: it could not be run, crashed, timed out or broke the protocol.");
+      "shell, once per case (--batch: once per job, every request one line), with a time limit per request "
+      "(--timeout), and speaks protocol 1, one JSON object per line:\n"
+      "  request   {\"protocol\": 1, \"case\": ID, \"scene\": {...as eval --format json: SI units, radians...}, "
+      "\"scene_toml\": \"...the case as a scene file...\", \"phi_deg\": [0, 45, ...], \"quantities\": [\"U\", \"Q\", "
+      "...]}\n"
+      "  response  {\"results\": [{\"phi_deg\": 0, \"U\": ..., \"Q\": ..., \"cylinders\": [{\"x_p\": ...}, ...]}, ...]}\n"
+      "One result per angle, in order, with eval's names and SI units (`crankcheck eval SCENE --format json` shows every "
+      "field; the conventions: U(0) = 0, Q = dU/dphi, reactions as the force ON the named body FROM the other, "
+      "docs/CONVENTIONS.md). Leave out (or null) what the program does not compute: \"not provided\", never wrong. "
+      "Each value is compared with every reference engine relative to the quantity's scale, by the gate's rule "
+      "(64 eps x scale x conditioning); the report lists the failing cases with a command that reproduces each "
+      "(docs/grade.md).\n"
+      "Exit status 0: every value it provided agrees with every reference engine; 1: some do not (or none was "
+      "provided); 2: bad usage; 3: it could not be run, crashed, timed out, wrote more than 64 MiB per request or "
+      "broke the protocol (one line names the case and quotes the offending output).");
 }
 
 std::vector<std::string> splitGradeProgram(int argc, char** argv, std::vector<std::string>& program) {

@@ -16,6 +16,7 @@
 #include "torsion_command.h"
 #include "motion_command.h"
 #include "grade_command.h"
+#include "help_format.h"
 #include "interrupt.h"
 #include "validate_command.h"
 #include "crankcheck/validation/errors.h"
@@ -29,9 +30,9 @@ constexpr const char* kExitStatus =
     "  1  a comparison that should hold failed, or a result cannot be computed to its accuracy (refused)\n"
     "  2  bad input or usage: a bad scene, flag or output folder; nothing was written\n"
     "  3  the environment failed: a tool missing (gnuplot), a disk full, a write refused\n"
-    "  128+N  interrupted by signal N (SIGHUP 129, SIGINT 130, SIGTERM 143); the partial output was removed and\n"
-    "         every program crankcheck started was ended\n"
-    "Output folders (--out): crankcheck creates a folder, or replaces one that is empty or holds a report it wrote\n"
+    "  128+N  interrupted by signal N (SIGHUP 129, SIGINT 130, SIGTERM 143); the partial output was removed and "
+    "every program crankcheck started was ended\n"
+    "Output folders (--out): crankcheck creates a folder, or replaces one that is empty or holds a report it wrote "
     "itself (crankcheck-manifest.json); any other folder, a file or a symbolic link is refused with status 2.";
 
 // One line for a CLI11 parse error, in the form "crankcheck: --flag: rule" where CLI11 names the flag.
@@ -63,49 +64,70 @@ int checkStdout(int status) {
 
 int main(int argc, char** argv) {
   crankcheck::app::watchInterrupts();  // from here on, a signal ends every child with crankcheck
-  CLI::App app{"crankcheck: validates slider-crank and k-crank formulas against an independent Simbody model"};
+  using crankcheck::app::describeEngines;
+  const std::string engines = describeEngines();
+  CLI::App app{"crankcheck checks the closed-form formulas of piston engines and compressors (slider-crank kinematics, "
+               "gravity's potential energy and torque, gas and inertia loads, balance, flywheels, torsional vibration) "
+               "against independent multibody engines: " + engines + ". It reports how far each formula is from "
+               "them and where it breaks, and grades your own program by the same rule. Every command takes a scene "
+               "file (TOML: docs/SCENE-FORMAT.md); `crankcheck COMMAND --help` says more. Docs: the repository's "
+               "README.md and docs/, or PREFIX/share/crankcheck/docs and `man crankcheck-COMMAND` when installed.",
+               "crankcheck"};
+  app.formatter(std::make_shared<crankcheck::app::WrappingFormatter>());
   app.set_version_flag("--version", std::string("crankcheck ") + crankcheck::validation::getCrankcheckVersion());
   app.footer(kExitStatus);
   app.require_subcommand(1);
 
   crankcheck::app::EvalOptions eval;
   CLI::App* eval_cmd = app.add_subcommand(
-      "eval", "Evaluate U, Q, drive torque, reactions and piston kinematics of a scene at given crank angles");
+      "eval", "Evaluate a scene at given crank angles in one engine or all: U, Q, drive torque, joint reactions, "
+              "piston and rod kinematics, shaking force and moment (SI units; angles in degrees)");
   crankcheck::app::addEvalOptions(*eval_cmd, eval);
 
   crankcheck::app::MotionOptions motion;
   CLI::App* motion_cmd = app.add_subcommand(
-      "motion", "The free run under gravity: speed fluctuation delta with and without gravity, analytic and Simbody");
+      "motion", "The free run from the scene's speed without a drive: speed fluctuation delta with and without "
+                "gravity, by the exact energy integral and by each engine that simulates: " +
+                    describeEngines([](const crankcheck::Engine& e) { return static_cast<bool>(e.simulate); }));
   crankcheck::app::addMotionOptions(*motion_cmd, motion);
 
   crankcheck::app::FlywheelOptions flywheel;
   CLI::App* flywheel_cmd = app.add_subcommand(
-      "flywheel", "Flywheel sizing (Norton 13.9) for a speed fluctuation C: exact, Norton's method, Simbody's run");
+      "flywheel", "Flywheel sizing (Norton 13.9) for a speed fluctuation C over the gas cycle: the exact inertia, "
+                  "Norton's method and its error, and Simbody's free run with the exact inertia");
   crankcheck::app::addFlywheelOptions(*flywheel_cmd, flywheel);
 
   crankcheck::app::BalanceOptions balance;
   CLI::App* balance_cmd = app.add_subcommand(
-      "balance", "Shaking force and moment harmonic by harmonic: closed form and Simbody, what vanishes by symmetry");
+      "balance", "Shaking force and moment harmonic by harmonic: the closed forms against each exact engine's "
+                 "Fourier analysis (" +
+                     describeEngines([](const crankcheck::Engine& e) { return e.gated; }) +
+                     "), and what vanishes by symmetry; --design N: balance shafts that cancel harmonic N");
   crankcheck::app::addBalanceOptions(*balance_cmd, balance);
 
   crankcheck::app::TorsionOptions torsion;
   CLI::App* torsion_cmd = app.add_subcommand(
-      "torsion", "Torsional vibration of the [crankshaft]: Holzer's frequencies, critical speeds and twist against the "
-                 "exact steady state of the variable-inertia train");
+      "torsion", "Torsional vibration of the scene's [crankshaft]: Holzer's natural frequencies, critical speeds and "
+                 "twist against the exact steady state of the variable-inertia crank train, and each engine's run of "
+                 "it (--engine)");
   crankcheck::app::addTorsionOptions(*torsion_cmd, torsion);
 
   crankcheck::app::ValidateOptions validate;
   CLI::App* validate_cmd = app.add_subcommand(
-      "validate", "The main job: cross-check both engines over a campaign and write the report (figures, CSV, index)");
+      "validate", "The main job: cross-check the closed forms against every engine (" + engines +
+                      ") over a campaign (the built-in one, or your scenes) and write the report: Markdown, HTML, "
+                      "figures, CSV data");
   crankcheck::app::addValidateOptions(*validate_cmd, validate);
 
   crankcheck::app::GradeOptions grade;
   CLI::App* grade_cmd = app.add_subcommand(
-      "grade", "Grade your own program's values against both engines: crankcheck grade [SCENE...] -- PROGRAM [ARG...]");
+      "grade", "Grade your own program's values against the analytic engine and every exact engine (" +
+                   describeEngines([](const crankcheck::Engine& e) { return e.gated; }) +
+                   ") by the gate's rule: crankcheck grade [SCENE...] [options] -- PROGRAM [ARG...]");
   crankcheck::app::addGradeOptions(*grade_cmd, grade);
 
   crankcheck::app::MergeOptions merge;
-  CLI::App* report_cmd = app.add_subcommand("report", "Work with reports");
+  CLI::App* report_cmd = app.add_subcommand("report", "Work with reports: merge the shards of 'validate --shard I/N'");
   report_cmd->require_subcommand(1);
   CLI::App* merge_cmd = report_cmd->add_subcommand("merge", "Merge shards of 'validate --shard I/N' into one report");
   crankcheck::app::addMergeOptions(*merge_cmd, merge);

@@ -21,7 +21,7 @@ void addMotionOptions(CLI::App& command, MotionOptions& options) {
   command.add_option("--integrator", options.integrator, "Simbody integrator")
       ->check(CLI::IsMember({"RungeKuttaMerson", "CPodes", "SemiExplicitEuler2"}))
       ->capture_default_str();
-  command.add_option("--accuracy", options.accuracy, "Simbody integrator accuracy")
+  command.add_option("--accuracy", options.accuracy, "Simbody integrator's accuracy (its relative error per step)")
       ->check(FiniteRange(1e-14, 1e-1))
       ->capture_default_str();
   command.add_option("--mujoco-integrator", options.mujoco_integrator, "MuJoCo integrator (mujoco-soft, mujoco-soft-stiff)")

@@ -24,6 +24,7 @@
 #include "crankcheck/validation/verdict.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/scene/scene_writer.h"
+#include "help_format.h"
 #include "interrupt.h"
 #include "scene_input.h"
 
@@ -33,6 +34,8 @@ using validation::TableSet;
 using validation::Task;
 
 void addValidateOptions(CLI::App& command, ValidateOptions& options) {
+  std::vector<std::string> keys;
+  for (const validation::Part* part : validation::listParts()) keys.push_back(part->key());
   command.add_option("scenes", options.scene_paths,
                      "Scene files (TOML) to cross-check; none: the built-in default campaign");
   command.add_option("--out", options.out, "Report folder: created, or replaced when the run completes if it is empty or a report crankcheck wrote; any "
@@ -46,13 +49,14 @@ void addValidateOptions(CLI::App& command, ValidateOptions& options) {
                      "Write where the time goes to FILE (a new CSV file, never an existing one): per task and engine, "
                      "model builds, evaluations and seconds");
   command.add_option("--parts", options.parts,
-                     "Run only these report parts, by key (comma-separated, e.g. pin_load_polar,offset; the keys are the "
-                     "figures' names in reports/); the cross-checks and the verdict always run")
+                     "Run only these report parts, by key, comma-separated (" + joinNames(keys) +
+                         "); the cross-checks and the verdict always run")
       ->delimiter(',')
       ->allow_extra_args(false);  // one comma-separated value: the scene files after it stay scene files
   command.add_option("--jobs", options.jobs, "Worker threads (default: one per core)")->check(CLI::Range(1, 1024));
   command.add_option("--shard", options.shard,
-                     "Run only part I of N (0-based) of the campaign and write its data for 'crankcheck report merge'");
+                     "Run only part I of N (0 <= I < N <= 100000) of the campaign and write its data for 'crankcheck "
+                     "report merge' (docs: shards and clusters)");
 }
 
 void addMergeOptions(CLI::App& command, MergeOptions& options) {

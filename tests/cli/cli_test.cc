@@ -16,6 +16,7 @@
 
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/scales.h"
 #include "run_cli.h"
 
@@ -115,6 +116,30 @@ TEST(Cli, DataFolderVariablesThatNameNoFolderAreRefused) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// Issue 47: `--help` stands alone and fits a terminal: every line of every command's help within 100 columns (CLI11
+// printed descriptions of 230), the program's name in each usage line, every engine of the registry named in the
+// top-level help (it said "an independent Simbody model"), and grade's protocol in grade's own help.
+TEST(Cli, HelpStandsAloneAndFitsTheTerminal) {
+  const std::vector<std::vector<std::string>> commands = {{},         {"eval"},     {"motion"}, {"flywheel"},
+                                                          {"balance"}, {"torsion"}, {"validate"}, {"grade"},
+                                                          {"report"},  {"report", "merge"}};
+  for (std::vector<std::string> args : commands) {
+    const std::string name = args.empty() ? "crankcheck" : "crankcheck " + args.back();
+    args.push_back("--help");
+    const RunResult r = testing::runCrankcheck(args);
+    ASSERT_EQ(r.exit_status, 0) << name << ": " << r.err;
+    std::stringstream lines(r.out);
+    for (std::string line; std::getline(lines, line);) EXPECT_LE(line.size(), 100u) << name << ": " << line;
+    EXPECT_NE(r.out.find("Usage: crankcheck " + (args.size() > 1 ? args[0] : "")), std::string::npos) << r.out;
+    if (args.size() == 1)
+      for (const Engine& e : validation::listEngines())
+        if (!e.closed_form) EXPECT_NE(r.out.find(e.name), std::string::npos) << e.name;
+  }
+  const RunResult grade = testing::runCrankcheck({"grade", "--help"});
+  for (const char* expected : {"request   {\"protocol\": 1", "response  {\"results\"", "not provided", "--timeout"})
+    EXPECT_NE(grade.out.find(expected), std::string::npos) << expected;
 }
 
 TEST(Cli, EvalJsonForEveryExampleSceneWithBothEngines) {
