@@ -1,5 +1,5 @@
-# `cmake --install build --prefix P`: the libraries and their headers, the crankcheck CLI, the gnuplot scripts of
-# the report, the example scenes, and the CMake package (P/lib/cmake/crankcheck/crankcheckConfig.cmake) with its targets:
+# `cmake --install build --prefix P`: the libraries and their headers, the crankcheck CLI and its man pages, the
+# gnuplot scripts of the report, the example scenes, the docs, and the CMake package (P/lib/cmake/crankcheck/crankcheckConfig.cmake) with its targets:
 #   crankcheck::scene, crankcheck::analytic                     (need toml++ and Eigen)
 #   crankcheck::simbody_models                                  (needs Simbody)
 #   crankcheck::mujoco_models                                   (needs MuJoCo, Debian libmujoco-dev)
@@ -28,6 +28,11 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/reports/ DESTINATION ${CRANKCHECK_DATA_I
         FILES_MATCHING PATTERN "*.gp" PATTERN "*.md")
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/scenes
         FILES_MATCHING PATTERN "*.toml")
+# The docs a user needs without the repository (scene format and schema, conventions, grade's protocol, every
+# command's page) and the README they start from: PREFIX/share/crankcheck/{README.md,docs/}. The man pages are
+# installed with the program (app/CMakeLists.txt).
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/docs)
+install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR})
 
 install(EXPORT crankcheckCoreTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
 install(EXPORT crankcheckSimbodyTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
