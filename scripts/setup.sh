@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Shared set-up of ./run.sh and ./test.sh: installs the Debian packages the project needs (only the missing
 # ones), configures (once) and builds into build/. Idempotent: a second run only rebuilds what changed.
+#   scripts/setup.sh [TARGET...]   build only these targets (./run.sh: the CLI, so the first report comes before the
+#                                  tests are built); none: everything (./test.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -44,14 +46,18 @@ show_progress() {
   if [ -t 2 ]; then printf '\n' >&2; fi
 }
 
-# The first build (no crankcheck program yet) takes minutes: its progress is shown. A rebuild stays quiet. Both go
-# to build/build.log in full.
+# The first build (of the CLI for ./run.sh, of everything for ./test.sh: its program or the gate's tests not there
+# yet) takes minutes: its progress is shown. A rebuild stays quiet. Both go to build/build.log in full.
 status=0
-if [ ! -x build/bin/crankcheck ]; then
+targets=()
+for target in "$@"; do targets+=(--target "$target"); done
+first=build/bin/gate_test
+((${#targets[@]})) && first=build/bin/crankcheck
+if [ ! -x "$first" ]; then
   echo "setup: first build, several minutes on 2 cores (full output: build/build.log)" >&2
-  cmake --build build -j"$(nproc)" 2>&1 | tee build/build.log | show_progress || status=$?
+  cmake --build build -j"$(nproc)" "${targets[@]}" 2>&1 | tee build/build.log | show_progress || status=$?
 else
-  cmake --build build -j"$(nproc)" >build/build.log 2>&1 || status=$?
+  cmake --build build -j"$(nproc)" "${targets[@]}" >build/build.log 2>&1 || status=$?
 fi
 if ((status != 0)); then
   tail -n 60 build/build.log >&2
