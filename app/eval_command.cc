@@ -132,14 +132,18 @@ EvalOutput runEval(const EvalOptions& options) {
     std::string text = formatTable(m, options.scene_path, results, results_phi_deg);
     if (options.split) {
       char line[320];
-      std::snprintf(line, sizeof line, "\ndrive torque split [N m]: each part by the same engine with the other loads off\n%-17s %12s %16s %16s %16s %16s %16s  %s\n",
-                    "engine", "phi [deg]", "gas_torque", "inertia_torque", "gravity_torque", "sum", "drive_torque", "sum = whole");
+      // Within 100 columns: the parts on one line, whether they add up on the next.
+      std::snprintf(line, sizeof line,
+                    "\ndrive torque split [N m]: each part by the same engine with the other loads off\n"
+                    "%-17s %7s %14s %14s %14s %14s %14s\n",
+                    "engine", "phi", "gas_torque", "inertia_torque", "gravity_torque", "sum", "drive_torque");
       text += line;
       for (size_t i = 0; i < splits.size(); ++i) {
         const TorqueSplit& t = splits[i];
-        std::snprintf(line, sizeof line, "%-17s %12.10g %16.9g %16.9g %16.9g %16.9g %16.9g  %s (|difference| %.2e, tol %.2e)\n",
-                      results[i].engine.c_str(), results_phi_deg[i], t.gas + 0.0, t.inertia + 0.0, t.gravity + 0.0, t.sum() + 0.0,
-                      t.whole, t.holds() ? "holds" : "FAILS", std::fabs(t.sum() - t.whole), t.tolerance);
+        std::snprintf(line, sizeof line,
+                      "%-17s %7.5g %14.8g %14.8g %14.8g %14.8g %14.8g\n  sum = whole: %s (|difference| %.2e, tol %.2e)\n",
+                      results[i].engine.c_str(), results_phi_deg[i], t.gas + 0.0, t.inertia + 0.0, t.gravity + 0.0,
+                      t.sum() + 0.0, t.whole, t.holds() ? "holds" : "FAILS", std::fabs(t.sum() - t.whole), t.tolerance);
         text += line;
       }
     }

@@ -21,8 +21,7 @@ inline Mechanism loadScene(const std::string& path) {
 /// The line the commands that keep the shaft rigid add to their table when the scene has a [crankshaft] (the elastic
 /// train only `crankcheck torsion` reads); empty without one.
 inline std::string describeRigidShaft(const Mechanism& m) {
-  return m.crankshaft ? "(the scene's [crankshaft] is not used here: this command treats the shaft as rigid; "
-                        "'crankcheck torsion' analyses the elastic train)\n"
+  return m.crankshaft ? "(the [crankshaft] is not used: this command treats the shaft as rigid; see crankcheck torsion)\n"
                       : "";
 }
 
