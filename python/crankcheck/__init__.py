@@ -266,7 +266,8 @@ class _CallClock:
         self.calling = False
         if self.main:
             _signal.setitimer(_signal.ITIMER_REAL, 0)
-            _signal.signal(_signal.SIGALRM, self.previous_handler)
+            # None: a handler set outside Python, which Python cannot set again; the default in its place.
+            _signal.signal(_signal.SIGALRM, _signal.SIG_DFL if self.previous_handler is None else self.previous_handler)
             delay, interval = self.previous_timer
             if delay > 0:
                 left = delay - (_time.monotonic() - self.started)
