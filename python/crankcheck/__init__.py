@@ -13,6 +13,9 @@ CLI's message: "FILE: KEY: rule".
 """
 
 import os as _os
+import signal as _signal
+import threading as _threading
+import time as _time
 from dataclasses import dataclass as _dataclass, field as _field
 
 from ._crankcheck import (  # noqa: F401  (the public API)
@@ -181,6 +184,96 @@ def _find_reports_dir():
     return None
 
 
+class _Interrupted(BaseException):
+    """Raised in the graded function where its call reaches grade's timeout. A BaseException, so that the function's
+    own `except Exception` does not catch it."""
+
+
+# [s] How long grade waits for a request at a time before Python looks at its signals: Ctrl-C's latency between calls.
+_WAIT = 0.05
+
+
+class _CallClock:
+    """Holds each call of the graded function to `timeout` seconds.
+
+    In the main thread: ITIMER_REAL and a SIGALRM handler that raise _Interrupted where the function is (Python code,
+    time.sleep, a lock or import lock it waits for); close() restores the previous handler and timer (the timer less the
+    time gone, at once if it is gone). In any other thread, where no signal handler can be set: a timer thread raises
+    _Interrupted in the calling thread (PyThreadState_SetAsyncExc), which takes effect at the function's next Python
+    bytecode, not inside a C call (time.sleep, a blocking read): such a call is interrupted when it returns."""
+
+    def __init__(self, timeout):
+        self.timeout = timeout
+        self.calling = False
+        self.fired = False
+        self.main = False
+        if _threading.current_thread() is _threading.main_thread():
+            try:
+                self.previous_handler = _signal.signal(_signal.SIGALRM, self._alarm)
+                self.main = True
+            except ValueError:  # not the main interpreter: no signal handler here
+                pass
+        if self.main:
+            self.started = _time.monotonic()
+            self.previous_timer = _signal.setitimer(_signal.ITIMER_REAL, 0)
+        else:
+            self.lock = _threading.Lock()
+            self.thread_id = _threading.get_ident()
+
+    def _alarm(self, signum, frame):
+        if self.calling:  # else a call that ended as the timer fired: nothing to interrupt
+            self.calling = False
+            self.fired = True
+            raise _Interrupted("the graded function's call interrupted here, at grade's timeout of %r s" % self.timeout)
+
+    def _fire(self):
+        with self.lock:  # a call that has ended is not interrupted (see call)
+            if self.calling:
+                self.fired = True
+                _crankcheck._raise_in_thread(self.thread_id, _Interrupted)
+
+    def call(self, function, *args):
+        """function(*args), or _Interrupted when it did not return within the timeout (even if it caught it)."""
+        self.fired = False
+        if self.main:
+            self.calling = True
+            _signal.setitimer(_signal.ITIMER_REAL, self.timeout)
+            try:
+                answer = function(*args)
+            finally:
+                self.calling = False
+                _signal.setitimer(_signal.ITIMER_REAL, 0)
+        else:
+            timer = _threading.Timer(self.timeout, self._fire)
+            timer.daemon = True
+            self.calling = True
+            timer.start()
+            try:
+                answer = function(*args)
+            finally:
+                try:
+                    with self.lock:
+                        self.calling = False
+                        if self.fired:  # raised, or still pending: cleared, and raised below instead
+                            _crankcheck._raise_in_thread(self.thread_id, None)
+                finally:
+                    timer.cancel()
+        if self.fired:
+            raise _Interrupted("the graded function caught the interruption at grade's timeout of %r s" % self.timeout)
+        return answer
+
+    def close(self):
+        self.calling = False
+        if self.main:
+            _signal.setitimer(_signal.ITIMER_REAL, 0)
+            # None: a handler set outside Python, which Python cannot set again; the default in its place.
+            _signal.signal(_signal.SIGALRM, _signal.SIG_DFL if self.previous_handler is None else self.previous_handler)
+            delay, interval = self.previous_timer
+            if delay > 0:
+                left = delay - (_time.monotonic() - self.started)
+                _signal.setitimer(_signal.ITIMER_REAL, left if left > 0 else 1e-6, interval)
+
+
 def grade(function, scenes=None, quick=True, *, jobs=None, timeout=60.0, out=None):
     """Grades `function` by the rule and with the cases of `crankcheck grade --batch` (README "Grade your own code").
 
@@ -191,14 +284,25 @@ def grade(function, scenes=None, quick=True, *, jobs=None, timeout=60.0, out=Non
     (not defined, not graded: NaN as Scene.evaluate gives them). An exception of the function ends the grade and is
     raised here (with a note naming the case).
 
-    scenes: scene files or Scenes (default: the built-in campaign of `crankcheck validate`); quick: the CLI's --quick;
-    jobs: references computed in parallel (default: one per core); timeout: seconds per request, as --timeout; out: a
-    folder for the CLI's report (the same folder rule as --out; needs gnuplot). The function is called from one
-    thread at a time, in this process (the requests reach it through a relay program that `crankcheck grade`'s own
-    code starts).
+    scenes: scene files (str, bytes or os.PathLike; a path with a NUL byte is refused) or Scenes (default: the built-in
+    campaign of `crankcheck validate`); quick: the CLI's --quick; jobs: references computed in parallel (default: one
+    per core); out: a folder for the CLI's report (the same folder rule as --out; needs gnuplot).
+
+    The function is called in the calling thread, one call at a time (the requests reach it through a relay program
+    that `crankcheck grade`'s own code starts; the grade runs in background threads meanwhile). timeout: seconds per
+    request, as --timeout: a call that takes longer is interrupted (in the main thread by SIGALRM: Python code,
+    time.sleep, a lock or import it waits for; ITIMER_REAL and the SIGALRM handler are the grade's while it runs and
+    restored after), and the grade raises RuntimeError "crankcheck.grade: python: NAME: case ID: no complete answer
+    within T s (interrupted; timeout= sets the seconds per request)". Called from another thread, the call is
+    interrupted at its next Python bytecode only: a C call (time.sleep, a blocking read) runs to its end first.
+    Ctrl-C raises KeyboardInterrupt at once, in the function or between calls. On every ending (a result, a timeout,
+    KeyboardInterrupt, the function's exception) the grade's relays have exited and its threads are joined before
+    grade returns or raises; the next call starts afresh.
     """
     if not callable(function):
         raise TypeError("grade: function must be callable as function(scene, phi) -> dict")
+    if isinstance(scenes, (str, bytes, _os.PathLike, Scene)):
+        raise TypeError("grade: scenes must be a list of scene files or Scenes, not one (scenes=[...])")
     scene_list = None if scenes is None else list(scenes)
     name = getattr(function, "__qualname__", None) or repr(function)
     module = getattr(function, "__module__", None)
@@ -210,8 +314,33 @@ def grade(function, scenes=None, quick=True, *, jobs=None, timeout=60.0, out=Non
         if reports is not None:
             _os.environ["CRANKCHECK_REPORTS_DIR"] = reports
     try:
-        r = _crankcheck._grade(function, scene_list, bool(quick), 0 if jobs is None else int(jobs), float(timeout),
-                               None if out is None else _os.fspath(out), _RELAY, program)
+        run = _crankcheck._grade_start(scene_list, bool(quick), 0 if jobs is None else int(jobs), float(timeout),
+                                       out, _RELAY, program)
+        clock = None
+        try:
+            clock = _CallClock(float(timeout))
+            while True:
+                request = run.next(_WAIT)
+                if request is None:
+                    if run.finished():
+                        break
+                    continue
+                ident, scene, phi, case, family = request
+                try:
+                    run.answer(ident, clock.call(function, scene, phi))
+                except _Interrupted as e:
+                    raise RuntimeError(run.timeout_message(case)) from e
+                except Exception as e:
+                    if hasattr(e, "add_note"):
+                        e.add_note("crankcheck.grade: raised on case %s (%s)" % (case, family))
+                    raise
+            r = run.result()
+        except BaseException:
+            run.stop()  # the relays exit, the threads are joined, the socket's folder is removed
+            raise
+        finally:
+            if clock is not None:
+                clock.close()
     finally:
         if reports is not None:
             del _os.environ["CRANKCHECK_REPORTS_DIR"]

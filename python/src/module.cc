@@ -159,8 +159,9 @@ std::unique_ptr<EngineModel> buildModel(const Scene& s, const Engine& engine) {
 const Engine& engineNamed(const std::string& name) {
   try {
     return validation::findEngine(name);
-  } catch (const std::invalid_argument& e) {
-    throw py::value_error(std::string("engine: ") + e.what());
+  } catch (const std::invalid_argument&) {
+    // findEngine's words, the name quoted with its control bytes escaped (a NUL would cut the message).
+    throw py::value_error("engine: no engine " + quoteText(name) + "; the engines are " + validation::joinEngineNames(", "));
   }
 }
 
@@ -176,7 +177,7 @@ py::dict evaluate(const ScenePtr& scene, const py::handle& phi_in, const std::st
   std::set<std::string> seen;
   for (const std::string& name : names) {
     if (!findQuantity(name))
-      throw py::value_error("quantities: \"" + name + "\" is not a quantity of eval (one of " + joinQuantityNames() + ")");
+      throw py::value_error("quantities: " + quoteText(name) + " is not a quantity of eval (one of " + joinQuantityNames() + ")");
     if (!isDefined(m, name))
       throw py::value_error("quantities: " + name + " is not defined for " + scene->source +
                             (name == "gas_force" ? " (it has no [gas] table)" : " (it needs [flywheel].inertia and speed_rpm > 0)"));
@@ -260,9 +261,9 @@ py::object motion(const ScenePtr& scene, const std::string& integrator, double a
     return std::find(set.begin(), set.end(), x) != set.end();
   };
   if (!member(simbody_integrators, integrator))
-    throw py::value_error("integrator: " + integrator + " not in {RungeKuttaMerson, CPodes, SemiExplicitEuler2}");
+    throw py::value_error("integrator: " + escapeText(integrator) + " not in {RungeKuttaMerson, CPodes, SemiExplicitEuler2}");
   if (!member(mujoco_integrators, mujoco_integrator))
-    throw py::value_error("mujoco_integrator: " + mujoco_integrator + " not in {RK4, Euler, implicit}");
+    throw py::value_error("mujoco_integrator: " + escapeText(mujoco_integrator) + " not in {RK4, Euler, implicit}");
   if (!(accuracy >= 1e-14 && accuracy <= 1e-1)) throw py::value_error("accuracy: value not in range 1e-14 to 0.1");
   if (!(mujoco_step >= 1e-6 && mujoco_step <= 1e-1)) throw py::value_error("mujoco_step: value not in range 1e-06 to 0.1");
   if (!m.flywheel_inertia)
@@ -390,6 +391,103 @@ std::string toResponse(const validation::GradeCase& c, const py::handle& answer)
   return nlohmann::ordered_json{{"results", results}}.dump();
 }
 
+// A path argument as C++ reads it: os.fsdecode's str (a str, bytes or os.PathLike). A NUL byte cannot be in a file's
+// name, and C would read the path only up to it (naming another file): the callers refuse it.
+std::string pathArgument(const py::handle& path) { return py::str(py::module_::import("os").attr("fsdecode")(path)); }
+
+bool hasNul(const std::string& text) { return text.find('\0') != std::string::npos; }
+
+// A scene file read as the CLI reads it; a path with a NUL is refused as a missing file is ("FILE: file: rule"), the
+// path quoted with the NUL escaped.
+ScenePtr loadScene(const py::handle& path_object) {
+  const std::string path = pathArgument(path_object);
+  if (hasNul(path)) throw SceneError(quotePath(path) + ": file: cannot be read (a path with a NUL byte: no file has that name)");
+  return std::make_shared<Scene>(Scene{loadSceneFile(path), path});
+}
+
+// A grade under way (grade_bridge.h). crankcheck.grade (__init__.py) answers its requests in the calling thread: next
+// and answer until finished, then result; stop at any other ending (an exception, a timeout, Ctrl-C).
+struct GradeRun {
+  std::unique_ptr<InProcessGrade> bridge;
+  std::unique_ptr<validation::OutputFolder> folder;
+  validation::GradeReportInfo info;
+  std::string relay, program_name;
+  std::optional<std::string> out_dir;
+  double timeout_seconds = 0.0;
+  int jobs = 1;
+  bool quick = true;
+  std::chrono::steady_clock::time_point start;
+};
+
+std::unique_ptr<GradeRun> startGrade(const std::optional<std::vector<py::object>>& scenes, bool quick, int jobs,
+                                     double timeout_seconds, const std::optional<py::object>& out, const py::object& relay,
+                                     const std::string& program_name) {
+  if (!(timeout_seconds >= 0.001 && timeout_seconds <= 1e6)) throw py::value_error("timeout: value not in range 0.001 to 1e+06");
+  if (jobs < 0 || jobs > 256) throw py::value_error("jobs: value not in range 1 to 256");
+  auto run = std::make_unique<GradeRun>();
+  run->relay = pathArgument(relay);
+  if (hasNul(run->relay)) throw py::value_error("relay: " + quotePath(run->relay) + ": a path with a NUL byte");
+  if (out) {
+    run->out_dir = pathArgument(*out);
+    if (hasNul(*run->out_dir))
+      throw py::value_error("out: " + quotePath(*run->out_dir) + ": a path with a NUL byte (no folder has that name)");
+  }
+  run->program_name = escapeText(program_name);  // the function's name, in messages and the report
+  run->timeout_seconds = timeout_seconds;
+  run->quick = quick;
+  // Everything that can be checked is checked before the first case, as the CLI does: the scenes (each engine must
+  // build each), the output folder, gnuplot.
+  std::vector<Mechanism> mechanisms;
+  std::set<std::string> names;
+  if (scenes)
+    for (const py::object& item : *scenes) {
+      const ScenePtr s = py::isinstance<Scene>(item) ? item.cast<ScenePtr>() : loadScene(item);
+      mechanisms.push_back(s->m);
+      if (!names.insert(s->m.name).second) throw SceneError(s->source + ": a scene named " + s->m.name + " is given twice");
+      try {
+        validation::checkEveryEngineBuilds(s->m, s->source);
+      } catch (const UsageError& e) {
+        throw SceneError(e.what());
+      }
+    }
+  if (run->out_dir) {
+    run->folder = std::make_unique<validation::OutputFolder>(*run->out_dir, "out");
+    run->info.gnuplot_version = validation::checkGnuplot();
+  }
+  GradeSettings settings;
+  settings.relay = run->relay;
+  run->jobs = jobs > 0 ? jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  settings.jobs = run->jobs;
+  run->start = std::chrono::steady_clock::now();
+  py::gil_scoped_release release;
+  std::vector<validation::GradeCase> cases = validation::buildGradeCases(mechanisms, quick);
+  // The caller holds each answer to timeout_seconds. A relay gets its answers when the calling thread has answered
+  // its batch, taking its turn with every other job's requests: its budget (per request times its n requests, n at
+  // least the smallest batch, runGrade's split) covers every request of the grade at the timeout plus 1 s each. It
+  // only ends a grade whose caller does not answer at all.
+  const size_t total = std::max<size_t>(1, cases.size());
+  const size_t batches = std::max<size_t>(1, std::min<size_t>(static_cast<size_t>(run->jobs), total));
+  const size_t smallest = std::max<size_t>(1, total / batches);
+  settings.relay_timeout_seconds = (timeout_seconds + 1.0) * static_cast<double>(total) / static_cast<double>(smallest);
+  run->bridge = std::make_unique<InProcessGrade>(std::move(cases), settings);
+  return run;
+}
+
+// The next request as (id, scene, phi [rad], case id, family), or None when none came within `wait_seconds` or the
+// grade is over (finished). Waits with the GIL released.
+py::object nextRequest(GradeRun& run, double wait_seconds) {
+  std::optional<InProcessGrade::Request> request;
+  {
+    py::gil_scoped_release release;
+    request = run.bridge->next(std::chrono::milliseconds(static_cast<long long>(wait_seconds * 1000.0)));
+  }
+  if (!request) return py::none();
+  const validation::GradeCase& c = *request->grade_case;
+  py::array_t<double> phi(static_cast<py::ssize_t>(c.phi_deg.size()));
+  for (size_t i = 0; i < c.phi_deg.size(); ++i) phi.mutable_data()[i] = radiansFromDegrees(c.phi_deg[i]);
+  return py::make_tuple(request->id, std::make_shared<Scene>(Scene{c.mechanism, c.id}), phi, c.id, c.family);
+}
+
 // The tables as {name: {"columns": [...], "rows": [[...], ...]}}.
 py::dict tablesToPython(const validation::TableSet& tables) {
   py::dict d;
@@ -402,67 +500,13 @@ py::dict tablesToPython(const validation::TableSet& tables) {
   return d;
 }
 
-py::dict grade(const py::function& function, const std::optional<std::vector<py::object>>& scenes, bool quick, int jobs,
-               double timeout_seconds, const std::optional<std::string>& out_dir, const std::string& relay,
-               const std::string& program_name) {
-  if (!(timeout_seconds >= 0.001 && timeout_seconds <= 1e6)) throw py::value_error("timeout: value not in range 0.001 to 1e+06");
-  if (jobs < 0 || jobs > 256) throw py::value_error("jobs: value not in range 1 to 256");
-  // Everything that can be checked is checked before the first case, as the CLI does: the scenes (each engine must
-  // build each), the output folder, gnuplot.
-  std::vector<Mechanism> mechanisms;
-  std::set<std::string> names;
-  if (scenes)
-    for (const py::object& item : *scenes) {
-      ScenePtr s;
-      if (py::isinstance<Scene>(item)) {
-        s = item.cast<ScenePtr>();
-      } else {
-        const std::string path = py::str(py::module_::import("os").attr("fspath")(item));
-        s = std::make_shared<Scene>(Scene{loadSceneFile(path), path});
-      }
-      mechanisms.push_back(s->m);
-      if (!names.insert(s->m.name).second) throw SceneError(s->source + ": a scene named " + s->m.name + " is given twice");
-      try {
-        validation::checkEveryEngineBuilds(s->m, s->source);
-      } catch (const UsageError& e) {
-        throw SceneError(e.what());
-      }
-    }
-  std::unique_ptr<validation::OutputFolder> folder;
-  validation::GradeReportInfo info;
-  if (out_dir) {
-    folder = std::make_unique<validation::OutputFolder>(*out_dir, "out");
-    info.gnuplot_version = validation::checkGnuplot();
-  }
-  InProcessGrade settings;
-  settings.relay = relay;
-  settings.jobs = jobs > 0 ? jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  settings.timeout_seconds = timeout_seconds;
+// After finished(): the tables, the exit status and the report (out=).
+py::dict gradeResult(GradeRun& run) {
   validation::TableSet tables;
-  std::vector<validation::GradeCase> cases;
-  const auto start = std::chrono::steady_clock::now();
   {
     py::gil_scoped_release release;
-    cases = validation::buildGradeCases(mechanisms, quick);
-    // One call of the function at a time (the GIL alone would let two jobs' calls interleave): the lock is taken
-    // before the GIL, so a thread waiting for it holds nothing another needs.
-    std::mutex one_at_a_time;
-    const GradeAnswer answer = [&function, &one_at_a_time](const validation::GradeCase& c, const std::string&) {
-      std::lock_guard<std::mutex> lock(one_at_a_time);
-      py::gil_scoped_acquire gil;
-      try {
-        py::array_t<double> phi(static_cast<py::ssize_t>(c.phi_deg.size()));
-        for (size_t i = 0; i < c.phi_deg.size(); ++i) phi.mutable_data()[i] = radiansFromDegrees(c.phi_deg[i]);
-        const auto scene = std::make_shared<Scene>(Scene{c.mechanism, c.id});
-        return toResponse(c, function(scene, phi));
-      } catch (py::error_already_set& e) {
-        if (py::hasattr(e.value(), "add_note"))
-          e.value().attr("add_note")("crankcheck.grade: raised on case " + c.id + " (" + c.family + ")");
-        throw;
-      }
-    };
     try {
-      tables = gradeInProcess(cases, answer, settings);
+      tables = run.bridge->result();
     } catch (const EnvironmentError& e) {
       // runGrade names the program it started (the relay) and the CLI's flag: say it in this call's words.
       std::string what = e.what();
@@ -470,31 +514,32 @@ py::dict grade(const py::function& function, const std::optional<std::vector<py:
         for (size_t at = what.find(from); at != std::string::npos; at = what.find(from, at + to.size()))
           what.replace(at, from.size(), to);
       };
-      replace(relay + ": ", "crankcheck.grade: " + program_name + ": ");
+      replace(run.relay + ": ", "crankcheck.grade: " + run.program_name + ": ");
       replace("--timeout sets the time per request", "timeout= sets the seconds per request");
       throw EnvironmentError(what);
     }
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::vector<validation::GradeCase>& cases = run.bridge->cases();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - run.start).count();
   py::dict result;
   result["tables"] = tablesToPython(tables);
   result["exit_status"] = validation::findGradeExitStatus(tables);
   result["cases"] = cases.size();
   result["seconds"] = seconds;
-  result["jobs"] = settings.jobs;
-  if (folder) {
-    info.program = {program_name};
-    info.quick = quick;
-    info.batch = true;
-    info.jobs = settings.jobs;
-    info.timeout_seconds = timeout_seconds;
-    info.seconds = seconds;
+  result["jobs"] = run.jobs;
+  if (run.folder) {
+    run.info.program = {run.program_name};
+    run.info.quick = run.quick;
+    run.info.batch = true;
+    run.info.jobs = run.jobs;
+    run.info.timeout_seconds = run.timeout_seconds;
+    run.info.seconds = seconds;
     py::gil_scoped_release release;
-    folder->createStaging();
-    validation::renderGradeReport(tables, cases, info, folder->getStaging());
-    folder->install("report");
+    run.folder->createStaging();
+    validation::renderGradeReport(tables, cases, run.info, run.folder->getStaging());
+    run.folder->install("report");
   }
-  result["report"] = out_dir ? py::object(py::str(*out_dir + "/index.md")) : py::object(py::none());
+  result["report"] = run.out_dir ? py::object(py::str(*run.out_dir + "/index.md")) : py::object(py::none());
   return result;
 }
 
@@ -592,18 +637,18 @@ A scene (a mechanism), read from a TOML scene file as `crankcheck eval` reads it
 radians. Immutable; thread-safe (every call builds its own engine model).)doc")
       .def_static(
           "load",
-          [](const py::object& path) {
-            const std::string source = py::str(py::module_::import("os").attr("fspath")(path));
-            return std::make_shared<Scene>(Scene{loadSceneFile(source), source});
-          },
-          py::arg("path"), "Reads and checks a scene file. Raises SceneError with the CLI's message (file, key, rule).")
+          [](const py::object& path) { return loadScene(path); }, py::arg("path"),
+          "Reads and checks a scene file (a str, bytes or os.PathLike path). Raises SceneError with the CLI's message "
+          "(file, key, rule); a path with a NUL byte is refused so too (C would read another file's name).")
       .def_static(
           "from_toml",
           [](const std::string& text, const std::string& source) {
+            if (hasNul(source)) throw py::value_error("source: " + quoteText(source) + ": a name with a NUL byte");
             return std::make_shared<Scene>(Scene{parseScene(text, source), source});
           },
           py::arg("text"), py::arg("source") = "<string>",
-          "Parses scene text; `source` names it in messages (and its stem is the scene's name). Raises SceneError.")
+          "Parses scene text; `source` names it in messages (and its stem is the scene's name; a NUL byte is refused). "
+          "Raises SceneError.")
       .def_property_readonly("name", [](const Scene& s) { return s.m.name; }, "The scene's name: its file's stem.")
       .def_property_readonly("source", [](const Scene& s) { return s.source; }, "The path or source name messages use.")
       .def_property_readonly("crank_ratio", [](const Scene& s) { return calcCrankRatio(s.m); }, "lambda = r / l.")
@@ -688,8 +733,27 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
       "Degrees to radians as the CLI converts --phi-deg (beyond 720 degrees reduced exactly modulo 720 first; exact "
       "multiples of 90 degrees become n x (pi/2) exactly, so that sin and cos are exact at quarter turns): the same "
       "angles as `crankcheck eval --phi-deg`.");
-  mod.def("_grade", &grade, py::arg("function"), py::arg("scenes"), py::arg("quick"), py::arg("jobs"), py::arg("timeout"),
+  py::class_<GradeRun>(mod, "_GradeRun")
+      .def("next", &nextRequest, py::arg("wait_seconds"))
+      .def("answer", [](GradeRun& run, size_t id, const py::handle& answer) {
+            // The function's answer checked and written as protocol 1's line for its request's case.
+            if (const validation::GradeCase* c = run.bridge->caseOf(id)) run.bridge->answer(id, toResponse(*c, answer));
+          }, py::arg("id"), py::arg("answer"))
+      .def("finished", [](GradeRun& run) { return run.bridge->finished(); })
+      .def("stop", [](GradeRun& run) { run.bridge->stop(); }, py::call_guard<py::gil_scoped_release>())
+      .def("result", &gradeResult)
+      .def("timeout_message", [](const GradeRun& run, const std::string& case_id) {
+            // runGrade's words for a program that did not answer a request in time (grade.cc: runOnce), for a call.
+            return "crankcheck.grade: " + run.program_name + ": case " + case_id + ": no complete answer within " +
+                   validation::formatNumber(run.timeout_seconds) + " s (interrupted; timeout= sets the seconds per request)";
+          }, py::arg("case_id"));
+  mod.def("_grade_start", &startGrade, py::arg("scenes"), py::arg("quick"), py::arg("jobs"), py::arg("timeout"),
           py::arg("out"), py::arg("relay"), py::arg("program_name"));
+  mod.def("_raise_in_thread", [](unsigned long thread_id, const py::object& exception) {
+        // PyThreadState_SetAsyncExc: `exception` (a class) raised in that thread at its next Python bytecode; None
+        // clears one not yet raised. The number of threads changed.
+        return PyThreadState_SetAsyncExc(thread_id, exception.is_none() ? nullptr : exception.ptr());
+      }, py::arg("thread_id"), py::arg("exception"));
   mod.def("_grade_regimes", [] {
         py::dict regimes;  // the summary's regime ids and their words (grade.h: getGradeRegimes)
         for (const validation::GradeRegime& r : validation::getGradeRegimes()) regimes[py::str(r.id)] = r.words;

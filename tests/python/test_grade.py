@@ -1,8 +1,14 @@
 """crankcheck.grade: a Python function graded by `crankcheck grade`'s own cases, rule and report, held against the CLI
 grading the example programs that compute the same things (examples/grade/)."""
 import csv
+import inspect
 import os
 import re
+import signal
+import subprocess
+import sys
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -190,17 +196,12 @@ def test_what_the_function_gets_and_its_errors():
 
 
 def test_the_timeout_ends_the_grade():
-    import time
-
     def slow(scene, phi):
         time.sleep(0.5)
         return {}
-    start = time.monotonic()
-    with pytest.raises(RuntimeError, match=r"crankcheck.grade: python: .*slow: batch of \d+ requests: no complete "
-                                           r"answer within .* s \(killed; timeout= sets the seconds per request\)"):
+    with pytest.raises(RuntimeError, match=r"crankcheck.grade: python: .*slow: case \w+: no complete answer within "
+                                           r"0.05 s \(interrupted; timeout= sets the seconds per request\)"):
         crankcheck.grade(slow, [SCENE_FILES[0]], quick=True, timeout=0.05, jobs=1)
-    # The grade ends after the answer being computed when the time ran out, not after every case.
-    assert time.monotonic() - start < 5
 
 
 def test_scene_refusals_are_the_clis(tmp_path):
@@ -214,3 +215,136 @@ def test_scene_refusals_are_the_clis(tmp_path):
     # A Scene object is graded as its file is.
     result = crankcheck.grade(evaluate, [crankcheck.Scene.load(SCENE_FILES[0])], quick=True)
     assert result.passed
+
+
+def relays():
+    """This process's children that are grade relays (crankcheck-grade-relay; its name cut to 15 bytes), zombies
+    included: pgrep -f would see other processes' grades on the machine, and not a zombie."""
+    found = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open("/proc/%s/stat" % pid) as f:
+                stat = f.read()
+        except OSError:
+            continue  # ended meanwhile
+        name, fields = stat[stat.index("(") + 1:stat.rindex(")")], stat[stat.rindex(")") + 2:].split()
+        if name.startswith("crankcheck-grad") and int(fields[1]) == os.getpid():
+            found.append(int(pid))
+    return found
+
+
+def test_a_sleeping_function_is_interrupted_at_its_timeout():
+    """timeout= holds each call: a call sleeping 30 s ends at 1 s, as `crankcheck grade --timeout 1` would kill a
+    program that does; nothing of the grade is left, and the next grade works."""
+    started = []
+
+    def sleeper(scene, phi):
+        started.append(time.monotonic())
+        time.sleep(30)
+        return {}
+    # The caller's SIGALRM handler and timer, restored after the grade.
+    mine = signal.signal(signal.SIGALRM, lambda *_: None)
+    signal.setitimer(signal.ITIMER_REAL, 100)
+    try:
+        with pytest.raises(RuntimeError, match=r"sleeper: case \w+: no complete answer within 1 s \(interrupted; "
+                                               r"timeout= sets the seconds per request\)") as e:
+            crankcheck.grade(sleeper, [SCENE_FILES[0]], quick=True, timeout=1)
+        ended = time.monotonic()
+        assert signal.getsignal(signal.SIGALRM) is not mine and signal.getitimer(signal.ITIMER_REAL)[0] > 90
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, signal.SIG_DFL)
+    # One call, interrupted at 1 s. 1 s of slack on top: the grade's threads joined on a loaded machine (2 cores).
+    assert len(started) == 1 and 1 <= ended - started[0] < 2
+    assert "interrupted here" in str(e.value.__cause__)  # the traceback shows where the function was
+    assert relays() == []
+    assert crankcheck.grade(evaluate, [SCENE_FILES[0]], quick=True, timeout=1).passed
+
+
+def test_the_timeout_from_another_thread():
+    """Called from a thread other than the main one, a call is interrupted at its next Python bytecode."""
+    outcome = []
+
+    def busy(scene, phi):
+        while True:
+            pass
+
+    def run():
+        try:
+            crankcheck.grade(busy, [SCENE_FILES[0]], quick=True, timeout=0.2)
+        except RuntimeError as e:
+            outcome.append(str(e))
+    t = threading.Thread(target=run)
+    t.start()
+    t.join(10)  # a bound: it ends at 0.2 s
+    assert not t.is_alive() and outcome and "no complete answer within 0.2 s" in outcome[0], outcome
+    assert relays() == []
+    assert crankcheck.grade(evaluate, [SCENE_FILES[0]], quick=True).passed
+
+
+# A grade in a subprocess whose function runs `BODY` and prints "called" when it starts; it prints "KeyboardInterrupt"
+# and the relays its process has left when Ctrl-C ends the grade.
+INTERRUPTED = """
+import os, sys, time
+import crankcheck
+
+%(relays)s
+
+def function(scene, phi):
+    print("called", flush=True)
+    %(body)s
+    return {}
+try:
+    crankcheck.grade(function, [%(scene)r], quick=True, timeout=60)
+except KeyboardInterrupt:
+    print("KeyboardInterrupt", relays(), flush=True)
+"""
+
+
+@pytest.mark.parametrize("body", ["time.sleep(30)", "while True: pass"], ids=["sleeping", "running_python"])
+def test_ctrl_c_raises_keyboard_interrupt_at_once(body):
+    code = INTERRUPTED % {"relays": inspect.getsource(relays), "body": body, "scene": SCENE_FILES[0]}
+    p = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        # The function is running once it says so (the interpreter's start and the import take about a second).
+        assert p.stdout.readline() == "called\n", p.stderr.read()
+        time.sleep(0.2)
+        p.send_signal(signal.SIGINT)
+        sent = time.monotonic()
+        # At once: the handler raises in the function; the grade's threads are joined and its relays gone within a
+        # fraction of a second. 2 s bounds that on a loaded machine (2 cores), far below the 30 s of the sleep.
+        out, err = p.communicate(timeout=2)
+        assert time.monotonic() - sent < 2
+    finally:
+        p.kill()
+        p.wait(10)
+    assert out.split("\n")[0] == "KeyboardInterrupt []", (out, err)
+
+
+def test_grade_at_import_time_with_a_function_that_imports(tmp_path):
+    """grade at a module's top level (its import lock held) with a function that imports what imports that module."""
+    (tmp_path / "graded_at_import.py").write_text(
+        "import crankcheck\n"
+        "def function(scene, phi):\n"
+        "    import imports_back  # waits for graded_at_import's import lock in any other thread than its importer's\n"
+        "    return {}\n"
+        "result = crankcheck.grade(function, [%r], quick=True)\n" % SCENE_FILES[0])
+    (tmp_path / "imports_back.py").write_text("import graded_at_import\n")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(tmp_path), os.environ.get("PYTHONPATH", "")]))
+    # The grade takes a fraction of a second; only a deadlock reaches 20 s.
+    p = subprocess.run([sys.executable, "-c", "import graded_at_import as g; print(g.result.cases)"], env=env,
+                       capture_output=True, text=True, timeout=20)
+    assert p.returncode == 0 and int(p.stdout) > 0, p.stderr
+
+
+def test_a_path_with_a_nul_byte_is_refused(tmp_path):
+    """A NUL ends a C string: "a.toml\\0junk" would read a.toml. Refused as Scene.load refuses a missing file."""
+    with pytest.raises(crankcheck.SceneError) as e:
+        crankcheck.grade(evaluate, [SCENE_FILES[0] + "\0junk"], quick=True)
+    assert str(e.value) == '"%s\\x00junk": file: cannot be read (a path with a NUL byte: no file has that name)' \
+        % SCENE_FILES[0]
+    with pytest.raises(ValueError, match=r'^out: ".*/report\\x00junk": a path with a NUL byte'):
+        crankcheck.grade(evaluate, [SCENE_FILES[0]], quick=True, out=str(tmp_path / "report") + "\0junk")
+    assert os.listdir(tmp_path) == []
+    with pytest.raises(TypeError, match="scenes must be a list"):
+        crankcheck.grade(evaluate, SCENE_FILES[0])

@@ -87,3 +87,21 @@ def test_engines_are_the_registry():
 def cli_version():
     from conftest import run_cli
     return run_cli("--version")[1].split()[-1]
+
+
+def test_a_path_with_a_nul_byte_is_refused():
+    """A NUL ends a C string: "a.toml\\0junk" would read a.toml. Refused as a missing file is, the NUL escaped."""
+    with pytest.raises(crankcheck.SceneError) as e:
+        crankcheck.Scene.load(SCENE_FILES[0] + "\0junk")
+    assert str(e.value) == '"%s\\x00junk": file: cannot be read (a path with a NUL byte: no file has that name)' \
+        % SCENE_FILES[0]
+    assert isinstance(e.value, ValueError)  # as open()'s "embedded null byte"
+    with pytest.raises(ValueError, match=r'^source: "a\\x00b.toml": a name with a NUL byte$'):
+        crankcheck.Scene.from_toml(open(SCENE_FILES[0]).read(), "a\0b.toml")
+    # Names echoed in messages keep what follows a NUL, escaped.
+    scene = crankcheck.Scene.load(SCENE_FILES[0].encode())  # a bytes path, as open() takes
+    assert scene.source == SCENE_FILES[0]
+    with pytest.raises(ValueError, match=r'^engine: no engine "analytic\\x00x"; the engines are analytic, '):
+        scene.evaluate(0.0, engine="analytic\0x")
+    with pytest.raises(ValueError, match=r'^quantities: "Q\\x00x" is not a quantity'):
+        scene.evaluate(0.0, quantities=["Q\0x"])
