@@ -46,23 +46,26 @@ def slug(heading):
     return text.replace(' ', '-')
 
 
-def strip_code(lines):
-    """The lines with fenced blocks blanked and code spans removed (links inside code are not links)."""
-    result, fence = [], None
+def outside_fences(lines):
+    """Each line, or None for the lines of fenced code blocks (``` or ~~~) and their fences."""
+    fence = None
     for line in lines:
         stripped = line.lstrip()
         marker = re.match(r'(`{3,}|~{3,})', stripped)
         if fence:
             if marker and stripped.startswith(fence):
                 fence = None
-            result.append('')
-            continue
-        if marker:
+            yield None
+        elif marker:
             fence = marker.group(1)
-            result.append('')
-            continue
-        result.append(re.sub(r'(`+)(?:(?!\1).)*?\1', '', line))
-    return result
+            yield None
+        else:
+            yield line
+
+
+def strip_code(lines):
+    """The lines with fenced blocks blanked and code spans removed (links inside code are not links)."""
+    return ['' if line is None else re.sub(r'(`+)(?:(?!\1).)*?\1', '', line) for line in outside_fences(lines)]
 
 
 def anchors_of(path, cache):
@@ -70,16 +73,8 @@ def anchors_of(path, cache):
         seen, found = {}, set()
         with open(path, encoding='utf-8') as f:
             text = f.read().split('\n')
-        fence = None
-        for line in text:
-            stripped = line.lstrip()
-            marker = re.match(r'(`{3,}|~{3,})', stripped)
-            if fence:
-                if marker and stripped.startswith(fence):
-                    fence = None
-                continue
-            if marker:
-                fence = marker.group(1)
+        for line in outside_fences(text):
+            if line is None:
                 continue
             m = re.match(r'^ {0,3}#{1,6}\s+(.*?)\s*#*\s*$', line)
             if m:
