@@ -6,6 +6,7 @@
 #include "crankcheck/scene/scene_writer.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/engines.h"
+#include "help_format.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/evaluation_json.h"
 #include "json_output.h"
@@ -29,17 +30,28 @@ namespace {
 
 // What vanishes by symmetry, in words ("" when nothing does, "undecided" when angles are not whole degrees).
 std::string reasonOf(const analytic::HarmonicSymmetry& s, bool axial) {
-  if (!s.decided)
-    return "not decided (an angle is not a whole 1/8 degree, a position not a whole nanometre, the pin offsets differ, or a "
-           "balance shaft turns at this harmonic: the masses decide)";
+  // What no centric cylinder carries at this order (whatever the phases), then what the phases cancel.
+  std::string absent;
+  if (s.force_order_absent) absent = axial ? "force, moment X, Y" : "force";
+  if (s.moment_z_order_absent) absent = "moment Z";
+  std::string reason;
+  if (!absent.empty())
+    reason = absent + (s.force_order_absent ? ": a centric cylinder's has orders 1 and even only"
+                                            : ": a centric cylinder's has odd orders only");
+  if (!s.decided) {
+    if (!reason.empty()) return reason;
+    return "not decided (an angle is not a whole 1/8 degree, a position not a whole nanometre, the pin offsets differ, "
+           "or a balance shaft turns at this harmonic: the masses decide)";
+  }
   std::string parts;
-  auto add = [&](bool cancels, const char* what) {
-    if (cancels) parts += std::string(parts.empty() ? "" : ", ") + what;
+  auto add = [&](bool cancels, bool order_absent, const char* what) {
+    if (cancels && !order_absent) parts += std::string(parts.empty() ? "" : ", ") + what;
   };
-  add(s.force_cancels, "force");
-  if (axial) add(s.moment_xy_cancels, "moment X, Y");
-  add(s.moment_z_cancels, "moment Z");
-  return parts.empty() ? "" : parts + ": the throws' phases cancel (exact sum of roots of unity)";
+  add(s.force_cancels, s.force_order_absent, "force");
+  if (axial) add(s.moment_xy_cancels, s.force_order_absent, "moment X, Y");
+  add(s.moment_z_cancels, s.moment_z_order_absent, "moment Z");
+  if (!parts.empty()) reason += (reason.empty() ? "" : "; ") + parts + ": the throws' phases cancel";
+  return reason;
 }
 
 }  // namespace
@@ -87,36 +99,45 @@ std::string runBalance(const BalanceOptions& options) {
   }
   std::string out;
   if (options.design > 0)
-    out += "balance shafts that cancel harmonic " + std::to_string(options.design) + " of the shaking force (paste into " +
-           options.scene_path + "):\n\n" + tables + "\nwith them, every harmonic (the residual):\n";
-  out += "balance of " + options.scene_path + " at " + formatShortest(m.speed_rpm) +
-                    " rpm: amplitude of each harmonic n (closed form / Simbody DFT / MuJoCo DFT); F [N], M [N m] about O\n";
+    out += "balance shafts that cancel harmonic " + std::to_string(options.design) + " of the shaking force; paste into\n" +
+           options.scene_path + ":\n\n" + tables + "\nwith them, every harmonic (the residual):\n";
+  // One block per harmonic, a row per amplitude (within 100 columns for any number of engines up to four).
+  out += "balance of " + options.scene_path + " at " + formatShortest(m.speed_rpm) + " rpm\n";
+  out += "amplitude of each harmonic n (n times the crank speed) by the closed form and each engine's DFT;\n"
+         "F [N], M [N m] about O" +
+         std::string(axial ? "" : "; no moments X, Y: the scene gives no axial positions") + "\n";
   char line[640];
-  std::snprintf(line, sizeof line, "%3s %37s %37s %37s %37s  %s\n", "n", "|F_s|", "|M_X|", "|M_Y|", "|M_Z|",
-                "vanishes by symmetry");
-  out += line;
-  // "closed form / engine / engine ..." of one amplitude
-  auto all = [](double closed, const validation::BalanceRow& row, const auto& amplitude) {
-    std::string text;
-    char b[32];
-    std::snprintf(b, sizeof b, "%11.4e", closed);
-    text = b;
-    for (const auto& [engine, harmonic] : row.engines) {
-      std::snprintf(b, sizeof b, " / %11.4e", amplitude(harmonic));
-      text += b;
+  std::string header = "  n  amplitude     closed form";
+  if (!rows.empty())
+    for (const auto& [engine, harmonic] : rows.front().engines) {
+      std::snprintf(line, sizeof line, " %15s", (engine + " DFT").c_str());
+      header += line;
     }
-    return text;
-  };
+  out += header + "\n";
   for (const validation::BalanceRow& row : rows) {
     const analytic::ShakingHarmonic a = validation::withExactZeros(row.analytic, row.symmetry);
-    auto moment = [](int axis) { return [axis](const analytic::ShakingHarmonic& h) { return h.calcMomentAmplitude(axis); }; };
-    const std::string mx = axial ? all(a.calcMomentAmplitude(0), row, moment(0)) : "-";
-    const std::string my = axial ? all(a.calcMomentAmplitude(1), row, moment(1)) : "-";
-    std::snprintf(line, sizeof line, "%3d %37s %37s %37s %37s  %s\n", row.n,
-                  all(a.calcForceAmplitude(), row, [](const analytic::ShakingHarmonic& h) { return h.calcForceAmplitude(); }).c_str(),
-                  mx.c_str(), my.c_str(), all(a.calcMomentAmplitude(2), row, moment(2)).c_str(),
-                  reasonOf(row.symmetry, axial).c_str());
-    out += line;
+    auto print = [&](bool first, const char* name, double closed, const auto& amplitude) {
+      std::snprintf(line, sizeof line, "%3s  %-9s %15.4e", first ? std::to_string(row.n).c_str() : "", name, closed);
+      out += line;
+      for (const auto& [engine, harmonic] : row.engines) {
+        std::snprintf(line, sizeof line, " %15.4e", amplitude(harmonic));
+        out += line;
+      }
+      out += "\n";
+    };
+    print(true, "|F_s|", a.calcForceAmplitude(), [](const analytic::ShakingHarmonic& h) { return h.calcForceAmplitude(); });
+    for (int axis = axial ? 0 : 2; axis < 3; ++axis)
+      print(false, axis == 0 ? "|M_X|" : axis == 1 ? "|M_Y|" : "|M_Z|", a.calcMomentAmplitude(axis),
+            [axis](const analytic::ShakingHarmonic& h) { return h.calcMomentAmplitude(axis); });
+    const std::string reason = reasonOf(row.symmetry, axial);
+    if (!reason.empty()) {  // its continuation lines under the reason's first word
+      const std::string text = wrapText("vanishes: " + reason, kHelpWidth - 15);
+      for (size_t at = 0, next; at < text.size(); at = next + 1) {
+        next = text.find('\n', at);
+        if (next == std::string::npos) next = text.size();
+        out += std::string(at == 0 ? 5 : 15, ' ') + text.substr(at, next - at) + "\n";
+      }
+    }
   }
   return out;
 }

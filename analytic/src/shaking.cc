@@ -248,6 +248,12 @@ HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n) {
   constexpr long long kTurn = 2880;
   HarmonicSymmetry s;
   const int k = m.engine.cylinders;
+  // The centric cylinder's orders (calcShakingHarmonics' series: f_e at 1 and even h, f_n at 1, m_z at odd h).
+  bool centric = true;
+  for (int j = 0; j < k; ++j) centric = centric && getPinOffset(m, j) == 0.0;
+  for (const BalanceShaftParams& b : m.balance_shafts) centric = centric && std::fabs(b.ratio) != n;
+  s.force_order_absent = centric && n >= 3 && n % 2 == 1;
+  s.moment_z_order_absent = centric && n % 2 == 0;
   // The sums below hold when every cylinder has the same harmonic in its own frame: the same pin offset for all; and
   // when no balance shaft adds to harmonic n (then the masses decide, not the symmetry).
   for (int j = 1; j < k; ++j)

@@ -141,6 +141,52 @@ TEST(ShakingHarmonics, SumToTheShakingForceAndMoment) {
   }
 }
 
+// The centric cylinder's orders (HarmonicSymmetry::force_order_absent, moment_z_order_absent), against what they did
+// not come from: a DFT of the exact time functions (calcShaking) of one cylinder at several lambdas, banks and an axial
+// position. Where the rule says a harmonic is absent its DFT amplitude is rounding (64 eps of the scale: N = 256
+// samples of values at most the scale, each to a few eps); where it does not, the amplitude is physical (above 1e-9
+// of the scale: the smallest present order up to 8 at lambda 0.3 is the force's 8th, about lambda^7 / 2^7 ~ 1e-5 of
+// the primary). With a pin offset the rule does not apply (the flags are off) and those orders are there.
+TEST(ShakingHarmonics, ACentricCylindersOrdersAreTheSeriesOfItsMotion) {
+  for (double lambda : {0.3, 0.6}) {
+    for (double gamma_deg : {90.0, 37.0}) {
+      for (double offset : {0.0, 0.004}) {
+        Mechanism m = testing::makeMechanism(testing::CaseSpec{1, Cycle::kFourStroke, Acting::kSingle, lambda,
+                                                               gamma_deg, 6000.0});
+        m.engine.axial_positions = {0.05};
+        if (offset != 0.0) m.engine.pin_offsets = {offset};
+        SCOPED_TRACE("lambda " + std::to_string(lambda) + " gamma " + std::to_string(gamma_deg) + " offset " +
+                     std::to_string(offset));
+        const validation::Scales sc = validation::calcScales(m);
+        constexpr int N = 256;
+        for (int n = 1; n <= 8; ++n) {
+          std::complex<double> F[2], M[3];
+          for (int i = 0; i < N; ++i) {
+            const double phi = 2 * M_PI * i / N;
+            const analytic::Shaking s = analytic::calcShaking(m, phi);
+            const std::complex<double> e = std::polar(2.0 / N, -n * phi);
+            for (int a = 0; a < 2; ++a) F[a] += s.force[static_cast<size_t>(a)] * e;
+            for (int a = 0; a < 3; ++a) M[a] += s.moment[static_cast<size_t>(a)] * e;
+          }
+          const double force = std::hypot(std::abs(F[0]), std::abs(F[1]));
+          const double moment_xy = std::hypot(std::abs(M[0]), std::abs(M[1])), moment_z = std::abs(M[2]);
+          const analytic::HarmonicSymmetry s = analytic::findHarmonicSymmetry(m, n);
+          EXPECT_EQ(s.force_order_absent, offset == 0.0 && n >= 3 && n % 2 == 1) << n;
+          EXPECT_EQ(s.moment_z_order_absent, offset == 0.0 && n % 2 == 0) << n;
+          if (s.force_order_absent) {
+            EXPECT_LE(force, 64 * kEps * sc.force) << n;
+            EXPECT_LE(moment_xy, 64 * kEps * sc.moment) << n;
+          } else {
+            EXPECT_GT(force, 1e-9 * sc.force) << n;
+          }
+          if (s.moment_z_order_absent) EXPECT_LE(moment_z, 64 * kEps * sc.moment) << n;
+          else EXPECT_GT(moment_z, 1e-9 * sc.moment) << n;
+        }
+      }
+    }
+  }
+}
+
 // The textbook balance of the classic layouts (validation/layouts.h holds the tables' claims): which primary (n = 1)
 // and secondary (n = 2) forces and couples vanish by symmetry. The exact finder must agree with the tables except
 // where this geometry differs from theirs (named below), and where it says "vanishes" the closed-form amplitude is

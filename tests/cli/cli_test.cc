@@ -481,6 +481,12 @@ TEST(Cli, BalanceJson) {
   EXPECT_TRUE(primary["vanishes_by_symmetry"]["moment_xy"].is_null());
   const auto& secondary = doc["harmonics"][1];
   EXPECT_EQ(secondary["vanishes_by_symmetry"]["force"], false);
+  // Issue 47: the secondary moment Z is an exact 0 that no phase cancels: its reason is the centric cylinder's orders.
+  EXPECT_EQ(secondary["analytic"]["shaking_moment"]["Z"]["amplitude"].get<double>(), 0.0);
+  EXPECT_EQ(secondary["absent_by_order"]["moment_z"], true);
+  EXPECT_NE(secondary["reason"].get<std::string>().find("moment Z: a centric cylinder's has odd orders only"),
+            std::string::npos)
+      << secondary["reason"];
   const double a = secondary["analytic"]["shaking_force"]["amplitude"].get<double>();
   EXPECT_GT(a, 1000.0);
   for (const char* engine : {"simbody", "mujoco"}) {  // each exact engine's DFT beside the closed form

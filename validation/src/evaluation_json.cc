@@ -130,6 +130,10 @@ nlohmann::ordered_json balanceToJson(const std::vector<BalanceRow>& rows, bool a
     h["vanishes_by_symmetry"] = {{"force", decided(s.force_cancels)},
                                  {"moment_xy", axial ? decided(s.moment_xy_cancels) : nlohmann::ordered_json(nullptr)},
                                  {"moment_z", decided(s.moment_z_cancels)}};
+    // What no centric cylinder carries at this order, whatever the phases (analytic/shaking.h).
+    h["absent_by_order"] = {{"force", s.force_order_absent},
+                            {"moment_xy", axial ? nlohmann::ordered_json(s.force_order_absent) : nlohmann::ordered_json(nullptr)},
+                            {"moment_z", s.moment_z_order_absent}};
     out.push_back(h);
   }
   return out;

@@ -71,10 +71,16 @@ std::vector<ShakingHarmonic> calcShakingHarmonics(const Mechanism& m, int order)
 ///                    (the forward- and backward-turning parts);
 ///   moment X and Y:  the same sums weighted by z_j;
 ///   moment Z:        sum_j e^{i n alpha_j} = 0.
+/// Apart from the phases, what a centric cylinder cannot carry at all (every pin offset 0, no balance shaft turning at
+/// n; whatever the angles): its force has orders 1 and even only (the piston's acceleration is cos(theta) and the even
+/// cosines of the radical's series, the rod's centre moves sideways as sin(theta)), so neither force nor moments X, Y
+/// at odd n >= 3; its moment Z odd orders only (the rod's swing is odd in theta), so none at even n.
 struct HarmonicSymmetry {
   bool decided = false;  ///< false when an angle is not a whole 1/8 degree or a position not a whole nanometre, or
                          ///< the cylinders' pin offsets differ
   bool force_cancels = false, moment_xy_cancels = false, moment_z_cancels = false;
+  bool force_order_absent = false;     ///< centric cylinders and odd n >= 3: force and moments X, Y are 0 exactly
+  bool moment_z_order_absent = false;  ///< centric cylinders and even n: moment Z is 0 exactly
 };
 HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n);
 
