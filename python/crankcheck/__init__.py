@@ -14,6 +14,7 @@ CLI's message: "FILE: KEY: rule".
 
 import os as _os
 import signal as _signal
+import textwrap as _textwrap
 import threading as _threading
 import time as _time
 from dataclasses import dataclass as _dataclass, field as _field
@@ -104,8 +105,13 @@ def _number(text):
         return text
 
 
+# The grade tables' columns that count (cases, values, a cylinder's index): ints, not floats.
+_INTEGER_COLUMNS = {"asked", "provided", "cylinder"}
+
+
 def _rows(table):
-    return [{c: _number(v) for c, v in zip(table["columns"], row)} for row in table["rows"]]
+    return [{c: (int(v) if c in _INTEGER_COLUMNS and v != "" else _number(v)) for c, v in zip(table["columns"], row)}
+            for row in table["rows"]]
 
 
 # The summary's regimes as `crankcheck grade` prints them (validation/grade.h: getGradeRegimes).
@@ -156,9 +162,9 @@ class GradeResult:
         def brief(x):
             return "-" if x is None else "%.2g" % x
 
-        form = "%-16s %-22s %17s %22s %21s %18s  %s"
-        lines = [form % ("quantity", "regime", "provided / asked", "largest error / scale", "error at worst ratio",
-                         "tolerance / scale", "verdict")]
+        form = "%-15s %-22s %11s %9s %9s %9s  %s"
+        lines = [form % ("quantity", "regime", "provided", "largest", "at worst", "tolerance", "verdict"),
+                 (form % ("", "", "/ asked", "error", "ratio", "/ scale", "")).rstrip()]
         for row in self.summary:
             if row["regime"] != "all" and not row["provided"]:
                 continue  # a regime of a quantity not provided
@@ -166,10 +172,15 @@ class GradeResult:
                 row["quantity"] if row["regime"] == "all" else "", _REGIMES.get(row["regime"], row["regime"]),
                 "%d / %d" % (row["provided"], row["asked"]), brief(row["largest_rel_error"]),
                 brief(row["rel_error_at_worst_ratio"]), brief(row["tolerance_rel"]), row["verdict"]))
-        lines.append("Errors relative to the quantity's scale against Simbody, the analytic engine and MuJoCo: the "
-                     "largest, and the one where error / tolerance is worst (beside that tolerance).")
-        lines.append("Every provided value agrees with every reference engine (Simbody, analytic, MuJoCo)." if self.passed
-                     else "SOME VALUES DISAGREE, or none was provided (see the report's failing cases).")
+        exact = [e["name"] for e in engines() if e["gated"] and e["name"] != "analytic"]
+        references = "the analytic engine and " + (", ".join(exact[:-1]) + " and " + exact[-1] if len(exact) > 1
+                                                   else "".join(exact))
+        lines += _textwrap.wrap("Errors relative to the quantity's scale, against %s: the largest error / scale over "
+                                "every value, and the error at worst ratio, where error / tolerance is worst (beside "
+                                "that tolerance)." % references, 100)
+        where = "the report's failing cases" if self.report else "`failures`; out= writes the report"
+        lines.append("Every provided value agrees with %s." % references if self.passed
+                     else "SOME VALUES DISAGREE, or none was provided (see %s)." % where)
         return "\n".join(lines)
 
 
