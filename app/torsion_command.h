@@ -23,8 +23,8 @@ namespace crankcheck::app {
 
 struct TorsionOptions {
   std::string scene_path;
-  std::optional<double> speed_rpm;
-  std::string speeds;  ///< FROM:TO:STEP [rpm]
+  std::optional<std::string> speed;   ///< --speed as typed [rpm] (given empty: refused)
+  std::optional<std::string> speeds;  ///< --speeds FROM:TO:STEP [rpm] as typed (given empty: refused)
   std::vector<std::string> engines{"analytic"};  ///< the exact steady states shown: engines with Engine::simulate_crank_train
   std::string format = "table";
 };

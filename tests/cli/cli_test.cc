@@ -310,6 +310,32 @@ TEST(Cli, TorsionJsonAndRefusals) {
   }
 }
 
+// --speed and --speeds take what the scene file's [engine].speed_rpm takes, (0, 1e6] rpm, and sweeps of at most 1000
+// distinct speeds; an empty value (which CLI11 would take as not given), nan, inf, a step that resolves no speed and a
+// count grown by rounding are refused before any work. Before: --speed 1e20 printed a twist of 0 (exit 0), --speed ''
+// and --speeds '' ran at the scene's speed (exit 0).
+TEST(Cli, TorsionSpeedFlagsRefusedOutsideTheSceneLimits) {
+  const std::string four = std::string(CRANKCHECK_SCENES_DIR) + "/inline4_four_stroke.toml";
+  for (const auto& [flag, value, expected] : std::initializer_list<std::array<std::string, 3>>{
+           {"--speed", "1e20", "--speed: must be > 0 and at most 1e6 rpm"},
+           {"--speed", "1e300", "--speed: must be > 0 and at most 1e6 rpm"},
+           {"--speed", "1000001", "--speed: must be > 0 and at most 1e6 rpm"},
+           {"--speed", "nan", "--speed: must be > 0"},
+           {"--speed", "inf", "--speed: must be > 0"},
+           {"--speed", "", "--speed: expected a speed in rpm"},
+           {"--speed", "6000rpm", "--speed: expected a speed in rpm"},
+           {"--speeds", "", "--speeds: expected FROM:TO:STEP"},
+           {"--speeds", "1e5:2e6:1e5", "--speeds: TO must be at most 1e6 rpm"},
+           {"--speeds", "nan:1:1", "--speeds: needs 0 < FROM <= TO"},
+           {"--speeds", "1:inf:1", "--speeds: needs 0 < FROM <= TO"},
+           {"--speeds", "1:2:-1", "--speeds: needs 0 < FROM <= TO"},
+           {"--speeds", "1e5:1e5:1e-300", "--speeds: STEP must be at least 1e-6 x TO"},
+           {"--speeds", "1:1001:1", "--speeds: 1001 speeds; at most 1000"}}) {
+    SCOPED_TRACE(flag + " '" + value + "'");
+    expectRefusedWithOneLine({"torsion", four, flag, value}, expected);
+  }
+}
+
 // 17 significant digits round-trip: the printed numbers are the library's doubles, bit for bit.
 TEST(Cli, JsonNumbersRoundTripExactly) {
   const auto scene = std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml";
