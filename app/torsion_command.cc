@@ -10,6 +10,7 @@
 
 #include "crankcheck/analytic/crank_train.h"
 #include "crankcheck/analytic/torsion.h"
+#include "crankcheck/analytic/torsion_domain.h"
 #include "crankcheck/analytic/torsion_forced.h"
 #include "crankcheck/analytic/torsion_steady.h"
 #include "crankcheck/scene/scene_writer.h"
@@ -139,6 +140,11 @@ std::string runTorsion(const TorsionOptions& options) {
       throw UsageError(options.scene_path + ": [engine].speed_rpm: must be > 0 for torsion (the flywheel's driven "
                                             "speed), or give --speed or --speeds");
     speeds = {scene.speed_rpm};
+  }
+  try {  // the speed-free domain (torsion_domain.h): a shaft the mean torque twists beyond a crankshaft's
+    analytic::checkTorsionDomain(scene);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(options.scene_path + ": " + e.what());
   }
   analytic::TorsionModes modes;
   std::vector<analytic::ThrowInertia> inertias;

@@ -9,6 +9,7 @@
 #include <boost/numeric/odeint.hpp>
 
 #include "crankcheck/analytic/torsion.h"
+#include "crankcheck/analytic/torsion_domain.h"
 #include "crankcheck/analytic/torsion_forced.h"
 
 namespace crankcheck::analytic {
@@ -162,6 +163,7 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& 
   if (static_cast<int>(holzer.bodies.size()) != t.countBodies())
     throw std::invalid_argument("torsion: Holzer's start has " + std::to_string(holzer.bodies.size()) +
                                 " bodies for a train of " + std::to_string(t.countBodies()));
+  checkHolzerTwist(holzer, m.speed_rpm);  // the small-twist domain (torsion_domain.h): refused beyond, before any work
   const int n = t.countBodies(), dim = 2 * n;
 
   ExactSteadyState out;

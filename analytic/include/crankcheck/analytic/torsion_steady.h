@@ -58,7 +58,8 @@ struct ExactSteadyState {
 };
 
 /// @throws std::invalid_argument as makeCrankTrain or calcHolzerResponse;
-///         std::runtime_error if Newton's method has not converged in 30 iterations (a steady state that does not
+///         std::runtime_error (checkHolzerTwist, torsion_domain.h) if Holzer's response twists a section beyond
+///         kMaxShaftTwist: outside the domain, not computed; std::runtime_error if Newton's method has not converged in 30 iterations (a steady state that does not
 ///         exist or is unstable: the shaft's twist running away, or the speed not kept).
 ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptions& options = {});
 
