@@ -209,6 +209,24 @@ TEST(ExactSteadyState, ConstantInertiaAndSmallLoadsGiveHolzersResponse) {
   EXPECT_LT(differences[1], 1e-2);
 }
 
+// The work limit (SteadyStateOptions::max_evaluations): a state that needs more evaluations of the train's equations is
+// refused with one line naming the limit. 1000 is less than one cycle of the example four at 6000 rpm (about 5e4 at
+// tolerance 1e-11); the default, 2e7, bounds a state to about 10 s. Before, the steady state had no work limit (every
+// section at 1e-10 N m/rad ran past 500 s).
+TEST(ExactSteadyState, PastMaxEvaluationsIsRefused) {
+  const Mechanism m = loadWithCrankshaft("inline4_four_stroke.toml", kInline4Train);
+  SteadyStateOptions options;
+  options.max_evaluations = 1000;
+  try {
+    calcExactSteadyState(m, options);
+    ADD_FAILURE() << "not refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 1000 evaluations of the train's equations "
+                                         "(SteadyStateOptions::max_evaluations)"),
+              std::string::npos) << e.what();
+  }
+}
+
 // The speed-free domain (torsion_domain.h): the flywheel section carries the mean torque of every throw, its twist that
 // over K. The mean here is the test's own: the trapezoidal mean of calcRigidThrowTorque over 2^16 angles of the cycle
 // (not the code's quadrature of the load orders; the pressure table's corners leave it about (2 pi / 2^16)^2 = 1e-8

@@ -19,6 +19,10 @@ struct CrankTrainRunOptions {
   /// needs at least as many steps a cycle as samples.
   int samples = 1024;
   int max_cycles = 2000;     ///< refused beyond (a train too lightly damped to settle)
+  /// The work limit: the integrator's steps in all, refused beyond (std::runtime_error naming it) instead of run
+  /// unbounded (a shaft so stiff that the step falls with its fastest mode). 0: the engine's default (Simbody 3e5,
+  /// MuJoCo 4e6: periodic_run.h kCrankTrainMaxSteps).
+  long long max_steps = 0;
 };
 
 struct CrankTrainRun {
