@@ -2,7 +2,7 @@
 /// @file
 /// `crankcheck torsion SCENE [--speed RPM | --speeds FROM:TO:STEP] [--engine analytic,simbody] [--format table|json]`:
 /// the torsional vibration of
-/// the scene's elastic crank train ([crankshaft], ../shared/CONVENTIONS.md "Torsion"):
+/// the scene's elastic crank train ([crankshaft], docs/CONVENTIONS-crankcheck.md "Torsion"):
 /// - each throw's constant inertia for Holzer's model, exact (the mean of J over a turn) beside the textbook's
 ///   shortcuts (half the reciprocating mass, with Norton's second-order term), analytic/torsion.h;
 /// - the natural frequencies clamped at the flywheel, and the critical speeds rpm = 30 w_i / (pi n) of every order

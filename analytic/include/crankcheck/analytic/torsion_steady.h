@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The exact periodic steady state of the elastic crank train (../shared/CONVENTIONS.md, "Exact"): the full nonlinear
+/// The exact periodic steady state of the elastic crank train (docs/CONVENTIONS-crankcheck.md, "Exact"): the full nonlinear
 /// equations of crank_train.h (each throw's variable inertia J_t + J_j(psi_j) and its J_j' psi_j'^2 term, the gas and
 /// gravity torques at the throw's own angle, the sections' springs and dampers, the throws' absolute damping), the
 /// flywheel driven at omega t, over one working cycle.

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// What an engine's elastic crank train reports (Engine::simulate_crank_train, crankcheck/scene/engine.h): the periodic
-/// steady state of a scene's `[crankshaft]` train (../shared/CONVENTIONS.md, "Torsion"), the flywheel driven at the
+/// steady state of a scene's `[crankshaft]` train (docs/CONVENTIONS-crankcheck.md, "Torsion"), the flywheel driven at the
 /// scene's omega, sampled over one working cycle. Plain values, no engine behind them.
 
 #include <vector>

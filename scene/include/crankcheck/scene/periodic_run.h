@@ -62,8 +62,8 @@ struct PeriodicPolicy {
 inline constexpr int kExtrapolationWindow = 6;
 
 /// CrankTrainRunOptions::max_steps at 0: 4e6 steps, about 2 min of MuJoCo's exact route (35 us a step on the example
-/// four), 140 x its largest gate run (28587 steps, the four at 6000 rpm) and twice the soft routes' default step (1/1024
-/// of a cycle) over max_cycles (2000). Simbody, at 0.37 ms a step, sets its own (simbody_models/crank_train.h).
+/// four), 140 x its largest gate run (28587 steps, the four at 6000 rpm), and about 1000 cycles of the soft routes at
+/// their default step (1/4096 of a cycle). Simbody, at 0.37 ms a step, sets its own (simbody_models/crank_train.h).
 inline constexpr long long kCrankTrainMaxSteps = 4'000'000;
 
 /// From the run's state at s = 0, cycle by cycle (64 probes each: the largest deviation of the cycle), until the

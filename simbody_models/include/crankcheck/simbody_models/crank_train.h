@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The elastic crank train of a scene's `[crankshaft]` in Simbody (../shared/CONVENTIONS.md, "Torsion"), never using
+/// The elastic crank train of a scene's `[crankshaft]` in Simbody (docs/CONVENTIONS-crankcheck.md, "Torsion"), never using
 /// the analytic formulas: each throw a crankshaft body of its own on a pin about Z from Ground (its cylinders' crank
 /// pins, point masses and counterweights as KCrankModel's crankshaft, plus J_t as a disk), its cylinders' pistons and
 /// rods closed on its pins as in KCrankModel; the front mass a disk on its own pin; the sections torsional springs and
