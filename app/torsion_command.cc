@@ -10,6 +10,7 @@
 
 #include "crankcheck/analytic/crank_train.h"
 #include "crankcheck/analytic/torsion.h"
+#include "crankcheck/analytic/torsion_domain.h"
 #include "crankcheck/analytic/torsion_forced.h"
 #include "crankcheck/analytic/torsion_steady.h"
 #include "crankcheck/scene/scene_writer.h"
@@ -24,21 +25,49 @@ namespace {
 
 constexpr int kMaxSpeeds = 1000;
 constexpr double kTextbookOrder = 24.0;
+/// [rpm] The largest speed a flag takes: the scene file's limit on [engine].speed_rpm (docs/SCENE-FORMAT.md, "Limits").
+constexpr double kMaxSpeedRpm = 1e6;
 
-// FROM:TO:STEP [rpm] -> the speeds FROM, FROM + STEP, ... up to TO (within a millionth of a step).
+// A speed [rpm] as typed for `flag`: a whole finite number in (0, 1e6], else UsageError naming the flag.
+double parseSpeed(const std::string& text, const std::string& flag) {
+  double rpm = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lf%c", &rpm, &tail) != 1)
+    throw UsageError(flag + ": expected a speed in rpm, got '" + escapeText(text) + "'");
+  if (!(std::isfinite(rpm) && rpm > 0 && rpm <= kMaxSpeedRpm))
+    throw UsageError(flag + ": must be > 0 and at most 1e6 rpm, the scene file's limit (got " + formatShortest(rpm) + ")");
+  return rpm;
+}
+
+// FROM:TO:STEP [rpm] -> the speeds FROM, FROM + STEP, ... up to TO (within a millionth of a step), each in (0, 1e6].
+// STEP at least 1e-6 x TO; the count is checked before any speed is made, and the speeds made are checked again: at
+// most kMaxSpeeds, each above the last and at most 1e6 rpm (rounding of FROM + i STEP).
 std::vector<double> parseSpeeds(const std::string& text) {
   double from = 0, to = 0, step = 0;
   char tail = 0;
   if (std::sscanf(text.c_str(), "%lf:%lf:%lf%c", &from, &to, &step, &tail) != 3)
-    throw UsageError("--speeds: expected FROM:TO:STEP in rpm (e.g. 1000:6000:250), got '" + text + "'");
+    throw UsageError("--speeds: expected FROM:TO:STEP in rpm (e.g. 1000:6000:250), got '" + escapeText(text) + "'");
   if (!(std::isfinite(from) && std::isfinite(to) && std::isfinite(step) && from > 0 && to >= from && step > 0))
-    throw UsageError("--speeds: needs 0 < FROM <= TO and STEP > 0 (got '" + text + "')");
+    throw UsageError("--speeds: needs 0 < FROM <= TO and STEP > 0 (got '" + escapeText(text) + "')");
+  if (to > kMaxSpeedRpm)
+    throw UsageError("--speeds: TO must be at most 1e6 rpm, the scene file's limit (got " + formatShortest(to) + ")");
+  // A step below a millionth of TO resolves no speed (FROM = TO included: such a STEP is a typing error, not a sweep).
+  if (step < 1e-6 * to)
+    throw UsageError("--speeds: STEP must be at least 1e-6 x TO (got " + formatShortest(step) + " for TO " +
+                     formatShortest(to) + ")");
   const double count = std::floor((to - from) / step + 1e-6) + 1;
-  if (count > kMaxSpeeds)
-    throw UsageError("--speeds: " + std::to_string(static_cast<long long>(count)) + " speeds; at most " +
-                     std::to_string(kMaxSpeeds));
+  if (!(count <= kMaxSpeeds))
+    throw UsageError("--speeds: " +
+                     (count < 1e15 ? std::to_string(static_cast<long long>(count)) : formatShortest(count)) +
+                     " speeds; at most " + std::to_string(kMaxSpeeds));
   std::vector<double> speeds;
-  for (int i = 0; i < static_cast<int>(count); ++i) speeds.push_back(from + i * step);
+  for (int i = 0; i < static_cast<int>(count); ++i) {
+    const double rpm = from + i * step;
+    if (rpm > kMaxSpeedRpm || (!speeds.empty() && !(rpm > speeds.back())))
+      throw UsageError("--speeds: STEP " + formatShortest(step) + " does not give " +
+                       formatShortest(count) + " distinct speeds of at most 1e6 rpm from " + formatShortest(from));
+    speeds.push_back(rpm);
+  }
   return speeds;
 }
 
@@ -73,8 +102,21 @@ struct CriticalSpeed {
 
 void addTorsionOptions(CLI::App& command, TorsionOptions& options) {
   command.add_option("scene", options.scene_path, "Scene file (TOML) with a [crankshaft] table")->required();
-  auto* speed = command.add_option("--speed", options.speed_rpm, "One speed [rpm] (default: the scene's speed_rpm)");
-  auto* speeds = command.add_option("--speeds", options.speeds, "A sweep FROM:TO:STEP [rpm], e.g. 1000:6000:250");
+  command.footer(
+      "Domain: results are computed only for a shaft that twists at most 0.1 rad a section (a crankshaft, not a chain "
+      "of loose masses). A scene whose throws' mean torque twists a section beyond that is refused before any work "
+      "(status 2, naming [crankshaft].stiffness[i]); a speed at which Holzer's linear twist exceeds it, a steady state "
+      "past its work limit (2e7 evaluations of the train's equations; an engine's train: 3e5 Simbody or 4e6 MuJoCo "
+      "steps) or one that does not converge is refused with one line, status 1, nothing printed. Very stiff shafts (natural "
+      "frequencies above about 8000 orders: the example four at 1e6 x its stiffness) are refused by Holzer's sum, "
+      "which then does not reach 1e-8 in 65536 harmonics (docs/CONVENTIONS-crankcheck.md, \"Torsion\").");
+  // As text, parsed in runTorsion: CLI11 takes an empty value ('') for a number as not given.
+  auto* speed = command.add_option_function<std::string>(
+      "--speed", [&options](const std::string& text) { options.speed = text; },
+      "One speed [rpm], in (0, 1e6] (default: the scene's speed_rpm)");
+  auto* speeds = command.add_option_function<std::string>(
+      "--speeds", [&options](const std::string& text) { options.speeds = text; },
+      "A sweep FROM:TO:STEP [rpm], e.g. 1000:6000:250 (at most 1000 speeds, each in (0, 1e6])");
   speed->excludes(speeds);
   std::vector<std::string> names;
   std::string help = "The exact steady states to show (comma-separated; the analytic one is always computed):";
@@ -95,12 +137,8 @@ void addTorsionOptions(CLI::App& command, TorsionOptions& options) {
 std::string runTorsion(const TorsionOptions& options) {
   // Everything that can be refused is refused before the first steady state is computed.
   std::vector<double> speeds;
-  if (!options.speeds.empty()) speeds = parseSpeeds(options.speeds);
-  if (options.speed_rpm) {
-    if (!(std::isfinite(*options.speed_rpm) && *options.speed_rpm > 0))
-      throw UsageError("--speed: must be > 0 rpm (got " + formatShortest(*options.speed_rpm) + ")");
-    speeds = {*options.speed_rpm};
-  }
+  if (options.speeds) speeds = parseSpeeds(*options.speeds);
+  if (options.speed) speeds = {parseSpeed(*options.speed, "--speed")};
   const Mechanism scene = loadScene(options.scene_path);
   if (!scene.crankshaft)
     throw UsageError(options.scene_path + ": [crankshaft]: missing table (the elastic crank train: throw_inertia, "
@@ -110,6 +148,11 @@ std::string runTorsion(const TorsionOptions& options) {
       throw UsageError(options.scene_path + ": [engine].speed_rpm: must be > 0 for torsion (the flywheel's driven "
                                             "speed), or give --speed or --speeds");
     speeds = {scene.speed_rpm};
+  }
+  try {  // the speed-free domain (torsion_domain.h): a shaft the mean torque twists beyond a crankshaft's
+    analytic::checkTorsionDomain(scene);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(options.scene_path + ": " + e.what());
   }
   analytic::TorsionModes modes;
   std::vector<analytic::ThrowInertia> inertias;

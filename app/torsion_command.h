@@ -2,7 +2,7 @@
 /// @file
 /// `crankcheck torsion SCENE [--speed RPM | --speeds FROM:TO:STEP] [--engine analytic,simbody] [--format table|json]`:
 /// the torsional vibration of
-/// the scene's elastic crank train ([crankshaft], ../shared/CONVENTIONS.md "Torsion"):
+/// the scene's elastic crank train ([crankshaft], docs/CONVENTIONS-crankcheck.md "Torsion"):
 /// - each throw's constant inertia for Holzer's model, exact (the mean of J over a turn) beside the textbook's
 ///   shortcuts (half the reciprocating mass, with Norton's second-order term), analytic/torsion.h;
 /// - the natural frequencies clamped at the flywheel, and the critical speeds rpm = 30 w_i / (pi n) of every order
@@ -23,8 +23,8 @@ namespace crankcheck::app {
 
 struct TorsionOptions {
   std::string scene_path;
-  std::optional<double> speed_rpm;
-  std::string speeds;  ///< FROM:TO:STEP [rpm]
+  std::optional<std::string> speed;   ///< --speed as typed [rpm] (given empty: refused)
+  std::optional<std::string> speeds;  ///< --speeds FROM:TO:STEP [rpm] as typed (given empty: refused)
   std::vector<std::string> engines{"analytic"};  ///< the exact steady states shown: engines with Engine::simulate_crank_train
   std::string format = "table";
 };

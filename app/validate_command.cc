@@ -15,6 +15,7 @@
 #include <set>
 #include <thread>
 
+#include "crankcheck/analytic/torsion_domain.h"
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/output_folder.h"
@@ -212,6 +213,13 @@ int runValidate(const ValidateOptions& options) {
     // Every engine must be able to build the scene (a massless rod for Simbody, a massless piston for MuJoCo, ...):
     // refused now, naming the engine and the key, not after minutes of work.
     validation::checkEveryEngineBuilds(campaign.scenes.back(), path);
+    if (campaign.scenes.back().crankshaft) {  // part 17's domain (analytic/torsion_domain.h), before any work
+      try {
+        analytic::checkTorsionDomain(campaign.scenes.back());
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(path + ": " + e.what());
+      }
+    }
   }
   int shard_index = 0, shard_count = 1;
   if (!options.shard.empty()) {

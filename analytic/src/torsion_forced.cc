@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <complex>
 #include <map>
 #include <mutex>
@@ -22,8 +23,9 @@ namespace {
 // The orders p <= kQuadratureOrders by 10-point Gauss-Legendre (Boost.Math) on panels of at most half a period of
 // the highest of them, the cycle split first at the pressure table's corners (each cylinder's firing angle plus each
 // table angle), between which the torque is smooth: each to about rounding, where an FFT of samples would carry the
-// corners' aliasing (falling only as N^-2). The orders above by an FFT of 4P samples: their aliasing, about T_1 / P^2,
-// enters the twist through gains below 1 / (p omega)^2 J, far above the natural frequencies: below 1e-12 of it.
+// corners' aliasing (falling only as N^-2). The orders above by an FFT of 4P samples with the corners taken out and
+// their orders added in closed form (getOrders): what the FFT sees is C^1, its aliasing about T_1 / P^3, which matters
+// where a stiff shaft's natural frequencies lie above p and the twist takes the orders with gain 1/K.
 // T = A - (1/2) omega^2 B with the speed-free A = T_gas - Q and B = J': their orders are computed (and kept by
 // ThrowLoadOrders for every speed of a sweep), T_p = A_p - (1/2) omega^2 B_p.
 constexpr int kQuadratureOrders = 256;
@@ -77,6 +79,34 @@ std::pair<std::vector<std::complex<double>>, std::vector<std::complex<double>>> 
     }
   }
   return {std::move(sum_a), std::move(sum_b)};
+}
+
+// The corners of throw j's speed-free torque A = T_gas - Q: the angles [rad] of the cycle where a cylinder's pressure
+// table has a point (its firing angle plus each table angle), between which A is smooth, and the jump of A' there,
+// A'(c+) - A'(c-) [N m/rad], by one-sided second-order differences (step h = 1e-5 rad: truncation h^2 A''' and
+// rounding eps |A| / h both below 1e-9 of the jump's scale |A| / h on the example scenes). Empty without gas.
+struct Corner {
+  double angle = 0.0, slope_jump = 0.0;
+};
+std::vector<Corner> findCorners(const CrankTrain& t, int j, const PreparedThrow& prepared) {
+  const Mechanism& tm = t.throws[static_cast<size_t>(j)];
+  std::vector<double> cuts;
+  if (tm.gas)
+    for (double firing : tm.firing_angles)
+      for (double a : tm.gas->cycle_angles) cuts.push_back(std::fmod(firing + a, t.cycle));
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end(), [&](double x, double y) { return y - x <= 1e-12 * t.cycle; }),
+             cuts.end());
+  constexpr double h = 1e-5;
+  auto A = [&](double psi) { return calcSpeedFreeLoads(prepared, psi).first; };
+  std::vector<Corner> out;
+  for (double c : cuts) {
+    const double at = A(c);
+    const double right = (-3.0 * at + 4.0 * A(c + h) - A(c + 2.0 * h)) / (2.0 * h);
+    const double left = (3.0 * at - 4.0 * A(c - h) + A(c - 2.0 * h)) / (2.0 * h);
+    out.push_back({c, right - left});
+  }
+  return out;
 }
 
 // Loads at two angles that no pressure table corner or quarter turn is likely to hit: the fingerprint by which a
@@ -149,9 +179,27 @@ const ThrowLoadOrders::Orders& ThrowLoadOrders::getOrders(const CrankTrain& t, i
         std::tie(a[static_cast<size_t>(k)], b[static_cast<size_t>(k)]) = calcSpeedFreeLoads(tm, t.cycle * k / N);
       }
     }
-    const PeriodicSignal fft_a = calcSignalFromSamples(a), fft_b = calcSignalFromSamples(b);
+    // A's corners taken out before the FFT and their orders added back exactly: with L = cycle, the periodic kernel
+    // f(u) = u/2 - u^2 / (2L) on [0, L) has a unit jump of f' at u = 0 and f'' = -1/L elsewhere, so its orders are
+    // f_p = (2/L) / -(2 pi p / L)^2 (those of f'' = delta - 1/L over -(2 pi p / L)^2), shifted by c: f_p e^{-i p tau_c}.
+    // What is left is C^1: its FFT's aliasing falls as P^-3 instead of P^-2 (A' jumps at the corners). Without it, the
+    // aliasing of the orders below the natural frequencies reaches the twist with gain 1/K, not 1/((p omega)^2 J):
+    // a shaft 100 x the example four's stiffness did not converge in 65536 harmonics.
+    const std::vector<Corner> corners = findCorners(t, j, tm);
+    std::vector<double> smooth(a);
+    for (const Corner& c : corners)
+      for (int k = 0; k < N; ++k) {
+        double u = t.cycle * k / N - c.angle;
+        if (u < 0.0) u += t.cycle;
+        smooth[static_cast<size_t>(k)] -= c.slope_jump * (0.5 * u - u * u / (2.0 * t.cycle));
+      }
+    const PeriodicSignal fft_a = calcSignalFromSamples(smooth), fft_b = calcSignalFromSamples(b);
     for (int p = Q + 1; p <= P; ++p) {
-      orders.A[static_cast<size_t>(p)] = fft_a.coefficients[static_cast<size_t>(p)];
+      const double k = 2.0 * M_PI * p / t.cycle;
+      std::complex<double> kernels = 0.0;
+      for (const Corner& c : corners)
+        kernels += c.slope_jump * -2.0 / (t.cycle * k * k) * std::polar(1.0, -k * c.angle);
+      orders.A[static_cast<size_t>(p)] = fft_a.coefficients[static_cast<size_t>(p)] + kernels;
       orders.B[static_cast<size_t>(p)] = fft_b.coefficients[static_cast<size_t>(p)];
     }
     if (!finer) {
@@ -226,9 +274,11 @@ HolzerResponse calcHolzerResponse(const CrankTrain& t, const std::vector<double>
     if (change <= options.convergence * largest) return next;  // (largest 0: no forcing, no twist: converged at once)
     last = std::move(next);
   }
-  throw std::runtime_error("torsion: Holzer's sum over orders did not converge to " +
-                           std::to_string(options.convergence) + " with " + std::to_string(options.max_harmonics) +
-                           " harmonics per cycle");
+  char convergence[32];
+  std::snprintf(convergence, sizeof convergence, "%g", options.convergence);
+  throw std::runtime_error("torsion: Holzer's sum over orders did not converge to " + std::string(convergence) +
+                           " with " + std::to_string(options.max_harmonics) + " harmonics per cycle (a shaft this "
+                           "stiff: natural frequencies above that many orders)");
 }
 
 HolzerResponse calcHolzerResponse(const CrankTrain& t, const std::vector<double>& inertias,

@@ -9,6 +9,7 @@
 #include <boost/numeric/odeint.hpp>
 
 #include "crankcheck/analytic/torsion.h"
+#include "crankcheck/analytic/torsion_domain.h"
 #include "crankcheck/analytic/torsion_forced.h"
 
 namespace crankcheck::analytic {
@@ -26,9 +27,12 @@ struct TrainEquations {
   int n;
   std::vector<int> throw_of_body;  // -1: the front mass
   std::vector<PreparedThrow> throws;
+  long long max_evaluations;             // SteadyStateOptions::max_evaluations
+  mutable long long evaluations = 0;     // of accelerations(), by every run and Jacobian so far
 
-  explicit TrainEquations(const CrankTrain& train)
-      : t(train), K(calcStiffnessMatrix(train)), C(calcDampingMatrix(train)), n(train.countBodies()) {
+  TrainEquations(const CrankTrain& train, long long limit)
+      : t(train), K(calcStiffnessMatrix(train)), C(calcDampingMatrix(train)), n(train.countBodies()),
+        max_evaluations(limit) {
     throw_of_body.assign(static_cast<size_t>(n), -1);
     for (int j = 0; j < static_cast<int>(t.throws.size()); ++j) {
       throw_of_body[static_cast<size_t>(t.getThrowBody(j))] = j;
@@ -47,7 +51,13 @@ struct TrainEquations {
   }
 
   // x_ss of every body; `bodies` (optional) receives each body's loads.
+  // @throws std::runtime_error past max_evaluations (the work limit).
   void accelerations(const double* y, double s, double* x_ss, std::vector<Body>* bodies = nullptr) const {
+    if (++evaluations > max_evaluations)
+      throw std::runtime_error("torsion: the steady state needed more than " + std::to_string(max_evaluations) +
+                               " evaluations of the train's equations (SteadyStateOptions::max_evaluations): a shaft "
+                               "this stiff, or a resonance this lightly damped, is beyond the analytic route's work "
+                               "limit; add damping, or change the speed or [crankshaft].stiffness");
     const double w = t.omega, w2 = w * w;
     for (int b = 0; b < n; ++b) {
       const Body B = body(b, s + y[b]);
@@ -144,8 +154,9 @@ struct Integrator {
 }  // namespace
 
 ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptions& options) {
-  if (!(options.tolerance > 0.0) || options.samples < 16 || options.samples % 2 != 0)
-    throw std::invalid_argument("torsion: the steady state needs a tolerance > 0 and an even number of samples >= 16");
+  if (!(options.tolerance > 0.0) || options.samples < 16 || options.samples % 2 != 0 || options.max_evaluations < 1)
+    throw std::invalid_argument("torsion: the steady state needs a tolerance > 0, an even number of samples >= 16 and "
+                                "max_evaluations >= 1");
   const CrankTrain t = makeCrankTrain(m);
   std::vector<double> inertias;
   if (t.has_front) inertias.push_back(t.front_inertia);
@@ -156,12 +167,14 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptio
 
 ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& holzer,
                                       const SteadyStateOptions& options) {
-  if (!(options.tolerance > 0.0) || options.samples < 16 || options.samples % 2 != 0)
-    throw std::invalid_argument("torsion: the steady state needs a tolerance > 0 and an even number of samples >= 16");
+  if (!(options.tolerance > 0.0) || options.samples < 16 || options.samples % 2 != 0 || options.max_evaluations < 1)
+    throw std::invalid_argument("torsion: the steady state needs a tolerance > 0, an even number of samples >= 16 and "
+                                "max_evaluations >= 1");
   const CrankTrain t = makeCrankTrain(m);
   if (static_cast<int>(holzer.bodies.size()) != t.countBodies())
     throw std::invalid_argument("torsion: Holzer's start has " + std::to_string(holzer.bodies.size()) +
                                 " bodies for a train of " + std::to_string(t.countBodies()));
+  checkHolzerTwist(holzer, m.speed_rpm);  // the small-twist domain (torsion_domain.h): refused beyond, before any work
   const int n = t.countBodies(), dim = 2 * n;
 
   ExactSteadyState out;
@@ -179,7 +192,7 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& 
     y0[static_cast<size_t>(n + b)] = rate;
   }
   out.twist_scale = scale;
-  const TrainEquations equations(t);
+  const TrainEquations equations(t, options.max_evaluations);
   if (!(scale > 0.0)) {
     // No torque on any throw in the rigid motion: the rigid motion itself is the steady state, exactly.
     out.x0 = out.x_dot0 = Eigen::VectorXd::Zero(n);
@@ -275,6 +288,7 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& 
   for (int i = 0; i < n; ++i)
     out.error_bound = std::max(out.error_bound, std::fabs(findSignalExtremes(loose_signals.second[static_cast<size_t>(i)]).peakToPeak() -
                                                           out.peak_to_peak[static_cast<size_t>(i)]));
+  out.evaluations = equations.evaluations;
   out.x0.resize(n);
   out.x_dot0.resize(n);
   for (int b = 0; b < n; ++b) {

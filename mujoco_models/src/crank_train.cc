@@ -77,8 +77,8 @@ struct TrainSystem {
 /// of the cycle before (the first cycle's: `first_scale`).
 class Integration final : public CycleRun {
  public:
-  Integration(Train& train, double cycle, double first_scale)
-      : system_{&train}, cycle_(cycle), scale_(first_scale), ds_(cycle / 512),
+  Integration(Train& train, double cycle, double first_scale, long long max_steps)
+      : system_{&train}, max_steps_(max_steps), cycle_(cycle), scale_(first_scale), ds_(cycle / 512),
         y_(static_cast<size_t>(2 * train.bodies()), 0.0) {}  // the rigid motion at t = 0
 
   void startCycle(double accuracy, double scale) override {
@@ -88,6 +88,7 @@ class Integration final : public CycleRun {
   }
   void stepTo(double target) override {
     while (s_ < target) {
+      if (steps_ > max_steps_) return;  // runToPeriodic refuses the run (CrankTrainRunOptions::max_steps)
       const double remaining = target - s_;
       double ds = std::min(ds_, remaining), tried = ds;
       for (int fails = 0;; ++fails) {
@@ -116,6 +117,7 @@ class Integration final : public CycleRun {
 
  private:
   TrainSystem system_;
+  long long max_steps_;
   odeint::result_of::make_controlled<odeint::runge_kutta_dopri5<State>>::type stepper_;
   double cycle_, scale_, ds_, s_ = 0.0;
   State y_;
@@ -145,11 +147,12 @@ CrankTrainRunOptions resolveCrankTrainOptions(const Mechanism& m, const CrankTra
   if (options.periodicity == 0.0) options.periodicity = periodicity;
   if (options.samples == 0) options.samples = defaults.samples;
   if (options.max_cycles == 0) options.max_cycles = defaults.max_cycles;
+  if (options.max_steps == 0) options.max_steps = kCrankTrainMaxSteps;
   if (!(std::isfinite(options.accuracy) && options.accuracy > 0.0 && std::isfinite(options.periodicity) &&
         options.periodicity > 0.0) ||
-      options.samples < 16 || options.samples % 2 != 0 || options.max_cycles < 1)
+      options.samples < 16 || options.samples % 2 != 0 || options.max_cycles < 1 || options.max_steps < 1)
     refuseCrankTrain("CrankTrainRunOptions", "accuracy and periodicity must be finite and >= 0, samples even and >= "
-                     "16, max_cycles >= 0 (each 0: the default)");
+                     "16, max_cycles and max_steps >= 0 (each 0: the default)");
   return options;
 }
 
@@ -185,7 +188,7 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
   scale /= *std::min_element(train.stiffness.begin(), train.stiffness.end());
   if (!(scale > 0.0)) scale = 1.0;  // no load at all: the deviations stay 0
 
-  Integration integration(train, cycle, scale);
+  Integration integration(train, cycle, scale, options.max_steps);
   return runToPeriodic(integration, cycle, options, PeriodicPolicy{1000.0 * options.accuracy, kExtrapolationWindow},
                        "mujoco");
 }

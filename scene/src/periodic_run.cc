@@ -50,8 +50,17 @@ CrankTrainRun runToPeriodic(CycleRun& run, double cycle, const CrankTrainRunOpti
   constexpr int kProbes = 64;  // the largest deviation of a cycle, sampled
   const std::string name = what;
   if (!(options.accuracy > 0.0 && options.periodicity > 0.0 && policy.first_accuracy >= options.accuracy &&
-        policy.extrapolation_window >= 0))
+        policy.extrapolation_window >= 0 && options.max_steps >= 0))
     throw std::invalid_argument(name + ": runToPeriodic: bad options");
+  const long long max_steps = options.max_steps > 0 ? options.max_steps : kCrankTrainMaxSteps;
+  auto stepTo = [&](double target, int cycle_count) {
+    run.stepTo(target);
+    if (run.countSteps() > max_steps)
+      throw std::runtime_error(name + ": the crank train's run took more than " + std::to_string(max_steps) +
+                               " integrator steps (CrankTrainRunOptions::max_steps, the work limit) in " +
+                               std::to_string(cycle_count) + " cycles: a shaft this stiff or a train this lightly damped "
+                               "costs more than this route allows; raise max_steps, or use the analytic steady state");
+  };
   CrankTrainRun out;
   std::vector<double> x, x_s, start, start_s;
   run.readState(start, start_s);
@@ -62,7 +71,7 @@ CrankTrainRun runToPeriodic(CycleRun& run, double cycle, const CrankTrainRunOpti
     run.startCycle(in_use, scale);
     double largest = 0.0;
     for (int k = 1; k <= kProbes; ++k) {
-      run.stepTo(cycle * k / kProbes);
+      stepTo(cycle * k / kProbes, count);
       run.readState(x, x_s);
       for (double v : x) largest = std::max(largest, std::fabs(v));
     }
@@ -104,7 +113,7 @@ CrankTrainRun runToPeriodic(CycleRun& run, double cycle, const CrankTrainRunOpti
   out.twists.assign(n, {});
   run.startCycle(in_use, scale);
   for (int k = 0; k < options.samples; ++k) {
-    if (k > 0) run.stepTo(cycle * k / options.samples);
+    if (k > 0) stepTo(cycle * k / options.samples, out.cycles + 1);
     run.readState(x, x_s);
     for (size_t i = 0; i < n; ++i) out.twists[i].push_back((i + 1 == n ? 0.0 : x[i + 1]) - x[i]);
   }

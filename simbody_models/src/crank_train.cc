@@ -109,7 +109,10 @@ class TrainRun final : public CycleRun {
     t0_ = integrator_.getTime();
   }
   void stepTo(double target) override {
+    // At most the steps left of the work limit in this call (runToPeriodic refuses the run past it).
+    integrator_.setInternalStepLimit(static_cast<int>(std::clamp(max_steps_ + 1 - countSteps(), 1LL, 1LL << 30)));
     const SimTK::Integrator::SuccessfulStepStatus status = integrator_.stepTo(t0_ + target / omega_);
+    if (status == SimTK::Integrator::ReachedStepLimit) return;
     if (status == SimTK::Integrator::EndOfSimulation)
       throw std::runtime_error("simbody: the integrator ended the crank train's run at t = " +
                                std::to_string(integrator_.getTime()));
@@ -135,6 +138,7 @@ class TrainRun final : public CycleRun {
     return true;
   }
   long long countSteps() const override { return steps_ + integrator_.getNumStepsTaken(); }
+  void setMaxSteps(long long max_steps) { max_steps_ = max_steps; }
 
  private:
   SimTK::MultibodySystem& system_;
@@ -142,6 +146,7 @@ class TrainRun final : public CycleRun {
   const std::vector<MechanismBodies>& throws_;
   double omega_, assembly_tolerance_;
   SimTK::RungeKuttaMersonIntegrator integrator_;
+  long long max_steps_ = kCrankTrainMaxSteps;
   SimTK::State state_;  // the start, before the first cycle
   bool started_ = false;
   double accuracy_ = 0.0, t0_ = 0.0;
@@ -154,6 +159,7 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
   CrankTrainRunOptions options = asked;
   if (options.accuracy == 0.0) options.accuracy = kCrankTrainAccuracy;
   if (options.periodicity == 0.0) options.periodicity = kCrankTrainPeriodicity;
+  if (options.max_steps == 0) options.max_steps = kCrankTrainMaxSteps;
   checkModelInputs(m, ModelOptions{}, "simulateCrankTrainSteadyState");
   if (!m.crankshaft) throw std::invalid_argument("simulateCrankTrainSteadyState: the scene has no [crankshaft] table");
   const double omega = m.engine.speed;
@@ -161,7 +167,8 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
   if (!(m.rod.mass > 0.0 && m.rod.inertia_about_wrist_pin > 0.0))
     throw std::invalid_argument("simulateCrankTrainSteadyState: the Simbody model needs a rod with mass > 0 and "
                                 "inertia about the wrist pin > 0");
-  if (options.samples < 16 || options.samples % 2 != 0 || !(options.accuracy > 0.0) || !(options.periodicity > 0.0))
+  if (options.samples < 16 || options.samples % 2 != 0 || !(options.accuracy > 0.0) || !(options.periodicity > 0.0) ||
+      options.max_steps < 1)
     throw std::invalid_argument("simulateCrankTrainSteadyState: bad options");
   const CrankshaftParams& c = *m.crankshaft;
 
@@ -216,6 +223,7 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
     throw std::runtime_error("simulateCrankTrainSteadyState: assembly landed on the unphysical branch");
 
   TrainRun run(system, shaft, throws, omega, std::min(options.accuracy, 1e-6), tolerance, state);
+  run.setMaxSteps(options.max_steps);
   const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * SimTK::Pi : 2.0 * SimTK::Pi;
   return runToPeriodic(run, cycle, options, PeriodicPolicy{1000.0 * options.accuracy, kExtrapolationWindow}, "simbody");
 }

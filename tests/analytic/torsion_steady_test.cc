@@ -18,6 +18,7 @@
 
 #include "crankcheck/analytic/crank_train.h"
 #include "crankcheck/analytic/reactions.h"
+#include "crankcheck/analytic/torsion_domain.h"
 #include "crankcheck/analytic/torsion_forced.h"
 #include "crankcheck/analytic/torsion_steady.h"
 #include "crankcheck/scene/scene_file.h"
@@ -206,6 +207,66 @@ TEST(ExactSteadyState, ConstantInertiaAndSmallLoadsGiveHolzersResponse) {
   if (std::getenv("CRANKCHECK_PRINT_RATIOS")) std::printf("a = 1: %.3e, a = 0.1: %.3e\n", differences[0], differences[1]);
   EXPECT_LT(differences[1], differences[0] / 5);
   EXPECT_LT(differences[1], 1e-2);
+}
+
+// The work limit (SteadyStateOptions::max_evaluations): a state that needs more evaluations of the train's equations is
+// refused with one line naming the limit. 1000 is less than one cycle of the example four at 6000 rpm (about 5e4 at
+// tolerance 1e-11); the default, 2e7, bounds a state to about 10 s. Before, the steady state had no work limit (every
+// section at 1e-10 N m/rad ran past 500 s).
+TEST(ExactSteadyState, PastMaxEvaluationsIsRefused) {
+  const Mechanism m = loadWithCrankshaft("inline4_four_stroke.toml", kInline4Train);
+  SteadyStateOptions options;
+  options.max_evaluations = 1000;
+  try {
+    calcExactSteadyState(m, options);
+    ADD_FAILURE() << "not refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 1000 evaluations of the train's equations "
+                                         "(SteadyStateOptions::max_evaluations)"),
+              std::string::npos) << e.what();
+  }
+}
+
+// The speed-free domain (torsion_domain.h): the flywheel section carries the mean torque of every throw, its twist that
+// over K. The mean here is the test's own: the trapezoidal mean of calcRigidThrowTorque over 2^16 angles of the cycle
+// (not the code's quadrature of the load orders; the pressure table's corners leave it about (2 pi / 2^16)^2 = 1e-8
+// relative), so a stiffness 1 % either side of K_min = |T_0| / 0.1 rad is accepted or refused, naming the section's key.
+// Before, every section at 1e-20 N m/rad printed an "exact" twist of 0 (and 1e-300 a Holzer twist of nan).
+TEST(ExactSteadyState, ShaftTwistedBeyondACrankshaftIsRefused) {
+  Mechanism m = loadWithCrankshaft("inline4_four_stroke.toml", kInline4Train);
+  const CrankTrain train = makeCrankTrain(m);
+  const int N = 1 << 16;
+  double mean = 0.0;
+  for (const Mechanism& tm : train.throws)
+    for (int k = 0; k < N; ++k) mean += calcRigidThrowTorque(tm, train.cycle * k / N, train.omega) / N;
+  ASSERT_GT(std::fabs(mean), 1.0);  // [N m] the gas's mean torque: the example four delivers power
+  const double K_min = std::fabs(mean) / kMaxShaftTwist;
+  m.crankshaft->stiffness.back() = 1.01 * K_min;
+  EXPECT_NO_THROW(checkTorsionDomain(m));
+  m.crankshaft->stiffness.back() = 0.99 * K_min;
+  try {
+    checkTorsionDomain(m);
+    ADD_FAILURE() << "not refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("[crankshaft].stiffness[4]: "), std::string::npos) << e.what();
+  }
+  for (double k : {1e-20, 1e-300}) {
+    for (double& s : m.crankshaft->stiffness) s = k;
+    EXPECT_THROW(checkTorsionDomain(m), std::invalid_argument) << k;
+  }
+  // Soft enough to pass the mean but not the speed: every section at 3e3 N m/rad twists the first throw's section by
+  // 0.12 rad in Holzer's response at 6000 rpm (the test reads it off Holzer's twist signals): the steady state refuses
+  // it (std::runtime_error: a valid scene the analysis does not compute) before any integration.
+  for (double& s : m.crankshaft->stiffness) s = 3e3;
+  EXPECT_NO_THROW(checkTorsionDomain(m));
+  const HolzerResponse h = calcHolzerResponse(m);
+  double largest = 0.0;
+  for (const PeriodicSignal& twist : h.twists) {
+    const SignalExtremes e = findSignalExtremes(twist);
+    largest = std::max({largest, std::fabs(e.min), std::fabs(e.max)});
+  }
+  ASSERT_GT(largest, kMaxShaftTwist);
+  EXPECT_THROW(calcExactSteadyState(m, h), std::runtime_error);
 }
 
 }  // namespace

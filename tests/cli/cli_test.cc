@@ -401,6 +401,48 @@ TEST(Cli, TorsionJsonAndRefusals) {
   }
 }
 
+// A shaft so soft that the throws' mean torque twists it beyond 0.1 rad (every section at 1e-20 N m/rad) is not a
+// crankshaft: torsion and validate refuse the scene before any work (status 2, one line naming the file and the key).
+// Before: torsion printed an "exact" twist of 0 with error bound 0 (exit 0); validate failed after 13 s with a 6-line
+// Simbody exception.
+TEST(Cli, TorsionRefusesAShaftBeyondACrankshaftsTwist) {
+  testing::FreshFolder folder;
+  const auto path = editedScene(folder.path(), "inline4_four_stroke.toml", "stiffness = [4.0e5, 5.5e5, 5.5e5, 5.5e5, 7.0e5]",
+                                "stiffness = [1e-20, 1e-20, 1e-20, 1e-20, 1e-20]");
+  expectRefusedWithOneLine({"torsion", path.string()}, path.string() + ": [crankshaft].stiffness[1]: ");
+  const RunResult r = run("validate " + path.string() + " --quick --out " + (folder.path() / "report").string());
+  EXPECT_EQ(r.exit_status, 2) << r.err;
+  EXPECT_NE(r.err.find(path.string() + ": [crankshaft].stiffness[1]: "), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(folder.path() / "report"));
+}
+
+// --speed and --speeds take what the scene file's [engine].speed_rpm takes, (0, 1e6] rpm, and sweeps of at most 1000
+// distinct speeds; an empty value (which CLI11 would take as not given), nan, inf, a step that resolves no speed and a
+// count grown by rounding are refused before any work. Before: --speed 1e20 printed a twist of 0 (exit 0), --speed ''
+// and --speeds '' ran at the scene's speed (exit 0).
+TEST(Cli, TorsionSpeedFlagsRefusedOutsideTheSceneLimits) {
+  const std::string four = std::string(CRANKCHECK_SCENES_DIR) + "/inline4_four_stroke.toml";
+  for (const auto& [flag, value, expected] : std::initializer_list<std::array<std::string, 3>>{
+           {"--speed", "1e20", "--speed: must be > 0 and at most 1e6 rpm"},
+           {"--speed", "1e300", "--speed: must be > 0 and at most 1e6 rpm"},
+           {"--speed", "1000001", "--speed: must be > 0 and at most 1e6 rpm"},
+           {"--speed", "nan", "--speed: must be > 0"},
+           {"--speed", "inf", "--speed: must be > 0"},
+           {"--speed", "", "--speed: expected a speed in rpm"},
+           {"--speed", "6000rpm", "--speed: expected a speed in rpm"},
+           {"--speeds", "", "--speeds: expected FROM:TO:STEP"},
+           {"--speeds", "1e5:2e6:1e5", "--speeds: TO must be at most 1e6 rpm"},
+           {"--speeds", "nan:1:1", "--speeds: needs 0 < FROM <= TO"},
+           {"--speeds", "1:inf:1", "--speeds: needs 0 < FROM <= TO"},
+           {"--speeds", "1:2:-1", "--speeds: needs 0 < FROM <= TO"},
+           {"--speeds", "1e5:1e5:1e-300", "--speeds: STEP must be at least 1e-6 x TO"},
+           {"--speeds", "1:1001:1", "--speeds: 1001 speeds; at most 1000"}}) {
+    SCOPED_TRACE(flag + " '" + value + "'");
+    expectRefusedWithOneLine({"torsion", four, flag, value}, expected);
+  }
+}
+
 // 17 significant digits round-trip: the printed numbers are the library's doubles, bit for bit.
 TEST(Cli, JsonNumbersRoundTripExactly) {
   const auto scene = std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml";

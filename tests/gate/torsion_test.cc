@@ -153,6 +153,21 @@ TEST_P(TorsionSteadyGateTest, MujocoAgreesWithTheAnalyticSteadyState) {
                 GetParam().rpm, worst / exact.twist_scale, run.cycles, run.steps, seconds);
 }
 
+// The work limit of Simbody's train (CrankTrainRunOptions::max_steps, default simbody_models::kCrankTrainMaxSteps):
+// past it the run is refused with one line naming the limit, not run on (100 steps: less than a cycle).
+TEST(TorsionSteadyGate, SimbodyPastMaxStepsIsARuntimeError) {
+  CrankTrainRunOptions options;
+  options.max_steps = 100;
+  try {
+    simbody_models::simulateCrankTrainSteadyState(
+        loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml"), options);
+    ADD_FAILURE() << "not refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 100 integrator steps (CrankTrainRunOptions::max_steps"),
+              std::string::npos) << e.what();
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Trains, TorsionSteadyGateTest,
                          ::testing::Values(SteadyCase{"inline4_four_stroke.toml", 6000.0},
                                            SteadyCase{"inline4_four_stroke.toml", 5450.0},

@@ -99,6 +99,28 @@ TEST(MujocoCrankTrain, NotPeriodicInMaxCyclesIsARuntimeError) {
                std::runtime_error);
 }
 
+// The work limit (CrankTrainRunOptions::max_steps): a run past it is refused with one line naming the limit, for the
+// exact route and a soft one (100 steps: less than a cycle of either; the default, 4e6, is what the example four at
+// 1e6 x its stiffness would exceed). Before, a run had no step limit: 1e-300 N m/rad ran past 120 s.
+TEST(MujocoCrankTrain, PastMaxStepsIsARuntimeError) {
+  CrankTrainRunOptions options;
+  options.max_steps = 100;
+  const Mechanism four = loadExample("inline4_four_stroke.toml");
+  for (const bool soft : {false, true}) {
+    SCOPED_TRACE(soft ? "soft" : "exact");
+    try {
+      if (soft)
+        mujoco_models::simulateCrankTrainSoft(four, mujoco_models::Variant::kSoftDefault, options);
+      else
+        mujoco_models::simulateCrankTrainSteadyState(four, options);
+      ADD_FAILURE() << "not refused";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("more than 100 integrator steps (CrankTrainRunOptions::max_steps"),
+                std::string::npos) << e.what();
+    }
+  }
+}
+
 // The soft route (MuJoCo's own soft loops and RK4, simulateCrankTrainSoft) against the exact route on the example four
 // at 6000 rpm, all at periodicity 1e-4 (cheap: what is left of the transients moves a twist by up to 2e-4 of the
 // largest) on 64 samples, the soft runs at a step of 1/2048 of a cycle (half the default's steps: 4 s in all).

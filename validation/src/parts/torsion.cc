@@ -1,5 +1,5 @@
 // Report part `torsion` (17): torsional vibration of the crank train, Holzer's constant inertia judged against the
-// exact, variable-inertia train (../shared/CONVENTIONS.md, "Torsion"; docs/CONVENTIONS-crankcheck.md).
+// exact, variable-inertia train (docs/CONVENTIONS-crankcheck.md, "Torsion"; docs/CONVENTIONS-crankcheck.md).
 //
 // The scenes: every campaign scene with a [crankshaft] table (the example inline four and marine six in the default
 // campaign), each swept over speed from 0.25 to 1.25 times its own speed (17 speeds, and 3 around each of Holzer's

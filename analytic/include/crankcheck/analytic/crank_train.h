@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The elastic crank train of a scene's `[crankshaft]` (../shared/CONVENTIONS.md, "Torsion"), built once and shared by
+/// The elastic crank train of a scene's `[crankshaft]` (docs/CONVENTIONS-crankcheck.md, "Torsion"), built once and shared by
 /// Holzer's forced response (torsion_forced.h) and the exact periodic steady state (torsion_steady.h): the bodies along
 /// the shaft, front first (the front mass F when front_inertia > 0, then the throws of findThrows), each section's
 /// stiffness and damping, each throw's loads as functions of its own angle psi_j, and the twist's Fourier series.

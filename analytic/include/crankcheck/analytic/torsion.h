@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Torsional vibration of the crank train, Holzer's (textbook) model (../shared/CONVENTIONS.md, "Torsion"): each
+/// Torsional vibration of the crank train, Holzer's (textbook) model (docs/CONVENTIONS-crankcheck.md, "Torsion"): each
 /// throw a constant inertia J_eq,j, the sections springs, the train clamped at the flywheel (driven at omega t).
 ///
 /// Bodies, front first: the front mass F (when [crankshaft].front_inertia > 0), then the throws of findThrows

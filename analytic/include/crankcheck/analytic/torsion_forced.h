@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Holzer's forced response of the crank train (../shared/CONVENTIONS.md, "Holzer's model"): every throw a constant
+/// Holzer's forced response of the crank train (docs/CONVENTIONS-crankcheck.md, "Holzer's model"): every throw a constant
 /// inertia J_eq,j (torsion.h, ThrowInertia::exact), the throws' torque in the rigid motion psi = omega t
 /// (crank_train.h, calcRigidThrowTorque: gas, inertia and gravity) expanded by order, and for each order n = p 2 pi /
 /// cycle (a multiple of 1/2 four-stroke, of 1 two-stroke)

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The exact periodic steady state of the elastic crank train (../shared/CONVENTIONS.md, "Exact"): the full nonlinear
+/// The exact periodic steady state of the elastic crank train (docs/CONVENTIONS-crankcheck.md, "Exact"): the full nonlinear
 /// equations of crank_train.h (each throw's variable inertia J_t + J_j(psi_j) and its J_j' psi_j'^2 term, the gas and
 /// gravity torques at the throw's own angle, the sections' springs and dampers, the throws' absolute damping), the
 /// flywheel driven at omega t, over one working cycle.
@@ -36,6 +36,11 @@ struct SteadyStateOptions {
   /// the example four at 3000 rpm, 2048 samples put a small section's peak-to-peak (the front's) 2.4e-7 off its value,
   /// 8192 within 1e-8 (16384 agrees).
   int samples = 8192;
+  /// The work limit: evaluations of the train's equations in all (every cycle run, the Jacobians' variational runs,
+  /// the error bound's run), past which the state is refused (std::runtime_error) instead of run unbounded. 2e7, about
+  /// 10 s: 35 x the most the example scenes take over part 17's speeds (5.7e5 on the four at 1500 rpm, tolerance 1e-11;
+  /// 1.4e5 on the marine six at 105 rpm; at most 1.2e5 at the report's 1e-8).
+  long long max_evaluations = 20'000'000;
 };
 
 struct ExactSteadyState {
@@ -48,6 +53,7 @@ struct ExactSteadyState {
   double residual = 0.0;     ///< max |P(y) - y| of the last step, in units of the twist scale
   double twist_scale = 0.0;  ///< [rad] the largest |x| of Holzer's response (the residual's unit)
   long steps = 0;            ///< the integrator's steps over the last cycle
+  long long evaluations = 0; ///< of the train's equations, in all (SteadyStateOptions::max_evaluations)
   /// [rad] max over sections of |peak-to-peak reported - peak-to-peak of a run at 100 x `tolerance` from a start three
   /// times as far from the periodic orbit (y0 - 2 delta, delta the Newton step the last residual asks for)|: a bound on
   /// both the integration's part of the error (the looser run's; the accurate run is closer) and the periodicity's (to
@@ -58,7 +64,8 @@ struct ExactSteadyState {
 };
 
 /// @throws std::invalid_argument as makeCrankTrain or calcHolzerResponse;
-///         std::runtime_error if Newton's method has not converged in 30 iterations (a steady state that does not
+///         std::runtime_error (checkHolzerTwist, torsion_domain.h) if Holzer's response twists a section beyond
+///         kMaxShaftTwist: outside the domain, not computed; std::runtime_error if Newton's method has not converged in 30 iterations (a steady state that does not
 ///         exist or is unstable: the shaft's twist running away, or the speed not kept).
 ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptions& options = {});
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The elastic crank train of a scene's `[crankshaft]` in MuJoCo (../shared/CONVENTIONS.md, "Torsion"), never using
+/// The elastic crank train of a scene's `[crankshaft]` in MuJoCo (docs/CONVENTIONS-crankcheck.md, "Torsion"), never using
 /// the analytic formulas nor Simbody. Bodies along the shaft, front first: the front mass F (when front_inertia > 0),
 /// the throws 0 .. n-1 (findThrows), the flywheel W driven at psi_W = omega t (the scene's speed). Deviations
 /// x_i = psi_i - omega t, t = 0 at the rigid reference; section i's twist x_{i+1} - x_i, the last one -x_{n-1}

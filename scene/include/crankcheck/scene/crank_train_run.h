@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// What an engine's elastic crank train reports (Engine::simulate_crank_train, crankcheck/scene/engine.h): the periodic
-/// steady state of a scene's `[crankshaft]` train (../shared/CONVENTIONS.md, "Torsion"), the flywheel driven at the
+/// steady state of a scene's `[crankshaft]` train (docs/CONVENTIONS-crankcheck.md, "Torsion"), the flywheel driven at the
 /// scene's omega, sampled over one working cycle. Plain values, no engine behind them.
 
 #include <vector>
@@ -19,6 +19,10 @@ struct CrankTrainRunOptions {
   /// needs at least as many steps a cycle as samples.
   int samples = 1024;
   int max_cycles = 2000;     ///< refused beyond (a train too lightly damped to settle)
+  /// The work limit: the integrator's steps in all, refused beyond (std::runtime_error naming it) instead of run
+  /// unbounded (a shaft so stiff that the step falls with its fastest mode). 0: the engine's default (Simbody 3e5,
+  /// MuJoCo 4e6: periodic_run.h kCrankTrainMaxSteps).
+  long long max_steps = 0;
 };
 
 struct CrankTrainRun {

@@ -61,6 +61,11 @@ struct PeriodicPolicy {
 /// with every extrapolation over exactly 6 cycles, 38 s with none).
 inline constexpr int kExtrapolationWindow = 6;
 
+/// CrankTrainRunOptions::max_steps at 0: 4e6 steps, about 2 min of MuJoCo's exact route (35 us a step on the example
+/// four), 140 x its largest gate run (28587 steps, the four at 6000 rpm), and about 1000 cycles of the soft routes at
+/// their default step (1/4096 of a cycle). Simbody, at 0.37 ms a step, sets its own (simbody_models/crank_train.h).
+inline constexpr long long kCrankTrainMaxSteps = 4'000'000;
+
 /// From the run's state at s = 0, cycle by cycle (64 probes each: the largest deviation of the cycle), until the
 /// deviations and rates at a cycle's start change by less than options.periodicity of that largest deviation at
 /// options.accuracy; the accuracy staged (PeriodicPolicy::first_accuracy); from the 4th cycle at one accuracy the run
@@ -68,7 +73,9 @@ inline constexpr int kExtrapolationWindow = 6;
 /// it: the stopping rule is the same, measured over whole integrated cycles after the last move. Then one more
 /// cycle sampled at options.samples equal steps into the twists (section i: x_{i+1} - x_i, the last -x_{n-1}).
 /// `what` starts the messages ("mujoco", "simbody").
-/// @throws std::runtime_error if not periodic after options.max_cycles cycles or the deviations become non-finite.
+/// @throws std::runtime_error if not periodic after options.max_cycles cycles, past options.max_steps steps (0:
+///         kCrankTrainMaxSteps; checked after every stepTo, which the engine bounds itself), or the deviations become
+///         non-finite.
 CrankTrainRun runToPeriodic(CycleRun& run, double cycle, const CrankTrainRunOptions& options,
                             const PeriodicPolicy& policy, const char* what);
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The elastic crank train of a scene's `[crankshaft]` in Simbody (../shared/CONVENTIONS.md, "Torsion"), never using
+/// The elastic crank train of a scene's `[crankshaft]` in Simbody (docs/CONVENTIONS-crankcheck.md, "Torsion"), never using
 /// the analytic formulas: each throw a crankshaft body of its own on a pin about Z from Ground (its cylinders' crank
 /// pins, point masses and counterweights as KCrankModel's crankshaft, plus J_t as a disk), its cylinders' pistons and
 /// rods closed on its pins as in KCrankModel; the front mass a disk on its own pin; the sections torsional springs and
@@ -31,6 +31,9 @@ namespace crankcheck::simbody_models {
 /// Simbody's defaults of CrankTrainRunOptions' fields left at 0.
 inline constexpr double kCrankTrainAccuracy = 1e-10;     ///< the integrator's accuracy (relative error per step)
 inline constexpr double kCrankTrainPeriodicity = 1e-6;   ///< the cycle-to-cycle change, relative to the twist
+/// The work limit (CrankTrainRunOptions::max_steps): 3e5 integrator steps, about 2 min at 0.37 ms a step (the example
+/// four), 16 x the gate's largest run (18492 steps, the four at 5450 rpm).
+inline constexpr long long kCrankTrainMaxSteps = 300'000;
 
 /// @throws std::invalid_argument if the scene has no [crankshaft] or speed, or is not one Simbody builds (a massless
 ///         rod, KCrankModel); std::runtime_error if the run has not become periodic in max_cycles cycles. Options at 0: the defaults
