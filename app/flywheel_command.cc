@@ -8,6 +8,7 @@
 #include "crankcheck/scene/scene_writer.h"
 #include "crankcheck/simbody_models/free_run.h"
 #include "crankcheck/validation/errors.h"
+#include "help_format.h"
 #include "json_output.h"
 #include "scene_input.h"
 
@@ -67,17 +68,19 @@ std::string runFlywheel(const FlywheelOptions& options) {
   }
   char text[1400];
   std::snprintf(text, sizeof text,
-                "flywheel for %s at %.6g rpm (mean), speed fluctuation C = %.6g, load torque %.9g N m (the gas torque's "
-                "cycle mean)\n"
-                "%-10s %22s %16s\n"
-                "%-10s %22.12g %16.9e\n"
-                "%-10s %22.12g %16.9e   (Norton 13.9: E = %.9g J between the extremes of the torque's integral)\n"
-                "%-10s %22.12g %16.9e   (run with the exact inertia over one working cycle; energy returns to %.2e)\n",
+                "flywheel for %s\nat %.6g rpm (mean), speed fluctuation C = %.6g, load torque %.9g N m (the gas "
+                "torque's cycle mean)\n"
+                "%-10s %26s %16s\n"
+                "%-10s %26.12g %16.9e\n"
+                "%-10s %26.12g %16.9e\n"
+                "%-10s %26.12g %16.9e\n"
+                "(norton: Norton 13.9, E = %.9g J between the extremes of the torque's integral;\n"
+                " simbody: run with the exact inertia over one working cycle, its energy returns to %.2e)\n",
                 options.scene_path.c_str(), m.speed_rpm, options.fluctuation, s.load_torque, "method",
                 "flywheel inertia [kg m^2]", "fluctuation", "exact", s.exact_inertia, s.exact.delta, "norton",
-                s.norton_inertia, s.norton.delta, s.norton_energy, "simbody", s.exact_inertia, simbody.delta,
+                s.norton_inertia, s.norton.delta, "simbody", s.exact_inertia, simbody.delta, s.norton_energy,
                 simbody.energy_drift_per_revolution);
-  return text + describeRigidShaft(m);
+  return wrapText(text, kHelpWidth) + describeRigidShaft(m);
 }
 
 }  // namespace crankcheck::app

@@ -12,6 +12,7 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "flag_checks.h"
+#include "help_format.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/process.h"
@@ -127,19 +128,25 @@ int runGrade(const GradeOptions& options) {
     std::snprintf(text, sizeof text, "%.2g", std::strtod(number.c_str(), nullptr));
     return std::string(text);
   };
-  std::printf("%-16s %-22s %17s %22s %21s %18s  %s\n", "quantity", "regime", "provided / asked", "largest error / scale",
-              "error at worst ratio", "tolerance / scale", "verdict");
+  // Within 100 columns: the column heads on two lines, what they mean below the table.
+  std::printf("%-15s %-22s %11s %9s %9s %9s  %s\n%-15s %-22s %11s %9s %9s %9s\n", "quantity", "regime", "provided",
+              "largest", "at worst", "tolerance", "verdict", "", "", "/ asked", "error", "ratio", "/ scale");
   for (const auto& row : summary.rows) {
     if (row[regime] != "all" && row[provided] == "0") continue;  // a regime of a quantity not provided
-    std::printf("%-16s %-22s %17s %22s %21s %18s  %s\n", row[regime] == "all" ? row[quantity].c_str() : "",
+    std::printf("%-15s %-22s %11s %9s %9s %9s  %s\n", row[regime] == "all" ? row[quantity].c_str() : "",
                 validation::describeGradeRegime(row[regime]).c_str(), (row[provided] + " / " + row[asked]).c_str(),
                 brief(row[largest]).c_str(), brief(row[at_worst]).c_str(), brief(row[tolerance]).c_str(),
                 row[verdict].c_str());
   }
-  std::printf("Errors relative to the quantity's scale against Simbody, the analytic engine and MuJoCo: the largest, and the "
-              "one where error / tolerance is worst (beside that tolerance).\n");
+  const std::string references =
+      "the analytic engine and " + describeEngines([](const Engine& e) { return e.gated; });
+  std::printf("%s", wrapText("Errors relative to the quantity's scale, against " + references +
+                                 ": the largest error / scale over every value, and the error at worst ratio, where "
+                                 "error / tolerance is worst (beside that tolerance).\n",
+                             kHelpWidth)
+                        .c_str());
   std::printf("%s\nReport: %s (also index.html)\n",
-              status == 0 ? "Every provided value agrees with every reference engine (Simbody, analytic, MuJoCo)."
+              status == 0 ? ("Every provided value agrees with " + references + ".").c_str()
                           : "SOME VALUES DISAGREE, or none was provided (see the report's failing cases).",
               (out.getTarget() / "index.md").string().c_str());
   return status;

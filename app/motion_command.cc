@@ -5,6 +5,7 @@
 
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/validation/engines.h"
+#include "help_format.h"
 #include "json_output.h"
 #include "scene_input.h"
 #include "crankcheck/validation/errors.h"
@@ -96,21 +97,24 @@ std::string runMotion(const MotionOptions& options) {
     return dumpJson(doc);
   }
   char buffer[512];
+  // Within 100 columns: the scene's path and the settings on lines of their own.
   std::snprintf(buffer, sizeof buffer,
-                "free run of %s released at phi = 0 with %.6g rpm (Simbody: %s, accuracy %.0e; MuJoCo: %s, step %.0e "
-                "of a revolution)\n%-18s %16s %16s %14s %14s %14s %14s\n",
+                "free run of %s\nreleased at phi = 0 with %.6g rpm (Simbody: %s, accuracy %.0e; MuJoCo: %s, step %.0e "
+                "of a revolution)\n%-17s %15s %16s %12s %12s %12s %10s\n",
                 options.scene_path.c_str(), m.speed_rpm, options.integrator.c_str(), options.accuracy,
                 options.mujoco_integrator.c_str(), options.mujoco_step, "engine", "delta_gravity", "delta_no_gravity",
-                "omega_min", "omega_max", "omega_mean", "energy drift");
+                "omega_min", "omega_max", "omega_mean", "drift");
   std::string out = buffer;
   for (const EngineResult& r : results) {
     char drift[32] = "-";
     if (!r.integrator.empty()) std::snprintf(drift, sizeof drift, "%.3e", r.energy_drift);
-    std::snprintf(buffer, sizeof buffer, "%-18s %16.9e %16.9e %14.9g %14.9g %14.9g %14s\n", r.engine.c_str(),
+    std::snprintf(buffer, sizeof buffer, "%-17s %15.8e %16.8e %12.9g %12.9g %12.9g %10s\n", r.engine.c_str(),
                   r.delta_gravity, r.delta_no_gravity, r.omega_min, r.omega_max, r.omega_mean, drift);
     out += buffer;
   }
-  return out + "(energy drift: max |E(t) - E(0)| / E(0) per revolution, gravity on)\n" + describeRigidShaft(m);
+  return wrapText(out, kHelpWidth) +
+         "(omega [rad/s]; drift: the energy's, max |E(t) - E(0)| / E(0) per revolution, gravity on)\n" +
+         describeRigidShaft(m);
 }
 
 }  // namespace crankcheck::app

@@ -4,7 +4,7 @@
 # Release is the default build type when crankcheck is the top-level project (a normal variable, so that
 # -DCMAKE_BUILD_TYPE=... on the command line still wins). CMake's Release flags contain -DNDEBUG; the rule that
 # Simbody translation units never see NDEBUG (Debian's libSimTK* were built without it, SimTK::State changes
-# layout under it: ../shared/SIMBODY-NOTES.md) is a property of the one target that includes Simbody headers,
+# layout under it: simbody_models/README.md) is a property of the one target that includes Simbody headers,
 # crankcheck_simbody_models (simbody_models/CMakeLists.txt: -UNDEBUG after the configuration's flags; its sources
 # #error if NDEBUG is defined, so the rule cannot be broken silently).
 if(PROJECT_IS_TOP_LEVEL AND NOT CMAKE_BUILD_TYPE AND NOT CMAKE_CONFIGURATION_TYPES)

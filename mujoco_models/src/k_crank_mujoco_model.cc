@@ -1,7 +1,7 @@
 // The k-crank mechanism in MuJoCo (Debian libmujoco-dev 2.2.2). The only translation unit of the library that
 // includes MuJoCo. Never includes the analytic library or Simbody: MuJoCo computes the kinematics (mj_kinematics,
 // mj_jacSite, mj_objectAcceleration), the bias forces (mj_rne) and the joint reactions (mj_rnePostConstraint).
-// ../shared/MUJOCO-NOTES.md lists the traps this file avoids.
+// mujoco_models/README.md lists the traps this file avoids.
 #include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
 
 #include <mujoco/mujoco.h>

@@ -8,7 +8,7 @@
     s = scene.evaluate(phi[:36], engine="simbody")               # any engine of crankcheck.engines()
 
 Names, units (SI: m, kg, s, N, N m, J; angles in radians) and signs are those of `crankcheck eval --format json`
-(README "Other commands", ../shared/CONVENTIONS.md). A scene the CLI refuses raises SceneError (a ValueError) with the
+(docs/eval.md, docs/CONVENTIONS.md). A scene the CLI refuses raises SceneError (a ValueError) with the
 CLI's message: "FILE: KEY: rule".
 """
 

@@ -9,7 +9,7 @@
 /// and its derivatives and the gas force, which have no kernel, come from the same scalar functions the analytic
 /// engine's calcEvaluation calls (calcCylinderMotion's rod, calcGasForce), angle by angle in C++. A mechanism the
 /// kernels do not cover (pin offsets, balance shafts) is evaluated by calcEvaluation angle by angle. Any other engine (validation::listEngines()) is evaluated angle by angle through its EngineModel.
-/// Names, units and signs: eval's (README "Other commands", ../shared/CONVENTIONS.md).
+/// Names, units and signs: eval's (docs/eval.md, docs/CONVENTIONS.md).
 
 #include <cstddef>
 #include <span>

@@ -2,7 +2,7 @@
 // arrays of crank angles, balance, the free run, `crankcheck grade` of a Python function, and the closed forms of
 // fourier_series.h and kinematics.h as plain functions of lambda. python/crankcheck/__init__.py is the public face.
 //
-// Names, units (SI, radians) and conventions are the CLI's (README "Other commands", ../shared/CONVENTIONS.md); a
+// Names, units (SI, radians) and conventions are the CLI's (docs/eval.md, docs/CONVENTIONS.md); a
 // scene that the CLI refuses is refused here as crankcheck.SceneError with the CLI's message (without the CLI's
 // "crankcheck: " prefix). The engines run with the GIL released; each call builds its own engine model, so calls from
 // several Python threads run in parallel (an EngineModel is used by one thread only: scene/engine.h).

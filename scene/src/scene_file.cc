@@ -327,7 +327,7 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
     }
   }
   if (m.crankshaft) {
-    // The elastic crank train (../shared/CONVENTIONS.md, "Torsion"): one stiffness per section (a front mass adds
+    // The elastic crank train (docs/CONVENTIONS.md, "The elastic crank train"): one stiffness per section (a front mass adds
     // one); damping one value for all sections or one each. A scene's [crankshaft] also needs a speed (parseScene:
     // a mechanism derived at rest for the rigid engines keeps its table).
     const CrankshaftParams& c = *m.crankshaft;

@@ -98,12 +98,13 @@ std::string formatVerdict(const std::vector<EngineVerdict>& verdicts) {
       gated_comparisons += v.comparisons;
       failed += v.failed;
       gated_names += (gated_names.empty() ? "" : ", ") + v.engine;
-      std::snprintf(line, sizeof line, "  %-*s gated    %6zu cases %7zu comparisons  worst %s of tolerance (%s: %s)  %s\n",
-                    static_cast<int>(width), v.engine.c_str(), v.cases, v.comparisons, shortNumber(v.worst_ratio).c_str(),
-                    v.worst_quantity.c_str(), v.worst_where.c_str(),
-                    v.failed == 0 ? "pass" : ("FAIL (" + std::to_string(v.failed) + ")").c_str());
+      // Two lines within 100 columns: the count and the verdict, then where the worst comparison is.
+      std::snprintf(line, sizeof line, "  %-*s gated    %6zu cases %7zu comparisons  %s\n    worst %s of tolerance (%s: %s)\n",
+                    static_cast<int>(width), v.engine.c_str(), v.cases, v.comparisons,
+                    v.failed == 0 ? "pass" : ("FAIL (" + std::to_string(v.failed) + ")").c_str(),
+                    shortNumber(v.worst_ratio).c_str(), v.worst_quantity.c_str(), v.worst_where.c_str());
     } else {
-      std::snprintf(line, sizeof line, "  %-*s measured %6zu cases %7zu comparisons  largest error %s of scale (%s), not gated\n",
+      std::snprintf(line, sizeof line, "  %-*s measured %6zu cases %7zu comparisons  not gated\n    largest error %s of scale (%s)\n",
                     static_cast<int>(width), v.engine.c_str(), v.cases, v.comparisons, shortNumber(v.worst_error).c_str(),
                     v.worst_quantity.c_str());
     }

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The k-crank mechanism of ../shared/CONVENTIONS.md (any layout, axial positions, gas, gravity) built as a MuJoCo
+/// The k-crank mechanism of docs/CONVENTIONS.md (any layout, axial positions, gas, gravity) built as a MuJoCo
 /// model: crankcheck's third engine. MuJoCo computes the kinematics, the bias forces (recursive Newton-Euler) and
 /// the joint reactions itself; this library never includes the analytic library nor Simbody. No MuJoCo header here:
 /// MuJoCo stays in src/.

@@ -2,7 +2,7 @@
 /// @file
 /// What an engine (analytic or Simbody) reports for a mechanism at one crank angle. Both engines fill the same
 /// struct so that the CLI, the tests and the reports compare like with like. Names, frames and signs are those
-/// of ../shared/CONVENTIONS.md: global X horizontal, Y up, forces "ON b FROM a" in global components.
+/// of docs/CONVENTIONS.md: global X horizontal, Y up, forces "ON b FROM a" in global components.
 
 #include <array>
 #include <string>

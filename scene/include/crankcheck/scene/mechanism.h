@@ -2,8 +2,8 @@
 /// @file
 /// The plain description of a k-crank mechanism that both engines (analytic and Simbody) are built from: an inline
 /// engine (one bank, the paper's and Norton's subject) or any layout of cylinders around one crankshaft (V, W,
-/// opposed, radial; cylinders spaced along the shaft), ../shared/CONVENTIONS.md "Layouts".
-/// Symbols, frames and signs follow ../shared/CONVENTIONS.md and docs/CONVENTIONS-crankcheck.md.
+/// opposed, radial; cylinders spaced along the shaft), docs/CONVENTIONS.md "Layouts".
+/// Symbols, frames and signs follow docs/CONVENTIONS.md and docs/CONVENTIONS-crankcheck.md.
 /// Everything here is in SI units (m, kg, s, rad); degrees exist only in scene files and CLI flags.
 
 #include <array>
@@ -80,7 +80,7 @@ struct BalanceShaftParams {
   std::array<double, 3> position{};  ///< [m] (x, y): the shaft's axis (parallel to Z); z: the mass's plane
 };
 
-/// The elastic crank train of a `[crankshaft]` table (../shared/CONVENTIONS.md, "Torsion"): bodies along the shaft
+/// The elastic crank train of a `[crankshaft]` table (docs/CONVENTIONS.md, "The elastic crank train"): bodies along the shaft
 /// front mass F (when front_inertia > 0), throws 0..n-1 (findThrows), flywheel W (driven at omega t). Only the torsion
 /// analysis reads it; every other command treats the shaft as rigid.
 struct CrankshaftParams {

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The k-crank mechanism of ../shared/CONVENTIONS.md (any layout) built as a Simbody multibody system: the second,
+/// The k-crank mechanism of docs/CONVENTIONS.md (any layout) built as a Simbody multibody system: the second,
 /// independent engine of crankcheck. The positions and velocities satisfy Simbody's own constraint errors (closed by
 /// Newton's method on them loop by loop near a known solution, by Simbody's projections elsewhere: ModelOptions), and
 /// Simbody computes the accelerations and reactions itself; no closed-form kinematics is used anywhere in this library,

@@ -2,7 +2,7 @@
 /// @file
 /// The scene and the results of one engine at one angle as JSON objects: what `crankcheck eval --format json`
 /// prints, what `crankcheck grade` sends a graded program and reads back from it. SI units; names as in
-/// ../shared/CONVENTIONS.md.
+/// docs/CONVENTIONS.md.
 
 #include <nlohmann/json.hpp>
 

@@ -6,7 +6,7 @@
 /// cylinders spaced along the shaft (throws 0.1 m apart, the two cylinders of a shared pin 0.02 m apart; the crank
 /// centre O at the middle, so that moments about O are the couples of the balance tables), and
 /// turned as a whole by `rotation_deg` (0: as built, V bisectors and inline banks vertical; 90: lying; 180: hanging).
-/// Angles follow ../shared/CONVENTIONS.md "Layouts": bank gamma_j, throw beta_j, theta_j = phi + beta_j - gamma_j.
+/// Angles follow docs/CONVENTIONS.md "Layouts": bank gamma_j, throw beta_j, theta_j = phi + beta_j - gamma_j.
 
 #include <optional>
 #include <string>
