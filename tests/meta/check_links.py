@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
-"""Every relative link of the repository's documents points into the repository, and nothing cites ../shared.
+"""Every relative link of the repository's documents points into the repository, and no file cites a folder outside it.
 
 Checks every tracked Markdown file (git ls-files; outside a git checkout, every file but hidden and build
 folders): each relative link or image, inline `[text](target)` or a
 reference definition `[label]: target`, must name a file or folder of the repository, and its `#anchor` (also an
 anchor alone, within the page) a heading of that Markdown file (GitHub's rule: lower case, punctuation dropped,
 spaces to '-', '-1', '-2' for repeats). Also the `#:schema PATH` lines of the scenes (scenes/*.toml) must name a
-file. Finally no tracked document (Markdown, the scenes, docs/scene.schema.json) may mention `../shared`, a folder
-outside the repository that users do not have. Links to http(s) and mailto are not followed. Code spans and fenced
+file. Finally no tracked text file (documents, sources, CMake, scripts) may mention the developers' folder beside the
+repository (OUTSIDE below), which users do not have. Links to http(s) and mailto are not followed. Code spans and fenced
 code blocks are not links.
 
 Every problem is listed, one line each (FILE:LINE: what), then the exit status is 1; 0 when there is none.
@@ -23,6 +23,10 @@ import urllib.parse
 INLINE = re.compile(r'!?\[(?:[^\[\]]|\[[^\]]*\])*\]\(\s*<?([^)\s>]*)>?(?:\s+"[^"]*")?\s*\)')
 REFERENCE = re.compile(r'^ {0,3}\[[^\]]+\]:\s*<?(\S+?)>?(?:\s+.*)?$')
 SCHEMA = re.compile(r'^#:schema\s+(\S+)')
+
+
+# The folder outside the repository that no file may name (written in two parts, so that this file does not).
+OUTSIDE = '../' + 'shared'
 
 
 def tracked_files(root):
@@ -121,15 +125,19 @@ def main(argv):
         path = os.path.join(root, name)
         if not os.path.isfile(path):
             continue
+        # No tracked text file at all (documents, sources, CMake, scripts) names the folder outside the repository.
+        try:
+            with open(path, encoding='utf-8') as f:
+                lines = f.read().split('\n')
+        except UnicodeDecodeError:
+            continue  # not text
+        for i, line in enumerate(lines, 1):
+            if OUTSIDE in line:
+                problems.append(f'{name}:{i}: mentions {OUTSIDE}, a folder outside the repository')
         is_doc = name.endswith('.md') or (name.startswith('scenes/') and name.endswith('.toml')) \
             or name == 'docs/scene.schema.json'
         if not is_doc:
             continue
-        with open(path, encoding='utf-8') as f:
-            lines = f.read().split('\n')
-        for i, line in enumerate(lines, 1):
-            if '../shared' in line:
-                problems.append(f'{name}:{i}: mentions ../shared, a folder outside the repository')
         if name.endswith('.md'):
             markdown += 1
             for i, line in enumerate(strip_code(lines), 1):
@@ -149,9 +157,9 @@ def main(argv):
         print(f'{root}: no tracked Markdown file found: the repository was not read')
         return 1
     if problems:
-        print(f'{len(problems)} broken link(s) or mention(s) of ../shared in {markdown} Markdown files and the scenes')
+        print(f'{len(problems)} broken link(s) or mention(s) of {OUTSIDE} in {markdown} Markdown files and the scenes')
         return 1
-    print(f'{markdown} Markdown files and the scenes: every relative link resolves, no ../shared')
+    print(f'{markdown} Markdown files and the scenes: every relative link resolves; no file mentions {OUTSIDE}')
     return 0
 
 
