@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Checks every command's flags share (README "What is refused"): a number's range that NaN cannot slip through, and
+/// Checks every command's flags share (docs/safety.md, "What is refused"): a number's range that NaN cannot slip through, and
 /// no empty value taken as "not given".
 
 #include <CLI/CLI.hpp>

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// `crankcheck grade [SCENE...] [--quick] [--out DIR] [--jobs N] [--timeout S] [--batch] -- PROGRAM [ARG...]`:
-/// the user's program graded against both engines (validation/grade.h, README "Grade your own code").
+/// the user's program graded against both engines (validation/grade.h, docs/grade.md).
 
 #include <CLI/CLI.hpp>
 #include <string>

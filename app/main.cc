@@ -1,5 +1,5 @@
 // crankcheck: the command-line front end. Verbs live in their own files; this one parses flags (CLI11) and
-// maps every failure to one message on stderr and its exit status (kExitStatus below, README "Exit status").
+// maps every failure to one message on stderr and its exit status (kExitStatus below, docs/safety.md "Exit status").
 
 #include <CLI/CLI.hpp>
 #include <cerrno>

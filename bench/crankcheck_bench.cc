@@ -354,7 +354,7 @@ void BM_TorsionExactSteadyState(benchmark::State& state) {
 BENCHMARK(BM_TorsionExactSteadyState)->Unit(benchmark::kMillisecond);
 
 // Every registered engine (validation/engines.h) evaluating everything at one angle (U, Q, kinematics, reactions,
-// drive torque, shaking), k = 1 .. 12: one row per engine and k, "which engine, at what cost" (README, "Engines").
+// drive torque, shaking), k = 1 .. 12: one row per engine and k, "which engine, at what cost" (docs/engines.md).
 [[maybe_unused]] const bool kEngineBenchmarks = [] {
   for (const Engine& engine : validation::listEngines())
     benchmark::RegisterBenchmark(("BM_EngineEvaluate/" + engine.name).c_str(),

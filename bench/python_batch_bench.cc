@@ -1,4 +1,4 @@
-// The C++ side of the Python module's speed comparison (README "From Python", tests/python/measure_batch.py): the analytic
+// The C++ side of the Python module's speed comparison (docs/python.md, tests/python/measure_batch.py): the analytic
 // engine on 1e6 crank angles, as C++ calls it, so that `Scene.evaluate(phi)` from Python can be held against it.
 // build/bin/crankcheck_python_batch_bench [--benchmark_format=json]
 //

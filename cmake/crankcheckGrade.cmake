@@ -1,4 +1,4 @@
-# crankcheck_add_grade_test: the grade of your own program as one ctest test (README, "Grade your own code").
+# crankcheck_add_grade_test: the grade of your own program as one ctest test (docs/grade.md).
 #
 #   crankcheck_add_grade_test(NAME my_engine_grade
 #                             COMMAND my_engine_program --json      # your program and its arguments

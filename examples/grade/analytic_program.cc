@@ -1,4 +1,4 @@
-// A program graded by `crankcheck grade` (README, "Grade your own code"), written against crankcheck's own
+// A program graded by `crankcheck grade` (docs/grade.md), written against crankcheck's own
 // analytic library (crankcheck::analytic): it reads the request's scene_toml with crankcheck::parseScene, answers
 // every quantity of every cylinder with the closed forms, and passes the grade.
 //

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A program graded by `crankcheck grade` (README, "Grade your own code"): Norton's two-term piston motion.
+"""A program graded by `crankcheck grade` (docs/grade.md): Norton's two-term piston motion.
 
     crankcheck grade --quick -- python3 examples/grade/norton_two_term.py
 

@@ -286,7 +286,7 @@ class _CallClock:
 
 
 def grade(function, scenes=None, quick=True, *, jobs=None, timeout=60.0, out=None):
-    """Grades `function` by the rule and with the cases of `crankcheck grade --batch` (README "Grade your own code").
+    """Grades `function` by the rule and with the cases of `crankcheck grade --batch` (docs/grade.md).
 
     function(scene, phi) -> dict: `scene` is a crankcheck.Scene (the case's mechanism), `phi` a NumPy array of crank
     angles [rad]; it returns what it computes as Scene.evaluate does, with eval's names and shapes ((n,), (n, 2),

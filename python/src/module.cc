@@ -682,7 +682,7 @@ radians. Immutable; thread-safe (every call builds its own engine model).)doc")
            py::kw_only(), py::arg("out") = py::none(),
            R"doc(
 Every quantity of `crankcheck eval` at the crank angles `phi` [rad] (a NumPy array of any shape, or a float; any
-finite angle: beyond 4 pi in magnitude it is reduced to rounding first, see README "Angles of any size") by
+finite angle: beyond 4 pi in magnitude it is reduced to rounding first, see docs/safety.md "Angles of any size") by
 `engine` (any name of crankcheck.engines()). Returns a dict of NumPy arrays named as eval's JSON: U, Q, U_star, Q_star
 (None without a flywheel or at rest), drive_torque with phi's shape; bearing_force, shaking_force (..., 2);
 shaking_moment (..., 3), X and Y NaN without axial positions (eval: null); per cylinder x_p, v_p, a_p, wall_force,

@@ -1,6 +1,6 @@
 // `crankcheck validate --profile FILE` (issue 28, "measure first"): one row per task and engine with its model
 // builds, evaluations and seconds, and a "(rest)" row per task; the counts are held against the campaign's own
-// definition (README, "The main job": the quick gate sweep), the seconds against the identity engines + rest = task.
+// definition (docs/validate.md: the quick gate sweep), the seconds against the identity engines + rest = task.
 // A shard keeps it short: the same code path, a few tasks.
 
 #include <gtest/gtest.h>

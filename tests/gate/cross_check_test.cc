@@ -7,7 +7,7 @@
 // of a few eps of its scale; Simbody adds its position projection (solved to 2 eps (l + r)) and a k-body
 // articulated solve. Conditioning: near lambda = 1 the loop's condition number 1/(1 - lambda^2); for tiny lambda
 // Simbody's coordinates are of size l = r / lambda, so its rounding relative to crank-scale quantities grows like
-// 1/lambda. The worst ratios are printed with CRANKCHECK_PRINT_RATIOS=1 and listed in the README.
+// 1/lambda. The worst ratios are printed with CRANKCHECK_PRINT_RATIOS=1 and listed in docs/contributing.md.
 
 #include <gtest/gtest.h>
 
@@ -39,7 +39,7 @@ using testing::CaseSpec;
 using validation::kEps;
 
 
-// Worst agreement seen per quantity, printed at exit with CRANKCHECK_PRINT_RATIOS=1 (the README's table):
+// Worst agreement seen per quantity, printed at exit with CRANKCHECK_PRINT_RATIOS=1 (docs/contributing.md's table):
 // the error in units of eps x scale x conditioning (what the tolerance allows kAgreementMultiple of), and the plain error / scale
 // over the engine range lambda = 0.05..0.4.
 struct Worst {

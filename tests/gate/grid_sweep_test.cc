@@ -83,7 +83,7 @@ TEST_P(GridSweepGateTest, SuperpositionAgreesWithTheFullModel) {
   EXPECT_EQ(q_stats.evaluations, c.expected_evaluations);
   const validation::Scales sc = calcScales(m);
   simbody_models::KCrankModel full(m);
-  double worst_q = 0.0, worst_u = 0.0;  // |difference| / (eps scale), printed for the README
+  double worst_q = 0.0, worst_u = 0.0;  // |difference| / (eps scale), printed for docs/contributing.md
   for (size_t i = 0; i < c.n; ++i) {
     const double phi = c.phi0 + static_cast<double>(i) * c.step;
     const Comparison q{"Q", -1, Q[i], full.calcHoldingTorque(phi), sc.energy, sc.conditioning};

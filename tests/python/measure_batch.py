@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The Python module's batch speed beside the C++ batch kernels' (README "From Python"): a measurement, not a test.
+"""The Python module's batch speed beside the C++ batch kernels' (docs/python.md): a measurement, not a test.
 
     PYTHONPATH=build/python /usr/bin/python3 tests/python/measure_batch.py build/bin/crankcheck_python_batch_bench
 

@@ -1,4 +1,4 @@
-"""Angles of any size (README "Angles of any size", scene/mechanism.h reduceCrankAngle, crankAngleFromDegrees).
+"""Angles of any size (docs/safety.md "Angles of any size", scene/mechanism.h reduceCrankAngle, crankAngleFromDegrees).
 
 A crank angle past double's reach of a turn used to come back wrong with exit status 0: `eval --phi-deg 1e18` gave
 Q = 0 and top dead centre from the analytic engine and another number from Simbody, and at 1e15 and 1e17 every engine

@@ -6,7 +6,7 @@
 namespace crankcheck::validation {
 
 // The registry: one line per part, in report order. Each names the accessor `const Part& NAME()` that the part's own
-// file, validation/src/parts/KEY.cc, defines in namespace parts (README, "Adding a report part").
+// file, validation/src/parts/KEY.cc, defines in namespace parts (docs/contributing.md, "Adding a report part").
 #define CRANKCHECK_REPORT_PARTS(PART) \
   PART(errorVsLambda)        /*  1 */ \
   PART(speedVsError)         /*  2 */ \

@@ -57,7 +57,7 @@ class EngineModel {
 struct Engine {
   std::string name;         ///< as on the command line and in JSON: "analytic", "simbody", "mujoco", ...
   std::string library;      ///< the library that computes, with its version: "Simbody 3.7.0", "MuJoCo 2.2.2"
-  std::string method;       ///< one line: how it computes (for --help, the README and the report)
+  std::string method;       ///< one line: how it computes (for --help, the docs and the report)
   /// True when the engine claims exactness: the gate holds it to the agreement rule (64 eps x scale x conditioning)
   /// against every other gated engine. False: its errors are measured and reported, never gated (a soft solver).
   bool gated = true;

@@ -28,7 +28,7 @@ struct BalanceRow {
 
 /// Harmonics 1..order of both engines. `samples` = 0 chooses max(64, 4 order) angles per revolution: the DFT then
 /// folds harmonic samples - n onto n, whose size is below lambda^(samples - n) times the primary (nothing at engine
-/// crank ratios; the README states the bound).
+/// crank ratios).
 /// @throws std::invalid_argument if order < 1 or samples is not 0 and below 2 order + 1, or an engine cannot build m
 ///         (the message names the engine); std::runtime_error if an engine fails.
 std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples = 0);

@@ -2,7 +2,7 @@
 /// @file
 /// Every engine the harness knows, in one list (validation/src/engines.cc): the CLI's --engine, the gate, the
 /// campaign and the report loop over it. An engine is an Engine (crankcheck/scene/engine.h) described by its own
-/// folder; adding one is that folder plus one registration line in engines.cc (README, "Engines").
+/// folder; adding one is that folder plus one registration line in engines.cc (docs/engines.md).
 
 #include <memory>
 #include <string>

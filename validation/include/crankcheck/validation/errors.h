@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The kinds of failure every crankcheck command tells apart, each with its own exit status (README, "Exit
+/// The kinds of failure every crankcheck command tells apart, each with its own exit status (docs/safety.md, "Exit
 /// status"): bad input or usage (2, nothing written), a result that cannot be computed to its accuracy (1, refused)
 /// and a failed environment (3: a tool missing, a disk full, a write refused). A comparison that should hold and fails is not an exception: it is exit status 1.
 

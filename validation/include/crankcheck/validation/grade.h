@@ -8,7 +8,7 @@
 ///
 /// Scales: calcPositiveScales (a positive scale for every quantity, at rest and without gravity too).
 ///
-/// Protocol 1 (README, "Grade your own code"):
+/// Protocol 1 (docs/grade.md):
 ///   request   {"protocol": 1, "case": ID, "scene": {...as eval's "scene"...}, "scene_toml": "...a scene file crankcheck
 ///             accepts...", "phi_deg": [...], "quantities": ["U", "Q", ...]}
 ///   response  {"results": [...one object per angle, in order, as eval's "results" without "engine"...]}

@@ -11,7 +11,7 @@
 namespace crankcheck::validation {
 
 /// Every registered part, in report order (numbers increasing by one). Parts not yet in this shape are rendered by
-/// report.cc directly (README.md, "Adding a report part", says which).
+/// report.cc directly (docs/contributing.md, "Adding a report part", says which).
 const std::vector<const Part*>& listParts();
 
 /// Checks `keys` (validate --parts) against the registry: each a part's key, none twice.

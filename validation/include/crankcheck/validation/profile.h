@@ -3,7 +3,7 @@
 /// Where a campaign spends its time (issue 28, "measure first"): what each engine of the registry did on the
 /// calling thread while profiling is on: model builds, evaluations and the seconds they took. Off by default, at no
 /// cost (the registry's models are then the engines' own); `crankcheck validate --profile FILE` turns it on and
-/// writes one row per task and engine (README, "Speed").
+/// writes one row per task and engine (docs/performance.md).
 ///
 /// Work that does not go through the registry (a part that calls an engine's own functions, the analytic batch
 /// kernels) is not attributed to an engine: it is the task's seconds less its engines' seconds.

@@ -3,7 +3,7 @@
 /// The verdict of a campaign, read from its crosscheck table: what a person or a CI log reads first. One line per
 /// engine compared with the analytic engine (cases, comparisons, the worst error against its tolerance, pass or
 /// FAIL; soft engines: measured, never gated), one closing line in ctest's style, and the engine x quantity matrix
-/// of worst error / tolerance the report opens with (README, "The main job").
+/// of worst error / tolerance the report opens with (docs/validate.md).
 ///
 /// A comparison is one row of the crosscheck table: one quantity (of one cylinder or of the whole mechanism) of one
 /// case, the worst over the case's crank angles and speeds; a case is one scene at one lambda.
