@@ -38,6 +38,10 @@ std::string reasonOf(const analytic::HarmonicSymmetry& s, bool axial) {
   if (!absent.empty())
     reason = absent + (s.force_order_absent ? ": a centric cylinder's has orders 1 and even only"
                                             : ": a centric cylinder's has odd orders only");
+  if (axial && !s.force_order_absent && (s.moment_x_direction_absent || s.moment_y_direction_absent))
+    reason += std::string(reason.empty() ? "" : "; ") + (s.moment_x_direction_absent ? "moment X" : "moment Y") +
+              ": from order 2 on each cylinder's force lies along its axis, and every axis along " +
+              (s.moment_x_direction_absent ? "X" : "Y");
   if (!s.decided) {
     if (!reason.empty()) return reason;
     return "not decided (an angle is not a whole 1/8 degree, a position not a whole nanometre, the pin offsets differ, "

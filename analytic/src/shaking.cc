@@ -249,11 +249,25 @@ HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n) {
   HarmonicSymmetry s;
   const int k = m.engine.cylinders;
   // The centric cylinder's orders (calcShakingHarmonics' series: f_e at 1 and even h, f_n at 1, m_z at odd h).
-  bool centric = true;
+  bool shaft_at_n = false, centric = true;
+  for (const BalanceShaftParams& b : m.balance_shafts) shaft_at_n = shaft_at_n || std::fabs(b.ratio) == n;
   for (int j = 0; j < k; ++j) centric = centric && getPinOffset(m, j) == 0.0;
-  for (const BalanceShaftParams& b : m.balance_shafts) centric = centric && std::fabs(b.ratio) != n;
-  s.force_order_absent = centric && n >= 3 && n % 2 == 1;
-  s.moment_z_order_absent = centric && n % 2 == 0;
+  s.force_order_absent = centric && !shaft_at_n && n >= 3 && n % 2 == 1;
+  s.moment_z_order_absent = centric && !shaft_at_n && n % 2 == 0;
+  // The sideways force is order 1 alone with a pin offset too (the rod's centre moves sideways as a constant plus
+  // sin(theta)): from order 2 on each cylinder's force lies along its axis; with every axis along Y (standing, or
+  // opposed at 90 and 270 degrees) there is no X part, with every axis along X (lying, a boxer) no Y part (cos and
+  // sin are exact at quarter turns).
+  if (!shaft_at_n && n >= 2) {
+    bool along_x = true, along_y = true;
+    for (int j = 0; j < k; ++j) {
+      const SinCos bank = calcSinCos(getBankAngle(m, j));
+      along_x = along_x && bank.sin == 0.0;
+      along_y = along_y && bank.cos == 0.0;
+    }
+    s.moment_y_direction_absent = along_y;  // M_Y = -z F_X
+    s.moment_x_direction_absent = along_x;  // M_X = z F_Y
+  }
   // The sums below hold when every cylinder has the same harmonic in its own frame: the same pin offset for all; and
   // when no balance shaft adds to harmonic n (then the masses decide, not the symmetry).
   for (int j = 1; j < k; ++j)

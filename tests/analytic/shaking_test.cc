@@ -146,7 +146,8 @@ TEST(ShakingHarmonics, SumToTheShakingForceAndMoment) {
 // position. Where the rule says a harmonic is absent its DFT amplitude is rounding (64 eps of the scale: N = 256
 // samples of values at most the scale, each to a few eps); where it does not, the amplitude is physical (above 1e-9
 // of the scale: the smallest present order up to 8 at lambda 0.3 is the force's 8th, about lambda^7 / 2^7 ~ 1e-5 of
-// the primary). With a pin offset the rule does not apply (the flags are off) and those orders are there.
+// the primary). With a pin offset the orders' rule does not apply (the flags are off) and those orders are there; the
+// direction's does (a standing cylinder's force has no X part from order 2 on, so no moment Y).
 TEST(ShakingHarmonics, ACentricCylindersOrdersAreTheSeriesOfItsMotion) {
   for (double lambda : {0.3, 0.6}) {
     for (double gamma_deg : {90.0, 37.0}) {
@@ -181,6 +182,11 @@ TEST(ShakingHarmonics, ACentricCylindersOrdersAreTheSeriesOfItsMotion) {
           }
           if (s.moment_z_order_absent) EXPECT_LE(moment_z, 64 * kEps * sc.moment) << n;
           else EXPECT_GT(moment_z, 1e-9 * sc.moment) << n;
+          // The force along the axis from order 2 on: standing (90 degrees) it has no X part, so no moment Y.
+          EXPECT_EQ(s.moment_y_direction_absent, n >= 2 && gamma_deg == 90.0) << n;  // with an offset too
+          EXPECT_FALSE(s.moment_x_direction_absent) << n;
+          if (s.moment_y_direction_absent) EXPECT_LE(std::abs(M[1]), 64 * kEps * sc.moment) << n;
+          else if (!s.force_order_absent) EXPECT_GT(std::abs(M[1]), 1e-9 * sc.moment) << n;
         }
       }
     }

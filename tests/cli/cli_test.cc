@@ -544,6 +544,28 @@ TEST(Cli, BalanceJson) {
   EXPECT_NE(bad.err.find("--order"), std::string::npos) << bad.err;
 }
 
+// Issue 47: an amplitude balance prints as an exact 0 always says why (the throws' phases, a centric cylinder's
+// orders, the force along every cylinder's axis), for every example scene up to order 12.
+TEST(Cli, EveryExactZeroOfBalanceHasItsReason) {
+  for (const auto& scene : exampleScenes()) {
+    const RunResult r = testing::runCrankcheck({"balance", scene.string(), "--order", "12", "--format", "json"});
+    ASSERT_EQ(r.exit_status, 0) << r.err;
+    for (const auto& h : nlohmann::json::parse(r.out)["harmonics"]) {
+      const std::string reason = h["reason"].get<std::string>();
+      const auto& a = h["analytic"];
+      auto zero = [](const nlohmann::json& x) { return !x.is_null() && x["amplitude"].get<double>() == 0.0; };
+      const std::string where = scene.filename().string() + " n = " + std::to_string(h["n"].get<int>()) + ": " + reason;
+      if (zero(a["shaking_force"])) EXPECT_NE(reason.find("force"), std::string::npos) << where;
+      for (const char* axis : {"X", "Y"})
+        if (zero(a["shaking_moment"][axis]))
+          EXPECT_TRUE(reason.find(std::string("moment ") + axis) != std::string::npos ||
+                      reason.find("moment X, Y") != std::string::npos)
+              << axis << " " << where;
+      if (zero(a["shaking_moment"]["Z"])) EXPECT_NE(reason.find("moment Z"), std::string::npos) << where;
+    }
+  }
+}
+
 // The paper's dimensionless U* and Q* (null without a flywheel), and the rod's swing, from both engines.
 TEST(Cli, DimensionlessValuesAndRodSwing) {
   const std::string scenes = CRANKCHECK_SCENES_DIR;

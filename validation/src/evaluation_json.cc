@@ -134,6 +134,9 @@ nlohmann::ordered_json balanceToJson(const std::vector<BalanceRow>& rows, bool a
     h["absent_by_order"] = {{"force", s.force_order_absent},
                             {"moment_xy", axial ? nlohmann::ordered_json(s.force_order_absent) : nlohmann::ordered_json(nullptr)},
                             {"moment_z", s.moment_z_order_absent}};
+    h["absent_by_direction"] = {
+        {"moment_x", axial ? nlohmann::ordered_json(s.moment_x_direction_absent) : nlohmann::ordered_json(nullptr)},
+        {"moment_y", axial ? nlohmann::ordered_json(s.moment_y_direction_absent) : nlohmann::ordered_json(nullptr)}};
     out.push_back(h);
   }
   return out;

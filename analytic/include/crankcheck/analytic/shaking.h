@@ -74,13 +74,18 @@ std::vector<ShakingHarmonic> calcShakingHarmonics(const Mechanism& m, int order)
 /// Apart from the phases, what a centric cylinder cannot carry at all (every pin offset 0, no balance shaft turning at
 /// n; whatever the angles): its force has orders 1 and even only (the piston's acceleration is cos(theta) and the even
 /// cosines of the radical's series, the rod's centre moves sideways as sin(theta)), so neither force nor moments X, Y
-/// at odd n >= 3; its moment Z odd orders only (the rod's swing is odd in theta), so none at even n.
+/// at odd n >= 3; its moment Z odd orders only (the rod's swing is odd in theta), so none at even n. And at n >= 2 the
+/// force of any cylinder, with a pin offset too, lies along its axis (the sideways part is order 1 alone): with every
+/// cylinder's axis along Y (banks at 90 or 270 degrees) or along X (0 or 180: lying, a boxer) and no balance shaft at
+/// n, the force has no X (or no Y) component there, so no moment about Y (or X).
 struct HarmonicSymmetry {
   bool decided = false;  ///< false when an angle is not a whole 1/8 degree or a position not a whole nanometre, or
                          ///< the cylinders' pin offsets differ
   bool force_cancels = false, moment_xy_cancels = false, moment_z_cancels = false;
   bool force_order_absent = false;     ///< centric cylinders and odd n >= 3: force and moments X, Y are 0 exactly
   bool moment_z_order_absent = false;  ///< centric cylinders and even n: moment Z is 0 exactly
+  /// Every axis along Y (X), n >= 2, no shaft at n: the force has no X (Y) part, moment Y (X) is 0 exactly.
+  bool moment_x_direction_absent = false, moment_y_direction_absent = false;
 };
 HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n);
 
