@@ -138,8 +138,10 @@ int runGrade(const GradeOptions& options) {
                 brief(row[largest]).c_str(), brief(row[at_worst]).c_str(), brief(row[tolerance]).c_str(),
                 row[verdict].c_str());
   }
-  const std::string references =
-      "the analytic engine and " + describeEngines([](const Engine& e) { return e.gated; });
+  std::vector<std::string> reference_names{"the analytic engine"};
+  for (const Engine& e : validation::listEngines())
+    if (e.gated && !e.closed_form) reference_names.push_back(e.name);
+  const std::string references = joinNames(reference_names);
   std::printf("%s", wrapText("Errors relative to the quantity's scale, against " + references +
                                  ": the largest error / scale over every value, and the error at worst ratio, where "
                                  "error / tolerance is worst (beside that tolerance).\n",

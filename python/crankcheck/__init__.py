@@ -172,9 +172,8 @@ class GradeResult:
                 row["quantity"] if row["regime"] == "all" else "", _REGIMES.get(row["regime"], row["regime"]),
                 "%d / %d" % (row["provided"], row["asked"]), brief(row["largest_rel_error"]),
                 brief(row["rel_error_at_worst_ratio"]), brief(row["tolerance_rel"]), row["verdict"]))
-        exact = [e["name"] for e in engines() if e["gated"] and e["name"] != "analytic"]
-        references = "the analytic engine and " + (", ".join(exact[:-1]) + " and " + exact[-1] if len(exact) > 1
-                                                   else "".join(exact))
+        names = ["the analytic engine"] + [e["name"] for e in engines() if e["gated"] and e["name"] != "analytic"]
+        references = ", ".join(names[:-1]) + " and " + names[-1]
         lines += _textwrap.wrap("Errors relative to the quantity's scale, against %s: the largest error / scale over "
                                 "every value, and the error at worst ratio, where error / tolerance is worst (beside "
                                 "that tolerance)." % references, 100)
