@@ -173,7 +173,10 @@ bool allPass(const TableSet& tables) { return validation::allAgree(validation::c
 
 // The terminal's end: the families' table (all of it with --verbose, else only the families that failed), the
 // verdict (one line per engine, the ctest-style closing line) and where the report is.
-int reportAndInstall(const TableSet& tables, validation::ReportInfo& info, validation::OutputFolder& out, bool verbose) {
+int reportAndInstall(const TableSet& unsorted, validation::ReportInfo& info, validation::OutputFolder& out, bool verbose) {
+  // Sorted as the report writes them (the ties' rule itself is order-free: isWorseComparison, verdict.h).
+  TableSet tables = unsorted;
+  validation::sortTables(tables);
   validation::renderReport(tables, info, out.getStaging());
   out.install("report");
   const std::vector<validation::EngineVerdict> verdicts = validation::calcVerdicts(tables);

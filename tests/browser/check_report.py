@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """Opens a report's index.html in headless Chromium and fails on anything a reader would see broken.
 
-    check_report.py CHROMIUM REPORT_DIR SCREENSHOT.png [--verdict-first]
+    check_report.py CHROMIUM REPORT_DIR SCREENSHOT.png [--verdict-first] [--anchors ID,ID,...]
 
 Talks to Chromium over the DevTools protocol on a pipe (--remote-debugging-pipe: file descriptors 3 and 4, JSON
 messages ended by NUL), so no network port and no extra package is needed. Fails (exit status 1, one line per
 problem) on: a console error or warning of level error, an uncaught exception, a resource that failed to load, an
-image whose naturalWidth is 0, a page without lang, title or table of contents; with --verdict-first, a page whose
-first screen (1200 x 900) does not show the heading "Verdict", its engine table and its coloured engine x quantity
-matrix whole. Keeps a full-page screenshot, and SCREENSHOT_first.png of the first screen.
+image whose naturalWidth is 0, a page without lang, title or table of contents, a page that scrolls sideways at 1200 px
+(a wide table scrolls in its own box); with --verdict-first, a page whose first screen (1200 x 900) does not show the
+heading "Verdict", its engine table and its coloured engine x quantity matrix whole; with --anchors, a listed id that
+is not a heading's (a part's anchor is its key, the same in every report: #torsion). Keeps a full-page screenshot, and SCREENSHOT_first.png of the first screen.
 The page is opened from the file system with the network disabled: the report must work offline.
 """
 import base64
@@ -91,6 +92,9 @@ class DevTools:
 def main():
     chromium, report_dir, screenshot = sys.argv[1:4]
     verdict_first = "--verdict-first" in sys.argv[4:]
+    anchors = []
+    if "--anchors" in sys.argv[4:]:
+        anchors = sys.argv[sys.argv.index("--anchors") + 1].split(",")
     index = os.path.abspath(os.path.join(report_dir, "index.html"))
     if not os.path.isfile(index):
         print("check_report: no index.html in " + report_dir)
@@ -115,12 +119,15 @@ def main():
                 images: document.images.length,
                 broken: Array.from(document.images).filter(i => !i.complete || i.naturalWidth === 0).map(i => i.getAttribute('src')),
                 anchors: Array.from(document.querySelectorAll('nav a[href^="#"]')).filter(a => !document.getElementById(a.getAttribute('href').slice(1))).map(a => a.getAttribute('href')),
+                sideways: document.documentElement.scrollWidth - innerWidth,
+                headings: Array.from(document.querySelectorAll('h2[id], h3[id]')).map(h => h.id),
                 verdict: (() => {
                     const h = Array.from(document.querySelectorAll('h2')).find(e => e.textContent.trim() === 'Verdict');
                     if (!h) return ['no heading "Verdict"'];
                     const problems = [], tables = [];
                     for (let e = h.nextElementSibling; e && e.tagName !== 'H2' && e.tagName !== 'NAV'; e = e.nextElementSibling)
                         if (e.tagName === 'TABLE') tables.push(e);
+                        else if (e.querySelector && e.querySelector('table')) tables.push(e.querySelector('table'));
                     if (tables.length < 2) problems.push('the verdict has no engine table and matrix');
                     for (const t of tables) {
                         const bottom = Math.round(t.getBoundingClientRect().bottom);
@@ -161,6 +168,11 @@ def main():
         problems.append("image did not load: " + src)
     for href in state["anchors"]:
         problems.append("table of contents link to nothing: " + href)
+    if state["sideways"] > 0:
+        problems.append("the page scrolls sideways at 1200 px by %d px" % state["sideways"])
+    for anchor in anchors:
+        if anchor not in state["headings"]:
+            problems.append("no heading with the anchor #" + anchor)
     if verdict_first:
         problems += ["the first screen: " + p for p in state["verdict"]]
     for p in problems:

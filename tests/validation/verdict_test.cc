@@ -6,8 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
+#include "crankcheck/validation/report.h"
 #include "crankcheck/validation/report_document.h"
 
 namespace crankcheck::validation {
@@ -54,6 +56,23 @@ TEST(VerdictTest, CountsCasesComparisonsAndTheWorstAgainstItsTolerance) {
   EXPECT_TRUE(v[2].pass());
   EXPECT_DOUBLE_EQ(v[2].worst_error, 0.2);  // the largest error, whatever its ratio
   EXPECT_FALSE(allAgree(v));
+}
+
+// Issue 47: the terminal (the tables in the order the tasks ended) and the report (sorted) named different places for
+// the same worst comparison of an exact tie. One rule now (isWorseComparison): of equal values the smaller `where`,
+// in whatever order the rows come; the report's summary by the same rule.
+TEST(VerdictTest, AnExactTieIsBrokenTheSameWayInEveryOrder) {
+  Table t = crosscheck();
+  t.rows.resize(4);  // simbody's rows; a second x_p of ratio exactly 0.5 (5e-15 / 1e-14), at case a
+  t.rows.push_back({"fam", "simbody", "a", "0.3", "x_p", "5e-15", "270", "6000", "1e-14", "pass"});
+  for (int order = 0; order < 2; ++order) {
+    if (order == 1) std::reverse(t.rows.begin(), t.rows.end());
+    const std::vector<EngineVerdict> v = calcVerdicts({{"crosscheck", t}});
+    ASSERT_EQ(v.size(), 1u);
+    EXPECT_EQ(v[0].worst_where, "a, phi 270 deg, 6000 rpm") << order;  // "a, ..." before "b, ..."
+    for (const SummaryRow& s : summarize({{"crosscheck", t}}))
+      if (s.quantity == "x_p") EXPECT_EQ(s.where, "a, phi 270 deg, 6000 rpm") << order;
+  }
 }
 
 TEST(VerdictTest, ClosesWithOneLineInCtestsStyle) {

@@ -23,11 +23,11 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/install_paths.h"
+#include "crankcheck/validation/verdict.h"
 #include "crankcheck/validation/report_document.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/parts.h"
 #include "crankcheck/validation/process.h"
-#include "crankcheck/validation/verdict.h"
 
 
 namespace crankcheck::validation {
@@ -57,10 +57,11 @@ std::vector<SummaryRow> summarize(const TableSet& tables) {
     s.family = row[family];
     s.pass = s.pass && row[pass] == "pass";
     const double r = toDouble(row[rel]);
-    if (first || r / toDouble(row[tol]) > s.worst_rel_error / s.tolerance_rel) {
+    const std::string where = row[kase] + ", phi " + row[phi] + " deg, " + row[rpm] + " rpm";
+    if (first || isWorseComparison(r / toDouble(row[tol]), where, s.worst_rel_error / s.tolerance_rel, s.where)) {
       s.worst_rel_error = r;
       s.tolerance_rel = toDouble(row[tol]);
-      s.where = row[kase] + ", phi " + row[phi] + " deg, " + row[rpm] + " rpm";
+      s.where = where;
     }
   }
   for (auto& [key, row] : rows) out.push_back(row);
@@ -235,6 +236,7 @@ struct Block {
   std::vector<std::string> header = {};        // table
   std::vector<std::vector<std::string>> rows = {};
   std::string name = {};                       // figure stem (name.png, name.svg, data/name.csv); "#" on the title
+  std::string id = {};                         // a heading's anchor (a part's key); empty: made of its text
 };
 
 // The blocks as a ReportDocument: index.md as written, index.html rendered from it by cmark-gfm.
@@ -243,7 +245,8 @@ ReportDocument toDocument(const std::vector<Block>& blocks, const std::string& t
   for (const Block& b : blocks) {
     switch (b.kind) {
       case Block::kHeading:
-        if (b.name != "#") doc.addHeading(b.name.empty() ? 2 : static_cast<int>(b.name.size()), b.text);  // "#": the title
+        if (b.name != "#")  // "#": the title
+          doc.addHeading(b.name.empty() ? 2 : static_cast<int>(b.name.size()), b.text, b.id);
         break;
       case Block::kParagraph: doc.addParagraph(b.text); break;
       case Block::kTable: doc.addTable(b.header, b.rows); break;
@@ -307,7 +310,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
 
   // The verdict first: one line per engine, the closing line, and the engine x quantity matrix (verdict.h).
   const std::vector<EngineVerdict> verdicts = calcVerdicts(tables);
-  doc.push_back({Block::kHeading, "Verdict"});
+  doc.push_back({Block::kHeading, "Verdict", {}, {}, {}, "verdict"});
   std::string closing = formatVerdict(verdicts);
   closing = closing.substr(closing.rfind('\n', closing.size() - 2) + 1);
   closing.pop_back();
@@ -340,7 +343,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
                  "(docs/CONVENTIONS-crankcheck.md); soft engines are measured, never gated. The worst comparisons: " +
                      where + "."});
 
-  doc.push_back({Block::kHeading, "Summary: the analytic engine against every exact engine"});
+  doc.push_back({Block::kHeading, "Summary: the analytic engine against every exact engine", {}, {}, {}, "summary"});
   doc.push_back({Block::kParagraph,
                  std::string(all_pass ? "Every comparison agrees" : "SOME COMPARISONS FAIL") +
                      " within the gate's rule: |analytic - engine| <= 64 eps x scale x conditioning "
@@ -353,7 +356,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
                                   s.pass ? "pass" : "FAIL"});
   doc.push_back(summary_table);
 
-  doc.push_back({Block::kHeading, "Scenes"});
+  doc.push_back({Block::kHeading, "Scenes", {}, {}, {}, "scenes"});
   doc.push_back({Block::kParagraph,
                  "Each scene is cross-checked at its own lambda and, in the full campaign, with the rod lengthened or "
                  "shortened to lambda = 0.1, 0.2, 0.3, 0.4, 0.6, 0.9. The first scene is the base of the figures. SI units."});
@@ -374,7 +377,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   for (const Part* part : listParts()) {
     const ReportPart described = part->describe(tables);
     if (described.heading.empty()) continue;
-    doc.push_back({Block::kHeading, described.heading});
+    doc.push_back({Block::kHeading, described.heading, {}, {}, {}, part->key()});  // #KEY: the same in every report
     if (described.blocks.empty()) {
       doc.push_back({Block::kFigure, described.caption, {}, {}, part->key()});
       for (const std::string& paragraph : described.paragraphs) doc.push_back({Block::kParagraph, paragraph});

@@ -63,9 +63,20 @@ std::string renderMarkdown(const std::string& markdown) {
 
 ReportDocument::ReportDocument(std::string title) : title_(std::move(title)) { body_ = "# " + title_ + "\n\n"; }
 
-void ReportDocument::addHeading(int level, const std::string& text) {
+void ReportDocument::addHeading(int level, const std::string& text, const std::string& id) {
   body_ += std::string(static_cast<size_t>(level), '#') + " " + text + "\n\n";
-  headings_.push_back({level, text});
+  std::string anchor = id;
+  if (anchor.empty())
+    for (const char c : text) {
+      if (std::isalnum(static_cast<unsigned char>(c))) anchor += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      else if ((c == ' ' || c == '-') && !anchor.empty() && anchor.back() != '-') anchor += '-';
+    }
+  while (!anchor.empty() && anchor.back() == '-') anchor.pop_back();
+  if (anchor.empty()) anchor = "section";
+  const std::string base = anchor;
+  for (int n = 2; std::any_of(headings_.begin(), headings_.end(), [&](const Heading& h) { return h.id == anchor; }); ++n)
+    anchor = base + "-" + std::to_string(n);
+  headings_.push_back({level, text, anchor});
 }
 
 void ReportDocument::addParagraph(const std::string& markdown) { body_ += markdown + "\n\n"; }
@@ -100,18 +111,23 @@ std::string ReportDocument::toHtml() const {
     for (size_t at = fragment.find(from); at != std::string::npos; at = fragment.find(from, at + to.size()))
       fragment.replace(at, from.size(), to);
   }
-  // Anchors on the level-2 and level-3 headings, in order, for the table of contents.
+  // A wide table scrolls in its own box, never the page (at 1200 px the scenes table is wider than the text).
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"<table>", "<div class=\"scroll\"><table>"},
+                                 {"</table>", "</table></div>"}})
+    for (size_t at = fragment.find(from); at != std::string::npos; at = fragment.find(from, at + to.size()))
+      fragment.replace(at, from.size(), to);
+  // Anchors on the level-2 and level-3 headings (stable: a part's key, or made of the heading's text), in order, for
+  // the table of contents.
   std::string toc = "<nav><h2>Contents</h2><ul>\n";
   size_t search = 0;
-  for (size_t n = 0; n < headings_.size(); ++n) {
-    const std::string tag = "<h" + std::to_string(headings_[n].first) + ">";
+  for (const Heading& heading : headings_) {
+    const std::string tag = "<h" + std::to_string(heading.level) + ">";
     const size_t at = fragment.find(tag, search);
     if (at == std::string::npos) break;
-    const std::string id = "part" + std::to_string(n + 1);
-    fragment.insert(at + tag.size() - 1, " id=\"" + id + "\"");
+    fragment.insert(at + tag.size() - 1, " id=\"" + escapeHtml(heading.id) + "\"");
     search = at + tag.size();
-    toc += std::string(headings_[n].first == 3 ? "<li class=\"sub\">" : "<li>") + "<a href=\"#" + id + "\">" +
-           escapeHtml(headings_[n].second) + "</a></li>\n";
+    toc += std::string(heading.level == 3 ? "<li class=\"sub\">" : "<li>") + "<a href=\"#" + escapeHtml(heading.id) +
+           "\">" + escapeHtml(heading.text) + "</a></li>\n";
   }
   toc += "</ul></nav>\n";
   // The title and the first section (a report's verdict) stay first, on the first screen; the contents follow them.
@@ -124,6 +140,7 @@ std::string ReportDocument::toHtml() const {
          "</title>\n<style>\nbody{font-family:sans-serif;max-width:72em;margin:2em auto;padding:0 1em;line-height:1.4}\n"
          "table{border-collapse:collapse;margin:1em 0;line-height:1.2}td,th{border:1px solid #bbb;padding:.15em .5em}\n"
          "img{max-width:100%}code{background:#f4f4f4}nav li.sub{margin-left:1.5em}\n"
+         "div.scroll{overflow-x:auto;max-width:100%;margin:1em 0}div.scroll>table{margin:0}pre{overflow-x:auto}\n"
          "td.mark0{background:#c6efc6}td.mark1{background:#fff2a8}td.mark2{background:#ffd29e}"
          "td.mark3{background:#ff9e9e;font-weight:bold}\n</style>\n</head>\n<body>\n" +
          fragment + "</body>\n</html>\n";

@@ -63,12 +63,17 @@ std::vector<EngineVerdict> calcVerdicts(const TableSet& tables) {
     const double ratio = error / tolerance;  // tolerances are never zero (scales.h: every scale is positive)
     if (row[pass] == "FAIL") ++v.failed;
     // Gated engines: the worst ratio; soft ones (a ratio there is not a verdict): the largest error.
-    const bool worse = first || (row[pass] == "reported" ? error > v.worst_error : ratio > v.worst_ratio);
+    const std::string where = row[kase] + ", phi " + row[phi] + " deg, " + row[rpm] + " rpm";
+    const bool worse = first || (row[pass] == "reported"
+                                     ? isWorseComparison(error, where + row[quantity], v.worst_error,
+                                                         v.worst_where + v.worst_quantity)
+                                     : isWorseComparison(ratio, where + row[quantity], v.worst_ratio,
+                                                         v.worst_where + v.worst_quantity));
     if (worse) {
       v.worst_ratio = ratio;
       v.worst_error = error;
       v.worst_quantity = row[quantity];
-      v.worst_where = row[kase] + ", phi " + row[phi] + " deg, " + row[rpm] + " rpm";
+      v.worst_where = where;
     }
   }
   std::set<std::string> names;

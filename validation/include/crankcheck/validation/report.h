@@ -23,7 +23,7 @@ struct SummaryRow {
 };
 
 /// Groups the crosscheck table by (engine, quantity, family), the gated engines only (soft engines are reported in
-/// part engines, never gated).
+/// part engines, never gated). The worst of each by isWorseComparison (verdict.h).
 std::vector<SummaryRow> summarize(const TableSet& tables);
 
 /// The summary as a plain-text table for the terminal.

@@ -19,8 +19,10 @@ class ReportDocument {
  public:
   explicit ReportDocument(std::string title);
 
-  /// A heading (level 2 or 3 go into the table of contents; the title is level 1).
-  void addHeading(int level, const std::string& text);
+  /// A heading (level 2 or 3 go into the table of contents; the title is level 1). `id`: its anchor in the HTML page
+  /// (a part's key: `#torsion` names part 17 in every report); empty: one made of the text (lower case, letters,
+  /// digits and '-'), made unique with "-2", "-3", ...
+  void addHeading(int level, const std::string& text, const std::string& id = {});
   /// A paragraph of Markdown (inline code, emphasis, links).
   void addParagraph(const std::string& markdown);
   /// A table; every cell is escaped (a '|' or a newline in a cell cannot break the table).
@@ -35,7 +37,11 @@ class ReportDocument {
  private:
   std::string title_;
   std::string body_;
-  std::vector<std::pair<int, std::string>> headings_;
+  struct Heading {
+    int level;
+    std::string text, id;
+  };
+  std::vector<Heading> headings_;
 };
 
 /// [s] How long gnuplot may take to draw one figure: the largest takes under a second; two minutes leave room for a

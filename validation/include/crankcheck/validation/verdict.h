@@ -30,8 +30,15 @@ struct EngineVerdict {
   bool pass() const { return !gated || failed == 0; }
 };
 
+/// The one rule for the worst comparison everywhere (the terminal's verdict, the report's verdict and summary): the
+/// larger value; of equal values (an exact tie) the smaller `where` (its case, crank angle and speed, and quantity, as
+/// text), whatever order the rows come in.
+inline bool isWorseComparison(double value, const std::string& where, double worst, const std::string& worst_where) {
+  return value > worst || (value == worst && where < worst_where);
+}
+
 /// One verdict per engine of the crosscheck table, in the engines' registry order (listEngines()); none when the
-/// campaign has no crosscheck table (a part's own shard, say).
+/// campaign has no crosscheck table (a part's own shard, say). The worst comparison by isWorseComparison.
 std::vector<EngineVerdict> calcVerdicts(const TableSet& tables);
 
 /// The closing lines for the terminal: one per engine and the ctest-style last line, e.g.
