@@ -151,6 +151,101 @@ struct Integrator {
   }
 };
 
+// The stiff-limit route (torsion_steady.h): Holzer's closed form x_H (torsion_forced.h) corrected once for what the
+// exact equations add, on N = 8192 phases of the cycle.
+ExactSteadyState solveStiffLimit(const CrankTrain& t, const HolzerResponse& holzer, double scale) {
+  const int n = t.countBodies(), N = 8192;
+  const double L = t.cycle, w = t.omega;
+  const Eigen::MatrixXd K = calcStiffnessMatrix(t), C = calcDampingMatrix(t);
+  const std::vector<Eigen::VectorXd> xH = holzer.stiff->sampleBodies(N);
+  std::vector<PreparedThrow> throws;
+  for (const Mechanism& tm : t.throws) throws.push_back(prepareThrow(tm));
+  // x_H' = dx_H/dpsi by the series of the samples (its Gibbs ripple at the kinks enters only the small x' terms).
+  std::vector<Eigen::VectorXd> xp(static_cast<size_t>(N), Eigen::VectorXd::Zero(n));
+  for (int b = 0; b < n; ++b) {
+    std::vector<double> v;
+    for (const Eigen::VectorXd& x : xH) v.push_back(x(b));
+    PeriodicSignal s = calcSignalFromSamples(v), ds;
+    for (size_t p = 0; p < s.coefficients.size(); ++p)
+      ds.coefficients.push_back(s.coefficients[p] * std::complex<double>(0.0, 2.0 * M_PI * static_cast<double>(p) / L));
+    for (int k = 0; k < N; ++k) xp[static_cast<size_t>(k)](b) = ds.evaluate(2.0 * M_PI * k / N);
+  }
+  // The exact equations' residual on x_H, with J_eq w^2 x_H'' = T(psi) - K x_H - w C x_H' (Holzer's equation):
+  //   r = L(psi + x) - (1/2) J'(psi + x) w^2 (1 + x')^2 - K x - w C x' - (M(psi + x) / J_eq) (T(psi) - K x - w C x').
+  // q: the largest |1 - M / J_eq|, the frozen inertia's relative error in the correction's own equation.
+  std::vector<std::vector<double>> r(static_cast<size_t>(n), std::vector<double>(static_cast<size_t>(N), 0.0));
+  double q = 0.0;
+  for (int k = 0; k < N; ++k) {
+    const double psi = L * k / N;
+    const Eigen::VectorXd& x = xH[static_cast<size_t>(k)];
+    const Eigen::VectorXd Kx = K * x, Cx = C * xp[static_cast<size_t>(k)];
+    for (int j = 0; j < static_cast<int>(throws.size()); ++j) {
+      const int b = t.getThrowBody(j);
+      const ThrowLoads at = calcThrowLoads(throws[static_cast<size_t>(j)], psi + x(b));
+      const ThrowLoads rigid = calcThrowLoads(throws[static_cast<size_t>(j)], psi);
+      const double T = rigid.gas_torque - rigid.gravity_torque - 0.5 * w * w * rigid.dJ;
+      const double M = t.throw_inertia + at.J, Jeq = holzer.inertias[static_cast<size_t>(b)];
+      const double v = 1.0 + xp[static_cast<size_t>(k)](b);
+      q = std::max(q, std::fabs(1.0 - M / Jeq));
+      r[static_cast<size_t>(b)][static_cast<size_t>(k)] = at.gas_torque - at.gravity_torque - 0.5 * at.dJ * w * w * v * v -
+                                                           Kx(b) - w * Cx(b) - M / Jeq * (T - Kx(b) - w * Cx(b));
+    }
+  }
+  // The correction: J_eq w^2 xi'' + w C xi' + K xi = r, order by order.
+  std::vector<PeriodicSignal> rs;
+  for (int b = 0; b < n; ++b) rs.push_back(calcSignalFromSamples(r[static_cast<size_t>(b)]));
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) J(i, i) = holzer.inertias[static_cast<size_t>(i)];
+  std::vector<PeriodicSignal> xi(static_cast<size_t>(n));
+  for (size_t p = 0; p < rs.front().coefficients.size(); ++p) {
+    const double wp = static_cast<double>(p) * 2.0 * M_PI / L * w;
+    const Eigen::MatrixXcd Z = (K - wp * wp * J).cast<std::complex<double>>() + std::complex<double>(0.0, wp) * C;
+    Eigen::VectorXcd R(n);
+    for (int b = 0; b < n; ++b) R(b) = rs[static_cast<size_t>(b)].coefficients[p];
+    const Eigen::VectorXcd X = Z.partialPivLu().solve(R);
+    for (int b = 0; b < n; ++b) xi[static_cast<size_t>(b)].coefficients.push_back(X(b));
+  }
+  ExactSteadyState out;
+  out.twist_scale = scale;
+  out.newton_iterations = 1;
+  out.evaluations = 2LL * N * static_cast<long long>(throws.size());
+  out.x0.resize(n);
+  out.x_dot0.resize(n);
+  std::vector<std::vector<double>> xs(static_cast<size_t>(n)), ts(static_cast<size_t>(n));
+  double largest_xi = 0.0;
+  for (int k = 0; k < N; ++k) {
+    Eigen::VectorXd x = xH[static_cast<size_t>(k)];
+    for (int b = 0; b < n; ++b) x(b) += xi[static_cast<size_t>(b)].evaluate(2.0 * M_PI * k / N);
+    const Eigen::VectorXd tw = calcSectionTwists(x);
+    for (int b = 0; b < n; ++b) {
+      xs[static_cast<size_t>(b)].push_back(x(b));
+      ts[static_cast<size_t>(b)].push_back(tw(b));
+      largest_xi = std::max(largest_xi, std::fabs(x(b) - xH[static_cast<size_t>(k)](b)));
+    }
+  }
+  for (int b = 0; b < n; ++b) {
+    out.bodies.push_back(calcSignalFromSamples(xs[static_cast<size_t>(b)]));
+    out.twists.push_back(calcSignalFromSamples(ts[static_cast<size_t>(b)]));
+    out.x0(b) = xs[static_cast<size_t>(b)][0];
+    double rate = xp[0](b);
+    for (size_t p = 0; p < xi[static_cast<size_t>(b)].coefficients.size(); ++p)
+      rate += (xi[static_cast<size_t>(b)].coefficients[p] *
+               std::complex<double>(0.0, 2.0 * M_PI * static_cast<double>(p) / L)).real();
+    out.x_dot0(b) = rate * w;
+  }
+  out.residual = largest_xi / scale;
+  // The error bound: the ringing (the exact train rings at frequencies moving by q with its inertia, so its ringing
+  // may differ from Holzer's by its whole amplitude, (1 + q) x Holzer's stiff_bound), Holzer's own convergence, and
+  // the correction's next term (the frozen inertia's error q on a correction whose twist moves by at most 2 |xi|).
+  double largest_p2p = 0.0;
+  for (const SignalExtremes& e : holzer.stiff->findTwistExtremes(&xi)) {
+    out.peak_to_peak.push_back(e.peakToPeak());
+    largest_p2p = std::max(largest_p2p, out.peak_to_peak.back());
+  }
+  out.error_bound = (1.0 + q) * holzer.stiff_bound + holzer.change * largest_p2p + q * 2.0 * largest_xi;
+  return out;
+}
+
 }  // namespace
 
 ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptions& options) {
@@ -191,6 +286,9 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& 
       rate += (x.coefficients[p] * std::complex<double>(0.0, 2.0 * M_PI * static_cast<double>(p) / t.cycle)).real();
     y0[static_cast<size_t>(n + b)] = rate;
   }
+  // Stiff shafts: where Holzer's response took the stiff-limit route (8 x the highest natural frequency's order beyond
+  // its harmonics), so does the steady state (the explicit integrator's steps would follow that frequency).
+  if (holzer.stiff_limit && holzer.stiff && scale > 0.0) return solveStiffLimit(t, holzer, scale);
   out.twist_scale = scale;
   const TrainEquations equations(t, options.max_evaluations);
   if (!(scale > 0.0)) {
