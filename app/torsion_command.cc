@@ -17,6 +17,7 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/variants.h"
+#include "help_format.h"
 #include "json_output.h"
 #include "scene_input.h"
 
@@ -293,34 +294,43 @@ std::string runTorsion(const TorsionOptions& options) {
     std::snprintf(line, sizeof line, "mode %-3d order %-5g %14.8g rpm\n", c.mode, c.order, c.rpm);
     out += line;
   }
+  // Within 100 columns: each engine's train in a table of its own below the analytic one. A difference to Holzer is
+  // shown only where the exact value stands above its error bound (else "< bound": the digits are not the twist's).
   for (const SpeedResult& r : results) {
     std::snprintf(line, sizeof line,
-                  "\npeak-to-peak twist at %g rpm [rad]: Holzer (every order, %d harmonics; cut at order 24), exact "
-                  "steady state (error bound %.1e rad)\n",
+                  "\npeak-to-peak twist at %g rpm [rad]: Holzer (every order, %d harmonics; cut at order 24),\n"
+                  "exact steady state (error bound %.1e rad)\n",
                   r.rpm, r.holzer.orders, r.exact.error_bound);
     out += line;
-    std::snprintf(line, sizeof line, "%-22s %18s %18s %18s %15s", "section", "holzer", "holzer order<=24",
+    std::snprintf(line, sizeof line, "%-20s %17s %17s %17s %15s\n", "section", "holzer", "holzer n<=24",
                   "exact (analytic)", "exact/holzer-1");
     out += line;
-    for (const Engine* e : trains) {
-      std::snprintf(line, sizeof line, " %18s %17s", e->name.c_str(), (e->name + "/holzer-1").c_str());
-      out += line;
-    }
-    out += "\n";
+    auto difference = [&](double value, size_t k) {
+      if (!(value > r.exact.error_bound)) return std::string("< bound");
+      char text[32];
+      std::snprintf(text, sizeof text, "%+.4e", value / r.holzer.peak_to_peak[k] - 1.0);
+      return std::string(text);
+    };
     for (int i = 0; i < bodies; ++i) {
       const size_t k = static_cast<size_t>(i);
-      std::snprintf(line, sizeof line, "%-22s %18.10e %18.10e %18.10e %+15.4e", sectionName(i).c_str(),
+      std::snprintf(line, sizeof line, "%-20s %17.9e %17.9e %17.9e %15s\n", sectionName(i).c_str(),
                     r.holzer.peak_to_peak[k], r.holzer.peak_to_peak_order24[k], r.exact.peak_to_peak[k],
-                    r.exact.peak_to_peak[k] / r.holzer.peak_to_peak[k] - 1.0);
+                    difference(r.exact.peak_to_peak[k], k).c_str());
       out += line;
-      for (size_t e = 0; e < trains.size(); ++e) {
-        std::snprintf(line, sizeof line, " %18.10e %+17.4e", r.trains[e][k], r.trains[e][k] / r.holzer.peak_to_peak[k] - 1.0);
+    }
+    for (size_t e = 0; e < trains.size(); ++e) {
+      std::snprintf(line, sizeof line, "%-20s %16s %17s\n", "section", trains[e]->name.c_str(),
+                    (trains[e]->name + "/holzer-1").c_str());
+      out += line;
+      for (int i = 0; i < bodies; ++i) {
+        const size_t k = static_cast<size_t>(i);
+        std::snprintf(line, sizeof line, "%-20s %16.9e %+17.4e\n", sectionName(i).c_str(), r.trains[e][k],
+                      r.trains[e][k] / r.holzer.peak_to_peak[k] - 1.0);
         out += line;
       }
-      out += "\n";
     }
   }
-  return out;
+  return wrapText(out, kHelpWidth);
 }
 
 }  // namespace crankcheck::app
