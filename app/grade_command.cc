@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <set>
 #include <thread>
@@ -109,6 +110,9 @@ int runGrade(const GradeOptions& options) {
   info.batch = options.batch;
   info.jobs = jobs;
   info.timeout_seconds = options.timeout_seconds;
+  std::error_code no_path;  // the report's "reproduce" commands call this program by its path
+  if (const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", no_path); !no_path)
+    info.crankcheck_program = self.string();
   info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   validation::renderGradeReport(tables, cases, info, out.getStaging());
   out.install("report");

@@ -319,10 +319,15 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
     for (size_t i = 0; i < m.firing_angles.size() && i < m.engine.crank_angles.size(); ++i) {
       // At its firing angle the cylinder must be at its outer dead centre: theta = firing + alpha_j = 0 (mod 360).
       const double theta = std::remainder(m.firing_angles[i] + m.engine.crank_angles[i], 2.0 * M_PI);
+      // Where it is: phi = -alpha_j (mod 360), and 360 deg later too in a four-stroke cycle.
+      const double odc = std::fmod(std::fmod(-degreesFromRadians(m.engine.crank_angles[i]), 360.0) + 360.0, 360.0);
+      const std::string valid = m.engine.cycle == Cycle::kFourStroke
+                                    ? formatNumber(odc) + " or " + formatNumber(odc + 360.0) + " deg"
+                                    : formatNumber(odc) + " deg";
       require(std::fabs(theta) <= 1e-9,
               m.engine.bank_angles.empty() ? "[gas].firing_order" : "cylinder[" + std::to_string(i) + "].firing_angle_deg",
               "cylinder " + std::to_string(i) + " is not at its outer dead centre at its firing angle (its own crank angle theta is " +
-                  formatNumber(degreesFromRadians(theta)) + " deg)",
+                  formatNumber(degreesFromRadians(theta)) + " deg); it is there at phi = " + valid,
               degreesFromRadians(m.firing_angles[i]));
     }
   }

@@ -727,7 +727,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"no_firing_order", "firing_order = [1, 0]", "", "[gas].firing_order", "missing key", &kGasScene},
         BadScene{"order_repeats", "firing_order = [1, 0]", "firing_order = [1, 1]", "[gas].firing_order[1]", "each once", &kGasScene},
         BadScene{"not_at_dead_centre", "cylinder_angle_deg = 90", "cylinder_angle_deg = 90\ncrank_angles_deg = [0, 90]",
-                 "[gas].firing_order", "not at its outer dead centre", &kGasScene},
+                 "[gas].firing_order", "not at its outer dead centre at its firing angle (its own crank angle theta is 90 deg); it is there at phi = 270 or 630 deg", &kGasScene},
         BadScene{"double_acting", "cycle = \"four-stroke\"", "cycle = \"four-stroke\"\nacting = \"double\"", "[gas]",
                  "single-acting", &kGasScene},
         BadScene{"no_bore", "bore = 0.08\n", "", "[gas].bore", "missing key", &kGasScene}),

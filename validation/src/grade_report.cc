@@ -13,9 +13,21 @@
 #include "crankcheck/validation/report_document.h"
 
 namespace crankcheck::validation {
+
 namespace fs = std::filesystem;
 
 namespace {
+
+// A word as a POSIX shell reads it back: as it is when it holds only safe characters, else in single quotes.
+std::string quoteShellWord(const std::string& word) {
+  if (!word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./+:=@%") ==
+                           std::string::npos)
+    return word;
+  std::string out = "'";
+  for (const char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
 
 std::string shortNumber(const std::string& text) {
   if (text.empty()) return text;
@@ -145,7 +157,8 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
     for (size_t i = 0; i < shown; ++i) {
       const auto& r = worst[i];
       table.push_back({r[0], r[3] + (r[4].empty() ? "" : " [" + r[4] + "]"), r[5], r[7], r[8], shortNumber(r[10]),
-                       "`crankcheck eval cases/" + r[0] + ".toml --phi-deg " + r[5] + " --engine all`"});
+                       "`" + quoteShellWord(info.crankcheck_program) + " eval cases/" + r[0] + ".toml --phi-deg " + r[5] +
+                           " --engine all`"});
     }
     doc.addTable({"case", "quantity [cylinder]", "phi [deg]", "program", judges[0]->name, "error [scale]", "reproduce"}, table);
   }

@@ -113,6 +113,9 @@ struct GradeReportInfo {
   double seconds = 0.0;              ///< wall time of the grade
   double timeout_seconds = 0.0;
   std::string gnuplot_version;
+  /// The crankcheck program the report's "reproduce" commands call: the one that graded (its absolute path: a build
+  /// tree's build/bin/crankcheck is not on PATH); "crankcheck" where it is not known.
+  std::string crankcheck_program = "crankcheck";
 };
 
 /// Renders the grade's report into `dir` (which must exist and be empty): data/*.csv, the figure
