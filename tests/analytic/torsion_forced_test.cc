@@ -49,26 +49,9 @@ TEST(HolzerResponse, TorqueOrdersAgreeWithGaussKronrod) {
   const HolzerResponse h = calcHolzerResponse(m);
   for (int j : {0, 2}) {
     const Mechanism& tm = train.throws[static_cast<size_t>(j)];
-    std::vector<double> cuts;
-    for (int d = 0; d <= 720; ++d) cuts.push_back(train.cycle * d / 720.0);
-    for (double firing : tm.firing_angles)
-      for (double a : tm.gas->cycle_angles) cuts.push_back(std::fmod(firing + a, train.cycle));
-    std::sort(cuts.begin(), cuts.end());
     const double scale = h.torque_orders.col(j).cwiseAbs().maxCoeff();
     for (int p : {0, 1, 2, 3, 4, 7, 8, 16, 48, 100, 256}) {
-      std::complex<double> sum = 0.0;
-      for (size_t c = 0; c + 1 < cuts.size(); ++c) {
-        if (!(cuts[c + 1] > cuts[c])) continue;
-        auto part = [&](double psi) { return calcRigidThrowTorque(tm, psi, train.omega); };
-        const double re = boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
-            [&](double psi) { return part(psi) * std::cos(2 * M_PI * p * psi / train.cycle); }, cuts[c], cuts[c + 1],
-            0);
-        const double im = boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
-            [&](double psi) { return -part(psi) * std::sin(2 * M_PI * p * psi / train.cycle); }, cuts[c], cuts[c + 1],
-            0);
-        sum += std::complex<double>(re, im);
-      }
-      const std::complex<double> expected = (p == 0 ? 1.0 : 2.0) * sum / train.cycle;
+      const std::complex<double> expected = testing::calcTorqueOrderByQuadrature(train, tm, p, 720);
       EXPECT_LT(std::abs(h.torque_orders(p, j) - expected), 1e-12 * scale) << "throw " << j << " p " << p;
     }
   }
@@ -139,26 +122,9 @@ TEST(HolzerResponse, OrdersAboveTheQuadratureAgreeWithGaussKronrod) {
   ASSERT_GT(h.orders, 256);
   for (int j : {0, 3}) {
     const Mechanism& tm = train.throws[static_cast<size_t>(j)];
-    std::vector<double> cuts;
-    for (int d = 0; d <= 2880; ++d) cuts.push_back(train.cycle * d / 2880.0);
-    for (double firing : tm.firing_angles)
-      for (double a : tm.gas->cycle_angles) cuts.push_back(std::fmod(firing + a, train.cycle));
-    std::sort(cuts.begin(), cuts.end());
     const double scale = h.torque_orders.col(j).cwiseAbs().maxCoeff();
     for (int p : {257, 300, 512, h.orders}) {
-      std::complex<double> sum = 0.0;
-      for (size_t c = 0; c + 1 < cuts.size(); ++c) {
-        if (!(cuts[c + 1] > cuts[c])) continue;
-        auto part = [&](double psi) { return calcRigidThrowTorque(tm, psi, train.omega); };
-        const double re = boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
-            [&](double psi) { return part(psi) * std::cos(2 * M_PI * p * psi / train.cycle); }, cuts[c], cuts[c + 1],
-            0);
-        const double im = boost::math::quadrature::gauss_kronrod<double, 61>::integrate(
-            [&](double psi) { return -part(psi) * std::sin(2 * M_PI * p * psi / train.cycle); }, cuts[c], cuts[c + 1],
-            0);
-        sum += std::complex<double>(re, im);
-      }
-      const std::complex<double> expected = 2.0 * sum / train.cycle;
+      const std::complex<double> expected = testing::calcTorqueOrderByQuadrature(train, tm, p, 2880);
       if (std::getenv("CRANKCHECK_PRINT_RATIOS"))
         std::printf("throw %d p %d: %.2e of the largest order\n", j, p, std::abs(h.torque_orders(p, j) - expected) / scale);
       EXPECT_LT(std::abs(h.torque_orders(p, j) - expected), 1e-9 * scale) << "throw " << j << " p " << p;
@@ -181,18 +147,7 @@ TEST(HolzerResponse, StiffShaftTendsToTheRigidDriveTorque) {
     const CrankTrain train = makeCrankTrain(m);
     const HolzerResponse h = calcHolzerResponse(m);
     EXPECT_LE(h.change, 1e-8);
-    std::vector<double> samples;
-    for (int k = 0; k < 4096; ++k) samples.push_back(calcReactions(m, train.cycle * k / 4096).drive_torque);
-    const PeriodicSignal rigid = calcSignalFromSamples(samples);
-    double largest = 0.0, difference = 0.0;
-    for (size_t p = 0; p <= 16; ++p) {
-      const double w = 2 * M_PI * static_cast<double>(p) / train.cycle * train.omega;
-      const std::complex<double> section =
-          std::complex<double>(train.stiffness.back(), w * train.section_damping.back()) * h.twists.back().coefficients[p];
-      largest = std::max(largest, std::abs(rigid.coefficients[p]));
-      difference = std::max(difference, std::abs(section - rigid.coefficients[p]));
-    }
-    differences.push_back(difference / largest);
+    differences.push_back(testing::calcFlywheelTorqueDifference(m, train, h.twists.back()));
   }
   if (std::getenv("CRANKCHECK_PRINT_RATIOS")) std::printf("f = 100: %.3e, f = 1e4: %.3e\n", differences[0], differences[1]);
   EXPECT_LT(differences[1], differences[0] / 50);
