@@ -14,6 +14,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -46,6 +47,21 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
 }
 
 size_t lines(const std::string& s) { return static_cast<size_t>(std::count(s.begin(), s.end(), '\n')); }
+
+// `run`'s result with the file size limit at `bytes` (as a full disk: a write past it fails with EFBIG, SIGXFSZ
+// ignored instead of killing), the limit and the handler restored after.
+template <class Run>
+ProgramResult runWithFileSizeLimit(rlim_t bytes, Run run) {
+  rlimit old_limit{};
+  if (::getrlimit(RLIMIT_FSIZE, &old_limit) != 0) throw std::runtime_error("getrlimit failed");
+  const rlimit small{bytes, old_limit.rlim_max};
+  auto old_handler = ::signal(SIGXFSZ, SIG_IGN);
+  if (::setrlimit(RLIMIT_FSIZE, &small) != 0) throw std::runtime_error("setrlimit failed");
+  const ProgramResult r = run();
+  ::setrlimit(RLIMIT_FSIZE, &old_limit);
+  ::signal(SIGXFSZ, old_handler);
+  return r;
+}
 
 class OutputSafetyTest : public ::testing::Test {
  protected:
@@ -227,14 +243,8 @@ TEST_F(OutputSafetyTest, AFailedWriteIsStatus3AndKeepsThePreviousReport) {
   const fs::path shard = dir_ / "shard";
   ASSERT_EQ(writeShard(shard).exit_status, 0);
   const auto before = snapshot(dir_);
-  rlimit old_limit{};
-  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old_limit), 0);
-  const rlimit small{1024, old_limit.rlim_max};  // every table of a shard is larger than 1 KiB
-  auto old_handler = ::signal(SIGXFSZ, SIG_IGN);  // the write then fails with EFBIG instead of killing
-  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
-  const ProgramResult r = writeShard(shard);
-  ::setrlimit(RLIMIT_FSIZE, &old_limit);
-  ::signal(SIGXFSZ, old_handler);
+  // Every table of a shard is larger than 1 KiB.
+  const ProgramResult r = runWithFileSizeLimit(1024, [&] { return writeShard(shard); });
   EXPECT_EQ(r.exit_status, 3) << r.err;
   EXPECT_NE(r.err.find(": cannot write: File too large"), std::string::npos) << r.err;
   EXPECT_EQ(lines(r.err), 1u) << r.err;
@@ -280,17 +290,11 @@ TEST_F(OutputSafetyTest, NothingIsWrittenInsideAReportOrUnderANameTooLong) {
 TEST_F(OutputSafetyTest, AProfileThatCannotBeWrittenIsRemoved) {
   const std::string scene = (fs::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml").string();
   const auto before = snapshot(dir_);
-  rlimit old_limit{};
-  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &old_limit), 0);
   // 32 bytes: the profile's header line alone is 61; the profile is the first file a shard writes.
-  const rlimit small{32, old_limit.rlim_max};
-  auto old_handler = ::signal(SIGXFSZ, SIG_IGN);  // the write then fails with EFBIG instead of killing
-  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
-  const ProgramResult r = testing::runCrankcheck({"validate", "--quick", scene, "--parts", "norton_fig13_8", "--shard",
-                                                  "0/2", "--out", (dir_ / "s").string(), "--profile",
-                                                  (dir_ / "profile.csv").string()});
-  ::setrlimit(RLIMIT_FSIZE, &old_limit);
-  ::signal(SIGXFSZ, old_handler);
+  const ProgramResult r = runWithFileSizeLimit(32, [&] {
+    return testing::runCrankcheck({"validate", "--quick", scene, "--parts", "norton_fig13_8", "--shard", "0/2", "--out",
+                                   (dir_ / "s").string(), "--profile", (dir_ / "profile.csv").string()});
+  });
   EXPECT_EQ(r.exit_status, 3) << r.err;
   EXPECT_NE(r.err.find("profile.csv\": cannot write: File too large"), std::string::npos) << r.err;
   EXPECT_EQ(lines(r.err), 1u) << r.err;
