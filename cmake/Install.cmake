@@ -33,6 +33,14 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${CRANKCHECK_DATA_IN
 # installed with the program (app/CMakeLists.txt).
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/docs)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR})
+# What the docs link to, at the same places relative to them: the examples (a consumer project, the grade gate, the
+# graded programs), the measurements' log and the engines' notes (every link of the installed docs resolves:
+# tests/package/check_install.cmake runs tests/meta/check_links.py on the install).
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/ DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/examples)
+install(FILES ${PROJECT_SOURCE_DIR}/bench/README.md DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/bench)
+foreach(engine simbody_models mujoco_models)
+  install(FILES ${PROJECT_SOURCE_DIR}/${engine}/README.md DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/${engine})
+endforeach()
 
 install(EXPORT crankcheckCoreTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
 install(EXPORT crankcheckSimbodyTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})

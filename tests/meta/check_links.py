@@ -30,10 +30,14 @@ OUTSIDE = '../' + 'shared'
 
 
 def tracked_files(root):
-    """git's tracked files; outside a git checkout (a source archive), every file but hidden and build folders."""
+    """git's tracked files; outside a git checkout (a source archive, an install's share/crankcheck), every file but
+    hidden and build folders."""
     try:
         out = subprocess.run(['git', '-C', root, 'ls-files', '-z'], check=True, capture_output=True).stdout
-        return [name for name in out.decode('utf-8').split('\0') if name]
+        names = [name for name in out.decode('utf-8').split('\0') if name]
+        if names:
+            return names
+        raise OSError('no tracked file: an install tree or an untracked folder of a checkout')
     except (OSError, subprocess.CalledProcessError):
         names = []
         for folder, dirs, files in os.walk(root):

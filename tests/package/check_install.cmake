@@ -8,12 +8,13 @@
 #    scripts it finds relative to itself (the build's install prefix is not WORK_DIR/prefix, so no compiled-in
 #    path can be what found them);
 # 5. examples/consumer configured with add_subdirectory(SOURCE_DIR) (ALIAS targets, no tests of crankcheck's own);
+# Also: the man pages, the docs (every link resolving within the install) and the scenes' schema.
 # 6. examples/grade_gate, a project with LANGUAGES NONE that only runs the grade gate, configured with every library
 #    dependency hidden (toml++, Eigen, Simbody, MuJoCo, Google Benchmark, nlohmann-json) and its ctest run on
 #    GRADE_PROGRAM; crankcheck_EXECUTABLE is the installed program.
 # Every step stops the test with the step's output on failure. Commands are run without a shell.
 cmake_minimum_required(VERSION 3.25)
-foreach(v BUILD_DIR SOURCE_DIR WORK_DIR VERSION GRADE_PROGRAM)
+foreach(v BUILD_DIR SOURCE_DIR WORK_DIR VERSION GRADE_PROGRAM PYTHON)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "check_install.cmake: -D${v}=... is required")
   endif()
@@ -59,6 +60,9 @@ foreach(command "" eval motion flywheel balance torsion validate grade "report m
     message(FATAL_ERROR "install: ${man} has no synopsis of '${usage}':\n${text}")
   endif()
 endforeach()
+# Every link of the installed docs resolves in the install (the checker reads every file of a folder git does not
+# track: the install's share/crankcheck).
+run("installed docs: links" ${PYTHON} ${SOURCE_DIR}/tests/meta/check_links.py ${prefix}/share/crankcheck)
 # Every installed scene's `#:schema` names a file of the install.
 file(GLOB installed_scenes ${prefix}/share/crankcheck/scenes/*.toml)
 foreach(scene ${installed_scenes})
