@@ -107,10 +107,11 @@ void addTorsionOptions(CLI::App& command, TorsionOptions& options) {
       "Domain: results are computed only for a shaft that twists at most 0.1 rad a section (a crankshaft, not a chain "
       "of loose masses). A scene whose throws' mean torque twists a section beyond that is refused before any work "
       "(status 2, naming [crankshaft].stiffness[i]); a speed at which Holzer's linear twist exceeds it, a steady state "
-      "past its work limit (2e7 evaluations of the train's equations; an engine's train: 3e5 Simbody or 4e6 MuJoCo "
-      "steps) or one that does not converge is refused with one line, status 1, nothing printed. Very stiff shafts (8 x the highest "
-      "natural frequency's order above 65536 harmonics: the example four from about 1e5 x its stiffness) take the "
-      "stiff limit, K^-1 T in closed form plus its corrections, accurate to the printed bound (docs/torsion.md).");
+      "past its work limit (1e8 evaluations of the train's equations, about a minute; an engine's train: 3e5 Simbody "
+      "or 4e6 MuJoCo steps) or one that does not converge is refused with one line, status 1, nothing printed. Very "
+      "stiff shafts (8 x the highest natural frequency's order above 65536 harmonics: the example four from about 3e4 "
+      "x its stiffness) take the stiff limit, K^-1 T in closed form plus its corrections, where its bound is within 1 % "
+      "of the twist (from about 3e5 x), else the explicit route (docs/torsion.md).");
   // As text, parsed in runTorsion: CLI11 takes an empty value ('') for a number as not given.
   auto* speed = command.add_option_function<std::string>(
       "--speed", [&options](const std::string& text) { options.speed = text; },

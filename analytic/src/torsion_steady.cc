@@ -151,6 +151,11 @@ struct Integrator {
   }
 };
 
+// The stiff limit's result is taken where its error bound is within this fraction of the largest twist; else the
+// explicit route computes (it can, near the stiff limit's switch: 3e4 x the example four's stiffness, whose stiff
+// bound was 0.8 of the flywheel section's twist).
+constexpr double kStiffLimitAccuracy = 1e-2;
+
 // The stiff-limit route (torsion_steady.h): Holzer's closed form x_H (torsion_forced.h) corrected once for what the
 // exact equations add, on N = 8192 phases of the cycle.
 ExactSteadyState solveStiffLimit(const CrankTrain& t, const HolzerResponse& holzer, double scale) {
@@ -236,59 +241,24 @@ ExactSteadyState solveStiffLimit(const CrankTrain& t, const HolzerResponse& holz
   out.residual = largest_xi / scale;
   // The error bound: the ringing (the exact train rings at frequencies moving by q with its inertia, so its ringing
   // may differ from Holzer's by its whole amplitude, (1 + q) x Holzer's stiff_bound), Holzer's own convergence, and
-  // the correction's next term (the frozen inertia's error q on a correction whose twist moves by at most 2 |xi|).
+  // the correction's error taken as large as the correction itself (its twist moves by at most 2 |xi|): its first-order
+  // estimate, q x that, was exceeded where q is not small (3e4 x the example four's stiffness: the flywheel section
+  // 13 % above the explicit route's 1/K-scaled twist, q x 2 |xi| 2 % of it).
   double largest_p2p = 0.0;
   for (const SignalExtremes& e : holzer.stiff->findTwistExtremes(&xi)) {
     out.peak_to_peak.push_back(e.peakToPeak());
     largest_p2p = std::max(largest_p2p, out.peak_to_peak.back());
   }
-  out.error_bound = (1.0 + q) * holzer.stiff_bound + holzer.change * largest_p2p + q * 2.0 * largest_xi;
+  out.error_bound = (1.0 + q) * holzer.stiff_bound + holzer.change * largest_p2p + 2.0 * largest_xi;
   return out;
 }
 
-}  // namespace
-
-ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptions& options) {
-  if (!(options.tolerance > 0.0) || options.samples < 16 || options.samples % 2 != 0 || options.max_evaluations < 1)
-    throw std::invalid_argument("torsion: the steady state needs a tolerance > 0, an even number of samples >= 16 and "
-                                "max_evaluations >= 1");
-  const CrankTrain t = makeCrankTrain(m);
-  std::vector<double> inertias;
-  if (t.has_front) inertias.push_back(t.front_inertia);
-  for (int j = 0; j < static_cast<int>(t.throws.size()); ++j) inertias.push_back(calcThrowInertia(m, j).exact);
-  // Holzer's response only starts Newton's method and sets the scale: its sum to 1e-4 is enough.
-  return calcExactSteadyState(m, calcHolzerResponse(t, inertias, {1e-4, 1 << 16}), options);
-}
-
-ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& holzer,
-                                      const SteadyStateOptions& options) {
-  if (!(options.tolerance > 0.0) || options.samples < 16 || options.samples % 2 != 0 || options.max_evaluations < 1)
-    throw std::invalid_argument("torsion: the steady state needs a tolerance > 0, an even number of samples >= 16 and "
-                                "max_evaluations >= 1");
-  const CrankTrain t = makeCrankTrain(m);
-  if (static_cast<int>(holzer.bodies.size()) != t.countBodies())
-    throw std::invalid_argument("torsion: Holzer's start has " + std::to_string(holzer.bodies.size()) +
-                                " bodies for a train of " + std::to_string(t.countBodies()));
-  checkHolzerTwist(holzer, m.speed_rpm);  // the small-twist domain (torsion_domain.h): refused beyond, before any work
+// The exact steady state by shooting (Dormand-Prince 5(4) and Newton's method on the one-cycle map) from y0, Holzer's
+// start; `scale` > 0 or 0 (no torque: the rigid motion). @throws std::runtime_error past the work limit or without
+// convergence.
+ExactSteadyState solveByShooting(const CrankTrain& t, const SteadyStateOptions& options, State y0, double scale) {
   const int n = t.countBodies(), dim = 2 * n;
-
   ExactSteadyState out;
-  // The start: Holzer's deviations and their rates at s = 0 (d/ds of Re c_p e^{i p tau}, tau = 2 pi s / cycle).
-  State y0(static_cast<size_t>(dim), 0.0);
-  double scale = 0.0;
-  for (int b = 0; b < n; ++b) {
-    const PeriodicSignal& x = holzer.bodies[static_cast<size_t>(b)];
-    const SignalExtremes ex = findSignalExtremes(x);
-    scale = std::max({scale, std::fabs(ex.min), std::fabs(ex.max)});
-    y0[static_cast<size_t>(b)] = x.evaluate(0.0);
-    double rate = 0.0;
-    for (size_t p = 0; p < x.coefficients.size(); ++p)
-      rate += (x.coefficients[p] * std::complex<double>(0.0, 2.0 * M_PI * static_cast<double>(p) / t.cycle)).real();
-    y0[static_cast<size_t>(n + b)] = rate;
-  }
-  // Stiff shafts: where Holzer's response took the stiff-limit route (8 x the highest natural frequency's order beyond
-  // its harmonics), so does the steady state (the explicit integrator's steps would follow that frequency).
-  if (holzer.stiff_limit && holzer.stiff && scale > 0.0) return solveStiffLimit(t, holzer, scale);
   out.twist_scale = scale;
   const TrainEquations equations(t, options.max_evaluations);
   if (!(scale > 0.0)) {
@@ -394,6 +364,69 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& 
     out.x_dot0(b) = y0[static_cast<size_t>(n + b)] * t.omega;
   }
   return out;
+}
+
+}  // namespace
+
+ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptions& options) {
+  if (!(options.tolerance > 0.0) || options.samples < 16 || options.samples % 2 != 0 || options.max_evaluations < 1)
+    throw std::invalid_argument("torsion: the steady state needs a tolerance > 0, an even number of samples >= 16 and "
+                                "max_evaluations >= 1");
+  const CrankTrain t = makeCrankTrain(m);
+  std::vector<double> inertias;
+  if (t.has_front) inertias.push_back(t.front_inertia);
+  for (int j = 0; j < static_cast<int>(t.throws.size()); ++j) inertias.push_back(calcThrowInertia(m, j).exact);
+  // Holzer's response only starts Newton's method and sets the scale: its sum to 1e-4 is enough.
+  return calcExactSteadyState(m, calcHolzerResponse(t, inertias, {1e-4, 1 << 16}), options);
+}
+
+ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& holzer,
+                                      const SteadyStateOptions& options) {
+  if (!(options.tolerance > 0.0) || options.samples < 16 || options.samples % 2 != 0 || options.max_evaluations < 1)
+    throw std::invalid_argument("torsion: the steady state needs a tolerance > 0, an even number of samples >= 16 and "
+                                "max_evaluations >= 1");
+  const CrankTrain t = makeCrankTrain(m);
+  if (static_cast<int>(holzer.bodies.size()) != t.countBodies())
+    throw std::invalid_argument("torsion: Holzer's start has " + std::to_string(holzer.bodies.size()) +
+                                " bodies for a train of " + std::to_string(t.countBodies()));
+  checkHolzerTwist(holzer, m.speed_rpm);  // the small-twist domain (torsion_domain.h): refused beyond, before any work
+  const int n = t.countBodies(), dim = 2 * n;
+
+  ExactSteadyState out;
+  // The start: Holzer's deviations and their rates at s = 0 (d/ds of Re c_p e^{i p tau}, tau = 2 pi s / cycle).
+  State y0(static_cast<size_t>(dim), 0.0);
+  double scale = 0.0;
+  for (int b = 0; b < n; ++b) {
+    const PeriodicSignal& x = holzer.bodies[static_cast<size_t>(b)];
+    const SignalExtremes ex = findSignalExtremes(x);
+    scale = std::max({scale, std::fabs(ex.min), std::fabs(ex.max)});
+    y0[static_cast<size_t>(b)] = x.evaluate(0.0);
+    double rate = 0.0;
+    for (size_t p = 0; p < x.coefficients.size(); ++p)
+      rate += (x.coefficients[p] * std::complex<double>(0.0, 2.0 * M_PI * static_cast<double>(p) / t.cycle)).real();
+    y0[static_cast<size_t>(n + b)] = rate;
+  }
+  // Stiff shafts: where Holzer's response took the stiff-limit route (8 x the highest natural frequency's order beyond
+  // its harmonics), so does the steady state where it is accurate (the explicit integrator's steps would follow that
+  // frequency).
+  ExactSteadyState stiff;
+  if (holzer.stiff_limit && holzer.stiff && scale > 0.0) {
+    stiff = solveStiffLimit(t, holzer, scale);
+    const double largest = *std::max_element(stiff.peak_to_peak.begin(), stiff.peak_to_peak.end());
+    if (stiff.error_bound <= kStiffLimitAccuracy * largest) return stiff;
+  }
+  // The explicit route: the shaft is not that stiff, or too little for the stiff limit's accuracy (then its cost, near
+  // the stiff limit's switch, within the work limit, or refused naming both routes).
+  try {
+    return solveByShooting(t, options, y0, scale);
+  } catch (const std::runtime_error& e) {
+    if (stiff.peak_to_peak.empty()) throw;
+    char text[160];
+    std::snprintf(text, sizeof text, "; the stiff limit's bound is %.1e of the largest twist (more than %g)",
+                  stiff.error_bound / *std::max_element(stiff.peak_to_peak.begin(), stiff.peak_to_peak.end()),
+                  kStiffLimitAccuracy);
+    throw std::runtime_error(e.what() + std::string(text));
+  }
 }
 
 }  // namespace crankcheck::analytic

@@ -263,6 +263,26 @@ TEST(ExactSteadyState, ShaftTwistedBeyondACrankshaftIsRefused) {
 namespace crankcheck::analytic {
 namespace {
 
+// Between the explicit route's reach and the stiff limit's accuracy (3e4 x the example four's stiffness), the stiff
+// limit's result was returned with a bound it exceeded: its flywheel twist 13 % above the explicit route's (its bound,
+// from the correction's first-order estimate, 11 %). Now it is returned only where its bound is within 1e-2 of the
+// largest twist; else the explicit route computes (about 25 s here, outside this test) or, past its work limit (made
+// small here), the state is refused naming both routes.
+TEST(ExactSteadyState, AStiffLimitWithoutItsAccuracyIsNotReturned) {
+  Mechanism m = loadWithCrankshaft("inline4_four_stroke.toml", kInline4Train);
+  for (double& k : m.crankshaft->stiffness) k *= 3e4;
+  const HolzerResponse h = calcHolzerResponse(m);
+  ASSERT_TRUE(h.stiff_limit);
+  SteadyStateOptions options;
+  options.max_evaluations = 100'000;
+  try {
+    calcExactSteadyState(m, h, options);
+    ADD_FAILURE() << "the stiff limit's inaccurate state was returned";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("the stiff limit's bound is"), std::string::npos) << e.what();
+  }
+}
+
 // Shafts 1e6, 1e9 and 1e12 times as stiff as the example four's (1e12: 7e17 N m/rad, within the scene format's 1e18):
 // both routes take the stiff limit (torsion_forced.h, torsion_steady.h) and compute, where before Holzer's sum was
 // refused ("did not converge"). Against what they did not produce: the flywheel section's torque K twist + i w C twist
@@ -283,21 +303,10 @@ TEST(ExactSteadyState, VeryStiffShaftsComputeAndTendToTheRigidDriveTorque) {
     const HolzerResponse h = calcHolzerResponse(m);
     ASSERT_TRUE(h.stiff_limit);
     const ExactSteadyState e = calcExactSteadyState(m, h);
-    std::vector<double> samples;
-    for (int k = 0; k < 4096; ++k) samples.push_back(calcReactions(m, train.cycle * k / 4096).drive_torque);
-    const PeriodicSignal rigid = calcSignalFromSamples(samples);
     for (const std::vector<PeriodicSignal>* twists : {&h.twists, &e.twists}) {
-      double largest = 0.0, difference = 0.0;
-      for (size_t p = 0; p <= 16; ++p) {
-        const double w = 2 * M_PI * static_cast<double>(p) / train.cycle * train.omega;
-        const std::complex<double> section =
-            std::complex<double>(train.stiffness.back(), w * train.section_damping.back()) *
-            twists->back().coefficients[p];
-        largest = std::max(largest, std::abs(rigid.coefficients[p]));
-        difference = std::max(difference, std::abs(section - rigid.coefficients[p]));
-      }
-      if (std::getenv("CRANKCHECK_PRINT_RATIOS")) std::printf("f %g: %.3e\n", f, difference / largest);
-      EXPECT_LT(difference, 1e-5 * largest);
+      const double difference = testing::calcFlywheelTorqueDifference(m, train, twists->back());
+      if (std::getenv("CRANKCHECK_PRINT_RATIOS")) std::printf("f %g: %.3e\n", f, difference);
+      EXPECT_LT(difference, 1e-5);
     }
     for (size_t i = 0; i < e.peak_to_peak.size(); ++i)
       EXPECT_LE(std::fabs(e.peak_to_peak[i] - h.peak_to_peak[i]), e.error_bound + h.stiff_bound) << "section " << i;
