@@ -622,7 +622,8 @@ TEST(Cli, EveryExactZeroOfBalanceHasItsReason) {
   for (const auto& scene : exampleScenes()) {
     const RunResult r = testing::runCrankcheck({"balance", scene.string(), "--order", "12", "--format", "json"});
     ASSERT_EQ(r.exit_status, 0) << r.err;
-    for (const auto& h : nlohmann::json::parse(r.out)["harmonics"]) {
+    const nlohmann::json doc = nlohmann::json::parse(r.out);  // named: a range-for over a temporary's member dangles
+    for (const auto& h : doc["harmonics"]) {
       const std::string reason = h["reason"].get<std::string>();
       const auto& a = h["analytic"];
       auto zero = [](const nlohmann::json& x) { return !x.is_null() && x["amplitude"].get<double>() == 0.0; };
