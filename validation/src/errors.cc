@@ -72,7 +72,7 @@ std::string formatOneLine(const std::string& message) {
     }
     while (!out.empty() && out.back() == ' ') out.pop_back();
     while (i + 1 < message.size() && std::isspace(static_cast<unsigned char>(message[i + 1]))) ++i;
-    if (!out.empty() && i + 1 < message.size()) out += "; ";
+    if (!out.empty() && i + 1 < message.size()) out += out.back() == ':' ? " " : "; ";
   }
   while (!out.empty() && out.back() == ' ') out.pop_back();
   return out;

@@ -46,7 +46,7 @@ std::string quoteText(const std::string& text);
 std::string escapeText(const std::string& text);
 
 /// A message as one line, as every refusal is printed: an engine's exception (Simbody's spans several lines) with
-/// its line breaks and the indentation after them as "; ".
+/// its line breaks and the indentation after them as "; " (as " " after a colon).
 std::string formatOneLine(const std::string& message);
 
 }  // namespace crankcheck
