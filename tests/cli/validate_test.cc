@@ -364,6 +364,30 @@ TEST_F(ValidateTest, APartLeftOutForItsScenesSaysWhy) {
   EXPECT_FALSE(fs::exists(report / "data" / "torsion.csv"));
 }
 
+// A scene inside the small-twist domain up front (its mean torque) but beyond it at part 17's sweep speeds (every
+// section at 3000 N m/rad, the example four: 0.11 rad at 3000 and 6000 rpm) ended the whole campaign ("could not run",
+// status 1, no report). Now the refused routes are named in the notes and part 17 is left out, saying so; the report
+// is written.
+TEST_F(ValidateTest, APartWhoseRoutesAreRefusedIsLeftOutWithItsReasons) {
+  std::string text = readFile(fs::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
+  const size_t at = text.find("stiffness = [");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, text.find(']', at) + 1 - at, "stiffness = [3000, 3000, 3000, 3000, 3000]");
+  const fs::path scene = dir_ / "soft.toml";
+  std::ofstream(scene) << text;
+  const fs::path report = dir_ / "report";
+  const RunResult r = run("validate --quick --parts torsion " + scene.string() + " --out " + report.string());
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const std::string index = readFile(report / "index.md");
+  EXPECT_NE(index.find("Part 17 (torsion): soft at 3000 rpm not computed: torsion: at 3e+03 rpm Holzer's linear "
+                       "response twists section 1 by"),
+            std::string::npos)
+      << index;
+  EXPECT_NE(index.find("Part 17 (torsion) is left out"), std::string::npos);
+  EXPECT_FALSE(fs::exists(report / "torsion.png"));
+  EXPECT_FALSE(fs::exists(report / "data" / "torsion.csv"));
+}
+
 TEST_F(ValidateTest, SceneFilesAreTheirOwnFamilies) {
   const std::string scenes = CRANKCHECK_SCENES_DIR;
   // One part beside the cross-checks: the families are the cross-checks' (and the scenes table's).

@@ -48,6 +48,7 @@
 #include "crankcheck/analytic/torsion_forced.h"
 #include "crankcheck/analytic/torsion_steady.h"
 #include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/variants.h"
@@ -640,6 +641,24 @@ ReportPart describeTorsionPart(const TableSet& tables, const std::string& headin
   return part;
 }
 
+// The notes' prefix of a route part 17 could not compute (calcOrNote).
+constexpr const char* kRefusedNote = "Part 17 (torsion): ";
+
+// A task whose route is refused for its scene (outside the small-twist domain at one of the sweep's speeds, past a
+// work limit): its reason in the report's notes and no numbers (crankcheck torsion refuses the same with status 1).
+// The part then leaves its figure and tables out (derive), rather than draw a sweep with holes; the other parts go
+// on. A logic error still ends the campaign.
+template <class Calc>
+TableSet calcOrNote(const std::string& what, Calc calc) {
+  try {
+    return calc();
+  } catch (const std::runtime_error& e) {
+    Table notes("notes", {{"note", kText}});
+    notes.rows.push_back({kRefusedNote + what + " not computed: " + formatOneLine(e.what())});
+    return TableSet{{"notes", notes}};
+  }
+}
+
 class TorsionPart final : public Part {
  public:
   std::string key() const override { return "torsion"; }
@@ -660,21 +679,30 @@ class TorsionPart final : public Part {
       const auto load_orders = std::make_shared<analytic::ThrowLoadOrders>();
       for (double rpm : listSweepSpeeds(m, context.quick))
         out.push_back({"torsion " + m.name + " " + num(rpm) + " rpm", false,
-                       [m, rpm, load_orders] { return calcSpeedTables(m, rpm, *load_orders); }, task_cost::kShort});
+                       [m, rpm, load_orders] {
+                         return calcOrNote(m.name + " at " + num(rpm) + " rpm",
+                                           [&] { return calcSpeedTables(m, rpm, *load_orders); });
+                       },
+                       task_cost::kShort});
       if (s > 0) continue;
       const auto analytic_state = std::make_shared<SharedSteadyState>([m] { return calcTrainReference(m); });
       for (const Engine& engine : listEngines())
         if (engine.simulate_crank_train && !engine.closed_form && (engine.crank_train_gated || !context.quick))
           out.push_back({"torsion " + m.name + " " + engine.name, false,
                          [m, &engine, quick = context.quick, analytic_state] {
-                           return calcEngineTables(m, engine, quick, *analytic_state);
+                           return calcOrNote(m.name + " by " + engine.name,
+                                             [&] { return calcEngineTables(m, engine, quick, *analytic_state); });
                          },
                          task_cost::kSimbodyRun});
     }
     if (!scenes.empty())
       for (double factor : listRatioFactors(context.quick))
         out.push_back({"torsion ratio " + num(factor), false,
-                       [m = *scenes.front(), factor] { return calcRatioTables(m, factor); }, task_cost::kShort});
+                       [m = *scenes.front(), factor] {
+                         return calcOrNote(m.name + " at the inertia ratio's factor " + num(factor),
+                                           [&] { return calcRatioTables(m, factor); });
+                       },
+                       task_cost::kShort});
     return out;
   }
   std::string findOmission(const PartContext& context) const override {
@@ -684,7 +712,19 @@ class TorsionPart final : public Part {
     return "no scene (" + names + ") has a [crankshaft] table with [engine].speed_rpm > 0, the elastic crank train "
            "it analyses. Give a scene one (docs/SCENE-FORMAT.md, \"[crankshaft]\") to get it.";
   }
-  void derive(TableSet& tables) const override { deriveTorsion(tables); }
+  void derive(TableSet& tables) const override {
+    // A route refused (calcOrNote): the part's tables out, its notes say why and which.
+    const auto notes = tables.find("notes");
+    if (notes != tables.end() &&
+        std::any_of(notes->second.rows.begin(), notes->second.rows.end(),
+                    [](const std::vector<std::string>& row) { return row.front().rfind(kRefusedNote, 0) == 0; })) {
+      for (const std::string& name : this->tables()) tables.erase(name);
+      notes->second.rows.push_back({"Part 17 (torsion) is left out: the routes these notes name could not be computed, and a "
+                                    "sweep with holes is not drawn. crankcheck torsion on each scene shows the rest."});
+      return;
+    }
+    deriveTorsion(tables);
+  }
   ReportPart describe(const TableSet& tables) const override { return describeTorsionPart(tables, heading()); }
   std::vector<std::string> tables() const override {
     return {"torsion",         "torsion_sections", "torsion_orders", "torsion_modes", "torsion_inertia",
