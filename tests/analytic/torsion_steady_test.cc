@@ -311,7 +311,11 @@ TEST(ExactSteadyState, VeryStiffShaftsComputeAndTendToTheRigidDriveTorque) {
     for (size_t i = 0; i < e.peak_to_peak.size(); ++i)
       EXPECT_LE(std::fabs(e.peak_to_peak[i] - h.peak_to_peak[i]), e.error_bound + h.stiff_bound) << "section " << i;
     const double p2p = *std::max_element(e.peak_to_peak.begin(), e.peak_to_peak.end());
-    if (last_p2p > 0.0) EXPECT_NEAR(p2p * 1e3, last_p2p, 1e-3 * last_p2p);  // 1 / K, to the next order's 1e-6
+    // The twist falls as 1 / K: from one stiffness to the next (x 1e3) the largest peak-to-peak x 1e3 is the last one
+    // to within what the last state promises, its error bound (the ringing after the pressure table's corners: 1.4e-3
+    // of its twist at 1e6 x, 1.5e-6 at 1e12 x), not more: 1e-3 of it, below that bound; the next order of the stiff
+    // limit, (n w)^2 J / K, is 2e-6 at 1e6 x.
+    if (last_p2p > 0.0) EXPECT_NEAR(p2p * 1e3, last_p2p, 1e-3 * last_p2p);
     last_p2p = p2p;
   }
 }
