@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "crankcheck/validation/csv.h"
+
 #include <algorithm>
 #include <map>
 #include <set>
@@ -23,11 +25,12 @@ const Part& partNumbered(int number) {
   return *listParts().front();
 }
 
-// Table `name` with its columns (names and units) and rows.
+// Table `name` with its columns (names and units) and rows, read the way `report merge` reads a table (csv.h): into
+// the typed rows of its schema where a part declares one.
 Table makeTable(const std::string& name, std::vector<Column> columns, std::vector<std::vector<std::string>> rows) {
   Table t(name, std::move(columns));
   t.rows = std::move(rows);
-  return t;
+  return parseTable(name, parseCsv(formatCsv(t), name), name);
 }
 
 // The paragraph (of the sentences or the blocks) that contains `needle`, or "" (the test then fails on its expectations).

@@ -16,21 +16,20 @@ namespace crankcheck::validation {
 namespace {
 
 Table crosscheck() {
-  Table t("crosscheck", {{"family", kText}, {"engine", kText}, {"case", kText}, {"lambda", "-"}, {"quantity", kText},
-                         {"worst_rel_error", "-"}, {"where_phi_deg", "deg"}, {"where_speed_rpm", "rpm"},
-                         {"tolerance_rel", "-"}, {"pass", kText}});
+  Table t = kCrossCheckTable.table();
+  std::vector<CrossCheckRow>& rows = t.getRows(kCrossCheckTable);
   // simbody: 2 cases, 4 comparisons; the worst ratio 0.5 (x_p of case b), the largest error 4e-15 (Q of case a,
   // ratio 0.04).
-  t.rows.push_back({"fam", "simbody", "a", "0.3", "Q", "4e-15", "45", "6000", "1e-13", "pass"});
-  t.rows.push_back({"fam", "simbody", "a", "0.3", "x_p", "1e-16", "90", "6000", "1e-14", "pass"});
-  t.rows.push_back({"fam", "simbody", "b", "0.9", "Q", "1e-15", "0", "0", "1e-13", "pass"});
-  t.rows.push_back({"fam", "simbody", "b", "0.9", "x_p", "5e-15", "180", "0", "1e-14", "pass"});
+  rows.push_back({"fam", "simbody", "a", 0.3, "Q", 4e-15, 45, 6000, 1e-13, "pass"});
+  rows.push_back({"fam", "simbody", "a", 0.3, "x_p", 1e-16, 90, 6000, 1e-14, "pass"});
+  rows.push_back({"fam", "simbody", "b", 0.9, "Q", 1e-15, 0, 0, 1e-13, "pass"});
+  rows.push_back({"fam", "simbody", "b", 0.9, "x_p", 5e-15, 180, 0, 1e-14, "pass"});
   // mujoco: 1 case, 2 comparisons, one beyond its tolerance (ratio 3).
-  t.rows.push_back({"fam", "mujoco", "a", "0.3", "Q", "3e-13", "90", "6000", "1e-13", "FAIL"});
-  t.rows.push_back({"fam", "mujoco", "a", "0.3", "x_p", "1e-16", "90", "6000", "1e-14", "pass"});
+  rows.push_back({"fam", "mujoco", "a", 0.3, "Q", 3e-13, 90, 6000, 1e-13, "FAIL"});
+  rows.push_back({"fam", "mujoco", "a", 0.3, "x_p", 1e-16, 90, 6000, 1e-14, "pass"});
   // a soft engine: measured, never gated; its largest error 0.2 of the scale.
-  t.rows.push_back({"fam", "mujoco-soft", "a", "0.3", "Q", "0.2", "90", "6000", "1e-13", "reported"});
-  t.rows.push_back({"fam", "mujoco-soft", "a", "0.3", "x_p", "0.01", "90", "6000", "1e-14", "reported"});
+  rows.push_back({"fam", "mujoco-soft", "a", 0.3, "Q", 0.2, 90, 6000, 1e-13, "reported"});
+  rows.push_back({"fam", "mujoco-soft", "a", 0.3, "x_p", 0.01, 90, 6000, 1e-14, "reported"});
   return t;
 }
 
@@ -63,10 +62,11 @@ TEST(VerdictTest, CountsCasesComparisonsAndTheWorstAgainstItsTolerance) {
 // in whatever order the rows come; the report's summary by the same rule.
 TEST(VerdictTest, AnExactTieIsBrokenTheSameWayInEveryOrder) {
   Table t = crosscheck();
-  t.rows.resize(4);  // simbody's rows; a second x_p of ratio exactly 0.5 (5e-15 / 1e-14), at case a
-  t.rows.push_back({"fam", "simbody", "a", "0.3", "x_p", "5e-15", "270", "6000", "1e-14", "pass"});
+  std::vector<CrossCheckRow>& rows = t.getRows(kCrossCheckTable);
+  rows.resize(4);  // simbody's rows; a second x_p of ratio exactly 0.5 (5e-15 / 1e-14), at case a
+  rows.push_back({"fam", "simbody", "a", 0.3, "x_p", 5e-15, 270, 6000, 1e-14, "pass"});
   for (int order = 0; order < 2; ++order) {
-    if (order == 1) std::reverse(t.rows.begin(), t.rows.end());
+    if (order == 1) std::reverse(rows.begin(), rows.end());
     const std::vector<EngineVerdict> v = calcVerdicts({{"crosscheck", t}});
     ASSERT_EQ(v.size(), 1u);
     EXPECT_EQ(v[0].worst_where, "a, phi 270 deg, 6000 rpm") << order;  // "a, ..." before "b, ..."
@@ -89,15 +89,16 @@ TEST(VerdictTest, ClosesWithOneLineInCtestsStyle) {
 
 TEST(VerdictTest, AllAgreeIsOneHundredPercentAndNothingElse) {
   Table t = crosscheck();
-  t.rows.erase(t.rows.begin() + 4);  // the failing row
+  t.getRows(kCrossCheckTable).erase(t.getRows(kCrossCheckTable).begin() + 4);  // the failing row
   const std::vector<EngineVerdict> v = calcVerdicts({{"crosscheck", t}});
   EXPECT_TRUE(allAgree(v));
   EXPECT_NE(formatVerdict(v).find("\n100% of comparisons agree, 0 failed out of 5 "), std::string::npos);
   // One failure in 1000 is 99%, never a rounded-up 100%.
   Table many = t;
-  many.rows.resize(0);
-  for (int i = 0; i < 999; ++i) many.rows.push_back({"fam", "simbody", "c" + std::to_string(i), "0.3", "Q", "1e-15", "0", "0", "1e-13", "pass"});
-  many.rows.push_back({"fam", "simbody", "x", "0.3", "Q", "1e-12", "0", "0", "1e-13", "FAIL"});
+  std::vector<CrossCheckRow>& many_rows = many.getRows(kCrossCheckTable);
+  many_rows.resize(0);
+  for (int i = 0; i < 999; ++i) many_rows.push_back({"fam", "simbody", "c" + std::to_string(i), 0.3, "Q", 1e-15, 0, 0, 1e-13, "pass"});
+  many_rows.push_back({"fam", "simbody", "x", 0.3, "Q", 1e-12, 0, 0, 1e-13, "FAIL"});
   EXPECT_NE(formatVerdict(calcVerdicts({{"crosscheck", many}})).find("\n99% of comparisons agree, 1 failed out of 1000 "),
             std::string::npos);
 }

@@ -15,6 +15,7 @@
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
+#include "crankcheck/validation/crosscheck.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/install_paths.h"
 #include "crankcheck/validation/parts.h"
@@ -25,100 +26,23 @@
 
 namespace crankcheck::validation {
 
-std::string formatNumber(double x) {
-  char buffer[40];
-  const auto end = std::to_chars(buffer, buffer + sizeof buffer, x + 0.0).ptr;  // shortest round-trip; -0 as 0
-  return std::string(buffer, end);
-}
+const Schema<SceneRow> kScenesTable{
+    "scenes",
+    {textField("family", &SceneRow::family), textField("scene", &SceneRow::scene),
+     countField("cylinders", &SceneRow::cylinders), textField("cycle", &SceneRow::cycle),
+     textField("acting", &SceneRow::acting), numberField("gamma_deg", "deg", &SceneRow::gamma_deg),
+     numberField("speed_rpm", "rpm", &SceneRow::speed_rpm), numberField("r", "m", &SceneRow::r),
+     numberField("l", "m", &SceneRow::l), numberField("lambda", "-", &SceneRow::lambda),
+     numberField("m_o", "kg", &SceneRow::m_o), numberField("m_k", "kg", &SceneRow::m_k),
+     numberField("z_k", "m", &SceneRow::z_k), numberField("I_o", "kg m^2", &SceneRow::I_o),
+     numberField("m_s", "kg", &SceneRow::m_s), numberField("r_s", "m", &SceneRow::r_s),
+     numberField("m_p", "kg", &SceneRow::m_p), numberField("r_p", "m", &SceneRow::r_p),
+     numberField("g", "m/s^2", &SceneRow::g), optionalField("I_w", "kg m^2", &SceneRow::I_w)}};
 
 std::string shortNumber(double x, int digits) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
   return buffer;
-}
-
-Table::Table(const std::string& name, std::vector<Column> columns) : columns_(std::move(columns)) {
-  for (const Column& c : columns_)
-    if (!c.text && c.unit.empty())
-      throw std::logic_error("table " + name + ": column " + c.name + " is a number without a unit (declare its unit, "
-                             "or kText for a text column)");
-}
-
-std::vector<std::string> Table::names() const {
-  std::vector<std::string> out;
-  for (const Column& c : columns_) out.push_back(c.name);
-  return out;
-}
-
-size_t columnOf(const Table& t, const std::string& name) {
-  const auto& columns = t.columns();
-  const auto it = std::find_if(columns.begin(), columns.end(), [&](const Column& c) { return c.name == name; });
-  if (it == columns.end()) throw std::runtime_error("report: table has no column " + name);
-  return static_cast<size_t>(it - columns.begin());
-}
-
-void appendTables(TableSet& into, const TableSet& from) {
-  for (const auto& [name, table] : from) {
-    auto [it, inserted] = into.try_emplace(name, table);
-    if (inserted) continue;
-    if (it->second.columns() != table.columns()) throw std::runtime_error("table " + name + ": columns differ");
-    it->second.rows.insert(it->second.rows.end(), table.rows.begin(), table.rows.end());
-  }
-}
-
-namespace {
-
-bool parseNumber(const std::string& s, double& x) {
-  if (s.empty()) return false;
-  char* end = nullptr;
-  x = std::strtod(s.c_str(), &end);
-  return end == s.c_str() + s.size();
-}
-
-// A row's fields as the sort compares them: each parsed once (a number, or text compared as text).
-struct SortField {
-  bool number = false;
-  double x = 0.0;
-};
-
-// Rows in order, column by column: numerically where both fields are numbers, else as text; a shorter row first
-// when one is the other's start. Each field is parsed once, not at every comparison.
-void sortRows(std::vector<std::vector<std::string>>& rows) {
-  const size_t n = rows.size();
-  if (n < 2) return;
-  std::vector<std::vector<SortField>> keys(n);
-  for (size_t r = 0; r < n; ++r) {
-    keys[r].resize(rows[r].size());
-    for (size_t i = 0; i < rows[r].size(); ++i) keys[r][i].number = parseNumber(rows[r][i], keys[r][i].x);
-  }
-  auto less = [&](size_t a, size_t b) {
-    const size_t common = std::min(rows[a].size(), rows[b].size());
-    for (size_t i = 0; i < common; ++i) {
-      const SortField &x = keys[a][i], &y = keys[b][i];
-      if (x.number && y.number) {
-        if (x.x != y.x) return x.x < y.x;
-      } else if (rows[a][i] != rows[b][i]) {
-        return rows[a][i] < rows[b][i];
-      }
-    }
-    return rows[a].size() < rows[b].size();
-  };
-  bool sorted = true;  // the second sort of a report finds most tables in order already
-  for (size_t r = 1; r < n && sorted; ++r) sorted = !less(r, r - 1);
-  if (sorted) return;
-  std::vector<size_t> order(n);
-  for (size_t r = 0; r < n; ++r) order[r] = r;
-  std::stable_sort(order.begin(), order.end(), less);
-  std::vector<std::vector<std::string>> out;
-  out.reserve(n);
-  for (size_t r : order) out.push_back(std::move(rows[r]));
-  rows = std::move(out);
-}
-
-}  // namespace
-
-void sortTables(TableSet& tables) {
-  for (auto& [name, table] : tables) sortRows(table.rows);
 }
 
 namespace {
@@ -154,129 +78,6 @@ Mechanism makeScene(const std::string& name, int k, Cycle cycle, double gamma_de
 double lambdaOf(const Mechanism& m) { return calcCrankRatio(m); }
 
 namespace {
-
-// ------------------------------------------------------------------------------------------------------------
-// Cross-check of one case: every quantity, at the scene's speed and at rest; one row per quantity with the worst
-// comparison (largest error / tolerance).
-
-struct WorstComparison {
-  double ratio_to_tolerance = -1.0;
-  double rel_error = 0.0, tolerance_rel = 0.0, phi_deg = 0.0, rpm = 0.0;
-  bool pass = true;
-};
-
-// One engine's worst comparison per quantity in one case, in the order first met. The comparisons of an evaluation come
-// in the same order at every angle (compareEvaluations), so the slot of the i-th is remembered and only confirmed by its
-// name (a short string) instead of a map lookup on (engine, quantity) per comparison.
-class WorstByQuantity {
- public:
-  WorstComparison& at(size_t i, const std::string& quantity) {
-    if (i < slot_of_.size() && slots_[slot_of_[i]].first == quantity) return slots_[slot_of_[i]].second;
-    size_t slot = 0;
-    while (slot < slots_.size() && slots_[slot].first != quantity) ++slot;
-    if (slot == slots_.size()) slots_.emplace_back(quantity, WorstComparison{});
-    if (i >= slot_of_.size()) slot_of_.resize(i + 1, 0);
-    slot_of_[i] = slot;
-    return slots_[slot].second;
-  }
-  const std::vector<std::pair<std::string, WorstComparison>>& slots() const { return slots_; }
-
- private:
-  std::vector<std::pair<std::string, WorstComparison>> slots_;
-  std::vector<size_t> slot_of_;
-};
-
-// `measure_soft`: the engines that are measured, not gated (Engine::gated false: MuJoCo's soft ways) take part too.
-// Several `variants` of one mechanism that differ in gamma alone (the gate's sweep) are cross-checked in lockstep: angle
-// by angle, variant by variant, each engine's model of a later variant starting its assembly from the first variant's
-// at the same angle (EngineModel::startAssemblyFrom: Simbody then assembles once per angle, not once per gamma). Every
-// model is asked what it would be asked alone, in the same order; the tables are each variant's, as if alone.
-TableSet crossCheckCases(const std::string& family, const std::vector<Mechanism>& variants,
-                         const std::vector<double>& angles_deg, bool measure_soft = true) {
-  struct Case {
-    std::vector<WorstByQuantity> worst;  // per engine of `others`
-    std::vector<Mechanism> at_speed;  // the case at the scene's speed and at rest
-    std::vector<Scales> scales;
-    std::unique_ptr<EngineModel> closed_form;
-    std::vector<std::pair<const Engine*, std::unique_ptr<EngineModel>>> others;
-  };
-  std::vector<Case> cases(variants.size());
-  for (size_t v = 0; v < variants.size(); ++v) {
-    const Mechanism& m = variants[v];
-    Case& c = cases[v];
-    // Every engine's model built once for the case and evaluated at both speeds (speed is a state:
-    // EngineModel::setSpeed), the speeds inner, so that the second speed finds each model assembled at the same angle.
-    for (double rpm : m.speed_rpm > 0.0 ? std::vector<double>{m.speed_rpm, 0.0} : std::vector<double>{0.0})
-      c.at_speed.push_back(withSpeed(m, rpm));
-    for (const Mechanism& case_m : c.at_speed) c.scales.push_back(calcScales(case_m));
-    // The closed forms against every other registered engine, exact or soft (engines.h), with its second route to Q
-    // where it offers one (Engine::second_q_route), at rest.
-    c.closed_form = getClosedFormEngine().build(c.at_speed.front());
-    for (const Engine& engine : listEngines())
-      if (!engine.closed_form && (engine.gated || measure_soft)) c.others.emplace_back(&engine, engine.build(c.at_speed.front()));
-    c.worst.resize(c.others.size());
-  }
-  for (double phi_deg : angles_deg) {
-    const double phi = radiansFromDegrees(phi_deg);
-    for (size_t v = 0; v < cases.size(); ++v) {
-      Case& c = cases[v];
-      auto note = [&](WorstComparison& w, const Comparison& cmp, double rpm) {
-        const double ratio = cmp.error() / cmp.tolerance();
-        w.pass = w.pass && cmp.agrees();
-        if (ratio > w.ratio_to_tolerance) {
-          w.ratio_to_tolerance = ratio;
-          w.rel_error = cmp.error() / cmp.scale;
-          w.tolerance_rel = cmp.tolerance() / cmp.scale;
-          w.phi_deg = phi_deg;
-          w.rpm = rpm;
-        }
-      };
-      if (v > 0)
-        for (size_t e = 0; e < c.others.size(); ++e) c.others[e].second->startAssemblyFrom(*cases.front().others[e].second);
-      for (size_t s = 0; s < c.at_speed.size(); ++s) {
-        const Mechanism& case_m = c.at_speed[s];
-        const double rpm = case_m.speed_rpm;
-        c.closed_form->setSpeed(case_m.engine.speed);
-        const Evaluation a = c.closed_form->evaluate(phi);
-        for (size_t e = 0; e < c.others.size(); ++e) {
-          auto& [engine, other] = c.others[e];
-          other->setSpeed(case_m.engine.speed);
-          const std::vector<Comparison> comparisons = compareEvaluations(case_m, c.scales[s], a, other->evaluate(phi));
-          for (size_t i = 0; i < comparisons.size(); ++i)
-            note(c.worst[e].at(i, comparisons[i].quantity), comparisons[i], rpm);
-          if (rpm == 0.0 && !engine->second_q_route.empty()) {
-            const Comparison second{"Q (" + engine->second_q_route + ")", -1, a.Q, other->calcSecondRouteQ(phi),
-                                    c.scales[s].energy, c.scales[s].conditioning};
-            note(c.worst[e].at(comparisons.size(), second.quantity), second, rpm);
-          }
-        }
-      }
-    }
-  }
-  Table t("crosscheck", {{"family", kText}, {"engine", kText}, {"case", kText}, {"lambda", "-"}, {"quantity", kText},
-                         {"worst_rel_error", "-"}, {"where_phi_deg", "deg"}, {"where_speed_rpm", "rpm"},
-                         {"tolerance_rel", "-"}, {"pass", kText}});
-  for (size_t v = 0; v < variants.size(); ++v) {
-    const Mechanism& m = variants[v];
-    char case_name[160];
-    std::snprintf(case_name, sizeof case_name, "%s lambda=%.4g", m.name.c_str(), lambdaOf(m));
-    // In (engine, quantity) order, as before the slots.
-    std::map<std::pair<std::string, std::string>, const WorstComparison*> ordered;
-    for (size_t e = 0; e < cases[v].others.size(); ++e)
-      for (const auto& [quantity, w] : cases[v].worst[e].slots()) ordered[{cases[v].others[e].first->name, quantity}] = &w;
-    for (const auto& [key, w] : ordered)
-      t.rows.push_back({family, key.first, case_name, num(lambdaOf(m)), key.second, num(w->rel_error), num(w->phi_deg),
-                        num(w->rpm), num(w->tolerance_rel),
-                        findEngine(key.first).gated ? (w->pass ? "pass" : "FAIL") : "reported"});
-  }
-  return {{"crosscheck", t}};
-}
-
-// Cross-check of one case.
-TableSet crossCheckCase(const std::string& family, const Mechanism& m, const std::vector<double>& angles_deg,
-                        bool measure_soft = true) {
-  return crossCheckCases(family, {m}, angles_deg, measure_soft);
-}
 
 }  // namespace
 
@@ -353,19 +154,15 @@ int samplesForOrder(int n) { return std::max(48, 6 * n); }
 
 namespace {
 
-TableSet scenesTable(const std::vector<std::pair<std::string, Mechanism>>& families) {
-  Table t("scenes", {{"family", kText}, {"scene", kText}, {"cylinders", "-"}, {"cycle", kText}, {"acting", kText},
-                     {"gamma_deg", "deg"}, {"speed_rpm", "rpm"}, {"r", "m"}, {"l", "m"}, {"lambda", "-"}, {"m_o", "kg"},
-                     {"m_k", "kg"}, {"z_k", "m"}, {"I_o", "kg m^2"}, {"m_s", "kg"}, {"r_s", "m"}, {"m_p", "kg"},
-                     {"r_p", "m"}, {"g", "m/s^2"}, {"I_w", "kg m^2"}});
+std::vector<SceneRow> listSceneRows(const std::vector<std::pair<std::string, Mechanism>>& families) {
+  std::vector<SceneRow> rows;
   for (const auto& [family, m] : families)
-    t.rows.push_back({family, m.name, std::to_string(m.engine.cylinders), toString(m.engine.cycle), toString(m.engine.acting),
-                      num(degreesFromRadians(m.engine.cylinder_angle)), num(m.speed_rpm), num(m.crank.radius),
-                      num(m.rod.length), num(lambdaOf(m)), num(m.piston.mass), num(m.rod.mass),
-                      num(m.rod.com_from_wrist_pin), num(m.rod.inertia_about_wrist_pin), num(m.crank.mass),
-                      num(m.crank.com_radius), num(m.crank.counterweight_mass), num(m.crank.counterweight_radius),
-                      num(m.engine.gravity), m.flywheel_inertia ? num(*m.flywheel_inertia) : std::string()});
-  return {{"scenes", t}};
+    rows.push_back({family, m.name, m.engine.cylinders, toString(m.engine.cycle), toString(m.engine.acting),
+                    degreesFromRadians(m.engine.cylinder_angle), m.speed_rpm, m.crank.radius, m.rod.length, lambdaOf(m),
+                    m.piston.mass, m.rod.mass, m.rod.com_from_wrist_pin, m.rod.inertia_about_wrist_pin, m.crank.mass,
+                    m.crank.com_radius, m.crank.counterweight_mass, m.crank.counterweight_radius, m.engine.gravity,
+                    m.flywheel_inertia});
+  return rows;
 }
 
 }  // namespace
@@ -453,7 +250,7 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
     notes.rows.push_back({"The first scene, " + first.name + ", has pin offsets or balance shafts; the figures of parts 1-7, "
                           "written for the paper's centric engine without shafts, use its parts without them. Its own "
                           "engine is cross-checked in the summary, and part 14 shows what an offset changes."});
-  tasks.push_back({"scenes", false, [families] { return scenesTable(families); }});
+  tasks.push_back({"scenes", false, [families] { return kScenesTable.tableSet(listSceneRows(families)); }});
   // The user's scenes, or the example scenes (scenes/*.toml) in the default campaign: parts 12, 15 and 16.
   std::vector<Mechanism> pin_scenes = options.scenes;
   if (pin_scenes.empty()) pin_scenes = loadExampleScenes();
@@ -469,7 +266,10 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
       char id[128];
       std::snprintf(id, sizeof id, "crosscheck %s lambda=%.3g", m.name.c_str(), lambda);
       const std::vector<double> angles = anglesDeg(quick ? 45.0 : 15.0);
-      tasks.push_back({id, false, [family = family, variant, angles] { return crossCheckCase(family, variant, angles); },
+      tasks.push_back({id, false,
+                       [family = family, variant, angles] {
+                         return kCrossCheckTable.tableSet(crossCheckCases(family, {variant}, angles));
+                       },
                        task_cost::kCrossCheck});
     }
   }
@@ -497,7 +297,7 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
         tasks.push_back({"sweep k=" + std::to_string(k) + " " + toString(cycle), false,
                          [family, kbase, k, two, sweep_lambdas, sweep_gammas, gate_angles,
                           soft = measuresSoft(k, cycle)] {
-                           TableSet out;
+                           std::vector<CrossCheckRow> rows;
                            for (double lambda : sweep_lambdas) {
                              // The gammas of one lambda in lockstep (crossCheckCases: one assembly per angle).
                              std::vector<Mechanism> variants;
@@ -508,9 +308,10 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
                                variant.name = name;
                                variants.push_back(std::move(variant));
                              }
-                             appendTables(out, crossCheckCases(family, variants, gate_angles, soft));
+                             for (CrossCheckRow& row : crossCheckCases(family, variants, gate_angles, soft))
+                               rows.push_back(std::move(row));
                            }
-                           return out;
+                           return kCrossCheckTable.tableSet(std::move(rows));
                          },
                          task_cost::kGateSweep});
       }

@@ -20,6 +20,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "crankcheck/validation/csv.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/install_paths.h"
@@ -33,34 +34,22 @@
 namespace crankcheck::validation {
 namespace fs = std::filesystem;
 
-namespace {
-
-double toDouble(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
-
-}  // namespace
-
 std::vector<SummaryRow> summarize(const TableSet& tables) {
   std::vector<SummaryRow> out;
-  const auto it = tables.find("crosscheck");
-  if (it == tables.end()) return out;
-  const Table& t = it->second;
-  const size_t engine = columnOf(t, "engine"), family = columnOf(t, "family"), kase = columnOf(t, "case"), quantity = columnOf(t, "quantity"),
-               rel = columnOf(t, "worst_rel_error"), phi = columnOf(t, "where_phi_deg"), rpm = columnOf(t, "where_speed_rpm"),
-               tol = columnOf(t, "tolerance_rel"), pass = columnOf(t, "pass");
   std::map<std::tuple<std::string, std::string, std::string>, SummaryRow> rows;
-  for (const auto& row : t.rows) {
-    if (row[pass] == "reported") continue;  // a soft engine: measured in part engines, never gated
-    SummaryRow& s = rows[{row[engine], row[quantity], row[family]}];
+  for (const CrossCheckRow& row : getRows(tables, kCrossCheckTable)) {
+    if (row.pass == "reported") continue;  // a soft engine: measured in part engines, never gated
+    SummaryRow& s = rows[{row.engine, row.quantity, row.family}];
     const bool first = s.quantity.empty();
-    s.engine = row[engine];
-    s.quantity = row[quantity];
-    s.family = row[family];
-    s.pass = s.pass && row[pass] == "pass";
-    const double r = toDouble(row[rel]);
-    const std::string where = row[kase] + ", phi " + row[phi] + " deg, " + row[rpm] + " rpm";
-    if (first || isWorseComparison(r / toDouble(row[tol]), where, s.worst_rel_error / s.tolerance_rel, s.where)) {
+    s.engine = row.engine;
+    s.quantity = row.quantity;
+    s.family = row.family;
+    s.pass = s.pass && row.pass == "pass";
+    const double r = row.worst_rel_error;
+    const std::string where = formatWhere(row);
+    if (first || isWorseComparison(r / row.tolerance_rel, where, s.worst_rel_error / s.tolerance_rel, s.where)) {
       s.worst_rel_error = r;
-      s.tolerance_rel = toDouble(row[tol]);
+      s.tolerance_rel = row.tolerance_rel;
       s.where = where;
     }
   }
@@ -84,52 +73,6 @@ std::string formatSummary(const std::vector<SummaryRow>& summary) {
 
 namespace {
 
-// RFC 4180: a field with a comma, a double quote or a line break is quoted, its quotes doubled. Only scene names
-// (file names) can hold such characters; the numbers and names the figures read never do.
-std::string csvField(const std::string& field) {
-  if (field.find_first_of(",\"\r\n") == std::string::npos) return field;
-  std::string out = "\"";
-  for (char c : field) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-// Splits CSV text into records of fields (RFC 4180). @throws std::runtime_error on an unterminated quote.
-std::vector<std::vector<std::string>> parseCsv(const std::string& text, const std::string& source) {
-  std::vector<std::vector<std::string>> records;
-  std::vector<std::string> record;
-  std::string field;
-  bool quoted = false, any = false;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') field += '"', ++i;
-      else if (c == '"') quoted = false;
-      else field += c;
-    } else if (c == '"') {
-      quoted = any = true;
-    } else if (c == ',') {
-      record.push_back(std::move(field));
-      field.clear();
-      any = true;
-    } else if (c == '\n') {
-      record.push_back(std::move(field));
-      field.clear();
-      records.push_back(std::move(record));
-      record.clear();
-      any = false;
-    } else if (c != '\r') {
-      field += c;
-      any = true;
-    }
-  }
-  if (quoted) throw std::runtime_error(source + ": a quoted field is not closed");
-  if (any) {
-    record.push_back(std::move(field));
-    records.push_back(std::move(record));
-  }
-  return records;
-}
-
 }  // namespace
 
 std::string calcChecksum(std::string_view bytes) {
@@ -142,21 +85,6 @@ std::string calcChecksum(std::string_view bytes) {
 
 namespace {
 
-// A column's CSV header: "max_rel_error [-]", a text column's bare name.
-std::string formatHeader(const Column& column) {
-  return column.text ? column.name : column.name + " [" + column.unit + "]";
-}
-
-// The column a CSV header declares: "name [unit]" a number's, a bare name a text column's (formatHeader's inverse).
-// @throws std::runtime_error on an empty unit, "name []".
-Column parseHeader(const std::string& header, const std::string& source) {
-  const size_t open = header.find(" [");
-  if (open == std::string::npos || header.back() != ']') return Column(header, kText);
-  const std::string unit = header.substr(open + 2, header.size() - open - 3);
-  if (unit.empty()) throw std::runtime_error(source + ": column " + header.substr(0, open) + " has an empty unit");
-  return Column(header.substr(0, open), unit);
-}
-
 }  // namespace
 
 std::vector<DataFileRecord> writeTables(const TableSet& tables, const fs::path& dir) {
@@ -165,20 +93,10 @@ std::vector<DataFileRecord> writeTables(const TableSet& tables, const fs::path& 
     throw EnvironmentError(quotePath(dir / "data") + ": cannot create the folder: " + ec.message());
   std::vector<DataFileRecord> records;
   for (const auto& [name, table] : tables) {
-    std::string text;
-    // Each header names its unit: "max_rel_error [-]", "ns_per_eval [ns]"; a text column stays bare.
-    for (size_t i = 0; i < table.columns().size(); ++i) {
-      if (i > 0) text += ",";
-      text += csvField(formatHeader(table.columns()[i]));
-    }
-    const std::string header = text;
-    text += "\n";
-    for (const auto& row : table.rows) {
-      for (size_t i = 0; i < row.size(); ++i) text += (i ? "," : "") + csvField(row[i]);
-      text += "\n";
-    }
+    const std::string text = formatCsv(table);
+    const std::string header = text.substr(0, text.find('\n'));
     writeNewFile(dir / "data" / (name + ".csv"), text);
-    records.push_back({"data/" + name + ".csv", header, table.rows.size(), calcChecksum(text)});
+    records.push_back({"data/" + name + ".csv", header, table.size(), calcChecksum(text)});
   }
   return records;
 }
@@ -194,22 +112,6 @@ std::string readBytes(const fs::path& path) {
   return text.str();
 }
 
-// Table `name` from its CSV records; each column's unit from its header (parseHeader). @throws std::runtime_error on an
-// empty table, an empty unit or a row of another length than the header.
-Table toTable(const std::string& name, std::vector<std::vector<std::string>> records, const std::string& source) {
-  if (records.empty()) throw std::runtime_error(source + ": empty table");
-  std::vector<Column> columns;
-  for (const std::string& header : records.front()) columns.push_back(parseHeader(header, source));
-  Table table(name, std::move(columns));
-  for (size_t i = 1; i < records.size(); ++i) {
-    if (records[i].size() != table.columns().size())
-      throw std::runtime_error(source + ": a row has " + std::to_string(records[i].size()) + " fields, the header " +
-                               std::to_string(table.columns().size()));
-    table.rows.push_back(std::move(records[i]));
-  }
-  return table;
-}
-
 }  // namespace
 
 TableSet readTables(const fs::path& dir) {
@@ -220,7 +122,7 @@ TableSet readTables(const fs::path& dir) {
     if (entry.path().extension() != ".csv") continue;
     const std::string source = quotePath(entry.path());
     const std::string name = entry.path().stem().string();
-    tables[name] = toTable(name, parseCsv(readBytes(entry.path()), source), source);
+    tables[name] = parseTable(name, parseCsv(readBytes(entry.path()), source), source);
   }
   return tables;
 }
@@ -502,7 +404,7 @@ TableSet readShardTables(const fs::path& dir, const ShardManifest& manifest) {
       throw std::runtime_error(source + ": not the content the shard wrote (FNV-1a 64 " + checksum + ", shard.json records " +
                                f.checksum + ")");
     const std::string name = fs::path(f.path).stem().string();
-    tables[name] = toTable(name, std::move(records), source);
+    tables[name] = parseTable(name, std::move(records), source);
   }
   return tables;
 }

@@ -11,7 +11,8 @@ std::vector<std::vector<std::string>> formatRows(const TableSet& tables, const s
   if (it == tables.end()) return rows;
   std::vector<size_t> index;
   for (const auto& c : columns) index.push_back(columnOf(it->second, c));
-  for (const auto& row : it->second.rows) {
+  for (size_t r = 0; r < it->second.size(); ++r) {
+    const std::vector<std::string> row = it->second.formatRow(r);
     std::vector<std::string> out;
     for (size_t i = 0; i < index.size(); ++i) {
       const std::string& field = row[index[i]];
@@ -27,7 +28,8 @@ std::vector<std::map<std::string, std::string>> readRecords(const TableSet& tabl
   std::vector<std::map<std::string, std::string>> out;
   const auto it = tables.find(name);
   if (it == tables.end()) return out;
-  for (const auto& row : it->second.rows) {
+  for (size_t k = 0; k < it->second.size(); ++k) {
+    const std::vector<std::string> row = it->second.formatRow(k);
     std::map<std::string, std::string> r;
     for (size_t i = 0; i < it->second.columns().size() && i < row.size(); ++i) r[it->second.columns()[i].name] = row[i];
     out.push_back(std::move(r));

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "crankcheck/validation/crosscheck.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/report_document.h"
@@ -14,8 +15,6 @@
 namespace crankcheck::validation {
 
 namespace {
-
-double toDouble(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
 
 // The engines in the registry's order, then any other name the table holds (a shard of another build), sorted.
 std::vector<std::string> orderEngines(const std::set<std::string>& present) {
@@ -43,36 +42,34 @@ std::vector<std::string> orderQuantities(const std::set<std::string>& present) {
 
 }  // namespace
 
+std::string formatWhere(const CrossCheckRow& row) {
+  return row.case_name + ", phi " + formatNumber(row.where_phi_deg) + " deg, " + formatNumber(row.where_speed_rpm) + " rpm";
+}
+
 std::vector<EngineVerdict> calcVerdicts(const TableSet& tables) {
-  const auto it = tables.find("crosscheck");
-  if (it == tables.end()) return {};
-  const Table& t = it->second;
-  const size_t engine = columnOf(t, "engine"), family = columnOf(t, "family"), kase = columnOf(t, "case"),
-               quantity = columnOf(t, "quantity"), rel = columnOf(t, "worst_rel_error"), phi = columnOf(t, "where_phi_deg"),
-               rpm = columnOf(t, "where_speed_rpm"), tol = columnOf(t, "tolerance_rel"), pass = columnOf(t, "pass");
   std::map<std::string, EngineVerdict> by_engine;
   std::map<std::string, std::set<std::pair<std::string, std::string>>> cases;
-  for (const auto& row : t.rows) {
-    EngineVerdict& v = by_engine[row[engine]];
+  for (const CrossCheckRow& row : getRows(tables, kCrossCheckTable)) {
+    EngineVerdict& v = by_engine[row.engine];
     const bool first = v.comparisons == 0;
-    v.engine = row[engine];
-    if (row[pass] == "reported") v.gated = false;
+    v.engine = row.engine;
+    if (row.pass == "reported") v.gated = false;
     ++v.comparisons;
-    cases[row[engine]].insert({row[family], row[kase]});
-    const double error = toDouble(row[rel]), tolerance = toDouble(row[tol]);
+    cases[row.engine].insert({row.family, row.case_name});
+    const double error = row.worst_rel_error, tolerance = row.tolerance_rel;
     const double ratio = error / tolerance;  // tolerances are never zero (scales.h: every scale is positive)
-    if (row[pass] == "FAIL") ++v.failed;
+    if (row.pass == "FAIL") ++v.failed;
     // Gated engines: the worst ratio; soft ones (a ratio there is not a verdict): the largest error.
-    const std::string where = row[kase] + ", phi " + row[phi] + " deg, " + row[rpm] + " rpm";
-    const bool worse = first || (row[pass] == "reported"
-                                     ? isWorseComparison(error, where + row[quantity], v.worst_error,
+    const std::string where = formatWhere(row);
+    const bool worse = first || (row.pass == "reported"
+                                     ? isWorseComparison(error, where + row.quantity, v.worst_error,
                                                          v.worst_where + v.worst_quantity)
-                                     : isWorseComparison(ratio, where + row[quantity], v.worst_ratio,
+                                     : isWorseComparison(ratio, where + row.quantity, v.worst_ratio,
                                                          v.worst_where + v.worst_quantity));
     if (worse) {
       v.worst_ratio = ratio;
       v.worst_error = error;
-      v.worst_quantity = row[quantity];
+      v.worst_quantity = row.quantity;
       v.worst_where = where;
     }
   }
@@ -129,19 +126,14 @@ std::string formatVerdict(const std::vector<EngineVerdict>& verdicts) {
 
 VerdictMatrix calcVerdictMatrix(const TableSet& tables) {
   VerdictMatrix m;
-  const auto it = tables.find("crosscheck");
-  if (it == tables.end()) return m;
-  const Table& t = it->second;
-  const size_t engine = columnOf(t, "engine"), quantity = columnOf(t, "quantity"), rel = columnOf(t, "worst_rel_error"),
-               tol = columnOf(t, "tolerance_rel"), pass = columnOf(t, "pass");
   std::map<std::pair<std::string, std::string>, double> worst;
   std::set<std::string> engines, quantities;
-  for (const auto& row : t.rows) {
-    if (row[pass] == "reported") continue;  // soft engines are measured in part engines, never gated
-    engines.insert(row[engine]);
-    quantities.insert(row[quantity]);
-    double& w = worst.try_emplace({row[engine], row[quantity]}, 0.0).first->second;
-    w = std::max(w, toDouble(row[rel]) / toDouble(row[tol]));
+  for (const CrossCheckRow& row : getRows(tables, kCrossCheckTable)) {
+    if (row.pass == "reported") continue;  // soft engines are measured in part engines, never gated
+    engines.insert(row.engine);
+    quantities.insert(row.quantity);
+    double& w = worst.try_emplace({row.engine, row.quantity}, 0.0).first->second;
+    w = std::max(w, row.worst_rel_error / row.tolerance_rel);
   }
   m.engines = orderEngines(engines);
   m.quantities = orderQuantities(quantities);

@@ -1,18 +1,5 @@
-// Report part `engines` (13): which engine, at what cost, how exact. Cost per evaluation of every registered engine
+// Report part `engines`: which engine, at what cost, how exact. Cost per evaluation of every registered engine
 // against its worst error over the campaign's cross-checks, with sentences read from the data.
-//
-// Tables (CSV stems, columns; reports/README.md):
-//   engine_cost     engine,k,ns_per_eval                      one Google Benchmark run of every engine's evaluate()
-//                                                             (every quantity at one angle) on the base scene's parts
-//                                                             at k = 1 and k = 12
-//   engines         engine,quantity,worst_rel_error,where_case,where_lambda,where_phi_deg,where_speed_rpm,
-//                   ns_per_eval_k1,ns_per_eval_k12            derived at rendering: per engine variant and quantity the
-//                                                             worst error over every cross-checked case of the
-//                                                             campaign, relative to the quantity's scale, against the
-//                                                             analytic engine (the analytic engine's own row: case by
-//                                                             case against the nearer of the other exact engines)
-//   engines_league  engine,k,ns_per_eval,worst_rel_error      derived: the figure's points (cost against the worst
-//                                                             error over all quantities)
 
 #include <benchmark/benchmark.h>
 
@@ -21,9 +8,11 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 #include <tuple>
 #include <stdexcept>
 
+#include "crankcheck/validation/crosscheck.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/timing.h"
@@ -32,12 +21,49 @@
 namespace crankcheck::validation {
 namespace {
 
-double toDouble(const std::string& s) { return s.empty() ? 0.0 : std::stod(s); }
-
-struct Worst {
-  double rel = -1.0;
-  std::string kase, lambda, phi, rpm;
+// engine_cost: one Google Benchmark run of every engine's evaluate() (every quantity at one angle) on the base scene's
+// parts at k = 1 and k = 12.
+struct EngineCostRow {
+  std::string engine;
+  int k = 1;
+  double ns_per_eval = 0.0;  ///< [ns]
 };
+const Schema<EngineCostRow> kEngineCostTable{
+    "engine_cost",
+    {textField("engine", &EngineCostRow::engine), countField("k", &EngineCostRow::k),
+     numberField("ns_per_eval", "ns", &EngineCostRow::ns_per_eval)}};
+
+// engines (derived at rendering): per engine and quantity the worst error over every cross-checked case of the
+// campaign, relative to the quantity's scale, against the analytic engine (the analytic engine's own row: case by case
+// against the nearer of the other exact engines), with where it is and the engine's costs.
+struct EngineRow {
+  std::string engine, quantity;
+  double worst_rel_error = 0.0;
+  std::string where_case;
+  double where_lambda = 0.0, where_phi_deg = 0.0, where_speed_rpm = 0.0;
+  std::optional<double> ns_per_eval_k1, ns_per_eval_k12;  ///< [ns]; empty: not timed
+};
+const Schema<EngineRow> kEnginesTable{
+    "engines",
+    {textField("engine", &EngineRow::engine), textField("quantity", &EngineRow::quantity),
+     numberField("worst_rel_error", "-", &EngineRow::worst_rel_error), textField("where_case", &EngineRow::where_case),
+     numberField("where_lambda", "-", &EngineRow::where_lambda),
+     numberField("where_phi_deg", "deg", &EngineRow::where_phi_deg),
+     numberField("where_speed_rpm", "rpm", &EngineRow::where_speed_rpm),
+     optionalField("ns_per_eval_k1", "ns", &EngineRow::ns_per_eval_k1),
+     optionalField("ns_per_eval_k12", "ns", &EngineRow::ns_per_eval_k12)}};
+
+// engines_league (derived): the figure's points, cost against the worst error over all quantities.
+struct LeagueRow {
+  std::string engine;
+  int k = 1;
+  double ns_per_eval = 0.0, worst_rel_error = 0.0;
+};
+const Schema<LeagueRow> kLeagueTable{
+    "engines_league",
+    {textField("engine", &LeagueRow::engine), countField("k", &LeagueRow::k),
+     numberField("ns_per_eval", "ns", &LeagueRow::ns_per_eval),
+     numberField("worst_rel_error", "-", &LeagueRow::worst_rel_error)}};
 
 // The timed task: ns per evaluation of every registered engine at k = 1 and k = 12 (the base scene's parts, its
 // stroke and speed, standing). Times itself on a core of its own (Task::measures_time).
@@ -60,85 +86,69 @@ Task buildEngineCostTask(const Mechanism& base, bool quick) {
               }
             }
             const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, getTimingSeconds(quick));
-            Table t("engine_cost", {{"engine", kText}, {"k", "-"}, {"ns_per_eval", "ns"}});
+            std::vector<EngineCostRow> rows;
             for (const auto& [engine, k] : keys) {
               const auto it = ns.find(engine + " k=" + std::to_string(k));
-              if (it != ns.end()) t.rows.push_back({engine, std::to_string(k), formatNumber(it->second)});
+              if (it != ns.end()) rows.push_back({engine, k, it->second});
             }
-            return TableSet{{"engine_cost", t}};
+            return kEngineCostTable.tableSet(std::move(rows));
           }};
 }
 
 // Adds (replaces) the derived tables `engines` and `engines_league` from `crosscheck` and `engine_cost`; nothing when
 // either is missing.
 void deriveEngineTables(TableSet& tables) {
-  const auto cross = tables.find("crosscheck");
-  const auto cost = tables.find("engine_cost");
-  if (cross == tables.end() || cost == tables.end()) return;
-  const Table& c = cross->second;
-  const size_t engine = columnOf(c, "engine"), quantity = columnOf(c, "quantity"), rel = columnOf(c, "worst_rel_error"),
-               kase = columnOf(c, "case"), lambda = columnOf(c, "lambda"), phi = columnOf(c, "where_phi_deg"),
-               rpm = columnOf(c, "where_speed_rpm");
-  std::map<std::pair<std::string, std::string>, Worst> worst;  // (engine, quantity)
-  auto note = [&](const std::string& name, const std::vector<std::string>& row) {
-    Worst& w = worst[{name, row[quantity]}];
-    const double r = toDouble(row[rel]);
-    if (r > w.rel) w = {r, row[kase], row[lambda], row[phi], row[rpm]};
+  if (!tables.count(kCrossCheckTable.name()) || !tables.count(kEngineCostTable.name())) return;
+  std::map<std::pair<std::string, std::string>, const CrossCheckRow*> worst;  // (engine, quantity)
+  auto note = [&](const std::string& name, const CrossCheckRow& row) {
+    const CrossCheckRow*& w = worst[{name, row.quantity}];
+    if (!w || row.worst_rel_error > w->worst_rel_error) w = &row;
   };
   // The analytic engine's own error, case by case: its smaller disagreement with the other exact engines (each of
   // them is a reference with its own rounding: Simbody's grows like 1 / lambda on a very long rod, MuJoCo's does not).
   // Only what every other exact engine computes (not Simbody's second route to Q, "Q (virtual power)").
   struct Nearest {
-    std::vector<std::string> row;
+    const CrossCheckRow* row = nullptr;
     size_t engines = 0;
   };
   std::map<std::tuple<std::string, std::string, std::string>, Nearest> analytic;  // (family, case, quantity)
-  const size_t family = columnOf(c, "family");
-  for (const auto& row : c.rows) {
-    note(row[engine], row);
-    if (!findEngine(row[engine]).gated) continue;
-    Nearest& best = analytic[{row[family], row[kase], row[quantity]}];
+  for (const CrossCheckRow& row : getRows(tables, kCrossCheckTable)) {
+    note(row.engine, row);
+    if (!findEngine(row.engine).gated) continue;
+    Nearest& best = analytic[{row.family, row.case_name, row.quantity}];
     ++best.engines;
-    if (best.row.empty() || toDouble(row[rel]) < toDouble(best.row[rel])) best.row = row;
+    if (!best.row || row.worst_rel_error < best.row->worst_rel_error) best.row = &row;
   }
   for (const auto& [key, best] : analytic)
-    if (best.engines == listReferenceEngines().size()) note(getClosedFormEngine().name, best.row);
+    if (best.engines == listReferenceEngines().size()) note(getClosedFormEngine().name, *best.row);
   std::map<std::pair<std::string, int>, double> ns;
-  const Table& t = cost->second;
-  const size_t ce = columnOf(t, "engine"), ck = columnOf(t, "k"), cns = columnOf(t, "ns_per_eval");
-  for (const auto& row : t.rows) ns[{row[ce], std::stoi(row[ck])}] = toDouble(row[cns]);
-  auto nsOf = [&](const std::string& name, int k) {
+  for (const EngineCostRow& row : getRows(tables, kEngineCostTable)) ns[{row.engine, row.k}] = row.ns_per_eval;
+  auto nsOf = [&](const std::string& name, int k) -> std::optional<double> {
     const auto it = ns.find({name, k});
-    return it == ns.end() ? std::string() : formatNumber(it->second);
+    if (it == ns.end()) return std::nullopt;
+    return it->second;
   };
 
-  Table engines("engines", {{"engine", kText}, {"quantity", kText}, {"worst_rel_error", "-"}, {"where_case", kText},
-                            {"where_lambda", "-"}, {"where_phi_deg", "deg"}, {"where_speed_rpm", "rpm"},
-                            {"ns_per_eval_k1", "ns"}, {"ns_per_eval_k12", "ns"}});
+  std::vector<EngineRow> engines;
   std::map<std::string, double> worst_of_engine;
   for (const auto& [key, w] : worst) {
-    engines.rows.push_back({key.first, key.second, formatNumber(w.rel), w.kase, w.lambda, w.phi, w.rpm,
-                            nsOf(key.first, 1), nsOf(key.first, 12)});
-    worst_of_engine[key.first] = std::max(worst_of_engine[key.first], w.rel);
+    engines.push_back({key.first, key.second, w->worst_rel_error, w->case_name, w->lambda, w->where_phi_deg,
+                       w->where_speed_rpm, nsOf(key.first, 1), nsOf(key.first, 12)});
+    worst_of_engine[key.first] = std::max(worst_of_engine[key.first], w->worst_rel_error);
   }
-  Table league("engines_league", {{"engine", kText}, {"k", "-"}, {"ns_per_eval", "ns"}, {"worst_rel_error", "-"}});
+  std::vector<LeagueRow> league;
   for (const auto& [key, value] : ns)
-    if (worst_of_engine.count(key.first))
-      league.rows.push_back({key.first, std::to_string(key.second), formatNumber(value), formatNumber(worst_of_engine[key.first])});
-  tables["engines"] = engines;
-  tables["engines_league"] = league;
+    if (worst_of_engine.count(key.first)) league.push_back({key.first, key.second, value, worst_of_engine[key.first]});
+  tables.insert_or_assign(kEnginesTable.name(), kEnginesTable.table(std::move(engines)));
+  tables.insert_or_assign(kLeagueTable.name(), kLeagueTable.table(std::move(league)));
 }
 
 // The part as the report shows it under `heading`: figure caption, sentences read from the data, the table; an empty
 // heading when the tables are missing.
 ReportPart describeEnginesPart(const TableSet& tables, const std::string& heading) {
   ReportPart part;
-  const auto it = tables.find("engines");
-  if (it == tables.end() || it->second.rows.empty()) return part;
-  const Table& t = it->second;
-  const size_t engine = columnOf(t, "engine"), quantity = columnOf(t, "quantity"), rel = columnOf(t, "worst_rel_error"),
-               kase = columnOf(t, "where_case"), lambda = columnOf(t, "where_lambda"), phi = columnOf(t, "where_phi_deg"),
-               rpm = columnOf(t, "where_speed_rpm"), ns1 = columnOf(t, "ns_per_eval_k1"), ns12 = columnOf(t, "ns_per_eval_k12");
+  const std::vector<EngineRow>& rows = getRows(tables, kEnginesTable);
+  if (rows.empty()) return part;
   part.heading = heading;
   part.caption =
       "Cost per evaluation (every quantity at one crank angle; k = 1 filled, k = 12 open) against the worst error over "
@@ -149,23 +159,22 @@ ReportPart describeEnginesPart(const TableSet& tables, const std::string& headin
   // Per engine: the worst row over its quantities, and its costs.
   struct EngineSummary {
     double worst = -1.0;
-    std::vector<std::string> row;
+    const EngineRow* row = nullptr;
     double ns1 = 0.0, ns12 = 0.0;
   };
   std::map<std::string, EngineSummary> by_engine;
-  for (const auto& row : t.rows) {
-    EngineSummary& s = by_engine[row[engine]];
-    s.ns1 = toDouble(row[ns1]);
-    s.ns12 = toDouble(row[ns12]);
-    const double r = toDouble(row[rel]);
-    if (r > s.worst) {
-      s.worst = r;
-      s.row = row;
+  for (const EngineRow& row : rows) {
+    EngineSummary& s = by_engine[row.engine];
+    s.ns1 = row.ns_per_eval_k1.value_or(0.0);
+    s.ns12 = row.ns_per_eval_k12.value_or(0.0);
+    if (row.worst_rel_error > s.worst) {
+      s.worst = row.worst_rel_error;
+      s.row = &row;
     }
   }
-  auto where = [&](const std::vector<std::string>& row) {
-    return row[quantity] + ", " + row[kase] + " (lambda " + shortNumber(toDouble(row[lambda]), 4) + "), phi " +
-           row[phi] + " deg, " + row[rpm] + " rpm";
+  auto where = [&](const EngineRow& row) {
+    return row.quantity + ", " + row.where_case + " (lambda " + shortNumber(row.where_lambda, 4) + "), phi " +
+           formatNumber(row.where_phi_deg) + " deg, " + formatNumber(row.where_speed_rpm) + " rpm";
   };
   // Costs, cheapest first, at k = 1 and k = 12.
   std::vector<std::string> names;
@@ -208,16 +217,16 @@ ReportPart describeEnginesPart(const TableSet& tables, const std::string& headin
     if (!by_engine.count(e.name)) continue;
     const EngineSummary& s = by_engine[e.name];
     part.paragraphs.push_back(e.name + (e.gated ? " (exact, gated)" : " (reported, not gated)") + ": worst error " +
-                              shortNumber(s.worst) + " of the scale, at " + where(s.row) + ". " + e.method + ".");
+                              shortNumber(s.worst) + " of the scale, at " + where(*s.row) + ". " + e.method + ".");
   }
   part.paragraphs.push_back(
       "The exact engines' numbers are rounding: the gate holds them to 64 eps x scale x conditioning. The soft "
       "engines' errors are MuJoCo's constraint solver as its users run it (one mj_forward from the exact state, the "
       "crank torque found so that the solver gives the crank zero acceleration): a finding, not a failure.");
   part.header = {"engine", "quantity", "worst error / scale [-]", "where", "ns per evaluation, k = 1", "ns per evaluation, k = 12"};
-  for (const auto& row : t.rows)
-    part.rows.push_back({row[engine], row[quantity], shortNumber(toDouble(row[rel])), where(row), shortNumber(toDouble(row[ns1]), 3),
-                         shortNumber(toDouble(row[ns12]), 3)});
+  for (const EngineRow& row : rows)
+    part.rows.push_back({row.engine, row.quantity, shortNumber(row.worst_rel_error), where(row),
+                         shortNumber(row.ns_per_eval_k1.value_or(0.0), 3), shortNumber(row.ns_per_eval_k12.value_or(0.0), 3)});
   return part;
 }
 
@@ -232,7 +241,7 @@ class EnginesPart final : public Part {
   // From the cross-checks of every engine and their costs.
   void derive(TableSet& tables) const override { deriveEngineTables(tables); }
   ReportPart describe(const TableSet& tables) const override { return describeEnginesPart(tables, heading()); }
-  std::vector<std::string> tables() const override { return {"engine_cost", "engines", "engines_league"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&kEngineCostTable, &kEnginesTable, &kLeagueTable}; }
 };
 
 }  // namespace

@@ -18,65 +18,28 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/table.h"
 
 namespace crankcheck::validation {
 
-/// The unit of a text column (names, verdicts, flags): no unit, the CSV header names the column bare.
-struct TextUnit {
-  bool operator==(const TextUnit&) const = default;
-};
-/// A text column's unit: `Column{"engine", kText}`.
-inline constexpr TextUnit kText{};
-
-/// One column of a table: its name and its unit together. A number's unit is written in the CSV header,
-/// "max_rel_error [-]": "-" for a dimensionless number (ratios, errors relative to a scale, counts, indices), "SI" where
-/// the unit is the quantity's own (the row's quantity names it: J, N m, N, m, m/s, m/s^2, rad, ...), else the unit
-/// ("N m", "deg", "rpm", "ns", ...). There is no column without a unit: a text column says kText.
-struct Column {
-  /// A number's column; `unit` must not be empty (Table refuses it).
-  Column(std::string name, std::string unit) : name(std::move(name)), unit(std::move(unit)) {}
-  /// A text column.
-  Column(std::string name, TextUnit) : name(std::move(name)), text(true) {}
-
-  std::string name;
-  std::string unit;   ///< "" only for a text column
-  bool text = false;  ///< a text column (kText): its header is the bare name
-
-  bool operator==(const Column&) const = default;
+/// One scene of the campaign as the report lists it: every value used (SI; gamma in degrees, speed in rpm).
+struct SceneRow {
+  std::string family, scene;
+  int cylinders = 1;
+  std::string cycle, acting;
+  double gamma_deg = 0, speed_rpm = 0, r = 0, l = 0, lambda = 0, m_o = 0, m_k = 0, z_k = 0, I_o = 0, m_s = 0, r_s = 0,
+         m_p = 0, r_p = 0, g = 0;
+  std::optional<double> I_w;  ///< empty: the scene has no flywheel
 };
 
-/// One table of the report: its columns (each with its unit) and rows of already formatted fields (numbers by
-/// formatNumber; a name may hold any character, the CSV writer quotes it).
-class Table {
- public:
-  Table() = default;
-  /// @param name the table's name (the CSV stem), for the message only.
-  /// @throws std::logic_error naming the table and the column for a number's column with an empty unit.
-  Table(const std::string& name, std::vector<Column> columns);
-
-  const std::vector<Column>& columns() const { return columns_; }
-  /// The columns' names, in order.
-  std::vector<std::string> names() const;
-
-  std::vector<std::vector<std::string>> rows;
-
- private:
-  std::vector<Column> columns_;
-};
-/// Tables by name (the CSV file stem).
-using TableSet = std::map<std::string, Table>;
-
-/// Appends `from`'s rows to `into`. @throws std::runtime_error if a table's columns differ.
-void appendTables(TableSet& into, const TableSet& from);
-
-/// Sorts every table's rows, column by column, numerically where both fields are numbers: the report is the
-/// same whatever the order tasks ran in, on one thread, several, or in shards.
-void sortTables(TableSet& tables);
+/// data/scenes.csv.
+extern const Schema<SceneRow> kScenesTable;
 
 struct CampaignOptions {
   bool quick = false;               ///< fewer lambdas, angles and methods: a smoke test of the whole report
@@ -109,14 +72,7 @@ std::vector<Mechanism> loadExampleScenes();
 /// figure. With options.scenes the first scene is the base of the lambda sweeps and figures.
 std::vector<Task> buildCampaign(const CampaignOptions& options);
 
-/// x in its shortest form that reads back to the same double (std::to_chars): 0.1, not 0.10000000000000001.
-std::string formatNumber(double x);
-
 /// x to `digits` significant digits (printf %g), for the sentences of the report: 0.012, 3.4e-15.
 std::string shortNumber(double x, int digits = 2);
-
-/// The index of the column `name` in t. @throws std::runtime_error if t has no such column (a report part read a
-/// table it did not build: a programming error, never a user's).
-size_t columnOf(const Table& t, const std::string& name);
 
 }  // namespace crankcheck::validation

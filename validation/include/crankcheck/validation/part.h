@@ -90,8 +90,14 @@ class Part {
   /// The part as the report shows it (heading "N. title", the figure's caption, sentences, a table); an empty heading
   /// when the tables it needs are missing: the part is left out.
   virtual ReportPart describe(const TableSet& tables) const = 0;
-  /// The CSV stems it writes (its tasks' and derive's), for tests and docs.
-  virtual std::vector<std::string> tables() const = 0;
+  /// The schemas of the tables it writes (its tasks' and derive's), declared once in its file (table.h).
+  virtual std::vector<const TableSchema*> schemas() const { return {}; }
+  /// The CSV stems it writes (its tasks' and derive's), for tests and docs: its schemas' names.
+  virtual std::vector<std::string> tables() const {
+    std::vector<std::string> out;
+    for (const TableSchema* schema : schemas()) out.push_back(schema->name());
+    return out;
+  }
   /// The figures it draws (stems of reports/NAME.gp, data/NAME.csv, NAME.png, NAME.svg); drawn when data/NAME.csv
   /// exists.
   virtual std::vector<std::string> figures() const { return {key()}; }

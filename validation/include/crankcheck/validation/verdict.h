@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/crosscheck.h"
 
 namespace crankcheck::validation {
 
@@ -40,6 +41,9 @@ inline bool isWorseComparison(double value, const std::string& where, double wor
 /// One verdict per engine of the crosscheck table, in the engines' registry order (listEngines()); none when the
 /// campaign has no crosscheck table (a part's own shard, say). The worst comparison by isWorseComparison.
 std::vector<EngineVerdict> calcVerdicts(const TableSet& tables);
+
+/// Where a cross-check row's worst comparison is: "CASE, phi PHI deg, RPM rpm".
+std::string formatWhere(const CrossCheckRow& row);
 
 /// The closing lines for the terminal: one per engine and the ctest-style last line, e.g.
 ///   simbody      gated     624 cases   7488 comparisons  worst 0.15 of tolerance (x_p, ...)  pass
