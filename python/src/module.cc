@@ -205,7 +205,7 @@ py::dict evaluate(const ScenePtr& scene, const py::handle& phi_in, const std::st
   {
     py::gil_scoped_release release;
     try {
-      if (engine.name == "analytic") {
+      if (&engine == &validation::getClosedFormEngine()) {  // the closed forms' own batch kernels
         evaluateAnalyticBatch(m, angles, out);
       } else {
         const std::unique_ptr<EngineModel> model = buildModel(*scene, engine);
@@ -250,7 +250,7 @@ py::object balance(const ScenePtr& scene, int order) {
   return toPython(doc);
 }
 
-// ---- motion: the CLI's JSON (app/motion_command.cc) from the same functions, optionally with each engine's run.
+// ---- motion: the CLI's JSON from the library's calcMotion (validation/commands/motion.h), optionally with each engine's run.
 py::object motion(const ScenePtr& scene, const std::string& integrator, double accuracy,
                   const std::string& mujoco_integrator, double mujoco_step, bool series) {
   const Mechanism& m = scene->m;
@@ -664,7 +664,7 @@ radians. Immutable; thread-safe (every call builds its own engine model).)doc")
             d["closure"] = sc.closure;
             return d;
           }, "The physical scales of the scene and the conditioning of comparisons (validation/scales.h), the gate's.")
-      .def("evaluate", &evaluate, py::arg("phi"), py::arg("engine") = "analytic", py::arg("quantities") = py::none(),
+      .def("evaluate", &evaluate, py::arg("phi"), py::arg("engine") = validation::getClosedFormEngine().name, py::arg("quantities") = py::none(),
            py::kw_only(), py::arg("out") = py::none(),
            R"doc(
 Every quantity of `crankcheck eval` at the crank angles `phi` [rad] (a NumPy array of any shape, or a float; any
