@@ -17,10 +17,12 @@ void addEvalOptions(CLI::App& command, EvalOptions& options) {
   command.add_option("--phi-deg", options.phi_deg, "Crank angles of cylinder 0 [deg], comma separated; any size (reduced exactly modulo 720)")
       ->capture_default_str();
   std::vector<std::string> choices{"both", "all"};
+  std::string both;
+  for (const Engine* e : validation::listBothEngines()) both += (both.empty() ? "" : " and ") + e->name;
   for (const Engine& e : validation::listEngines()) choices.push_back(e.name);
   command.add_option("--engine", options.engine,
                      "Which engine computes the results: " + validation::joinEngineNames(", ") +
-                         "; both (analytic and simbody) or all")
+                         "; both (" + both + ") or all")
       ->check(CLI::IsMember(choices))
       ->capture_default_str();
   command.add_option("--format", options.format, "Output format")
@@ -74,15 +76,6 @@ std::vector<Mechanism> splitCases(const Mechanism& m) {
 
 }  // namespace
 
-/// The engines --engine names, in the registry's order ("both": analytic and simbody; "all": every engine).
-std::vector<const Engine*> selectEngines(const std::string& choice) {
-  std::vector<const Engine*> selected;
-  for (const Engine& e : validation::listEngines())
-    if (choice == "all" || e.name == choice || (choice == "both" && (e.name == "analytic" || e.name == "simbody")))
-      selected.push_back(&e);
-  return selected;
-}
-
 EvalOutput runEval(const EvalOptions& options) {
   const std::vector<double> angles_deg = parseAngleList(options.phi_deg, "--phi-deg");
   const Mechanism m = loadScene(options.scene_path);
@@ -95,7 +88,7 @@ EvalOutput runEval(const EvalOptions& options) {
     std::vector<std::unique_ptr<EngineModel>> split;  // gas, inertia, gravity
   };
   std::vector<Models> models;
-  for (const Engine* engine : selectEngines(options.engine)) {
+  for (const Engine* engine : validation::selectEngines(options.engine)) {
     try {
       Models built{engine, engine->build(m), {}};
       for (const Mechanism& c : cases) built.split.push_back(engine->build(c));

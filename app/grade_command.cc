@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <iostream>
 #include <set>
-#include <thread>
 
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
@@ -18,7 +17,8 @@
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/process.h"
 #include "crankcheck/validation/report.h"
-#include "interrupt.h"
+#include "crankcheck/validation/interrupt.h"
+#include "crankcheck/validation/runner.h"
 #include "scene_input.h"
 
 namespace crankcheck::app {
@@ -87,12 +87,12 @@ int runGrade(const GradeOptions& options) {
     if (!names.insert(scenes.back().name).second) throw UsageError(path + ": a scene named " + scenes.back().name + " is given twice");
     validation::checkEveryEngineBuilds(scenes.back(), path);  // the references grade against (and the rest)
   }
-  const int jobs = options.jobs > 0 ? options.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int jobs = options.jobs > 0 ? options.jobs : validation::getDefaultJobs();
   validation::OutputFolder out(options.out, "--out");
   validation::GradeReportInfo info;
   info.gnuplot_version = validation::checkGnuplot();
   const std::vector<validation::GradeCase> cases = validation::buildGradeCases(scenes, options.quick);
-  InterruptGuard interrupt(out);
+  validation::InterruptGuard interrupt(out);
   out.createStaging();
 
   validation::GradeProgram program;

@@ -17,7 +17,7 @@
 #include "motion_command.h"
 #include "grade_command.h"
 #include "help_format.h"
-#include "interrupt.h"
+#include "crankcheck/validation/interrupt.h"
 #include "validate_command.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/output_folder.h"
@@ -63,7 +63,7 @@ int checkStdout(int status) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  crankcheck::app::watchInterrupts();  // from here on, a signal ends every child with crankcheck
+  crankcheck::validation::watchInterrupts();  // from here on, a signal ends every child with crankcheck
   using crankcheck::app::describeEngines;
   const std::string engines = describeEngines();
   CLI::App app{"crankcheck checks the closed-form formulas of piston engines and compressors (slider-crank kinematics, "

@@ -3,8 +3,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "crankcheck/analytic/motion.h"
-#include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/commands/motion.h"
 #include "help_format.h"
 #include "json_output.h"
 #include "scene_input.h"
@@ -36,14 +35,7 @@ void addMotionOptions(CLI::App& command, MotionOptions& options) {
 
 namespace {
 
-struct EngineResult {
-  std::string engine, integrator;  // integrator "" for the analytic energy integral
-  double delta_gravity, delta_no_gravity, omega_min, omega_max, omega_mean;
-  double energy_drift = 0.0;       // per revolution, gravity on (the energy integral has none)
-  int steps = 0;
-};
-
-nlohmann::ordered_json toJson(const EngineResult& r) {
+nlohmann::ordered_json toJson(const validation::MotionRun& r) {
   nlohmann::ordered_json j = {{"delta_gravity", r.delta_gravity}, {"delta_no_gravity", r.delta_no_gravity},
                               {"omega_min", r.omega_min}, {"omega_max", r.omega_max}, {"omega_mean", r.omega_mean}};
   if (!r.integrator.empty()) {
@@ -58,42 +50,21 @@ nlohmann::ordered_json toJson(const EngineResult& r) {
 
 std::string runMotion(const MotionOptions& options) {
   const Mechanism m = loadScene(options.scene_path);
-  if (!m.flywheel_inertia)
-    throw UsageError(options.scene_path + ": [flywheel].inertia: missing key (the free run needs the flywheel inertia)");
-  if (!(m.engine.speed > 0.0))
-    throw UsageError(options.scene_path + ": [engine].speed_rpm: must be > 0 for the free run (the release speed)");
-  const double w0 = m.engine.speed;
-  EngineResult a{};
+  // Each flag pair goes to the engines that offer its integrator (Engine::integrators).
+  validation::FreeRunChoices choices = validation::getDefaultFreeRunSettings();
+  validation::chooseIntegrator(choices, options.integrator, options.accuracy);
+  validation::chooseIntegrator(choices, options.mujoco_integrator, options.mujoco_step);
+  std::vector<validation::MotionRun> results;
   try {
-    const analytic::FreeRun with = analytic::calcFreeRun(m, w0, true), without = analytic::calcFreeRun(m, w0, false);
-    a = {"analytic", "", with.delta, without.delta, with.omega_min, with.omega_max, with.omega_mean};
-  } catch (const std::domain_error& e) {
-    throw UsageError(options.scene_path + ": [engine].speed_rpm: " + e.what());
-  }
-  // Every engine that simulates (engines.h: Engine::simulate), each with its own integrator and accuracy flags.
-  std::vector<EngineResult> results{a};
-  for (const Engine& engine : validation::listEngines()) {
-    if (!engine.simulate) continue;
-    const bool simbody = engine.name == "simbody";
-    FreeRunSettings run;
-    run.integrator = simbody ? options.integrator : options.mujoco_integrator;
-    run.accuracy = simbody ? options.accuracy : options.mujoco_step;
-    try {
-      run.gravity = true;
-      const FreeRunResult with = engine.simulate(m, w0, run);
-      run.gravity = false;
-      const FreeRunResult without = engine.simulate(m, w0, run);
-      results.push_back({engine.name, run.integrator, with.delta, without.delta, with.omega_min, with.omega_max,
-                         with.omega_mean, with.energy_drift_per_revolution, with.steps});
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(options.scene_path + ": " + engine.name + ": " + e.what());
-    } catch (const std::runtime_error& e) {
-      throw UsageError(options.scene_path + ": " + engine.name + ": " + engine.library + " could not run: " + e.what());
-    }
+    results = validation::calcMotion(m, choices);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(options.scene_path + ": " + e.what());
+  } catch (const std::runtime_error& e) {
+    throw UsageError(options.scene_path + ": " + e.what());
   }
   if (options.format == "json") {
     nlohmann::ordered_json doc;
-    for (const EngineResult& r : results) doc[r.engine] = toJson(r);
+    for (const validation::MotionRun& r : results) doc[r.engine] = toJson(r);
     return dumpJson(doc);
   }
   char buffer[512];
@@ -105,7 +76,7 @@ std::string runMotion(const MotionOptions& options) {
                 options.mujoco_integrator.c_str(), options.mujoco_step, "engine", "delta_gravity", "delta_no_gravity",
                 "omega_min", "omega_max", "omega_mean", "drift");
   std::string out = buffer;
-  for (const EngineResult& r : results) {
+  for (const validation::MotionRun& r : results) {
     char drift[32] = "-";
     if (!r.integrator.empty()) std::snprintf(drift, sizeof drift, "%.3e", r.energy_drift);
     std::snprintf(buffer, sizeof buffer, "%-17s %15.8e %16.8e %12.9g %12.9g %12.9g %10s\n", r.engine.c_str(),

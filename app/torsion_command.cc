@@ -8,15 +8,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "crankcheck/analytic/crank_train.h"
-#include "crankcheck/analytic/torsion.h"
-#include "crankcheck/analytic/torsion_domain.h"
-#include "crankcheck/analytic/torsion_forced.h"
-#include "crankcheck/analytic/torsion_steady.h"
+#include "crankcheck/validation/commands/torsion.h"
 #include "crankcheck/scene/scene_writer.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
-#include "crankcheck/validation/variants.h"
 #include "help_format.h"
 #include "json_output.h"
 #include "scene_input.h"
@@ -25,7 +20,6 @@ namespace crankcheck::app {
 namespace {
 
 constexpr int kMaxSpeeds = 1000;
-constexpr double kTextbookOrder = 24.0;
 /// [rpm] The largest speed a flag takes: the scene file's limit on [engine].speed_rpm (docs/SCENE-FORMAT.md, "Limits").
 constexpr double kMaxSpeedRpm = 1e6;
 
@@ -72,33 +66,6 @@ std::vector<double> parseSpeeds(const std::string& text) {
   return speeds;
 }
 
-struct SpeedResult {
-  double rpm = 0.0;
-  analytic::HolzerResponse holzer;
-  analytic::ExactSteadyState exact;
-  std::vector<std::vector<double>> trains;  ///< each --engine train's peak-to-peak per section
-  std::vector<int> train_cycles;            ///< the cycles each ran before its sampled one
-};
-
-// An engine's train run to every section's peak-to-peak within about 1e-6 of its value (measured on the example four
-// at 3000 rpm, where the front section twists a tenth of the most): an exact route at accuracy 1e-11, periodic to 1e-7
-// of the twist, sampled 8192 times (CrankTrainRunOptions::samples: aliasing); Simbody's defaults (1e-10, 1e-6, 1024)
-// leave 1e-5 of that section's value. A soft route at its own defaults (its step is its accuracy).
-CrankTrainRunOptions makeTrainOptions(const Engine& engine) {
-  CrankTrainRunOptions options;
-  if (engine.crank_train_gated) {
-    options.accuracy = 1e-11;
-    options.periodicity = 1e-7;
-    options.samples = 8192;
-  }
-  return options;
-}
-
-struct CriticalSpeed {
-  int mode = 0;
-  double order = 0.0, rpm = 0.0;
-};
-
 }  // namespace
 
 void addTorsionOptions(CLI::App& command, TorsionOptions& options) {
@@ -142,78 +109,39 @@ std::string runTorsion(const TorsionOptions& options) {
   if (options.speeds) speeds = parseSpeeds(*options.speeds);
   if (options.speed) speeds = {parseSpeed(*options.speed, "--speed")};
   const Mechanism scene = loadScene(options.scene_path);
-  if (!scene.crankshaft)
-    throw UsageError(options.scene_path + ": [crankshaft]: missing table (the elastic crank train: throw_inertia, "
-                                          "stiffness, ...; docs/SCENE-FORMAT.md)");
-  if (speeds.empty()) {
+  if (speeds.empty() && scene.crankshaft) {  // without [crankshaft], calcTorsion says so first
     if (!(scene.speed_rpm > 0))
       throw UsageError(options.scene_path + ": [engine].speed_rpm: must be > 0 for torsion (the flywheel's driven "
                                             "speed), or give --speed or --speeds");
     speeds = {scene.speed_rpm};
   }
-  try {  // the speed-free domain (torsion_domain.h): a shaft the mean torque twists beyond a crankshaft's
-    analytic::checkTorsionDomain(scene);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(options.scene_path + ": " + e.what());
-  }
-  analytic::TorsionModes modes;
-  std::vector<analytic::ThrowInertia> inertias;
-  try {
-    modes = analytic::calcTorsionModes(scene);
-    for (int j = 0; j < static_cast<int>(findThrows(scene).size()); ++j)
-      inertias.push_back(analytic::calcThrowInertia(scene, j));
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(options.scene_path + ": [crankshaft]: " + e.what());
-  } catch (const std::runtime_error& e) {
-    throw UncomputableError(options.scene_path + ": " + e.what());
-  }
-  const int bodies = static_cast<int>(modes.inertias.size());
-  const bool has_front = scene.crankshaft->front_inertia > 0.0;
-  const double order_step = scene.engine.cycle == Cycle::kFourStroke ? 0.5 : 1.0;
-
-  // Critical speeds of every order n <= 24 of every mode, in the range asked (one speed: half to twice it).
-  const double lo = speeds.size() > 1 ? speeds.front() : 0.5 * speeds.front();
-  const double hi = speeds.size() > 1 ? speeds.back() : 2.0 * speeds.front();
-  std::vector<CriticalSpeed> critical;
-  for (int i = 0; i < modes.frequencies.size(); ++i)
-    for (double n = order_step; n <= kTextbookOrder + 1e-9; n += order_step) {
-      const double rpm = modes.frequencies(i) / n * 30.0 / M_PI;
-      if (rpm >= lo && rpm <= hi) critical.push_back({i + 1, n, rpm});
-    }
-  std::sort(critical.begin(), critical.end(), [](const CriticalSpeed& a, const CriticalSpeed& b) { return a.rpm < b.rpm; });
-
   // The engines' own trains (every named engine but the closed forms, whose exact steady state is always shown).
   std::vector<const Engine*> trains;
   for (const std::string& name : options.engines) {
     const Engine& e = validation::findEngine(name);
     if (!e.closed_form && std::find(trains.begin(), trains.end(), &e) == trains.end()) trains.push_back(&e);
   }
-  std::vector<SpeedResult> results;
-  analytic::ThrowLoadOrders load_orders;  // the throws' speed-free torque orders, computed once for every speed
   const bool progress = (speeds.size() > 1 || !trains.empty()) && ::isatty(STDERR_FILENO);
-  for (size_t s = 0; s < speeds.size(); ++s) {
-    if (progress) std::fprintf(stderr, "\r\033[Ktorsion: speed %zu of %zu (%g rpm)", s + 1, speeds.size(), speeds[s]);
-    const Mechanism m = validation::withSpeed(scene, speeds[s]);
-    SpeedResult r;
-    r.rpm = speeds[s];
-    try {
-      r.holzer = analytic::calcHolzerResponse(m, {}, load_orders);
-      r.exact = analytic::calcExactSteadyState(m, r.holzer);
-      for (const Engine* e : trains) {
-        const CrankTrainRun run = e->simulate_crank_train(m, makeTrainOptions(*e));
-        r.trains.emplace_back();
-        for (const std::vector<double>& twist : run.twists)
-          r.trains.back().push_back(analytic::findSignalExtremes(analytic::calcSignalFromSamples(twist)).peakToPeak());
-        r.train_cycles.push_back(run.cycles);
-      }
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(options.scene_path + ": " + e.what());
-    } catch (const std::runtime_error& e) {
-      throw UncomputableError(options.scene_path + " at " + formatShortest(speeds[s]) + " rpm: " + e.what());
-    }
-    results.push_back(std::move(r));
+  validation::TorsionResult torsion;
+  try {
+    torsion = validation::calcTorsion(scene, speeds, trains, [&](size_t s) {
+      if (progress) std::fprintf(stderr, "\r\033[Ktorsion: speed %zu of %zu (%g rpm)", s + 1, speeds.size(), speeds[s]);
+    });
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(options.scene_path + ": " + e.what());
+  } catch (const validation::TorsionSpeedError& e) {
+    throw UncomputableError(options.scene_path + " at " + formatShortest(e.rpm) + " rpm: " + e.what());
+  } catch (const UncomputableError& e) {
+    throw UncomputableError(options.scene_path + ": " + e.what());
   }
   if (progress) std::fprintf(stderr, "\r\033[K");
+  const analytic::TorsionModes& modes = torsion.modes;
+  const std::vector<analytic::ThrowInertia>& inertias = torsion.inertias;
+  const std::vector<validation::CriticalSpeed>& critical = torsion.critical;
+  const std::vector<validation::TorsionSpeed>& results = torsion.speeds;
+  const double lo = torsion.range_lo, hi = torsion.range_hi;
+  const int bodies = static_cast<int>(modes.inertias.size());
+  const bool has_front = scene.crankshaft->front_inertia > 0.0;
 
   auto sectionName = [&](int i) {
     // Section i joins body i and body i + 1: front-0, 0-1, ..., (k-1)-flywheel.
@@ -239,10 +167,10 @@ std::string runTorsion(const TorsionOptions& options) {
       freq.push_back({{"mode", i + 1}, {"omega", modes.frequencies(i)}, {"hz", modes.frequencies(i) / (2 * M_PI)}});
     doc["natural_frequencies"] = freq;
     nlohmann::ordered_json crit = nlohmann::ordered_json::array();
-    for (const CriticalSpeed& c : critical) crit.push_back({{"mode", c.mode}, {"order", c.order}, {"speed_rpm", c.rpm}});
+    for (const validation::CriticalSpeed& c : critical) crit.push_back({{"mode", c.mode}, {"order", c.order}, {"speed_rpm", c.rpm}});
     doc["critical_speeds"] = crit;
     nlohmann::ordered_json at = nlohmann::ordered_json::array();
-    for (const SpeedResult& r : results) {
+    for (const validation::TorsionSpeed& r : results) {
       nlohmann::ordered_json sections = nlohmann::ordered_json::array();
       for (int i = 0; i < bodies; ++i) {
         sections.push_back({{"section", sectionName(i)},
@@ -291,13 +219,13 @@ std::string runTorsion(const TorsionOptions& options) {
   std::snprintf(line, sizeof line, "\ncritical speeds of orders <= 24 from %g to %g rpm (rpm = 30 w / (pi n))\n", lo, hi);
   out += line;
   if (critical.empty()) out += "none\n";
-  for (const CriticalSpeed& c : critical) {
+  for (const validation::CriticalSpeed& c : critical) {
     std::snprintf(line, sizeof line, "mode %-3d order %-5g %14.8g rpm\n", c.mode, c.order, c.rpm);
     out += line;
   }
   // Within 100 columns: each engine's train in a table of its own below the analytic one. A difference to Holzer is
   // shown only where the exact value stands above its error bound (else "< bound": the digits are not the twist's).
-  for (const SpeedResult& r : results) {
+  for (const validation::TorsionSpeed& r : results) {
     std::snprintf(line, sizeof line,
                   "\npeak-to-peak twist at %g rpm [rad]: Holzer (every order, %d harmonics; cut at order 24),\n"
                   "exact steady state (error bound %.1e rad)\n",

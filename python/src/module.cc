@@ -23,7 +23,6 @@
 #include <set>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "batch_evaluation.h"
@@ -35,12 +34,14 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/scene/scene_writer.h"
 #include "crankcheck/validation/balance.h"
+#include "crankcheck/validation/commands/motion.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/evaluation_json.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/report.h"
+#include "crankcheck/validation/runner.h"
 #include "crankcheck/validation/scales.h"
 #include "grade_bridge.h"
 
@@ -204,7 +205,7 @@ py::dict evaluate(const ScenePtr& scene, const py::handle& phi_in, const std::st
   {
     py::gil_scoped_release release;
     try {
-      if (engine.name == "analytic") {
+      if (&engine == &validation::getClosedFormEngine()) {  // the closed forms' own batch kernels
         evaluateAnalyticBatch(m, angles, out);
       } else {
         const std::unique_ptr<EngineModel> model = buildModel(*scene, engine);
@@ -249,76 +250,61 @@ py::object balance(const ScenePtr& scene, int order) {
   return toPython(doc);
 }
 
-// ---- motion: the CLI's JSON (app/motion_command.cc) from the same functions, optionally with each engine's run.
+// ---- motion: the CLI's JSON from the library's calcMotion (validation/commands/motion.h), optionally with each engine's run.
 py::object motion(const ScenePtr& scene, const std::string& integrator, double accuracy,
                   const std::string& mujoco_integrator, double mujoco_step, bool series) {
   const Mechanism& m = scene->m;
   const std::string& source = scene->source;
   // The CLI's checks of its flags, by the parameters' names.
-  const std::vector<std::string> simbody_integrators = {"RungeKuttaMerson", "CPodes", "SemiExplicitEuler2"};
+  const std::vector<std::string> integrators = {"RungeKuttaMerson", "CPodes", "SemiExplicitEuler2"};
   const std::vector<std::string> mujoco_integrators = {"RK4", "Euler", "implicit"};
   auto member = [](const std::vector<std::string>& set, const std::string& x) {
     return std::find(set.begin(), set.end(), x) != set.end();
   };
-  if (!member(simbody_integrators, integrator))
+  if (!member(integrators, integrator))
     throw py::value_error("integrator: " + escapeText(integrator) + " not in {RungeKuttaMerson, CPodes, SemiExplicitEuler2}");
   if (!member(mujoco_integrators, mujoco_integrator))
     throw py::value_error("mujoco_integrator: " + escapeText(mujoco_integrator) + " not in {RK4, Euler, implicit}");
   if (!(accuracy >= 1e-14 && accuracy <= 1e-1)) throw py::value_error("accuracy: value not in range 1e-14 to 0.1");
   if (!(mujoco_step >= 1e-6 && mujoco_step <= 1e-1)) throw py::value_error("mujoco_step: value not in range 1e-06 to 0.1");
-  if (!m.flywheel_inertia)
-    throw SceneError(source + ": [flywheel].inertia: missing key (the free run needs the flywheel inertia)");
-  if (!(m.engine.speed > 0.0)) throw SceneError(source + ": [engine].speed_rpm: must be > 0 for the free run (the release speed)");
-  const double w0 = m.engine.speed;
-  nlohmann::ordered_json doc;
-  struct Run {
-    std::string engine;
-    FreeRunResult with;
-  };
-  std::vector<Run> runs;
+  // Each pair goes to the engines that offer its integrator (Engine::integrators), as the CLI's flags.
+  validation::FreeRunChoices choices = validation::getDefaultFreeRunSettings();
+  validation::chooseIntegrator(choices, integrator, accuracy);
+  validation::chooseIntegrator(choices, mujoco_integrator, mujoco_step);
+  std::vector<validation::MotionRun> runs;
   {
     py::gil_scoped_release release;
     try {
-      const analytic::FreeRun with = analytic::calcFreeRun(m, w0, true), without = analytic::calcFreeRun(m, w0, false);
-      doc["analytic"] = {{"delta_gravity", with.delta}, {"delta_no_gravity", without.delta}, {"omega_min", with.omega_min},
-                         {"omega_max", with.omega_max}, {"omega_mean", with.omega_mean}};
-    } catch (const std::domain_error& e) {
-      throw SceneError(source + ": [engine].speed_rpm: " + e.what());
+      runs = validation::calcMotion(m, choices);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(source + ": " + e.what());
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(source + ": " + e.what());
     }
-    for (const Engine& engine : validation::listEngines()) {
-      if (!engine.simulate) continue;
-      const bool simbody = engine.name == "simbody";
-      FreeRunSettings run;
-      run.integrator = simbody ? integrator : mujoco_integrator;
-      run.accuracy = simbody ? accuracy : mujoco_step;
-      try {
-        run.gravity = true;
-        const FreeRunResult with = engine.simulate(m, w0, run);
-        run.gravity = false;
-        const FreeRunResult without = engine.simulate(m, w0, run);
-        doc[engine.name] = {{"delta_gravity", with.delta},       {"delta_no_gravity", without.delta},
-                            {"omega_min", with.omega_min},       {"omega_max", with.omega_max},
-                            {"omega_mean", with.omega_mean},     {"integrator", run.integrator},
-                            {"energy_drift_per_revolution", with.energy_drift_per_revolution},
-                            {"steps", with.steps}};
-        if (series) runs.push_back({engine.name, with});
-      } catch (const std::invalid_argument& e) {
-        throw SceneError(source + ": " + engine.name + ": " + e.what());
-      } catch (const std::runtime_error& e) {
-        throw std::runtime_error(source + ": " + engine.name + ": " + engine.library + " could not run: " + e.what());
-      }
+  }
+  nlohmann::ordered_json doc;
+  for (const validation::MotionRun& r : runs) {
+    nlohmann::ordered_json j = {{"delta_gravity", r.delta_gravity}, {"delta_no_gravity", r.delta_no_gravity},
+                                {"omega_min", r.omega_min}, {"omega_max", r.omega_max}, {"omega_mean", r.omega_mean}};
+    if (!r.integrator.empty()) {
+      j["integrator"] = r.integrator;
+      j["energy_drift_per_revolution"] = r.energy_drift;
+      j["steps"] = r.steps;
     }
+    doc[r.engine] = j;
   }
   py::object result = toPython(doc);
-  for (const Run& r : runs) {
-    // The run with gravity, step by step: time [s], phi [rad] (unwrapped), phi_dot [rad/s], energy [J].
-    py::dict s;
-    s["time"] = toArray(r.with.time);
-    s["phi"] = toArray(r.with.phi);
-    s["phi_dot"] = toArray(r.with.phi_dot);
-    s["energy"] = toArray(r.with.energy);
-    result[py::str(r.engine)]["series"] = s;
-  }
+  if (series)
+    for (const validation::MotionRun& r : runs) {
+      if (r.integrator.empty()) continue;  // the energy integral has no steps
+      // The run with gravity, step by step: time [s], phi [rad] (unwrapped), phi_dot [rad/s], energy [J].
+      py::dict s;
+      s["time"] = toArray(r.with_gravity.time);
+      s["phi"] = toArray(r.with_gravity.phi);
+      s["phi_dot"] = toArray(r.with_gravity.phi_dot);
+      s["energy"] = toArray(r.with_gravity.energy);
+      result[py::str(r.engine)]["series"] = s;
+    }
   return result;
 }
 
@@ -456,7 +442,7 @@ std::unique_ptr<GradeRun> startGrade(const std::optional<std::vector<py::object>
   }
   GradeSettings settings;
   settings.relay = run->relay;
-  run->jobs = jobs > 0 ? jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  run->jobs = jobs > 0 ? jobs : validation::getDefaultJobs();
   settings.jobs = run->jobs;
   run->start = std::chrono::steady_clock::now();
   py::gil_scoped_release release;
@@ -678,7 +664,7 @@ radians. Immutable; thread-safe (every call builds its own engine model).)doc")
             d["closure"] = sc.closure;
             return d;
           }, "The physical scales of the scene and the conditioning of comparisons (validation/scales.h), the gate's.")
-      .def("evaluate", &evaluate, py::arg("phi"), py::arg("engine") = "analytic", py::arg("quantities") = py::none(),
+      .def("evaluate", &evaluate, py::arg("phi"), py::arg("engine") = validation::getClosedFormEngine().name, py::arg("quantities") = py::none(),
            py::kw_only(), py::arg("out") = py::none(),
            R"doc(
 Every quantity of `crankcheck eval` at the crank angles `phi` [rad] (a NumPy array of any shape, or a float; any

@@ -102,6 +102,22 @@ std::vector<const Engine*> listComparedEngines() {
   return engines;
 }
 
+std::vector<const Engine*> listBothEngines() {
+  std::vector<const Engine*> both = {&getClosedFormEngine()};
+  const std::vector<const Engine*> references = listReferenceEngines();
+  if (!references.empty()) both.push_back(references.front());
+  return both;
+}
+
+std::vector<const Engine*> selectEngines(const std::string& choice) {
+  const std::vector<const Engine*> both = listBothEngines();
+  std::vector<const Engine*> selected;
+  for (const Engine& e : listEngines())
+    if (choice == "all" || e.name == choice || (choice == "both" && std::find(both.begin(), both.end(), &e) != both.end()))
+      selected.push_back(&e);
+  return selected;
+}
+
 const Engine& getClosedFormEngine() {
   for (const Engine& e : listEngines())
     if (e.closed_form) return e;

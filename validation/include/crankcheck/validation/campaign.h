@@ -52,7 +52,7 @@ struct CampaignOptions {
 /// One independent unit of work.
 struct Task {
   std::string id;                   ///< e.g. "crosscheck inline4_four_gamma90 lambda=0.3"
-  /// Times itself (Google Benchmark): run on a core of its own, never beside another such task (validate's runTasks:
+  /// Times itself (Google Benchmark): run on a core of its own, never beside another such task (runner.h runTasks:
   /// on one worker while the others compute, when every worker has a core; else after the others).
   bool measures_time = false;
   std::function<TableSet()> run;

@@ -29,6 +29,13 @@ void checkEveryEngineBuilds(const Mechanism& m, const std::string& path);
 /// compared with (simbody, mujoco), in the registry's order.
 std::vector<const Engine*> listReferenceEngines();
 
+/// The engines a user's choice names (`eval --engine`), in the registry's order: an engine's name, "all" (every
+/// engine) or "both" (the closed forms and the first reference engine: listBothEngines); an unknown choice: none.
+std::vector<const Engine*> selectEngines(const std::string& choice);
+
+/// What "both" names: the closed-form engine and the first reference engine (analytic and simbody).
+std::vector<const Engine*> listBothEngines();
+
 /// The closed forms first, then every reference engine: the engines a part that shows each engine's values lists.
 std::vector<const Engine*> listComparedEngines();
 

@@ -1,12 +1,13 @@
 #pragma once
 /// @file
-/// SIGINT, SIGTERM and SIGHUP: every program crankcheck started is ended with it, during `validate` and `report
-/// merge` the partial folder is removed and the previous report stays as it was, and crankcheck exits with status
-/// 128 + the signal number.
+/// SIGINT, SIGTERM and SIGHUP: every program crankcheck started is ended with it, during `validate`, `report merge` and
+/// `grade` the partial folder is removed and the previous report stays as it was, and crankcheck exits with status
+/// 128 + the signal number. The library owns the watcher thread (the CLI starts none): the CLI calls watchInterrupts
+/// first thing in main.
 
 #include "crankcheck/validation/output_folder.h"
 
-namespace crankcheck::app {
+namespace crankcheck::validation {
 
 /// Blocks SIGINT, SIGTERM and SIGHUP in the calling thread (and so in every thread it starts later) and starts the
 /// one watcher thread that receives them: it kills every external program crankcheck is running (gnuplot, a graded
@@ -20,10 +21,10 @@ void watchInterrupts();
 /// guard, the signals still end the process with 128 + the signal number.
 class InterruptGuard {
  public:
-  explicit InterruptGuard(validation::OutputFolder& folder);
+  explicit InterruptGuard(OutputFolder& folder);
   ~InterruptGuard();
   InterruptGuard(const InterruptGuard&) = delete;
   InterruptGuard& operator=(const InterruptGuard&) = delete;
 };
 
-}  // namespace crankcheck::app
+}  // namespace crankcheck::validation

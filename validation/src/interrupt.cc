@@ -1,4 +1,4 @@
-#include "interrupt.h"
+#include "crankcheck/validation/interrupt.h"
 
 #include <pthread.h>
 #include <signal.h>
@@ -11,11 +11,11 @@
 
 #include "crankcheck/validation/process.h"
 
-namespace crankcheck::app {
+namespace crankcheck::validation {
 namespace {
 
 std::mutex g_mutex;
-validation::OutputFolder* g_folder = nullptr;  // guarded by g_mutex
+OutputFolder* g_folder = nullptr;  // guarded by g_mutex
 
 sigset_t interruptSignals() {
   sigset_t set;
@@ -31,7 +31,7 @@ void watch() {
   int signal_number = 0;
   while (sigwait(&set, &signal_number) != 0) {
   }
-  validation::killRunningPrograms();
+  killRunningPrograms();
   {
     std::lock_guard<std::mutex> lock(g_mutex);
     const char* name = signal_number == SIGINT ? "SIGINT" : signal_number == SIGTERM ? "SIGTERM" : "SIGHUP";
@@ -59,7 +59,7 @@ void watchInterrupts() {
   (void)started;
 }
 
-InterruptGuard::InterruptGuard(validation::OutputFolder& folder) {
+InterruptGuard::InterruptGuard(OutputFolder& folder) {
   watchInterrupts();
   std::lock_guard<std::mutex> lock(g_mutex);
   g_folder = &folder;
@@ -70,4 +70,4 @@ InterruptGuard::~InterruptGuard() {
   g_folder = nullptr;
 }
 
-}  // namespace crankcheck::app
+}  // namespace crankcheck::validation
