@@ -106,11 +106,9 @@ struct VariationalEquations {
 };
 
 // The variational equations' accuracy: a Newton step needs the Jacobian only roughly (an error e in it leaves about
-// e x the residual); measured on the example four and the marine six at 5 speeds each: at 1e-6 the same iterations
-// as at 1e-8 at two thirds of the time (the Jacobian was 60 to 80 % of a steady state's time), the peak-to-peaks the
-// same within 2e-7 of the largest at tolerance 1e-8 (their bound there: 1000 x tolerance of the twist scale). At 1e-5
-// (2026-11-26): the same Newton iterations as at 1e-6 at every speed point of the campaign's part 17 (61 points, 119
-// iterations) at 0.85 of the time, the peak-to-peaks moved by at most a tenth of their error bound.
+// e x the residual). At 1e-5 Newton takes the same iterations as with a tighter Jacobian, in less time, and the
+// peak-to-peaks move by a small fraction of their error bound (1000 x tolerance of the twist scale): bench/README.md,
+// "The steady state's Jacobian accuracy".
 constexpr double kJacobianAccuracy = 1e-5;
 
 struct Integrator {

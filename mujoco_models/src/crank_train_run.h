@@ -1,5 +1,5 @@
 #pragma once
-// What MuJoCo's two crank-train routes share (its exact one, crank_train.cc; its soft one, k_crank_mujoco_model.cc):
+// What MuJoCo's two crank-train routes share (its exact one, crank_train.cc; its soft one, crank_train_soft.cc):
 // their options and refusals. Both run to periodic by every engine's one policy (crankcheck/scene/periodic_run.h).
 // Private to the library.
 

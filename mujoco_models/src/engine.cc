@@ -1,6 +1,7 @@
 #include "crankcheck/mujoco_models/engine.h"
 
 #include "crankcheck/mujoco_models/crank_train.h"
+#include "crankcheck/mujoco_models/free_run.h"
 #include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
 
 namespace crankcheck::mujoco_models {

@@ -164,9 +164,9 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
   const double r = m_.crank.radius;
   const double l = m_.rod.length;
   // 2 eps (l + r): the closure is left at the rounding of the mechanism's size. At 8 eps, a projection whose last Newton
-  // step from a near start (the Taylor start of assemble) ended just below it left up to 7.6 eps (l + r): at lambda =
-  // 1e-6 (l + r = 50 km) 1e-9 of r omega^2 in a_p. Measured over the campaign's cross-checks (2026-11-26): Simbody's
-  // worst comparison 0.12 -> 0.043 of its tolerance.
+  // step from a near start (the Taylor start of assemble) ends just below it leaves up to 7.6 eps (l + r): at lambda =
+  // 1e-6 (l + r = 50 km) 1e-9 of r omega^2 in a_p. Simbody's worst comparison over the campaign's cross-checks at each
+  // threshold: bench/README.md, "Simbody's closure threshold".
   polish_threshold_ = 2.0 * std::numeric_limits<double>::epsilon() * (l + r);
   // Simbody's projections measure constraint errors in absolute units (m, m/s). A very long mechanism (a 50 km
   // rod at lambda = 1e-6) cannot close its loop to 1e-12 m: roundoff alone is eps l = 1e-11 m. The tolerance is

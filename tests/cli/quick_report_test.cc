@@ -62,7 +62,7 @@ struct Reports {
 // engines; a new part with such a sentence makes that check fail, naming the line, until it is added here) and part
 // 17 (torsion: its engine trains). The other parts (the flywheel sizings, the pin offset, the integrators, ...)
 // state no maximum or conclusion compared here; the quick report has them all (QuickRunWritesEveryPartOfTheReport).
-// Measured (2 cores, 2026-11-26): the full campaign 64.7 thread-s, with these parts 51.2.
+// These parts cost about four fifths of the full campaign (bench/README.md, "The parts the CLI tests read").
 std::string listFullParts() {
   const std::set<std::string> read_here = {"gravity_significance", "errata", "balance", "engines", "torsion"};
   std::string parts;
