@@ -1,5 +1,6 @@
 #include "batch_evaluation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -118,7 +119,19 @@ bool batchKernelsAccept(const Mechanism& m) {
 
 void evaluateAnalyticBatch(const Mechanism& m, std::span<const double> phi, const BatchOutput& wanted) {
   checkAngles(phi);
-  if (!batchKernelsAccept(m)) {
+  // The quantities written below (by a kernel or the analytic engine's scalar functions); a quantity of the catalogue
+  // without a line here is computed with the rest by the analytic engine itself.
+  using Id = QuantityId;
+  static const std::vector<Id> computed_here = {
+      Id::kU, Id::kQ, Id::kDriveTorque, Id::kBearingForce, Id::kShakingForce, Id::kShakingMoment, Id::kPistonPosition,
+      Id::kPistonVelocity, Id::kPistonAcceleration, Id::kCrankPinForce, Id::kWristPinForce, Id::kWallForce,
+      Id::kGasForce, Id::kRodAngle, Id::kRodOmega, Id::kRodAlpha};
+  bool all_here = true;
+  for (const Quantity& q : getQuantityCatalogue())
+    if ((wanted[q.id] || wanted.star(q.id)) &&
+        std::find(computed_here.begin(), computed_here.end(), q.id) == computed_here.end())
+      all_here = false;
+  if (!batchKernelsAccept(m) || !all_here) {
     // What the kernels do not cover: the analytic engine itself (calcEvaluation), angle by angle.
     const Engine& analytic = validation::findEngine("analytic");
     evaluateModel(m, analytic, *analytic.build(m), phi, wanted);
@@ -129,7 +142,6 @@ void evaluateAnalyticBatch(const Mechanism& m, std::span<const double> phi, cons
   Scratch scratch(n);
   auto span = [n](double* p) { return std::span<double>(p, n); };
   // What each kernel writes (null: not asked for).
-  using Id = QuantityId;
   const struct {
     double *U, *Q, *U_star, *Q_star, *drive_torque, *bearing_force, *shaking_force, *shaking_moment, *x_p, *v_p, *a_p,
         *crank_pin_force, *wrist_pin_force, *wall_force, *gas_force, *rod_angle, *rod_omega, *rod_alpha;
