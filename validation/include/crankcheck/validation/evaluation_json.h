@@ -16,9 +16,9 @@ namespace crankcheck::validation {
 nlohmann::ordered_json sceneToJson(const Mechanism& m);
 
 /// One engine's result at one angle (phi_deg as the user gave it): {"engine", "phi_deg", the whole mechanism's
-/// quantities in the catalogue's order (quantities.h) with the dimensionless NAME_star of each that has one after its
-/// numbers (null without a flywheel or at rest), "cylinders": [{each cylinder's quantities}]} (docs/eval.md shows
-/// one). A quantity the scene does not define is left out (gas_force without [gas]); a component it does not define
+/// quantities in the catalogue's order (quantities.h), the dimensionless NAME_star of those that have one placed
+/// after the numbers and before the vectors (null without a flywheel or at rest), "cylinders": [{each cylinder's
+/// quantities}]} (docs/eval.md shows one). A quantity the scene does not define is left out (gas_force without [gas]); a component it does not define
 /// is null (shaking_moment's X and Y unless the scene places its cylinders along the shaft).
 nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, const Mechanism& m);
 

@@ -96,10 +96,10 @@ constexpr double kStandardGravity = 9.80665;
 /// at speed with a load) is used unchanged.
 Scales calcPositiveScales(const Mechanism& m);
 
-/// [SI] The scale quantity q is measured against in a case of mechanism m (its QuantityScale; the rod's rates over
-/// its length l).
+/// [SI] The scale a QuantityScale names in a case of mechanism m (m's rod length l for the rod's rates).
+/// @throws std::invalid_argument for a value outside the enumeration.
 double getQuantityScale(const Scales& scales, QuantityScale scale, const Mechanism& m);
-/// The conditioning that multiplies a quantity's tolerance (its QuantityConditioning).
+/// The conditioning a QuantityConditioning names. @throws std::invalid_argument for a value outside the enumeration.
 double getQuantityConditioning(const Scales& scales, QuantityConditioning conditioning);
 
 /// One compared quantity of two Evaluations.
