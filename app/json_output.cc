@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "crankcheck/analytic/kinematics.h"
+#include "crankcheck/scene/quantities.h"
 #include "help_format.h"
 
 namespace crankcheck::app {
@@ -13,6 +14,17 @@ std::string dumpJson(const nlohmann::ordered_json& document) {
   // as null.
   return document.dump(2) + "\n";
 }
+
+namespace {
+
+// A whole-mechanism value as the table prints it: U and the shaking force and moment with a negative zero shown as
+// 0 (the others keep the sign they were computed with, as the table has always printed them).
+double wholeValue(const Quantity& q, double x) {
+  const bool fold = q.id == QuantityId::kU || q.id == QuantityId::kShakingForce || q.id == QuantityId::kShakingMoment;
+  return fold ? x + 0.0 : x;
+}
+
+}  // namespace
 
 std::string formatTable(const Mechanism& m, const std::string& scene_path, const std::vector<Evaluation>& results,
                         const std::vector<double>& phi_deg) {
@@ -47,41 +59,73 @@ std::string formatTable(const Mechanism& m, const std::string& scene_path, const
                     j, getPinOffset(m, j), d.stroke, degreesFromRadians(d.outer), degreesFromRadians(d.inner));
       out << line;
     }
+  // The catalogue's quantities (quantities.h): the whole mechanism's numbers on one line, each of its vectors on a
+  // line of its own, then each cylinder's numbers in one table and its vectors in another (those in_table).
+  const std::vector<Quantity>& catalogue = getQuantityCatalogue();
+  auto shown = [&](const Quantity& q, bool per_cylinder, bool vector) {
+    return q.per_cylinder == per_cylinder && (q.components > 1) == vector && q.in_table && isQuantityDefined(q, m);
+  };
   for (size_t i = 0; i < results.size(); ++i) {
     const Evaluation& ev = results[i];
-    std::snprintf(line, sizeof line, "\n%s   phi = %.10g deg\n  U = %.12g J   Q = %.12g N m   drive_torque = %.12g N m\n",
-                  ev.engine.c_str(), phi_deg[i], ev.U + 0.0, ev.Q, ev.drive_torque);
+    std::snprintf(line, sizeof line, "\n%s   phi = %.10g deg\n  ", ev.engine.c_str(), phi_deg[i]);
     out << line;
-    std::snprintf(line, sizeof line, "  bearing_force = (%.12g, %.12g) N\n  shaking_force = (%.12g, %.12g) N\n",
-                  ev.bearing_force[0], ev.bearing_force[1], ev.shaking_force[0] + 0.0, ev.shaking_force[1] + 0.0);
+    const char* separator = "";
+    for (const Quantity& q : catalogue)
+      if (shown(q, false, false)) {
+        std::snprintf(line, sizeof line, "%s%s = %.12g %s", separator, q.name, wholeValue(q, readQuantity(q, ev)[0]), q.unit);
+        out << line;
+        separator = "   ";
+      }
+    out << "\n";
+    for (const Quantity& q : catalogue)
+      if (shown(q, false, true)) {
+        out << "  " << q.name << " = (";
+        for (int c = 0; c < q.components; ++c) {
+          if (isComponentDefined(q, c, m))
+            std::snprintf(line, sizeof line, "%s%.12g", c ? ", " : "", wholeValue(q, readQuantity(q, ev)[c]));
+          else
+            std::snprintf(line, sizeof line, "%s-", c ? ", " : "");
+          out << line;
+        }
+        out << ") " << q.unit << "\n";
+      }
+    std::snprintf(line, sizeof line, "  %3s", "cyl");
     out << line;
-    if (hasAxialPositions(m))
-      std::snprintf(line, sizeof line, "  shaking_moment = (%.12g, %.12g, %.12g) N m\n", ev.shaking_moment[0] + 0.0,
-                    ev.shaking_moment[1] + 0.0, ev.shaking_moment[2] + 0.0);
-    else
-      std::snprintf(line, sizeof line, "  shaking_moment = (-, -, %.12g) N m\n", ev.shaking_moment[2] + 0.0);
-    out << line;
-    std::snprintf(line, sizeof line, "  %3s %16s %16s %16s %16s%s\n", "cyl", "x_p [m]", "v_p [m/s]", "a_p [m/s^2]",
-                  "wall_force [N]", m.gas ? "    gas_force [N]" : "");
-    out << line;
-    for (size_t j = 0; j < ev.cylinders.size(); ++j) {
-      const CylinderEvaluation& c = ev.cylinders[j];
-      std::snprintf(line, sizeof line, "  %3zu %16.9g %16.9g %16.9g %16.9g", j, c.x_p, c.v_p, c.a_p, c.wall_force);
-      out << line;
-      if (m.gas) {
-        std::snprintf(line, sizeof line, " %16.9g", c.gas_force);
+    for (const Quantity& q : catalogue)
+      if (shown(q, true, false)) {
+        std::snprintf(line, sizeof line, " %16s", (std::string(q.name) + " [" + q.unit + "]").c_str());
         out << line;
       }
+    out << "\n";
+    for (size_t j = 0; j < ev.cylinders.size(); ++j) {
+      std::snprintf(line, sizeof line, "  %3zu", j);
+      out << line;
+      for (const Quantity& q : catalogue)
+        if (shown(q, true, false)) {
+          std::snprintf(line, sizeof line, " %16.9g", readQuantity(q, ev, static_cast<int>(j))[0]);
+          out << line;
+        }
       out << "\n";
     }
-    std::snprintf(line, sizeof line, "  %3s %16s %16s %16s %16s\n", "cyl", "crank_pin_force", "(X, Y) [N]",
-                  "wrist_pin_force", "(X, Y) [N]");
+    std::snprintf(line, sizeof line, "  %3s", "cyl");
     out << line;
+    for (const Quantity& q : catalogue)
+      if (shown(q, true, true)) {
+        std::snprintf(line, sizeof line, " %16s %16s", q.name,
+                      (std::string(q.components == 2 ? "(X, Y)" : "(X, Y, Z)") + " [" + q.unit + "]").c_str());
+        out << line;
+      }
+    out << "\n";
     for (size_t j = 0; j < ev.cylinders.size(); ++j) {
-      const CylinderEvaluation& c = ev.cylinders[j];
-      std::snprintf(line, sizeof line, "  %3zu %16.9g %16.9g %16.9g %16.9g\n", j, c.crank_pin_force[0],
-                    c.crank_pin_force[1], c.wrist_pin_force[0], c.wrist_pin_force[1]);
+      std::snprintf(line, sizeof line, "  %3zu", j);
       out << line;
+      for (const Quantity& q : catalogue)
+        if (shown(q, true, true))
+          for (int c = 0; c < q.components; ++c) {
+            std::snprintf(line, sizeof line, " %16.9g", readQuantity(q, ev, static_cast<int>(j))[c]);
+            out << line;
+          }
+      out << "\n";
     }
   }
   return out.str();

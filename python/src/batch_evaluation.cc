@@ -1,5 +1,6 @@
 #include "batch_evaluation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -13,12 +14,27 @@
 namespace crankcheck::python {
 
 const std::vector<QuantityInfo>& listQuantities() {
-  static const std::vector<QuantityInfo> quantities = {
-      {"U", 1, false},          {"Q", 1, false},          {"U_star", 1, false},         {"Q_star", 1, false},
-      {"drive_torque", 1, false}, {"bearing_force", 2, false}, {"shaking_force", 2, false}, {"shaking_moment", 3, false},
-      {"x_p", 1, true},         {"v_p", 1, true},         {"a_p", 1, true},             {"crank_pin_force", 2, true},
-      {"wrist_pin_force", 2, true}, {"wall_force", 1, true}, {"gas_force", 1, true},    {"rod_angle", 1, true},
-      {"rod_omega", 1, true},   {"rod_alpha", 1, true}};
+  static const std::vector<QuantityInfo> quantities = [] {
+    static std::vector<std::string> star_names;  // the storage of the NAME_star names
+    const std::vector<Quantity>& catalogue = getQuantityCatalogue();
+    size_t last_starred = 0;
+    for (size_t i = 0; i < catalogue.size(); ++i)
+      if (catalogue[i].dimensionless) {
+        star_names.push_back(std::string(catalogue[i].name) + "_star");
+        last_starred = i;
+      }
+    std::vector<QuantityInfo> list;
+    for (size_t i = 0; i < catalogue.size(); ++i) {
+      const Quantity& q = catalogue[i];
+      list.push_back({q.name, q.components, q.per_cylinder, &q, false});
+      if (i == last_starred && !star_names.empty()) {
+        size_t next = 0;
+        for (const Quantity& starred : catalogue)
+          if (starred.dimensionless) list.push_back({star_names[next++].c_str(), 1, false, &starred, true});
+      }
+    }
+    return list;
+  }();
   return quantities;
 }
 
@@ -29,19 +45,19 @@ const QuantityInfo* findQuantity(const std::string& name) {
 }
 
 bool isDefined(const Mechanism& m, const std::string& name) {
-  if (name == "U_star" || name == "Q_star") return m.flywheel_inertia.has_value() && m.engine.speed > 0.0;
-  if (name == "gas_force") return m.gas.has_value();
-  return findQuantity(name) != nullptr;
+  const QuantityInfo* q = findQuantity(name);
+  if (!q) return false;
+  if (q->star) return m.flywheel_inertia.has_value() && m.engine.speed > 0.0;
+  return isQuantityDefined(*q->quantity, m);
 }
 
+BatchOutput::BatchOutput() : values(getQuantityCatalogue().size(), nullptr), stars(getQuantityCatalogue().size(), nullptr) {}
+
 double*& BatchOutput::at(const std::string& name) {
-  double** fields[] = {&U, &Q, &U_star, &Q_star, &drive_torque, &bearing_force, &shaking_force, &shaking_moment,
-                       &x_p, &v_p, &a_p, &crank_pin_force, &wrist_pin_force, &wall_force, &gas_force, &rod_angle,
-                       &rod_omega, &rod_alpha};
-  const std::vector<QuantityInfo>& all = listQuantities();
-  for (size_t i = 0; i < all.size(); ++i)
-    if (name == all[i].name) return *fields[i];
-  throw std::invalid_argument("no quantity called " + name);
+  const QuantityInfo* q = findQuantity(name);
+  if (!q) throw std::invalid_argument("no quantity called " + name);
+  const size_t id = static_cast<size_t>(q->quantity->id);
+  return q->star ? stars[id] : values[id];
 }
 
 void checkAngles(std::span<const double> phi) {
@@ -75,6 +91,14 @@ class Scratch {
   std::vector<std::unique_ptr<double[]>> blocks_;
 };
 
+// What asking for a NAME_star without a flywheel and a speed is told: "U_star, Q_star: not defined ...".
+std::string starsNotDefined() {
+  std::string names;
+  for (const QuantityInfo& q : listQuantities())
+    if (q.star) names += (names.empty() ? "" : ", ") + std::string(q.name);
+  return names + ": not defined without [flywheel].inertia and a speed";
+}
+
 // Component c of cylinder j of a [component][cylinder][angle] block.
 double* part(double* base, int c, int j, int k, size_t n) {
   return base + (static_cast<size_t>(c) * static_cast<size_t>(k) + static_cast<size_t>(j)) * n;
@@ -93,23 +117,44 @@ bool batchKernelsAccept(const Mechanism& m) {
   }
 }
 
-void evaluateAnalyticBatch(const Mechanism& m, std::span<const double> phi, const BatchOutput& out) {
+void evaluateAnalyticBatch(const Mechanism& m, std::span<const double> phi, const BatchOutput& wanted) {
   checkAngles(phi);
-  if (!batchKernelsAccept(m)) {
+  // The quantities written below (by a kernel or the analytic engine's scalar functions); a quantity of the catalogue
+  // without a line here is computed with the rest by the analytic engine itself.
+  using Id = QuantityId;
+  static const std::vector<Id> computed_here = {
+      Id::kU, Id::kQ, Id::kDriveTorque, Id::kBearingForce, Id::kShakingForce, Id::kShakingMoment, Id::kPistonPosition,
+      Id::kPistonVelocity, Id::kPistonAcceleration, Id::kCrankPinForce, Id::kWristPinForce, Id::kWallForce,
+      Id::kGasForce, Id::kRodAngle, Id::kRodOmega, Id::kRodAlpha};
+  bool all_here = true;
+  for (const Quantity& q : getQuantityCatalogue())
+    if ((wanted[q.id] || wanted.star(q.id)) &&
+        std::find(computed_here.begin(), computed_here.end(), q.id) == computed_here.end())
+      all_here = false;
+  if (!batchKernelsAccept(m) || !all_here) {
     // What the kernels do not cover: the analytic engine itself (calcEvaluation), angle by angle.
     const Engine& analytic = validation::findEngine("analytic");
-    evaluateModel(m, analytic, *analytic.build(m), phi, out);
+    evaluateModel(m, analytic, *analytic.build(m), phi, wanted);
     return;
   }
   const size_t n = phi.size();
   const int k = m.engine.cylinders;
   Scratch scratch(n);
   auto span = [n](double* p) { return std::span<double>(p, n); };
+  // What each kernel writes (null: not asked for).
+  const struct {
+    double *U, *Q, *U_star, *Q_star, *drive_torque, *bearing_force, *shaking_force, *shaking_moment, *x_p, *v_p, *a_p,
+        *crank_pin_force, *wrist_pin_force, *wall_force, *gas_force, *rod_angle, *rod_omega, *rod_alpha;
+  } out = {wanted[Id::kU], wanted[Id::kQ], wanted.star(Id::kU), wanted.star(Id::kQ), wanted[Id::kDriveTorque],
+           wanted[Id::kBearingForce], wanted[Id::kShakingForce], wanted[Id::kShakingMoment], wanted[Id::kPistonPosition],
+           wanted[Id::kPistonVelocity], wanted[Id::kPistonAcceleration], wanted[Id::kCrankPinForce],
+           wanted[Id::kWristPinForce], wanted[Id::kWallForce], wanted[Id::kGasForce], wanted[Id::kRodAngle],
+           wanted[Id::kRodOmega], wanted[Id::kRodAlpha]};
 
   // U and Q (U_star and Q_star are the same divided by I_w omega^2).
   const bool dimensionless = m.flywheel_inertia && m.engine.speed > 0.0;
   if ((out.U_star || out.Q_star) && !dimensionless)
-    throw std::invalid_argument("U_star, Q_star: not defined without [flywheel].inertia and a speed");
+    throw std::invalid_argument(starsNotDefined());
   const double unit = dimensionless ? *m.flywheel_inertia * m.engine.speed * m.engine.speed : 1.0;
   if (out.U || out.U_star) {
     double* U = scratch.orScratch(out.U);
@@ -191,7 +236,7 @@ void evaluateAnalyticBatch(const Mechanism& m, std::span<const double> phi, cons
     }
   }
   if (out.gas_force) {
-    if (!m.gas) throw std::invalid_argument("gas_force: not defined without [gas]");
+    if (!m.gas) throw std::invalid_argument(std::string(getQuantity(QuantityId::kGasForce).name) + ": not defined without [gas]");
     for (int j = 0; j < k; ++j) {
       double* f = part(out.gas_force, 0, j, k, n);
       for (size_t i = 0; i < n; ++i) f[i] = calcGasForce(m, j, phi[i]);
@@ -204,12 +249,14 @@ void evaluateModel(const Mechanism& m, const Engine& engine, EngineModel& model,
   checkAngles(phi);
   const size_t n = phi.size();
   const int k = m.engine.cylinders;
+  const std::vector<Quantity>& catalogue = getQuantityCatalogue();
   const bool dimensionless = m.flywheel_inertia && m.engine.speed > 0.0;
-  if ((out.U_star || out.Q_star) && !dimensionless)
-    throw std::invalid_argument("U_star, Q_star: not defined without [flywheel].inertia and a speed");
-  if (out.gas_force && !m.gas) throw std::invalid_argument("gas_force: not defined without [gas]");
+  for (const Quantity& q : catalogue) {
+    if (out.star(q.id) && !dimensionless)
+      throw std::invalid_argument(starsNotDefined());
+    if (out[q.id] && !isQuantityDefined(q, m)) throw std::invalid_argument(std::string(q.name) + ": not defined without [gas]");
+  }
   const double unit = dimensionless ? *m.flywheel_inertia * m.engine.speed * m.engine.speed : 1.0;
-  const bool moment_xy = hasAxialPositions(m);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (size_t i = 0; i < n; ++i) {
     Evaluation ev;
@@ -225,32 +272,16 @@ void evaluateModel(const Mechanism& m, const Engine& engine, EngineModel& model,
     if (ev.cylinders.size() != static_cast<size_t>(k))
       throw std::runtime_error("engine " + engine.name + " returned " + std::to_string(ev.cylinders.size()) +
                                " cylinders for a scene of " + std::to_string(k));
-    if (out.U) out.U[i] = ev.U;
-    if (out.Q) out.Q[i] = ev.Q;
-    if (out.U_star) out.U_star[i] = ev.U / unit;
-    if (out.Q_star) out.Q_star[i] = ev.Q / unit;
-    if (out.drive_torque) out.drive_torque[i] = ev.drive_torque;
-    for (int c = 0; c < 2; ++c) {
-      if (out.bearing_force) part(out.bearing_force, c, 0, 1, n)[i] = ev.bearing_force[static_cast<size_t>(c)];
-      if (out.shaking_force) part(out.shaking_force, c, 0, 1, n)[i] = ev.shaking_force[static_cast<size_t>(c)];
-    }
-    if (out.shaking_moment)
-      for (int c = 0; c < 3; ++c)
-        part(out.shaking_moment, c, 0, 1, n)[i] = c < 2 && !moment_xy ? nan : ev.shaking_moment[static_cast<size_t>(c)];
-    for (int j = 0; j < k; ++j) {
-      const CylinderEvaluation& cyl = ev.cylinders[static_cast<size_t>(j)];
-      if (out.x_p) part(out.x_p, 0, j, k, n)[i] = cyl.x_p;
-      if (out.v_p) part(out.v_p, 0, j, k, n)[i] = cyl.v_p;
-      if (out.a_p) part(out.a_p, 0, j, k, n)[i] = cyl.a_p;
-      for (int c = 0; c < 2; ++c) {
-        if (out.crank_pin_force) part(out.crank_pin_force, c, j, k, n)[i] = cyl.crank_pin_force[static_cast<size_t>(c)];
-        if (out.wrist_pin_force) part(out.wrist_pin_force, c, j, k, n)[i] = cyl.wrist_pin_force[static_cast<size_t>(c)];
+    for (const Quantity& q : catalogue) {
+      if (double* star = out.star(q.id)) star[i] = readQuantity(q, ev)[0] / unit;
+      double* base = out[q.id];
+      if (!base) continue;
+      const int cylinders = q.per_cylinder ? k : 1;
+      for (int j = 0; j < cylinders; ++j) {
+        const double* v = readQuantity(q, ev, j);
+        // A component the scene does not define is NaN (shaking_moment X and Y without axial positions; eval: null).
+        for (int c = 0; c < q.components; ++c) part(base, c, j, cylinders, n)[i] = isComponentDefined(q, c, m) ? v[c] : nan;
       }
-      if (out.wall_force) part(out.wall_force, 0, j, k, n)[i] = cyl.wall_force;
-      if (out.gas_force) part(out.gas_force, 0, j, k, n)[i] = cyl.gas_force;
-      if (out.rod_angle) part(out.rod_angle, 0, j, k, n)[i] = cyl.rod_angle;
-      if (out.rod_omega) part(out.rod_omega, 0, j, k, n)[i] = cyl.rod_omega;
-      if (out.rod_alpha) part(out.rod_alpha, 0, j, k, n)[i] = cyl.rod_alpha;
     }
   }
 }

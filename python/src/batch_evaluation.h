@@ -18,17 +18,21 @@
 
 #include "crankcheck/scene/engine.h"
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/scene/quantities.h"
 
 namespace crankcheck::python {
 
-/// The quantities of `crankcheck eval --format json`, in its order, with the number of components of each.
+/// The quantities of `crankcheck eval --format json`, with the number of components of each.
 struct QuantityInfo {
   const char* name;
   int components;     ///< 1 (a number), 2 ([X, Y]) or 3 ([X, Y, Z])
   bool per_cylinder;  ///< one value (or vector) per cylinder
+  /// The catalogue's entry (quantities.h); for NAME_star, the entry of NAME.
+  const Quantity* quantity;
+  bool star;          ///< the paper's dimensionless NAME_star = NAME / (I_w omega^2)
 };
-/// U, Q, U_star, Q_star, drive_torque, bearing_force, shaking_force, shaking_moment, x_p, v_p, a_p,
-/// crank_pin_force, wrist_pin_force, wall_force, gas_force, rod_angle, rod_omega, rod_alpha.
+/// The catalogue's quantities in its order (quantities.h), with the dimensionless NAME_star of each that has one
+/// after the last of those: U, Q, U_star, Q_star, drive_torque, bearing_force, ..., rod_alpha.
 const std::vector<QuantityInfo>& listQuantities();
 /// The entry of listQuantities() called `name`, or nullptr.
 const QuantityInfo* findQuantity(const std::string& name);
@@ -36,30 +40,21 @@ const QuantityInfo* findQuantity(const std::string& name);
 /// gas_force needs [gas] (eval leaves it out otherwise).
 bool isDefined(const Mechanism& m, const std::string& name);
 
-/// Caller-owned output: for each quantity either empty (not computed) or one pointer to
+/// Caller-owned output: for each quantity either null (not computed) or one pointer to
 /// n x components x (k if per cylinder) doubles, laid out as [component][cylinder][angle]: component c of cylinder j
-/// at angle i is at data[(c k + j) n + i] (k = 1 for whole-mechanism quantities).
+/// at angle i is at data[(c k + j) n + i] (k = 1 for whole-mechanism quantities). shaking_moment's X and Y are NaN
+/// when the scene has no axial positions (eval: null).
 struct BatchOutput {
-  double* U = nullptr;
-  double* Q = nullptr;
-  double* U_star = nullptr;
-  double* Q_star = nullptr;
-  double* drive_torque = nullptr;
-  double* bearing_force = nullptr;   ///< 2 components
-  double* shaking_force = nullptr;   ///< 2 components
-  double* shaking_moment = nullptr;  ///< 3 components; X and Y NaN when the scene has no axial positions (eval: null)
-  double* x_p = nullptr;
-  double* v_p = nullptr;
-  double* a_p = nullptr;
-  double* crank_pin_force = nullptr;  ///< 2 components per cylinder
-  double* wrist_pin_force = nullptr;  ///< 2 components per cylinder
-  double* wall_force = nullptr;
-  double* gas_force = nullptr;
-  double* rod_angle = nullptr;
-  double* rod_omega = nullptr;
-  double* rod_alpha = nullptr;
-  /// The pointer of quantity `name` (one of listQuantities()).
+  BatchOutput();
+  /// The pointer of a catalogue quantity.
+  double* operator[](QuantityId id) const { return values[static_cast<size_t>(id)]; }
+  /// The pointer of its NAME_star (quantities with `dimensionless`).
+  double* star(QuantityId id) const { return stars[static_cast<size_t>(id)]; }
+  /// The pointer of quantity `name` (one of listQuantities()). @throws std::invalid_argument for another name.
   double*& at(const std::string& name);
+
+  std::vector<double*> values;  ///< indexed by QuantityId
+  std::vector<double*> stars;   ///< indexed by QuantityId
 };
 
 /// Checks that every angle is finite. @throws std::invalid_argument "phi[i] = VALUE: must be a finite number of

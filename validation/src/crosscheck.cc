@@ -8,6 +8,7 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
+#include "crankcheck/validation/worst_by_quantity.h"
 
 namespace crankcheck::validation {
 
@@ -19,37 +20,6 @@ const Schema<CrossCheckRow> kCrossCheckTable{
      numberField("where_phi_deg", "deg", &CrossCheckRow::where_phi_deg),
      numberField("where_speed_rpm", "rpm", &CrossCheckRow::where_speed_rpm),
      numberField("tolerance_rel", "-", &CrossCheckRow::tolerance_rel), textField("pass", &CrossCheckRow::pass)}};
-
-namespace {
-
-struct WorstComparison {
-  double ratio_to_tolerance = -1.0;
-  double rel_error = 0.0, tolerance_rel = 0.0, phi_deg = 0.0, rpm = 0.0;
-  bool pass = true;
-};
-
-// One engine's worst comparison per quantity in one case, in the order first met. The comparisons of an evaluation come
-// in the same order at every angle (compareEvaluations), so the slot of the i-th is remembered and only confirmed by its
-// name (a short string) instead of a map lookup on (engine, quantity) per comparison.
-class WorstByQuantity {
- public:
-  WorstComparison& at(size_t i, const std::string& quantity) {
-    if (i < slot_of_.size() && slots_[slot_of_[i]].first == quantity) return slots_[slot_of_[i]].second;
-    size_t slot = 0;
-    while (slot < slots_.size() && slots_[slot].first != quantity) ++slot;
-    if (slot == slots_.size()) slots_.emplace_back(quantity, WorstComparison{});
-    if (i >= slot_of_.size()) slot_of_.resize(i + 1, 0);
-    slot_of_[i] = slot;
-    return slots_[slot].second;
-  }
-  const std::vector<std::pair<std::string, WorstComparison>>& slots() const { return slots_; }
-
- private:
-  std::vector<std::pair<std::string, WorstComparison>> slots_;
-  std::vector<size_t> slot_of_;
-};
-
-}  // namespace
 
 // Every model is asked what it would be asked alone, in the same order (Simbody then assembles once per angle, not once
 // per gamma).
@@ -82,17 +52,6 @@ std::vector<CrossCheckRow> crossCheckCases(const std::string& family, const std:
     const double phi = radiansFromDegrees(phi_deg);
     for (size_t v = 0; v < cases.size(); ++v) {
       Case& c = cases[v];
-      auto note = [&](WorstComparison& w, const Comparison& cmp, double rpm) {
-        const double ratio = cmp.error() / cmp.tolerance();
-        w.pass = w.pass && cmp.agrees();
-        if (ratio > w.ratio_to_tolerance) {
-          w.ratio_to_tolerance = ratio;
-          w.rel_error = cmp.error() / cmp.scale;
-          w.tolerance_rel = cmp.tolerance() / cmp.scale;
-          w.phi_deg = phi_deg;
-          w.rpm = rpm;
-        }
-      };
       if (v > 0)
         for (size_t e = 0; e < c.others.size(); ++e) c.others[e].second->startAssemblyFrom(*cases.front().others[e].second);
       for (size_t s = 0; s < c.at_speed.size(); ++s) {
@@ -105,11 +64,11 @@ std::vector<CrossCheckRow> crossCheckCases(const std::string& family, const std:
           other->setSpeed(case_m.engine.speed);
           const std::vector<Comparison> comparisons = compareEvaluations(case_m, c.scales[s], a, other->evaluate(phi));
           for (size_t i = 0; i < comparisons.size(); ++i)
-            note(c.worst[e].at(i, comparisons[i].quantity), comparisons[i], rpm);
+            c.worst[e].note(i, comparisons[i], phi_deg, rpm);
           if (rpm == 0.0 && !engine->second_q_route.empty()) {
             const Comparison second{"Q (" + engine->second_q_route + ")", -1, a.Q, other->calcSecondRouteQ(phi),
                                     c.scales[s].energy, c.scales[s].conditioning};
-            note(c.worst[e].at(comparisons.size(), second.quantity), second, rpm);
+            c.worst[e].note(comparisons.size(), second, phi_deg, rpm);
           }
         }
       }

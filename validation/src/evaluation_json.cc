@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "crankcheck/analytic/kinematics.h"
+#include "crankcheck/scene/quantities.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -14,7 +15,7 @@ nlohmann::ordered_json vec(const Vec2& v) { return nlohmann::ordered_json::array
 nlohmann::ordered_json harmonicToJson(const analytic::ShakingHarmonic& h, bool axial) {
   static const char* const kAxes[3] = {"X", "Y", "Z"};
   nlohmann::ordered_json j;
-  j["shaking_force"] = {{"amplitude", h.calcForceAmplitude()}, {"cos", vec(h.force_cos)}, {"sin", vec(h.force_sin)}};
+  j[getQuantity(QuantityId::kShakingForce).name] = {{"amplitude", h.calcForceAmplitude()}, {"cos", vec(h.force_cos)}, {"sin", vec(h.force_sin)}};
   nlohmann::ordered_json moment;
   for (int k = 0; k < 3; ++k) {
     if (k < 2 && !axial) {
@@ -23,7 +24,7 @@ nlohmann::ordered_json harmonicToJson(const analytic::ShakingHarmonic& h, bool a
     }
     moment[kAxes[k]] = {{"amplitude", h.calcMomentAmplitude(k)}, {"cos", h.moment_cos[k]}, {"sin", h.moment_sin[k]}};
   }
-  j["shaking_moment"] = moment;
+  j[getQuantity(QuantityId::kShakingMoment).name] = moment;
   return j;
 }
 
@@ -81,37 +82,42 @@ nlohmann::ordered_json sceneToJson(const Mechanism& m) {
 }
 
 nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, const Mechanism& m) {
-  const bool moment_xy_defined = hasAxialPositions(m);
+  // A quantity's value: a number, or an array of its components; a component the scene does not define is null,
+  // never 0 (shaking_moment X and Y without axial positions).
+  auto value = [&](const Quantity& q, int cylinder) {
+    const double* v = readQuantity(q, ev, cylinder);
+    if (q.components == 1) return nlohmann::ordered_json(v[0]);
+    nlohmann::ordered_json array = nlohmann::ordered_json::array();
+    for (int c = 0; c < q.components; ++c)
+      array.push_back(isComponentDefined(q, c, m) ? nlohmann::ordered_json(v[c]) : nlohmann::ordered_json(nullptr));
+    return array;
+  };
   nlohmann::ordered_json j;
   j["engine"] = ev.engine;
   j["phi_deg"] = phi_deg;
-  j["U"] = ev.U;
-  j["Q"] = ev.Q;
-  j["drive_torque"] = ev.drive_torque;
-  // The paper's dimensionless values (divided by I_w omega^2): only with a flywheel and a speed.
+  // The paper's dimensionless values NAME_star (divided by I_w omega^2): only with a flywheel and a speed, else null.
+  // They follow the whole mechanism's numbers, before its vectors.
   const bool dimensionless = m.flywheel_inertia && m.engine.speed > 0.0;
   const double unit = dimensionless ? *m.flywheel_inertia * m.engine.speed * m.engine.speed : 1.0;
-  j["U_star"] = dimensionless ? nlohmann::ordered_json(ev.U / unit) : nlohmann::ordered_json(nullptr);
-  j["Q_star"] = dimensionless ? nlohmann::ordered_json(ev.Q / unit) : nlohmann::ordered_json(nullptr);
-  j["bearing_force"] = vec(ev.bearing_force);
-  j["shaking_force"] = vec(ev.shaking_force);
-  // Without axial positions the X and Y moments are not defined: null, never 0.
-  j["shaking_moment"] = nlohmann::ordered_json::array(
-      {moment_xy_defined ? nlohmann::ordered_json(ev.shaking_moment[0]) : nlohmann::ordered_json(nullptr),
-       moment_xy_defined ? nlohmann::ordered_json(ev.shaking_moment[1]) : nlohmann::ordered_json(nullptr),
-       ev.shaking_moment[2]});
+  bool stars_written = false;
+  auto writeStars = [&] {
+    for (const Quantity& q : getQuantityCatalogue())
+      if (!q.per_cylinder && q.dimensionless)
+        j[std::string(q.name) + "_star"] =
+            dimensionless ? nlohmann::ordered_json(readQuantity(q, ev)[0] / unit) : nlohmann::ordered_json(nullptr);
+    stars_written = true;
+  };
+  for (const Quantity& q : getQuantityCatalogue()) {
+    if (q.per_cylinder || !isQuantityDefined(q, m)) continue;
+    if (q.components > 1 && !stars_written) writeStars();
+    j[q.name] = value(q, -1);
+  }
+  if (!stars_written) writeStars();
   nlohmann::ordered_json cylinders = nlohmann::ordered_json::array();
-  for (const CylinderEvaluation& c : ev.cylinders) {
-    nlohmann::ordered_json cylinder = {{"x_p", c.x_p},
-                                       {"v_p", c.v_p},
-                                       {"a_p", c.a_p},
-                                       {"crank_pin_force", vec(c.crank_pin_force)},
-                                       {"wrist_pin_force", vec(c.wrist_pin_force)},
-                                       {"wall_force", c.wall_force}};
-    if (m.gas) cylinder["gas_force"] = c.gas_force;  // absent without [gas]
-    cylinder["rod_angle"] = c.rod_angle;
-    cylinder["rod_omega"] = c.rod_omega;
-    cylinder["rod_alpha"] = c.rod_alpha;
+  for (size_t c = 0; c < ev.cylinders.size(); ++c) {
+    nlohmann::ordered_json cylinder = nlohmann::ordered_json::object();
+    for (const Quantity& q : getQuantityCatalogue())
+      if (q.per_cylinder && isQuantityDefined(q, m)) cylinder[q.name] = value(q, static_cast<int>(c));  // gas_force: absent without [gas]
     cylinders.push_back(cylinder);
   }
   j["cylinders"] = cylinders;

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "crankcheck/analytic/reactions.h"
+#include "crankcheck/scene/quantities.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/scene/scene_writer.h"
 #include "crankcheck/validation/engines.h"
@@ -23,15 +24,9 @@
 #include "crankcheck/validation/process.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
+#include "crankcheck/validation/worst_by_quantity.h"
 
 namespace crankcheck::validation {
-
-const std::vector<std::string>& getGradeQuantities() {
-  static const std::vector<std::string> quantities = {
-      "U",   "Q",   "drive_torque",    "bearing_force",   "shaking_force", "shaking_moment", "x_p",       "v_p",
-      "a_p", "crank_pin_force", "wrist_pin_force", "wall_force", "gas_force", "rod_angle", "rod_omega", "rod_alpha"};
-  return quantities;
-}
 
 namespace {
 
@@ -144,8 +139,8 @@ std::string makeGradeRequest(const GradeCase& c) {
   request["scene_toml"] = c.scene_toml;
   request["phi_deg"] = c.phi_deg;
   nlohmann::ordered_json quantities = nlohmann::ordered_json::array();
-  for (const std::string& q : getGradeQuantities())
-    if (q != "gas_force" || c.mechanism.gas) quantities.push_back(q);
+  for (const Quantity& q : getQuantityCatalogue())
+    if (isQuantityDefined(q, c.mechanism)) quantities.push_back(q.name);
   request["quantities"] = quantities;
   return request.dump();  // one line: strings escape their newlines
 }
@@ -205,18 +200,27 @@ std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string
     Evaluation e;
     e.engine = "program";
     e.phi = radiansFromDegrees(c.phi_deg[i]);
-    e.U = number(r, "U", at);
-    e.Q = number(r, "Q", at);
-    e.drive_torque = number(r, "drive_torque", at);
-    vector(r, "bearing_force", at, e.bearing_force.data(), 2);
-    vector(r, "shaking_force", at, e.shaking_force.data(), 2);
-    vector(r, "shaking_moment", at, e.shaking_moment.data(), 3);
-    if (!hasAxialPositions(c.mechanism)) e.shaking_moment[0] = e.shaking_moment[1] = kNotProvided;  // not defined
     e.cylinders.assign(static_cast<size_t>(k), CylinderEvaluation{});
-    for (CylinderEvaluation& cyl : e.cylinders) {
-      cyl.x_p = cyl.v_p = cyl.a_p = cyl.wall_force = cyl.gas_force = kNotProvided;
-      cyl.rod_angle = cyl.rod_omega = cyl.rod_alpha = kNotProvided;
-      cyl.crank_pin_force = cyl.wrist_pin_force = {kNotProvided, kNotProvided};
+    // Every value "not provided" until read; a quantity the scene does not define is never read (gas_force without
+    // [gas]), a component it does not define is not provided whatever the program says (shaking_moment X and Y
+    // without axial positions).
+    auto read = [&](const Quantity& q, const Json& parent, const std::string& path, int cylinder) {
+      double* values = accessQuantity(q, e, cylinder);
+      if (!isQuantityDefined(q, c.mechanism)) {
+        for (int n = 0; n < q.components; ++n) values[n] = kNotProvided;
+        return;
+      }
+      if (q.components == 1)
+        values[0] = number(parent, q.name, path);
+      else
+        vector(parent, q.name, path, values, static_cast<size_t>(q.components));
+      for (int n = 0; n < q.components; ++n)
+        if (!isComponentDefined(q, n, c.mechanism)) values[n] = kNotProvided;
+    };
+    for (const Quantity& q : getQuantityCatalogue()) {
+      if (!q.per_cylinder) read(q, r, at, -1);
+      for (int j = 0; j < k && q.per_cylinder; ++j)
+        for (int n = 0; n < q.components; ++n) accessQuantity(q, e, j)[n] = kNotProvided;
     }
     if (r.is_object() && r.contains("cylinders") && !r["cylinders"].is_null()) {
       const Json& cylinders = r["cylinders"];
@@ -227,17 +231,8 @@ std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string
         if (cj.is_null()) continue;
         const std::string cat = at + ".cylinders[" + std::to_string(j) + "]";
         if (!cj.is_object()) fail(cat + " must be an object or null");
-        CylinderEvaluation& cyl = e.cylinders[j];
-        cyl.x_p = number(cj, "x_p", cat);
-        cyl.v_p = number(cj, "v_p", cat);
-        cyl.a_p = number(cj, "a_p", cat);
-        vector(cj, "crank_pin_force", cat, cyl.crank_pin_force.data(), 2);
-        vector(cj, "wrist_pin_force", cat, cyl.wrist_pin_force.data(), 2);
-        cyl.wall_force = number(cj, "wall_force", cat);
-        cyl.gas_force = c.mechanism.gas ? number(cj, "gas_force", cat) : kNotProvided;
-        cyl.rod_angle = number(cj, "rod_angle", cat);
-        cyl.rod_omega = number(cj, "rod_omega", cat);
-        cyl.rod_alpha = number(cj, "rod_alpha", cat);
+        for (const Quantity& q : getQuantityCatalogue())
+          if (q.per_cylinder) read(q, cj, cat, static_cast<int>(j));
       }
     }
     out.push_back(std::move(e));
@@ -288,21 +283,19 @@ namespace {
 // What a grade found for one quantity in one regime.
 struct QuantityGrade {
   long long asked = 0, provided = 0;
-  bool pass = true;
   // The largest error / scale against each judge (listGradeJudges), and where the largest of them is.
   std::vector<double> largest_by;
   double largest = -1.0;
   std::string largest_case;
   double largest_phi_deg = 0.0, largest_rpm = 0.0;
-  // Where error / tolerance (the largest over the judges) is worst: that error / scale, tolerance / scale.
-  double worst_ratio = -1.0, error_at_worst = 0.0, tolerance_rel = 0.0;
+  // Where error / tolerance (the largest over the judges) is worst: that error / scale, tolerance / scale, where
+  // (its pass is every value's against every judge), and in which case.
+  WorstComparison worst;
   std::string where_case;
-  double where_phi_deg = 0.0, where_rpm = 0.0;
 
   void merge(const QuantityGrade& q) {
     asked += q.asked;
     provided += q.provided;
-    pass = pass && q.pass;
     largest_by.resize(std::max(largest_by.size(), q.largest_by.size()), 0.0);
     for (size_t j = 0; j < q.largest_by.size(); ++j) largest_by[j] = std::max(largest_by[j], q.largest_by[j]);
     if (q.largest > largest) {
@@ -311,14 +304,7 @@ struct QuantityGrade {
       largest_phi_deg = q.largest_phi_deg;
       largest_rpm = q.largest_rpm;
     }
-    if (q.worst_ratio > worst_ratio) {
-      worst_ratio = q.worst_ratio;
-      error_at_worst = q.error_at_worst;
-      tolerance_rel = q.tolerance_rel;
-      where_case = q.where_case;
-      where_phi_deg = q.where_phi_deg;
-      where_rpm = q.where_rpm;
-    }
+    if (worst.merge(q.worst)) where_case = q.where_case;
   }
 };
 
@@ -355,12 +341,11 @@ void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, Grade
     std::vector<std::vector<Comparison>> vs;  // the program against each judge
     for (const Evaluation& judge : e) vs.push_back(compareEvaluations(m, scales, program[i], judge));
     const std::vector<Comparison> own = compareEvaluations(m, scales, e[1], e[0]);  // the closed forms' own error
-    int moment_component = 0;
     for (size_t n = 0; n < vs[0].size(); ++n) {
       const Comparison& cs = vs[0][n];
-      // shaking_moment X and Y without axial positions are not defined: not asked, never graded.
-      const bool defined =
-          cs.quantity != "shaking_moment" || moment_component++ == 2 || hasAxialPositions(m);
+      // A component the scene does not define (shaking_moment X and Y without axial positions): not asked, never
+      // graded.
+      const bool defined = isComponentDefined(*findQuantity(cs.quantity), cs.component, m);
       LambdaError& le = state.by_lambda[{cs.quantity, lambda}];
       le.analytic = std::max(le.analytic, finiteRatio(own[n].error() / own[n].scale));
       if (!defined) continue;
@@ -370,27 +355,33 @@ void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, Grade
         value.provided = 1;
         le.provided = true;
         double worst_error = 0.0;
-        value.pass = true;
+        bool pass = true;
         for (const std::vector<Comparison>& v : vs) {
           value.largest_by.push_back(finiteRatio(v[n].error() / v[n].scale));
           worst_error = std::max(worst_error, v[n].error());
-          value.pass = value.pass && v[n].agrees();
+          pass = pass && v[n].agrees();
         }
         value.largest = *std::max_element(value.largest_by.begin(), value.largest_by.end());
         value.largest_case = value.where_case = c.id;
-        value.largest_phi_deg = value.where_phi_deg = c.phi_deg[i];
-        value.largest_rpm = value.where_rpm = m.speed_rpm;
-        // The judges' tolerances are one (the scale and conditioning are the case's): the worst ratio is the largest error's.
-        value.worst_ratio = finiteRatio(worst_error / cs.tolerance());
-        value.error_at_worst = value.largest;
-        value.tolerance_rel = cs.tolerance() / cs.scale;
+        value.largest_phi_deg = c.phi_deg[i];
+        value.largest_rpm = m.speed_rpm;
+        // The judges' tolerances are one (the scale and conditioning are the case's): the worst ratio is the largest
+        // error's, its error / scale the largest.
+        WorstComparison judged;
+        judged.ratio_to_tolerance = finiteRatio(worst_error / cs.tolerance());
+        judged.rel_error = value.largest;
+        judged.tolerance_rel = cs.tolerance() / cs.scale;
+        judged.phi_deg = c.phi_deg[i];
+        judged.rpm = m.speed_rpm;
+        judged.pass = pass;
+        value.worst.merge(judged);
         le.program = std::max(le.program, value.largest_by[0]);
       }
       state.quantities[{cs.quantity, "all"}].merge(value);
       state.quantities[{cs.quantity, regime}].merge(value);
       if (value.provided == 0) continue;
-      const double rel_s = value.largest_by[0], ratio = value.worst_ratio;
-      if (!value.pass) {
+      const double rel_s = value.largest_by[0], ratio = value.worst.ratio_to_tolerance;
+      if (!value.worst.pass) {
         const std::string key = c.id + "\n" + cs.quantity + "\n" + std::to_string(cs.cylinder);
         Failure& f = state.failures[key];
         if (ratio > f.ratio) {
@@ -545,19 +536,19 @@ TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& progr
                           {"rel_error_at_worst_ratio", "-"}, {"worst_ratio", "-"}, {"tolerance_rel", "-"},
                           {"where_case", kText}, {"where_phi_deg", "deg"}, {"where_speed_rpm", "rpm"}, {"verdict", kText}});
   summary = Table("grade_summary", summary_columns);
-  for (const std::string& quantity : getGradeQuantities())
+  for (const Quantity& quantity : getQuantityCatalogue())
     for (const GradeRegime& regime : getGradeRegimes()) {
-      const auto it = all.quantities.find({quantity, regime.id});
+      const auto it = all.quantities.find({quantity.name, regime.id});
       if (it == all.quantities.end() || it->second.asked == 0) continue;
       const QuantityGrade& q = it->second;
       const bool any = q.provided > 0;
       auto number = [any](double x) { return any ? formatNumber(x) : std::string(); };
-      std::vector<std::string> row = {quantity, regime.id, std::to_string(q.asked), std::to_string(q.provided), number(q.largest)};
+      std::vector<std::string> row = {quantity.name, regime.id, std::to_string(q.asked), std::to_string(q.provided), number(q.largest)};
       for (size_t j = 0; j < judges.size(); ++j) row.push_back(number(j < q.largest_by.size() ? q.largest_by[j] : 0.0));
       row.insert(row.end(), {any ? q.largest_case : "", number(q.largest_phi_deg), number(q.largest_rpm),
-                             number(q.error_at_worst), number(q.worst_ratio), number(q.tolerance_rel),
-                             any ? q.where_case : "", number(q.where_phi_deg), number(q.where_rpm),
-                             !any ? "not provided" : q.pass ? "pass" : "FAIL"});
+                             number(q.worst.rel_error), number(q.worst.ratio_to_tolerance), number(q.worst.tolerance_rel),
+                             any ? q.where_case : "", number(q.worst.phi_deg), number(q.worst.rpm),
+                             !any ? "not provided" : q.worst.pass ? "pass" : "FAIL"});
       summary.rows.push_back(row);
     }
   Table& by_lambda = tables["grade_error_vs_lambda"];

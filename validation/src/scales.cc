@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace crankcheck::validation {
 
@@ -124,39 +125,50 @@ std::vector<Comparison> compareEvaluations(const Mechanism& m, const Evaluation&
   return compareEvaluations(m, calcScales(m), a, s);
 }
 
+double getQuantityScale(const Scales& sc, QuantityScale scale, const Mechanism& m) {
+  switch (scale) {
+    case QuantityScale::kSimbodyEnergy: return sc.simbody_energy;
+    case QuantityScale::kEnergy: return sc.energy;
+    case QuantityScale::kTorque: return sc.torque;
+    case QuantityScale::kForce: return sc.force;
+    case QuantityScale::kMoment: return sc.moment;
+    case QuantityScale::kPosition: return sc.position;
+    case QuantityScale::kVelocity: return sc.velocity;
+    case QuantityScale::kAcceleration: return sc.acceleration;
+    case QuantityScale::kRadian: return 1.0;
+    case QuantityScale::kRodVelocity: return sc.velocity / m.rod.length;
+    case QuantityScale::kRodAcceleration: return sc.acceleration / m.rod.length;
+  }
+  throw std::invalid_argument("getQuantityScale: not a QuantityScale");
+}
+
+double getQuantityConditioning(const Scales& sc, QuantityConditioning conditioning) {
+  switch (conditioning) {
+    case QuantityConditioning::kNone: return 1.0;
+    // U is a position-level quantity (heights of the bodies): the closure's amplification, as x_p. (With 1 for U,
+    // it failed at lambda = 0.99999 on a 0.1-degree grid: 1.2 x the tolerance.)
+    case QuantityConditioning::kClosure: return sc.closure;
+    case QuantityConditioning::kLoop: return sc.conditioning;
+    case QuantityConditioning::kVelocity: return sc.velocity_conditioning;
+    case QuantityConditioning::kAcceleration: return sc.acceleration_conditioning;
+  }
+  throw std::invalid_argument("getQuantityConditioning: not a QuantityConditioning");
+}
+
 std::vector<Comparison> compareEvaluations(const Mechanism& m, const Scales& sc, const Evaluation& a, const Evaluation& s) {
   std::vector<Comparison> out;
-  // U is a position-level quantity (heights of the bodies): the closure's amplification, as x_p. (With 1 here, U
-  // failed at lambda = 0.99999 on a 0.1-degree grid: 1.2 x the tolerance.)
-  out.push_back({"U", -1, a.U, s.U, sc.simbody_energy, sc.closure});
-  out.push_back({"Q", -1, a.Q, s.Q, sc.energy, sc.conditioning});
-  const double dyn = sc.acceleration_conditioning;
-  out.push_back({"drive_torque", -1, a.drive_torque, s.drive_torque, sc.torque, dyn});
-  for (int i = 0; i < 2; ++i) {
-    out.push_back({"bearing_force", -1, a.bearing_force[i], s.bearing_force[i], sc.force, dyn});
-    out.push_back({"shaking_force", -1, a.shaking_force[i], s.shaking_force[i], sc.force, dyn});
-  }
-  for (int i = 0; i < 3; ++i)
-    out.push_back({"shaking_moment", -1, a.shaking_moment[i], s.shaking_moment[i], sc.moment, dyn});
+  const std::vector<Quantity>& catalogue = getQuantityCatalogue();
+  auto add = [&](const Quantity& q, int cylinder) {
+    const double *va = readQuantity(q, a, cylinder), *vs = readQuantity(q, s, cylinder);
+    const double scale = getQuantityScale(sc, q.scale, m), conditioning = getQuantityConditioning(sc, q.conditioning);
+    for (int i = 0; i < q.components; ++i) out.push_back({q.name, cylinder, va[i], vs[i], scale, conditioning, i});
+  };
+  for (const Quantity& q : catalogue)
+    if (!q.per_cylinder && isQuantityDefined(q, m)) add(q, -1);
   const size_t k = std::min(a.cylinders.size(), s.cylinders.size());
-  for (size_t j = 0; j < k; ++j) {
-    const CylinderEvaluation &ca = a.cylinders[j], &cs = s.cylinders[j];
-    const int c = static_cast<int>(j);
-    out.push_back({"x_p", c, ca.x_p, cs.x_p, sc.position, sc.closure});
-    out.push_back({"v_p", c, ca.v_p, cs.v_p, sc.velocity, sc.velocity_conditioning});
-    out.push_back({"a_p", c, ca.a_p, cs.a_p, sc.acceleration, dyn});
-    for (int i = 0; i < 2; ++i) {
-      out.push_back({"crank_pin_force", c, ca.crank_pin_force[i], cs.crank_pin_force[i], sc.force, dyn});
-      out.push_back({"wrist_pin_force", c, ca.wrist_pin_force[i], cs.wrist_pin_force[i], sc.force, dyn});
-    }
-    out.push_back({"wall_force", c, ca.wall_force, cs.wall_force, sc.force, dyn});
-    if (m.gas) out.push_back({"gas_force", c, ca.gas_force, cs.gas_force, sc.force, 1.0});
-    // The rod's swing: an angle [rad] (as x_p, through the loop closure), and the relative velocity and
-    // acceleration of its ends over its length.
-    out.push_back({"rod_angle", c, ca.rod_angle, cs.rod_angle, 1.0, sc.closure});
-    out.push_back({"rod_omega", c, ca.rod_omega, cs.rod_omega, sc.velocity / m.rod.length, sc.velocity_conditioning});
-    out.push_back({"rod_alpha", c, ca.rod_alpha, cs.rod_alpha, sc.acceleration / m.rod.length, dyn});
-  }
+  for (size_t j = 0; j < k; ++j)
+    for (const Quantity& q : catalogue)
+      if (q.per_cylinder && isQuantityDefined(q, m)) add(q, static_cast<int>(j));
   return out;
 }
 

@@ -7,9 +7,9 @@
 #include <set>
 #include <sstream>
 
+#include "crankcheck/scene/quantities.h"
 #include "crankcheck/validation/crosscheck.h"
 #include "crankcheck/validation/engines.h"
-#include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/report_document.h"
 
 namespace crankcheck::validation {
@@ -26,11 +26,12 @@ std::vector<std::string> orderEngines(const std::set<std::string>& present) {
   return out;
 }
 
-// The quantities in eval's order (getGradeQuantities), then the others (e.g. "Q (virtual power)") after the one
+// The quantities in the catalogue's order (quantities.h), then the others (e.g. "Q (virtual power)") after the one
 // whose name they extend, else at the end.
 std::vector<std::string> orderQuantities(const std::set<std::string>& present) {
   std::vector<std::string> out;
-  for (const std::string& q : getGradeQuantities()) {
+  for (const Quantity& quantity : getQuantityCatalogue()) {
+    const std::string q = quantity.name;
     if (present.count(q)) out.push_back(q);
     for (const std::string& other : present)
       if (other != q && other.rfind(q + " ", 0) == 0) out.push_back(other);

@@ -15,11 +15,11 @@ namespace crankcheck::validation {
 /// The parsed scene in SI units, plus lambda.
 nlohmann::ordered_json sceneToJson(const Mechanism& m);
 
-/// One engine's result at one angle (phi_deg as the user gave it): {"engine", "phi_deg", "U", "Q", "drive_torque",
-/// "U_star", "Q_star", "bearing_force", "shaking_force", "shaking_moment", "cylinders": [{"x_p", "v_p", "a_p",
-/// "crank_pin_force", "wrist_pin_force", "wall_force", "gas_force", "rod_angle", "rod_omega", "rod_alpha"}]}.
-/// shaking_moment's X and Y are numbers only when the scene places its cylinders along the shaft (otherwise null);
-/// each cylinder's gas_force is present only when the scene has [gas].
+/// One engine's result at one angle (phi_deg as the user gave it): {"engine", "phi_deg", the whole mechanism's
+/// quantities in the catalogue's order (quantities.h), the dimensionless NAME_star of those that have one placed
+/// after the numbers and before the vectors (null without a flywheel or at rest), "cylinders": [{each cylinder's
+/// quantities}]} (docs/eval.md shows one). A quantity the scene does not define is left out (gas_force without [gas]); a component it does not define
+/// is null (shaking_moment's X and Y unless the scene places its cylinders along the shaft).
 nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, const Mechanism& m);
 
 /// The harmonics of calcBalance as `crankcheck balance --format json` prints them: one object per row, {"n",

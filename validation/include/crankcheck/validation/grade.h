@@ -10,7 +10,8 @@
 ///
 /// Protocol 1 (docs/grade.md):
 ///   request   {"protocol": 1, "case": ID, "scene": {...as eval's "scene"...}, "scene_toml": "...a scene file crankcheck
-///             accepts...", "phi_deg": [...], "quantities": ["U", "Q", ...]}
+///             accepts...", "phi_deg": [...], "quantities": ["U", "Q", ...]} (the catalogue's names the scene
+///             defines, quantities.h)
 ///   response  {"results": [...one object per angle, in order, as eval's "results" without "engine"...]}
 /// A value left out, or null, is "not provided": reported as such, never as wrong, never as right. Anything else
 /// that is not the protocol (not JSON, the wrong number of results, a string where a number belongs, a number
@@ -32,9 +33,6 @@
 #include "crankcheck/validation/campaign.h"
 
 namespace crankcheck::validation {
-
-/// The quantities a program is asked for, with eval's JSON names (gas_force only for scenes with [gas]).
-const std::vector<std::string>& getGradeQuantities();
 
 /// What a program is judged against, in the order of the grade tables' columns: the first reference engine (the
 /// program's `rel_error` is against it), the closed forms, then the other reference engines (engines.h).

@@ -10,6 +10,7 @@
 
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/scene/quantities.h"
 
 namespace crankcheck::validation {
 
@@ -95,20 +96,29 @@ constexpr double kStandardGravity = 9.80665;
 /// at speed with a load) is used unchanged.
 Scales calcPositiveScales(const Mechanism& m);
 
+/// [SI] The scale a QuantityScale names in a case of mechanism m (m's rod length l for the rod's rates).
+/// @throws std::invalid_argument for a value outside the enumeration.
+double getQuantityScale(const Scales& scales, QuantityScale scale, const Mechanism& m);
+/// The conditioning a QuantityConditioning names. @throws std::invalid_argument for a value outside the enumeration.
+double getQuantityConditioning(const Scales& scales, QuantityConditioning conditioning);
+
 /// One compared quantity of two Evaluations.
 struct Comparison {
-  std::string quantity;      ///< "U", "Q", "drive_torque", "bearing_force", "x_p", ... (CONVENTIONS.md names)
+  std::string quantity;      ///< the catalogue's name (quantities.h): "U", "Q", "drive_torque", "bearing_force", ...
   int cylinder = -1;         ///< -1 for whole-mechanism quantities
   double a = 0.0, b = 0.0;   ///< the two values
   double scale = 0.0;        ///< the physical scale of the quantity
   double conditioning = 1.0; ///< see Scales
+  int component = 0;         ///< 0 for a number; X, Y, Z = 0, 1, 2 for a vector
   double error() const;      ///< |a - b|
   double tolerance() const;  ///< kAgreementMultiple eps scale conditioning
   bool agrees() const { return error() <= tolerance(); }
 };
 
 /// Every quantity of an analytic and a Simbody Evaluation at the same angle, with its scale and conditioning
-/// (Q is compared as the static holding torque).
+/// (Q is compared as the static holding torque): the catalogue's whole-mechanism quantities, then each cylinder's
+/// (those the mechanism defines: gas_force only with [gas]; shaking_moment's three components always), each vector
+/// component by component, X first.
 std::vector<Comparison> compareEvaluations(const Mechanism& m, const Evaluation& analytic, const Evaluation& simbody);
 /// The same with given scales (calcPositiveScales for grade).
 std::vector<Comparison> compareEvaluations(const Mechanism& m, const Scales& scales, const Evaluation& a, const Evaluation& b);
