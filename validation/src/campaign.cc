@@ -39,11 +39,6 @@ const Schema<SceneRow> kScenesTable{
      numberField("m_p", "kg", &SceneRow::m_p), numberField("r_p", "m", &SceneRow::r_p),
      numberField("g", "m/s^2", &SceneRow::g), optionalField("I_w", "kg m^2", &SceneRow::I_w)}};
 
-std::string shortNumber(double x, int digits) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
-  return buffer;
-}
 
 namespace {
 

@@ -32,11 +32,44 @@ CRANKCHECK_REPORT_PARTS(CRANKCHECK_DECLARE_PART)
 #undef CRANKCHECK_DECLARE_PART
 }  // namespace parts
 
+namespace {
+
+// The parts registerExtraPart added, and whether listParts() has been built (after which none may be added).
+std::vector<const Part*>& extraParts() {
+  static std::vector<const Part*> extra;
+  return extra;
+}
+bool registry_built = false;
+
+}  // namespace
+
+void registerExtraPart(const Part& part) {
+  if (registry_built) throw std::logic_error("registerExtraPart: the part registry is already in use");
+  extraParts().push_back(&part);
+}
+
 const std::vector<const Part*>& listParts() {
 #define CRANKCHECK_LIST_PART(name) &parts::name(),
-  static const std::vector<const Part*> all = {CRANKCHECK_REPORT_PARTS(CRANKCHECK_LIST_PART)};
+  static const std::vector<const Part*> all = [] {
+    registry_built = true;
+    std::vector<const Part*> out = {CRANKCHECK_REPORT_PARTS(CRANKCHECK_LIST_PART)};
+    for (const Part* extra : extraParts()) {  // a test build's (registerExtraPart), after the others
+      for (const Part* known : out)
+        if (known->key() == extra->key())
+          throw std::logic_error("registerExtraPart: part \"" + extra->key() + "\" twice");
+      out.push_back(extra);
+    }
+    return out;
+  }();
 #undef CRANKCHECK_LIST_PART
   return all;
+}
+
+int Part::number() const {
+  const auto& all = listParts();
+  const auto it = std::find(all.begin(), all.end(), this);
+  if (it == all.end()) throw std::logic_error("report part " + key() + " is not registered");
+  return static_cast<int>(it - all.begin()) + 1;
 }
 
 void checkPartKeys(const std::vector<std::string>& keys) {

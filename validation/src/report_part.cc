@@ -11,13 +11,16 @@ std::vector<std::vector<std::string>> formatRows(const TableSet& tables, const s
   if (it == tables.end()) return rows;
   std::vector<size_t> index;
   for (const auto& c : columns) index.push_back(columnOf(it->second, c));
-  for (size_t r = 0; r < it->second.size(); ++r) {
-    const std::vector<std::string> row = it->second.formatRow(r);
+  const Table& table = it->second;
+  for (size_t r = 0; r < table.size(); ++r) {
     std::vector<std::string> out;
     for (size_t i = 0; i < index.size(); ++i) {
-      const std::string& field = row[index[i]];
-      out.push_back(i < numeric.size() && numeric[i] && !field.empty() ? shortNumber(std::strtod(field.c_str(), nullptr), 4)
-                                                                       : field);
+      const Cell cell = table.cell(r, index[i]);
+      const std::string* text = std::get_if<std::string>(&cell);
+      const bool as_number = i < numeric.size() && numeric[i];
+      if (const double* x = std::get_if<double>(&cell); x && as_number) out.push_back(shortNumber(*x, 4));
+      else if (text && as_number && !text->empty()) out.push_back(shortNumber(std::strtod(text->c_str(), nullptr), 4));  // a table without a schema
+      else out.push_back(formatCell(cell));
     }
     rows.push_back(std::move(out));
   }

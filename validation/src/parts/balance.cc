@@ -148,7 +148,6 @@ void addBalancePart(ReportPart& part, const TableSet& tables, const std::string&
 class BalancePart final : public Part {
  public:
   std::string key() const override { return "balance"; }
-  int number() const override { return 9; }
   std::string title() const override { return "Balance of engine layouts"; }
   // The layouts on the first scene's parts, and the user's scenes.
   std::vector<Task> tasks(const PartContext& context) const override {

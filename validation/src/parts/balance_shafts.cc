@@ -146,7 +146,6 @@ ReportPart describeBalanceShaftPart(const TableSet& tables, const std::string& h
 class BalanceShaftsPart final : public Part {
  public:
   std::string key() const override { return "balance_shafts"; }
-  int number() const override { return 16; }
   std::string title() const override { return "Balance shafts: what a designed set cancels, by every engine"; }
   // Designed sets on the base's parts, and the scenes that carry shafts.
   std::vector<Task> tasks(const PartContext& context) const override {

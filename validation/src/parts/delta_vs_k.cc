@@ -44,7 +44,6 @@ constexpr const char* kCaption =
 class DeltaVsKPart final : public Part {
  public:
   std::string key() const override { return "delta_vs_k"; }
-  int number() const override { return 6; }
   std::string title() const override { return "Speed fluctuation due to gravity in the free run"; }
   // One task per cycle; none without the base scene's flywheel (crankcheck invents no inertia).
   std::vector<Task> tasks(const PartContext& context) const override {

@@ -233,7 +233,6 @@ ReportPart describeEnginesPart(const TableSet& tables, const std::string& headin
 class EnginesPart final : public Part {
  public:
   std::string key() const override { return "engines"; }
-  int number() const override { return 13; }
   std::string title() const override { return "Engines: which engine, at what cost, how exact"; }
   std::vector<Task> tasks(const PartContext& context) const override {
     return {buildEngineCostTask(context.base, context.quick)};

@@ -20,6 +20,7 @@
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/part.h"
+#include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
 
@@ -186,7 +187,6 @@ TableSet calcErrataTables(const Mechanism& base) {
 double toDouble(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
 
 // x as a percentage to 2 significant digits (3 from 10 %): "1.2 %", "13.5 %".
-std::string percent(double x) { return shortNumber(100.0 * x, std::fabs(100.0 * x) >= 10.0 ? 3 : 2) + " %"; }
 
 // Part 8: the errata table, and the sentences that read it (every number from the data).
 void addErrataPart(ReportPart& part, const TableSet& tables) {
@@ -210,10 +210,10 @@ void addErrataPart(ReportPart& part, const TableSet& tables) {
       find("Stanczak eq (5): Q of a standing multi-cylinder", "max |Q_printed| / max |Q|", multi_ratio) &&
       find("Stanczak eq (5): Q of a lying single cylinder", "max |Q_printed| / max |Q|", lying_ratio))
     text.push_back("Eq (5) as printed: for the base rod the printed U1 is " + shortNumber(u1, 3) + " x and U2 " + shortNumber(u2, 2) +
-                   " x the true values. A standing single cylinder hides it (Q is off by " + percent(single_error) +
+                   " x the true values. A standing single cylinder hides it (Q is off by " + formatPercent(single_error) +
                    " of its maximum, U1 + U2 barely changes); a standing engine whose first surviving harmonic is even "
-                   "(two-stroke k >= 2, four-stroke k >= 3: Q carries U1 alone) gets max |Q| " + percent(multi_ratio - 1.0) +
-                   " too high; a lying single cylinder (Q carries U2 alone) " + percent(1.0 - lying_ratio) +
+                   "(two-stroke k >= 2, four-stroke k >= 3: Q carries U1 alone) gets max |Q| " + formatPercent(multi_ratio - 1.0) +
+                   " too high; a lying single cylinder (Q carries U2 alone) " + formatPercent(1.0 - lying_ratio) +
                    " too low. data/eq5_layouts.csv has every layout.");
   double l12, l12b = 0.0, l10, l8, count, rounded;
   std::string base_lambda;
@@ -232,11 +232,11 @@ void addErrataPart(ReportPart& part, const TableSet& tables) {
         list.push_back({measures.begin()->second, item.substr(head.size(), item.find(" at lambda") - head.size())});
     std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
     std::string engines;
-    for (const auto& [error, name] : list) engines += (engines.empty() ? "" : ", ") + name + " " + percent(error);
+    for (const auto& [error, name] : list) engines += (engines.empty() ? "" : ", ") + name + " " + formatPercent(error);
     text.push_back("Eq (15) is a power series truncated at lambda^11, so each printed Lambda_n falls short of the exact one: "
-                   "at lambda = 0.4, the paper's largest crank ratio, Lambda_12 by " + percent(-l12) +
-                   (base_lambda.empty() ? "" : " (still " + percent(-l12b) + " at the base's lambda = " + base_lambda + ")") +
-                   ", Lambda_10 by " + percent(-l10) + ", Lambda_8 by " + percent(-l8) +
+                   "at lambda = 0.4, the paper's largest crank ratio, Lambda_12 by " + formatPercent(-l12) +
+                   (base_lambda.empty() ? "" : " (still " + formatPercent(-l12b) + " at the base's lambda = " + base_lambda + ")") +
+                   ", Lambda_10 by " + formatPercent(-l10) + ", Lambda_8 by " + formatPercent(-l8) +
                    " (data/eq15_coefficients.csv). 'A close approximation' holds for the engines dominated by Lambda_2 "
                    "and Lambda_4, not where only high harmonics survive: max |Q_printed - Q| / max |Q| at lambda = 0.4 is " +
                    engines + "; for k = 7, 9, 11 the table holds no surviving harmonic and gives Q = 0 "
@@ -269,7 +269,6 @@ void addErrataPart(ReportPart& part, const TableSet& tables) {
 class ErrataPart final : public Part {
  public:
   std::string key() const override { return "errata"; }
-  int number() const override { return 8; }
   std::string title() const override { return "Errata: the sources as printed against what the engines agree on"; }
   std::vector<Task> tasks(const PartContext& context) const override {
     return {{"errata", false, [base = context.base] { return calcErrataTables(base); }}};

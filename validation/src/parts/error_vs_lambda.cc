@@ -98,7 +98,6 @@ constexpr const char* kCaption =
 class ErrorVsLambdaPart final : public Part {
  public:
   std::string key() const override { return "error_vs_lambda"; }
-  int number() const override { return 1; }
   std::string title() const override { return "Error against lambda"; }
   // 21 lambdas from 0.01 to 0.95, log spaced; the quick campaign takes every fourth, so that each of its rows is also
   // a row of the full campaign (tests/cli/quick_report_test.cc compares them).

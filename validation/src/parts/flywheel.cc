@@ -233,7 +233,6 @@ ReportPart describeFlywheelPart(const TableSet& tables, const std::string& headi
 class FlywheelPart final : public Part {
  public:
   std::string key() const override { return "flywheel"; }
-  int number() const override { return 15; }
   std::string title() const override { return "Flywheel sizing: the exact inertia, Norton's method, Simbody's run"; }
   // One task per Simbody run and one per gas scene for the rest of its curve (listed with its runs), one for the
   // sweep on the base's parts: the tables add up.

@@ -137,7 +137,6 @@ void addGravityClaims(ReportPart& part, const TableSet& tables) {
 class GravitySignificancePart final : public Part {
  public:
   std::string key() const override { return "gravity_significance"; }
-  int number() const override { return 4; }
   std::string title() const override { return "When gravity matters"; }
   // One task per cycle.
   std::vector<Task> tasks(const PartContext& context) const override {

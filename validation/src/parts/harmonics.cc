@@ -70,7 +70,6 @@ std::string caption() {
 class HarmonicsPart final : public Part {
  public:
   std::string key() const override { return "harmonics"; }
-  int number() const override { return 3; }
   std::string title() const override { return "Harmonics of Q"; }
   // One task per cycle.
   std::vector<Task> tasks(const PartContext& context) const override {

@@ -95,7 +95,6 @@ TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick) {
 class IntegratorParetoPart final : public Part {
  public:
   std::string key() const override { return "integrator_pareto"; }
-  int number() const override { return 7; }
   std::string title() const override { return "Simbody's integrators"; }
   // One task that times: on a core of its own (Task::measures_time); none without the base scene's flywheel.
   std::vector<Task> tasks(const PartContext& context) const override {

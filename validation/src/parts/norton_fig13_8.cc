@@ -33,7 +33,6 @@ constexpr const char* kCaption =
 class NortonFigurePart final : public Part {
  public:
   std::string key() const override { return "norton_fig13_8"; }
-  int number() const override { return 5; }
   std::string title() const override { return "Piston motion (after Norton fig. 13-8)"; }
   std::vector<Task> tasks(const PartContext& context) const override {
     return {{"norton_fig13_8", false, [base = context.base] { return calcNortonFigureTables(base); }}};

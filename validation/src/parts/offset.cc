@@ -231,7 +231,6 @@ ReportPart describeOffsetPart(const TableSet& tables, const std::string& heading
 class OffsetPart final : public Part {
  public:
   std::string key() const override { return "offset"; }
-  int number() const override { return 14; }
   std::string title() const override { return "Pin offset: what the centric formulas cost, what the offset buys"; }
   // One task per offset: the tables add up.
   std::vector<Task> tasks(const PartContext& context) const override {

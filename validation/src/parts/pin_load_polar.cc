@@ -107,7 +107,6 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
 class PinLoadPolarPart final : public Part {
  public:
   std::string key() const override { return "pin_load_polar"; }
-  int number() const override { return 12; }
   std::string title() const override { return "Pin loads over a working cycle (polar diagrams)"; }
   // One task per scene, at 2 degree steps (8 with quick: a smoke test of the part, its maxima refined all the same).
   std::vector<Task> tasks(const PartContext& context) const override {

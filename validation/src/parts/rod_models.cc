@@ -99,7 +99,6 @@ constexpr const char* kCaption =
 class RodModelsPart final : public Part {
  public:
   std::string key() const override { return "rod_models"; }
-  int number() const override { return 11; }
   std::string title() const override { return "What the two-mass rod costs"; }
   // On the base scene's parts and the built-in marine engine.
   std::vector<Task> tasks(const PartContext& context) const override {

@@ -184,7 +184,6 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
 class SpeedVsErrorPart final : public Part {
  public:
   std::string key() const override { return "speed_vs_error"; }
-  int number() const override { return 2; }
   std::string title() const override { return "Speed against error"; }
   // One task that times: on a core of its own (Task::measures_time).
   std::vector<Task> tasks(const PartContext& context) const override {

@@ -109,7 +109,6 @@ constexpr const char* kCaption =
 class TorqueSplitPart final : public Part {
  public:
   std::string key() const override { return "torque_split"; }
-  int number() const override { return 10; }
   std::string title() const override { return "The working torque: gas, inertia and gravity"; }
   // On the base scene's parts and the built-in marine engine.
   std::vector<Task> tasks(const PartContext& context) const override {

@@ -51,6 +51,7 @@
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/part.h"
+#include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/variants.h"
 
 namespace crankcheck::validation {
@@ -429,7 +430,6 @@ void deriveTorsion(TableSet& tables) {
 
 // ---- describe ----
 
-std::string percent(double x) { return shortNumber(100.0 * x, 3) + " %"; }
 
 void describeSweeps(const TableSet& tables, ReportPart& part) {
   const Table& t = tables.at("torsion");
@@ -458,8 +458,8 @@ void describeSweeps(const TableSet& tables, ReportPart& part) {
         " to " + shortNumber(std::stod(rows.back()->at(tr)), 4) + " rpm: Holzer's peak-to-peak twist (every order summed) "
         "is within 1 % of the exact steady state's on every section at " + std::to_string(within) + " of them and off by "
         "more than 10 % on some section at " + std::to_string(beyond) + "; at worst " +
-        percent(std::stod((*worst)[tw])) + " (" + (*worst)[twn] + ", " + shortNumber(std::stod((*worst)[tr]), 4) +
-        " rpm). The textbook's sum cut at order 24 differs from the converged sum by up to " + percent(cut) +
+        formatPercent(std::stod((*worst)[tw])) + " (" + (*worst)[twn] + ", " + shortNumber(std::stod((*worst)[tr]), 4) +
+        " rpm). The textbook's sum cut at order 24 differs from the converged sum by up to " + formatPercent(cut) +
         " (at " + cut_at + " rpm).");
   }
 }
@@ -483,7 +483,7 @@ void describeResonances(const TableSet& tables, ReportPart& part) {
       } else {
         const double critical = std::stod((*peak)[rc]);
         what += " (mode " + (*peak)[rm] + "; Holzer's critical speed " + shortNumber(critical, 4) + " rpm, " +
-                (rpm >= critical ? "+" : "") + percent(rpm / critical - 1.0) + ")";
+                (rpm >= critical ? "+" : "") + formatPercent(rpm / critical - 1.0) + ")";
       }
       bool matched = false;
       for (const auto* h : holzer[scene])
@@ -511,7 +511,7 @@ void describeModes(const TableSet& tables, ReportPart& part) {
     part.paragraphs.push_back(row[ms] + ": mode 1 is at " + shortNumber(h, 4) + " Hz with Holzer's J_eq; with every "
                               "throw at its lightest and at its heaviest over a turn it would be at " +
                               shortNumber(hi, 4) + " and " + shortNumber(lo, 4) + " Hz: a spread of " +
-                              percent((hi - lo) / h) + " that the constant inertia cannot show.");
+                              formatPercent((hi - lo) / h) + " that the constant inertia cannot show.");
   }
 }
 
@@ -534,7 +534,7 @@ void describeRatio(const TableSet& tables, ReportPart& part) {
   std::string list;
   std::optional<double> breaks;
   for (const auto& [ratio, d] : points) {
-    list += (list.empty() ? "" : ", ") + (d ? percent(*d) : std::string("no periodic state")) + " at " +
+    list += (list.empty() ? "" : ", ") + (d ? formatPercent(*d) : std::string("no periodic state")) + " at " +
             shortNumber(ratio, 3);
     if (!breaks && (!d || std::fabs(*d) > 0.10)) breaks = ratio;
   }
@@ -662,7 +662,6 @@ TableSet calcOrNote(const std::string& what, Calc calc) {
 class TorsionPart final : public Part {
  public:
   std::string key() const override { return "torsion"; }
-  int number() const override { return 17; }
   std::string title() const override {
     return "Torsional vibration: Holzer's constant inertia against the exact crank train";
   }

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/table.h"
 
 namespace crankcheck::validation {
@@ -72,7 +73,5 @@ std::vector<Mechanism> loadExampleScenes();
 /// figure. With options.scenes the first scene is the base of the lambda sweeps and figures.
 std::vector<Task> buildCampaign(const CampaignOptions& options);
 
-/// x to `digits` significant digits (printf %g), for the sentences of the report: 0.012, 3.4e-15.
-std::string shortNumber(double x, int digits = 2);
 
 }  // namespace crankcheck::validation

@@ -78,8 +78,6 @@ class Part {
   virtual ~Part() = default;
   /// The figure's and main table's stem ("flywheel": flywheel.png, data/flywheel.csv, reports/flywheel.gp).
   virtual std::string key() const = 0;
-  /// Its number in the report, 1..N in the registry's order.
-  virtual int number() const = 0;
   /// Its heading without the number ("Flywheel sizing: ...").
   virtual std::string title() const = 0;
   /// The independent units of work whose tables the part reads; each with its Task::cost.
@@ -110,6 +108,10 @@ class Part {
     return {};
   }
 
+  /// Its number in the report: its place in the registry (parts.h), 1..N. No part states its own number; prose names a
+  /// part by its title or key, or asks the registry for the number.
+  /// @throws std::logic_error for a part that is not registered.
+  int number() const;
   /// "N. title": the heading describe() gives.
   std::string heading() const { return std::to_string(number()) + ". " + title(); }
 

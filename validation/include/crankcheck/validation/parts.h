@@ -10,9 +10,13 @@
 
 namespace crankcheck::validation {
 
-/// Every registered part, in report order (numbers increasing by one). Parts not yet in this shape are rendered by
-/// report.cc directly (docs/contributing.md, "Adding a report part", says which).
+/// Every registered part, in report order: its place is its number (Part::number).
 const std::vector<const Part*>& listParts();
+
+/// Adds `part` after the registered ones, for a test build that shows a new part reaches the report, its CSVs and
+/// `validate --parts` with no other change (tests/validation/extra_part_test.cc). Call it before the first listParts().
+/// @throws std::logic_error once the registry is in use, or for a key already registered (then at listParts()).
+void registerExtraPart(const Part& part);
 
 /// Checks `keys` (validate --parts) against the registry: each a part's key, none twice.
 /// @throws std::invalid_argument naming the first unknown or repeated key and the known ones.

@@ -1,0 +1,16 @@
+#pragma once
+/// @file
+/// How the report writes numbers in its sentences and tables: one style for every part. (The CSV files write every
+/// number exactly, by formatNumber: table.h.)
+
+#include <string>
+
+namespace crankcheck::validation {
+
+/// x to `digits` significant digits (printf %g), for the sentences and tables of the report: 0.012, 3.4e-15.
+std::string shortNumber(double x, int digits = 2);
+
+/// A fraction as a percentage to 3 significant digits: 0.0123 -> "1.23 %", 0.5 -> "50 %".
+std::string formatPercent(double fraction);
+
+}  // namespace crankcheck::validation
