@@ -28,8 +28,7 @@ namespace fs = std::filesystem;
 using validation::TableSet;
 
 void addValidateOptions(CLI::App& command, ValidateOptions& options) {
-  std::vector<std::string> keys;
-  for (const validation::Part* part : validation::listParts()) keys.push_back(part->key());
+  const std::vector<std::string> keys = validation::listPartKeys();
   command.add_option("scenes", options.scene_paths,
                      "Scene files (TOML) to cross-check; none: the built-in default campaign");
   command.add_option("--out", options.out, "Report folder: created, or replaced when the run completes if it is empty or a report crankcheck wrote; any "

@@ -330,7 +330,7 @@ TEST_F(ValidateTest, PartsRunsOnlyThoseParts) {
   EXPECT_NE(index.find("Only the report parts pin_load_polar, offset were run"), std::string::npos);
   for (const validation::Part* part : validation::listParts())
     EXPECT_EQ(index.find("## " + part->heading()) != std::string::npos,
-              part->key() == "pin_load_polar" || part->key() == "offset")
+              part->always() || part->key() == "pin_load_polar" || part->key() == "offset")
         << part->heading();
   for (const std::string& bad : {"nonsense", "offset,offset"}) {
     const RunResult refused = run("validate --quick " + scene + " --parts " + bad + " --out " + (dir_ / "x").string());

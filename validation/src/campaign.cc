@@ -26,6 +26,8 @@
 
 namespace crankcheck::validation {
 
+const Schema<NoteRow> kNotesTable{"notes", {textField("note", &NoteRow::note)}};
+
 const Schema<SceneRow> kScenesTable{
     "scenes",
     {textField("family", &SceneRow::family), textField("scene", &SceneRow::scene),
@@ -149,17 +151,6 @@ int samplesForOrder(int n) { return std::max(48, 6 * n); }
 
 namespace {
 
-std::vector<SceneRow> listSceneRows(const std::vector<std::pair<std::string, Mechanism>>& families) {
-  std::vector<SceneRow> rows;
-  for (const auto& [family, m] : families)
-    rows.push_back({family, m.name, m.engine.cylinders, toString(m.engine.cycle), toString(m.engine.acting),
-                    degreesFromRadians(m.engine.cylinder_angle), m.speed_rpm, m.crank.radius, m.rod.length, lambdaOf(m),
-                    m.piston.mass, m.rod.mass, m.rod.com_from_wrist_pin, m.rod.inertia_about_wrist_pin, m.crank.mass,
-                    m.crank.com_radius, m.crank.counterweight_mass, m.crank.counterweight_radius, m.engine.gravity,
-                    m.flywheel_inertia});
-  return rows;
-}
-
 }  // namespace
 
 std::vector<Mechanism> buildDefaultScenes() {
@@ -225,114 +216,57 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   // (family of cases, scene): the built-in scenes are grouped into families, user scenes are their own family.
   std::vector<std::pair<std::string, Mechanism>> families;
   for (const Mechanism& m : scenes) families.emplace_back(options.scenes.empty() ? familyOf(m) : m.name, m);
-  // The paper's figures (parts 1-7) are about one bank of cylinders: a layout's base scene gives them its parts as
+  // The paper's figures are about one bank of cylinders: a layout's base scene gives them its parts as
   // a standing inline engine of the same k and cycle, and the report says so.
   const Mechanism& first = scenes.front();
   Mechanism base = isSingleBank(first) ? first : withGamma(withCylinders(first, first.engine.cylinders, first.engine.cycle), 90.0);
-  // The paper's figures are about centric cylinders: an offset base scene gives them its parts centric (part 14 and the
-  // cross-checks show the offset engine itself).
+  // The paper's figures are about centric cylinders: an offset base scene gives them its parts centric (the offset part
+  // and the cross-checks show the offset engine itself).
   const bool offset_base = hasPinOffsets(base) || !base.balance_shafts.empty();
   base.engine.pin_offsets.clear();
   base.balance_shafts.clear();
 
   std::vector<Task> tasks;
-  Table notes("notes", {{"note", kText}});
+  std::vector<NoteRow> notes;
+  // The paper's parts, by their numbers in the registry: from the error against lambda to the integrators.
+  const std::string paper_parts = std::to_string(findPart("error_vs_lambda").number()) + "-" +
+                                  std::to_string(findPart("integrator_pareto").number());
   if (!isSingleBank(first))
-    notes.rows.push_back({"The first scene, " + first.name + ", has cylinders in more than one bank; the figures of parts "
-                          "1-7, written for the paper's inline engine, use its parts as a standing inline engine of "
-                          "the same cylinder count and cycle. Its own layout is cross-checked in the summary."});
+    notes.push_back({"The first scene, " + first.name + ", has cylinders in more than one bank; the figures of parts " +
+                     paper_parts + ", written for the paper's inline engine, use its parts as a standing inline engine "
+                     "of the same cylinder count and cycle. Its own layout is cross-checked in the summary."});
   if (offset_base)
-    notes.rows.push_back({"The first scene, " + first.name + ", has pin offsets or balance shafts; the figures of parts 1-7, "
-                          "written for the paper's centric engine without shafts, use its parts without them. Its own "
-                          "engine is cross-checked in the summary, and part 14 shows what an offset changes."});
-  tasks.push_back({"scenes", false, [families] { return kScenesTable.tableSet(listSceneRows(families)); }});
-  // The user's scenes, or the example scenes (scenes/*.toml) in the default campaign: parts 12, 15 and 16.
+    notes.push_back({"The first scene, " + first.name + ", has pin offsets or balance shafts; the figures of parts " +
+                     paper_parts + ", written for the paper's centric engine without shafts, use its parts without "
+                     "them. Its own engine is cross-checked in the summary, and part " +
+                     std::to_string(findPart("offset").number()) + " shows what an offset changes."});
+  // The user's scenes, or the example scenes (scenes/*.toml) in the default campaign: the parts on given scenes.
   std::vector<Mechanism> pin_scenes = options.scenes;
   if (pin_scenes.empty()) pin_scenes = loadExampleScenes();
-  const std::vector<double> sweep = quick ? std::vector<double>{} : std::vector<double>{0.1, 0.2, 0.3, 0.4, 0.6, 0.9};
-  for (const auto& [family, m] : families) {
-    std::vector<double> lambdas = {lambdaOf(m)};
-    // A pin offset needs |delta| < l - r: the rod changed to lambda must still reach the crank pin at every angle.
-    const double offset = calcLoopRatio(m) * m.rod.length - m.crank.radius;  // max |delta_j|
-    for (double lambda : sweep)
-      if (std::fabs(lambda - lambdaOf(m)) > 1e-3 && offset < m.crank.radius / lambda - m.crank.radius) lambdas.push_back(lambda);
-    for (double lambda : lambdas) {
-      const Mechanism variant = withLambda(m, lambda);
-      char id[128];
-      std::snprintf(id, sizeof id, "crosscheck %s lambda=%.3g", m.name.c_str(), lambda);
-      const std::vector<double> angles = anglesDeg(quick ? 45.0 : 15.0);
-      tasks.push_back({id, false,
-                       [family = family, variant, angles] {
-                         return kCrossCheckTable.tableSet(crossCheckCases(family, {variant}, angles));
-                       },
-                       task_cost::kCrossCheck});
-    }
-  }
-  // The gate's sweep (tests/gate): every k and stroke over lambda and gamma, at the gate's crank angles (both dead
-  // centres and quarter turns), at speed and at rest. Only with the built-in campaign.
-  if (options.scenes.empty()) {
-    const std::vector<double> sweep_lambdas =
-        quick ? std::vector<double>{0.3, 0.999}
-              : std::vector<double>{1e-6, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.35, 0.4, 0.9, 0.999};
-    const std::vector<double> sweep_gammas = quick ? std::vector<double>{90.0, 37.0} : std::vector<double>{0.0, 180.0, 90.0, -90.0, 37.0};
-    const std::vector<double> gate_angles = {0.0, 17.0, 45.0, 90.0, 133.0, 180.0, 222.5, 270.0, 300.0, 359.0, -60.0};
-    // The soft ways are measured on k = 1 and 2 of the sweep and on its four-stroke k = 12 (every lambda and gamma of
-    // them), not gated: the full sweep of 2026-11-25 put every one of their worst errors per quantity on k = 1, 2 and
-    // 12 (the single cylinder's loads on one loop: Q, a_p, the pin and bearing forces, rod_alpha, shaking moment; the
-    // twin's and the twelve's shaking force and a_p), except the rounding-level ones (x_p, v_p, rod angle and speed, U:
-    // 5e-15 anywhere); on that subset (2026-11-26) the two-stroke k = 12 held none that k = 1 does not equal
-    // (mujoco-soft's a_p, 1.07 of its scale on both), the four-stroke k = 12 mujoco-soft-stiff's a_p (0.61).
-    // bench/README.md, "Faster" (step 3) and "Ninth session", has the tables; a sixth of their whole sweep's cost.
-    auto measuresSoft = [](int k, Cycle cycle) { return k <= 2 || (k == 12 && cycle == Cycle::kFourStroke); };
-    for (int k = 12; k >= 1; --k)
-      for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke}) {
-        const bool two = cycle == Cycle::kTwoStroke;
-        const std::string family = std::string("gate sweep ") + (two ? "two" : "four") + "-stroke (k = 1..12)";
-        const Mechanism kbase = withSpeed(withCylinders(base, k, cycle), two ? 3000.0 : 6000.0);
-        tasks.push_back({"sweep k=" + std::to_string(k) + " " + toString(cycle), false,
-                         [family, kbase, k, two, sweep_lambdas, sweep_gammas, gate_angles,
-                          soft = measuresSoft(k, cycle)] {
-                           std::vector<CrossCheckRow> rows;
-                           for (double lambda : sweep_lambdas) {
-                             // The gammas of one lambda in lockstep (crossCheckCases: one assembly per angle).
-                             std::vector<Mechanism> variants;
-                             for (double gamma : sweep_gammas) {
-                               Mechanism variant = withGamma(withLambda(kbase, lambda), gamma);
-                               char name[96];
-                               std::snprintf(name, sizeof name, "k%d_%s_%s", k, two ? "two" : "four", gammaTag(gamma).c_str());
-                               variant.name = name;
-                               variants.push_back(std::move(variant));
-                             }
-                             for (CrossCheckRow& row : crossCheckCases(family, variants, gate_angles, soft))
-                               rows.push_back(std::move(row));
-                           }
-                           return kCrossCheckTable.tableSet(std::move(rows));
-                         },
-                         task_cost::kGateSweep});
-      }
-  }
-  // The free run (parts 6 and 7) needs the base scene's flywheel; without one those parts are left out, and the
-  // report says so: crankcheck invents no inertia on the user's behalf.
+  // The free-run parts need the base scene's flywheel; without one they are left out, and the report says so:
+  // crankcheck invents no inertia on the user's behalf.
   if (!base.flywheel_inertia)
-    notes.rows.push_back({"Parts 6 and 7 (the free run) are left out: the base scene " + base.name +
-                          " has no [flywheel] inertia and crankcheck does not assume one. Give the first scene a "
-                          "[flywheel] table to get them."});
+    notes.push_back({"Parts " + std::to_string(findPart("delta_vs_k").number()) + " and " +
+                     std::to_string(findPart("integrator_pareto").number()) + " (the free run) are left out: the base "
+                     "scene " + base.name + " has no [flywheel] inertia and crankcheck does not assume one. Give the "
+                     "first scene a [flywheel] table to get them."});
   if (!options.parts.empty()) {
     std::string asked;
     for (const std::string& key : options.parts) asked += (asked.empty() ? "" : ", ") + key;
-    notes.rows.push_back({"Only the report parts " + asked + " were run (validate --parts); the cross-checks and the "
+    notes.push_back({"Only the report parts " + asked + " were run (validate --parts); the cross-checks and the "
                           "verdict are whole."});
   }
   // Every registered part's tasks (parts.h), in report order; a part with nothing to show for these scenes says why.
   const PartContext context{base, first, pin_scenes, options.scenes, families, quick};
   std::vector<const Part*> selected;
   for (const Part* part : listParts())
-    if (options.parts.empty() || std::find(options.parts.begin(), options.parts.end(), part->key()) != options.parts.end())
-      selected.push_back(part);  // validate --parts: only those asked for
+    if (part->always() || options.parts.empty() ||
+        std::find(options.parts.begin(), options.parts.end(), part->key()) != options.parts.end())
+      selected.push_back(part);  // validate --parts: only those asked for, and the report's core
   for (const Part* part : selected)
     if (const std::string why = part->findOmission(context); !why.empty())
-      notes.rows.push_back({"Part " + std::to_string(part->number()) + " (" + part->key() + ") is left out: " + why});
-  if (!notes.rows.empty()) tasks.push_back({"notes", false, [notes] { return TableSet{{"notes", notes}}; }});
+      notes.push_back({"Part " + std::to_string(part->number()) + " (" + part->key() + ") is left out: " + why});
+  if (!notes.empty()) tasks.push_back({"notes", false, [notes] { return kNotesTable.tableSet(notes); }});
   for (const Part* part : selected)
     for (Task& task : part->tasks(context)) tasks.push_back(std::move(task));
   // The longest tasks first, so that the jobs finish together (the order changes no table: they are sorted): the

@@ -3,7 +3,6 @@
 #include <charconv>
 #include <stdexcept>
 
-#include "crankcheck/validation/crosscheck.h"
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/parts.h"
 
@@ -143,8 +142,7 @@ Table parseTable(const std::string& name, std::vector<std::vector<std::string>> 
 
 
 const TableSchema* findTableSchema(const std::string& name) {
-  if (name == kCrossCheckTable.name()) return &kCrossCheckTable;
-  if (name == kScenesTable.name()) return &kScenesTable;
+  if (name == kNotesTable.name()) return &kNotesTable;
   for (const Part* part : listParts())
     for (const TableSchema* schema : part->schemas())
       if (schema->name() == name) return schema;

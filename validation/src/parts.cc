@@ -8,6 +8,9 @@ namespace crankcheck::validation {
 // The registry: one line per part, in report order. Each names the accessor `const Part& NAME()` that the part's own
 // file, validation/src/parts/KEY.cc, defines in namespace parts (docs/contributing.md, "Adding a report part").
 #define CRANKCHECK_REPORT_PARTS(PART) \
+  PART(verdict)                       \
+  PART(summary)                       \
+  PART(scenes)                        \
   PART(errorVsLambda)        /*  1 */ \
   PART(speedVsError)         /*  2 */ \
   PART(harmonics)            /*  3 */ \
@@ -66,18 +69,33 @@ const std::vector<const Part*>& listParts() {
 }
 
 int Part::number() const {
-  const auto& all = listParts();
-  const auto it = std::find(all.begin(), all.end(), this);
-  if (it == all.end()) throw std::logic_error("report part " + key() + " is not registered");
-  return static_cast<int>(it - all.begin()) + 1;
+  int n = 0;
+  for (const Part* part : listParts()) {
+    if (!part->always()) ++n;
+    if (part == this) return always() ? 0 : n;
+  }
+  throw std::logic_error("report part " + key() + " is not registered");
+}
+
+const Part& findPart(const std::string& key) {
+  for (const Part* part : listParts())
+    if (part->key() == key) return *part;
+  throw std::logic_error("no report part " + key);
+}
+
+std::vector<std::string> listPartKeys() {
+  std::vector<std::string> keys;
+  for (const Part* part : listParts())
+    if (!part->always()) keys.push_back(part->key());
+  return keys;
 }
 
 void checkPartKeys(const std::vector<std::string>& keys) {
   std::string known;
-  for (const Part* part : listParts()) known += (known.empty() ? "" : ", ") + part->key();
+  const std::vector<std::string> all = listPartKeys();
+  for (const std::string& key : all) known += (known.empty() ? "" : ", ") + key;
   for (size_t i = 0; i < keys.size(); ++i) {
-    const auto& all = listParts();
-    if (std::none_of(all.begin(), all.end(), [&](const Part* part) { return part->key() == keys[i]; }))
+    if (std::find(all.begin(), all.end(), keys[i]) == all.end())
       throw std::invalid_argument("no report part \"" + keys[i] + "\"; the parts are " + known);
     if (std::find(keys.begin(), keys.begin() + static_cast<long>(i), keys[i]) != keys.begin() + static_cast<long>(i))
       throw std::invalid_argument("part \"" + keys[i] + "\" is named twice");

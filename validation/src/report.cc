@@ -34,47 +34,6 @@
 namespace crankcheck::validation {
 namespace fs = std::filesystem;
 
-std::vector<SummaryRow> summarize(const TableSet& tables) {
-  std::vector<SummaryRow> out;
-  std::map<std::tuple<std::string, std::string, std::string>, SummaryRow> rows;
-  for (const CrossCheckRow& row : getRows(tables, kCrossCheckTable)) {
-    if (row.pass == "reported") continue;  // a soft engine: measured in part engines, never gated
-    SummaryRow& s = rows[{row.engine, row.quantity, row.family}];
-    const bool first = s.quantity.empty();
-    s.engine = row.engine;
-    s.quantity = row.quantity;
-    s.family = row.family;
-    s.pass = s.pass && row.pass == "pass";
-    const double r = row.worst_rel_error;
-    const std::string where = formatWhere(row);
-    if (first || isWorseComparison(r / row.tolerance_rel, where, s.worst_rel_error / s.tolerance_rel, s.where)) {
-      s.worst_rel_error = r;
-      s.tolerance_rel = row.tolerance_rel;
-      s.where = where;
-    }
-  }
-  for (auto& [key, row] : rows) out.push_back(row);
-  return out;
-}
-
-std::string formatSummary(const std::vector<SummaryRow>& summary) {
-  std::ostringstream out;
-  char line[400];
-  std::snprintf(line, sizeof line, "%-8s %-18s %-38s %11s  %-54s %10s  %s\n", "engine", "quantity", "family of cases",
-                "worst/scale", "where", "tol/scale", "result");
-  out << line;
-  for (const SummaryRow& s : summary) {
-    std::snprintf(line, sizeof line, "%-8s %-18s %-38s %11.2e  %-54s %10.2e  %s\n", s.engine.c_str(), s.quantity.c_str(), s.family.c_str(),
-                  s.worst_rel_error, s.where.c_str(), s.tolerance_rel, s.pass ? "pass" : "FAIL");
-    out << line;
-  }
-  return out.str();
-}
-
-namespace {
-
-}  // namespace
-
 std::string calcChecksum(std::string_view bytes) {
   std::uint64_t h = 0xcbf29ce484222325ull;  // FNV-1a 64: offset basis, then xor and multiply by the prime per byte
   for (const unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ull;
@@ -199,8 +158,6 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   for (std::thread& t : drawers) t.join();
   if (error) std::rethrow_exception(error);
 
-  const std::vector<SummaryRow> summary = summarize(tables);
-  const bool all_pass = std::all_of(summary.begin(), summary.end(), [](const SummaryRow& s) { return s.pass; });
   std::vector<Block> doc;
   doc.push_back({Block::kHeading, info.title, {}, {}, "#"});
   std::ostringstream meta;
@@ -210,72 +167,8 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
        << (info.seconds > 0 ? ", " + shortNumber(info.seconds, 3) + " s" : "") << ".";
   doc.push_back({Block::kParagraph, meta.str()});
 
-  // The verdict first: one line per engine, the closing line, and the engine x quantity matrix (verdict.h).
-  const std::vector<EngineVerdict> verdicts = calcVerdicts(tables);
-  doc.push_back({Block::kHeading, "Verdict", {}, {}, {}, "verdict"});
-  std::string closing = formatVerdict(verdicts);
-  closing = closing.substr(closing.rfind('\n', closing.size() - 2) + 1);
-  closing.pop_back();
-  doc.push_back({Block::kParagraph, std::string(allAgree(verdicts) ? "**Pass.** " : "**FAIL.** ") + closing + "."});
-  Block verdict_table{Block::kTable, "", {"engine", "gated", "cases", "comparisons", "worst error / tolerance [-]",
-                                          "worst error / scale [-]", "of", "result"}};
-  std::string where;  // each engine's worst comparison, for the sentence under the matrix
-  for (const EngineVerdict& v : verdicts) {
-    verdict_table.rows.push_back({v.engine, v.gated ? "gated" : "measured", std::to_string(v.cases),
-                                  std::to_string(v.comparisons), v.gated ? formatMatrixCell(v.worst_ratio) : "-",
-                                  shortNumber(v.worst_error), v.worst_quantity,
-                                  !v.gated ? "reported" : v.failed == 0 ? "pass" : "FAIL (" + std::to_string(v.failed) + ")"});
-    where += (where.empty() ? "" : "; ") + v.engine + ": " + v.worst_quantity + " at " + v.worst_where;
-  }
-  doc.push_back(verdict_table);
-  const VerdictMatrix matrix = calcVerdictMatrix(tables);
-  doc.push_back({Block::kParagraph, "Worst error / tolerance by quantity and gated engine (green up to 1/8, yellow up to "
-                                    "1/2, orange up to 1, red beyond: FAIL):"});
-  Block matrix_table{Block::kTable, "", {"quantity"}};
-  for (const std::string& e : matrix.engines) matrix_table.header.push_back(e + " [-]");
-  for (size_t q = 0; q < matrix.quantities.size(); ++q) {
-    std::vector<std::string> row = {matrix.quantities[q]};
-    for (size_t e = 0; e < matrix.engines.size(); ++e) row.push_back(formatMatrixCell(matrix.ratio[e][q]));
-    matrix_table.rows.push_back(row);
-  }
-  doc.push_back(matrix_table);
-  doc.push_back({Block::kParagraph,
-                 "A comparison is one quantity of one case (a scene at one lambda), the worst over its crank angles and "
-                 "speeds, judged by the gate's rule |analytic - engine| <= 64 eps x scale x conditioning "
-                 "(docs/CONVENTIONS-crankcheck.md); soft engines are measured, never gated. The worst comparisons: " +
-                     where + "."});
-
-  doc.push_back({Block::kHeading, "Summary: the analytic engine against every exact engine", {}, {}, {}, "summary"});
-  doc.push_back({Block::kParagraph,
-                 std::string(all_pass ? "Every comparison agrees" : "SOME COMPARISONS FAIL") +
-                     " within the gate's rule: |analytic - engine| <= 64 eps x scale x conditioning "
-                     "(docs/CONVENTIONS-crankcheck.md), for each exact engine (Simbody, MuJoCo with exact multipliers). "
-                     "Errors are relative to the quantity's physical scale. MuJoCo's soft solver is measured in part 13, "
-                     "not gated."});
-  Block summary_table{Block::kTable, "", {"engine", "quantity", "family", "worst error / scale [-]", "where", "tolerance / scale [-]", "result"}};
-  for (const SummaryRow& s : summary)
-    summary_table.rows.push_back({s.engine, s.quantity, s.family, shortNumber(s.worst_rel_error), s.where, shortNumber(s.tolerance_rel),
-                                  s.pass ? "pass" : "FAIL"});
-  doc.push_back(summary_table);
-
-  doc.push_back({Block::kHeading, "Scenes", {}, {}, {}, "scenes"});
-  doc.push_back({Block::kParagraph,
-                 "Each scene is cross-checked at its own lambda and, in the full campaign, with the rod lengthened or "
-                 "shortened to lambda = 0.1, 0.2, 0.3, 0.4, 0.6, 0.9. The first scene is the base of the figures. SI units."});
-  doc.push_back({Block::kTable, "",
-                 {"scene", "family", "k", "cycle", "gamma [deg]", "speed [rpm]", "r [m]", "l [m]", "lambda [-]", "m_o [kg]", "m_k [kg]",
-                  "z_k [m]", "I_o [kg m^2]", "m_s [kg]", "r_s [m]", "m_p [kg]", "r_p [m]", "g [m/s^2]", "I_w [kg m^2]"},
-                 formatRows(tables, "scenes",
-                           {"scene", "family", "cylinders", "cycle", "gamma_deg", "speed_rpm", "r", "l", "lambda", "m_o", "m_k", "z_k",
-                            "I_o", "m_s", "r_s", "m_p", "r_p", "g", "I_w"},
-                           {false, false, false, false, true, true, true, true, true, true, true, true, true, true, true, true, true, true, true})});
-  doc.push_back({Block::kParagraph,
-                 "Every value used is shown. Where a scene file leaves a key out, crankcheck uses the default of "
-                 "docs/SCENE-FORMAT.md: g = 9.80665 m/s^2, single acting, no counterweight (m_p = 0), throw angles from "
-                 "eqs (8)-(11). I_w is the flywheel inertia, empty where the scene has none."});
-  for (const auto& note : formatRows(tables, "notes", {"note"})) doc.push_back({Block::kParagraph, note[0]});
-
-  // Every part (parts.h), described by its own file: its figure, sentences and table, or its blocks in order.
+  // Every part (parts.h) in the registry's order, described by its own file: the verdict, the summary and the scenes
+  // first, then the numbered parts; each its figure, sentences and table, or its blocks in order.
   for (const Part* part : listParts()) {
     const ReportPart described = part->describe(tables);
     if (described.heading.empty()) continue;

@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include "crankcheck/scene/quantities.h"
 #include "crankcheck/validation/crosscheck.h"
@@ -146,6 +147,43 @@ VerdictMatrix calcVerdictMatrix(const TableSet& tables) {
     }
   }
   return m;
+}
+
+std::vector<SummaryRow> summarize(const TableSet& tables) {
+  std::vector<SummaryRow> out;
+  std::map<std::tuple<std::string, std::string, std::string>, SummaryRow> rows;
+  for (const CrossCheckRow& row : getRows(tables, kCrossCheckTable)) {
+    if (row.pass == "reported") continue;  // a soft engine: measured in part engines, never gated
+    SummaryRow& s = rows[{row.engine, row.quantity, row.family}];
+    const bool first = s.quantity.empty();
+    s.engine = row.engine;
+    s.quantity = row.quantity;
+    s.family = row.family;
+    s.pass = s.pass && row.pass == "pass";
+    const double r = row.worst_rel_error;
+    const std::string where = formatWhere(row);
+    if (first || isWorseComparison(r / row.tolerance_rel, where, s.worst_rel_error / s.tolerance_rel, s.where)) {
+      s.worst_rel_error = r;
+      s.tolerance_rel = row.tolerance_rel;
+      s.where = where;
+    }
+  }
+  for (auto& [key, row] : rows) out.push_back(row);
+  return out;
+}
+
+std::string formatSummary(const std::vector<SummaryRow>& summary) {
+  std::ostringstream out;
+  char line[400];
+  std::snprintf(line, sizeof line, "%-8s %-18s %-38s %11s  %-54s %10s  %s\n", "engine", "quantity", "family of cases",
+                "worst/scale", "where", "tol/scale", "result");
+  out << line;
+  for (const SummaryRow& s : summary) {
+    std::snprintf(line, sizeof line, "%-8s %-18s %-38s %11.2e  %-54s %10.2e  %s\n", s.engine.c_str(), s.quantity.c_str(), s.family.c_str(),
+                  s.worst_rel_error, s.where.c_str(), s.tolerance_rel, s.pass ? "pass" : "FAIL");
+    out << line;
+  }
+  return out.str();
 }
 
 std::string formatMatrixCell(double ratio) {

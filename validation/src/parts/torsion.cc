@@ -653,9 +653,7 @@ TableSet calcOrNote(const std::string& what, Calc calc) {
   try {
     return calc();
   } catch (const std::runtime_error& e) {
-    Table notes("notes", {{"note", kText}});
-    notes.rows.push_back({kRefusedNote + what + " not computed: " + formatOneLine(e.what())});
-    return TableSet{{"notes", notes}};
+    return kNotesTable.tableSet({{kRefusedNote + what + " not computed: " + formatOneLine(e.what())}});
   }
 }
 
@@ -713,13 +711,12 @@ class TorsionPart final : public Part {
   }
   void derive(TableSet& tables) const override {
     // A route refused (calcOrNote): the part's tables out, its notes say why and which.
-    const auto notes = tables.find("notes");
-    if (notes != tables.end() &&
-        std::any_of(notes->second.rows.begin(), notes->second.rows.end(),
-                    [](const std::vector<std::string>& row) { return row.front().rfind(kRefusedNote, 0) == 0; })) {
+    const std::vector<NoteRow>& notes = getRows(tables, kNotesTable);
+    if (std::any_of(notes.begin(), notes.end(), [](const NoteRow& row) { return row.note.rfind(kRefusedNote, 0) == 0; })) {
       for (const std::string& name : this->tables()) tables.erase(name);
-      notes->second.rows.push_back({"Part 17 (torsion) is left out: the routes these notes name could not be computed, and a "
-                                    "sweep with holes is not drawn. crankcheck torsion on each scene shows the rest."});
+      addRows(tables, kNotesTable,
+              {{"Part " + std::to_string(number()) + " (" + key() + ") is left out: the routes these notes name could "
+                "not be computed, and a sweep with holes is not drawn. crankcheck torsion on each scene shows the rest."}});
       return;
     }
     deriveTorsion(tables);

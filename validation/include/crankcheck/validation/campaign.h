@@ -42,6 +42,14 @@ struct SceneRow {
 /// data/scenes.csv.
 extern const Schema<SceneRow> kScenesTable;
 
+/// One note of the campaign: what it left out, and why (only when there is something to say).
+struct NoteRow {
+  std::string note;
+};
+
+/// data/notes.csv.
+extern const Schema<NoteRow> kNotesTable;
+
 struct CampaignOptions {
   bool quick = false;               ///< fewer lambdas, angles and methods: a smoke test of the whole report
   std::vector<Mechanism> scenes;    ///< the families to cross-check; empty = the built-in default campaign

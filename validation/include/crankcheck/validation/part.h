@@ -80,6 +80,9 @@ class Part {
   virtual std::string key() const = 0;
   /// Its heading without the number ("Flywheel sizing: ...").
   virtual std::string title() const = 0;
+  /// True for the report's core (the verdict, the summary, the scenes): always run whatever `validate --parts` asks,
+  /// placed first, headed by their title alone; false for the numbered parts, which `--parts` chooses from.
+  virtual bool always() const { return false; }
   /// The independent units of work whose tables the part reads; each with its Task::cost.
   virtual std::vector<Task> tasks(const PartContext& context) const = 0;
   /// Adds the tables computed from the finished work of every task (the report runs it on the sorted tables before
@@ -108,12 +111,12 @@ class Part {
     return {};
   }
 
-  /// Its number in the report: its place in the registry (parts.h), 1..N. No part states its own number; prose names a
-  /// part by its title or key, or asks the registry for the number.
+  /// Its number in the report: its place among the numbered parts of the registry (parts.h), 1..N; 0 for a part that
+  /// is always() run. No part states its own number; prose names a part by its title or key, or asks the registry.
   /// @throws std::logic_error for a part that is not registered.
   int number() const;
-  /// "N. title": the heading describe() gives.
-  std::string heading() const { return std::to_string(number()) + ". " + title(); }
+  /// "N. title" (a numbered part) or the title (always()): the heading describe() gives.
+  std::string heading() const { return always() ? title() : std::to_string(number()) + ". " + title(); }
 
  protected:
   /// describe() of a part that is its figure alone: the heading and `caption` when its table data/KEY.csv is there;

@@ -13,6 +13,13 @@ namespace crankcheck::validation {
 /// Every registered part, in report order: its place is its number (Part::number).
 const std::vector<const Part*>& listParts();
 
+/// The registered part of key `key` (its number: findPart(key).number()). @throws std::logic_error when there is none
+/// (a programming error: keys in code are the registry's).
+const Part& findPart(const std::string& key);
+
+/// The keys of the parts `validate --parts` chooses from (every part but the always() run ones), in report order.
+std::vector<std::string> listPartKeys();
+
 /// Adds `part` after the registered ones, for a test build that shows a new part reaches the report, its CSVs and
 /// `validate --parts` with no other change (tests/validation/extra_part_test.cc). Call it before the first listParts().
 /// @throws std::logic_error once the registry is in use, or for a key already registered (then at listParts()).

@@ -9,25 +9,10 @@
 #include <vector>
 
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/verdict.h"
 
 namespace crankcheck::validation {
 
-/// One line of the summary: a quantity over one family of cases, the analytic engine against one exact engine.
-struct SummaryRow {
-  std::string engine;            ///< the engine compared with the analytic one (simbody, mujoco, ...)
-  std::string quantity, family;
-  double worst_rel_error = 0.0;  ///< worst error / scale over the family
-  std::string where;             ///< case, crank angle and speed of the worst
-  double tolerance_rel = 0.0;    ///< the agreement tolerance / scale at that case
-  bool pass = true;              ///< every comparison of the family agreed
-};
-
-/// Groups the crosscheck table by (engine, quantity, family), the gated engines only (soft engines are reported in
-/// part engines, never gated). The worst of each by isWorseComparison (verdict.h).
-std::vector<SummaryRow> summarize(const TableSet& tables);
-
-/// The summary as a plain-text table for the terminal.
-std::string formatSummary(const std::vector<SummaryRow>& summary);
 
 struct ReportInfo {
   std::string title = "crankcheck validation report";
