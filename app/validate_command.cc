@@ -127,7 +127,7 @@ int runValidate(const ValidateOptions& options) {
     // Every engine must be able to build the scene (a massless rod for Simbody, a massless piston for MuJoCo, ...):
     // refused now, naming the engine and the key, not after minutes of work.
     validation::checkEveryEngineBuilds(campaign.scenes.back(), path);
-    if (campaign.scenes.back().crankshaft) {  // part 17's domain (analytic/torsion_domain.h), before any work
+    if (campaign.scenes.back().crankshaft) {  // the torsion part's domain (analytic/torsion_domain.h), before any work
       try {
         analytic::checkTorsionDomain(campaign.scenes.back());
       } catch (const std::invalid_argument& e) {

@@ -115,7 +115,7 @@ TEST(ExactSteadyState, AnotherIntegratorReturnsToThePeriodicState) {
   }
 }
 
-// The error bound of a state at the report's settings (tolerance 1e-8, 2048 samples: report part 17) against what it
+// The error bound of a state at the report's settings (tolerance 1e-8, 2048 samples: the report's torsion part) against what it
 // bounds: the distance of its peak-to-peaks from those of a state at 1e-11 (whose own error, about 1e-9 of the twist
 // scale, torsion_steady.h, is below a tenth of every bound checked here), on both example scenes at their own speeds
 // and the four at 7500 rpm. It must be positive and cover that distance (seen: 0.03 to 0.49 of the bound, the largest

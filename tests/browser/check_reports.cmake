@@ -22,7 +22,7 @@ endif()
 if(NOT EXISTS ${VALIDATE_REPORT}/index.html)
   message(FATAL_ERROR "${VALIDATE_REPORT}: no index.html (the quick campaign's report)")
 endif()
-# The anchors: the report's sections and a part's key (#torsion, part 17 in every report), not positions (#part20).
+# The anchors: the report's sections and a part's key (#torsion in every report), not positions (#part20).
 run("validate report in Chromium" ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/check_report.py ${CHROMIUM} ${VALIDATE_REPORT}
     ${WORK_DIR}/validate_report.png --verdict-first --anchors verdict,summary,scenes,error_vs_lambda,torsion)
 run("grade --quick" ${CRANKCHECK} grade --quick --batch --out ${WORK_DIR}/grade -- ${GRADE_PROGRAM})

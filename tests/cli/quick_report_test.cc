@@ -58,9 +58,9 @@ struct Reports {
 
 // The parts of the full campaign the checks below read, with every cross-check and the verdict (`validate --parts`
 // always runs them): every part with maxima (Part::maxima, from the registry, so a new one is compared too), the parts
-// whose sentences are the conclusions (checkSameConclusions: part 4 gravity_significance, 8 errata, 9 balance, 13
-// engines; a new part with such a sentence makes that check fail, naming the line, until it is added here) and part
-// 17 (torsion: its engine trains). The other parts (the flywheel sizings, the pin offset, the integrators, ...)
+// whose sentences are the conclusions (checkSameConclusions: gravity_significance, errata, balance,
+// engines; a new part with such a sentence makes that check fail, naming the line, until it is added here) and the
+// torsion part (its engine trains). The other parts (the flywheel sizings, the pin offset, the integrators, ...)
 // state no maximum or conclusion compared here; the quick report has them all (QuickRunWritesEveryPartOfTheReport).
 // These parts cost about four fifths of the full campaign (bench/README.md, "The parts the CLI tests read").
 std::string listFullParts() {
@@ -142,7 +142,7 @@ void checkFourierErrorDoesNotDependOnTheGrid(const Reports& reports) {
   }
 }
 
-// The conclusions of part 4 (the paper's claims tested) and the errata sentences are the same in both reports.
+// The conclusions of gravity_significance (the paper's claims tested) and the errata sentences are the same in both reports.
 void checkSameConclusions(const Reports& reports) {
   auto conclusions = [](const std::string& index) {
     std::string out;
@@ -183,7 +183,7 @@ TEST(QuickReportTest, QuickReportDrawsTheFullReportsConclusions) {
     checkSameConclusions(reports);
   }
   {
-    SCOPED_TRACE("part 17's engine trains in the full report (the quick one: QuickRunWritesEveryPartOfTheReport)");
+    SCOPED_TRACE("the torsion part's engine trains in the full report (the quick one: QuickRunWritesEveryPartOfTheReport)");
     testing::expectGatedTrainsAgree(reports.full);
   }
 }

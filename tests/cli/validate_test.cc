@@ -61,9 +61,8 @@ std::vector<std::string> listTables() {
     for (const std::string& table : part->tables()) tables.push_back(table);
   return tables;
 }
-// After main starts: the parts' schemas are namespace-scope objects of other files (table.h).
-#define kFigures listFigures()
-#define kTables listTables()
+// "Part N": the torsion part as the report's notes name it, its number from the registry.
+std::string torsionPart() { return "Part " + std::to_string(validation::findPart("torsion").number()); }
 
 // The default quick campaign, run once for its readers (campaign_fixture.h: under ctest the fixture quick_campaign,
 // also read by QuickReportTest and the browser test): every check here reads its report and what it printed.
@@ -78,14 +77,14 @@ TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   EXPECT_EQ(r.out.find("family of cases"), std::string::npos) << r.out;
   EXPECT_EQ(r.err, "");
   const std::string index = readFile(report / "index.md");
-  for (const std::string& figure : kFigures) {
+  for (const std::string& figure : listFigures()) {
     SCOPED_TRACE(figure);
     EXPECT_GT(fs::file_size(report / (std::string(figure) + ".svg")), 1000u);
     EXPECT_GT(fs::file_size(report / (std::string(figure) + ".png")), 1000u);
     EXPECT_NE(index.find(std::string("](") + figure + ".png)"), std::string::npos);
     EXPECT_NE(index.find(std::string("data/") + figure + ".csv"), std::string::npos);
   }
-  for (const std::string& table : kTables) EXPECT_TRUE(fs::exists(report / "data" / (std::string(table) + ".csv"))) << table;
+  for (const std::string& table : listTables()) EXPECT_TRUE(fs::exists(report / "data" / (std::string(table) + ".csv"))) << table;
   EXPECT_NE(index.find("Errata"), std::string::npos);
   EXPECT_NE(index.find("Simbody 3.7"), std::string::npos);
   EXPECT_NE(readFile(report / "index.html").find("<img src=\"harmonics.png\""), std::string::npos);
@@ -96,7 +95,7 @@ TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
   EXPECT_EQ(speed.rfind("method,ns_per_eval [ns],max_rel_error [-],resolved\n", 0), 0u);
   EXPECT_GE(std::count(speed.begin(), speed.end(), '\n'), 6) << "every method timed:\n" << speed;
   EXPECT_NE(speed.find("simbody_tol_1e-12,"), std::string::npos) << speed;
-  // Part 16: the Lanchester pair designed for the inline four takes its secondary force to rounding in every engine.
+  // balance_shafts: the Lanchester pair designed for the inline four takes its secondary force to rounding in every engine.
   // 64 eps of the force scale: the gate's multiple for a force (docs/CONVENTIONS-crankcheck.md); the secondary force
   // without the pair is about lambda / 4 of the primary, itself about 1/8 of the scale (0.02 at the base scene's lambda).
   const std::string shafts = readFile(report / "data/balance_shafts.csv");
@@ -118,7 +117,7 @@ TEST_F(ValidateTest, QuickRunWritesEveryPartOfTheReport) {
     ++checked;
   }
   EXPECT_EQ(checked, 6) << "analytic, simbody and mujoco, without and with the pair:\n" << shafts;
-  // Part 17: each gated engine's own elastic train against the analytic steady state (train_report.h).
+  // torsion: each gated engine's own elastic train against the analytic steady state (train_report.h).
   testing::expectGatedTrainsAgree(report);
   // Nothing but the report next to it (and the fixture's record of the run): no staging folder left behind.
   for (const auto& entry : fs::directory_iterator(campaign.folder))
@@ -147,16 +146,16 @@ TEST_F(ValidateTest, ShardsMergeIntoTheSameReportAsOneRun) {
   // --verbose: the families' table in full before the verdict.
   EXPECT_NE(merged.out.find("Every family of cases:\n"), std::string::npos) << merged.out;
   EXPECT_NE(merged.out.find("merged from 2 shards\n"), std::string::npos) << merged.out;
-  for (const std::string& table : kTables) {
+  for (const std::string& table : listTables()) {
     const std::string name = table;
     if (name == "speed_vs_error" || name == "integrator_pareto" || name == "engine_cost" || name == "engines" ||
         name == "engines_league" || name == "torsion_cost")
-      continue;  // timings (the errors of part 13 come from crosscheck, compared here)
+      continue;  // timings (the errors of the engines part come from crosscheck, compared here)
     EXPECT_EQ(readFile(dir_ / "merged/data" / (std::string(table) + ".csv")),
               readFile(whole / "data" / (std::string(table) + ".csv")))
         << table;
   }
-  for (const std::string& figure : kFigures) EXPECT_TRUE(fs::exists(dir_ / "merged" / (std::string(figure) + ".png")));
+  for (const std::string& figure : listFigures()) EXPECT_TRUE(fs::exists(dir_ / "merged" / (std::string(figure) + ".png")));
   const RunResult incomplete = run("report merge " + (dir_ / "s0").string() + " --out " + (dir_ / "m2").string());
   EXPECT_EQ(incomplete.exit_status, 2);
   EXPECT_NE(incomplete.err.find("1 of 2 given"), std::string::npos) << incomplete.err;
@@ -352,22 +351,22 @@ TEST_F(ValidateTest, PartsRunsOnlyThoseParts) {
 }
 
 // Issue 46: a part with nothing to show for the scenes given is never left out without a word: `--parts torsion` on a
-// scene without [crankshaft] exited 0 with no torsion section and no reason (a full run dropped part 17 the same way).
+// scene without [crankshaft] exited 0 with no torsion section and no reason (a full run dropped the torsion part the same way).
 TEST_F(ValidateTest, APartLeftOutForItsScenesSaysWhy) {
   const std::string scene = std::string(CRANKCHECK_SCENES_DIR) + "/single_cylinder.toml";
   const fs::path report = dir_ / "report";
   const RunResult r = run("validate --quick " + scene + " --parts torsion --out " + report.string());
   ASSERT_EQ(r.exit_status, 0) << r.err;
   const std::string index = readFile(report / "index.md");
-  EXPECT_NE(index.find("Part 17 (torsion) is left out: no scene (single_cylinder) has a [crankshaft] table"),
+  EXPECT_NE(index.find(torsionPart() + " (torsion) is left out: no scene (single_cylinder) has a [crankshaft] table"),
             std::string::npos)
       << index;
   EXPECT_FALSE(fs::exists(report / "data" / "torsion.csv"));
 }
 
-// A scene inside the small-twist domain up front (its mean torque) but beyond it at part 17's sweep speeds (every
+// A scene inside the small-twist domain up front (its mean torque) but beyond it at the torsion part's sweep speeds (every
 // section at 3000 N m/rad, the example four: 0.11 rad at 3000 and 6000 rpm) ended the whole campaign ("could not run",
-// status 1, no report). Now the refused routes are named in the notes and part 17 is left out, saying so; the report
+// status 1, no report). Now the refused routes are named in the notes and the torsion part is left out, saying so; the report
 // is written.
 TEST_F(ValidateTest, APartWhoseRoutesAreRefusedIsLeftOutWithItsReasons) {
   std::string text = readFile(fs::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
@@ -380,11 +379,11 @@ TEST_F(ValidateTest, APartWhoseRoutesAreRefusedIsLeftOutWithItsReasons) {
   const RunResult r = run("validate --quick --parts torsion " + scene.string() + " --out " + report.string());
   ASSERT_EQ(r.exit_status, 0) << r.err;
   const std::string index = readFile(report / "index.md");
-  EXPECT_NE(index.find("Part 17 (torsion): soft at 3000 rpm not computed: torsion: at 3e+03 rpm Holzer's linear "
+  EXPECT_NE(index.find(torsionPart() + " (torsion): soft at 3000 rpm not computed: torsion: at 3e+03 rpm Holzer's linear "
                        "response twists section 1 by"),
             std::string::npos)
       << index;
-  EXPECT_NE(index.find("Part 17 (torsion) is left out"), std::string::npos);
+  EXPECT_NE(index.find(torsionPart() + " (torsion) is left out"), std::string::npos);
   EXPECT_FALSE(fs::exists(report / "torsion.png"));
   EXPECT_FALSE(fs::exists(report / "data" / "torsion.csv"));
 }

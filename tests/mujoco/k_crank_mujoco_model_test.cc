@@ -1,6 +1,6 @@
 // The MuJoCo engine on its own (no analytic library, no Simbody): what it refuses, how well it closes the loop, its
 // speeds, accelerations and Q against finite differences of its own positions and energies, a mirror symmetry, and
-// MuJoCo's soft solver measured against MuJoCo's exact multipliers (the findings of report part 13, asserted).
+// MuJoCo's soft solver measured against MuJoCo's exact multipliers (the findings of the report's engines part, asserted).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,5 +1,5 @@
 #pragma once
-// Report part 17's check of each gated engine's own elastic train (data/torsion_engines.csv of a report folder), for
+// The report's torsion part's check of each gated engine's own elastic train (data/torsion_engines.csv of a report folder), for
 // the quick and the full campaign alike: every section's peak-to-peak twist within twice the periodicity the run was
 // stopped at (of the twist scale) of the analytic steady state's: a run stopped at a cycle-to-cycle change c keeps
 // about c of its transient, and a peak-to-peak is the difference of two such values. Every gated engine with a train

@@ -109,7 +109,7 @@ TEST_F(ErrataTest, Section7FirstSurvivingOrdersMatchComplexSums) {
   }
 }
 
-// Part 4's maxima (from eq (16)'s exact harmonics, refined) against eq (13) evaluated on a 0.01 degree grid: a grid that
+// gravity_significance's maxima (from eq (16)'s exact harmonics, refined) against eq (13) evaluated on a 0.01 degree grid: a grid that
 // fine is within (n x 0.005 deg)^2 / 2 of the maximum (2e-5 relative for the harmonic n = 14 of k = 7), and eq (13)'s
 // rounding is about 1e-16 of the energy scale, 1e-5 of k = 7's max |Q|: 1e-4 relative covers both.
 TEST(GravitySignificanceTest, MaximaMatchADenseGridOfEq13) {

@@ -1,4 +1,4 @@
-// The registry of report parts (parts.h), and describe() of parts 4 and 13-16 on a small fixed TableSet: the heading
+// The registry of report parts (parts.h), and describe() of parts on a small fixed TableSet: the heading
 // and the numbers the sentences read from the data. Every expected number is worked out by hand from the rows below.
 
 #include "crankcheck/validation/parts.h"

@@ -1,5 +1,5 @@
 #pragma once
-// What the computations of report parts 1-8 (parts/*.cc) share with the campaign (campaign.cc): maxima over a turn
+// What the computations of the paper's report parts (parts/*.cc) share with the campaign (campaign.cc): maxima over a turn
 // from Q's exact harmonics, the resolution rule, the marine scene. Each part computes the rows of its tables from one
 // task; the campaign adds the tasks' tables up (appendTables). Tables and columns: campaign.h and each part's file.
 
@@ -39,7 +39,7 @@ bool resolvedToOnePercent(double rel_value, double conditioning = 1.0);
 /// The samples of a turn for quantities that hold harmonics up to about n: 6 per period (3 per hump of |f|), at least 48.
 int samplesForOrder(int n);
 
-/// The built-in marine engine (buildDefaultScenes): the second engine of parts 10 and 11.
+/// The built-in marine engine (buildDefaultScenes): the second engine of the torque split and rod model parts.
 Mechanism findMarineScene();
 
 }  // namespace crankcheck::validation

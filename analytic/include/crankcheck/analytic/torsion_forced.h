@@ -101,7 +101,7 @@ class StiffLimitResponse {
 /// T(psi) = A(psi) - (1/2) omega^2 B(psi) with A = T_gas - Q and B = J' (crank_train.h, calcThrowLoads), neither of
 /// which depends on omega; so are their orders A_p, B_p (the quadrature and FFT above), and T_p = A_p - (1/2) omega^2
 /// B_p. An object keeps every A_p, B_p a sum has asked for, for each P, so that a sweep over speed computes them once
-/// (part 17's speed points, `crankcheck torsion`). Safe to share between threads. It serves the trains of one scene
+/// (the torsion part's speed points, `crankcheck torsion`). Safe to share between threads. It serves the trains of one scene
 /// at any speed: the first train it serves fixes its throws; another's (other loads at two test angles, another cycle
 /// or count of throws) is refused.
 class ThrowLoadOrders {

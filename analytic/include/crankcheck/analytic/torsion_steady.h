@@ -38,7 +38,7 @@ struct SteadyStateOptions {
   int samples = 8192;
   /// The work limit: evaluations of the train's equations in all (every cycle run, the Jacobians' variational runs,
   /// the error bound's run), past which the state is refused (std::runtime_error) instead of run unbounded. 1e8, about
-  /// a minute: 175 x the most the example scenes take over part 17's speeds (5.7e5 on the four at 1500 rpm, tolerance
+  /// a minute: 175 x the most the example scenes take over the torsion part's speeds (5.7e5 on the four at 1500 rpm, tolerance
   /// 1e-11; 1.4e5 on the marine six at 105 rpm; at most 1.2e5 at the report's 1e-8), enough for the shafts too stiff
   /// for this route's cost and not stiff enough for the stiff limit's accuracy (the explicit steps follow the highest
   /// natural frequency: their cost grows as sqrt(K); the example four at 1e5 x its stiffness).

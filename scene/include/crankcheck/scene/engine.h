@@ -94,7 +94,7 @@ struct Engine {
   std::function<std::unique_ptr<EngineModel>(const Mechanism& m, double accuracy)> build_at_accuracy;
   /// Q [N m] at rest at phi_i = phi0 + i step, i = 0 .. n - 1, by a route that computes a whole grid at once.
   std::function<std::vector<double>(const Mechanism& m, double phi0, double step, size_t n)> calc_q_on_grid;
-  /// The elastic crank train's periodic steady state (`crankcheck torsion`, report part 17) of a scene with
+  /// The elastic crank train's periodic steady state (`crankcheck torsion`, the report's torsion part) of a scene with
   /// `[crankshaft]` at its speed. @throws std::invalid_argument if the engine cannot build the train (the message names
   /// the rule); std::runtime_error if no periodic state is reached.
   std::function<CrankTrainRun(const Mechanism& m, const CrankTrainRunOptions& options)> simulate_crank_train;

@@ -3,7 +3,7 @@
 /// The largest value of a periodic function over one crank turn, found so that it does not depend on the sampling
 /// grid: the function is sampled at evenly spaced angles, and the best sampled local maxima are refined by Brent's
 /// method (golden section with parabolic steps) on the two grid cells around each. Every "max over a turn" of the
-/// report is found this way, for both engines alike (report parts 1, 2, 4, 8, 11).
+/// report is found this way, for both engines alike (the parts error_vs_lambda, speed_vs_error, gravity_significance, errata, rod_models).
 
 #include <functional>
 #include <vector>
@@ -20,7 +20,7 @@ struct TurnMaximum {
 inline constexpr double kFineAngleTolerance = 1e-10;
 
 /// Brent's angle tolerance [rad] of a campaign: kFineAngleTolerance in the full one; 1e-6 in the quick one (a smoke
-/// run), at 16-41 % fewer evaluations of the engines in the parts that refine (part 4's engine max |Q|, the pin loads,
+/// run), at 16-41 % fewer evaluations of the engines in the parts that refine (gravity_significance's engine max |Q|, the pin loads,
 /// the pin offset, the rod models). Measured on the quick report (2026-11-26, bench/README.md "Eleventh session"): a
 /// smooth maximum moves by at most 1e-13 relative (1e-14 on the O(1) ones), a maximum at a kink (a gas table's corner:
 /// the pin loads' at 20 degrees) by up to 3.1e-7, a rounding-level one (an engine's max |Q| at k = 7) by its own

@@ -20,7 +20,7 @@ class ReportDocument {
   explicit ReportDocument(std::string title);
 
   /// A heading (level 2 or 3 go into the table of contents; the title is level 1). `id`: its anchor in the HTML page
-  /// (a part's key: `#torsion` names part 17 in every report); empty: one made of the text (lower case, letters,
+  /// (a part's key: `#torsion` names the torsion part in every report); empty: one made of the text (lower case, letters,
   /// digits and '-'), made unique with "-2", "-3", ...
   void addHeading(int level, const std::string& text, const std::string& id = {});
   /// A paragraph of Markdown (inline code, emphasis, links).
