@@ -5,6 +5,7 @@
 
 #include "crankcheck/validation/crosscheck.h"
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/parts.h"
 
 namespace crankcheck::validation {
@@ -145,6 +146,7 @@ Table parseTable(const std::string& name, std::vector<std::vector<std::string>> 
 const TableSchema* findTableSchema(const std::string& name) {
   if (name == kCrossCheckTable.name()) return &kCrossCheckTable;
   if (name == kScenesTable.name()) return &kScenesTable;
+  if (const TableSchema* schema = findGradeTableSchema(name)) return schema;
   for (const Part* part : listParts())
     for (const TableSchema* schema : part->schemas())
       if (schema->name() == name) return schema;

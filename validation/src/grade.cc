@@ -319,6 +319,11 @@ Field<Row> optionalCountField(std::string name, std::optional<int> Row::*member)
 
 }  // namespace
 
+// The tables' names (their CSV stems), each spelled once.
+constexpr const char* kSummaryName = "grade_summary";
+constexpr const char* kErrorVsLambdaName = "grade_error_vs_lambda";
+constexpr const char* kFailuresName = "grade_failures";
+
 const Schema<GradeSummaryRow>& getGradeSummarySchema() {
   static const Schema<GradeSummaryRow> schema = [] {
     using R = GradeSummaryRow;
@@ -337,14 +342,14 @@ const Schema<GradeSummaryRow>& getGradeSummarySchema() {
              textField("where_case", &R::where_case), optionalField("where_phi_deg", "deg", &R::where_phi_deg),
              optionalField("where_speed_rpm", "rpm", &R::where_speed_rpm), textField("verdict", &R::verdict)})
       fields.push_back(std::move(f));
-    return Schema<R>("grade_summary", std::move(fields));
+    return Schema<R>(kSummaryName, std::move(fields));
   }();
   return schema;
 }
 
 const Schema<GradeLambdaRow>& getGradeErrorVsLambdaSchema() {
   using R = GradeLambdaRow;
-  static const Schema<R> schema("grade_error_vs_lambda",
+  static const Schema<R> schema(kErrorVsLambdaName,
                                 {textField("quantity", &R::quantity), numberField("lambda", "-", &R::lambda),
                                  numberField("program_max_rel_error", "-", &R::program_max_rel_error),
                                  numberField("analytic_max_rel_error", "-", &R::analytic_max_rel_error)});
@@ -367,9 +372,17 @@ const Schema<GradeFailureRow>& getGradeFailuresSchema() {
         numberField("rel_error", "-", &R::rel_error), numberField("tolerance_rel", "-", &R::tolerance_rel)};
     for (size_t j = 2; j < judges.size(); ++j)
       fields.push_back(judgeField(judges[j]->name + "_value", "SI", &R::judge_values, j));
-    return Schema<R>("grade_failures", std::move(fields));
+    return Schema<R>(kFailuresName, std::move(fields));
   }();
   return schema;
+}
+
+const TableSchema* findGradeTableSchema(const std::string& name) {
+  // Compared by name first: the schemas follow the engine registry, which a name of another table must not fix.
+  if (name == kSummaryName) return &getGradeSummarySchema();
+  if (name == kErrorVsLambdaName) return &getGradeErrorVsLambdaSchema();
+  if (name == kFailuresName) return &getGradeFailuresSchema();
+  return nullptr;
 }
 
 namespace {

@@ -134,6 +134,10 @@ struct GradeFailureRow {
 /// grade_failures' declaration (its columns follow listGradeJudges()).
 const Schema<GradeFailureRow>& getGradeFailuresSchema();
 
+/// The schema of grade's table `name` (a CSV stem: the three above); nullptr for any other name. The CSV reader
+/// (csv.h: findTableSchema) reads a grade report's data/*.csv back into typed rows through it.
+const TableSchema* findGradeTableSchema(const std::string& name);
+
 /// Runs the program on `cases` (several programs at once with jobs > 1; batch: one program per job) and grades
 /// every answer. `progress(done, total)` is called after each case. Tables (reports/README.md): grade_summary
 /// (GradeSummaryRow), grade_error_vs_lambda (GradeLambdaRow, the rows of the quantities provided) and grade_failures
