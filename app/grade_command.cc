@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <set>
 
 #include "crankcheck/validation/engines.h"
@@ -17,6 +18,7 @@
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/process.h"
 #include "crankcheck/validation/report.h"
+#include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/interrupt.h"
 #include "crankcheck/validation/runner.h"
 #include "scene_input.h"
@@ -118,29 +120,20 @@ int runGrade(const GradeOptions& options) {
   out.install("report");
 
   const int status = validation::findGradeExitStatus(tables);
-  const validation::Table& summary = tables.at("grade_summary");
   // One row per quantity over all cases, then (for a provided quantity) one per regime: moving or at rest, lambda up
   // to 0.4 or beyond. Errors relative to the quantity's scale: the largest, and the one at the worst error / tolerance.
-  const size_t quantity = validation::columnOf(summary, "quantity"), regime = validation::columnOf(summary, "regime"),
-               asked = validation::columnOf(summary, "asked"), provided = validation::columnOf(summary, "provided"),
-               largest = validation::columnOf(summary, "largest_rel_error"),
-               at_worst = validation::columnOf(summary, "rel_error_at_worst_ratio"),
-               tolerance = validation::columnOf(summary, "tolerance_rel"), verdict = validation::columnOf(summary, "verdict");
-  auto brief = [](const std::string& number) {
-    if (number.empty()) return std::string("-");
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2g", std::strtod(number.c_str(), nullptr));
-    return std::string(text);
-  };
+  auto brief = [](const std::optional<double>& x) { return x ? validation::shortNumber(*x) : std::string("-"); };
   // Within 100 columns: the column heads on two lines, what they mean below the table.
   std::printf("%-15s %-22s %11s %9s %9s %9s  %s\n%-15s %-22s %11s %9s %9s %9s\n", "quantity", "regime", "provided",
               "largest", "at worst", "tolerance", "verdict", "", "", "/ asked", "error", "ratio", "/ scale");
-  for (const auto& row : summary.rows) {
-    if (row[regime] != "all" && row[provided] == "0") continue;  // a regime of a quantity not provided
-    std::printf("%-15s %-22s %11s %9s %9s %9s  %s\n", row[regime] == "all" ? row[quantity].c_str() : "",
-                validation::describeGradeRegime(row[regime]).c_str(), (row[provided] + " / " + row[asked]).c_str(),
-                brief(row[largest]).c_str(), brief(row[at_worst]).c_str(), brief(row[tolerance]).c_str(),
-                row[verdict].c_str());
+  for (const validation::GradeSummaryRow& row : validation::getRows(tables, validation::getGradeSummarySchema())) {
+    const bool all = row.regime == "all";
+    if (!all && row.provided == 0) continue;  // a regime of a quantity not provided
+    std::printf("%-15s %-22s %11s %9s %9s %9s  %s\n", all ? row.quantity.c_str() : "",
+                validation::describeGradeRegime(row.regime).c_str(),
+                (std::to_string(row.provided) + " / " + std::to_string(row.asked)).c_str(),
+                brief(row.largest_rel_error).c_str(), brief(row.rel_error_at_worst_ratio).c_str(),
+                brief(row.tolerance_rel).c_str(), row.verdict.c_str());
   }
   std::vector<std::string> reference_names{"the analytic engine"};
   for (const Engine& e : validation::listEngines())

@@ -2,7 +2,7 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'; quantities='U Q a_p'" reports/grade_error_vs_lambda.gp
 #
-# Reads  in_dir/grade_error_vs_lambda.csv   quantity,lambda,program_max_rel_error,analytic_max_rel_error
+# Reads  in_dir/grade_error_vs_lambda.csv   (validation/grade.h: GradeLambdaRow), its columns by header name
 # Writes out_dir/grade_error_vs_lambda.svg and out_dir/grade_error_vs_lambda.png
 #
 # One coloured line per provided quantity (the program's largest error against Simbody at that lambda, relative
@@ -18,6 +18,7 @@ file = in_dir . "/" . name . ".csv"
 reset
 set encoding utf8
 set datafile separator ","
+set datafile columnheaders
 floor = 1e-17
 clamp(v) = (v < floor) ? floor : v
 eps = 2.220446049250313e-16
@@ -44,9 +45,9 @@ do for [fmt in "svg png"] {
         }
     }
     set output out_dir . "/" . name . "." . fmt
-    plot for [q in quantities] file skip 1 using 2:(strcol(1) eq q ? clamp(column(3)) : NaN) \
+    plot for [q in quantities] file using "lambda [-]":(strcol("quantity") eq q ? clamp(column("program_max_rel_error [-]")) : NaN) \
              with linespoints lw 2 title q, \
-         file skip 1 using 2:(clamp(column(4))) with points pt 7 ps 0.6 lc rgb "black" title "analytic engine", \
+         file using "lambda [-]":(clamp(column("analytic_max_rel_error [-]"))) with points pt 7 ps 0.6 lc rgb "black" title "analytic engine", \
          tolerance(x) with lines dt 2 lc rgb "gray40" title "tolerance"
     unset output
 }

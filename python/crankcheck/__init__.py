@@ -95,23 +95,17 @@ Scene.gas = _scene_table("gas", "bore, cycle_angles, pressures [Pa], cycle [rad]
 Scene.flywheel = _scene_table("flywheel", "inertia [kg m^2]; None without [flywheel]")
 
 
-def _number(text):
-    """A field of a grade table: a float where it is a number, None where empty, the text otherwise."""
-    if text == "":
-        return None
-    try:
-        return float(text)
-    except ValueError:
-        return text
-
-
 # The grade tables' columns that count (cases, values, a cylinder's index): ints, not floats.
 _INTEGER_COLUMNS = {"asked", "provided", "cylinder"}
 
 
 def _rows(table):
-    return [{c: (int(v) if c in _INTEGER_COLUMNS and v != "" else _number(v)) for c, v in zip(table["columns"], row)}
-            for row in table["rows"]]
+    """A grade table's rows as dicts: numbers as floats (ints for the counts), text as str, None where empty."""
+    def value(column, cell):
+        if cell is None or cell == "":
+            return None
+        return int(cell) if column in _INTEGER_COLUMNS else cell
+    return [{c: value(c, v) for c, v in zip(table["columns"], row)} for row in table["rows"]]
 
 
 # The summary's regimes as `crankcheck grade` prints them (validation/grade.h: getGradeRegimes).

@@ -23,6 +23,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "batch_evaluation.h"
@@ -474,13 +475,24 @@ py::object nextRequest(GradeRun& run, double wait_seconds) {
   return py::make_tuple(request->id, std::make_shared<Scene>(Scene{c.mechanism, c.id}), phi, c.id, c.family);
 }
 
-// The tables as {name: {"columns": [...], "rows": [[...], ...]}}.
+// The tables as {name: {"columns": [...], "rows": [[...], ...]}}: each cell a float, a str, or None where empty.
 py::dict tablesToPython(const validation::TableSet& tables) {
   py::dict d;
   for (const auto& [name, table] : tables) {
+    py::list rows;
+    for (size_t r = 0; r < table.size(); ++r) {
+      py::list row;
+      for (size_t c = 0; c < table.columns().size(); ++c) {
+        const validation::Cell cell = table.cell(r, c);
+        if (const double* x = std::get_if<double>(&cell)) row.append(py::float_(*x));
+        else if (const std::string* text = std::get_if<std::string>(&cell)) row.append(py::str(*text));
+        else row.append(py::none());
+      }
+      rows.append(row);
+    }
     py::dict t;
     t["columns"] = table.names();
-    t["rows"] = table.rows;
+    t["rows"] = rows;
     d[py::str(name)] = t;
   }
   return d;

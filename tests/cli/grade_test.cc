@@ -4,12 +4,15 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "run_cli.h"
+#include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/report.h"
 
 #if !defined(CRANKCHECK_FAKE_PROGRAM) || !defined(CRANKCHECK_GRADE_EXAMPLES_DIR) || !defined(CRANKCHECK_ANALYTIC_PROGRAM)
@@ -29,20 +32,32 @@ std::string readFile(const fs::path& path) {
   return text.str();
 }
 
-// The verdict column of the summary for `quantity`, "" when absent.
-std::string verdictOf(const validation::TableSet& tables, const std::string& quantity) {
-  for (const auto& row : tables.at("grade_summary").rows)
-    if (row[0] == quantity) return row.back();
-  return "";
+using validation::GradeFailureRow;
+using validation::GradeLambdaRow;
+using validation::GradeSummaryRow;
+
+// The summary's rows, as the report's data/grade_summary.csv holds them (read back through the schema).
+const std::vector<GradeSummaryRow>& summaryOf(const validation::TableSet& tables) {
+  return validation::getRows(tables, validation::getGradeSummarySchema());
 }
 
-// A cell of the summary's row for (quantity, regime); "" when there is no such row.
-std::string summaryCell(const validation::TableSet& tables, const std::string& quantity, const std::string& regime,
-                        const std::string& column) {
-  const validation::Table& t = tables.at("grade_summary");
-  for (const auto& row : t.rows)
-    if (row[0] == quantity && row[validation::columnOf(t, "regime")] == regime) return row[validation::columnOf(t, column)];
-  return "";
+// The summary's row for (quantity, regime); a row with an empty quantity and verdict when there is none.
+GradeSummaryRow summaryRow(const validation::TableSet& tables, const std::string& quantity, const std::string& regime = "all") {
+  for (const GradeSummaryRow& row : summaryOf(tables))
+    if (row.quantity == quantity && row.regime == regime) return row;
+  ADD_FAILURE() << "no summary row for " << quantity << " in regime " << regime;
+  return {};
+}
+
+// The verdict of `quantity` over all cases, "" when absent.
+std::string verdictOf(const validation::TableSet& tables, const std::string& quantity) {
+  return summaryRow(tables, quantity).verdict;
+}
+
+// A number of the summary that must be there (a provided quantity's); NaN, and a failure, when it is empty.
+double valueOf(const std::optional<double>& x) {
+  EXPECT_TRUE(x.has_value());
+  return x.value_or(std::nan(""));
 }
 
 // True when `text` holds "nan" or "inf" as a word (a number that is none).
@@ -79,31 +94,35 @@ TEST(GradeTest, NortonsTwoTermFailsOnPistonMotionAndTheReportShowsWhere) {
   // Where: the two-term form drops the lambda^3 terms, so its a_p error is largest at the largest lambda of the
   // campaign (0.9 in --quick), and grows with lambda.
   double error_low = 0.0, error_high = 0.0;
-  for (const auto& row : tables.at("grade_error_vs_lambda").rows)
-    if (row[0] == "a_p") {
-      const double lambda = std::stod(row[1]), error = std::stod(row[2]);
-      if (lambda < 0.35) error_low = std::max(error_low, error);
-      if (lambda > 0.85) error_high = std::max(error_high, error);
+  const auto& by_lambda = validation::getRows(tables, validation::getGradeErrorVsLambdaSchema());
+  for (const GradeLambdaRow& row : by_lambda)
+    if (row.quantity == "a_p") {
+      if (row.lambda < 0.35) error_low = std::max(error_low, row.program_max_rel_error);
+      if (row.lambda > 0.85) error_high = std::max(error_high, row.program_max_rel_error);
     }
   EXPECT_GT(error_high, 10.0 * error_low);
-  EXPECT_NE(summaryCell(tables, "a_p", "all", "where_case").find("lambda0p9"), std::string::npos);
-  EXPECT_NE(summaryCell(tables, "a_p", "all", "largest_where_case").find("lambda0p9"), std::string::npos);
+  const GradeSummaryRow a_p = summaryRow(tables, "a_p");
+  EXPECT_NE(a_p.where_case.find("lambda0p9"), std::string::npos);
+  EXPECT_NE(a_p.largest_where_case.find("lambda0p9"), std::string::npos);
   // The summary says what it shows: the largest error (the figure's largest point), and the error where error /
   // tolerance is worst, which is no larger; split by regime, since at rest the two-term form is exact in v_p and a_p
   // (both are multiples of omega) while at speed it is off by 1e-3 of the scale and more.
   double largest_in_figure = 0.0;
-  for (const auto& row : tables.at("grade_error_vs_lambda").rows)
-    if (row[0] == "a_p") largest_in_figure = std::max(largest_in_figure, std::stod(row[2]));
-  const double largest = std::stod(summaryCell(tables, "a_p", "all", "largest_rel_error_simbody"));
+  for (const GradeLambdaRow& row : by_lambda)
+    if (row.quantity == "a_p") largest_in_figure = std::max(largest_in_figure, row.program_max_rel_error);
+  // The figure's error is against the first judge (listGradeJudges): the summary's first column of errors by judge.
+  ASSERT_FALSE(a_p.largest_rel_error_by.empty());
+  const double largest = valueOf(a_p.largest_rel_error_by.front());
   EXPECT_EQ(largest, largest_in_figure);
-  EXPECT_GE(std::stod(summaryCell(tables, "a_p", "all", "largest_rel_error")), largest);
-  EXPECT_LE(std::stod(summaryCell(tables, "a_p", "all", "rel_error_at_worst_ratio")),
-            std::stod(summaryCell(tables, "a_p", "all", "largest_rel_error")));
-  EXPECT_GT(std::stod(summaryCell(tables, "a_p", "moving_lambda_gt_0.4", "largest_rel_error")), 1e-3);
-  EXPECT_EQ(summaryCell(tables, "a_p", "moving_lambda_gt_0.4", "verdict"), "FAIL");
+  EXPECT_GE(valueOf(a_p.largest_rel_error), largest);
+  EXPECT_LE(valueOf(a_p.rel_error_at_worst_ratio), valueOf(a_p.largest_rel_error));
+  const GradeSummaryRow a_p_moving = summaryRow(tables, "a_p", "moving_lambda_gt_0.4");
+  EXPECT_GT(valueOf(a_p_moving.largest_rel_error), 1e-3);
+  EXPECT_EQ(a_p_moving.verdict, "FAIL");
   for (const char* regime : {"at_rest_lambda_le_0.4", "at_rest_lambda_gt_0.4"}) {
-    EXPECT_LT(std::stod(summaryCell(tables, "a_p", regime, "largest_rel_error")), 1e-12) << regime;
-    EXPECT_EQ(summaryCell(tables, "a_p", regime, "verdict"), "pass") << regime;
+    const GradeSummaryRow at_rest = summaryRow(tables, "a_p", regime);
+    EXPECT_LT(valueOf(at_rest.largest_rel_error), 1e-12) << regime;
+    EXPECT_EQ(at_rest.verdict, "pass") << regime;
   }
   for (const char* words : {"largest error / scale", "error at worst ratio", "at rest, lambda <= 0.4", "moving, lambda > 0.4"}) {
     EXPECT_NE(r.out.find(words), std::string::npos) << words << " in the terminal summary:\n" << r.out;
@@ -114,9 +133,11 @@ TEST(GradeTest, NortonsTwoTermFailsOnPistonMotionAndTheReportShowsWhere) {
   // the program that graded by its path (issue 47: "crankcheck" is not on PATH in a build tree).
   const std::string index = readFile(out / "index.md");
   EXPECT_NE(index.find("`" + fs::canonical(CRANKCHECK_BINARY).string() + " eval cases/"), std::string::npos) << index;
-  const auto& failure = tables.at("grade_failures").rows.front();
-  const auto eval = runCrankcheck({"eval", (out / "cases" / (failure[0] + ".toml")).string(), "--phi-deg", failure[5],
-                                   "--engine", "both", "--format", "json"});
+  const auto& failures = validation::getRows(tables, validation::getGradeFailuresSchema());
+  ASSERT_FALSE(failures.empty());
+  const GradeFailureRow& failure = failures.front();
+  const auto eval = runCrankcheck({"eval", (out / "cases" / (failure.case_id + ".toml")).string(), "--phi-deg",
+                                   validation::formatNumber(failure.phi_deg), "--engine", "both", "--format", "json"});
   EXPECT_EQ(eval.exit_status, 0) << eval.err;
   EXPECT_TRUE(fs::exists(out / "grade_error_vs_lambda.png"));
   EXPECT_NE(readFile(out / "index.html").find("<html lang=\"en\">"), std::string::npos);
@@ -128,13 +149,12 @@ TEST(GradeTest, TheAnalyticLibraryPassesWithEveryQuantityProvided) {
   const auto r = runCrankcheck({"grade", "--quick", "--batch", "--jobs", "2", "--out", out.string(), "--", CRANKCHECK_ANALYTIC_PROGRAM});
   ASSERT_EQ(r.exit_status, 0) << r.out << r.err;
   const validation::TableSet tables = validation::readTables(out);
-  const validation::Table& summary = tables.at("grade_summary");
-  for (const auto& row : summary.rows) {
-    EXPECT_EQ(row.back(), "pass") << row[0];
-    EXPECT_EQ(row[validation::columnOf(summary, "asked")], row[validation::columnOf(summary, "provided")])
-        << row[0] << ": every value asked was provided";
+  ASSERT_FALSE(summaryOf(tables).empty());
+  for (const GradeSummaryRow& row : summaryOf(tables)) {
+    EXPECT_EQ(row.verdict, "pass") << row.quantity;
+    EXPECT_EQ(row.asked, row.provided) << row.quantity << ": every value asked was provided";
   }
-  EXPECT_TRUE(tables.at("grade_failures").rows.empty());
+  EXPECT_TRUE(validation::getRows(tables, validation::getGradeFailuresSchema()).empty());
 }
 
 struct Misbehaviour {
@@ -205,10 +225,11 @@ TEST(GradeTest, NothingProvidedIsNeitherRightNorWrong) {
   const auto r = runCrankcheck({"grade", "--quick", "--out", out.string(), "--", CRANKCHECK_FAKE_PROGRAM, "nothing-provided"});
   EXPECT_EQ(r.exit_status, 1) << "nothing provided is not a pass: " << r.out << r.err;
   const validation::TableSet tables = validation::readTables(out);
-  const validation::Table& summary = tables.at("grade_summary");
-  for (const auto& row : summary.rows) {
-    EXPECT_EQ(row.back(), "not provided") << row[0];
-    EXPECT_EQ(row[validation::columnOf(summary, "provided")], "0") << row[0];
+  ASSERT_FALSE(summaryOf(tables).empty());
+  for (const GradeSummaryRow& row : summaryOf(tables)) {
+    EXPECT_EQ(row.verdict, "not provided") << row.quantity;
+    EXPECT_EQ(row.provided, 0) << row.quantity;
+    EXPECT_FALSE(row.largest_rel_error.has_value()) << row.quantity << ": no error without a value";
   }
 }
 
@@ -223,7 +244,7 @@ TEST(GradeTest, RoundingOfAVelocityAtRestPassesAgainstAPositiveScale) {
   const validation::TableSet tables = validation::readTables(out);
   for (const char* q : {"v_p", "rod_omega"}) {
     EXPECT_EQ(verdictOf(tables, q), "pass") << q;
-    const double tolerance = std::stod(summaryCell(tables, q, "all", "tolerance_rel"));
+    const double tolerance = valueOf(summaryRow(tables, q).tolerance_rel);
     EXPECT_GT(tolerance, 0.0) << q;
     EXPECT_LT(tolerance, 1e-11) << q << ": 64 eps x conditioning";
   }

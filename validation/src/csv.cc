@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/parts.h"
 
 namespace crankcheck::validation {
@@ -143,6 +144,7 @@ Table parseTable(const std::string& name, std::vector<std::vector<std::string>> 
 
 const TableSchema* findTableSchema(const std::string& name) {
   if (name == kNotesTable.name()) return &kNotesTable;
+  if (const TableSchema* schema = findGradeTableSchema(name)) return schema;
   for (const Part* part : listParts())
     for (const TableSchema* schema : part->schemas())
       if (schema->name() == name) return schema;

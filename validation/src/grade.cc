@@ -267,8 +267,6 @@ std::string regimeOf(const Mechanism& m) {
 // below 1) is shown as the largest double, never as inf.
 double finiteRatio(double x) { return std::min(x, std::numeric_limits<double>::max()); }
 
-// What a program is judged against, in the order of the tables' columns: the first reference engine (its error is the
-// program's `rel_error`), the closed forms, then the other reference engines (engines.h).
 }  // namespace
 
 std::vector<const Engine*> listGradeJudges() {
@@ -276,6 +274,115 @@ std::vector<const Engine*> listGradeJudges() {
   std::vector<const Engine*> judges = {references.front(), &getClosedFormEngine()};
   judges.insert(judges.end(), references.begin() + 1, references.end());
   return judges;
+}
+
+namespace {
+
+// A number's column backed by element `index` of a vector of optional numbers (a column per judge).
+template <class Row>
+Field<Row> judgeField(std::string name, std::string unit, std::vector<std::optional<double>> Row::*member, size_t index) {
+  return {Column(std::move(name), std::move(unit)),
+          [member, index](const Row& r) {
+            const auto& v = r.*member;
+            return index < v.size() && v[index] ? Cell(*v[index]) : Cell();
+          },
+          [member, index](Row& r, Cell c) {
+            auto& v = r.*member;
+            if (v.size() <= index) v.resize(index + 1);
+            if (const double* x = std::get_if<double>(&c)) v[index] = *x;
+            else v[index] = std::nullopt;
+          }};
+}
+
+// A number's column backed by element `index` of a vector of numbers (a column per judge).
+template <class Row>
+Field<Row> judgeField(std::string name, std::string unit, std::vector<double> Row::*member, size_t index) {
+  return {Column(std::move(name), std::move(unit)),
+          [member, index](const Row& r) { return Cell((r.*member).at(index)); },
+          [member, index](Row& r, Cell c) {
+            auto& v = r.*member;
+            if (v.size() <= index) v.resize(index + 1);
+            v[index] = std::get<double>(c);
+          }};
+}
+
+// An index's column (unit "-") that may be empty, backed by a std::optional<int>.
+template <class Row>
+Field<Row> optionalCountField(std::string name, std::optional<int> Row::*member) {
+  return {Column(std::move(name), "-"),
+          [member](const Row& r) { return r.*member ? Cell(static_cast<double>(*(r.*member))) : Cell(); },
+          [member](Row& r, Cell c) {
+            if (const double* x = std::get_if<double>(&c)) r.*member = static_cast<int>(*x);
+            else r.*member = std::nullopt;
+          }};
+}
+
+}  // namespace
+
+// The tables' names (their CSV stems), each spelled once.
+constexpr const char* kSummaryName = "grade_summary";
+constexpr const char* kErrorVsLambdaName = "grade_error_vs_lambda";
+constexpr const char* kFailuresName = "grade_failures";
+
+const Schema<GradeSummaryRow>& getGradeSummarySchema() {
+  static const Schema<GradeSummaryRow> schema = [] {
+    using R = GradeSummaryRow;
+    std::vector<Field<R>> fields = {textField("quantity", &R::quantity), textField("regime", &R::regime),
+                                    countField("asked", &R::asked), countField("provided", &R::provided),
+                                    optionalField("largest_rel_error", "-", &R::largest_rel_error)};
+    const std::vector<const Engine*> judges = listGradeJudges();
+    for (size_t j = 0; j < judges.size(); ++j)
+      fields.push_back(judgeField("largest_rel_error_" + judges[j]->name, "-", &R::largest_rel_error_by, j));
+    for (Field<R>& f : std::vector<Field<R>>{
+             textField("largest_where_case", &R::largest_where_case),
+             optionalField("largest_where_phi_deg", "deg", &R::largest_where_phi_deg),
+             optionalField("largest_where_speed_rpm", "rpm", &R::largest_where_speed_rpm),
+             optionalField("rel_error_at_worst_ratio", "-", &R::rel_error_at_worst_ratio),
+             optionalField("worst_ratio", "-", &R::worst_ratio), optionalField("tolerance_rel", "-", &R::tolerance_rel),
+             textField("where_case", &R::where_case), optionalField("where_phi_deg", "deg", &R::where_phi_deg),
+             optionalField("where_speed_rpm", "rpm", &R::where_speed_rpm), textField("verdict", &R::verdict)})
+      fields.push_back(std::move(f));
+    return Schema<R>(kSummaryName, std::move(fields));
+  }();
+  return schema;
+}
+
+const Schema<GradeLambdaRow>& getGradeErrorVsLambdaSchema() {
+  using R = GradeLambdaRow;
+  static const Schema<R> schema(kErrorVsLambdaName,
+                                {textField("quantity", &R::quantity), numberField("lambda", "-", &R::lambda),
+                                 numberField("program_max_rel_error", "-", &R::program_max_rel_error),
+                                 numberField("analytic_max_rel_error", "-", &R::analytic_max_rel_error)});
+  return schema;
+}
+
+const Schema<GradeFailureRow>& getGradeFailuresSchema() {
+  static const Schema<GradeFailureRow> schema = [] {
+    using R = GradeFailureRow;
+    const std::vector<const Engine*> judges = listGradeJudges();
+    // The program's value, the first two judges' values, the error against the first and its tolerance, the other
+    // judges' values.
+    std::vector<Field<R>> fields = {
+        textField("case", &R::case_id), textField("family", &R::family), numberField("lambda", "-", &R::lambda),
+        textField("quantity", &R::quantity), optionalCountField("cylinder", &R::cylinder),
+        numberField("phi_deg", "deg", &R::phi_deg), numberField("speed_rpm", "rpm", &R::speed_rpm),
+        numberField("program_value", "SI", &R::program_value),
+        judgeField(judges[0]->name + "_value", "SI", &R::judge_values, 0),
+        judgeField(judges[1]->name + "_value", "SI", &R::judge_values, 1),
+        numberField("rel_error", "-", &R::rel_error), numberField("tolerance_rel", "-", &R::tolerance_rel)};
+    for (size_t j = 2; j < judges.size(); ++j)
+      fields.push_back(judgeField(judges[j]->name + "_value", "SI", &R::judge_values, j));
+    return Schema<R>(kFailuresName, std::move(fields));
+  }();
+  return schema;
+}
+
+const TableSchema* findGradeTableSchema(const std::string& name) {
+  // Compared by name first: the schemas follow the engine registry, which a name of another table must not fix.
+  if (name == kSummaryName) return &getGradeSummarySchema();
+  if (name == kErrorVsLambdaName) return &getGradeErrorVsLambdaSchema();
+  if (name == kFailuresName) return &getGradeFailuresSchema();
+  return nullptr;
 }
 
 namespace {
@@ -314,7 +421,7 @@ struct LambdaError {
 };
 
 struct Failure {
-  std::vector<std::string> row;
+  GradeFailureRow row;
   double ratio = 0.0;
 };
 
@@ -386,10 +493,9 @@ void gradeCase(const GradeCase& c, const std::vector<Evaluation>& program, Grade
         Failure& f = state.failures[key];
         if (ratio > f.ratio) {
           f.ratio = ratio;
-          f.row = {c.id, c.family, formatNumber(lambda), cs.quantity, cs.cylinder < 0 ? std::string() : std::to_string(cs.cylinder),
-                   formatNumber(c.phi_deg[i]), formatNumber(m.speed_rpm), formatNumber(cs.a), formatNumber(cs.b),
-                   formatNumber(vs[1][n].b), formatNumber(rel_s), formatNumber(cs.tolerance() / cs.scale)};
-          for (size_t j = 2; j < vs.size(); ++j) f.row.push_back(formatNumber(vs[j][n].b));
+          f.row = {c.id, c.family, lambda, cs.quantity, cs.cylinder < 0 ? std::nullopt : std::optional<int>(cs.cylinder),
+                   c.phi_deg[i], m.speed_rpm, cs.a, {}, rel_s, cs.tolerance() / cs.scale};
+          for (const std::vector<Comparison>& v : vs) f.row.judge_values.push_back(v[n].b);
         }
       }
     }
@@ -525,59 +631,53 @@ TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& progr
 
   GradeState all;
   for (const GradeState& s : states) mergeInto(all, s);
-  TableSet tables;
-  Table& summary = tables["grade_summary"];
-  const std::vector<const Engine*> judges = listGradeJudges();
-  std::vector<Column> summary_columns = {{"quantity", kText}, {"regime", kText}, {"asked", "-"}, {"provided", "-"},
-                                         {"largest_rel_error", "-"}};
-  for (const Engine* judge : judges) summary_columns.push_back({"largest_rel_error_" + judge->name, "-"});
-  summary_columns.insert(summary_columns.end(),
-                         {{"largest_where_case", kText}, {"largest_where_phi_deg", "deg"}, {"largest_where_speed_rpm", "rpm"},
-                          {"rel_error_at_worst_ratio", "-"}, {"worst_ratio", "-"}, {"tolerance_rel", "-"},
-                          {"where_case", kText}, {"where_phi_deg", "deg"}, {"where_speed_rpm", "rpm"}, {"verdict", kText}});
-  summary = Table("grade_summary", summary_columns);
+  const size_t judges = listGradeJudges().size();
+  std::vector<GradeSummaryRow> summary;
   for (const Quantity& quantity : getQuantityCatalogue())
     for (const GradeRegime& regime : getGradeRegimes()) {
       const auto it = all.quantities.find({quantity.name, regime.id});
       if (it == all.quantities.end() || it->second.asked == 0) continue;
       const QuantityGrade& q = it->second;
       const bool any = q.provided > 0;
-      auto number = [any](double x) { return any ? formatNumber(x) : std::string(); };
-      std::vector<std::string> row = {quantity.name, regime.id, std::to_string(q.asked), std::to_string(q.provided), number(q.largest)};
-      for (size_t j = 0; j < judges.size(); ++j) row.push_back(number(j < q.largest_by.size() ? q.largest_by[j] : 0.0));
-      row.insert(row.end(), {any ? q.largest_case : "", number(q.largest_phi_deg), number(q.largest_rpm),
-                             number(q.worst.rel_error), number(q.worst.ratio_to_tolerance), number(q.worst.tolerance_rel),
-                             any ? q.where_case : "", number(q.worst.phi_deg), number(q.worst.rpm),
-                             !any ? "not provided" : q.worst.pass ? "pass" : "FAIL"});
-      summary.rows.push_back(row);
+      auto number = [any](double x) { return any ? std::optional<double>(x) : std::nullopt; };
+      GradeSummaryRow row;
+      row.quantity = quantity.name;
+      row.regime = regime.id;
+      row.asked = static_cast<int>(q.asked);
+      row.provided = static_cast<int>(q.provided);
+      row.largest_rel_error = number(q.largest);
+      for (size_t j = 0; j < judges; ++j) row.largest_rel_error_by.push_back(number(j < q.largest_by.size() ? q.largest_by[j] : 0.0));
+      row.largest_where_case = any ? q.largest_case : "";
+      row.largest_where_phi_deg = number(q.largest_phi_deg);
+      row.largest_where_speed_rpm = number(q.largest_rpm);
+      row.rel_error_at_worst_ratio = number(q.worst.rel_error);
+      row.worst_ratio = number(q.worst.ratio_to_tolerance);
+      row.tolerance_rel = number(q.worst.tolerance_rel);
+      row.where_case = any ? q.where_case : "";
+      row.where_phi_deg = number(q.worst.phi_deg);
+      row.where_speed_rpm = number(q.worst.rpm);
+      row.verdict = !any ? "not provided" : q.worst.pass ? "pass" : "FAIL";
+      summary.push_back(std::move(row));
     }
-  Table& by_lambda = tables["grade_error_vs_lambda"];
-  by_lambda = Table("grade_error_vs_lambda", {{"quantity", kText}, {"lambda", "-"}, {"program_max_rel_error", "-"},
-                                              {"analytic_max_rel_error", "-"}});
+  std::vector<GradeLambdaRow> by_lambda;
   for (const auto& [key, e] : all.by_lambda)
-    if (e.provided)
-      by_lambda.rows.push_back({key.first, formatNumber(key.second), formatNumber(e.program), formatNumber(e.analytic)});
-  Table& failures = tables["grade_failures"];
-  // program_value, the first two judges' values, the error against the first and its tolerance, the other judges'
-  std::vector<Column> failure_columns = {{"case", kText}, {"family", kText}, {"lambda", "-"}, {"quantity", kText},
-                                         {"cylinder", "-"}, {"phi_deg", "deg"}, {"speed_rpm", "rpm"}, {"program_value", "SI"},
-                                         {judges[0]->name + "_value", "SI"}, {judges[1]->name + "_value", "SI"},
-                                         {"rel_error", "-"}, {"tolerance_rel", "-"}};
-  for (size_t j = 2; j < judges.size(); ++j) failure_columns.push_back({judges[j]->name + "_value", "SI"});
-  failures = Table("grade_failures", failure_columns);
-  for (const auto& [key, f] : all.failures) failures.rows.push_back(f.row);
+    if (e.provided) by_lambda.push_back({key.first, key.second, e.program, e.analytic});
+  std::vector<GradeFailureRow> failures;
+  for (const auto& [key, f] : all.failures) failures.push_back(f.row);
+  TableSet tables;
+  tables.emplace(getGradeSummarySchema().name(), getGradeSummarySchema().table(std::move(summary)));
+  tables.emplace(getGradeErrorVsLambdaSchema().name(), getGradeErrorVsLambdaSchema().table(std::move(by_lambda)));
+  tables.emplace(getGradeFailuresSchema().name(), getGradeFailuresSchema().table(std::move(failures)));
   return tables;
 }
 
 int findGradeExitStatus(const TableSet& tables) {
-  const auto it = tables.find("grade_summary");
-  if (it == tables.end()) return 1;
+  if (!tables.count(getGradeSummarySchema().name())) return 1;
   bool any = false;
-  const size_t regime = columnOf(it->second, "regime");
-  for (const auto& row : it->second.rows) {
-    if (row[regime] != "all") continue;
-    if (row.back() == "FAIL") return 1;
-    any = any || row.back() == "pass";
+  for (const GradeSummaryRow& row : getRows(tables, getGradeSummarySchema())) {
+    if (row.regime != "all") continue;
+    if (row.verdict == "FAIL") return 1;
+    any = any || row.verdict == "pass";
   }
   return any ? 0 : 1;
 }

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <ctime>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "crankcheck/validation/engines.h"
@@ -11,6 +12,7 @@
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/report.h"
 #include "crankcheck/validation/report_document.h"
+#include "crankcheck/validation/report_format.h"
 
 namespace crankcheck::validation {
 
@@ -28,13 +30,8 @@ std::string quoteShellWord(const std::string& word) {
   return out + "'";
 }
 
-
-std::string shortNumber(const std::string& text) {
-  if (text.empty()) return text;
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.2g", std::strtod(text.c_str(), nullptr));
-  return buffer;
-}
+// An optional number as the report's tables write it (shortNumber); empty when there is none.
+std::string shortOrEmpty(const std::optional<double>& x) { return x ? shortNumber(*x) : std::string(); }
 
 // An argument as a POSIX shell would need it quoted to be read back as the same word (for the commands the report
 // prints for the user to copy; crankcheck itself never runs them through a shell).
@@ -59,8 +56,9 @@ std::string today() {
 void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cases, const GradeReportInfo& info,
                        const fs::path& dir) {
   writeTables(tables, dir);
-  const Table& summary = tables.at("grade_summary");
-  const Table& failures = tables.at("grade_failures");
+  const std::vector<GradeSummaryRow>& summary = getRows(tables, getGradeSummarySchema());
+  const std::vector<GradeFailureRow>& failures = getRows(tables, getGradeFailuresSchema());
+  const std::vector<GradeLambdaRow>& by_lambda = getRows(tables, getGradeErrorVsLambdaSchema());
 
   std::string command;
   for (const std::string& word : info.program) command += (command.empty() ? "" : " ") + shellWord(word);
@@ -82,29 +80,23 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
       "program left out (or sent as null) is *not provided*: never counted as wrong, never as right.");
 
   doc.addHeading(2, "Summary per quantity");
-  const size_t regime = columnOf(summary, "regime"), verdict = columnOf(summary, "verdict");
-  auto cell = [&summary](const std::vector<std::string>& row, const char* column) { return row[columnOf(summary, column)]; };
-  auto where = [&](const std::vector<std::string>& row, const char* case_column, const char* phi_column) {
-    return cell(row, case_column).empty() ? std::string() : cell(row, case_column) + " at " + cell(row, phi_column) + " deg";
+  auto where = [](const std::string& case_id, const std::optional<double>& phi_deg) {
+    return case_id.empty() || !phi_deg ? std::string() : case_id + " at " + formatNumber(*phi_deg) + " deg";
   };
   std::vector<std::vector<std::string>> rows;
   int passed = 0, failed = 0, absent = 0;
-  for (const auto& row : summary.rows) {
-    const std::string& v = row[verdict];
-    if (row[regime] == "all") (v == "pass" ? passed : v == "FAIL" ? failed : absent)++;
-    if (row[regime] != "all" && cell(row, "provided") == "0") continue;  // a regime of a quantity not provided
-    rows.push_back({row[regime] == "all" ? row[0] : "", describeGradeRegime(row[regime]),
-                    cell(row, "provided") + " / " + cell(row, "asked"), shortNumber(cell(row, "largest_rel_error")),
-                    [&] {
-                      std::string by;
-                      for (const Engine* judge : judges)
-                        by += (by.empty() ? "" : " / ") + shortNumber(cell(row, ("largest_rel_error_" + judge->name).c_str()));
-                      return by;
-                    }(),
-                    where(row, "largest_where_case", "largest_where_phi_deg"), shortNumber(cell(row, "rel_error_at_worst_ratio")),
-                    shortNumber(cell(row, "tolerance_rel")), where(row, "where_case", "where_phi_deg"),
-                    v == "FAIL" ? "**FAIL**" : v});
-    if (cell(row, "provided") == "0") rows.back()[4] = "";
+  for (const GradeSummaryRow& row : summary) {
+    const std::string& v = row.verdict;
+    const bool all = row.regime == "all";
+    if (all) (v == "pass" ? passed : v == "FAIL" ? failed : absent)++;
+    if (!all && row.provided == 0) continue;  // a regime of a quantity not provided
+    std::string by;  // against each judge
+    for (const std::optional<double>& x : row.largest_rel_error_by) by += (by.empty() ? "" : " / ") + shortOrEmpty(x);
+    rows.push_back({all ? row.quantity : "", describeGradeRegime(row.regime),
+                    std::to_string(row.provided) + " / " + std::to_string(row.asked), shortOrEmpty(row.largest_rel_error),
+                    row.provided == 0 ? "" : by, where(row.largest_where_case, row.largest_where_phi_deg),
+                    shortOrEmpty(row.rel_error_at_worst_ratio), shortOrEmpty(row.tolerance_rel),
+                    where(row.where_case, row.where_phi_deg), v == "FAIL" ? "**FAIL**" : v});
   }
   doc.addParagraph(std::to_string(passed) + " quantities pass, " + std::to_string(failed) + " fail, " +
                    std::to_string(absent) + " not provided. Errors are relative to the quantity's scale. *Largest error* "
@@ -118,10 +110,10 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
                 "where the worst ratio (case, crank angle)", "verdict"},
                rows);
 
-  if (!tables.at("grade_error_vs_lambda").rows.empty()) {
+  if (!by_lambda.empty()) {
     doc.addHeading(2, "Error against lambda");
     std::set<std::string> provided;
-    for (const auto& row : tables.at("grade_error_vs_lambda").rows) provided.insert(row[0]);
+    for (const GradeLambdaRow& row : by_lambda) provided.insert(row.quantity);
     std::string list;
     for (const std::string& q : provided) list += (list.empty() ? "" : " ") + q;
     drawFigure("grade_error_vs_lambda", dir, "quantities='" + list + "'");
@@ -133,7 +125,7 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
   }
 
   doc.addHeading(2, "Failing cases");
-  if (failures.rows.empty()) {
+  if (failures.empty()) {
     doc.addParagraph("None.");
   } else {
     // Every failing case's scene file, so that each line below reproduces it.
@@ -141,24 +133,26 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
     std::map<std::string, const GradeCase*> by_id;
     for (const GradeCase& c : cases) by_id[c.id] = &c;
     std::set<std::string> written;
-    std::vector<std::vector<std::string>> worst = failures.rows;
-    const size_t rel = columnOf(failures, "rel_error");
-    std::stable_sort(worst.begin(), worst.end(), [rel](const auto& a, const auto& b) {
-      return std::strtod(a[rel].c_str(), nullptr) > std::strtod(b[rel].c_str(), nullptr);
+    std::vector<const GradeFailureRow*> worst;
+    for (const GradeFailureRow& row : failures) worst.push_back(&row);
+    std::stable_sort(worst.begin(), worst.end(), [](const GradeFailureRow* a, const GradeFailureRow* b) {
+      return a->rel_error > b->rel_error;
     });
-    for (const auto& row : failures.rows)
-      if (written.insert(row[0]).second && by_id.count(row[0]))
-        writeNewFile(dir / "cases" / (row[0] + ".toml"), by_id[row[0]]->scene_toml);
+    for (const GradeFailureRow& row : failures)
+      if (written.insert(row.case_id).second && by_id.count(row.case_id))
+        writeNewFile(dir / "cases" / (row.case_id + ".toml"), by_id[row.case_id]->scene_toml);
     const size_t shown = std::min<size_t>(worst.size(), 40);
-    doc.addParagraph(std::to_string(failures.rows.size()) + " (case, quantity, cylinder) failed; the " + std::to_string(shown) +
+    doc.addParagraph(std::to_string(failures.size()) + " (case, quantity, cylinder) failed; the " + std::to_string(shown) +
                      " largest errors are below, all in [data/grade_failures.csv](data/grade_failures.csv). Each "
                      "command, run in this folder, shows every engine's values at that case and angle.");
     std::vector<std::vector<std::string>> table;
     for (size_t i = 0; i < shown; ++i) {
-      const auto& r = worst[i];
-      table.push_back({r[0], r[3] + (r[4].empty() ? "" : " [" + r[4] + "]"), r[5], r[7], r[8], shortNumber(r[10]),
-                       "`" + quoteShellWord(info.crankcheck_program) + " eval cases/" + r[0] + ".toml --phi-deg " + r[5] +
-                           " --engine all`"});
+      const GradeFailureRow& r = *worst[i];
+      const std::string phi = formatNumber(r.phi_deg);
+      table.push_back({r.case_id, r.quantity + (r.cylinder ? " [" + std::to_string(*r.cylinder) + "]" : ""), phi,
+                       formatNumber(r.program_value), formatNumber(r.judge_values.at(0)), shortNumber(r.rel_error),
+                       "`" + quoteShellWord(info.crankcheck_program) + " eval cases/" + r.case_id + ".toml --phi-deg " +
+                           phi + " --engine all`"});
     }
     doc.addTable({"case", "quantity [cylinder]", "phi [deg]", "program", judges[0]->name, "error [scale]", "reproduce"}, table);
   }

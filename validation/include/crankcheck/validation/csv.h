@@ -25,8 +25,8 @@ std::vector<std::vector<std::string>> parseCsv(const std::string& text, const st
 /// than the header, other columns than the schema's, or a number's field that is not a number.
 Table parseTable(const std::string& name, std::vector<std::vector<std::string>> records, const std::string& source);
 
-/// The schema of table `name` (a CSV stem): the cross-check's, the scenes', or a report part's (Part::schemas);
-/// nullptr when none declares it.
+/// The schema of table `name` (a CSV stem): the campaign's notes, a report part's (Part::schemas: the cross-check and
+/// the scenes are the core parts'), or one of `crankcheck grade`'s (grade.h); nullptr when none declares it.
 const TableSchema* findTableSchema(const std::string& name);
 
 }  // namespace crankcheck::validation

@@ -23,14 +23,16 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "crankcheck/scene/engine.h"
-#include <vector>
 
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/table.h"
 
 namespace crankcheck::validation {
 
@@ -81,21 +83,65 @@ const std::vector<GradeRegime>& getGradeRegimes();
 /// The words of a regime id ("all cases" for "all"); the id itself when unknown.
 std::string describeGradeRegime(const std::string& id);
 
+/// One row of grade_summary: what a grade found for one quantity in one regime (getGradeRegimes; "all" first, a regime
+/// without a value asked left out). The numbers are empty when no value was provided. Errors are relative to the
+/// quantity's scale; one beyond double's range is its largest number (1.8e308), never inf.
+struct GradeSummaryRow {
+  std::string quantity;
+  std::string regime;  ///< a GradeRegime's id
+  int asked = 0;       ///< values asked (every defined component at every angle of every case of the regime)
+  int provided = 0;    ///< of them, the values the program provided
+  /// The largest |program - reference| / scale over every provided value and every judge.
+  std::optional<double> largest_rel_error;
+  /// The largest error / scale against each judge, in listGradeJudges()'s order (columns largest_rel_error_NAME).
+  std::vector<std::optional<double>> largest_rel_error_by;
+  std::string largest_where_case;  ///< where the largest error is ("" when none was provided)
+  std::optional<double> largest_where_phi_deg, largest_where_speed_rpm;  ///< [deg], [rpm]
+  /// Where error / tolerance is worst: that error / scale, the ratio, and the tolerance / scale there.
+  std::optional<double> rel_error_at_worst_ratio, worst_ratio, tolerance_rel;
+  std::string where_case;                                 ///< where the worst ratio is ("" when none was provided)
+  std::optional<double> where_phi_deg, where_speed_rpm;  ///< [deg], [rpm]
+  std::string verdict;  ///< "pass", "FAIL" or "not provided"
+};
+/// grade_summary's declaration (its columns follow listGradeJudges(): call it after main() starts).
+const Schema<GradeSummaryRow>& getGradeSummarySchema();
+
+/// One row of grade_error_vs_lambda: a provided quantity's largest errors / scale at one lambda.
+struct GradeLambdaRow {
+  std::string quantity;
+  double lambda = 0.0;                  ///< r / l [-]
+  double program_max_rel_error = 0.0;   ///< the program's, against the first judge
+  double analytic_max_rel_error = 0.0;  ///< the closed forms' own, against the first judge
+};
+/// grade_error_vs_lambda's declaration.
+const Schema<GradeLambdaRow>& getGradeErrorVsLambdaSchema();
+
+/// One row of grade_failures: the worst failing value of one (case, quantity, cylinder).
+struct GradeFailureRow {
+  std::string case_id, family;
+  double lambda = 0.0;                ///< r / l [-]
+  std::string quantity;
+  std::optional<int> cylinder;        ///< none for a quantity of the whole engine
+  double phi_deg = 0.0;               ///< [deg]
+  double speed_rpm = 0.0;             ///< [rpm]
+  double program_value = 0.0;         ///< [SI] the quantity's own unit
+  /// [SI] each judge's value, in listGradeJudges()'s order (columns NAME_value: the first two before rel_error, the
+  /// others after tolerance_rel).
+  std::vector<double> judge_values;
+  double rel_error = 0.0;      ///< |program - first judge| / scale
+  double tolerance_rel = 0.0;  ///< the tolerance / scale
+};
+/// grade_failures' declaration (its columns follow listGradeJudges()).
+const Schema<GradeFailureRow>& getGradeFailuresSchema();
+
+/// The schema of grade's table `name` (a CSV stem: the three above); nullptr for any other name. The CSV reader
+/// (csv.h: findTableSchema) reads a grade report's data/*.csv back into typed rows through it.
+const TableSchema* findGradeTableSchema(const std::string& name);
+
 /// Runs the program on `cases` (several programs at once with jobs > 1; batch: one program per job) and grades
-/// every answer. `progress(done, total)` is called after each case. Tables (reports/README.md):
-///   grade_summary         quantity,regime,asked,provided,largest_rel_error,largest_rel_error_simbody,
-///                         largest_rel_error_analytic,largest_rel_error_mujoco,largest_where_case,
-///                         largest_where_phi_deg,largest_where_speed_rpm,rel_error_at_worst_ratio,worst_ratio,
-///                         tolerance_rel,where_case,where_phi_deg,where_speed_rpm,verdict
-///                         one row per quantity and regime (getGradeRegimes; "all" first, a regime without a value
-///                         asked left out). largest_rel_error: the largest |program - reference| / scale over every
-///                         value and the three references (and against each); rel_error_at_worst_ratio: the error /
-///                         scale where error / tolerance (worst_ratio) is largest, tolerance_rel the tolerance / scale
-///                         there, where_* that value's case. Errors / scale beyond double's range are shown as its
-///                         largest number (1.8e308), never as inf.
-///   grade_error_vs_lambda quantity,lambda,program_max_rel_error,analytic_max_rel_error
-///   grade_failures        case,family,lambda,quantity,cylinder,phi_deg,speed_rpm,program_value,simbody_value,
-///                         analytic_value,rel_error,tolerance_rel,mujoco_value
+/// every answer. `progress(done, total)` is called after each case. Tables (reports/README.md): grade_summary
+/// (GradeSummaryRow), grade_error_vs_lambda (GradeLambdaRow, the rows of the quantities provided) and grade_failures
+/// (GradeFailureRow).
 /// Every provided value is compared with three references: Simbody, the analytic engine and MuJoCo (exact
 /// multipliers); it passes when it agrees with all three by the gate's rule.
 /// @throws EnvironmentError when the program cannot be started, crashes, exits with a non-zero status, times out,
