@@ -2,7 +2,7 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/error_vs_lambda.gp
 #
-# Reads  in_dir/error_vs_lambda.csv   quantity,method,lambda,max_abs_error,max_rel_error
+# Reads  in_dir/error_vs_lambda.csv   its columns by their headers (below: quantity, method, lambda, max_rel_error)
 # Writes out_dir/error_vs_lambda.svg and out_dir/error_vs_lambda.png
 #
 # Left panel: piston kinematics (x_p, v_p, a_p; Norton's two-term form and, if present, the
@@ -31,13 +31,19 @@ stats file using (nlines = nlines + 1, 1) nooutput
 if (nlines == 0) { print "error: " . file . " is missing or empty (not even a header line)"; exit status 1 }
 ndata = nlines - 1
 
+# ---- the columns, by their headers ("name [unit]"): the CSV's first line names them; the datablocks made below have
+#      no header line, so the header mode is on only while the CSV is read -------------------------------------------
+c_quantity = "quantity"; c_method = "method"; c_lambda = "lambda [-]"; c_rel = "max_rel_error [-]"
+set datafile columnheaders
+
 # ---- which (quantity, method) pairs have at least one valid number --------------------------
 # (also the smallest and largest lambda, so the x range can widen past 0.01 .. 0.95 if needed)
 present = "|"; lmin = 0.01; lmax = 0.95
 if (ndata > 0) {
-    stats file skip 1 using (key = strcol(1) . ":" . strcol(2) . "|", \
-        (fin(column(5)) && column(3) > 0 && strstrt(present, "|" . key) == 0 ? present = present . key : 0), \
-        (column(3) > 0 && column(3) < lmin ? lmin = column(3) : 0), (column(3) > lmax ? lmax = column(3) : 0), 0) nooutput
+    stats file using (key = strcol(c_quantity) . ":" . strcol(c_method) . "|", \
+        (fin(column(c_rel)) && column(c_lambda) > 0 && strstrt(present, "|" . key) == 0 ? present = present . key : 0), \
+        (column(c_lambda) > 0 && column(c_lambda) < lmin ? lmin = column(c_lambda) : 0), \
+        (column(c_lambda) > lmax ? lmax = column(c_lambda) : 0), 0) nooutput
 }
 
 has(q, m) = strstrt(present, "|" . q . ":" . m . "|") > 0
@@ -92,12 +98,14 @@ cmd1 = ""; cmd2 = ""
 do for [i = 1:N] {
     if (has(SQ[i], SM[i])) {
         eval sprintf("set table $S%d separator comma", i)
-        plot file skip 1 using 3:(clamp($5)) with table if (strcol(1) eq SQ[i] && strcol(2) eq SM[i] && fin(column(5)) && column(3) > 0)
+        plot file using (column(c_lambda)):(clamp(column(c_rel))) with table \
+            if (strcol(c_quantity) eq SQ[i] && strcol(c_method) eq SM[i] && fin(column(c_rel)) && column(c_lambda) > 0)
         unset table
         c = sprintf("$S%d using 1:2 smooth unique with linespoints ls %d title \"%s\", ", i, i, ST[i])
         if (SP[i] == 1) { cmd1 = cmd1 . c } else { cmd2 = cmd2 . c }
     }
 }
+unset datafile columnheaders
 cmd1 = (cmd1 eq "") ? "NaN notitle" : cmd1[1:strlen(cmd1) - 2]
 cmd2 = (cmd2 eq "") ? "NaN notitle" : cmd2[1:strlen(cmd2) - 2]
 

@@ -1,9 +1,10 @@
-# flywheel.gp -- report part 15: flywheel sizing, the exact inertia against Norton's method and Simbody's run.
+# flywheel.gp -- report part `flywheel`: flywheel sizing, the exact inertia against Norton's method and Simbody's run.
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/flywheel.gp
 #
-# Reads  in_dir/flywheel.csv          scene,flywheel_inertia,exact_delta,simbody_delta
-#        in_dir/flywheel_norton.csv   speed_rpm,k,exact_inertia,norton_inertia,norton_error,norton_delta
+# Reads  in_dir/flywheel.csv          its columns by their headers (below: scene, flywheel_inertia, exact_delta,
+#                                     simbody_delta: Simbody's run)
+#        in_dir/flywheel_norton.csv   its columns by their headers (below: speed_rpm, k, norton_error)
 # Writes out_dir/flywheel.svg and out_dir/flywheel.png
 #
 # Left: delta against the flywheel inertia (log-log), one line per scene (the exact energy integral), Simbody's run as
@@ -27,24 +28,29 @@ nsweep = 0
 stats sweep using (nsweep = nsweep + 1, 1) nooutput
 if (nsweep == 0) { print "error: " . sweep . " is missing or empty (not even a header line)"; exit status 1 }
 
+# the columns by their headers ("name [unit]"), the first line of each CSV
+c_scene = "scene"; c_inertia = "flywheel_inertia [kg m^2]"; c_exact = "exact_delta [-]"; c_run = "simbody_delta [-]"
+c_rpm = "speed_rpm [rpm]"; c_k = "k [-]"; c_error = "norton_error [-]"
+set datafile columnheaders
+
 # the scenes, in order of appearance (at most 6)
 array S[6]
 nscenes = 0
 if (nlines > 1) {
-    stats curve skip 1 using (s = strcol(1), (nscenes == 0 || S[nscenes] ne s) && nscenes < 6 ? (nscenes = nscenes + 1, S[nscenes] = s) : 0, 0) nooutput
+    stats curve using (s = strcol(c_scene), (nscenes == 0 || S[nscenes] ne s) && nscenes < 6 ? (nscenes = nscenes + 1, S[nscenes] = s) : 0, 0) nooutput
 }
 array C[6] = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"]
 array R[3] = [1500, 3000, 6000]
 array RC[3] = ["#1f77b4", "#2ca02c", "#d62728"]
 array RN[3] = [0, 0, 0]  # rows per speed: a speed without rows gets no line (gnuplot refuses an all-undefined plot)
 do for [i = 1:3] {
-    if (nsweep > 1) { stats sweep skip 1 using ($1 == R[i] ? RN[i] = RN[i] + 1 : 0, 0) nooutput }
+    if (nsweep > 1) { stats sweep using (column(c_rpm) == R[i] ? RN[i] = RN[i] + 1 : 0, 0) nooutput }
 }
 rightcmd = ""
 do for [i = 1:3] {
     if (RN[i] > 0) {
         rightcmd = rightcmd . (strlen(rightcmd) > 0 ? ", " : "") . \
-            sprintf("sweep skip 1 using 2:($1 == %d ? 100.0 * $5 : NaN) with linespoints lw 2 pt 7 lc rgb '%s' title '%d rpm'", R[i], RC[i], R[i])
+            sprintf("sweep using (column(c_k)):(column(c_rpm) == %d ? 100.0 * column(c_error) : NaN) with linespoints lw 2 pt 7 lc rgb '%s' title '%d rpm'", R[i], RC[i], R[i])
     }
 }
 
@@ -74,8 +80,8 @@ do for [fmt in "svg png"] {
         unset label 5
         set autoscale xy
     } else {
-        plot for [i = 1:nscenes] curve skip 1 using 2:(strcol(1) eq S[i] ? $3 : NaN) with lines lw 2 lc rgb C[i] title S[i], \
-             for [i = 1:nscenes] curve skip 1 using 2:(strcol(1) eq S[i] && strcol(4) ne "" ? $4 : NaN) with points pt 7 ps 0.8 lc rgb C[i] notitle, \
+        plot for [i = 1:nscenes] curve using (column(c_inertia)):(strcol(c_scene) eq S[i] ? column(c_exact) : NaN) with lines lw 2 lc rgb C[i] title S[i], \
+             for [i = 1:nscenes] curve using (column(c_inertia)):(strcol(c_scene) eq S[i] && strcol(c_run) ne "" ? column(c_run) : NaN) with points pt 7 ps 0.8 lc rgb C[i] notitle, \
              0.01 with lines dt 2 lc rgb "#777777" title "C = 0.01", \
              NaN with points pt 7 lc rgb "#444444" title "Simbody's run"
     }

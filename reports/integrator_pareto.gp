@@ -2,7 +2,8 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/integrator_pareto.gp
 #
-# Reads  in_dir/integrator_pareto.csv   integrator,accuracy,ns_per_revolution,delta_error,energy_drift
+# Reads  in_dir/integrator_pareto.csv   its columns by their headers (below: integrator, accuracy, ns_per_revolution,
+#                                       delta_error, energy_drift)
 # Writes out_dir/integrator_pareto.svg and out_dir/integrator_pareto.png
 #
 # Two log-log panels side by side, same x axis: x = ns per simulated revolution; y = delta_error
@@ -42,13 +43,19 @@ array MX[nrow > 0 ? nrow : 1]            # ns per revolution
 array MY1[nrow > 0 ? nrow : 1]           # delta_error, clamped (NaN: not drawn)
 array MY2[nrow > 0 ? nrow : 1]           # energy_drift, clamped (NaN: not drawn)
 n = 0
-# the errors are read with column(): for an empty last field gnuplot 5.4's strcol returns a stale
-# string, column() returns NaN
+# the columns by their headers ("name [unit]"), the CSV's first line; the header mode only while the CSV is read (the
+# datablocks made below have no header line). The errors are read with column(): for an empty last field gnuplot
+# 5.4's strcol returns a stale string, column() returns NaN
+c_integrator = "integrator"; c_accuracy = "accuracy [-]"; c_ns = "ns_per_revolution [ns]"
+c_delta = "delta_error [-]"; c_drift = "energy_drift [-]"
+set datafile columnheaders
 if (nrow > 0) {
-    stats file skip 1 using ((pos(column(2)) && pos(column(3))) ? \
-        (n = n + 1, MN[n] = strcol(1), MA[n] = column(2), MX[n] = column(3), \
-         MY1[n] = fin(column(4)) ? clamp(column(4)) : NaN, MY2[n] = fin(column(5)) ? clamp(column(5)) : NaN) : 0, 0) nooutput
+    stats file using ((pos(column(c_accuracy)) && pos(column(c_ns))) ? \
+        (n = n + 1, MN[n] = strcol(c_integrator), MA[n] = column(c_accuracy), MX[n] = column(c_ns), \
+         MY1[n] = fin(column(c_delta)) ? clamp(column(c_delta)) : NaN, \
+         MY2[n] = fin(column(c_drift)) ? clamp(column(c_drift)) : NaN) : 0, 0) nooutput
 }
+unset datafile columnheaders
 
 # ---- the integrators present, in a fixed order: Simbody's integrators first (by the list KN below,
 #      with or without the "Integrator" suffix), then any other name in order of first appearance.

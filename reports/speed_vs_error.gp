@@ -2,7 +2,7 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/speed_vs_error.gp
 #
-# Reads  in_dir/speed_vs_error.csv   method,ns_per_eval,max_rel_error
+# Reads  in_dir/speed_vs_error.csv   its columns by their headers (below: method, ns_per_eval, max_rel_error)
 # Writes out_dir/speed_vs_error.svg and out_dir/speed_vs_error.png
 #
 # x = ns per evaluation (log), y = max relative error (log; 0 or anything below 1e-17 is drawn at
@@ -35,10 +35,15 @@ array MN[nrow > 0 ? nrow : 1]
 array MX[nrow > 0 ? nrow : 1]
 array MY[nrow > 0 ? nrow : 1]
 n = 0
+# the columns by their headers ("name [unit]"), the CSV's first line; the header mode only while the CSV is read (the
+# datablocks made below have no header line)
+c_method = "method"; c_ns = "ns_per_eval [ns]"; c_rel = "max_rel_error [-]"
+set datafile columnheaders
 if (nrow > 0) {
-    stats file skip 1 using (ok(column(2), column(3)) ? \
-        (n = n + 1, MN[n] = strcol(1), MX[n] = column(2), MY[n] = clamp(column(3))) : 0, 0) nooutput
+    stats file using (ok(column(c_ns), column(c_rel)) ? \
+        (n = n + 1, MN[n] = strcol(c_method), MX[n] = column(c_ns), MY[n] = clamp(column(c_rel))) : 0, 0) nooutput
 }
+unset datafile columnheaders
 
 # ---- Pareto front: not dominated (no other point at most as costly and at most as wrong, and
 #      strictly better in one of the two), printed in increasing cost ------------------------------

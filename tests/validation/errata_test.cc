@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <map>
 #include <string>
+#include <variant>
 
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/validation/campaign.h"
@@ -25,11 +26,15 @@ class ErrataTest : public ::testing::Test {
     for (const Task& task : buildCampaign(options))
       if (task.id == "errata") tables_ = task.run();
   }
-  // The value of the row whose item starts with `item` and whose measure is `measure`.
+  // The value of the row whose item starts with `item` and whose measure is `measure` (the table's typed cells).
   static double value(const std::string& item, const std::string& measure) {
     const Table& t = tables_.at("errata");
-    for (const auto& row : t.rows)
-      if (row[0].rfind(item, 0) == 0 && row[3] == measure) return std::strtod(row[4].c_str(), nullptr);
+    const size_t item_column = columnOf(t, "item"), measure_column = columnOf(t, "measure"),
+                 value_column = columnOf(t, "value");
+    for (size_t r = 0; r < t.size(); ++r)
+      if (std::get<std::string>(t.cell(r, item_column)).rfind(item, 0) == 0 &&
+          std::get<std::string>(t.cell(r, measure_column)) == measure)
+        return std::get<double>(t.cell(r, value_column));
     ADD_FAILURE() << "no row " << item << " / " << measure;
     return std::nan("");
   }

@@ -170,31 +170,6 @@ TEST(PartsTest, OffsetReadsTheCentricErrorAndTheThrust) {
             "none within 90).");
 }
 
-TEST(PartsTest, FlywheelReadsNortonsErrorAndSimbodysAgreement) {
-  const TableSet tables = {
-      {"flywheel_sizing", makeTable("flywheel_sizing", {{"scene", kText}, {"cycle", kText}, {"k", "-"},
-                                                        {"speed_rpm", "rpm"}, {"exact_inertia", "kg m^2"},
-                                                        {"norton_inertia", "kg m^2"}, {"norton_error", "-"},
-                                                        {"norton_delta", "-"}},
-                                    {{"car", "four-stroke", "4", "3000", "0.2", "0.18", "-0.1", "0.011"}})},
-      {"flywheel_norton", makeTable("flywheel_norton", {{"speed_rpm", "rpm"}, {"k", "-"}, {"exact_inertia", "kg m^2"},
-                                                        {"norton_inertia", "kg m^2"}, {"norton_error", "-"},
-                                                        {"norton_delta", "-"}},
-                                    {{"3000", "1", "1", "1.05", "0.05", "0.01"}, {"3000", "4", "1", "0.8", "-0.2", "0.012"}})},
-      {"flywheel", makeTable("flywheel", {{"scene", kText}, {"flywheel_inertia", "kg m^2"}, {"exact_delta", "-"},
-                                          {"simbody_delta", "-"}},
-                             {{"car", "0.2", "0.01", "0.0101"}, {"car", "0.3", "0.007", ""}})}};
-  const ReportPart d = partNumbered(15).describe(tables);
-  EXPECT_EQ(d.heading, "15. Flywheel sizing: the exact inertia, Norton's method, Simbody's run");
-  EXPECT_EQ(findParagraph(d, "car at C = 0.01"),
-            "car at C = 0.01: the exact flywheel is 0.2 kg m^2, Norton's 0.18 kg m^2 (-10 %), which really gives delta = "
-            "0.011.");
-  // |error| 5 % at k = 1 (best), 20 % at k = 4 (worst).
-  EXPECT_NE(findParagraph(d, "Norton's inertia is off by 5 % at best (k = 1, 3000 rpm) and 20 % at worst (k = 4, 3000 rpm)").size(), 0u);
-  // 0.0101 / 0.01 - 1 = 0.01 at the one point Simbody ran.
-  EXPECT_NE(findParagraph(d, "delta to 0.01 (relative)").size(), 0u);
-}
-
 TEST(PartsTest, BalanceShaftsReadWhatTheShaftsCancel) {
   // Force scale 100 N / 0.5 = 200 N; the shafts take harmonic 1 to 0 in closed form, Simbody leaves 5e-16 of the
   // scale, harmonic 2 is unchanged.

@@ -41,24 +41,24 @@ TEST(TableTest, TextColumnsAreMarkedNotUnitless) {
 }
 
 TEST(TableTest, UnitsRoundTripThroughTheCsvHeaders) {
-  Table t("speed_vs_error", {{"method", kText}, {"ns_per_eval", "ns"}, {"max_rel_error", "-"},
+  Table t("example", {{"method", kText}, {"ns_per_eval", "ns"}, {"max_rel_error", "-"},
                              {"max_abs_Q", "N m"}, {"value", "see measure"}});
   t.rows.push_back({"analytic", "12.5", "1e-16", "3", "0.5"});
-  const TableSet written = {{"speed_vs_error", t}};
+  const TableSet written = {{"example", t}};
   const FreshFolder dir;
   writeTables(written, dir.path());
-  std::ifstream in(dir.path() / "data" / "speed_vs_error.csv");
+  std::ifstream in(dir.path() / "data" / "example.csv");
   std::string header;
   std::getline(in, header);
   EXPECT_EQ(header, "method,ns_per_eval [ns],max_rel_error [-],max_abs_Q [N m],value [see measure]");
   const TableSet read = readTables(dir.path());
-  ASSERT_EQ(read.count("speed_vs_error"), 1u);
-  EXPECT_EQ(read.at("speed_vs_error").columns(), t.columns());
-  EXPECT_EQ(read.at("speed_vs_error").rows, t.rows);
+  ASSERT_EQ(read.count("example"), 1u);
+  EXPECT_EQ(read.at("example").columns(), t.columns());
+  EXPECT_EQ(read.at("example").rows, t.rows);
   // Tables read back append to tables built in code: their columns, units included, are the same.
   TableSet merged = written;
   appendTables(merged, read);
-  EXPECT_EQ(merged.at("speed_vs_error").rows.size(), 2u);
+  EXPECT_EQ(merged.at("example").rows.size(), 2u);
 }
 
 TEST(TableTest, AppendRefusesTheSameColumnInAnotherUnit) {

@@ -1,11 +1,12 @@
-// Report part `errata` (8): the sources as printed against what the engines agree on (the details and the tests that
-// assert each entry: docs/ERRATA.md). A table and sentences, no figure.
+// Report part `errata`: the sources as printed against what the engines agree on (the details and the tests that assert
+// each entry: docs/ERRATA.md). A table and sentences, no figure.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <map>
 #include <memory>
+#include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,36 +31,139 @@ namespace {
 using analytic::Eq5Form;
 using analytic::LambdaSource;
 
-// ------------------------------------------------------------------------------------------------------------
-// errata: each printed formula against what the engines agree on, at its real size: per layout and engine where
-// it is largest, every maximum over a turn from the exact harmonics (or refined, extremum.h). Tables:
-//   errata             item,printed,holds,measure,value,verdict
-//   eq5_layouts        cycle,k,gamma_deg,max_abs_Q,max_abs_Q_printed,ratio_of_maxima,max_error_rel
-//   eq15_coefficients  n,lambda,printed,exact,relative_error
-//   eq15_engines       cycle,k,lambda,first_order,max_abs_Q,max_abs_Q_printed,ratio_of_maxima,max_error_rel
+// errata: each printed formula against what the engines agree on, at its real size: per layout and engine where it is
+// largest, every maximum over a turn from the exact harmonics (or refined, extremum.h). A row is identified by its item
+// and measure (the item names the entry, e.g. "Stanczak eq (15): Lambda_12 at lambda = 0.4"; made by the functions
+// below, which describe() calls to find it again).
+struct ErrataRow {
+  std::string item, printed, holds, measure;
+  double value = 0.0;  ///< in the unit `measure` says
+  std::string verdict;
+};
+const Schema<ErrataRow> kErrataTable{
+    "errata",
+    {textField("item", &ErrataRow::item), textField("printed", &ErrataRow::printed),
+     textField("holds", &ErrataRow::holds), textField("measure", &ErrataRow::measure),
+     numberField("value", "see measure", &ErrataRow::value), textField("verdict", &ErrataRow::verdict)}};
+
+// eq5_layouts: Q of every layout (gamma), cycle and k with eq (5)'s U1, U2 as printed against those of eq (2), where Q
+// does not vanish.
+struct Eq5LayoutRow {
+  std::string cycle;
+  int k = 1;
+  double gamma_deg = 0.0;          ///< [deg]
+  double max_abs_Q = 0.0;          ///< [N m]
+  double max_abs_Q_printed = 0.0;  ///< [N m]
+  double ratio_of_maxima = 0.0;    ///< [-] max_abs_Q_printed / max_abs_Q
+  double max_error_rel = 0.0;      ///< [-] max |Q_printed - Q| / max |Q|
+};
+const Schema<Eq5LayoutRow> kEq5LayoutsTable{
+    "eq5_layouts",
+    {textField("cycle", &Eq5LayoutRow::cycle), countField("k", &Eq5LayoutRow::k),
+     numberField("gamma_deg", "deg", &Eq5LayoutRow::gamma_deg), numberField("max_abs_Q", "N m", &Eq5LayoutRow::max_abs_Q),
+     numberField("max_abs_Q_printed", "N m", &Eq5LayoutRow::max_abs_Q_printed),
+     numberField("ratio_of_maxima", "-", &Eq5LayoutRow::ratio_of_maxima),
+     numberField("max_error_rel", "-", &Eq5LayoutRow::max_error_rel)}};
+
+// eq15_coefficients: each printed Lambda_n (n = 2..12) against the exact one, at lambda = 0.4 and the base's.
+struct Eq15CoefficientRow {
+  int n = 2;
+  double lambda = 0.0, printed = 0.0, exact = 0.0;
+  double relative_error = 0.0;  ///< [-] printed / exact - 1
+};
+const Schema<Eq15CoefficientRow> kEq15CoefficientsTable{
+    "eq15_coefficients",
+    {countField("n", &Eq15CoefficientRow::n), numberField("lambda", "-", &Eq15CoefficientRow::lambda),
+     numberField("printed", "-", &Eq15CoefficientRow::printed), numberField("exact", "-", &Eq15CoefficientRow::exact),
+     numberField("relative_error", "-", &Eq15CoefficientRow::relative_error)}};
+
+// eq15_engines: Q of every standing engine (k, cycle) with eq (15)'s printed Lambda_n against the exact ones, at
+// lambda = 0.4 and the base's.
+struct Eq15EngineRow {
+  std::string cycle;
+  int k = 1;
+  double lambda = 0.0;
+  int first_order = 0;             ///< the first harmonic of Q that survives
+  double max_abs_Q = 0.0;          ///< [N m]
+  double max_abs_Q_printed = 0.0;  ///< [N m]
+  double ratio_of_maxima = 0.0;    ///< [-]
+  double max_error_rel = 0.0;      ///< [-] max |Q_printed - Q| / max |Q|
+};
+const Schema<Eq15EngineRow> kEq15EnginesTable{
+    "eq15_engines",
+    {textField("cycle", &Eq15EngineRow::cycle), countField("k", &Eq15EngineRow::k),
+     numberField("lambda", "-", &Eq15EngineRow::lambda), countField("first_order", &Eq15EngineRow::first_order),
+     numberField("max_abs_Q", "N m", &Eq15EngineRow::max_abs_Q),
+     numberField("max_abs_Q_printed", "N m", &Eq15EngineRow::max_abs_Q_printed),
+     numberField("ratio_of_maxima", "-", &Eq15EngineRow::ratio_of_maxima),
+     numberField("max_error_rel", "-", &Eq15EngineRow::max_error_rel)}};
+
+// The paper's largest crank ratio, at which eq (15)'s entries are stated.
+constexpr double kPapersLambda = 0.4;
+
+// The measures and printed forms that describe() reads rows by.
+const char* const kMeasureRatio = "printed / true";
+const char* const kMeasureError = "max |Q_printed - Q| / max |Q|";
+const char* const kMeasureMaxima = "max |Q_printed| / max |Q|";
+const char* const kMeasureTruncation = "printed / exact - 1";
+const char* const kMeasureCount = "count printed";
+const char* const kMeasureRounded = "count equal to the rounded exact value";
+const char* const kMeasureOrder = "harmonic order";
+const char* const kPrintedU1 = "U1 = M_t + l_z M_z, l_z = z_k / l";
+const char* const kPrintedU2 = "U2 = M_s - M_sp + l_z* M_z, l_z* = (l - z_k) / l";
+const char* const kItemCoefficients = "Stanczak eq (15): printed coefficients";
+
+// "k = 4 two-stroke".
+std::string formatEngineName(int k, const std::string& cycle) { return "k = " + std::to_string(k) + " " + cycle; }
+
+// The item of eq (5)'s coefficient U1 or U2 (`u`) for a rod whose centre of mass is at z_k / l = `zk_over_l`.
+std::string formatEq5CoefficientItem(int u, double zk_over_l) {
+  char text[128];
+  std::snprintf(text, sizeof text, "Stanczak eq (5): U%d for the base rod (z_k / l = %.3f)", u, zk_over_l);
+  return text;
+}
+
+// The item of eq (5)'s Q of the layout at `gamma_deg` (90, 0, -90 or 37), a single cylinder or the multi-cylinder
+// engines, whose worst engine is `worst` (formatEngineName; "k = 1" for a single cylinder).
+std::string formatEq5LayoutItem(double gamma_deg, bool single, const std::string& worst) {
+  const std::string layout = gamma_deg == 90.0    ? "standing"
+                             : gamma_deg == 0.0   ? "lying"
+                             : gamma_deg == -90.0 ? "hanging"
+                                                  : "inclined 37 deg";
+  return "Stanczak eq (5): Q of a " + layout + (single ? " single cylinder" : " multi-cylinder") + ", worst: " + worst;
+}
+
+// The item of eq (15)'s Lambda_n at `lambda`.
+std::string formatLambdaItem(int n, double lambda) {
+  return "Stanczak eq (15): Lambda_" + std::to_string(n) + " at lambda = " + shortNumber(lambda, 3);
+}
+
+// The item of eq (15)'s Q of a standing engine at `lambda`.
+std::string formatEq15EngineItem(int k, const std::string& cycle, double lambda) {
+  return "Stanczak eq (15): Q of a standing " + formatEngineName(k, cycle) + " at lambda = " + shortNumber(lambda, 3);
+}
+
+// The item of section 7's first surviving order of an engine.
+std::string formatSection7Item(int k, const std::string& cycle) {
+  return "Stanczak section 7: first surviving order, " + formatEngineName(k, cycle);
+}
 
 TableSet calcErrataTables(const Mechanism& base) {
-  Table t("errata", {{"item", kText}, {"printed", kText}, {"holds", kText}, {"measure", kText},
-                     {"value", "see measure"}, {"verdict", kText}});
+  std::vector<ErrataRow> errata;
   auto add = [&](const std::string& item, const std::string& printed, const std::string& holds, const std::string& measure,
                  double value, const std::string& verdict) {
-    t.rows.push_back({item, printed, holds, measure, formatNumber(value), verdict});
+    errata.push_back({item, printed, holds, measure, value, verdict});
   };
   const Mechanism rest = withSpeed(base, 0.0);
-  char text[256];
   {  // eq (5): the coefficients, then Q of every layout
     const analytic::GravityCoefficients c = analytic::calcGravityCoefficients(rest);
     const analytic::GravityCoefficients p = analytic::calcGravityCoefficients(rest, Eq5Form::kAsPrinted);
-    std::snprintf(text, sizeof text, "Stanczak eq (5): U1 for the base rod (z_k / l = %.3f)",
-                  rest.rod.com_from_wrist_pin / rest.rod.length);
-    add(text, "U1 = M_t + l_z M_z, l_z = z_k / l", "U1 with (l - z_k) / l (z_k from the wrist pin, eq 2)",
-        "printed / true", p.U1 / c.U1, "error");
-    std::snprintf(text, sizeof text, "Stanczak eq (5): U2 for the base rod (z_k / l = %.3f)",
-                  rest.rod.com_from_wrist_pin / rest.rod.length);
-    add(text, "U2 = M_s - M_sp + l_z* M_z, l_z* = (l - z_k) / l", "U2 with z_k / l", "printed / true", p.U2 / c.U2, "error");
+    const double zk_over_l = rest.rod.com_from_wrist_pin / rest.rod.length;
+    add(formatEq5CoefficientItem(1, zk_over_l), kPrintedU1, "U1 with (l - z_k) / l (z_k from the wrist pin, eq 2)",
+        kMeasureRatio, p.U1 / c.U1, "error");
+    add(formatEq5CoefficientItem(2, zk_over_l), kPrintedU2, "U2 with z_k / l", kMeasureRatio, p.U2 / c.U2, "error");
   }
-  Table layouts("eq5_layouts", {{"cycle", kText}, {"k", "-"}, {"gamma_deg", "deg"}, {"max_abs_Q", "N m"},
-                                {"max_abs_Q_printed", "N m"}, {"ratio_of_maxima", "-"}, {"max_error_rel", "-"}});
+  std::vector<Eq5LayoutRow> layouts;
   struct Worst {
     double error = -1.0, ratio = 0.0;
     std::string where;
@@ -74,36 +178,28 @@ TableSet calcErrataTables(const Mechanism& base) {
         const double q = maxAbsOfHarmonics(exact), q_printed = maxAbsOfHarmonics(printed);
         if (q <= kAgreementMultiple * kEps * calcEnergyScale(m)) continue;  // Q vanishes (or is rounding): nothing to err
         const double error = maxAbsOfHarmonics(harmonicsMinus(printed, exact)) / q;
-        layouts.rows.push_back({toString(cycle), std::to_string(k), formatNumber(gamma), formatNumber(q), formatNumber(q_printed), formatNumber(q_printed / q), formatNumber(error)});
+        layouts.push_back({toString(cycle), k, gamma, q, q_printed, q_printed / q, error});
         Worst& w = (k == 1 ? worst_single : worst_multi)[gamma];
-        if (error > w.error + 1e-12) {
-          std::snprintf(text, sizeof text, "k = %d %s", k, toString(cycle).c_str());
-          w = {error, q_printed / q, text};
-        }
+        if (error > w.error + 1e-12) w = {error, q_printed / q, formatEngineName(k, toString(cycle))};
       }
-  for (const auto& [which, map] : {std::pair<std::string, const std::map<double, Worst>&>{"single cylinder", worst_single},
-                                   std::pair<std::string, const std::map<double, Worst>&>{"multi-cylinder", worst_multi}})
+  for (const auto& [single, map] : {std::pair<bool, const std::map<double, Worst>&>{true, worst_single},
+                                     std::pair<bool, const std::map<double, Worst>&>{false, worst_multi}})
     for (const auto& [gamma, w] : map) {
-      const std::string layout = gamma == 90.0 ? "standing" : gamma == 0.0 ? "lying" : gamma == -90.0 ? "hanging" : "inclined 37 deg";
-      std::snprintf(text, sizeof text, "Stanczak eq (5): Q of a %s %s, worst: %s", layout.c_str(), which.c_str(),
-                    which == "single cylinder" ? "k = 1" : w.where.c_str());
-      add(text, "U1, U2 as printed", "U1, U2 from eq (2)", "max |Q_printed - Q| / max |Q|", w.error, "error");
-      add(text, "U1, U2 as printed", "U1, U2 from eq (2)", "max |Q_printed| / max |Q|", w.ratio, "error");
+      const std::string item = formatEq5LayoutItem(gamma, single, single ? "k = 1" : w.where);
+      add(item, "U1, U2 as printed", "U1, U2 from eq (2)", kMeasureError, w.error, "error");
+      add(item, "U1, U2 as printed", "U1, U2 from eq (2)", kMeasureMaxima, w.ratio, "error");
     }
   // eq (15): each printed Lambda_n against the exact one, at lambda = 0.4 (the paper's largest) and the base's.
-  Table coefficients("eq15_coefficients", {{"n", "-"}, {"lambda", "-"}, {"printed", "-"}, {"exact", "-"},
-                                           {"relative_error", "-"}});
+  std::vector<Eq15CoefficientRow> coefficients;
   const double base_lambda = lambdaOf(base);
-  for (double lambda : {0.4, base_lambda}) {
+  for (double lambda : {kPapersLambda, base_lambda}) {
     const std::vector<double> exact = analytic::calcLambdaCoefficients(lambda, 12);
     const std::vector<double> printed = analytic::calcLambdaCoefficientsAsPrinted(lambda, 12);
     for (int n = 2; n <= 12; n += 2) {
-      coefficients.rows.push_back({std::to_string(n), formatNumber(lambda), formatNumber(printed[n]), formatNumber(exact[n]), formatNumber(printed[n] / exact[n] - 1.0)});
-      if (n >= 8) {
-        std::snprintf(text, sizeof text, "Stanczak eq (15): Lambda_%d at lambda = %.3g", n, lambda);
-        add(text, "power series to lambda^11", "exact Lambda_n (fourier_series.h)", "printed / exact - 1", printed[n] / exact[n] - 1.0,
-            "truncation");
-      }
+      coefficients.push_back({n, lambda, printed[n], exact[n], printed[n] / exact[n] - 1.0});
+      if (n >= 8)
+        add(formatLambdaItem(n, lambda), "power series to lambda^11", "exact Lambda_n (fourier_series.h)",
+            kMeasureTruncation, printed[n] / exact[n] - 1.0, "truncation");
     }
   }
   {  // the printed coefficients: how many, and how many are the exact rationals rounded to six decimals
@@ -116,20 +212,16 @@ TableSet calcErrataTables(const Mechanism& base) {
         const double exact = analytic::calcLambdaSeriesCoefficient(n, power).toDouble();
         if (std::fabs(std::round(exact * 1e6) / 1e6 - printed) < 1e-12) ++rounded;
       }
-    add("Stanczak eq (15): printed coefficients", "Lambda_2..Lambda_12, lambda^1..lambda^11", "exact rationals",
-        "count printed", count, "count");
-    add("Stanczak eq (15): printed coefficients", "six decimals", "exact rational rounded to six decimals",
-        "count equal to the rounded exact value", rounded, "count");
+    add(kItemCoefficients, "Lambda_2..Lambda_12, lambda^1..lambda^11", "exact rationals", kMeasureCount, count, "count");
+    add(kItemCoefficients, "six decimals", "exact rational rounded to six decimals", kMeasureRounded, rounded, "count");
     const double printed = analytic::getLambdaSeriesCoefficientAsPrinted(2, 9);
     const double exact = analytic::calcLambdaSeriesCoefficient(2, 9).toDouble();
     add("Stanczak eq (15): Lambda_2 coefficient of lambda^9", "0.022432", "735/32768 = 0.02243041992",
-        "printed / exact - 1", printed / exact - 1.0, "misprint");
+        kMeasureTruncation, printed / exact - 1.0, "misprint");
   }
   // eq (15) in the engines where only high harmonics survive: standing engines, every k, both strokes.
-  Table engines("eq15_engines", {{"cycle", kText}, {"k", "-"}, {"lambda", "-"}, {"first_order", "-"},
-                                 {"max_abs_Q", "N m"}, {"max_abs_Q_printed", "N m"}, {"ratio_of_maxima", "-"},
-                                 {"max_error_rel", "-"}});
-  for (double lambda : {0.4, base_lambda})
+  std::vector<Eq15EngineRow> engines;
+  for (double lambda : {kPapersLambda, base_lambda})
     for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke})
       for (int k = 1; k <= 12; ++k) {
         const Mechanism m = withGamma(withCylinders(withLambda(rest, lambda), k, cycle), 90.0);
@@ -137,22 +229,20 @@ TableSet calcErrataTables(const Mechanism& base) {
         const auto printed = analytic::calcGravityTorqueHarmonics(m, 12, LambdaSource::kAsPrinted);
         const double q = maxAbsOfHarmonics(exact), q_printed = maxAbsOfHarmonics(printed);
         const double error = maxAbsOfHarmonics(harmonicsMinus(printed, exact)) / q;
-        engines.rows.push_back({toString(cycle), std::to_string(k), formatNumber(lambda), std::to_string(exact.front().n), formatNumber(q),
-                                formatNumber(q_printed), formatNumber(q_printed / q), formatNumber(error)});
+        engines.push_back({toString(cycle), k, lambda, exact.front().n, q, q_printed, q_printed / q, error});
         // Engines whose first harmonic the table holds and where the truncation costs more than 1 % (the others:
         // data/eq15_engines.csv; for k = 7, 9, 11 the table has no harmonic at all and gives Q = 0).
-        if (exact.front().n <= 12 && error > 0.01) {
-          std::snprintf(text, sizeof text, "Stanczak eq (15): Q of a standing k = %d %s at lambda = %.3g", k, toString(cycle).c_str(), lambda);
-          add(text, "Lambda_2..Lambda_12 to lambda^11", "exact Lambda_n", "max |Q_printed - Q| / max |Q|", error, "truncation");
-        }
+        if (exact.front().n <= 12 && error > 0.01)
+          add(formatEq15EngineItem(k, toString(cycle), lambda), "Lambda_2..Lambda_12 to lambda^11", "exact Lambda_n",
+              kMeasureError, error, "truncation");
       }
   // Section 7: "for example k = 7 first gives a non-zero value at Lambda_14": the first surviving order of k = 7, 9, 11.
   for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke})
     for (int k : {7, 9, 11}) {
       const std::vector<int> survivors = analytic::findSurvivingHarmonics(k, cycle, Acting::kSingle, 4 * k);
-      std::snprintf(text, sizeof text, "Stanczak section 7: first surviving order, k = %d %s", k, toString(cycle).c_str());
-      add(text, k == 7 ? "for example k = 7: first non-zero at Lambda_14" : "(not stated)", "exact integer analysis",
-          "harmonic order", survivors.empty() ? 0 : survivors.front(), "confirmed");
+      add(formatSection7Item(k, toString(cycle)),
+          k == 7 ? "for example k = 7: first non-zero at Lambda_14" : "(not stated)", "exact integer analysis",
+          kMeasureOrder, survivors.empty() ? 0 : survivors.front(), "confirmed");
     }
   {  // eq (12): each cylinder referred to its own outer dead centre: a zero level, not an error
     const Mechanism m3 = withCylinders(rest, 3, Cycle::kTwoStroke);
@@ -176,84 +266,93 @@ TableSet calcErrataTables(const Mechanism& base) {
     const double r = base.crank.radius, w = base.engine.speed;
     const double worst = findMaxAbsOverTurn([&](double phi) {
       return analytic::calcPistonKinematicsNorton(base, phi).a_p - model->evaluate(phi).cylinders[0].a_p; }, 72).value;
-    std::snprintf(text, sizeof text, "Norton 13.3e: piston acceleration at lambda = %.3g", lambdaOf(base));
-    add(text, "-r w^2 (cos + lambda cos 2theta)", "exact (" + engine->name + ")",
+    add("Norton 13.3e: piston acceleration at lambda = " + shortNumber(lambdaOf(base), 3), "-r w^2 (cos + lambda cos 2theta)", "exact (" + engine->name + ")",
         "max |a_two_term - a (" + engine->name + ")| / (r w^2)", worst / (r * w * w), "approximation");
   }
-  return {{"errata", t}, {"eq5_layouts", layouts}, {"eq15_coefficients", coefficients}, {"eq15_engines", engines}};
+  return {{kErrataTable.name(), kErrataTable.table(std::move(errata))},
+          {kEq5LayoutsTable.name(), kEq5LayoutsTable.table(std::move(layouts))},
+          {kEq15CoefficientsTable.name(), kEq15CoefficientsTable.table(std::move(coefficients))},
+          {kEq15EnginesTable.name(), kEq15EnginesTable.table(std::move(engines))}};
 }
 
-// A field as a number; an empty one as 0.
-double toDouble(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
+// The value of the errata row that `match` picks (the first), or none.
+template <class Match>
+std::optional<double> findErrataValue(const std::vector<ErrataRow>& rows, const Match& match) {
+  for (const ErrataRow& row : rows)
+    if (match(row)) return row.value;
+  return std::nullopt;
+}
 
-// x as a percentage to 2 significant digits (3 from 10 %): "1.2 %", "13.5 %".
-
-// Part 8: the errata table, and the sentences that read it (every number from the data).
+// The errata table, and the sentences that read it (every number from the data): rows found by their item and measure.
 void addErrataPart(ReportPart& part, const TableSet& tables) {
-  std::map<std::string, std::map<std::string, double>> value;  // item -> measure -> value
+  const std::vector<ErrataRow>& rows = getRows(tables, kErrataTable);
   ReportBlock table{ReportBlock::kTable, "", {"item", "printed", "holds", "measure", "value", "verdict"}};
-  for (const auto& r : readRecords(tables, "errata")) {
-    value[r.at("item")][r.at("measure")] = toDouble(r.at("value"));
-    table.rows.push_back({r.at("item"), r.at("printed"), r.at("holds"), r.at("measure"), shortNumber(toDouble(r.at("value")), 3),
-                          r.at("verdict")});
-  }
+  for (const ErrataRow& row : rows)
+    table.rows.push_back({row.item, row.printed, row.holds, row.measure, shortNumber(row.value, 3), row.verdict});
   part.blocks.push_back(table);
-  auto find = [&](const std::string& prefix, const std::string& measure, double& out) {
-    for (const auto& [item, measures] : value)
-      if (item.rfind(prefix, 0) == 0 && measures.count(measure)) return out = measures.at(measure), true;
-    return false;
+  auto find = [&](const std::string& item, const std::string& measure) {
+    return findErrataValue(rows, [&](const ErrataRow& r) { return r.item == item && r.measure == measure; });
+  };
+  auto findPrinted = [&](const std::string& printed, const std::string& measure) {  // U1, U2: the printed form names them
+    return findErrataValue(rows, [&](const ErrataRow& r) { return r.printed == printed && r.measure == measure; });
   };
   std::vector<std::string> text;
-  double u1, u2, single_error, multi_ratio, lying_ratio;
-  if (find("Stanczak eq (5): U1", "printed / true", u1) && find("Stanczak eq (5): U2", "printed / true", u2) &&
-      find("Stanczak eq (5): Q of a standing single cylinder", "max |Q_printed - Q| / max |Q|", single_error) &&
-      find("Stanczak eq (5): Q of a standing multi-cylinder", "max |Q_printed| / max |Q|", multi_ratio) &&
-      find("Stanczak eq (5): Q of a lying single cylinder", "max |Q_printed| / max |Q|", lying_ratio))
-    text.push_back("Eq (5) as printed: for the base rod the printed U1 is " + shortNumber(u1, 3) + " x and U2 " + shortNumber(u2, 2) +
-                   " x the true values. A standing single cylinder hides it (Q is off by " + formatPercent(single_error) +
+  // Eq (5): the standing multi-cylinder engines' row names the worst of them, one of eq5_layouts' standing engines.
+  std::optional<double> multi_ratio;
+  for (const Eq5LayoutRow& layout : getRows(tables, kEq5LayoutsTable))
+    if (!multi_ratio && layout.gamma_deg == 90.0 && layout.k > 1)
+      multi_ratio = find(formatEq5LayoutItem(90.0, false, formatEngineName(layout.k, layout.cycle)), kMeasureMaxima);
+  const std::optional<double> u1 = findPrinted(kPrintedU1, kMeasureRatio), u2 = findPrinted(kPrintedU2, kMeasureRatio);
+  const std::optional<double> single_error = find(formatEq5LayoutItem(90.0, true, "k = 1"), kMeasureError);
+  const std::optional<double> lying_ratio = find(formatEq5LayoutItem(0.0, true, "k = 1"), kMeasureMaxima);
+  if (u1 && u2 && single_error && multi_ratio && lying_ratio)
+    text.push_back("Eq (5) as printed: for the base rod the printed U1 is " + shortNumber(*u1, 3) + " x and U2 " + shortNumber(*u2, 2) +
+                   " x the true values. A standing single cylinder hides it (Q is off by " + formatPercent(*single_error) +
                    " of its maximum, U1 + U2 barely changes); a standing engine whose first surviving harmonic is even "
-                   "(two-stroke k >= 2, four-stroke k >= 3: Q carries U1 alone) gets max |Q| " + formatPercent(multi_ratio - 1.0) +
-                   " too high; a lying single cylinder (Q carries U2 alone) " + formatPercent(1.0 - lying_ratio) +
+                   "(two-stroke k >= 2, four-stroke k >= 3: Q carries U1 alone) gets max |Q| " + formatPercent(*multi_ratio - 1.0) +
+                   " too high; a lying single cylinder (Q carries U2 alone) " + formatPercent(1.0 - *lying_ratio) +
                    " too low. data/eq5_layouts.csv has every layout.");
-  double l12, l12b = 0.0, l10, l8, count, rounded;
+  // Eq (15): Lambda_n at the paper's lambda and at the base's (eq15_coefficients' other lambda).
+  const std::optional<double> l12 = find(formatLambdaItem(12, kPapersLambda), kMeasureTruncation);
+  const std::optional<double> l10 = find(formatLambdaItem(10, kPapersLambda), kMeasureTruncation);
+  const std::optional<double> l8 = find(formatLambdaItem(8, kPapersLambda), kMeasureTruncation);
+  std::optional<double> l12b;
   std::string base_lambda;
-  for (const auto& [item, measures] : value)
-    if (item.rfind("Stanczak eq (15): Lambda_12 at lambda = ", 0) == 0 && item.find("= 0.4") == std::string::npos) {
-      l12b = measures.begin()->second;
-      base_lambda = item.substr(std::string("Stanczak eq (15): Lambda_12 at lambda = ").size());
+  for (const Eq15CoefficientRow& row : getRows(tables, kEq15CoefficientsTable))
+    if (!l12b && formatLambdaItem(12, row.lambda) != formatLambdaItem(12, kPapersLambda)) {
+      l12b = find(formatLambdaItem(12, row.lambda), kMeasureTruncation);
+      if (l12b) base_lambda = shortNumber(row.lambda, 3);
     }
-  if (find("Stanczak eq (15): Lambda_12 at lambda = 0.4", "printed / exact - 1", l12) &&
-      find("Stanczak eq (15): Lambda_10 at lambda = 0.4", "printed / exact - 1", l10) &&
-      find("Stanczak eq (15): Lambda_8 at lambda = 0.4", "printed / exact - 1", l8)) {
-    std::vector<std::pair<double, std::string>> list;  // the engines where it exceeds 1 %, largest first
-    const std::string head = "Stanczak eq (15): Q of a standing ";
-    for (const auto& [item, measures] : value)
-      if (item.rfind(head, 0) == 0 && item.find("= 0.4") != std::string::npos)
-        list.push_back({measures.begin()->second, item.substr(head.size(), item.find(" at lambda") - head.size())});
+  if (l12 && l10 && l8) {
+    std::map<std::string, double> over;  // the standing engines where the truncation costs more than 1 %: their rows
+    for (const Eq15EngineRow& row : getRows(tables, kEq15EnginesTable))
+      if (row.lambda == kPapersLambda)
+        if (const std::optional<double> error = find(formatEq15EngineItem(row.k, row.cycle, row.lambda), kMeasureError))
+          over[formatEngineName(row.k, row.cycle)] = *error;
+    std::vector<std::pair<double, std::string>> list;  // largest first
+    for (const auto& [name, error] : over) list.push_back({error, name});
     std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.first > b.first || (a.first == b.first && a.second < b.second); });
     std::string engines;
     for (const auto& [error, name] : list) engines += (engines.empty() ? "" : ", ") + name + " " + formatPercent(error);
     text.push_back("Eq (15) is a power series truncated at lambda^11, so each printed Lambda_n falls short of the exact one: "
-                   "at lambda = 0.4, the paper's largest crank ratio, Lambda_12 by " + formatPercent(-l12) +
-                   (base_lambda.empty() ? "" : " (still " + formatPercent(-l12b) + " at the base's lambda = " + base_lambda + ")") +
-                   ", Lambda_10 by " + formatPercent(-l10) + ", Lambda_8 by " + formatPercent(-l8) +
+                   "at lambda = 0.4, the paper's largest crank ratio, Lambda_12 by " + formatPercent(-*l12) +
+                   (base_lambda.empty() ? "" : " (still " + formatPercent(-*l12b) + " at the base's lambda = " + base_lambda + ")") +
+                   ", Lambda_10 by " + formatPercent(-*l10) + ", Lambda_8 by " + formatPercent(-*l8) +
                    " (data/eq15_coefficients.csv). 'A close approximation' holds for the engines dominated by Lambda_2 "
                    "and Lambda_4, not where only high harmonics survive: max |Q_printed - Q| / max |Q| at lambda = 0.4 is " +
                    engines + "; for k = 7, 9, 11 the table holds no surviving harmonic and gives Q = 0 "
                    "(data/eq15_engines.csv, every engine).");
   }
-  if (find("Stanczak eq (15): printed coefficients", "count printed", count) &&
-      find("Stanczak eq (15): printed coefficients", "count equal to the rounded exact value", rounded))
-    text.push_back("Eq (15) prints " + shortNumber(count, 3) + " coefficients; " + shortNumber(rounded, 3) +
-                   " of them are the exact rationals rounded to six decimals, the other " + shortNumber(count - rounded, 3) +
+  const std::optional<double> count = find(kItemCoefficients, kMeasureCount), rounded = find(kItemCoefficients, kMeasureRounded);
+  if (count && rounded)
+    text.push_back("Eq (15) prints " + shortNumber(*count, 3) + " coefficients; " + shortNumber(*rounded, 3) +
+                   " of them are the exact rationals rounded to six decimals, the other " + shortNumber(*count - *rounded, 3) +
                    " is a misprint (Lambda_2, lambda^9).");
   std::string orders;
-  for (const char* cycle : {"two-stroke", "four-stroke"})
-    for (int k : {7, 9, 11}) {
-      const std::string key = "k = " + std::to_string(k) + " " + cycle;
-      const auto it = value.find("Stanczak section 7: first surviving order, " + key);
-      if (it != value.end()) orders += (orders.empty() ? "" : ", ") + key + ": " + shortNumber(it->second.begin()->second, 3);
-    }
+  for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke})
+    for (int k : {7, 9, 11})
+      if (const std::optional<double> order = find(formatSection7Item(k, toString(cycle)), kMeasureOrder))
+        orders += (orders.empty() ? "" : ", ") + formatEngineName(k, toString(cycle)) + ": " + shortNumber(*order, 3);
   if (!orders.empty())
     text.push_back("Section 7 says that 'for example' k = 7 first gives a non-zero value at Lambda_14. The first surviving "
                    "harmonic order, from the exact integer analysis: " + orders + ".");
@@ -276,12 +375,14 @@ class ErrataPart final : public Part {
   // Always shown: an empty table says the campaign had no errata rows.
   ReportPart describe(const TableSet& tables) const override {
     ReportPart part;
-    if (!tables.count("errata")) return part;  // not run (validate --parts): left out
+    if (!tables.count(kErrataTable.name())) return part;  // not run (validate --parts): left out
     part.heading = heading();
     addErrataPart(part, tables);
     return part;
   }
-  std::vector<std::string> tables() const override { return {"errata", "eq5_layouts", "eq15_coefficients", "eq15_engines"}; }
+  std::vector<const TableSchema*> schemas() const override {
+    return {&kErrataTable, &kEq5LayoutsTable, &kEq15CoefficientsTable, &kEq15EnginesTable};
+  }
   std::vector<ReportedMaximum> maxima() const override {
     return {{"errata", {"item", "measure"}, {"value"}, "", ""},
             {"eq5_layouts", {"cycle", "k", "gamma_deg"}, {"max_abs_Q", "max_abs_Q_printed", "max_error_rel"}, "", ""},

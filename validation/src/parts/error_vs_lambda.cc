@@ -1,4 +1,4 @@
-// Report part `error_vs_lambda` (1): the error of every approximate method against lambda.
+// Report part `error_vs_lambda`: the error of every approximate method against lambda.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "../campaign_tables.h"
@@ -26,20 +27,33 @@ namespace {
 using analytic::Eq5Form;
 using analytic::LambdaSource;
 
-// ------------------------------------------------------------------------------------------------------------
-// error_vs_lambda: every approximate method against its exact reference at one lambda. Every maximum is found on the
-// same grid in the quick and the full campaign: Q's truncation errors from the exact harmonics, the others by
-// refining the best samples (extremum.h); the engines' agreement (rounding) is marked unresolved.
+// error_vs_lambda: every approximate method against its exact reference at one lambda, the largest error over a turn.
+// Every maximum is found on the same grid in the quick and the full campaign: Q's truncation errors from the exact
+// harmonics, the others by refining the best samples (extremum.h); the engines' agreement (rounding) is marked
+// unresolved.
+struct ErrorVsLambdaRow {
+  std::string quantity, method;
+  double lambda = 0.0;
+  double max_abs_error = 0.0;  ///< [SI] in the quantity's unit
+  double max_rel_error = 0.0;  ///< [-] relative to the quantity's scale
+  std::string resolved;        ///< "1", or "0": at rounding level, a bound (resolvedToOnePercent)
+};
+const Schema<ErrorVsLambdaRow> kErrorVsLambdaTable{
+    "error_vs_lambda",
+    {textField("quantity", &ErrorVsLambdaRow::quantity), textField("method", &ErrorVsLambdaRow::method),
+     numberField("lambda", "-", &ErrorVsLambdaRow::lambda),
+     numberField("max_abs_error", "SI", &ErrorVsLambdaRow::max_abs_error),
+     numberField("max_rel_error", "-", &ErrorVsLambdaRow::max_rel_error),
+     textField("resolved", &ErrorVsLambdaRow::resolved)}};
 
 TableSet calcErrorVsLambdaTables(const Mechanism& base, double lambda) {
   const Mechanism m = withLambda(base, lambda);
   const double r = m.crank.radius, w = m.engine.speed;
   const double E = calcEnergyScale(m);
   const Scales sc = calcScales(m);
-  Table t("error_vs_lambda", {{"quantity", kText}, {"method", kText}, {"lambda", "-"}, {"max_abs_error", "SI"},
-                              {"max_rel_error", "-"}, {"resolved", kText}});
+  std::vector<ErrorVsLambdaRow> rows;
   auto add = [&](const std::string& quantity, const std::string& method, double max_abs, double scale, bool resolved) {
-    t.rows.push_back({quantity, method, formatNumber(lambda), formatNumber(max_abs), formatNumber(max_abs / scale), resolved ? "1" : "0"});
+    rows.push_back({quantity, method, lambda, max_abs, max_abs / scale, resolved ? "1" : "0"});
   };
   auto direct = [&](const std::string& quantity, const std::string& method, double scale,
                     const std::function<double(double)>& error) {
@@ -86,7 +100,7 @@ TableSet calcErrorVsLambdaTables(const Mechanism& base, double lambda) {
       add(quantity, "analytic_vs_" + engine->name, error, scale, resolvedToOnePercent(error / scale, sc.conditioning));
     }
   }
-  return {{"error_vs_lambda", t}};
+  return kErrorVsLambdaTable.tableSet(std::move(rows));
 }
 
 // The figure's caption.
@@ -112,7 +126,7 @@ class ErrorVsLambdaPart final : public Part {
     return out;
   }
   ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
-  std::vector<std::string> tables() const override { return {"error_vs_lambda"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&kErrorVsLambdaTable}; }
   std::vector<ReportedMaximum> maxima() const override {
     return {{"error_vs_lambda", {"quantity", "method", "lambda"}, {"max_abs_error", "max_rel_error"}, "resolved", "0"}};
   }

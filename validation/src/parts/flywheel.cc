@@ -1,18 +1,5 @@
-// Report part `flywheel` (15): flywheel sizing (Norton 13.9) judged.
-//
-// Tables (CSV stems, columns; reports/README.md):
-//   flywheel         scene,flywheel_inertia,exact_delta, then ENGINE_delta per engine whose run takes loads
-//                    for each campaign scene with [gas] (the example scenes with gas in the default campaign), the
-//                    steady run's delta against the flywheel inertia I_f (exact energy integral; Simbody's run over a
-//                    working cycle at some of the points, empty elsewhere), I_f from 0.3 to 3 times the exact inertia
-//                    for C = 0.01
-//   flywheel_sizing  scene,cycle,k,speed_rpm,exact_inertia,norton_inertia,norton_error,norton_delta
-//                    the exact and Norton's I_f for C = 0.01 of the campaign's gas scenes; norton_error = norton /
-//                    exact - 1, norton_delta the delta Norton's inertia really gives
-//   flywheel_norton  speed_rpm,k,exact_inertia,norton_inertia,norton_error,norton_delta
-//                    the same for the base scene's parts as an inline k-cylinder four-stroke with the example
-//                    spark-ignition pressures (bore 2 r), k = 1, 2, 3, 4, 6, at 1500, 3000 and 6000 rpm (rows where no
-//                    flywheel is needed for C = 0.01 are left out)
+// Report part `flywheel`: flywheel sizing (Norton 13.9) judged: the exact energy integral's inertia against Norton's,
+// the steady run's delta against the flywheel inertia confirmed by the reference engines' free runs with gas and load.
 
 #include <algorithm>
 #include <cmath>
@@ -21,11 +8,15 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "crankcheck/analytic/flywheel.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/engine_loads.h"
 #include "crankcheck/validation/part.h"
+#include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/variants.h"
 
 namespace crankcheck::validation {
@@ -35,12 +26,11 @@ constexpr double kFluctuation = 0.01;
 
 // The accuracy of the engines' free runs (Simbody's integrator accuracy), quick and full alike: what the check needs.
 // The runs confirm the exact energy integral's delta, against which Norton's method is judged (its error on the example
-// scenes: 11 % to 265 %); at 3e-7 Simbody's delta agrees with the exact one to 3.6e-3 (relative, the full campaign of
-// 2026-11-26), 30 times below the smallest of those errors, at 0.8 of the cost of 1e-7 (which agreed to 1.7e-3; 1e-6
-// to 1.7e-2, 1e-8 to 3.9e-4, 1e-10 to 1.2e-6). bench/README.md, "Fourth session" and "Ninth session", has the tables.
+// scenes: 11 % to 265 %); at 3e-7 Simbody's delta agrees with the exact one to 3.6e-3 (relative, the full campaign),
+// 30 times below the smallest of those errors, at 0.8 of the cost of 1e-7 (which agreed to 1.7e-3; 1e-6 to 1.7e-2,
+// 1e-8 to 3.9e-4, 1e-10 to 1.2e-6). bench/README.md has the measurements ("The flywheel's Simbody runs at accuracy
+// 3e-7").
 constexpr double kRunAccuracy = 3e-7;
-
-std::string num(double x) { return formatNumber(x); }
 
 // The reference engines whose free run takes the gas forces and the load (Engine::simulates_loads): Simbody's.
 std::vector<const Engine*> listLoadedRunEngines() {
@@ -50,20 +40,92 @@ std::vector<const Engine*> listLoadedRunEngines() {
   return out;
 }
 
-// The part's three tables, empty: each task fills its own rows, the campaign adds them up (appendTables).
-TableSet makeEmptyTables() {
-  // The key columns first: sorted, each series' rows come together, in order (reports/flywheel.gp draws them so).
-  TableSet t;
-  std::vector<Column> curve = {{"scene", kText}, {"flywheel_inertia", "kg m^2"}, {"exact_delta", "-"}};
-  for (const Engine* e : listLoadedRunEngines()) curve.push_back({e->name + "_delta", "-"});  // each engine's run
-  t["flywheel"] = Table("flywheel", curve);
-  t["flywheel_sizing"] = Table("flywheel_sizing", {{"scene", kText}, {"cycle", kText}, {"k", "-"}, {"speed_rpm", "rpm"},
-                                                   {"exact_inertia", "kg m^2"}, {"norton_inertia", "kg m^2"},
-                                                   {"norton_error", "-"}, {"norton_delta", "-"}});
-  t["flywheel_norton"] = Table("flywheel_norton", {{"speed_rpm", "rpm"}, {"k", "-"}, {"exact_inertia", "kg m^2"},
-                                                   {"norton_inertia", "kg m^2"}, {"norton_error", "-"},
-                                                   {"norton_delta", "-"}});
-  return t;
+// flywheel: for each campaign scene with [gas], the steady run's delta against the flywheel inertia I_f, 0.3 to 3 times
+// the exact inertia for C = 0.01: the exact energy integral's, and each loaded-run engine's where it ran (empty
+// elsewhere). The key columns first: sorted, each series' rows come together, in order (reports/flywheel.gp draws
+// them so).
+struct FlywheelCurveRow {
+  std::string scene;
+  double flywheel_inertia = 0.0;  ///< [kg m^2]
+  double exact_delta = 0.0;       ///< [-]
+  /// [-] each engine's delta (listLoadedRunEngines' order); empty where it did not run.
+  std::vector<std::optional<double>> engine_delta;
+};
+
+// The column of engine `index`'s delta (ENGINE_delta) in a FlywheelCurveRow: empty where it did not run.
+Field<FlywheelCurveRow> engineDeltaField(const std::string& engine, size_t index) {
+  return {Column(engine + "_delta", "-"),
+          [index](const FlywheelCurveRow& r) {
+            return index < r.engine_delta.size() && r.engine_delta[index] ? Cell(*r.engine_delta[index]) : Cell();
+          },
+          [index](FlywheelCurveRow& r, Cell c) {
+            if (r.engine_delta.size() <= index) r.engine_delta.resize(index + 1);
+            if (const double* x = std::get_if<double>(&c)) r.engine_delta[index] = *x;
+            else r.engine_delta[index] = std::nullopt;
+          }};
+}
+
+// The schema of `flywheel`: one delta column per engine whose free run takes loads, so it is made on first use (the
+// engine registry is complete by then; a namespace-scope schema would be made before main()).
+const Schema<FlywheelCurveRow>& getFlywheelCurveTable() {
+  static const Schema<FlywheelCurveRow> schema = [] {
+    std::vector<Field<FlywheelCurveRow>> fields = {
+        textField("scene", &FlywheelCurveRow::scene),
+        numberField("flywheel_inertia", "kg m^2", &FlywheelCurveRow::flywheel_inertia),
+        numberField("exact_delta", "-", &FlywheelCurveRow::exact_delta)};
+    const std::vector<const Engine*> engines = listLoadedRunEngines();
+    for (size_t i = 0; i < engines.size(); ++i) fields.push_back(engineDeltaField(engines[i]->name, i));
+    return Schema<FlywheelCurveRow>("flywheel", std::move(fields));
+  }();
+  return schema;
+}
+
+// flywheel_sizing: the exact and Norton's I_f for C = 0.01 of the campaign's gas scenes.
+struct FlywheelSizingRow {
+  std::string scene, cycle;
+  int k = 1;
+  double speed_rpm = 0.0;       ///< [rpm]
+  double exact_inertia = 0.0;   ///< [kg m^2]
+  double norton_inertia = 0.0;  ///< [kg m^2]
+  double norton_error = 0.0;    ///< [-] norton / exact - 1
+  double norton_delta = 0.0;    ///< [-] the delta Norton's inertia really gives
+};
+const Schema<FlywheelSizingRow> kFlywheelSizingTable{
+    "flywheel_sizing",
+    {textField("scene", &FlywheelSizingRow::scene), textField("cycle", &FlywheelSizingRow::cycle),
+     countField("k", &FlywheelSizingRow::k), numberField("speed_rpm", "rpm", &FlywheelSizingRow::speed_rpm),
+     numberField("exact_inertia", "kg m^2", &FlywheelSizingRow::exact_inertia),
+     numberField("norton_inertia", "kg m^2", &FlywheelSizingRow::norton_inertia),
+     numberField("norton_error", "-", &FlywheelSizingRow::norton_error),
+     numberField("norton_delta", "-", &FlywheelSizingRow::norton_delta)}};
+
+// flywheel_norton: the same for the base scene's parts as an inline k-cylinder four-stroke with the example
+// spark-ignition pressures (bore 2 r), k = 1, 2, 3, 4, 6, at 1500, 3000 and 6000 rpm (rows where no flywheel is needed
+// for C = 0.01 are left out).
+struct FlywheelNortonRow {
+  double speed_rpm = 0.0;  ///< [rpm]
+  int k = 1;
+  double exact_inertia = 0.0;   ///< [kg m^2]
+  double norton_inertia = 0.0;  ///< [kg m^2]
+  double norton_error = 0.0;    ///< [-] norton / exact - 1
+  double norton_delta = 0.0;    ///< [-] the delta Norton's inertia really gives
+};
+const Schema<FlywheelNortonRow> kFlywheelNortonTable{
+    "flywheel_norton",
+    {numberField("speed_rpm", "rpm", &FlywheelNortonRow::speed_rpm), countField("k", &FlywheelNortonRow::k),
+     numberField("exact_inertia", "kg m^2", &FlywheelNortonRow::exact_inertia),
+     numberField("norton_inertia", "kg m^2", &FlywheelNortonRow::norton_inertia),
+     numberField("norton_error", "-", &FlywheelNortonRow::norton_error),
+     numberField("norton_delta", "-", &FlywheelNortonRow::norton_delta)}};
+
+// The part's three tables, each task's rows in its own (the campaign adds them up, appendTables): every task gives all
+// three, empty or not.
+TableSet makeFlywheelTables(std::vector<FlywheelCurveRow> curve, std::vector<FlywheelSizingRow> sizing,
+                            std::vector<FlywheelNortonRow> sweep) {
+  const Schema<FlywheelCurveRow>& curve_table = getFlywheelCurveTable();
+  return {{curve_table.name(), curve_table.table(std::move(curve))},
+          {kFlywheelSizingTable.name(), kFlywheelSizingTable.table(std::move(sizing))},
+          {kFlywheelNortonTable.name(), kFlywheelNortonTable.table(std::move(sweep))}};
 }
 
 std::optional<analytic::FlywheelSizing> sized(const Mechanism& m) {
@@ -111,27 +173,26 @@ std::vector<int> listFlywheelRunPoints(bool quick, bool first_gas_scene) {
 // (one of `runs`, the scene's listFlywheelRunPoints) with Simbody's run.
 TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, const std::vector<int>& runs, int point,
                                  SharedResult<Curve>& shared) {
-  TableSet tables = makeEmptyTables();
-  Table &curve = tables["flywheel"], &sizing = tables["flywheel_sizing"];
-  if (!m.gas || !(m.engine.speed > 0.0)) return tables;
+  std::vector<FlywheelCurveRow> curve;
+  std::vector<FlywheelSizingRow> sizing;
+  if (!m.gas || !(m.engine.speed > 0.0)) return makeFlywheelTables({}, {}, {});
   const Curve& c = shared.get();
   const std::optional<analytic::FlywheelSizing>& s = c.sizing;
-  if (!s) return tables;
+  if (!s) return makeFlywheelTables({}, {}, {});
   const analytic::FlywheelSizing& exact = *s;
   if (point < 0)
-    sizing.rows.push_back({m.name, toString(m.engine.cycle), std::to_string(m.engine.cylinders), num(m.speed_rpm),
-                           num(exact.exact_inertia), num(exact.norton_inertia),
-                           num(exact.norton_inertia / exact.exact_inertia - 1.0), num(exact.norton.delta)});
+    sizing.push_back({m.name, toString(m.engine.cycle), m.engine.cylinders, m.speed_rpm, exact.exact_inertia,
+                      exact.norton_inertia, exact.norton_inertia / exact.exact_inertia - 1.0, exact.norton.delta});
   for (int i = 0; i < calcPointCount(quick); ++i) {  // this task's points: the runs alone, the rest together
     const bool run_here = std::find(runs.begin(), runs.end(), i) != runs.end();
     if (point < 0 ? run_here : i != point) continue;
     const double I = c.inertias[static_cast<size_t>(i)];
     const analytic::SteadyRun& steady = c.runs[static_cast<size_t>(i)];
     const bool run = point >= 0;
-    std::vector<std::string> row = {m.name, num(I), num(steady.delta)};
+    FlywheelCurveRow row{m.name, I, steady.delta, {}};
     for (const Engine* engine : listLoadedRunEngines()) {
       if (!run) {
-        row.emplace_back();
+        row.engine_delta.emplace_back();
         continue;
       }
       Mechanism with = m;
@@ -142,17 +203,16 @@ TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, const std::vect
       settings.load_torque = exact.load_torque;
       settings.revolutions = 2;
       settings.accuracy = kRunAccuracy;
-      row.push_back(num(engine->simulate(with, steady.omega0, settings).delta));
+      row.engine_delta.emplace_back(engine->simulate(with, steady.omega0, settings).delta);
     }
-    curve.rows.push_back(row);
+    curve.push_back(std::move(row));
   }
-  return tables;
+  return makeFlywheelTables(std::move(curve), std::move(sizing), {});
 }
 
 // The part's three tables with the rows of the sweep on `parts` (`flywheel_norton`).
 TableSet calcFlywheelNortonTables(const Mechanism& parts, bool quick) {
-  TableSet tables = makeEmptyTables();
-  Table& sweep = tables["flywheel_norton"];
+  std::vector<FlywheelNortonRow> sweep;
   const std::vector<int> ks = quick ? std::vector<int>{1, 4} : std::vector<int>{1, 2, 3, 4, 6};
   const std::vector<double> speeds = quick ? std::vector<double>{3000.0} : std::vector<double>{1500.0, 3000.0, 6000.0};
   Mechanism base = parts;
@@ -164,39 +224,38 @@ TableSet calcFlywheelNortonTables(const Mechanism& parts, bool quick) {
                                                          makeExampleGas(Cycle::kFourStroke, 2.0 * base.crank.radius)),
                                     rpm);
       if (const std::optional<analytic::FlywheelSizing> s = sized(m))
-        sweep.rows.push_back({num(rpm), std::to_string(k), num(s->exact_inertia), num(s->norton_inertia),
-                              num(s->norton_inertia / s->exact_inertia - 1.0), num(s->norton.delta)});
+        sweep.push_back({rpm, k, s->exact_inertia, s->norton_inertia, s->norton_inertia / s->exact_inertia - 1.0,
+                         s->norton.delta});
     }
-  return tables;
+  return makeFlywheelTables({}, {}, std::move(sweep));
 }
 
 // The part as the report shows it under `heading`: figure caption, sentences read from the data; an empty heading
 // without data.
 ReportPart describeFlywheelPart(const TableSet& tables, const std::string& heading) {
   ReportPart part;
-  const auto sizing = tables.find("flywheel_sizing"), sweep = tables.find("flywheel_norton");
-  if (sizing == tables.end() || sweep == tables.end() || !tables.count("flywheel")) return part;
+  const Schema<FlywheelCurveRow>& curve_table = getFlywheelCurveTable();
+  if (!tables.count(kFlywheelSizingTable.name()) || !tables.count(kFlywheelNortonTable.name()) ||
+      !tables.count(curve_table.name()))
+    return part;
   part.heading = heading;
   part.caption =
       "Left: the steady run's speed fluctuation delta against the flywheel inertia for each scene with gas (the exact "
       "energy integral as lines, Simbody's run over a working cycle as dots), the exact inertia for delta = 0.01 marked "
       "by the dashed line. Right: the error of Norton's inertia (13.9) against the exact one, for C = 0.01, against the "
       "number of cylinders of an inline four-stroke on the base scene's parts, one line per speed";
-  const Table& t = sizing->second;
-  const size_t scene = columnOf(t, "scene"), exact = columnOf(t, "exact_inertia"), norton = columnOf(t, "norton_inertia"),
-               error = columnOf(t, "norton_error"), nd = columnOf(t, "norton_delta");
-  for (const auto& row : t.rows)
-    part.paragraphs.push_back(row[scene] + " at C = 0.01: the exact flywheel is " + shortNumber(std::stod(row[exact]), 4) +
-                              " kg m^2, Norton's " + shortNumber(std::stod(row[norton]), 4) + " kg m^2 (" +
-                              shortNumber(100.0 * std::stod(row[error]), 3) + " %), which really gives delta = " +
-                              shortNumber(std::stod(row[nd]), 4) + ".");
-  const Table& w = sweep->second;
-  const size_t wk = columnOf(w, "k"), wr = columnOf(w, "speed_rpm"), we = columnOf(w, "norton_error");
+  for (const FlywheelSizingRow& row : getRows(tables, kFlywheelSizingTable))
+    part.paragraphs.push_back(row.scene + " at C = 0.01: the exact flywheel is " + shortNumber(row.exact_inertia, 4) +
+                              " kg m^2, Norton's " + shortNumber(row.norton_inertia, 4) + " kg m^2 (" +
+                              formatPercent(row.norton_error) + "), which really gives delta = " +
+                              shortNumber(row.norton_delta, 4) + ".");
+  const std::vector<FlywheelNortonRow>& sweep = getRows(tables, kFlywheelNortonTable);
+  if (sweep.empty()) return part;
   double worst = 0.0, best = 1e300;
   std::string worst_at, best_at;
-  for (const auto& row : w.rows) {
-    const double e = std::fabs(std::stod(row[we]));
-    const std::string at = "k = " + row[wk] + ", " + row[wr] + " rpm";
+  for (const FlywheelNortonRow& row : sweep) {
+    const double e = std::fabs(row.norton_error);
+    const std::string at = "k = " + std::to_string(row.k) + ", " + shortNumber(row.speed_rpm, 5) + " rpm";
     if (e > worst) {
       worst = e;
       worst_at = at;
@@ -206,26 +265,20 @@ ReportPart describeFlywheelPart(const TableSet& tables, const std::string& headi
       best_at = at;
     }
   }
-  if (w.rows.empty()) return part;
   part.paragraphs.push_back("On the base scene's parts as an inline four-stroke with gas, Norton's inertia is off by " +
-                            shortNumber(100.0 * best, 3) + " % at best (" + best_at + ") and " + shortNumber(100.0 * worst, 3) +
-                            " % at worst (" + worst_at +
+                            formatPercent(best) + " at best (" + best_at + ") and " + formatPercent(worst) +
+                            " at worst (" + worst_at +
                             "): his method takes the energy swing of the constant-speed torque, and leaves out that the "
                             "speed itself varies and that the mechanism's own inertia varies with the crank angle.");
-  const auto curve = tables.find("flywheel");
-  if (curve != tables.end()) {
-    const Table& c = curve->second;
-    const size_t ed = columnOf(c, "exact_delta");
-    for (const Engine* engine : listLoadedRunEngines()) {
-      const size_t sd = columnOf(c, engine->name + "_delta");
-      double agreement = 0.0;
-      for (const auto& row : c.rows)
-        if (!row[sd].empty())
-          agreement = std::max(agreement, std::fabs(std::stod(row[sd]) / std::stod(row[ed]) - 1.0));
-      part.paragraphs.push_back(engine->library.substr(0, engine->library.find(' ')) + "'s run agrees with the exact "
-                                "energy integral's delta to " + shortNumber(agreement, 2) +
-                                " (relative) at every point it was run.");
-    }
+  const std::vector<const Engine*> engines = listLoadedRunEngines();
+  for (size_t i = 0; i < engines.size(); ++i) {
+    double agreement = 0.0;
+    for (const FlywheelCurveRow& row : getRows(tables, curve_table))
+      if (i < row.engine_delta.size() && row.engine_delta[i])
+        agreement = std::max(agreement, std::fabs(*row.engine_delta[i] / row.exact_delta - 1.0));
+    part.paragraphs.push_back(engines[i]->library.substr(0, engines[i]->library.find(' ')) +
+                              "'s run agrees with the exact energy integral's delta to " + shortNumber(agreement, 2) +
+                              " (relative) at every point it was run.");
   }
   return part;
 }
@@ -259,7 +312,9 @@ class FlywheelPart final : public Part {
     return out;
   }
   ReportPart describe(const TableSet& tables) const override { return describeFlywheelPart(tables, heading()); }
-  std::vector<std::string> tables() const override { return {"flywheel", "flywheel_sizing", "flywheel_norton"}; }
+  std::vector<const TableSchema*> schemas() const override {
+    return {&getFlywheelCurveTable(), &kFlywheelSizingTable, &kFlywheelNortonTable};
+  }
 };
 
 }  // namespace

@@ -1,11 +1,12 @@
-// Report part `integrator_pareto` (7): the exact engines' integrators (Simbody's), cost against error in the free run. Needs the base
-// scene's flywheel: without one the part is left out (campaign.cc's notes say so).
+// Report part `integrator_pareto`: the exact engines' integrators (Simbody's), cost against error in the free run. Needs
+// the base scene's flywheel: without one the part is left out (campaign.cc's notes say so).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -18,6 +19,7 @@
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/part.h"
+#include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/timing.h"
 #include "crankcheck/validation/variants.h"
@@ -25,9 +27,26 @@
 namespace crankcheck::validation {
 namespace {
 
-// ------------------------------------------------------------------------------------------------------------
-// integrator_pareto: Simbody's free run by each integrator and accuracy: cost per simulated revolution (one Google
-// Benchmark run) against the error of delta and the energy drift, the analytic energy integral as reference.
+// integrator_pareto: the free run of each simulating reference engine by each integrator and accuracy: cost per
+// simulated revolution (one Google Benchmark run) against the error of delta and the energy drift, the analytic energy
+// integral as reference. A run that failed has NaN in its numbers.
+struct IntegratorParetoRow {
+  std::string integrator;
+  double accuracy = 0.0;           ///< [-] the integrator's accuracy setting
+  double ns_per_revolution = 0.0;  ///< [ns] per simulated revolution
+  double delta_error = 0.0;        ///< [-] |delta - exact delta| / exact delta
+  double energy_drift = 0.0;       ///< [-] relative energy drift per revolution
+  std::string status;              ///< "ok" or "failed"
+  std::string engine;
+};
+const Schema<IntegratorParetoRow> kIntegratorParetoTable{
+    "integrator_pareto",
+    {textField("integrator", &IntegratorParetoRow::integrator),
+     numberField("accuracy", "-", &IntegratorParetoRow::accuracy),
+     numberField("ns_per_revolution", "ns", &IntegratorParetoRow::ns_per_revolution),
+     numberField("delta_error", "-", &IntegratorParetoRow::delta_error),
+     numberField("energy_drift", "-", &IntegratorParetoRow::energy_drift),
+     textField("status", &IntegratorParetoRow::status), textField("engine", &IntegratorParetoRow::engine)}};
 
 TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick) {
   const Mechanism m = withSpeed(base, 300.0);
@@ -56,8 +75,6 @@ TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick) {
         runs.push_back({engine, settings, name});
       }
   }
-  Table t("integrator_pareto", {{"integrator", kText}, {"accuracy", "-"}, {"ns_per_revolution", "ns"},
-                                {"delta_error", "-"}, {"energy_drift", "-"}, {"status", kText}, {"engine", kText}});
   // Each run is timed by Google Benchmark and keeps its last result, so that no run is integrated twice just for
   // its error (a run that fails is reported as failed).
   std::vector<std::pair<std::string, std::function<void()>>> timed;
@@ -77,19 +94,21 @@ TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick) {
     });
   }
   const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, 0.01);
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  std::vector<IntegratorParetoRow> rows;
   for (const Run& run : runs) {
     const std::string& integrator = run.settings.integrator;
     const FreeRunResult& result = *results[run.name];
     const auto time = ns.find(run.name);
     if (!failures[run.name]->empty() || time == ns.end()) {
-      t.rows.push_back({integrator, formatNumber(run.settings.accuracy), "nan", "nan", "nan", "failed", run.engine->name});
+      rows.push_back({integrator, run.settings.accuracy, kNaN, kNaN, kNaN, "failed", run.engine->name});
       continue;
     }
-    t.rows.push_back({integrator, formatNumber(run.settings.accuracy), formatNumber(time->second / run.settings.revolutions),
-                      formatNumber(std::fabs(result.delta - exact.delta) / exact.delta),
-                      formatNumber(result.energy_drift_per_revolution), "ok", run.engine->name});
+    rows.push_back({integrator, run.settings.accuracy, time->second / run.settings.revolutions,
+                    std::fabs(result.delta - exact.delta) / exact.delta, result.energy_drift_per_revolution, "ok",
+                    run.engine->name});
   }
-  return {{"integrator_pareto", t}};
+  return kIntegratorParetoTable.tableSet(std::move(rows));
 }
 
 class IntegratorParetoPart final : public Part {
@@ -104,18 +123,19 @@ class IntegratorParetoPart final : public Part {
   }
   ReportPart describe(const TableSet& tables) const override {
     ReportPart part;
-    if (!tables.count(key())) return part;
+    if (!tables.count(kIntegratorParetoTable.name())) return part;
     part.heading = heading();
     part.caption =
         "Simbody's free run by RungeKuttaMerson, CPodes and SemiExplicitEuler2 at accuracies 1e-3 to 1e-10: cost per "
         "simulated revolution (one Google Benchmark run) against the relative error of delta and the energy drift per "
         "revolution, the analytic energy integral as reference";
     part.header = {"integrator", "accuracy [-]", "time per revolution [ns]", "delta error [-]", "energy drift [-]", "status"};
-    part.rows = formatRows(tables, key(), {"integrator", "accuracy", "ns_per_revolution", "delta_error", "energy_drift", "status"},
-                           {false, true, true, true, true, false});
+    for (const IntegratorParetoRow& row : getRows(tables, kIntegratorParetoTable))
+      part.rows.push_back({row.integrator, shortNumber(row.accuracy, 4), shortNumber(row.ns_per_revolution, 4),
+                           shortNumber(row.delta_error, 4), shortNumber(row.energy_drift, 4), row.status});
     return part;
   }
-  std::vector<std::string> tables() const override { return {"integrator_pareto"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&kIntegratorParetoTable}; }
 };
 
 }  // namespace

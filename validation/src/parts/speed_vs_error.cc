@@ -1,4 +1,4 @@
-// Report part `speed_vs_error` (2): cost per evaluation of Q against its error, every method timed in one run on this
+// Report part `speed_vs_error`: cost per evaluation of Q against its error, every method timed in one run on this
 // machine.
 #include <benchmark/benchmark.h>
 
@@ -20,6 +20,7 @@
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/part.h"
+#include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/timing.h"
 #include "crankcheck/validation/variants.h"
@@ -29,8 +30,18 @@ namespace {
 
 using analytic::LambdaSource;
 
-// ------------------------------------------------------------------------------------------------------------
 // speed_vs_error: cost per evaluation of Q against its error, every method measured in one Google Benchmark run.
+struct SpeedVsErrorRow {
+  std::string method;
+  double ns_per_eval = 0.0;    ///< [ns] per angle
+  double max_rel_error = 0.0;  ///< [-] relative to the energy scale
+  std::string resolved;        ///< "1", or "0": at rounding level, a bound (resolvedToOnePercent)
+};
+const Schema<SpeedVsErrorRow> kSpeedVsErrorTable{
+    "speed_vs_error",
+    {textField("method", &SpeedVsErrorRow::method), numberField("ns_per_eval", "ns", &SpeedVsErrorRow::ns_per_eval),
+     numberField("max_rel_error", "-", &SpeedVsErrorRow::max_rel_error),
+     textField("resolved", &SpeedVsErrorRow::resolved)}};
 
 TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
   const Mechanism m = withSpeed(base, 0.0);
@@ -43,7 +54,8 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
 
   struct Method {
     std::string name;
-    std::function<double(double)> eval;   // Q at phi
+    std::function<double(double)> eval;  // Q at phi
+    int fourier_order = 0;               // a Fourier series of this order; 0: another method
   };
   std::vector<Method> methods;
   const std::vector<const Engine*> references = listReferenceEngines();
@@ -59,7 +71,7 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
   for (int order : {2, 4, 6, 8, 12}) {
     auto harmonics = std::make_shared<std::vector<analytic::TorqueHarmonic>>(analytic::calcGravityTorqueHarmonics(m, order));
     methods.push_back({"fourier_order_" + std::to_string(order),
-                       [harmonics](double phi) { return analytic::evaluateTorqueHarmonics(*harmonics, phi); }});
+                       [harmonics](double phi) { return analytic::evaluateTorqueHarmonics(*harmonics, phi); }, order});
   }
   auto printed = std::make_shared<std::vector<analytic::TorqueHarmonic>>(
       analytic::calcGravityTorqueHarmonics(m, 12, LambdaSource::kAsPrinted));
@@ -87,8 +99,8 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
   for (const Method& method : methods) {
     double worst = 0.0;
     bool resolved = true;
-    if (method.name.rfind("fourier_order_", 0) == 0) {
-      worst = maxAbsOfHarmonics(harmonicsAbove(exact_harmonics, std::stoi(method.name.substr(14))));
+    if (method.fourier_order > 0) {
+      worst = maxAbsOfHarmonics(harmonicsAbove(exact_harmonics, method.fourier_order));
     } else if (method.name == "paper_eq15_printed") {
       worst = maxAbsOfHarmonics(harmonicsMinus(*printed, exact_harmonics));
       resolved = resolvedToOnePercent(worst / E);
@@ -166,19 +178,19 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
   }
   for (const BatchMethod& b : batch_methods) timed.emplace_back(b.name, b.run);
   const std::map<std::string, double> ns = measureNanosecondsPerCall(timed, getTimingSeconds(quick));
-  Table t("speed_vs_error", {{"method", kText}, {"ns_per_eval", "ns"}, {"max_rel_error", "-"}, {"resolved", kText}});
+  std::vector<SpeedVsErrorRow> rows;
   for (const Method& method : methods) {
     const auto it = ns.find(method.name);
     if (it != ns.end())
-      t.rows.push_back({method.name, formatNumber(it->second), formatNumber(errors[method.name].first), errors[method.name].second ? "1" : "0"});
+      rows.push_back({method.name, it->second, errors[method.name].first, errors[method.name].second ? "1" : "0"});
   }
   for (const BatchMethod& b : batch_methods) {
     const auto it = ns.find(b.name);
     if (it != ns.end())
-      t.rows.push_back({b.name, formatNumber(it->second / static_cast<double>(b.angles_per_call)), formatNumber(errors[b.name].first),
-                        errors[b.name].second ? "1" : "0"});
+      rows.push_back({b.name, it->second / static_cast<double>(b.angles_per_call), errors[b.name].first,
+                      errors[b.name].second ? "1" : "0"});
   }
-  return {{"speed_vs_error", t}};
+  return kSpeedVsErrorTable.tableSet(std::move(rows));
 }
 
 class SpeedVsErrorPart final : public Part {
@@ -191,15 +203,17 @@ class SpeedVsErrorPart final : public Part {
   }
   ReportPart describe(const TableSet& tables) const override {
     ReportPart part;
-    if (!tables.count(key())) return part;
+    if (!tables.count(kSpeedVsErrorTable.name())) return part;
     part.heading = heading();
     part.blocks.push_back({ReportBlock::kFigure,
                            "Cost per evaluation of Q against its error, all measured in one run on this machine: the "
                            "exact closed form, Fourier orders, the printed eq (15), each reference engine (Simbody at several "
                            "projection tolerances and by its reduced gravity model); the Pareto front joined",
                            {}, {}, key()});
-    part.blocks.push_back({ReportBlock::kTable, "", {"method", "time per evaluation [ns]", "max error / energy scale [-]", "resolved"},
-                           formatRows(tables, key(), {"method", "ns_per_eval", "max_rel_error", "resolved"}, {false, true, true, false})});
+    ReportBlock table{ReportBlock::kTable, "", {"method", "time per evaluation [ns]", "max error / energy scale [-]", "resolved"}};
+    for (const SpeedVsErrorRow& row : getRows(tables, kSpeedVsErrorTable))
+      table.rows.push_back({row.method, shortNumber(row.ns_per_eval, 4), shortNumber(row.max_rel_error, 4), row.resolved});
+    part.blocks.push_back(std::move(table));
     part.blocks.push_back({ReportBlock::kParagraph,
                            "Each error is the maximum over the turn (the Fourier series' from the exact harmonics they "
                            "leave out, the others refined from 72 samples by Brent's method). resolved = 0: the error is "
@@ -207,7 +221,7 @@ class SpeedVsErrorPart final : public Part {
                            "measured maximum."});
     return part;
   }
-  std::vector<std::string> tables() const override { return {"speed_vs_error"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&kSpeedVsErrorTable}; }
   std::vector<ReportedMaximum> maxima() const override {
     return {{"speed_vs_error", {"method"}, {"max_rel_error"}, "resolved", "0"}};
   }
