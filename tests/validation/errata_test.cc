@@ -109,7 +109,7 @@ TEST_F(ErrataTest, Section7FirstSurvivingOrdersMatchComplexSums) {
   }
 }
 
-// Part 4's maxima (from eq (16)'s exact harmonics, refined) against eq (13) evaluated on a 0.01 degree grid: a grid that
+// gravity_significance's maxima (from eq (16)'s exact harmonics, refined) against eq (13) evaluated on a 0.01 degree grid: a grid that
 // fine is within (n x 0.005 deg)^2 / 2 of the maximum (2e-5 relative for the harmonic n = 14 of k = 7), and eq (13)'s
 // rounding is about 1e-16 of the energy scale, 1e-5 of k = 7's max |Q|: 1e-4 relative covers both.
 TEST(GravitySignificanceTest, MaximaMatchADenseGridOfEq13) {
@@ -119,9 +119,11 @@ TEST(GravitySignificanceTest, MaximaMatchADenseGridOfEq13) {
   const Table& t = tables.at("gravity_significance");
   const Mechanism base = buildDefaultScenes().front();
   int checked = 0;
-  for (const auto& row : t.rows) {
-    const int k = std::stoi(row[1]);
-    const Cycle cycle = row[0] == "two-stroke" ? Cycle::kTwoStroke : Cycle::kFourStroke;
+  const size_t cycle_column = columnOf(t, "cycle"), k_column = columnOf(t, "k"), max_column = columnOf(t, "max_abs_Q");
+  for (size_t row = 0; row < t.size(); ++row) {
+    const int k = static_cast<int>(std::get<double>(t.cell(row, k_column)));
+    const std::string cycle_name = std::get<std::string>(t.cell(row, cycle_column));
+    const Cycle cycle = cycle_name == "two-stroke" ? Cycle::kTwoStroke : Cycle::kFourStroke;
     if (!((cycle == Cycle::kTwoStroke && (k == 1 || k == 4 || k == 7 || k == 12)) || (cycle == Cycle::kFourStroke && k == 8))) continue;
     Mechanism m = base;
     m.engine.cylinders = k;
@@ -130,11 +132,11 @@ TEST(GravitySignificanceTest, MaximaMatchADenseGridOfEq13) {
     m.engine.cylinder_angle = M_PI / 2.0;
     double dense = 0.0;
     for (int i = 0; i < 36000; ++i) dense = std::max(dense, std::fabs(analytic::calcGravityTorque(m, 2.0 * M_PI * i / 36000.0)));
-    const double reported = std::strtod(row[2].c_str(), nullptr);
+    const double reported = std::get<double>(t.cell(row, max_column));
     // A 0.01-degree grid misses a harmonic-n maximum by at most (n h)^2 / 8 of it: 2.2e-6 for n <= 24. 1e-4 of the
     // maximum also covers the report's Brent refinement stopping at its own 1e-10 rad bracket; both far below the
     // differences between cylinder counts the table is read for (factors of 10 and more).
-    EXPECT_NEAR(reported, dense, 1e-4 * dense) << row[0] << " k = " << k;
+    EXPECT_NEAR(reported, dense, 1e-4 * dense) << cycle_name << " k = " << k;
     ++checked;
   }
   EXPECT_EQ(checked, 5);
