@@ -2,8 +2,7 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/balance_harmonics.gp
 #
-# Reads  in_dir/balance_harmonics.csv   layout_index,layout,n,force_relative,couple_relative,rocking_relative,
-#                                       force_vanishes,couple_vanishes
+# Reads  in_dir/balance_harmonics.csv (columns by their header names, validation/src/parts/balance.cc)
 # Writes out_dir/balance_harmonics.svg and out_dir/balance_harmonics.png
 #
 # Two panels side by side: the shaking force (left) and the couple about X and Y (right). Each cell (n, layout) is
@@ -25,9 +24,10 @@ nlines = 0
 stats file using (nlines = nlines + 1, 1) nooutput
 if (nlines == 0) { print "error: " . file . " is missing or empty (not even a header line)"; exit status 1 }
 ndata = nlines - 1
+set datafile columnheaders
 nlayouts = 1
 if (ndata > 0) {
-    stats file skip 1 using 1 nooutput
+    stats file using "layout_index [-]" nooutput
     nlayouts = STATS_max + 1
 }
 
@@ -42,10 +42,11 @@ set xrange [0.5:8.5]
 set yrange [-0.5:nlayouts - 0.5]
 set object 1 rectangle from graph 0, 0 to graph 1, 1 fillcolor rgb "#e6e6e6" fillstyle solid 1.0 noborder behind
 
-# column c: 4 force, 5 couple; the vanishing flag in column f: 7, 8
-cells(c, f) = sprintf("file skip 1 using 3:1:(0.5):(0.5):(column(%d) == 1 ? NaN : lz(column(%d)))%s with boxxyerror fillstyle solid 1.0 noborder lc palette notitle, ", f, c, c == 4 ? ":ytic(2)" : "") . \
-              sprintf("file skip 1 using 3:(column(%d) == 1 ? $1 : NaN):(0.5):(0.5) with boxxyerror fillstyle solid 1.0 noborder lc rgb 'white' notitle, ", f) . \
-              sprintf("file skip 1 using 3:(column(%d) == 1 ? $1 : NaN) with points pt 7 ps 0.35 lc rgb '#555555' notitle", f)
+# column c: "force_relative [-]" or "couple_relative [-]"; the vanishing flag in column f: "force_vanishes" or
+# "couple_vanishes"; the layouts labelled on the force's panel
+cells(c, f) = sprintf("file using 'n [-]':'layout_index [-]':(0.5):(0.5):(column('%s') == 1 ? NaN : lz(column('%s')))%s with boxxyerror fillstyle solid 1.0 noborder lc palette notitle, ", f, c, c eq "force_relative [-]" ? ":ytic(strcol('layout'))" : "") . \
+              sprintf("file using 'n [-]':(column('%s') == 1 ? column('layout_index [-]') : NaN):(0.5):(0.5) with boxxyerror fillstyle solid 1.0 noborder lc rgb 'white' notitle, ", f) . \
+              sprintf("file using 'n [-]':(column('%s') == 1 ? column('layout_index [-]') : NaN) with points pt 7 ps 0.35 lc rgb '#555555' notitle", f)
 
 if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) { pngterm = "pngcairo" } else { pngterm = "png" }
 
@@ -70,14 +71,14 @@ do for [fmt in "svg png"] {
     set lmargin at screen 0.19
     set rmargin at screen 0.53
     unset colorbox
-    if (ndata > 0) { eval "plot " . cells(4, 7) } else { set label 5 "no rows in the CSV" at graph 0.5, graph 0.5 center front; plot NaN notitle }
+    if (ndata > 0) { eval "plot " . cells("force_relative [-]", "force_vanishes") } else { set label 5 "no rows in the CSV" at graph 0.5, graph 0.5 center front; plot NaN notitle }
 
     set title "couple about X and Y (about the engine's middle)" font ",11"
     set lmargin at screen 0.555
     set rmargin at screen 0.895
     unset ytics
     set colorbox
-    if (ndata > 0) { eval "plot " . cells(5, 8) } else { plot NaN notitle }
+    if (ndata > 0) { eval "plot " . cells("couple_relative [-]", "couple_vanishes") } else { plot NaN notitle }
     set ytics scale 0 font ",8" noenhanced
     unset label 6
     unset multiplot

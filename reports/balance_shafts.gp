@@ -1,8 +1,8 @@
-# balance_shafts.gp -- report part 16: what designed balance shafts cancel, by every exact engine.
+# balance_shafts.gp -- report part `balance_shafts`: what designed balance shafts cancel, by every exact engine.
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/balance_shafts.gp
 #
-# Reads  in_dir/balance_shafts.csv   case,shafts,engine,n,force_amplitude,force_relative
+# Reads  in_dir/balance_shafts.csv (columns by their header names, validation/src/parts/balance_shafts.cc)
 # Writes out_dir/balance_shafts.svg and out_dir/balance_shafts.png
 #
 # One panel per case (at most 3): the amplitude of harmonic n of the shaking force relative to the force scale (log y,
@@ -23,12 +23,13 @@ clamp(v) = (v < floor) ? floor : v
 nlines = 0
 stats data using (nlines = nlines + 1, 1) nooutput
 if (nlines == 0) { print "error: " . data . " is missing or empty (not even a header line)"; exit status 1 }
+set datafile columnheaders
 
 # the cases, in order of appearance (at most 3)
 array S[3]
 ncases = 0
 if (nlines > 1) {
-    stats data skip 1 using (s = strcol(1), (ncases == 0 || S[ncases] ne s) && ncases < 3 ? (ncases = ncases + 1, S[ncases] = s) : 0, 0) nooutput
+    stats data using (s = strcol("case"), (ncases == 0 || S[ncases] ne s) && ncases < 3 ? (ncases = ncases + 1, S[ncases] = s) : 0, 0) nooutput
 }
 panels = (ncases > 0) ? ncases : 1
 
@@ -61,13 +62,13 @@ do for [fmt in "svg png"] {
     } else {
         do for [i = 1:ncases] {
             set title S[i] noenhanced font ",10"
-            plot data skip 1 using 4:(strcol(1) eq S[i] && strcol(2) eq "none" && strcol(3) eq "analytic" ? clamp($6) : NaN) \
+            plot data using "n [-]":(strcol("case") eq S[i] && strcol("shafts") eq "none" && strcol("engine") eq "analytic" ? clamp(column("force_relative [-]")) : NaN) \
                      with linespoints lw 4 pt 5 ps 0.9 lc rgb "#bbbbbb" title "without shafts", \
-                 data skip 1 using 4:(strcol(1) eq S[i] && strcol(2) eq "with" && strcol(3) eq "analytic" ? clamp($6) : NaN) \
+                 data using "n [-]":(strcol("case") eq S[i] && strcol("shafts") eq "with" && strcol("engine") eq "analytic" ? clamp(column("force_relative [-]")) : NaN) \
                      with lines lw 2 lc rgb "#1f77b4" title "with: closed form", \
-                 data skip 1 using 4:(strcol(1) eq S[i] && strcol(2) eq "with" && strcol(3) eq "simbody" ? clamp($6) : NaN) \
+                 data using "n [-]":(strcol("case") eq S[i] && strcol("shafts") eq "with" && strcol("engine") eq "simbody" ? clamp(column("force_relative [-]")) : NaN) \
                      with points pt 7 ps 0.8 lc rgb "#d62728" title "with: Simbody (DFT)", \
-                 data skip 1 using 4:(strcol(1) eq S[i] && strcol(2) eq "with" && strcol(3) eq "mujoco" ? clamp($6) : NaN) \
+                 data using "n [-]":(strcol("case") eq S[i] && strcol("shafts") eq "with" && strcol("engine") eq "mujoco" ? clamp(column("force_relative [-]")) : NaN) \
                      with points pt 6 ps 1.3 lc rgb "#2ca02c" title "with: MuJoCo (DFT)"
         }
     }

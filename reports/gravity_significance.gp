@@ -2,16 +2,15 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/gravity_significance.gp
 #
-# Reads  in_dir/gravity_significance.csv   cycle,k,max_abs_Q,ratio_to_k1,max_inertia_torque,ratio_to_inertia,
-#        first_order,paper_negligible,rounding_bound, then per reference engine ENGINE_max_abs_Q,ENGINE_resolved,
-#        ENGINE_ratio_to_k1 (columns 10-12: the first reference engine's, drawn; optional)
+# Reads  in_dir/gravity_significance.csv (columns by their header names, validation/src/parts/gravity_significance.cc;
+#        the first reference engine's ENGINE_ratio_to_k1 and ENGINE_resolved drawn, optional)
 # Writes out_dir/gravity_significance.svg and out_dir/gravity_significance.png
 #
 # Per cycle (two-stroke blue, four-stroke orange) two lines against k = 1..12 on a log y axis:
 # ratio_to_k1 (solid, filled points) = max|Q| relative to the same cycle's k = 1, and
 # ratio_to_inertia (dashed, open points) = max|Q| relative to the largest inertia torque.
-# The first reference engine's max |Q| relative to its k = 1 (column 12) is drawn as a cross where it resolves it
-# (column 11 "yes") and as an arrow down from its rounding bound where it does not ("no"): an upper bound,
+# The first reference engine's max |Q| relative to its k = 1 (ENGINE_ratio_to_k1) is drawn as a cross where it
+# resolves it (ENGINE_resolved "yes") and as an arrow down from its rounding bound where it does not ("no"): an upper bound,
 # not a value. Values below 1e-17 are drawn at 1e-17. k = 7, 9, 11 are shaded. Rows may come in any
 # order; an absent cycle or column simply has no line.
 
@@ -36,19 +35,21 @@ nlines = 0
 stats file using (nlines = nlines + 1, 1) nooutput
 if (nlines == 0) { print "error: " . file . " is missing or empty (not even a header line)"; exit status 1 }
 ndata = nlines - 1
+set datafile columnheaders
+K = "k [-]"; TO_K1 = "ratio_to_k1 [-]"; TO_INERTIA = "ratio_to_inertia [-]"
 
 if (ndata > 0) {
-    stats file skip 1 using (reg(strcol(1), "4", column(4)), reg(strcol(1), "6", column(6)), \
-        (fin(column(4)) ? (ymin = clamp(column(4)) < ymin ? clamp(column(4)) : ymin, \
-                                   ymax = column(4) > ymax ? column(4) : ymax) : 0), \
-        (fin(column(6)) ? (ymin = clamp(column(6)) < ymin ? clamp(column(6)) : ymin, \
-                                   ymax = column(6) > ymax ? column(6) : ymax) : 0), 0) nooutput
+    stats file using (reg(strcol("cycle"), TO_K1, column(TO_K1)), reg(strcol("cycle"), TO_INERTIA, column(TO_INERTIA)), \
+        (fin(column(TO_K1)) ? (ymin = clamp(column(TO_K1)) < ymin ? clamp(column(TO_K1)) : ymin, \
+                                   ymax = column(TO_K1) > ymax ? column(TO_K1) : ymax) : 0), \
+        (fin(column(TO_INERTIA)) ? (ymin = clamp(column(TO_INERTIA)) < ymin ? clamp(column(TO_INERTIA)) : ymin, \
+                                   ymax = column(TO_INERTIA) > ymax ? column(TO_INERTIA) : ymax) : 0), 0) nooutput
 }
 
 has(c, col) = strstrt(present, "|" . c . ":" . col . "|") > 0
 
 array CYC[2] = ["two-stroke", "four-stroke"]
-array COL[2] = [4, 6]
+array COL[2] = [TO_K1, TO_INERTIA]
 array WHAT[2] = ["relative to k = 1", "relative to the inertia torque"]
 set style line 1 lc rgb "#1f77b4" lw 2 pt 7 ps 1.0
 set style line 2 lc rgb "#1f77b4" lw 2 dt 2 pt 6 ps 1.1
@@ -58,25 +59,31 @@ set style line 4 lc rgb "#ff7f0e" lw 2 dt 2 pt 4 ps 1.1
 cmd = ""
 do for [p = 1:2] {
     do for [w = 1:2] {
-        if (has(CYC[p], sprintf("%d", COL[w]))) {
+        if (has(CYC[p], COL[w])) {
             s = 2 * (p - 1) + w
             eval sprintf("set table $S%d separator comma", s)
-            plot file skip 1 using 2:(clamp(column(COL[w]))) with table if (strcol(1) eq CYC[p] && fin(column(COL[w])))
+            plot file using K:(clamp(column(COL[w]))) with table if (strcol("cycle") eq CYC[p] && fin(column(COL[w])))
             unset table
             cmd = cmd . sprintf("$S%d using 1:2 smooth unique with linespoints ls %d title '%s, %s', ", s, s, CYC[p], WHAT[w])
         }
     }
 }
 # The first reference engine: resolved values as crosses, bounds as arrows down (one decade long) ending in a down triangle.
+# Its columns: the first header ending in "_ratio_to_k1 [-]" other than the closed forms' own.
+REF = ""
+suffix = "_" . TO_K1
+isref(h) = (REF eq "" && strlen(h) > strlen(suffix) && h[strlen(h) - strlen(suffix) + 1:] eq suffix) ? (REF = h, 1) : 0
+if (ndata > 0) { stats file every ::0::0 using (sum [i = 1:100] isref(columnhead(i)), 1) nooutput }
+RES = (REF eq "") ? "" : REF[1:strlen(REF) - strlen(suffix)] . "_resolved"
 has12 = 0
-if (ndata > 0) { stats file skip 1 using (has12 = (has12 || fin(column(12))), 0) nooutput }
+if (REF ne "") { stats file using (has12 = (has12 || fin(column(REF))), 0) nooutput }
 if (has12) {
     do for [p = 1:2] {
         eval sprintf("set table $R%d separator comma", p)
-        plot file skip 1 using 2:(clamp(column(12))) with table if (strcol(1) eq CYC[p] && strcol(11) eq "yes" && fin(column(12)))
+        plot file using K:(clamp(column(REF))) with table if (strcol("cycle") eq CYC[p] && strcol(RES) eq "yes" && fin(column(REF)))
         unset table
         eval sprintf("set table $B%d separator comma", p)
-        plot file skip 1 using 2:(clamp(column(12))) with table if (strcol(1) eq CYC[p] && strcol(11) ne "yes" && fin(column(12)))
+        plot file using K:(clamp(column(REF))) with table if (strcol("cycle") eq CYC[p] && strcol(RES) ne "yes" && fin(column(REF)))
         unset table
         eval sprintf("nr = |$R%d|; nb = |$B%d|", p, p)
         if (nr > 0) { cmd = cmd . sprintf("$R%d using 1:2 with points pt 2 ps 1.8 lw 2 lc rgb '%s' title 'reference engine, %s (resolved)', ", p, (p == 1 ? "#0b3d91" : "#a34a00"), CYC[p]) }
@@ -86,6 +93,7 @@ if (has12) {
     }
 }
 cmd = (cmd eq "") ? "NaN notitle" : cmd[1:strlen(cmd) - 2]
+set datafile nocolumnheaders  # the datablocks made above have none
 
 # ---- axes ---------------------------------------------------------------------------------------
 set logscale y

@@ -1,11 +1,8 @@
-# offset.gp -- report part 14: what the centric formulas cost on an offset engine, and what the offset buys.
+# offset.gp -- report part `offset`: what the centric formulas cost on an offset engine, and what the offset buys.
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/offset.gp
 #
-# Reads  in_dir/offset.csv          quantity,offset_over_r,max_rel_error,simbody_max_rel_error,... (column 4: the
-#                                    first reference engine's; one per reference engine)
-#        in_dir/offset_thrust.csv   engine,offset_over_r,peak_major_thrust,peak_minor_thrust,thrust_reversal_deg,
-#                                   max_abs_drive_torque
+# Reads  in_dir/offset.csv and in_dir/offset_thrust.csv (columns by their header names, validation/src/parts/offset.cc)
 # Writes out_dir/offset.svg and out_dir/offset.png
 #
 # Left: the centric forms' largest error over the cycle against delta / r, one line per quantity (x_p, a_p,
@@ -30,6 +27,7 @@ if (nlines == 0) { print "error: " . cost . " is missing or empty (not even a he
 nlines = 0
 stats thrust using (nlines = nlines + 1, 1) nooutput
 if (nlines == 0) { print "error: " . thrust . " is missing or empty (not even a header line)"; exit status 1 }
+set datafile columnheaders
 
 if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) { pngterm = "pngcairo" } else { pngterm = "png" }
 array Q[4] = ["x_p", "a_p", "wall_force", "drive_torque"]
@@ -53,17 +51,17 @@ do for [fmt in "svg png"] {
     set format y "10^{%T}"
     set ylabel "largest error over the cycle / scale"
     set yrange [floor / 3 : 10]
-    plot for [i = 1:4] cost skip 1 using 2:(strcol(1) eq Q[i] ? clamp($3) : NaN) with linespoints lw 2 pt 7 ps 0.6 lc rgb C[i] title Q[i] . " (centric form)" noenhanced, \
-         for [i = 1:4] cost skip 1 using 2:(strcol(1) eq Q[i] ? clamp($4) : NaN) with points pt 6 ps 0.8 lc rgb C[i] notitle, \
+    plot for [i = 1:4] cost using "offset_over_r [-]":(strcol("quantity") eq Q[i] ? clamp(column("max_rel_error [-]")) : NaN) with linespoints lw 2 pt 7 ps 0.6 lc rgb C[i] title Q[i] . " (centric form)" noenhanced, \
+         for [i = 1:4] cost using "offset_over_r [-]":(strcol("quantity") eq Q[i] ? clamp(column("simbody_max_rel_error [-]")) : NaN) with points pt 6 ps 0.8 lc rgb C[i] notitle, \
          NaN with points pt 6 lc rgb "#444444" title "analytic vs Simbody (offset engine)"
     unset logscale y
     set format y "%g"
     set yrange [*:*]
     set ylabel "peak side thrust [N]"
-    plot thrust skip 1 using 2:(strcol(1) eq "analytic" ? $3 : NaN) with lines lw 2 lc rgb "#d62728" title "major side (N_w > 0)" noenhanced, \
-         thrust skip 1 using 2:(strcol(1) eq "analytic" ? $4 : NaN) with lines lw 2 lc rgb "#1f77b4" title "minor side", \
-         thrust skip 1 using 2:(strcol(1) eq "simbody" ? $3 : NaN) with points pt 7 ps 0.6 lc rgb "#d62728" title "Simbody", \
-         thrust skip 1 using 2:(strcol(1) eq "simbody" ? $4 : NaN) with points pt 7 ps 0.6 lc rgb "#1f77b4" notitle
+    plot thrust using "offset_over_r [-]":(strcol("engine") eq "analytic" ? column("peak_major_thrust [N]") : NaN) with lines lw 2 lc rgb "#d62728" title "major side (N_w > 0)" noenhanced, \
+         thrust using "offset_over_r [-]":(strcol("engine") eq "analytic" ? column("peak_minor_thrust [N]") : NaN) with lines lw 2 lc rgb "#1f77b4" title "minor side", \
+         thrust using "offset_over_r [-]":(strcol("engine") eq "simbody" ? column("peak_major_thrust [N]") : NaN) with points pt 7 ps 0.6 lc rgb "#d62728" title "Simbody", \
+         thrust using "offset_over_r [-]":(strcol("engine") eq "simbody" ? column("peak_minor_thrust [N]") : NaN) with points pt 7 ps 0.6 lc rgb "#1f77b4" notitle
     unset multiplot
     unset output
 }

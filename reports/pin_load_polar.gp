@@ -3,8 +3,7 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/pin_load_polar.gp
 #
-# Reads  in_dir/pin_load_polar.csv   scene_index,engine,phi_deg,crank_pin_radial,crank_pin_tangential,bearing_x,
-#                                    bearing_y,scene
+# Reads  in_dir/pin_load_polar.csv (columns by their header names, validation/src/parts/pin_load_polar.cc)
 # Writes out_dir/pin_load_polar.svg and out_dir/pin_load_polar.png
 #
 # Panel i (scene_index i, from 0) draws the tip of the force vector over the cycle: the crank-pin force of cylinder 0
@@ -25,14 +24,16 @@ set datafile separator ","
 nlines = 0
 stats file using (nlines = nlines + 1, 1) nooutput
 if (nlines == 0) { print "error: " . file . " is missing or empty (not even a header line)"; exit status 1 }
+set datafile columnheaders
+SCENE = "scene_index [-]"
 nscenes = 0
-if (nlines > 1) { stats file skip 1 using (nscenes = (column(1) + 1 > nscenes ? column(1) + 1 : nscenes), 0) nooutput }
+if (nlines > 1) { stats file using (nscenes = (column(SCENE) + 1 > nscenes ? column(SCENE) + 1 : nscenes), 0) nooutput }
 nscenes = int(nscenes)
 npanels = nscenes > 8 ? 8 : nscenes
 array TITLE[8]
 do for [i = 1:8] { TITLE[i] = sprintf("scene %d", i) }
-if (nscenes > 0) { stats file skip 1 using (column(1) < 8 ? TITLE[int(column(1)) + 1] = strcol(8) : 0, 0) nooutput }
-# The rows of each (scene, engine) run together in the sorted CSV: their first and last row (after the header) found
+if (nscenes > 0) { stats file using (column(SCENE) < 8 ? TITLE[int(column(SCENE)) + 1] = strcol("scene") : 0, 0) nooutput }
+# The rows of each (scene, engine) run together in the sorted CSV: their first and last data row found
 # in one pass, so that each curve reads only its own rows (every ::first::last), not the whole file through a filter.
 array FIRST_A[8]
 array LAST_A[8]
@@ -41,7 +42,7 @@ array LAST_S[8]
 do for [i = 1:8] { FIRST_A[i] = -1; LAST_A[i] = -2; FIRST_S[i] = -1; LAST_S[i] = -2 }
 mark(i, eng, row) = (i < 8 ? (eng eq "analytic" ? (FIRST_A[i + 1] < 0 ? FIRST_A[i + 1] = row : 0, LAST_A[i + 1] = row) \
                                                 : eng eq "simbody" ? (FIRST_S[i + 1] < 0 ? FIRST_S[i + 1] = row : 0, LAST_S[i + 1] = row) : 0) : 0)
-if (nscenes > 0) { stats file skip 1 using (mark(int(column(1)), strcol(2), int($0)), 0) nooutput }
+if (nscenes > 0) { stats file using (mark(int(column(SCENE)), strcol("engine"), int($0)), 0) nooutput }
 
 if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) { pngterm = "pngcairo" } else { pngterm = "png" }
 cols = npanels > 4 ? int((npanels + 1) / 2) : (npanels > 0 ? npanels : 1)
@@ -80,10 +81,10 @@ do for [fmt in "svg png"] {
         # An engine without rows in this scene: one row read, its values NaN (every with a negative bound reads all).
         ok_a = FIRST_A[p] >= 0; a0 = ok_a ? FIRST_A[p] : 0; a1 = ok_a ? LAST_A[p] : 0
         ok_s = FIRST_S[p] >= 0; s0 = ok_s ? FIRST_S[p] : 0; s1 = ok_s ? LAST_S[p] : 0
-        plot file skip 1 every ::a0::a1 using (ok_a ? $4 : NaN):5 with lines lw 1.5 lc rgb "#1f77b4" title "crank pin (analytic)", \
-             file skip 1 every 3::s0::s1 using (ok_s ? $4 : NaN):5 with points pt 7 ps 0.3 lc rgb "#0b3d91" title "crank pin (Simbody)", \
-             file skip 1 every ::a0::a1 using (ok_a ? $6 : NaN):7 with lines lw 1.5 lc rgb "#d62728" title "main bearing (analytic)", \
-             file skip 1 every 3::s0::s1 using (ok_s ? $6 : NaN):7 with points pt 7 ps 0.3 lc rgb "#7f0000" title "main bearing (Simbody)"
+        plot file every ::a0::a1 using (ok_a ? column("crank_pin_radial [N]") : NaN):"crank_pin_tangential [N]" with lines lw 1.5 lc rgb "#1f77b4" title "crank pin (analytic)", \
+             file every 3::s0::s1 using (ok_s ? column("crank_pin_radial [N]") : NaN):"crank_pin_tangential [N]" with points pt 7 ps 0.3 lc rgb "#0b3d91" title "crank pin (Simbody)", \
+             file every ::a0::a1 using (ok_a ? column("bearing_x [N]") : NaN):"bearing_y [N]" with lines lw 1.5 lc rgb "#d62728" title "main bearing (analytic)", \
+             file every 3::s0::s1 using (ok_s ? column("bearing_x [N]") : NaN):"bearing_y [N]" with points pt 7 ps 0.3 lc rgb "#7f0000" title "main bearing (Simbody)"
     }
     unset multiplot
     unset output

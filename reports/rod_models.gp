@@ -2,7 +2,7 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/rod_models.gp
 #
-# Reads  in_dir/rod_models.csv   engine,variable,x,two_mass_error,two_mass_delta_I_error
+# Reads  in_dir/rod_models.csv (columns by their header names, validation/src/parts/rod_models.cc)
 # Writes out_dir/rod_models.svg and out_dir/rod_models.png
 #
 # Two panels: the largest drive-torque error over the turn relative to the torque scale, against lambda (left,
@@ -21,6 +21,7 @@ set datafile separator ","
 nlines = 0
 stats file using (nlines = nlines + 1, 1) nooutput
 if (nlines == 0) { print "error: " . file . " is missing or empty (not even a header line)"; exit status 1 }
+set datafile columnheaders
 clamp(v) = (v == v) ? ((v < 1e-17) ? 1e-17 : v) : NaN
 set datafile missing NaN
 
@@ -28,7 +29,7 @@ array VAR[2] = ["lambda", "delta_I_over_I_G"]
 array XLABEL[2] = ["crank ratio λ = r / l", "Δ_I / I_G  (I_G changed; 0: the two-mass ideal)"]
 array ENG[2] = ["car", "marine"]
 array COLOUR[2] = ["#1f77b4", "#d62728"]
-sel(v, e, c) = (strcol(2) eq VAR[v] && strcol(1) eq ENG[e]) ? clamp(column(c)) : NaN
+sel(v, e, c) = (strcol("variable") eq VAR[v] && strcol("engine") eq ENG[e]) ? clamp(column(c)) : NaN
 
 if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) { pngterm = "pngcairo" } else { pngterm = "png" }
 do for [fmt in "svg png"] {
@@ -55,11 +56,11 @@ do for [fmt in "svg png"] {
         set xlabel XLABEL[v] font ",10"
         set ylabel (v == 1 ? "max |error| / torque scale" : "") font ",10"
         if (v == 1) {
-            plot for [e = 1:2] file skip 1 using 3:(sel(v, e, 4)) with linespoints pt 7 ps 0.6 lw 1.5 lc rgb COLOUR[e] title ENG[e] . ": two-mass rod", \
-                 for [e = 1:2] file skip 1 using 3:(sel(v, e, 5)) with linespoints pt 6 ps 0.6 lw 1.5 dt 2 lc rgb COLOUR[e] title ENG[e] . ": with Δ_I (exact)"
+            plot for [e = 1:2] file using "x [SI]":(sel(v, e, "two_mass_error [-]")) with linespoints pt 7 ps 0.6 lw 1.5 lc rgb COLOUR[e] title ENG[e] . ": two-mass rod", \
+                 for [e = 1:2] file using "x [SI]":(sel(v, e, "two_mass_delta_I_error [-]")) with linespoints pt 6 ps 0.6 lw 1.5 dt 2 lc rgb COLOUR[e] title ENG[e] . ": with Δ_I (exact)"
         } else {
-            plot for [e = 1:2] file skip 1 using 3:(sel(v, e, 4)) with linespoints pt 7 ps 0.6 lw 1.5 lc rgb COLOUR[e] notitle, \
-                 for [e = 1:2] file skip 1 using 3:(sel(v, e, 5)) with linespoints pt 6 ps 0.6 lw 1.5 dt 2 lc rgb COLOUR[e] notitle
+            plot for [e = 1:2] file using "x [SI]":(sel(v, e, "two_mass_error [-]")) with linespoints pt 7 ps 0.6 lw 1.5 lc rgb COLOUR[e] notitle, \
+                 for [e = 1:2] file using "x [SI]":(sel(v, e, "two_mass_delta_I_error [-]")) with linespoints pt 6 ps 0.6 lw 1.5 dt 2 lc rgb COLOUR[e] notitle
         }
     }
     unset multiplot

@@ -2,9 +2,8 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/torque_split.gp
 #
-# Reads  in_dir/torque_split.csv    engine,phi_deg,drive_torque,gas_torque,inertia_torque,gravity_torque,
-#                                   simbody_drive_torque
-#        in_dir/gravity_share.csv   cycle,k,speed_rpm,mean_abs_drive_torque,mean_abs_gravity_torque,share,resolved
+# Reads  in_dir/torque_split.csv and in_dir/gravity_share.csv (columns by their header names,
+#        validation/src/parts/torque_split.cc)
 # Writes out_dir/torque_split.svg and out_dir/torque_split.png
 #
 # Left and middle: the drive torque over one working cycle of the car inline four (engine "car_inline4_6000rpm") and
@@ -28,15 +27,17 @@ if (nlines == 0) { print "error: " . file . " is missing or empty (not even a he
 nshare = 0
 stats share using (nshare = nshare + 1, 1) nooutput
 if (nshare == 0) { print "error: " . share . " is missing or empty (not even a header line)"; exit status 1 }
+set datafile columnheaders
+PHI = "phi_deg [deg]"
 
 array ENG[2] = ["car_inline4_6000rpm", "marine_inline6_two_stroke"]
 array TITLE[2] = ["car inline four, four-stroke, 6000 rpm", "marine inline six, two-stroke, 105 rpm"]
 array N[2]
 do for [e = 1:2] {
     N[e] = 0
-    if (nlines > 1) { stats file skip 1 using (strcol(1) eq ENG[e] ? N[e] = N[e] + 1 : 0, 0) nooutput }
+    if (nlines > 1) { stats file using (strcol("engine") eq ENG[e] ? N[e] = N[e] + 1 : 0, 0) nooutput }
 }
-sel(e, c) = (strcol(1) eq ENG[e]) ? column(c) : NaN
+sel(e, c) = (strcol("engine") eq ENG[e]) ? column(c) : NaN
 pos(x) = (x > 0 && x == x) ? x : NaN
 
 if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) { pngterm = "pngcairo" } else { pngterm = "png" }
@@ -73,18 +74,18 @@ do for [fmt in "svg png"] {
             plot NaN notitle
             set autoscale xy
         } else { if (e == 1) {
-            plot file skip 1 using 2:(sel(e, 4)) smooth unique with lines lw 1.5 lc rgb "#d62728" title "gas", \
-                 file skip 1 using 2:(sel(e, 5)) smooth unique with lines lw 1.5 lc rgb "#1f77b4" title "inertia", \
-                 file skip 1 using 2:(sel(e, 6)) smooth unique with lines lw 2 lc rgb "#2ca02c" title "gravity", \
-                 file skip 1 using 2:(sel(e, 3)) smooth unique with lines lw 2 lc rgb "black" title "drive torque (analytic)", \
-                 file skip 1 every 4 using 2:(sel(e, 7)) with points pt 7 ps 0.35 lc rgb "#777777" title "Simbody"
+            plot file using PHI:(sel(e, "gas_torque [N m]")) smooth unique with lines lw 1.5 lc rgb "#d62728" title "gas", \
+                 file using PHI:(sel(e, "inertia_torque [N m]")) smooth unique with lines lw 1.5 lc rgb "#1f77b4" title "inertia", \
+                 file using PHI:(sel(e, "gravity_torque [N m]")) smooth unique with lines lw 2 lc rgb "#2ca02c" title "gravity", \
+                 file using PHI:(sel(e, "drive_torque [N m]")) smooth unique with lines lw 2 lc rgb "black" title "drive torque (analytic)", \
+                 file every 4 using PHI:(sel(e, "simbody_drive_torque [N m]")) with points pt 7 ps 0.35 lc rgb "#777777" title "Simbody"
         } else {
             unset key
-            plot file skip 1 using 2:(sel(e, 4)) smooth unique with lines lw 1.5 lc rgb "#d62728" notitle, \
-                 file skip 1 using 2:(sel(e, 5)) smooth unique with lines lw 1.5 lc rgb "#1f77b4" notitle, \
-                 file skip 1 using 2:(sel(e, 6)) smooth unique with lines lw 2 lc rgb "#2ca02c" notitle, \
-                 file skip 1 using 2:(sel(e, 3)) smooth unique with lines lw 2 lc rgb "black" notitle, \
-                 file skip 1 every 4 using 2:(sel(e, 7)) with points pt 7 ps 0.35 lc rgb "#777777" notitle
+            plot file using PHI:(sel(e, "gas_torque [N m]")) smooth unique with lines lw 1.5 lc rgb "#d62728" notitle, \
+                 file using PHI:(sel(e, "inertia_torque [N m]")) smooth unique with lines lw 1.5 lc rgb "#1f77b4" notitle, \
+                 file using PHI:(sel(e, "gravity_torque [N m]")) smooth unique with lines lw 2 lc rgb "#2ca02c" notitle, \
+                 file using PHI:(sel(e, "drive_torque [N m]")) smooth unique with lines lw 2 lc rgb "black" notitle, \
+                 file every 4 using PHI:(sel(e, "simbody_drive_torque [N m]")) with points pt 7 ps 0.35 lc rgb "#777777" notitle
         } }
     }
     set lmargin at screen 0.72
@@ -98,9 +99,9 @@ do for [fmt in "svg png"] {
     set xrange [0.5:12.5]
     set xtics 1, 1, 12 font ",8"
     set key at screen 0.85, screen 0.07 center center maxrows 4 samplen 1.2 font ",8"
-    plot for [rpm in "600 6000"] share skip 1 using 2:((strcol(1) eq "four-stroke" && column(3) == rpm + 0 && column(7) == 1) ? pos($6) : NaN) \
+    plot for [rpm in "600 6000"] share using "k [-]":((strcol("cycle") eq "four-stroke" && column("speed_rpm [rpm]") == rpm + 0 && column("resolved") == 1) ? pos(column("share [-]")) : NaN) \
              with linespoints pt 7 ps 0.5 lw 1.5 title "four-stroke " . rpm . " rpm", \
-         for [rpm in "600 6000"] share skip 1 using 2:((strcol(1) eq "two-stroke" && column(3) == rpm + 0 && column(7) == 1) ? pos($6) : NaN) \
+         for [rpm in "600 6000"] share using "k [-]":((strcol("cycle") eq "two-stroke" && column("speed_rpm [rpm]") == rpm + 0 && column("resolved") == 1) ? pos(column("share [-]")) : NaN) \
              with linespoints pt 6 ps 0.5 lw 1.5 dt 2 title "two-stroke " . rpm . " rpm"
     unset logscale y
     set datafile missing

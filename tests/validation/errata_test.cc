@@ -124,9 +124,11 @@ TEST(GravitySignificanceTest, MaximaMatchADenseGridOfEq13) {
   const Table& t = tables.at("gravity_significance");
   const Mechanism base = buildDefaultScenes().front();
   int checked = 0;
-  for (const auto& row : t.rows) {
-    const int k = std::stoi(row[1]);
-    const Cycle cycle = row[0] == "two-stroke" ? Cycle::kTwoStroke : Cycle::kFourStroke;
+  const size_t cycle_column = columnOf(t, "cycle"), k_column = columnOf(t, "k"), max_column = columnOf(t, "max_abs_Q");
+  for (size_t row = 0; row < t.size(); ++row) {
+    const int k = static_cast<int>(std::get<double>(t.cell(row, k_column)));
+    const std::string cycle_name = std::get<std::string>(t.cell(row, cycle_column));
+    const Cycle cycle = cycle_name == "two-stroke" ? Cycle::kTwoStroke : Cycle::kFourStroke;
     if (!((cycle == Cycle::kTwoStroke && (k == 1 || k == 4 || k == 7 || k == 12)) || (cycle == Cycle::kFourStroke && k == 8))) continue;
     Mechanism m = base;
     m.engine.cylinders = k;
@@ -135,11 +137,11 @@ TEST(GravitySignificanceTest, MaximaMatchADenseGridOfEq13) {
     m.engine.cylinder_angle = M_PI / 2.0;
     double dense = 0.0;
     for (int i = 0; i < 36000; ++i) dense = std::max(dense, std::fabs(analytic::calcGravityTorque(m, 2.0 * M_PI * i / 36000.0)));
-    const double reported = std::strtod(row[2].c_str(), nullptr);
+    const double reported = std::get<double>(t.cell(row, max_column));
     // A 0.01-degree grid misses a harmonic-n maximum by at most (n h)^2 / 8 of it: 2.2e-6 for n <= 24. 1e-4 of the
     // maximum also covers the report's Brent refinement stopping at its own 1e-10 rad bracket; both far below the
     // differences between cylinder counts the table is read for (factors of 10 and more).
-    EXPECT_NEAR(reported, dense, 1e-4 * dense) << row[0] << " k = " << k;
+    EXPECT_NEAR(reported, dense, 1e-4 * dense) << cycle_name << " k = " << k;
     ++checked;
   }
   EXPECT_EQ(checked, 5);

@@ -1,4 +1,4 @@
-// Report part 14 (`offset`, validation/src/parts/offset.cc): its thrust peaks, largest drive torque and thrust reversal
+// Report part `offset` (validation/src/parts/offset.cc): its thrust peaks, largest drive torque and thrust reversal
 // come from coarse samples refined on each engine's own evaluations, so that they do not depend on the grid. Held here
 // against the analytic offset engine sampled densely by the test itself (calcEvaluation, no refinement): the quick
 // campaign's 2-degree samples, the coarsest the part takes, where unrefined samples miss a peak by up to 1e-3.
@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "crankcheck/analytic/reactions.h"
@@ -80,23 +81,23 @@ TEST(OffsetPartTest, RefinedThrustPeaksAndReversalAreTheEnginesOwn) {
   const size_t engine = columnOf(t, "engine"), offset = columnOf(t, "offset_over_r"),
                major = columnOf(t, "peak_major_thrust"), minor = columnOf(t, "peak_minor_thrust"),
                reversal = columnOf(t, "thrust_reversal_deg"), drive = columnOf(t, "max_abs_drive_torque");
-  ASSERT_EQ(t.rows.size(), 5 * listComparedEngines().size());  // the quick offsets, every engine
-  for (const auto& row : t.rows) {
-    const double f = std::stod(row[offset]);
-    SCOPED_TRACE(row[engine] + " at delta / r = " + row[offset]);
+  ASSERT_EQ(t.size(), 5 * listComparedEngines().size());  // the quick offsets, every engine
+  for (size_t i = 0; i < t.size(); ++i) {
+    const double f = std::get<double>(t.cell(i, offset));
+    SCOPED_TRACE(std::get<std::string>(t.cell(i, engine)) + " at delta / r = " + formatNumber(f));
     const Mechanism m = makeOffsetEngine(base, f);
     auto wall = [&](double deg) { return analytic::calcEvaluation(m, radiansFromDegrees(deg)).cylinders[0].wall_force; };
     // The part's refined value (Brent's method to 1e-10 rad, on the engine's own evaluations) against the test's grid:
     // at most the grid's last change above it, and below it by rounding alone: 64 eps of the value (each engine agrees
     // with the analytic offset engine to 2e-15 of the force scale, offset.csv).
-    auto expectRefined = [](const std::string& cell, const GridMax& dense, const char* what) {
-      const double refined = std::stod(cell), rounding = 64.0 * std::numeric_limits<double>::epsilon() * dense.value;
+    auto expectRefined = [](const Cell& cell, const GridMax& dense, const char* what) {
+      const double refined = std::get<double>(cell), rounding = 64.0 * std::numeric_limits<double>::epsilon() * dense.value;
       EXPECT_GE(refined, dense.value - rounding) << what;
       EXPECT_LE(refined, dense.value + dense.change + rounding) << what << " (grid change " << dense.change << ")";
     };
-    expectRefined(row[major], findDenseMax(wall), "major thrust");
-    expectRefined(row[minor], findDenseMax([&](double d) { return -wall(d); }), "minor thrust");
-    expectRefined(row[drive],
+    expectRefined(t.cell(i, major), findDenseMax(wall), "major thrust");
+    expectRefined(t.cell(i, minor), findDenseMax([&](double d) { return -wall(d); }), "minor thrust");
+    expectRefined(t.cell(i, drive),
                   findDenseMax([&](double d) { return std::fabs(analytic::calcEvaluation(m, radiansFromDegrees(d)).drive_torque); }),
                   "drive torque");
 
@@ -106,12 +107,13 @@ TEST(OffsetPartTest, RefinedThrustPeaksAndReversalAreTheEnginesOwn) {
     for (double d = -90.0; d < 90.0; d += 0.01)
       if ((wall(d) > 0.0) != (wall(d + 0.01) > 0.0) && (std::isnan(nearest) || std::fabs(d) < std::fabs(nearest)))
         nearest = d;
+    const Cell rho_cell = t.cell(i, reversal);
     if (std::isnan(nearest)) {
-      EXPECT_EQ(row[reversal], "");
+      EXPECT_TRUE(std::holds_alternative<std::monostate>(rho_cell));
       continue;
     }
-    ASSERT_NE(row[reversal], "");
-    const double rho = std::stod(row[reversal]);
+    ASSERT_TRUE(std::holds_alternative<double>(rho_cell));
+    const double rho = std::get<double>(rho_cell);
     EXPECT_GE(rho, nearest - 0.01);
     EXPECT_LE(rho, nearest + 0.02);
     const double a = wall(rho - 1e-6), b = wall(rho + 1e-6);

@@ -87,35 +87,6 @@ TEST(PartsTest, EveryPartWithAFigureIsLeftOutWithoutItsTables) {
     }
 }
 
-TEST(PartsTest, GravitySignificanceTestsThePapersClaims) {
-  // max |Q| / max |Q|(k = 1) of a two-stroke: the weakest of the engines the paper says gravity matters for is k = 12
-  // (1e-6), the strongest it calls negligible k = 7 (1e-12): the dividing line holds by a factor 1e6.
-  const std::map<int, std::string> ratio = {{1, "1"},     {2, "0.5"},   {3, "0.01"},  {4, "0.3"},
-                                            {5, "1e-4"},  {6, "1e-3"},  {7, "1e-12"}, {8, "1e-4"},
-                                            {9, "1e-13"}, {10, "1e-5"}, {11, "1e-14"}, {12, "1e-6"}};
-  Table t("gravity_significance", {{"cycle", kText}, {"k", "-"}, {"first_order", "-"}, {"max_abs_Q", "N m"},
-                                   {"ratio_to_k1", "-"}, {"max_inertia_torque", "N m"}, {"ratio_to_inertia", "-"},
-                                   {"rounding_bound", "N m"}, {"simbody_max_abs_Q", "N m"}, {"simbody_resolved", kText},
-                                   {"mujoco_max_abs_Q", "N m"}, {"mujoco_resolved", kText}});
-  for (const auto& [k, r] : ratio) t.rows.push_back({"two-stroke", std::to_string(k), "1", r, r, "1", r, "0", r, "yes", r, "yes"});
-  const ReportPart d = partNumbered(4).describe({{"gravity_significance", t}});
-  EXPECT_EQ(d.heading, "4. When gravity matters");
-  EXPECT_NE(findParagraph(d, "two-stroke: the weakest engine the paper says gravity matters for (k = 12) has 1e+06 times the "
-                             "max |Q| of the strongest it calls negligible (k = 7), so the line holds for any threshold "
-                             "between 1e-12 and 1e-06 of the single cylinder's max |Q|").size(), 0u);
-  // The claims table: the dividing line, then the practical list at 1e-3 (k = 3 and 6 reach it, the paper says
-  // 1, 2, 4) and at 1e-5.
-  const ReportBlock* claims = nullptr;
-  for (const ReportBlock& b : d.blocks)
-    if (b.kind == ReportBlock::kTable && !b.header.empty() && b.header[0] == "claim (Stanczak section 7)") claims = &b;
-  ASSERT_NE(claims, nullptr);
-  ASSERT_EQ(claims->rows.size(), 3u);
-  EXPECT_EQ(claims->rows[0].back(), "holds, by a factor 1e+06");
-  EXPECT_EQ(claims->rows[1][4], "{1, 2, 3, 4, 6}");
-  EXPECT_EQ(claims->rows[1][5], "k = 3: 0.01, k = 6: 0.001");
-  EXPECT_EQ(claims->rows[1].back(), "does not hold");
-}
-
 TEST(PartsTest, EnginesReadCostsAndWorstErrors) {
   // Two engines of the registry: analytic (50 ns at k = 1, worst 1e-15) and simbody (2500 ns, worst 2e-14 on Q).
   const std::string analytic = listEngines().at(0).name, simbody = listEngines().at(1).name;
@@ -145,50 +116,6 @@ TEST(PartsTest, EnginesReadCostsAndWorstErrors) {
   EXPECT_EQ(d.rows[1][2], "2e-14");
 }
 
-TEST(PartsTest, OffsetReadsTheCentricErrorAndTheThrust) {
-  const TableSet tables = {
-      {"offset", makeTable("offset", {{"quantity", kText}, {"offset_over_r", "-"}, {"max_rel_error", "-"},
-                                      {"simbody_max_rel_error", "-"}, {"mujoco_max_rel_error", "-"}},
-                           {{"x_p", "0.04", "0.001", "1e-15", "3e-16"}, {"a_p", "0.04", "0.002", "2e-15", "1e-15"},
-                            {"x_p", "-0.04", "0.5", "1", "1"}})},
-      {"offset_thrust", makeTable("offset_thrust", {{"engine", kText}, {"offset_over_r", "-"},
-                                                    {"peak_major_thrust", "N"}, {"peak_minor_thrust", "N"},
-                                                    {"thrust_reversal_deg", "deg"}, {"max_abs_drive_torque", "N m"}},
-                                  {{"analytic", "0", "1000", "500", "", "80"}, {"analytic", "0.04", "1100", "450", "12.5", "81"},
-                                   {"simbody", "0.04", "1", "1", "1", "1"}})}};
-  const ReportPart d = partNumbered(14).describe(tables);
-  EXPECT_EQ(d.heading, "14. Pin offset: what the centric formulas cost, what the offset buys");
-  // Only delta / r = +0.04 counts (the negative row is not read), and the worst of the two rows over both reference
-  // engines: 2e-15.
-  EXPECT_EQ(findParagraph(d, "At |delta| / r = 0.04"),
-            "At |delta| / r = 0.04 the centric forms are off by 0.001 in x_p, 0.002 in a_p (relative to each scale; the "
-            "exact offset engine agrees with every reference engine to 2e-15).");
-  // 1100 / 1000 - 1 = 10 %; the centric engine's thrust does not change sign within 90 degrees.
-  EXPECT_EQ(findParagraph(d, "delta / r = 0.04:"),
-            "delta / r = 0.04: the peak major thrust is 1100 N against 1000 N centric (10 %), the peak minor thrust 450 N "
-            "against 500 N, and the side thrust changes sign at 12.5 degrees from the firing outer dead centre (centric: "
-            "none within 90).");
-}
-
-TEST(PartsTest, BalanceShaftsReadWhatTheShaftsCancel) {
-  // Force scale 100 N / 0.5 = 200 N; the shafts take harmonic 1 to 0 in closed form, Simbody leaves 5e-16 of the
-  // scale, harmonic 2 is unchanged.
-  const TableSet tables = {
-      {"balance_shafts", makeTable("balance_shafts", {{"case", kText}, {"shafts", kText}, {"engine", kText}, {"n", "-"},
-                                                      {"force_amplitude", "N"}, {"force_relative", "-"}},
-                                   {{"single", "none", "analytic", "1", "100", "0.5"},
-                                    {"single", "none", "analytic", "2", "20", "0.1"},
-                                    {"single", "with", "analytic", "1", "0", "0"},
-                                    {"single", "with", "analytic", "2", "20", "0.1"},
-                                    {"single", "with", "simbody", "1", "1e-13", "5e-16"},
-                                    {"single", "with", "simbody", "2", "20", "0.1"}})}};
-  const ReportPart d = partNumbered(16).describe(tables);
-  EXPECT_EQ(d.heading, "16. Balance shafts: what a designed set cancels, by every engine");
-  ASSERT_EQ(d.paragraphs.size(), 1u);
-  EXPECT_EQ(d.paragraphs[0],
-            "single: harmonic 1 of the shaking force falls from 100 N (0.5 of the force scale) to 0 N in closed form; the "
-            "largest residual of the other exact engines is 5e-16 of the force scale (simbody); the closed form of every "
-            "other harmonic is unchanged.");
 }
 
 TEST(PartsTest, TorsionFindsTheResonancesAndReadsHolzersError) {

@@ -1,8 +1,7 @@
-// Report part `balance` (9): the balance of engine layouts, computed (calcBalance, balance.h) beside the textbook's claims, what
+// Report part `balance`: the balance of engine layouts, computed (calcBalance, balance.h) beside the textbook's claims, what
 // the two-term rules miss, and the figure of every harmonic.
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <map>
 #include <string>
 #include <vector>
@@ -12,31 +11,66 @@
 #include "crankcheck/validation/layouts.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/part.h"
+#include "engine_fields.h"
 
 namespace crankcheck::validation {
 namespace {
 
+// balance: the summary beside the textbook's claims, per balance layout and part (F1, F2: primary and secondary
+// shaking force [N]; M1, M2: couples about X, Y [N m]): the textbook's claim, whether it vanishes exactly, the closed
+// form's amplitude and each reference engine's (a DFT of its own), the amplitude relative to the force or moment scale
+// (scales.h), and the verdict.
+struct BalanceSummaryRow {
+  std::string layout, description, part;
+  std::string textbook;          ///< "vanishes" | "does not vanish" | "no claim"
+  std::string vanishes_exactly;  ///< "yes" | "no"
+  double analytic_amplitude = 0.0;        ///< [N] or [N m], as the part says
+  std::vector<double> engine_amplitudes;  ///< per reference engine (listReferenceEngines' order)
+  double relative_amplitude = 0.0;
+  std::string verdict;  ///< "agrees" | "DIFFERS" | "-"
+};
+std::vector<Field<BalanceSummaryRow>> makeBalanceSummaryFields() {
+  using R = BalanceSummaryRow;
+  std::vector<Field<R>> fields = {textField("layout", &R::layout), textField("description", &R::description),
+                                  textField("part", &R::part), textField("textbook", &R::textbook),
+                                  textField("vanishes_exactly", &R::vanishes_exactly),
+                                  numberField("analytic_amplitude", "N m", &R::analytic_amplitude)};
+  // each reference engine's amplitude: a force (N) or a couple (N m), as the row's part says
+  addEngineNumberFields(fields, "_amplitude", "SI", &R::engine_amplitudes);
+  fields.push_back(numberField("relative_amplitude", "-", &R::relative_amplitude));
+  fields.push_back(textField("verdict", &R::verdict));
+  return fields;
+}
+const Schema<BalanceSummaryRow>& balanceSummaryTable() {
+  static const Schema<BalanceSummaryRow> schema("balance", makeBalanceSummaryFields());
+  return schema;
+}
+
+// balance_harmonics: per layout (its index in the figure) and harmonic n = 1..8, the amplitudes relative to the force
+// and moment scales (exact zeros as 0), and whether the force and the couple vanish exactly ("1" | "0").
+struct BalanceHarmonicRow {
+  int layout_index = 0;
+  std::string layout;
+  int n = 1;
+  double force_relative = 0.0, couple_relative = 0.0, rocking_relative = 0.0;
+  std::string force_vanishes, couple_vanishes;
+};
+const Schema<BalanceHarmonicRow> kBalanceHarmonicsTable{
+    "balance_harmonics",
+    {countField("layout_index", &BalanceHarmonicRow::layout_index), textField("layout", &BalanceHarmonicRow::layout),
+     countField("n", &BalanceHarmonicRow::n), numberField("force_relative", "-", &BalanceHarmonicRow::force_relative),
+     numberField("couple_relative", "-", &BalanceHarmonicRow::couple_relative),
+     numberField("rocking_relative", "-", &BalanceHarmonicRow::rocking_relative),
+     textField("force_vanishes", &BalanceHarmonicRow::force_vanishes),
+     textField("couple_vanishes", &BalanceHarmonicRow::couple_vanishes)}};
+
 // The report's balance tables for every layout of layouts.h, built on `parts` (its crank, rod and piston) at
 // 6000 rpm, and for each of `scenes` as it is (the user's scenes: harmonics only, no textbook claim), harmonics 1..8
-// from the closed forms and each reference engine:
-//   balance            layout,description,part,textbook,vanishes_exactly,analytic_amplitude,simbody_amplitude,
-//                      mujoco_amplitude,relative_amplitude,verdict (one <engine>_amplitude per reference engine)
-//                      (part F1, F2: primary and secondary force [N]; M1, M2: couples about X, Y [N m]; textbook
-//                      "vanishes" | "does not vanish" | "no claim"; relative to the force or moment scale of
-//                      scales.h; verdict "agrees" | "DIFFERS" | "-")
-//   balance_harmonics  layout_index,layout,n,force_relative,couple_relative,rocking_relative,force_vanishes,
-//                      couple_vanishes (amplitudes relative to the force and moment scales; exact zeros as 0)
+// from the closed forms and each reference engine.
 TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>& scenes) {
   constexpr int kOrder = 8;
-  std::vector<Column> summary_columns = {{"layout", kText},   {"description", kText},      {"part", kText},
-                                         {"textbook", kText}, {"vanishes_exactly", kText}, {"analytic_amplitude", "N m"}};
-  // each reference engine's amplitude: a force (N) or a couple (N m), as the row's part says
-  for (const Engine* engine : listReferenceEngines()) summary_columns.push_back({engine->name + "_amplitude", "SI"});
-  summary_columns.insert(summary_columns.end(), {{"relative_amplitude", "-"}, {"verdict", kText}});
-  Table summary("balance", std::move(summary_columns));
-  Table harmonics("balance_harmonics", {{"layout_index", "-"}, {"layout", kText}, {"n", "-"}, {"force_relative", "-"},
-                                        {"couple_relative", "-"}, {"rocking_relative", "-"}, {"force_vanishes", kText},
-                                        {"couple_vanishes", kText}});
+  std::vector<BalanceSummaryRow> summary;
+  std::vector<BalanceHarmonicRow> harmonics;
   Mechanism base = parts;
   base.speed_rpm = 6000.0;
   base.engine.speed = 6000.0 * (M_PI / 30.0);
@@ -58,9 +92,8 @@ TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>&
       const double couple = s.moment_xy_cancels ? 0.0
                                                 : std::hypot(row.analytic.calcMomentAmplitude(0), row.analytic.calcMomentAmplitude(1));
       const double rocking = s.moment_z_cancels ? 0.0 : row.analytic.calcMomentAmplitude(2);
-      harmonics.rows.push_back({std::to_string(index), layout.name, std::to_string(row.n), formatNumber(force / sc.force),
-                                formatNumber(couple / sc.moment), formatNumber(rocking / sc.moment),
-                                s.force_cancels ? "1" : "0", s.moment_xy_cancels ? "1" : "0"});
+      harmonics.push_back({static_cast<int>(index), layout.name, row.n, force / sc.force, couple / sc.moment,
+                           rocking / sc.moment, s.force_cancels ? "1" : "0", s.moment_xy_cancels ? "1" : "0"});
       if (row.n > 2 || index >= mechanisms.size() - scenes.size()) continue;  // the summary: the balance layouts
       const std::optional<bool> claims[2] = {row.n == 1 ? layout.textbook.F1 : layout.textbook.F2,
                                              row.n == 1 ? layout.textbook.M1 : layout.textbook.M2};
@@ -68,26 +101,22 @@ TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>&
         const bool vanishes = part == 0 ? s.force_cancels : s.moment_xy_cancels;
         const double analytic = part == 0 ? force : couple;
         const std::optional<bool>& claim = claims[part];
-        std::vector<std::string> fields = {layout.name, layout.description, (part == 0 ? "F" : "M") + std::to_string(row.n),
-                                           !claim ? "no claim" : *claim ? "vanishes" : "does not vanish",
-                                           vanishes ? "yes" : "no", formatNumber(analytic)};
+        BalanceSummaryRow fields{layout.name, layout.description, (part == 0 ? "F" : "M") + std::to_string(row.n),
+                                 !claim ? "no claim" : *claim ? "vanishes" : "does not vanish", vanishes ? "yes" : "no",
+                                 analytic, {}, analytic / (part == 0 ? sc.force : sc.moment),
+                                 !claim ? "-" : *claim == vanishes ? "agrees" : "DIFFERS"};
         for (const auto& [name, h] : row.engines)
-          fields.push_back(formatNumber(part == 0 ? h.calcForceAmplitude()
-                                                  : std::hypot(h.calcMomentAmplitude(0), h.calcMomentAmplitude(1))));
-        fields.push_back(formatNumber(analytic / (part == 0 ? sc.force : sc.moment)));
-        fields.push_back(!claim ? "-" : *claim == vanishes ? "agrees" : "DIFFERS");
-        summary.rows.push_back(fields);
+          fields.engine_amplitudes.push_back(part == 0 ? h.calcForceAmplitude()
+                                                       : std::hypot(h.calcMomentAmplitude(0), h.calcMomentAmplitude(1)));
+        summary.push_back(std::move(fields));
       }
     }
   }
-  return {{"balance", summary}, {"balance_harmonics", harmonics}};
+  return {{balanceSummaryTable().name(), balanceSummaryTable().table(std::move(summary))},
+          {kBalanceHarmonicsTable.name(), kBalanceHarmonicsTable.table(std::move(harmonics))}};
 }
 
-
-// A field as a number; an empty one as 0.
-double toDouble(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
-
-// Part 9: the balance table (computed, beside the textbook's claims), what the two-term rules miss, the figure.
+// The part: the balance table (computed, beside the textbook's claims), what the two-term rules miss, the figure.
 void addBalancePart(ReportPart& part, const TableSet& tables, const std::string& caption) {
   part.blocks.push_back({ReportBlock::kParagraph,
                  "Each layout is built on the base scene's crank, rod and piston at 6000 rpm, cylinders spaced along "
@@ -101,40 +130,39 @@ void addBalancePart(ReportPart& part, const TableSet& tables, const std::string&
                  "shared pin, which the tables ignore, gives a flat-plane V8 a secondary couple."});
   {
     std::vector<std::string> headings = {"layout", "part", "textbook", "vanishes exactly", "amplitude (closed form)"};
-    std::vector<std::string> names = {"layout", "part", "textbook", "vanishes_exactly", "analytic_amplitude"};
-    std::vector<bool> numeric = {false, false, false, false, true};
-    for (const Engine* e : listReferenceEngines()) {  // each reference engine's DFT
-      headings.push_back("amplitude (" + e->name + ")");
-      names.push_back(e->name + "_amplitude");
-      numeric.push_back(true);
-    }
+    for (const Engine* e : listReferenceEngines()) headings.push_back("amplitude (" + e->name + ")");  // each one's DFT
     headings.insert(headings.end(), {"relative", "verdict"});
-    names.insert(names.end(), {"relative_amplitude", "verdict"});
-    numeric.insert(numeric.end(), {true, false});
-    part.blocks.push_back({ReportBlock::kTable, "", headings, formatRows(tables, "balance", names, numeric)});
+    std::vector<std::vector<std::string>> rows;
+    for (const BalanceSummaryRow& r : getRows(tables, balanceSummaryTable())) {
+      std::vector<std::string> row = {r.layout, r.part, r.textbook, r.vanishes_exactly, shortNumber(r.analytic_amplitude, 4)};
+      for (double a : r.engine_amplitudes) row.push_back(shortNumber(a, 4));
+      row.insert(row.end(), {shortNumber(r.relative_amplitude, 4), r.verdict});
+      rows.push_back(std::move(row));
+    }
+    part.blocks.push_back({ReportBlock::kTable, "", headings, std::move(rows)});
   }
   // Beyond the two-term rules: the largest harmonic above 2 that the exact motion leaves, per layout.
-  const auto it = tables.find("balance_harmonics");
-  if (it != tables.end()) {
-    const Table& t = it->second;
-    const size_t layout = columnOf(t, "layout"), n = columnOf(t, "n"), force = columnOf(t, "force_relative"),
-                 couple = columnOf(t, "couple_relative");
-    std::map<std::string, std::pair<std::string, double>> worst_force, worst_couple;
+  if (tables.count(kBalanceHarmonicsTable.name())) {
+    struct Largest {
+      int n = 0;  ///< 0: none above 2
+      double relative = 0.0;
+    };
+    std::map<std::string, Largest> worst_force, worst_couple;
     std::vector<std::string> order;
-    for (const auto& row : t.rows) {
-      if (!worst_force.count(row[layout])) order.push_back(row[layout]);
-      auto& wf = worst_force[row[layout]];
-      auto& wc = worst_couple[row[layout]];
-      if (std::stoi(row[n]) <= 2) continue;
-      if (toDouble(row[force]) > wf.second) wf = {row[n], toDouble(row[force])};
-      if (toDouble(row[couple]) > wc.second) wc = {row[n], toDouble(row[couple])};
+    for (const BalanceHarmonicRow& row : getRows(tables, kBalanceHarmonicsTable)) {
+      if (!worst_force.count(row.layout)) order.push_back(row.layout);
+      Largest& wf = worst_force[row.layout];
+      Largest& wc = worst_couple[row.layout];
+      if (row.n <= 2) continue;
+      if (row.force_relative > wf.relative) wf = {row.n, row.force_relative};
+      if (row.couple_relative > wc.relative) wc = {row.n, row.couple_relative};
     }
     ReportBlock beyond{ReportBlock::kTable, "", {"layout", "largest force harmonic above 2", "relative [-]", "largest couple harmonic above 2", "relative [-]"}};
     for (const std::string& name : order) {
       const auto& f = worst_force[name];
       const auto& c = worst_couple[name];
-      beyond.rows.push_back({name, f.first.empty() ? "none up to 8" : "n = " + f.first, shortNumber(f.second, 3),
-                             c.first.empty() ? "none up to 8" : "n = " + c.first, shortNumber(c.second, 3)});
+      beyond.rows.push_back({name, f.n == 0 ? "none up to 8" : "n = " + std::to_string(f.n), shortNumber(f.relative, 3),
+                             c.n == 0 ? "none up to 8" : "n = " + std::to_string(c.n), shortNumber(c.relative, 3)});
     }
     part.blocks.push_back({ReportBlock::kParagraph,
                    "Where the textbook rules hold only for the two-term approximation: the exact piston motion has "
@@ -156,7 +184,7 @@ class BalancePart final : public Part {
   }
   ReportPart describe(const TableSet& tables) const override {
     ReportPart part;
-    if (!tables.count("balance_harmonics")) return part;
+    if (!tables.count(kBalanceHarmonicsTable.name())) return part;
     part.heading = heading();
     addBalancePart(part, tables,
                    "The shaking force and the couple about X and Y of every layout of the balance table (and of the "
@@ -166,7 +194,7 @@ class BalancePart final : public Part {
                    "symmetry");
     return part;
   }
-  std::vector<std::string> tables() const override { return {"balance", "balance_harmonics"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&balanceSummaryTable(), &kBalanceHarmonicsTable}; }
   std::vector<std::string> figures() const override { return {"balance_harmonics"}; }
 };
 

@@ -1,4 +1,4 @@
-// Report part `balance_shafts` (16): what balance shafts designed by `crankcheck balance --design N` cancel, by every
+// Report part `balance_shafts`: what balance shafts designed by `crankcheck balance --design N` cancel, by every
 // exact engine.
 //
 // The cases: the base scene's parts at 6000 rpm as a standing single cylinder with the shafts that cancel its primary
@@ -6,12 +6,6 @@
 // as an inline four with the pair that cancels its secondary force (design 2: a Lanchester pair, ratios 2 and -2),
 // and each campaign scene that carries `[[balance_shaft]]` tables as it is (the example offset four with its pair),
 // each beside the same engine without shafts.
-// Table (CSV stem, columns; reports/README.md):
-//   balance_shafts  case,shafts,engine,n,force_amplitude,force_relative
-//                   case: the engine and what was designed; shafts "none" | "with"; n = 1..6; engine: "analytic"
-//                   (the closed form, its exact zeros as 0) and each other exact engine (a DFT of its own shaking
-//                   force over a revolution); the amplitude of harmonic n of the shaking force [N] and relative to the
-//                   force scale (scales.h) of the engine without shafts
 
 #include <algorithm>
 #include <cmath>
@@ -30,23 +24,39 @@ namespace {
 
 constexpr int kOrder = 6;
 
+// balance_shafts: per case, with and without its shafts ("none" | "with"), engine and harmonic n = 1..6, the amplitude
+// of harmonic n of the shaking force and that amplitude relative to the force scale (scales.h) of the engine without
+// shafts. Engine "analytic": the closed form, its exact zeros as 0; each other exact engine: a DFT of its own shaking
+// force over a revolution. Each series together, in n.
+struct BalanceShaftRow {
+  std::string case_name, shafts, engine;
+  int n = 1;
+  double force_amplitude = 0.0;  ///< [N]
+  double force_relative = 0.0;
+};
+const Schema<BalanceShaftRow> kBalanceShaftsTable{
+    "balance_shafts",
+    {textField("case", &BalanceShaftRow::case_name), textField("shafts", &BalanceShaftRow::shafts),
+     textField("engine", &BalanceShaftRow::engine), countField("n", &BalanceShaftRow::n),
+     numberField("force_amplitude", "N", &BalanceShaftRow::force_amplitude),
+     numberField("force_relative", "-", &BalanceShaftRow::force_relative)}};
+
 // The rows of one engine (with or without its shafts): every harmonic from the closed form (its exact zeros as 0) and
 // from each other exact engine's DFT, relative to `force_scale`.
-void addRows(Table& t, const std::string& kase, const std::string& shafts, const Mechanism& m, double force_scale) {
+void addShaftRows(std::vector<BalanceShaftRow>& t, const std::string& kase, const std::string& shafts, const Mechanism& m, double force_scale) {
   for (const BalanceRow& row : calcBalance(m, kOrder)) {
     std::vector<std::pair<std::string, double>> amplitudes = {
         {getClosedFormEngine().name, withExactZeros(row.analytic, row.symmetry).calcForceAmplitude()}};
     for (const auto& [name, h] : row.engines) amplitudes.emplace_back(name, h.calcForceAmplitude());
     for (const auto& [engine, a] : amplitudes)
-      t.rows.push_back({kase, shafts, engine, std::to_string(row.n), formatNumber(a), formatNumber(a / force_scale)});
+      t.push_back({kase, shafts, engine, row.n, a, a / force_scale});
   }
 }
 
 // The part's table on `parts` (its crank, rod and piston) and the `scenes` with balance shafts.
 // @throws std::runtime_error if an engine fails.
 TableSet calcBalanceShaftTables(const Mechanism& parts, const std::vector<Mechanism>& scenes) {
-  Table t("balance_shafts", {{"case", kText}, {"shafts", kText}, {"engine", kText}, {"n", "-"},
-                             {"force_amplitude", "N"}, {"force_relative", "-"}});  // each series together, in n
+  std::vector<BalanceShaftRow> t;
   Mechanism base = withSpeed(withGamma(parts, 90.0), 6000.0);
   base.balance_shafts.clear();
   base.engine.pin_offsets.clear();
@@ -71,18 +81,18 @@ TableSet calcBalanceShaftTables(const Mechanism& parts, const std::vector<Mechan
   }
   for (const Case& c : cases) {
     const double force_scale = calcScales(c.without).force;
-    addRows(t, c.name, "none", c.without, force_scale);
-    addRows(t, c.name, "with", c.with, force_scale);
+    addShaftRows(t, c.name, "none", c.without, force_scale);
+    addShaftRows(t, c.name, "with", c.with, force_scale);
   }
-  return {{"balance_shafts", t}};
+  return kBalanceShaftsTable.tableSet(std::move(t));
 }
 
 // The part as the report shows it under `heading`: figure caption, sentences read from the data; an empty heading
 // without data.
 ReportPart describeBalanceShaftPart(const TableSet& tables, const std::string& heading) {
   ReportPart part;
-  const auto it = tables.find("balance_shafts");
-  if (it == tables.end() || it->second.rows.empty()) return part;
+  const std::vector<BalanceShaftRow>& rows = getRows(tables, kBalanceShaftsTable);
+  if (rows.empty()) return part;
   part.heading = heading;
   part.caption =
       "The amplitude of each harmonic n of the shaking force relative to the force scale, without balance shafts "
@@ -90,9 +100,6 @@ ReportPart describeBalanceShaftPart(const TableSet& tables, const std::string& h
       "the base scene's parts as a single cylinder with the shafts crankcheck balance --design 1 gives, "
       "as an inline four with the Lanchester pair of --design 2, and each campaign scene with [[balance_shaft]] tables. "
       "Exact zeros and amplitudes below 1e-17 are drawn at 1e-17";
-  const Table& t = it->second;
-  const size_t kase = columnOf(t, "case"), shafts = columnOf(t, "shafts"), n = columnOf(t, "n"), engine = columnOf(t, "engine"),
-               amplitude = columnOf(t, "force_amplitude"), rel = columnOf(t, "force_relative");
   // case -> n -> (analytic without, analytic with, worst engine with (relative), its engine)
   struct Harmonic {
     double without = 0.0, with = 0.0, engine_worst = 0.0, without_rel = 0.0;
@@ -101,17 +108,17 @@ ReportPart describeBalanceShaftPart(const TableSet& tables, const std::string& h
   std::map<std::string, std::map<int, Harmonic>> cases;
   std::map<std::string, double> force_scale;  // [N] of each case's engine without shafts
   std::vector<std::string> order;
-  for (const auto& row : t.rows) {
-    if (!cases.count(row[kase])) order.push_back(row[kase]);
-    Harmonic& h = cases[row[kase]][std::stoi(row[n])];
-    const double a = std::stod(row[amplitude]), r = std::stod(row[rel]);
-    if (r > 0.0) force_scale[row[kase]] = a / r;
-    if (row[engine] == getClosedFormEngine().name) {
-      (row[shafts] == "none" ? h.without : h.with) = a;
-      if (row[shafts] == "none") h.without_rel = r;
-    } else if (row[shafts] == "with" && r >= h.engine_worst) {
+  for (const BalanceShaftRow& row : rows) {
+    if (!cases.count(row.case_name)) order.push_back(row.case_name);
+    Harmonic& h = cases[row.case_name][row.n];
+    const double a = row.force_amplitude, r = row.force_relative;
+    if (r > 0.0) force_scale[row.case_name] = a / r;
+    if (row.engine == getClosedFormEngine().name) {
+      (row.shafts == "none" ? h.without : h.with) = a;
+      if (row.shafts == "none") h.without_rel = r;
+    } else if (row.shafts == "with" && r >= h.engine_worst) {
       h.engine_worst = r;
-      h.engine = row[engine];
+      h.engine = row.engine;
     }
   }
   for (const std::string& name : order) {
@@ -153,7 +160,7 @@ class BalanceShaftsPart final : public Part {
              [base = context.base, scenes = context.scenes] { return calcBalanceShaftTables(base, scenes); }}};
   }
   ReportPart describe(const TableSet& tables) const override { return describeBalanceShaftPart(tables, heading()); }
-  std::vector<std::string> tables() const override { return {"balance_shafts"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&kBalanceShaftsTable}; }
 };
 
 }  // namespace

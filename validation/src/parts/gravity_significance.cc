@@ -1,8 +1,7 @@
-// Report part `gravity_significance` (4): when gravity matters, max |Q| against k, and the paper's claims about
+// Report part `gravity_significance`: when gravity matters, max |Q| against k, and the paper's claims about
 // it tested.
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <map>
 #include <memory>
 #include <string>
@@ -19,23 +18,52 @@
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
+#include "engine_fields.h"
 
 namespace crankcheck::validation {
 namespace {
 
-// ------------------------------------------------------------------------------------------------------------
 // gravity_significance: max |Q| against k, relative to k = 1 and to the inertia torque at the scene's speed. The
 // analytic maximum is that of Q's exact harmonics (no cancellation: exact however small); each reference engine's is
 // found on the same grid, refined the same way (extremum.h); below the agreement tolerance it is a bound, not a value.
+struct GravityEngineMaximum {
+  double max_abs_Q = 0.0;   ///< [N m]
+  std::string resolved;     ///< "yes" | "no": max_abs_Q is above the rounding bound (else it is a bound)
+  double ratio_to_k1 = 0.0; ///< max_abs_Q (the bound where not resolved) over the engine's own at k = 1
+};
+struct GravitySignificanceRow {
+  std::string cycle;
+  int k = 1;
+  double max_abs_Q = 0.0, ratio_to_k1 = 0.0, max_inertia_torque = 0.0, ratio_to_inertia = 0.0;  ///< [N m], -, [N m], -
+  int first_order = 0;           ///< the first surviving harmonic of Q
+  std::string paper_negligible;  ///< "1": k = 7, 9, 11 (Stanczak section 7), else "0"
+  double rounding_bound = 0.0;   ///< [N m]
+  std::vector<GravityEngineMaximum> engines;  ///< per reference engine (listReferenceEngines' order)
+};
+std::vector<Field<GravitySignificanceRow>> makeGravitySignificanceFields() {
+  using R = GravitySignificanceRow;
+  std::vector<Field<R>> fields = {
+      textField("cycle", &R::cycle), countField("k", &R::k), numberField("max_abs_Q", "N m", &R::max_abs_Q),
+      numberField("ratio_to_k1", "-", &R::ratio_to_k1), numberField("max_inertia_torque", "N m", &R::max_inertia_torque),
+      numberField("ratio_to_inertia", "-", &R::ratio_to_inertia), countField("first_order", &R::first_order),
+      textField("paper_negligible", &R::paper_negligible), numberField("rounding_bound", "N m", &R::rounding_bound)};
+  const std::vector<const Engine*> references = listReferenceEngines();
+  for (size_t i = 0; i < references.size(); ++i) {
+    const std::string& e = references[i]->name;
+    fields.push_back(engineElementField(e + "_max_abs_Q", "N m", &R::engines, i, &GravityEngineMaximum::max_abs_Q));
+    fields.push_back(engineElementField(e + "_resolved", "", &R::engines, i, &GravityEngineMaximum::resolved));
+    fields.push_back(engineElementField(e + "_ratio_to_k1", "-", &R::engines, i, &GravityEngineMaximum::ratio_to_k1));
+  }
+  return fields;
+}
+const Schema<GravitySignificanceRow>& gravitySignificanceTable() {
+  static const Schema<GravitySignificanceRow> schema("gravity_significance", makeGravitySignificanceFields());
+  return schema;
+}
 
 TableSet calcGravitySignificanceTables(const Mechanism& base, Cycle cycle, bool quick) {
   const std::vector<const Engine*> references = listReferenceEngines();
-  std::vector<Column> columns = {{"cycle", kText}, {"k", "-"}, {"max_abs_Q", "N m"}, {"ratio_to_k1", "-"},
-                                 {"max_inertia_torque", "N m"}, {"ratio_to_inertia", "-"}, {"first_order", "-"},
-                                 {"paper_negligible", kText}, {"rounding_bound", "N m"}};
-  for (const Engine* e : references)  // each reference engine's max |Q|, whether it resolves it, and its ratio to k = 1
-    columns.insert(columns.end(), {{e->name + "_max_abs_Q", "N m"}, {e->name + "_resolved", kText}, {e->name + "_ratio_to_k1", "-"}});
-  Table t("gravity_significance", columns);
+  std::vector<GravitySignificanceRow> rows;
   double q1 = 0.0;
   std::vector<double> q1_engine(references.size(), 0.0);
   for (int k = 1; k <= 12; ++k) {
@@ -51,9 +79,8 @@ TableSet calcGravitySignificanceTables(const Mechanism& base, Cycle cycle, bool 
     // compared absolutely against the scale): the engine then shows only that |Q| is below the bound.
     const double bound = kAgreementMultiple * kEps * calcEnergyScale(m);
     const bool paper_negligible = k == 7 || k == 9 || k == 11;  // Stanczak section 7
-    std::vector<std::string> row = {toString(cycle), std::to_string(k), formatNumber(max_q), formatNumber(max_q / q1),
-                                    formatNumber(max_inertia), formatNumber(max_inertia > 0 ? max_q / max_inertia : 0.0),
-                                    std::to_string(first), paper_negligible ? "1" : "0", formatNumber(bound)};
+    GravitySignificanceRow row{toString(cycle), k, max_q, max_q / q1, max_inertia,
+                               max_inertia > 0 ? max_q / max_inertia : 0.0, first, paper_negligible ? "1" : "0", bound, {}};
     for (size_t i = 0; i < references.size(); ++i) {
       const std::unique_ptr<EngineModel> model = buildGravityModel(*references[i], m);
       // Every hump of |Q| is the same height to rounding (the first surviving harmonic dominates by 1 / lambda^2), so
@@ -62,22 +89,19 @@ TableSet calcGravitySignificanceTables(const Mechanism& base, Cycle cycle, bool 
           findMaxAbsOverTurn([&](double phi) { return model->calcQ(phi); }, samples, 2, getAngleTolerance(quick)).value;
       if (k == 1) q1_engine[i] = max_q_engine;
       const bool resolved = max_q_engine > bound;
-      row.insert(row.end(), {formatNumber(max_q_engine), resolved ? "yes" : "no",
-                             formatNumber(resolved ? max_q_engine / q1_engine[i] : bound / q1_engine[i])});
+      row.engines.push_back({max_q_engine, resolved ? "yes" : "no",
+                             resolved ? max_q_engine / q1_engine[i] : bound / q1_engine[i]});
     }
-    t.rows.push_back(row);
+    rows.push_back(std::move(row));
   }
-  return {{"gravity_significance", t}};
+  return gravitySignificanceTable().tableSet(std::move(rows));
 }
 
-// A field as a number; an empty one as 0.
-double toDouble(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
-
-// Part 4's claims: the paper's dividing line and its practical list, tested with stated thresholds on max |Q|
+// The part's claims: the paper's dividing line and its practical list, tested with stated thresholds on max |Q|
 // relative to the single cylinder of the same cycle (the exact harmonics' maxima, gravity_significance).
 void addGravityClaims(ReportPart& part, const TableSet& tables) {
   std::map<std::string, std::map<int, double>> ratio;  // cycle -> k -> max |Q| / max |Q|(k = 1)
-  for (const auto& r : readRecords(tables, "gravity_significance")) ratio[r.at("cycle")][std::stoi(r.at("k"))] = toDouble(r.at("ratio_to_k1"));
+  for (const GravitySignificanceRow& r : getRows(tables, gravitySignificanceTable())) ratio[r.cycle][r.k] = r.ratio_to_k1;
   if (ratio.empty()) return;
   const std::vector<int> matters = {1, 2, 3, 4, 5, 6, 8, 10, 12}, negligible = {7, 9, 11};
   auto list = [](const std::vector<int>& ks) {
@@ -163,19 +187,21 @@ class GravitySignificancePart final : public Part {
                            "= no, and the figure draws the first reference engine's bound as an arrow down."});
     std::vector<std::string> headings = {"cycle", "k", "first order", "max |Q| [N m]", "/ k = 1", "max inertia torque [N m]",
                                          "max |Q| / inertia", "rounding bound [N m]"};
-    std::vector<std::string> names = {"cycle", "k", "first_order", "max_abs_Q", "ratio_to_k1", "max_inertia_torque",
-                                      "ratio_to_inertia", "rounding_bound"};
-    std::vector<bool> numeric = {false, false, false, true, true, true, true, true};
-    for (const Engine* e : listReferenceEngines()) {
+    for (const Engine* e : listReferenceEngines())
       headings.insert(headings.end(), {e->name + " max |Q| [N m]", e->name + " resolves"});
-      names.insert(names.end(), {e->name + "_max_abs_Q", e->name + "_resolved"});
-      numeric.insert(numeric.end(), {true, false});
+    std::vector<std::vector<std::string>> rows;
+    for (const GravitySignificanceRow& r : getRows(tables, gravitySignificanceTable())) {
+      std::vector<std::string> row = {r.cycle, std::to_string(r.k), std::to_string(r.first_order), shortNumber(r.max_abs_Q, 4),
+                                      shortNumber(r.ratio_to_k1, 4), shortNumber(r.max_inertia_torque, 4),
+                                      shortNumber(r.ratio_to_inertia, 4), shortNumber(r.rounding_bound, 4)};
+      for (const GravityEngineMaximum& e : r.engines) row.insert(row.end(), {shortNumber(e.max_abs_Q, 4), e.resolved});
+      rows.push_back(std::move(row));
     }
-    part.blocks.push_back({ReportBlock::kTable, "", headings, formatRows(tables, key(), names, numeric)});
+    part.blocks.push_back({ReportBlock::kTable, "", headings, std::move(rows)});
     addGravityClaims(part, tables);
     return part;
   }
-  std::vector<std::string> tables() const override { return {"gravity_significance"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&gravitySignificanceTable()}; }
   std::vector<ReportedMaximum> maxima() const override {
     std::vector<ReportedMaximum> out = {
         {"gravity_significance", {"cycle", "k"}, {"max_abs_Q", "ratio_to_k1", "max_inertia_torque", "ratio_to_inertia"}, "", ""}};

@@ -1,20 +1,8 @@
-// Report part `offset` (14): what the centric formulas cost on an offset (desaxe) engine, and what the offset buys.
+// Report part `offset`: what the centric formulas cost on an offset (desaxe) engine, and what the offset buys.
 //
 // The engine: the base scene's parts as one standing cylinder, four-stroke, with the example spark-ignition pressure
 // table (bore 2 r) at 6000 rpm and gravity, its pin offset delta swept over delta / r in [-0.5, 0.5] (production pin
 // offsets are |delta| / r = 0.01 .. 0.04; desaxe cylinders reach 0.5).
-// Tables (CSV stems, columns; reports/README.md):
-//   offset         quantity,offset_over_r,max_rel_error, then ENGINE_max_rel_error per reference engine
-//                  the largest error over the working cycle of the centric form (delta = 0: x_p, a_p, wall_force,
-//                  drive_torque of the centric engine at the same crank angle) against the offset engine, relative
-//                  to the quantity's scale (x_p: the stroke; a_p: r omega^2; forces: the force scale; torque: the
-//                  torque scale), and the largest |analytic - ENGINE| of the offset engine on the same samples
-//   offset_thrust  engine,offset_over_r,peak_major_thrust,peak_minor_thrust,thrust_reversal_deg,max_abs_drive_torque
-//                  the side thrust N_w over the working cycle: its largest value on the major-thrust side (N_w > 0:
-//                  the wall on -n, docs/CONVENTIONS-crankcheck.md "Pin offset"), its largest on the minor side (as a
-//                  positive number), the crank angle nearest the firing outer dead centre (within 90 degrees) where
-//                  N_w changes sign (the piston crosses over: slap), and the largest |drive torque|; the closed
-//                  forms' and each reference engine's
 
 #include <algorithm>
 #include <cmath>
@@ -23,6 +11,9 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
+#include <string>
+#include <vector>
 #include <stdexcept>
 
 #include <boost/math/tools/toms748_solve.hpp>
@@ -35,11 +26,51 @@
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/variants.h"
+#include "engine_fields.h"
 
 namespace crankcheck::validation {
 namespace {
 
-std::string num(double x) { return formatNumber(x); }
+// offset: per quantity (x_p, a_p, wall_force, drive_torque) and offset, the largest error over the working cycle of
+// the centric form (delta = 0: the centric engine at the same crank angle) against the offset engine, relative to the
+// quantity's scale (x_p: the stroke; a_p: r omega^2; forces: the force scale; torque: the torque scale), and the
+// largest |analytic - ENGINE| of the offset engine on the same samples, per reference engine.
+struct OffsetCostRow {
+  std::string quantity;
+  double offset_over_r = 0.0, max_rel_error = 0.0;
+  std::vector<double> reference_max_rel_error;  ///< per reference engine (listReferenceEngines' order)
+};
+// The key column first: the sorted table then holds each series' rows together, in order of delta / r.
+std::vector<Field<OffsetCostRow>> makeOffsetCostFields() {
+  std::vector<Field<OffsetCostRow>> fields = {textField("quantity", &OffsetCostRow::quantity),
+                                              numberField("offset_over_r", "-", &OffsetCostRow::offset_over_r),
+                                              numberField("max_rel_error", "-", &OffsetCostRow::max_rel_error)};
+  addEngineNumberFields(fields, "_max_rel_error", "-", &OffsetCostRow::reference_max_rel_error);
+  return fields;
+}
+const Schema<OffsetCostRow>& offsetCostTable() {
+  static const Schema<OffsetCostRow> schema("offset", makeOffsetCostFields());
+  return schema;
+}
+
+// offset_thrust: the side thrust N_w over the working cycle, the closed forms' and each reference engine's: its largest
+// value on the major-thrust side (N_w > 0: the wall on -n, docs/CONVENTIONS-crankcheck.md "Pin offset"), its largest on
+// the minor side (as a positive number), the crank angle nearest the firing outer dead centre (within 90 degrees) where
+// N_w changes sign (the piston crosses over: slap; empty: none), and the largest |drive torque|.
+struct OffsetThrustRow {
+  std::string engine;
+  double offset_over_r = 0.0;
+  double peak_major_thrust = 0.0, peak_minor_thrust = 0.0;  ///< [N]
+  std::optional<double> thrust_reversal_deg;                ///< [deg]
+  double max_abs_drive_torque = 0.0;                        ///< [N m]
+};
+const Schema<OffsetThrustRow> kOffsetThrustTable{
+    "offset_thrust",
+    {textField("engine", &OffsetThrustRow::engine), numberField("offset_over_r", "-", &OffsetThrustRow::offset_over_r),
+     numberField("peak_major_thrust", "N", &OffsetThrustRow::peak_major_thrust),
+     numberField("peak_minor_thrust", "N", &OffsetThrustRow::peak_minor_thrust),
+     optionalField("thrust_reversal_deg", "deg", &OffsetThrustRow::thrust_reversal_deg),
+     numberField("max_abs_drive_torque", "N m", &OffsetThrustRow::max_abs_drive_torque)}};
 
 // The offsets delta / r of the part: -0.5 .. 0.5 (5 of them with `quick`).
 std::vector<double> listOffsetFractions(bool quick) {
@@ -61,15 +92,8 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
                                      6000.0);
   const double r = single.crank.radius;
   const double step = quick ? 2.0 : 1.0;
-  Table cost, thrust;
-  // The key column first: the sorted table then holds each series' rows together, in order of delta / r.
-  const std::vector<const Engine*> references = listReferenceEngines();
-  std::vector<Column> cost_columns = {{"quantity", kText}, {"offset_over_r", "-"}, {"max_rel_error", "-"}};
-  for (const Engine* e : references) cost_columns.push_back({e->name + "_max_rel_error", "-"});  // exact against each
-  cost = Table("offset", cost_columns);
-  thrust = Table("offset_thrust", {{"engine", kText}, {"offset_over_r", "-"}, {"peak_major_thrust", "N"},
-                                   {"peak_minor_thrust", "N"}, {"thrust_reversal_deg", "deg"},
-                                   {"max_abs_drive_torque", "N m"}});
+  std::vector<OffsetCostRow> cost;
+  std::vector<OffsetThrustRow> thrust;
   Mechanism m = single;
   m.engine.pin_offsets = {f * r};
   const Scales sc = calcScales(m);
@@ -127,9 +151,9 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
     }
   }
   for (const auto& [q, err] : worst) {
-    std::vector<std::string> row = {q, num(f), num(err)};
-    for (size_t j = 1; j < engines.size(); ++j) row.push_back(num(worst_engine[j][q]));
-    cost.rows.push_back(row);
+    OffsetCostRow row{q, f, err, {}};
+    for (size_t j = 1; j < engines.size(); ++j) row.reference_max_rel_error.push_back(worst_engine[j][q]);
+    cost.push_back(std::move(row));
   }
   const double angle_tolerance = getAngleTolerance(quick);
   for (size_t j = 0; j < engines.size(); ++j) {
@@ -152,7 +176,7 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
         findMaxAbsOverTurn([&](double u) { return model.evaluateMotion(2.0 * u - 2.0 * M_PI).drive_torque; }, drive, 2,
                            angle_tolerance)
             .value;
-    std::string reversal;
+    std::optional<double> reversal;
     if (!std::isnan(t.bracket_a)) {
       auto wallAtDeg = [&](double deg) { return model.evaluateMotion(radiansFromDegrees(deg)).cylinders[0].wall_force; };
       // A sample whose N_w is zero to rounding (64 eps of the force scale: the centric engine at phi = 0) is the crossing.
@@ -164,19 +188,21 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
                                                                  boost::math::tools::eps_tolerance<double>(48), iterations);
         crossing = 0.5 * (lo + hi);
       }
-      if (std::fabs(crossing) <= 90.0) reversal = num(crossing);
+      if (std::fabs(crossing) <= 90.0) reversal = crossing;
     }
-    thrust.rows.push_back({engines[j]->name, num(f), num(major), num(minor), reversal, num(max_drive)});
+    thrust.push_back({engines[j]->name, f, major, minor, reversal, max_drive});
   }
-  return {{"offset", cost}, {"offset_thrust", thrust}};
+  return {{offsetCostTable().name(), offsetCostTable().table(std::move(cost))},
+          {kOffsetThrustTable.name(), kOffsetThrustTable.table(std::move(thrust))}};
 }
 
 // The part as the report shows it under `heading`: caption, sentences read from the data; an empty heading
 // without data.
 ReportPart describeOffsetPart(const TableSet& tables, const std::string& heading) {
   ReportPart part;
-  const auto cost = tables.find("offset"), thrust = tables.find("offset_thrust");
-  if (cost == tables.end() || thrust == tables.end() || cost->second.rows.empty()) return part;
+  const std::vector<OffsetCostRow>& cost = getRows(tables, offsetCostTable());
+  const std::vector<OffsetThrustRow>& thrust = getRows(tables, kOffsetThrustTable);
+  if (cost.empty() || !tables.count(kOffsetThrustTable.name())) return part;
   part.heading = heading;
   part.caption =
       "Left: the largest error over the working cycle of the centric form (the same engine with delta = 0) against the "
@@ -185,44 +211,40 @@ ReportPart describeOffsetPart(const TableSet& tables, const std::string& heading
       "the same samples. Right: the largest side thrust on the major side (N_w > 0) and on the minor side, analytic "
       "lines and Simbody dots, against delta / r (negative: the pin toward the major-thrust side). The base scene's "
       "parts, one standing cylinder at 6000 rpm with the example spark-ignition pressures";
-  const Table& c = cost->second;
-  const size_t f = columnOf(c, "offset_over_r"), q = columnOf(c, "quantity"), e = columnOf(c, "max_rel_error");
-  std::vector<size_t> by_engine;  // each reference engine's difference from the exact offset engine
-  for (const Engine* engine : listReferenceEngines()) by_engine.push_back(columnOf(c, engine->name + "_max_rel_error"));
   // What the centric formula costs at a production offset (|delta| / r = 0.04) and at a desaxe one (0.5).
   for (double at : {0.04, 0.5}) {
     std::string s = "At |delta| / r = " + shortNumber(at) + " the centric forms are off by";
-    double worst_reference = 0.0;
+    double worst_reference = 0.0;  // each reference engine's difference from the exact offset engine
     bool any = false;
-    for (const auto& row : c.rows) {
-      if (std::fabs(std::fabs(std::stod(row[f])) - at) > 1e-12 || std::stod(row[f]) < 0) continue;
-      s += std::string(any ? "," : "") + " " + shortNumber(std::stod(row[e])) + " in " + row[q];
-      for (size_t column : by_engine) worst_reference = std::max(worst_reference, std::stod(row[column]));
+    for (const OffsetCostRow& row : cost) {
+      if (std::fabs(std::fabs(row.offset_over_r) - at) > 1e-12 || row.offset_over_r < 0) continue;
+      s += std::string(any ? "," : "") + " " + shortNumber(row.max_rel_error) + " in " + row.quantity;
+      for (double e : row.reference_max_rel_error) worst_reference = std::max(worst_reference, e);
       any = true;
     }
     if (any)
       part.paragraphs.push_back(s + " (relative to each scale; the exact offset engine agrees with every reference engine to " +
                                 shortNumber(worst_reference) + ").");
   }
-  const Table& t = thrust->second;
-  const size_t tf = columnOf(t, "offset_over_r"), te = columnOf(t, "engine"), major = columnOf(t, "peak_major_thrust"),
-               minor = columnOf(t, "peak_minor_thrust"), rev = columnOf(t, "thrust_reversal_deg");
-  std::map<double, std::vector<std::string>> analytic;
-  for (const auto& row : t.rows)
-    if (row[te] == getClosedFormEngine().name) analytic[std::stod(row[tf])] = row;
+  std::map<double, const OffsetThrustRow*> analytic;  // delta / r -> the closed forms' row
+  for (const OffsetThrustRow& row : thrust)
+    if (row.engine == getClosedFormEngine().name) analytic[row.offset_over_r] = &row;
   if (analytic.count(0.0)) {
-    const auto& centric = analytic[0.0];
-    const double major0 = std::stod(centric[major]);
+    const OffsetThrustRow& centric = *analytic[0.0];
     for (double at : {-0.04, 0.04, -0.5}) {
       if (!analytic.count(at)) continue;
-      const auto& row = analytic[at];
+      const OffsetThrustRow& row = *analytic[at];
       part.paragraphs.push_back(
-          "delta / r = " + shortNumber(at) + ": the peak major thrust is " + shortNumber(std::stod(row[major]), 4) +
-          " N against " + shortNumber(major0, 4) + " N centric (" +
-          shortNumber(100.0 * (std::stod(row[major]) / major0 - 1.0), 3) + " %), the peak minor thrust " +
-          shortNumber(std::stod(row[minor]), 4) + " N against " + shortNumber(std::stod(centric[minor]), 4) +
-          " N, and the side thrust changes sign at " + (row[rev].empty() ? std::string("no angle within 90 degrees of") : shortNumber(std::stod(row[rev]), 3) + " degrees from") +
-          " the firing outer dead centre (centric: " + (centric[rev].empty() ? std::string("none within 90") : shortNumber(std::stod(centric[rev]), 3)) + ").");
+          "delta / r = " + shortNumber(at) + ": the peak major thrust is " + shortNumber(row.peak_major_thrust, 4) +
+          " N against " + shortNumber(centric.peak_major_thrust, 4) + " N centric (" +
+          formatPercent(row.peak_major_thrust / centric.peak_major_thrust - 1.0) + "), the peak minor thrust " +
+          shortNumber(row.peak_minor_thrust, 4) + " N against " + shortNumber(centric.peak_minor_thrust, 4) +
+          " N, and the side thrust changes sign at " +
+          (row.thrust_reversal_deg ? shortNumber(*row.thrust_reversal_deg, 3) + " degrees from"
+                                   : std::string("no angle within 90 degrees of")) +
+          " the firing outer dead centre (centric: " +
+          (centric.thrust_reversal_deg ? shortNumber(*centric.thrust_reversal_deg, 3) : std::string("none within 90")) +
+          ").");
     }
   }
   return part;
@@ -244,7 +266,7 @@ class OffsetPart final : public Part {
     return out;
   }
   ReportPart describe(const TableSet& tables) const override { return describeOffsetPart(tables, heading()); }
-  std::vector<std::string> tables() const override { return {"offset", "offset_thrust"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&offsetCostTable(), &kOffsetThrustTable}; }
 };
 
 }  // namespace

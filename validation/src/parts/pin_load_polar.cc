@@ -1,4 +1,4 @@
-// Report part `pin_load_polar` (12): pin loads over a working cycle as polar diagrams, of the user's scenes or the
+// Report part `pin_load_polar`: pin loads over a working cycle as polar diagrams, of the user's scenes or the
 // example scenes.
 #include <algorithm>
 #include <cmath>
@@ -21,29 +21,48 @@
 namespace crankcheck::validation {
 namespace {
 
-std::string num(double x) { return formatNumber(x); }
+// pin_load_polar: over one working cycle (step_deg steps) at the scene's speed, with its gas and gravity: the
+// crank-pin force (crank on rod 0 at its crank pin) in the crank's own frame (radial: outward along the throw of
+// cylinder 0, tangential: 90 degrees ahead of it, the direction of rotation), and the main-bearing force (frame on the
+// crankshaft at O, all throws) in the frame's X, Y: Norton's polar diagrams (Program ENGINE), the closed forms and each
+// reference engine. The scene's name last, so that a name with a comma cannot shift the figure's numbers.
+struct PinLoadRow {
+  int scene_index = 0;
+  std::string engine;
+  double phi_deg = 0.0;
+  double crank_pin_radial = 0.0, crank_pin_tangential = 0.0, bearing_x = 0.0, bearing_y = 0.0;  ///< [N]
+  std::string scene;
+};
+const Schema<PinLoadRow> kPinLoadTable{
+    "pin_load_polar",
+    {countField("scene_index", &PinLoadRow::scene_index), textField("engine", &PinLoadRow::engine),
+     numberField("phi_deg", "deg", &PinLoadRow::phi_deg), numberField("crank_pin_radial", "N", &PinLoadRow::crank_pin_radial),
+     numberField("crank_pin_tangential", "N", &PinLoadRow::crank_pin_tangential),
+     numberField("bearing_x", "N", &PinLoadRow::bearing_x), numberField("bearing_y", "N", &PinLoadRow::bearing_y),
+     textField("scene", &PinLoadRow::scene)}};
 
-//   pin_load_polar          scene_index,engine,phi_deg,crank_pin_radial,crank_pin_tangential,bearing_x,bearing_y,scene
-//                           over one working cycle (step_deg steps) at the scene's speed, with its gas and gravity:
-//                           the crank-pin force (crank on rod 0 at its crank pin) in the crank's own frame (radial:
-//                           outward along the throw of cylinder 0, tangential: 90 degrees ahead of it, the direction
-//                           of rotation), and the main-bearing force (frame on the crankshaft at O, all throws) in the
-//                           frame's X, Y: Norton's polar diagrams (Program ENGINE), the closed forms and each reference engine [N]
-//   pin_load_polar_summary  scene,engine,force,max_magnitude,phi_deg_at_max,max_difference_rel
-//                           the largest |force| over the cycle (refined, extremum.h) of each engine, and the largest
-//                           |analytic - engine| over the samples relative to the force scale (the analytic row: the largest
-//                           over the reference engines)
-// scene_index counts from first_index (so that scenes computed one per task keep their places); step_deg is the
+// pin_load_polar_summary: per scene, engine and force ("crank_pin" | "bearing"), the largest |force| over the cycle
+// (refined, extremum.h) and where, and the largest |analytic - engine| over the samples relative to the force scale
+// (the analytic row: the largest over the reference engines).
+struct PinLoadSummaryRow {
+  std::string scene, engine, force;
+  double max_magnitude = 0.0;   ///< [N]
+  double phi_deg_at_max = 0.0;  ///< [deg]
+  double max_difference_rel = 0.0;
+};
+const Schema<PinLoadSummaryRow> kPinLoadSummaryTable{
+    "pin_load_polar_summary",
+    {textField("scene", &PinLoadSummaryRow::scene), textField("engine", &PinLoadSummaryRow::engine),
+     textField("force", &PinLoadSummaryRow::force), numberField("max_magnitude", "N", &PinLoadSummaryRow::max_magnitude),
+     numberField("phi_deg_at_max", "deg", &PinLoadSummaryRow::phi_deg_at_max),
+     numberField("max_difference_rel", "-", &PinLoadSummaryRow::max_difference_rel)}};
+
+// The part's tables of `scenes`: scene_index counts from first_index (so that scenes computed one per task keep their places); step_deg is the
 // sampling step (the campaign: 2 degrees, 8 with --quick; the maxima are refined, so they do not depend on it),
 // angle_tolerance Brent's (extremum.h, getAngleTolerance).
 TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index, double step_deg, double angle_tolerance) {
-  Table polar, summary;
-  polar = Table("pin_load_polar", {{"scene_index", "-"}, {"engine", kText}, {"phi_deg", "deg"},
-                                   {"crank_pin_radial", "N"}, {"crank_pin_tangential", "N"}, {"bearing_x", "N"},
-                                   {"bearing_y", "N"}, {"scene", kText}});
-  summary = Table("pin_load_polar_summary", {{"scene", kText}, {"engine", kText}, {"force", kText},
-                                             {"max_magnitude", "N"}, {"phi_deg_at_max", "deg"},
-                                             {"max_difference_rel", "-"}});
+  std::vector<PinLoadRow> polar;
+  std::vector<PinLoadSummaryRow> summary;
   for (size_t index = 0; index < scenes.size(); ++index) {
     const Mechanism& m = scenes[index];
     // The closed forms first, then each reference engine (engines.h).
@@ -68,8 +87,8 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
       for (const auto& model : models) e.push_back(model->evaluateMotion(phi));  // forces alone: no U, no Q
       for (size_t j = 0; j < engines.size(); ++j) {
         const auto [radial, tangential] = crankFrame(e[j]);
-        polar.rows.push_back({std::to_string(first_index + static_cast<int>(index)), engines[j]->name, num(d),
-                              num(radial), num(tangential), num(e[j].bearing_force[0]), num(e[j].bearing_force[1]), m.name});
+        polar.push_back({first_index + static_cast<int>(index), engines[j]->name, d, radial, tangential,
+                         e[j].bearing_force[0], e[j].bearing_force[1], m.name});
         magnitudes[j]["crank_pin"].push_back(std::hypot(e[j].cylinders[0].crank_pin_force[0], e[j].cylinders[0].crank_pin_force[1]));
         magnitudes[j]["bearing"].push_back(std::hypot(e[j].bearing_force[0], e[j].bearing_force[1]));
         if (j == 0) continue;
@@ -95,12 +114,12 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
           return std::hypot(F[0], F[1]);
         };
         const TurnMaximum best = findMaxAbsOverTurn(magnitude, magnitudes[j][force], 2, angle_tolerance);
-        summary.rows.push_back({m.name, engines[j]->name, force, num(best.value),
-                                num(degreesFromRadians(best.phi * cycle / (2.0 * M_PI))),
-                                num((is_pin ? worst_pin[j] : worst_bearing[j]) / scale)});
+        summary.push_back({m.name, engines[j]->name, force, best.value, degreesFromRadians(best.phi * cycle / (2.0 * M_PI)),
+                           (is_pin ? worst_pin[j] : worst_bearing[j]) / scale});
       }
   }
-  return {{"pin_load_polar", polar}, {"pin_load_polar_summary", summary}};
+  return {{kPinLoadTable.name(), kPinLoadTable.table(std::move(polar))},
+          {kPinLoadSummaryTable.name(), kPinLoadSummaryTable.table(std::move(summary))}};
 }
 
 
@@ -131,11 +150,11 @@ class PinLoadPolarPart final : public Part {
         "The largest force over the cycle, each engine (the samples, the best two refined by Brent's method), and the "
         "largest difference of the two engines over the samples relative to the force scale:");
     part.header = {"scene", "engine", "force", "max |F| [N]", "max |analytic - Simbody| / force scale [-]"};
-    part.rows = formatRows(tables, "pin_load_polar_summary", {"scene", "engine", "force", "max_magnitude", "max_difference_rel"},
-                           {false, false, false, true, true});
+    for (const PinLoadSummaryRow& r : getRows(tables, kPinLoadSummaryTable))
+      part.rows.push_back({r.scene, r.engine, r.force, shortNumber(r.max_magnitude, 4), shortNumber(r.max_difference_rel, 4)});
     return part;
   }
-  std::vector<std::string> tables() const override { return {"pin_load_polar", "pin_load_polar_summary"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&kPinLoadTable, &kPinLoadSummaryTable}; }
   std::vector<ReportedMaximum> maxima() const override {
     return {{"pin_load_polar_summary", {"scene", "engine", "force"}, {"max_magnitude"}, "", ""}};
   }

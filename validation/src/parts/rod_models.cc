@@ -1,4 +1,4 @@
-// Report part `rod_models` (11): what the two-mass rod costs against the rigid rod.
+// Report part `rod_models`: what the two-mass rod costs against the rigid rod.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -21,17 +21,29 @@
 namespace crankcheck::validation {
 namespace {
 
-std::string num(double x) { return formatNumber(x); }
+// rod_models: the largest |drive torque of the two-mass rod - the `reference` engine's rigid rod| over the turn
+// (refined, extremum.h; with Delta_I rounding: resolved "0" marks the number as a bound, else "1"), relative to the
+// torque scale, without and with the paper's Delta_I, against lambda (variable "lambda") and against Delta_I / I_G
+// (variable "delta_I_over_I_G", the rod's central inertia changed), for the car and the marine engine (`engine`) at
+// their speeds.
+struct RodModelRow {
+  std::string engine, variable;
+  double x = 0.0;  ///< lambda or Delta_I / I_G, as `variable` says
+  double two_mass_error = 0.0, two_mass_delta_I_error = 0.0;
+  std::string two_mass_delta_I_resolved;
+  std::string reference;
+};
+const Schema<RodModelRow> kRodModelsTable{
+    "rod_models",
+    {textField("engine", &RodModelRow::engine), textField("variable", &RodModelRow::variable),
+     numberField("x", "SI", &RodModelRow::x), numberField("two_mass_error", "-", &RodModelRow::two_mass_error),
+     numberField("two_mass_delta_I_error", "-", &RodModelRow::two_mass_delta_I_error),
+     textField("two_mass_delta_I_resolved", &RodModelRow::two_mass_delta_I_resolved),
+     textField("reference", &RodModelRow::reference)}};
 
-//   rod_models     engine,variable,x,two_mass_error,two_mass_delta_I_error,two_mass_delta_I_resolved,reference
-//                  the largest |drive torque of the two-mass rod - the `reference` engine's rigid rod| over the turn (refined,
-//                  extremum.h; with Delta_I rounding: resolved 0 marks the number as a bound), relative to the
-//                  torque scale, without and with the paper's Delta_I, against lambda (variable "lambda") and
-//                  against Delta_I / I_G (variable "delta_I_over_I_G", the rod's central inertia changed) for `car`
-//                  and `marine` at their speeds; with `quick` (a smoke test of the part), five of each sweep's points
+// The part's table on `car` and `marine`; with `quick` (a smoke test of the part), five of each sweep's points.
 TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine, bool quick) {
-  Table t("rod_models", {{"engine", kText}, {"variable", kText}, {"x", "SI"}, {"two_mass_error", "-"},
-                         {"two_mass_delta_I_error", "-"}, {"two_mass_delta_I_resolved", kText}, {"reference", kText}});
+  std::vector<RodModelRow> t;
   // The two-mass rod's error is a smooth function of phi: its maximum over the turn is refined from 48 samples
   // (extremum.h). With Delta_I the error is rounding: the worst of the 48 samples, a bound (resolved 0) unless it
   // exceeds 100 times the agreement tolerance.
@@ -69,7 +81,7 @@ TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine, bool 
       m.rod.inertia_about_wrist_pin *= scale * scale;
       for (const Engine* engine : listReferenceEngines()) {
         const auto [without, with, resolved] = worst(*engine, m);
-        t.rows.push_back({name, "lambda", num(lambda), num(without), num(with), resolved ? "1" : "0", engine->name});
+        t.push_back({name, "lambda", lambda, without, with, resolved ? "1" : "0", engine->name});
       }
     }
     // Against Delta_I / I_G: the rod's central inertia I_G = f m_k z_k (l - z_k) (f = 1: the two-mass value, Delta_I = 0).
@@ -82,11 +94,11 @@ TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine, bool 
       const double delta_I = m.rod.inertia_about_wrist_pin - l * z * m_k;
       for (const Engine* engine : listReferenceEngines()) {
         const auto [without, with, resolved] = worst(*engine, m);
-        t.rows.push_back({name, "delta_I_over_I_G", num(delta_I / I_G), num(without), num(with), resolved ? "1" : "0", engine->name});
+        t.push_back({name, "delta_I_over_I_G", delta_I / I_G, without, with, resolved ? "1" : "0", engine->name});
       }
     }
   }
-  return {{"rod_models", t}};
+  return kRodModelsTable.tableSet(std::move(t));
 }
 
 
@@ -108,7 +120,7 @@ class RodModelsPart final : public Part {
              }}};
   }
   ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
-  std::vector<std::string> tables() const override { return {"rod_models"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&kRodModelsTable}; }
   std::vector<ReportedMaximum> maxima() const override {
     return {{"rod_models", {"engine", "variable", "x", "reference"}, {"two_mass_error"}, "", ""},
             {"rod_models", {"engine", "variable", "x", "reference"}, {"two_mass_delta_I_error"}, "two_mass_delta_I_resolved", "0"}};

@@ -1,4 +1,4 @@
-// Report part `torque_split` (10): the working torque split into gas, inertia and gravity, and gravity's share against k.
+// Report part `torque_split`: the working torque split into gas, inertia and gravity, and gravity's share against k.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -17,21 +17,54 @@
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
+#include "engine_fields.h"
 
 namespace crankcheck::validation {
 namespace {
 
-std::string num(double x) { return formatNumber(x); }
+// torque_split: over one working cycle of an inline four four-stroke on the car's parts (bore 2 r, 6000 rpm) and of
+// the marine engine as it is (bore 2 r / 3), the analytic drive torque and its gas, inertia and gravity parts, and each
+// reference engine's whole drive torque beside them. `engine` names which of the two engines.
+struct TorqueSplitRow {
+  std::string engine;
+  double phi_deg = 0.0;
+  double drive_torque = 0.0, gas_torque = 0.0, inertia_torque = 0.0, gravity_torque = 0.0;  ///< [N m]
+  std::vector<double> reference_drive_torque;  ///< [N m] per reference engine (listReferenceEngines' order)
+};
+std::vector<Field<TorqueSplitRow>> makeTorqueSplitFields() {
+  using R = TorqueSplitRow;
+  std::vector<Field<R>> fields = {textField("engine", &R::engine), numberField("phi_deg", "deg", &R::phi_deg),
+                                  numberField("drive_torque", "N m", &R::drive_torque),
+                                  numberField("gas_torque", "N m", &R::gas_torque),
+                                  numberField("inertia_torque", "N m", &R::inertia_torque),
+                                  numberField("gravity_torque", "N m", &R::gravity_torque)};
+  addEngineNumberFields(fields, "_drive_torque", "N m", &R::reference_drive_torque);  // each engine's whole
+  return fields;
+}
+const Schema<TorqueSplitRow>& torqueSplitTable() {
+  static const Schema<TorqueSplitRow> schema("torque_split", makeTorqueSplitFields());
+  return schema;
+}
 
-// Report tables (campaign.h's TableSet):
-//   torque_split   engine,phi_deg,drive_torque,gas_torque,inertia_torque,gravity_torque, then ENGINE_drive_torque
-//                  per reference engine (simbody_drive_torque, mujoco_drive_torque)
-//                  over one working cycle of an inline four four-stroke on `car`'s parts (bore 2 r, 6000 rpm) and of
-//                  the `marine` engine as it is (bore 2 r / 3), analytic parts, each reference engine's whole drive torque beside
-//   gravity_share  cycle,k,speed_rpm,mean_abs_drive_torque,mean_abs_gravity_torque,share,resolved
-//                  gravity's share of the mean absolute drive torque over the cycle, k = 1..12, both strokes, the
-//                  car's parts with the example pressure table of each stroke, 600 to 6000 rpm; resolved = 0 where the
-//                  gravity torque is below 64 eps of the energy scale (rounding, not a torque)
+// gravity_share: gravity's share of the mean absolute drive torque over the cycle, k = 1..12, both strokes, the car's
+// parts with the example pressure table of each stroke, 600 to 6000 rpm; resolved "0" where the gravity torque is
+// below 64 eps of the energy scale (rounding, not a torque), else "1".
+struct GravityShareRow {
+  std::string cycle;
+  int k = 1;
+  double speed_rpm = 0.0;
+  double mean_abs_drive_torque = 0.0, mean_abs_gravity_torque = 0.0;  ///< [N m]
+  double share = 0.0;
+  std::string resolved;
+};
+const Schema<GravityShareRow> kGravityShareTable{
+    "gravity_share",
+    {textField("cycle", &GravityShareRow::cycle), countField("k", &GravityShareRow::k),
+     numberField("speed_rpm", "rpm", &GravityShareRow::speed_rpm),
+     numberField("mean_abs_drive_torque", "N m", &GravityShareRow::mean_abs_drive_torque),
+     numberField("mean_abs_gravity_torque", "N m", &GravityShareRow::mean_abs_gravity_torque),
+     numberField("share", "-", &GravityShareRow::share), textField("resolved", &GravityShareRow::resolved)}};
+
 // An inline engine of k cylinders on m's parts, standing, with eqs (8)-(11)'s phases, without gas.
 Mechanism inlineOf(const Mechanism& m, int k, Cycle cycle) { return withGamma(withCylinders(m, k, cycle), 90.0); }
 
@@ -46,14 +79,9 @@ Parts splitAt(const Mechanism& m, double phi) {
 }
 
 TableSet calcTorqueSplitTables(const Mechanism& car, const Mechanism& marine) {
-  Table split, share;
+  std::vector<TorqueSplitRow> split;
+  std::vector<GravityShareRow> share;
   const std::vector<const Engine*> references = listReferenceEngines();
-  std::vector<Column> split_columns = {{"engine", kText}, {"phi_deg", "deg"}, {"drive_torque", "N m"}, {"gas_torque", "N m"},
-                                       {"inertia_torque", "N m"}, {"gravity_torque", "N m"}};
-  for (const Engine* e : references) split_columns.push_back({e->name + "_drive_torque", "N m"});  // each engine's whole
-  split = Table("torque_split", split_columns);
-  share = Table("gravity_share", {{"cycle", kText}, {"k", "-"}, {"speed_rpm", "rpm"}, {"mean_abs_drive_torque", "N m"},
-                                  {"mean_abs_gravity_torque", "N m"}, {"share", "-"}, {"resolved", kText}});
   const Mechanism car4 = withSpeed(withGasAtDeadCentres(inlineOf(car, 4, Cycle::kFourStroke),
                                                         makeExampleGas(Cycle::kFourStroke, 2.0 * car.crank.radius)), 6000.0);
   const Mechanism ship = withGasAtDeadCentres(inlineOf(marine, marine.engine.cylinders, Cycle::kTwoStroke),
@@ -66,9 +94,9 @@ TableSet calcTorqueSplitTables(const Mechanism& car, const Mechanism& marine) {
     for (double d = 0.0; d < cycle_deg; d += 2.5) {
       const double phi = radiansFromDegrees(d);
       const Parts p = splitAt(m, phi);
-      std::vector<std::string> row = {name, num(d), num(p.drive), num(p.gas), num(p.inertia), num(p.gravity)};
-      for (const auto& model : models) row.push_back(num(model->evaluateMotion(phi).drive_torque));
-      split.rows.push_back(row);
+      TorqueSplitRow row{name, d, p.drive, p.gas, p.inertia, p.gravity, {}};
+      for (const auto& model : models) row.reference_drive_torque.push_back(model->evaluateMotion(phi).drive_torque);
+      split.push_back(std::move(row));
     }
   }
   for (Cycle cycle : {Cycle::kTwoStroke, Cycle::kFourStroke})
@@ -89,11 +117,11 @@ TableSet calcTorqueSplitTables(const Mechanism& car, const Mechanism& marine) {
         // A gravity torque below 64 eps of the energy scale is rounding (k = 7, 9, 11 four-stroke: gravity's harmonics
         // cancel up to the 14th), not a torque: marked, not drawn as physics.
         const bool resolved = gravity / n > kAgreementMultiple * kEps * calcEnergyScale(m);
-        share.rows.push_back({toString(cycle), std::to_string(k), num(rpm), num(drive / n), num(gravity / n), num(gravity / drive),
-                              resolved ? "1" : "0"});
+        share.push_back({toString(cycle), k, rpm, drive / n, gravity / n, gravity / drive, resolved ? "1" : "0"});
       }
     }
-  return {{"torque_split", split}, {"gravity_share", share}};
+  return {{torqueSplitTable().name(), torqueSplitTable().table(std::move(split))},
+          {kGravityShareTable.name(), kGravityShareTable.table(std::move(share))}};
 }
 
 
@@ -116,7 +144,7 @@ class TorqueSplitPart final : public Part {
              [base = context.base, marine = findMarineScene()] { return calcTorqueSplitTables(base, marine); }}};
   }
   ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
-  std::vector<std::string> tables() const override { return {"torque_split", "gravity_share"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&torqueSplitTable(), &kGravityShareTable}; }
 };
 
 }  // namespace
