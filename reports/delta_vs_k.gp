@@ -2,7 +2,8 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/delta_vs_k.gp
 #
-# Reads  in_dir/delta_vs_k.csv   cycle,k,speed_rpm,delta_gravity,delta_no_gravity,delta_due_to_gravity
+# Reads  in_dir/delta_vs_k.csv (validation/src/parts/delta_vs_k.cc declares its columns), each column by its header
+#        ("speed_rpm [rpm]")
 # Writes out_dir/delta_vs_k.svg and out_dir/delta_vs_k.png
 #
 # Two panels side by side (two-stroke left, four-stroke right), same log y axis. Per speed_rpm, one
@@ -31,22 +32,28 @@ nlines = 0
 stats file using (nlines = nlines + 1, 1) nooutput
 if (nlines == 0) { print "error: " . file . " is missing or empty (not even a header line)"; exit status 1 }
 ndata = nlines - 1
+# The count above includes the header line; from here on it names the columns (until the series are drawn from the
+# datablocks below, which have none).
+set datafile columnheaders
 
-# ---- presence per (cycle, speed, column), the distinct speeds and the range of the plotted values ---
+# ---- presence per (cycle, speed, series), the distinct speeds and the range of the plotted values ---
 # All numbers are read with column(): for an empty last field gnuplot 5.4's strcol returns a stale
 # string, column() returns NaN (an empty delta_due_to_gravity is simply not drawn).
+# The two series: "no_gravity" (dashed) and "due_to_gravity" (solid), each the column "delta_SERIES [-]".
 present = "|"; cycles = "|"; speeds = " "; ymin = 1; ymax = 1e-17
 spd(v) = sprintf("%.17g", v)
-row_ok(col) = fin(column(2)) && fin(column(3)) && fin(column(col))
+delta(col) = column("delta_" . col . " [-]")
+row_ok(col) = fin(column("k [-]")) && fin(column("speed_rpm [rpm]")) && fin(delta(col))
 reg(c, s, col) = (strstrt(present, "|" . c . ":" . s . ":" . col . "|") == 0) ? present = present . c . ":" . s . ":" . col . "|" : 0
 if (ndata > 0) {
-    stats file skip 1 using ( \
-        (row_ok(5) || row_ok(6)) && strstrt(cycles, "|" . strcol(1) . "|") == 0 ? cycles = cycles . strcol(1) . "|" : 0, \
-        (row_ok(5) || row_ok(6)) && strstrt(speeds, " " . spd(column(3)) . " ") == 0 ? speeds = speeds . spd(column(3)) . " " : 0, \
-        row_ok(5) ? reg(strcol(1), spd(column(3)), "5") : 0, \
-        row_ok(6) ? reg(strcol(1), spd(column(3)), "6") : 0, \
-        row_ok(5) ? (ymin = clamp(column(5)) < ymin ? clamp(column(5)) : ymin, ymax = column(5) > ymax ? column(5) : ymax) : 0, \
-        row_ok(6) ? (ymin = clamp(column(6)) < ymin ? clamp(column(6)) : ymin, ymax = column(6) > ymax ? column(6) : ymax) : 0, \
+    stats file using ( \
+        c = strcol("cycle"), v = column("speed_rpm [rpm]"), \
+        (row_ok("no_gravity") || row_ok("due_to_gravity")) && strstrt(cycles, "|" . c . "|") == 0 ? cycles = cycles . c . "|" : 0, \
+        (row_ok("no_gravity") || row_ok("due_to_gravity")) && strstrt(speeds, " " . spd(v) . " ") == 0 ? speeds = speeds . spd(v) . " " : 0, \
+        row_ok("no_gravity") ? reg(c, spd(v), "no_gravity") : 0, \
+        row_ok("due_to_gravity") ? reg(c, spd(v), "due_to_gravity") : 0, \
+        row_ok("no_gravity") ? (y = delta("no_gravity"), ymin = clamp(y) < ymin ? clamp(y) : ymin, ymax = y > ymax ? y : ymax) : 0, \
+        row_ok("due_to_gravity") ? (y = delta("due_to_gravity"), ymin = clamp(y) < ymin ? clamp(y) : ymin, ymax = y > ymax ? y : ymax) : 0, \
         0) nooutput
 }
 
@@ -85,15 +92,14 @@ do for [p = 1:2] {
     CMD[p] = ""
     do for [i = 1:NS] {
         # dashed first, so the solid line of the same speed is drawn on top of it
-        do for [col in "5 6"] {
+        do for [col in "no_gravity due_to_gravity"] {
             if (has(CYC[p], SPS[i], col)) {
                 nser = nser + 1
-                cc = col + 0
                 eval sprintf("set table $S%d separator comma", nser)
-                plot file skip 1 using 2:(clamp(column(cc))) with table \
-                    if (strcol(1) eq CYC[p] && fin(column(2)) && fin(column(3)) && column(3) == SPV[i] && fin(column(cc)))
+                plot file using "k [-]":(clamp(delta(col))) with table \
+                    if (strcol("cycle") eq CYC[p] && row_ok(col) && column("speed_rpm [rpm]") == SPV[i])
                 unset table
-                if (cc == 6) {
+                if (col eq "due_to_gravity") {
                     CMD[p] = CMD[p] . sprintf("$S%d using 1:2 smooth unique with linespoints lw 2 pt 7 ps 0.8 lc rgb '%s' notitle, ", nser, SPC[i])
                 } else {
                     CMD[p] = CMD[p] . sprintf("$S%d using 1:2 smooth unique with lines lw 1.2 dt 2 lc rgb '%s' notitle, ", nser, SPC[i])
@@ -103,6 +109,7 @@ do for [p = 1:2] {
     }
     CMD[p] = (CMD[p] eq "") ? "NaN notitle" : CMD[p][1:strlen(CMD[p]) - 2]
 }
+unset datafile columnheaders
 
 # the legend (NaN plots, drawn in a panel of its own): one entry per speed, then the two line kinds
 legend = ""

@@ -2,7 +2,8 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/engines.gp
 #
-# Reads  in_dir/engines_league.csv   engine,k,ns_per_eval,worst_rel_error (header line first)
+# Reads  in_dir/engines_league.csv (validation/src/parts/engines.cc declares its columns), each column by its header
+#        ("ns_per_eval [ns]")
 # Writes out_dir/engines.svg and out_dir/engines.png
 #
 # x = ns per evaluation (every quantity at one crank angle; log), y = the engine's worst error over every quantity
@@ -23,6 +24,10 @@ clamp(v) = (v < floor) ? floor : v
 nlines = 0
 stats file using (nlines = nlines + 1, 1) nooutput
 if (nlines == 0) { print "error: " . file . " is missing or empty (not even a header line)"; exit status 1 }
+# The count above includes the header line; from here on it names the columns.
+set datafile columnheaders
+# The cost of the rows of k = `k`, NaN for the others.
+cost(k) = column("k [-]") == k ? column("ns_per_eval [ns]") : NaN
 
 set logscale xy
 set format x "10^{%T}"
@@ -48,8 +53,8 @@ do for [fmt in "svg png"] {
     }
     set output out_dir . "/" . name . "." . fmt
     set title "Engines: cost per evaluation against worst error" font ",13"
-    plot file skip 1 using ($2 == 1 ? $3 : NaN):(clamp($4)):1 with labels left offset 1, 0.6 boxed font ",10" noenhanced notitle, \
-         file skip 1 using ($2 == 1 ? $3 : NaN):(clamp($4)) with points pt 7 ps 1.5 lc rgb "#1f77b4" notitle, \
-         file skip 1 using ($2 == 12 ? $3 : NaN):(clamp($4)) with points pt 6 ps 1.5 lc rgb "#d62728" notitle
+    plot file using (cost(1)):(clamp(column("worst_rel_error [-]"))):"engine" with labels left offset 1, 0.6 boxed font ",10" noenhanced notitle, \
+         file using (cost(1)):(clamp(column("worst_rel_error [-]"))) with points pt 7 ps 1.5 lc rgb "#1f77b4" notitle, \
+         file using (cost(12)):(clamp(column("worst_rel_error [-]"))) with points pt 6 ps 1.5 lc rgb "#d62728" notitle
     unset output
 }

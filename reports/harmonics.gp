@@ -2,11 +2,12 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/harmonics.gp
 #
-# Reads  in_dir/harmonics.csv   cycle,k,n,analytic_amplitude,paper_nonzero,ENGINE_amplitude... (one per reference engine)
+# Reads  in_dir/harmonics.csv (validation/src/parts/harmonics.cc declares its columns: one ENGINE_amplitude per reference
+#        engine), each column by its header ("analytic_amplitude [N m]")
 # Writes out_dir/harmonics.svg and out_dir/harmonics.png
 #
 # Two stacked panels (two-stroke above, four-stroke below). Each cell (n, k) is coloured by
-# log10 of the first reference engine's amplitude (column 6), clamped to [-17, 0] (0 or below 1e-17 is drawn as -17). An open circle
+# log10 of Simbody's amplitude (simbody_amplitude), clamped to [-17, 0] (0 or below 1e-17 is drawn as -17). An open circle
 # marks analytic_amplitude > 1e-12 (the prediction); a small cross marks paper_nonzero == 1 (the
 # paper's table 1; 0 or empty draws nothing). A cell with no row in the CSV stays light grey.
 # Rows may come in any order; a missing cycle leaves its panel empty with a note.
@@ -30,9 +31,11 @@ nlines = 0
 stats file using (nlines = nlines + 1, 1) nooutput
 if (nlines == 0) { print "error: " . file . " is missing or empty (not even a header line)"; exit status 1 }
 ndata = nlines - 1
+# The count above includes the header line; from here on it names the columns.
+set datafile columnheaders
 
 if (ndata > 0) {
-    stats file skip 1 using (key = strcol(1) . "|", (strstrt(present, "|" . key) == 0 ? present = present . key : 0), 0) nooutput
+    stats file using (key = strcol("cycle") . "|", (strstrt(present, "|" . key) == 0 ? present = present . key : 0), 0) nooutput
 }
 
 has(c) = strstrt(present, "|" . c . "|") > 0
@@ -50,14 +53,15 @@ set lmargin at screen 0.07
 set rmargin at screen 0.865
 set object 1 rectangle from graph 0, 0 to graph 1, 1 fillcolor rgb "#e6e6e6" fillstyle solid 1.0 noborder behind
 
-# paper_nonzero is tested with valid(5) && column(5) == 1: for an empty field gnuplot 5.4's strcol(5)
-# returns a stale string (seen: "1"), so a string comparison would draw crosses the CSV does not ask for.
+# paper_nonzero is tested with column("paper_nonzero") == 1: for an empty field gnuplot 5.4's strcol returns a stale
+# string (seen: "1"), so a string comparison would draw crosses the CSV does not ask for; column() of an empty field is
+# missing (the row is skipped).
 # cells, then each marker twice (a wide white stroke under a thin black one: visible on any colour)
-cells(c)   = sprintf("file skip 1 using 3:(strcol(1) eq '%s' ? $2 : NaN):(0.5):(0.5):(lz($6)) with boxxyerror fillstyle solid 1.0 noborder lc palette notitle", c)
-circles(c) = sprintf("file skip 1 using 3:(strcol(1) eq '%s' && $4 > amp_threshold ? $2 : NaN) with points pt 6 ps 1.25 lw 3.5 lc rgb 'white' notitle, ", c) . \
-             sprintf("file skip 1 using 3:(strcol(1) eq '%s' && $4 > amp_threshold ? $2 : NaN) with points pt 6 ps 1.25 lw 1.3 lc rgb 'black' notitle", c)
-crosses(c) = sprintf("file skip 1 using 3:(strcol(1) eq '%s' && valid(5) && column(5) == 1 ? $2 : NaN) with points pt 2 ps 0.7 lw 3.5 lc rgb 'white' notitle, ", c) . \
-             sprintf("file skip 1 using 3:(strcol(1) eq '%s' && valid(5) && column(5) == 1 ? $2 : NaN) with points pt 2 ps 0.7 lw 1.3 lc rgb 'black' notitle", c)
+cells(c)   = sprintf("file using 'n [-]':(strcol('cycle') eq '%s' ? column('k [-]') : NaN):(0.5):(0.5):(lz(column('simbody_amplitude [N m]'))) with boxxyerror fillstyle solid 1.0 noborder lc palette notitle", c)
+circles(c) = sprintf("file using 'n [-]':(strcol('cycle') eq '%s' && column('analytic_amplitude [N m]') > amp_threshold ? column('k [-]') : NaN) with points pt 6 ps 1.25 lw 3.5 lc rgb 'white' notitle, ", c) . \
+             sprintf("file using 'n [-]':(strcol('cycle') eq '%s' && column('analytic_amplitude [N m]') > amp_threshold ? column('k [-]') : NaN) with points pt 6 ps 1.25 lw 1.3 lc rgb 'black' notitle", c)
+crosses(c) = sprintf("file using 'n [-]':(strcol('cycle') eq '%s' && column('paper_nonzero') == 1 ? column('k [-]') : NaN) with points pt 2 ps 0.7 lw 3.5 lc rgb 'white' notitle, ", c) . \
+             sprintf("file using 'n [-]':(strcol('cycle') eq '%s' && column('paper_nonzero') == 1 ? column('k [-]') : NaN) with points pt 2 ps 0.7 lw 1.3 lc rgb 'black' notitle", c)
 # the three markers only appear in the legend (NaN plots), drawn in the lower panel's key
 legend = "NaN with points pt 6 ps 1.25 lw 1.3 lc rgb 'black' title 'analytic amplitude > 10^{-12} (prediction)', " . \
          "NaN with points pt 2 ps 0.7 lw 1.3 lc rgb 'black' title 'nonzero in the paper''s table 1', " . \
@@ -72,8 +76,9 @@ do for [p = 1:2] {
     c = CYC[p]
     if (has(c)) {
         nc = 0; np = 0
-        stats file skip 1 using ((strcol(1) eq c && column(4) > amp_threshold) ? nc = nc + 1 : 0, \
-                                 (strcol(1) eq c && valid(5) && column(5) == 1) ? np = np + 1 : 0, 0) nooutput
+        # apart: a row whose paper_nonzero is empty is skipped by the stats that reads it
+        stats file using ((strcol("cycle") eq c && column("analytic_amplitude [N m]") > amp_threshold) ? nc = nc + 1 : 0, 0) nooutput
+        stats file using ((strcol("cycle") eq c && column("paper_nonzero") == 1) ? np = np + 1 : 0, 0) nooutput
         CMD[p] = cells(c) . (nc > 0 ? ", " . circles(c) : "") . (np > 0 ? ", " . crosses(c) : "")
     } else {
         CMD[p] = "NaN notitle"

@@ -4,8 +4,8 @@
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/norton_fig13_8.gp
 #
-# Reads  in_dir/norton_fig13_8.csv
-#        crank_angle_deg,x_exact,x_two_term,v_exact,v_two_term,a_exact,a_two_term   (deg, m, m/s, m/s^2)
+# Reads  in_dir/norton_fig13_8.csv (validation/src/parts/norton_fig13_8.cc declares its columns), each column by its
+#        header ("x_exact [m]")
 # Writes out_dir/norton_fig13_8.svg and out_dir/norton_fig13_8.png
 #
 # Three stacked panels sharing the crank-angle axis (tics every 90 degrees). Exact: coloured solid
@@ -23,25 +23,30 @@ set datafile separator ","
 
 # ---- largest difference per quantity, and the angle range ----------------------------------------
 array D[3] = [0, 0, 0]
+# Panel p's columns: EXACT[p] and TWO[p].
+array EXACT[3] = ["x_exact [m]", "v_exact [m/s]", "a_exact [m/s^2]"]
+array TWO[3] = ["x_two_term [m]", "v_two_term [m/s]", "a_two_term [m/s^2]"]
 # number of data rows: a constant-only "using" counts the header line too (no warning even for a
 # header-only CSV); every later stats is skipped when there is no data row
 nlines = 0
 stats file using (nlines = nlines + 1, 1) nooutput
 if (nlines == 0) { print "error: " . file . " is missing or empty (not even a header line)"; exit status 1 }
 ndata = nlines - 1
+# The count above includes the header line; from here on it names the columns.
+set datafile columnheaders
 nrow = ndata
 amin = 0; amax = 720
 array YMIN[3] = [0.0, 0.0, 0.0]; array YMAX[3] = [1.0, 1.0, 1.0]
 if (ndata > 0) {
-    stats file skip 1 using ( \
-        (abs($3 - $2) > D[1] ? D[1] = abs($3 - $2) : 0), \
-        (abs($5 - $4) > D[2] ? D[2] = abs($5 - $4) : 0), \
-        (abs($7 - $6) > D[3] ? D[3] = abs($7 - $6) : 0), \
-        ($1 < amin ? amin = $1 : 0), ($1 > amax ? amax = $1 : 0), 0) nooutput
+    stats file using ( \
+        (d = abs(column(TWO[1]) - column(EXACT[1])), d > D[1] ? D[1] = d : 0), \
+        (d = abs(column(TWO[2]) - column(EXACT[2])), d > D[2] ? D[2] = d : 0), \
+        (d = abs(column(TWO[3]) - column(EXACT[3])), d > D[3] ? D[3] = d : 0), \
+        (a = column("crank_angle_deg [deg]"), a < amin ? amin = a : 0), (a > amax ? amax = a : 0), 0) nooutput
     # per panel the smallest and largest value over both columns, for a y range with headroom
     do for [p = 1:3] {
         YMIN[p] = 0; YMAX[p] = 0; first = 1
-        stats file skip 1 using (v = column(2 * p), w = column(2 * p + 1), \
+        stats file using (v = column(EXACT[p]), w = column(TWO[p]), \
             (v == v ? (first ? (YMIN[p] = v, YMAX[p] = v, first = 0) : 0, YMIN[p] = v < YMIN[p] ? v : YMIN[p], YMAX[p] = v > YMAX[p] ? v : YMAX[p]) : 0), \
             (w == w ? (first ? (YMIN[p] = w, YMAX[p] = w, first = 0) : 0, YMIN[p] = w < YMIN[p] ? w : YMIN[p], YMAX[p] = w > YMAX[p] ? w : YMAX[p]) : 0), 0) nooutput
     }
@@ -95,8 +100,8 @@ do for [fmt in "svg png"] {
             set label 2 "no rows in the CSV" at graph 0.5, graph 0.5 center
             plot NaN notitle
         } else {
-            plot file skip 1 using 1:(column(2 * p)) smooth unique with lines lw 4 lc rgb QC[p] title "exact", \
-                 file skip 1 using 1:(column(2 * p + 1)) smooth unique with lines lw 1.5 dt (8, 6) lc rgb "black" title "two-term (13.3c-e)"
+            plot file using "crank_angle_deg [deg]":(column(EXACT[p])) smooth unique with lines lw 4 lc rgb QC[p] title "exact", \
+                 file using "crank_angle_deg [deg]":(column(TWO[p])) smooth unique with lines lw 1.5 dt (8, 6) lc rgb "black" title "two-term (13.3c-e)"
         }
     }
     unset multiplot

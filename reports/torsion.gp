@@ -1,11 +1,9 @@
-# torsion.gp -- report part 17: torsional vibration, Holzer's constant inertia against the exact crank train.
+# torsion.gp -- report part `torsion`: torsional vibration, Holzer's constant inertia against the exact crank train.
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/torsion.gp
 #
-# Reads  in_dir/torsion.csv             scene,speed_rpm,holzer,holzer_order24,exact,difference,worst_difference,...
-#        in_dir/torsion_modes.csv       scene,mode,holzer_hz,min_hz,max_hz,firings_per_turn
-#        in_dir/torsion_resonances.csv  scene,route,order,mode,speed_rpm,frequency_hz,critical_rpm,twist
-#        in_dir/torsion_ratio.csv       scene,piston_mass_factor,ratio,order,speed_rpm,holzer,exact,worst_difference
+# Reads  in_dir/torsion.csv, torsion_modes.csv, torsion_resonances.csv and torsion_ratio.csv (validation/src/parts/
+#        torsion.cc declares their columns), each column by its header ("speed_rpm [rpm]")
 # Writes out_dir/torsion.svg and out_dir/torsion.png
 #
 # Two rows, three columns. The first two scenes of torsion.csv (in order of appearance) get a column each: top, the
@@ -14,7 +12,7 @@
 # peaks filled and Holzer's open); bottom, the peak-to-peak twist of the section that twists most against speed
 # (Holzer's sum of every order as a line, the exact steady state as dots). Right column: exact / Holzer - 1 of the
 # worst section against speed (log axis: the scenes' speeds may differ by decades), and against the ratio of
-# reciprocating to rotating inertia (empty cells of torsion_ratio: no periodic state, drawn as crosses at the top).
+# reciprocating to rotating inertia (empty cells of torsion_ratio: no periodic state, drawn as crosses at 0).
 
 if (!exists("in_dir"))  in_dir  = "."
 if (!exists("out_dir")) out_dir = "."
@@ -40,12 +38,14 @@ npeaks = 0
 stats peaks using (npeaks = npeaks + 1, 1) nooutput
 nratio = 0
 stats ratio using (nratio = nratio + 1, 1) nooutput
+# The counts above include each file's header line; from here on it names the columns.
+set datafile columnheaders
 
 # The scenes, in order of appearance (at most 2), their speed range and their first three modes.
 array S[2]
 nscenes = 0
 if (nsweep > 1) {
-    stats sweep skip 1 using (s = strcol(1), (nscenes == 0 || S[nscenes] ne s) && nscenes < 2 ? (nscenes = nscenes + 1, S[nscenes] = s) : 0, 0) nooutput
+    stats sweep using (s = strcol("scene"), (nscenes == 0 || S[nscenes] ne s) && nscenes < 2 ? (nscenes = nscenes + 1, S[nscenes] = s) : 0, 0) nooutput
 }
 array X0[2] = [1e300, 1e300]
 array X1[2] = [0, 0]
@@ -55,9 +55,9 @@ array FH[6]
 array FIRE[2] = [1, 1]
 do for [i = 1:6] { F[i] = NaN; FL[i] = NaN; FH[i] = NaN }
 do for [s = 1:nscenes] {
-    stats sweep skip 1 using (strcol(1) eq S[s] ? (X0[s] = ($2 < X0[s] ? $2 : X0[s]), X1[s] = ($2 > X1[s] ? $2 : X1[s])) : 0, 0) nooutput
+    stats sweep using (strcol("scene") eq S[s] ? (v = column("speed_rpm [rpm]"), X0[s] = (v < X0[s] ? v : X0[s]), X1[s] = (v > X1[s] ? v : X1[s])) : 0, 0) nooutput
     if (nmodes > 1) {
-        stats modes skip 1 using (strcol(1) eq S[s] && $2 <= 3 ? (F[3 * (s - 1) + $2] = $3, FL[3 * (s - 1) + $2] = $4, FH[3 * (s - 1) + $2] = $5, FIRE[s] = $6) : 0, 0) nooutput
+        stats modes using (md = column("mode [-]"), strcol("scene") eq S[s] && md <= 3 ? (F[3 * (s - 1) + md] = column("holzer_hz [Hz]"), FL[3 * (s - 1) + md] = column("min_hz [Hz]"), FH[3 * (s - 1) + md] = column("max_hz [Hz]"), FIRE[s] = column("firings_per_turn [-]")) : 0, 0) nooutput
     }
 }
 array C[2] = ["#1f77b4", "#d62728"]
@@ -103,17 +103,17 @@ do for [fmt in "svg png"] {
             nexact = 0
             nholzer = 0
             if (npeaks > 1) {
-                stats peaks skip 1 using (strcol(1) eq S[s] ? (strcol(2) eq "exact" ? nexact = nexact + 1 : (nholzer = nholzer + 1)) : 0, 0) nooutput
+                stats peaks using (strcol("scene") eq S[s] ? (strcol("route") eq "exact" ? nexact = nexact + 1 : (nholzer = nholzer + 1)) : 0, 0) nooutput
             }
             cmd = "for [n = 1:24] (n * x / 60.0 < top ? n * x / 60.0 : NaN) with lines lw (n % int(FIRE[s]) == 0 ? 2 : 0.5) " . \
                   "lc rgb (n % int(FIRE[s]) == 0 ? '#555555' : '#bbbbbb') notitle, " . \
                   "F[b + 1] with lines lw 2 lc rgb '#ff7f0e' title \"Holzer's modes (band: J min .. J max)\", " . \
                   "for [m = 2:3] (F[b + m] == F[b + m] ? F[b + m] : NaN) with lines lw 2 lc rgb '#ff7f0e' notitle"
             if (nexact > 0) {
-                cmd = cmd . ", peaks skip 1 using (strcol(1) eq S[s] && strcol(2) eq 'exact' ? $5 : NaN):6 with points pt 7 ps 1.3 lc rgb '#d62728' title \"exact steady state's peaks\""
+                cmd = cmd . ", peaks using (strcol('scene') eq S[s] && strcol('route') eq 'exact' ? column('speed_rpm [rpm]') : NaN):'frequency_hz [Hz]' with points pt 7 ps 1.3 lc rgb '#d62728' title \"exact steady state's peaks\""
             }
             if (nholzer > 0) {
-                cmd = cmd . ", peaks skip 1 using (strcol(1) eq S[s] && strcol(2) eq 'holzer' ? $5 : NaN):6 with points pt 6 ps 1.8 lc rgb '#1f77b4' title \"Holzer's peaks\""
+                cmd = cmd . ", peaks using (strcol('scene') eq S[s] && strcol('route') eq 'holzer' ? column('speed_rpm [rpm]') : NaN):'frequency_hz [Hz]' with points pt 6 ps 1.8 lc rgb '#1f77b4' title \"Holzer's peaks\""
             }
             eval "plot " . cmd
             do for [m = 1:3] { unset object m }
@@ -132,7 +132,7 @@ do for [fmt in "svg png"] {
         set xrange [1:10]
         plot NaN notitle
     } else {
-        plot for [s = 1:nscenes] sweep skip 1 using (strcol(1) eq S[s] ? $2 : NaN):(100.0 * $7) with linespoints lw 2 pt 7 ps 0.6 lc rgb C[s] title S[s], \
+        plot for [s = 1:nscenes] sweep using (strcol("scene") eq S[s] ? column("speed_rpm [rpm]") : NaN):(100.0 * column("worst_difference [-]")) with linespoints lw 2 pt 7 ps 0.6 lc rgb C[s] title S[s], \
              10 with lines dt 2 lc rgb "#999999" title "+-10 %", -10 with lines dt 2 lc rgb "#999999" notitle, \
              0 with lines lc rgb "#444444" notitle
     }
@@ -153,9 +153,9 @@ do for [fmt in "svg png"] {
             set xrange [0:1.05 * X1[s]]
             set autoscale y
             set yrange [0:*]
-            plot sweep skip 1 using (strcol(1) eq S[s] ? $2 : NaN):3 with lines lw 2 lc rgb "#1f77b4" title "Holzer, every order", \
-                 sweep skip 1 using (strcol(1) eq S[s] ? $2 : NaN):4 with lines lw 1 dt 2 lc rgb "#1f77b4" title "Holzer, orders <= 24", \
-                 sweep skip 1 using (strcol(1) eq S[s] ? $2 : NaN):5 with linespoints lw 1 pt 7 ps 0.7 lc rgb "#d62728" title "exact steady state"
+            plot sweep using (strcol("scene") eq S[s] ? column("speed_rpm [rpm]") : NaN):"holzer [rad]" with lines lw 2 lc rgb "#1f77b4" title "Holzer, every order", \
+                 sweep using (strcol("scene") eq S[s] ? column("speed_rpm [rpm]") : NaN):"holzer_order24 [rad]" with lines lw 1 dt 2 lc rgb "#1f77b4" title "Holzer, orders <= 24", \
+                 sweep using (strcol("scene") eq S[s] ? column("speed_rpm [rpm]") : NaN):"exact [rad]" with linespoints lw 1 pt 7 ps 0.7 lc rgb "#d62728" title "exact steady state"
             unset title
         }
     }
@@ -172,12 +172,14 @@ do for [fmt in "svg png"] {
         plot NaN notitle
         unset label 6
     } else {
+        # A row without a periodic state has exact and worst_difference empty; the test reads exact: for an empty last
+        # field gnuplot 5.4's strcol returns a stale string.
         nbroken = 0
-        stats ratio skip 1 using (strcol(8) eq "" ? nbroken = nbroken + 1 : 0, 0) nooutput
-        cmd = "ratio skip 1 using 3:(strcol(8) ne '' ? 100.0 * $8 : NaN) with linespoints lw 2 pt 7 lc rgb '#2ca02c' title 'worst section', " . \
+        stats ratio using (strcol("exact [rad]") eq "" ? nbroken = nbroken + 1 : 0, 0) nooutput
+        cmd = "ratio using 'ratio [-]':(strcol('worst_difference [-]') ne '' ? 100.0 * column('worst_difference [-]') : NaN) with linespoints lw 2 pt 7 lc rgb '#2ca02c' title 'worst section', " . \
               "10 with lines dt 2 lc rgb '#999999' title '+-10 %', -10 with lines dt 2 lc rgb '#999999' notitle"
         if (nbroken > 0) {
-            cmd = cmd . ", ratio skip 1 using 3:(strcol(8) eq '' ? 0 : NaN) with points pt 2 ps 2 lc rgb '#000000' title 'no periodic state'"
+            cmd = cmd . ", ratio using 'ratio [-]':(strcol('exact [rad]') eq '' ? 0 : NaN) with points pt 2 ps 2 lc rgb '#000000' title 'no periodic state'"
         }
         eval "plot " . cmd
     }

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <variant>
 
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/engines.h"
@@ -21,14 +22,15 @@ namespace crankcheck::testing {
 inline void expectGatedTrainsAgree(const std::filesystem::path& report) {
   const validation::TableSet tables = validation::readTables(report);
   ASSERT_TRUE(tables.count("torsion_engines")) << report;
-  const validation::Table& t = tables.at("torsion_engines");
+  const validation::Table& t = tables.at("torsion_engines");  // typed: read through its schema
   const size_t engine = validation::columnOf(t, "engine"), difference = validation::columnOf(t, "difference"),
                periodicity = validation::columnOf(t, "periodicity");
   std::set<std::string> seen;
-  for (const auto& row : t.rows) {
-    if (!validation::findEngine(row[engine]).crank_train_gated) continue;
-    EXPECT_LE(std::fabs(std::stod(row[difference])), 2 * std::stod(row[periodicity])) << row[engine];
-    seen.insert(row[engine]);
+  for (size_t r = 0; r < t.size(); ++r) {
+    const std::string name = std::get<std::string>(t.cell(r, engine));
+    if (!validation::findEngine(name).crank_train_gated) continue;
+    EXPECT_LE(std::fabs(std::get<double>(t.cell(r, difference))), 2 * std::get<double>(t.cell(r, periodicity))) << name;
+    seen.insert(name);
   }
   for (const Engine& e : validation::listEngines())
     if (e.simulate_crank_train && e.crank_train_gated && !e.closed_form) EXPECT_TRUE(seen.count(e.name)) << e.name;

@@ -1,4 +1,4 @@
-// Report part `delta_vs_k` (6): the free run's speed fluctuation due to gravity against k. Needs the base scene's flywheel:
+// Report part `delta_vs_k`: the free run's speed fluctuation due to gravity against k. Needs the base scene's flywheel:
 // without one the part is left out (campaign.cc's notes say so).
 #include <cmath>
 #include <stdexcept>
@@ -15,12 +15,24 @@
 namespace crankcheck::validation {
 namespace {
 
-// ------------------------------------------------------------------------------------------------------------
-// delta_vs_k: the free run's speed fluctuation with and without gravity, k = 1..12, both strokes, a few speeds.
+// delta_vs_k: the free run's speed fluctuation with and without gravity, k = 1..12, both strokes, a few speeds; NaN
+// where the engine is too slow to turn over against gravity.
+struct DeltaRow {
+  std::string cycle;
+  int k = 1;
+  double speed_rpm = 0.0;                                  ///< [rpm]
+  double delta_gravity = 0.0, delta_no_gravity = 0.0;      ///< [-]
+  double delta_due_to_gravity = 0.0;                       ///< |delta_gravity - delta_no_gravity| [-]
+};
+const Schema<DeltaRow> kDeltaVsKTable{
+    "delta_vs_k",
+    {textField("cycle", &DeltaRow::cycle), countField("k", &DeltaRow::k),
+     numberField("speed_rpm", "rpm", &DeltaRow::speed_rpm), numberField("delta_gravity", "-", &DeltaRow::delta_gravity),
+     numberField("delta_no_gravity", "-", &DeltaRow::delta_no_gravity),
+     numberField("delta_due_to_gravity", "-", &DeltaRow::delta_due_to_gravity)}};
 
 TableSet calcDeltaVsKTables(const Mechanism& base, Cycle cycle, bool quick) {
-  Table t("delta_vs_k", {{"cycle", kText}, {"k", "-"}, {"speed_rpm", "rpm"}, {"delta_gravity", "-"},
-                         {"delta_no_gravity", "-"}, {"delta_due_to_gravity", "-"}});
+  std::vector<DeltaRow> rows;
   for (int k = 1; k <= 12; ++k)
     for (double rpm : quick ? std::vector<double>{300.0, 6000.0} : std::vector<double>{60.0, 300.0, 1500.0, 6000.0}) {
       const Mechanism m = withSpeed(withGamma(withCylinders(base, k, cycle), 90.0), rpm);
@@ -30,9 +42,9 @@ TableSet calcDeltaVsKTables(const Mechanism& base, Cycle cycle, bool quick) {
         without = analytic::calcFreeRun(m, m.engine.speed, false).delta;
       } catch (const std::domain_error&) {  // too slow to turn over against gravity: no free run to report
       }
-      t.rows.push_back({toString(cycle), std::to_string(k), formatNumber(rpm), formatNumber(with), formatNumber(without), formatNumber(std::fabs(with - without))});
+      rows.push_back({toString(cycle), k, rpm, with, without, std::fabs(with - without)});
     }
-  return {{"delta_vs_k", t}};
+  return kDeltaVsKTable.tableSet(std::move(rows));
 }
 
 // The figure's caption.
@@ -55,7 +67,7 @@ class DeltaVsKPart final : public Part {
     return out;
   }
   ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
-  std::vector<std::string> tables() const override { return {"delta_vs_k"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&kDeltaVsKTable}; }
   std::vector<ReportedMaximum> maxima() const override {
     return {{"delta_vs_k", {"cycle", "k", "speed_rpm"}, {"delta_gravity", "delta_no_gravity"}, "", ""}};
   }

@@ -1,4 +1,4 @@
-// Report part `harmonics` (3): the harmonics of Q, each reference engine's DFT against the analytic prediction and the paper's table 1.
+// Report part `harmonics`: the harmonics of Q, each reference engine's DFT against the analytic prediction and the paper's table 1.
 #include <cmath>
 #include <complex>
 #include <cstdlib>
@@ -22,15 +22,55 @@
 namespace crankcheck::validation {
 namespace {
 
-// ------------------------------------------------------------------------------------------------------------
-// harmonics: DFT of each reference engine's Q over one turn, against the analytic prediction and the paper's claim.
+// harmonics: per cycle, k and order n, the amplitude of Q's harmonic n relative to the energy scale: the analytic
+// prediction, whether the paper's table 1 / eq (18) says it is nonzero (empty where the paper says nothing), and each
+// reference engine's DFT, a column per engine in the registry's order.
+struct HarmonicsRow {
+  std::string cycle;
+  int k = 1, n = 1;
+  double analytic_amplitude = 0.0;           ///< [N m] / energy scale
+  std::optional<bool> paper_nonzero;         ///< written "1", "0" or empty
+  std::vector<double> engine_amplitudes;     ///< [N m] / energy scale, per reference engine (listReferenceEngines)
+};
+
+// The paper's claim as the text column "paper_nonzero": "1", "0", or empty.
+Field<HarmonicsRow> paperClaimField() {
+  return {Column("paper_nonzero", kText),
+          [](const HarmonicsRow& r) { return Cell(r.paper_nonzero ? std::string(*r.paper_nonzero ? "1" : "0") : ""); },
+          [](HarmonicsRow& r, Cell c) {
+            const std::string text = std::get<std::string>(std::move(c));
+            if (text.empty()) r.paper_nonzero = std::nullopt;
+            else r.paper_nonzero = text != "0";
+          }};
+}
+
+// Reference engine `i`'s DFT: the column ENGINE_amplitude.
+Field<HarmonicsRow> engineAmplitudeField(const std::string& engine, size_t i) {
+  return {Column(engine + "_amplitude", "N m"),
+          [i](const HarmonicsRow& r) { return Cell(r.engine_amplitudes.at(i)); },
+          [i](HarmonicsRow& r, Cell c) {
+            if (r.engine_amplitudes.size() <= i) r.engine_amplitudes.resize(i + 1);
+            r.engine_amplitudes[i] = std::get<double>(c);
+          }};
+}
+
+// The table's schema: its columns depend on the engine registry, so it is built on first use (after main starts).
+const Schema<HarmonicsRow>& getHarmonicsTable() {
+  static const Schema<HarmonicsRow> schema = [] {
+    std::vector<Field<HarmonicsRow>> fields = {
+        textField("cycle", &HarmonicsRow::cycle), countField("k", &HarmonicsRow::k), countField("n", &HarmonicsRow::n),
+        numberField("analytic_amplitude", "N m", &HarmonicsRow::analytic_amplitude), paperClaimField()};
+    const std::vector<const Engine*> references = listReferenceEngines();
+    for (size_t i = 0; i < references.size(); ++i) fields.push_back(engineAmplitudeField(references[i]->name, i));
+    return Schema<HarmonicsRow>("harmonics", std::move(fields));
+  }();
+  return schema;
+}
 
 TableSet calcHarmonicsTables(const Mechanism& base, Cycle cycle) {
   const int M = 64, max_order = 24;
   const std::vector<const Engine*> references = listReferenceEngines();
-  std::vector<Column> columns = {{"cycle", kText}, {"k", "-"}, {"n", "-"}, {"analytic_amplitude", "N m"}, {"paper_nonzero", kText}};
-  for (const Engine* e : references) columns.push_back({e->name + "_amplitude", "N m"});  // each reference's DFT
-  Table t("harmonics", columns);
+  std::vector<HarmonicsRow> rows;
   for (int k = 1; k <= 12; ++k) {
     const Mechanism m = withSpeed(withGamma(withCylinders(withLambda(base, 0.4), k, cycle), 90.0), 0.0);
     const double E = calcEnergyScale(m);
@@ -49,15 +89,13 @@ TableSet calcHarmonicsTables(const Mechanism& base, Cycle cycle) {
       for (int n = 1; n <= max_order; ++n) a.push_back(2.0 * std::abs(spectrum[n]) / M);
     }
     for (int n = 1; n <= max_order; ++n) {
-      const std::optional<bool> claim = analytic::getPaperHarmonicClaim(k, cycle, n);
-      std::vector<std::string> row = {toString(cycle), std::to_string(k), std::to_string(n),
-                                      formatNumber(predicted.count(n) ? predicted[n] / E : 0.0),
-                                      claim ? (*claim ? "1" : "0") : ""};
-      for (const std::vector<double>& a : amplitude) row.push_back(formatNumber(a[n - 1] / E));
-      t.rows.push_back(row);
+      HarmonicsRow row{toString(cycle), k, n, predicted.count(n) ? predicted[n] / E : 0.0,
+                       analytic::getPaperHarmonicClaim(k, cycle, n), {}};
+      for (const std::vector<double>& a : amplitude) row.engine_amplitudes.push_back(a[n - 1] / E);
+      rows.push_back(std::move(row));
     }
   }
-  return {{"harmonics", t}};
+  return getHarmonicsTable().tableSet(std::move(rows));
 }
 
 // The figure's caption: it colours the first reference engine's DFT.
@@ -80,7 +118,7 @@ class HarmonicsPart final : public Part {
     return out;
   }
   ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, caption()); }
-  std::vector<std::string> tables() const override { return {"harmonics"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&getHarmonicsTable()}; }
 };
 
 }  // namespace

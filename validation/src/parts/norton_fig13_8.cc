@@ -1,4 +1,4 @@
-// Report part `norton_fig13_8` (5): piston motion over two revolutions, exact and Norton's two-term (his figure 13-8).
+// Report part `norton_fig13_8`: piston motion over two revolutions, exact and Norton's two-term (his figure 13-8).
 #include <string>
 #include <vector>
 
@@ -10,19 +10,29 @@
 namespace crankcheck::validation {
 namespace {
 
-// ------------------------------------------------------------------------------------------------------------
-// norton_fig13_8: piston motion over two revolutions, exact and two-term (Norton's figure 13-8).
+// norton_fig13_8: piston motion over two revolutions, exact and two-term (Norton's figure 13-8), one row per degree.
+struct NortonRow {
+  double crank_angle_deg = 0.0;  ///< [deg]
+  double x_exact = 0.0, x_two_term = 0.0;  ///< [m]
+  double v_exact = 0.0, v_two_term = 0.0;  ///< [m/s]
+  double a_exact = 0.0, a_two_term = 0.0;  ///< [m/s^2]
+};
+const Schema<NortonRow> kNortonTable{
+    "norton_fig13_8",
+    {numberField("crank_angle_deg", "deg", &NortonRow::crank_angle_deg), numberField("x_exact", "m", &NortonRow::x_exact),
+     numberField("x_two_term", "m", &NortonRow::x_two_term), numberField("v_exact", "m/s", &NortonRow::v_exact),
+     numberField("v_two_term", "m/s", &NortonRow::v_two_term), numberField("a_exact", "m/s^2", &NortonRow::a_exact),
+     numberField("a_two_term", "m/s^2", &NortonRow::a_two_term)}};
 
 TableSet calcNortonFigureTables(const Mechanism& base) {
-  Table t("norton_fig13_8", {{"crank_angle_deg", "deg"}, {"x_exact", "m"}, {"x_two_term", "m"}, {"v_exact", "m/s"},
-                             {"v_two_term", "m/s"}, {"a_exact", "m/s^2"}, {"a_two_term", "m/s^2"}});
+  std::vector<NortonRow> rows;
   for (int d = 0; d <= 720; ++d) {
     const double theta = radiansFromDegrees(d);
     const analytic::PistonKinematics e = analytic::calcPistonKinematics(base, theta);
     const analytic::PistonKinematics n = analytic::calcPistonKinematicsNorton(base, theta);
-    t.rows.push_back({std::to_string(d), formatNumber(e.x_p), formatNumber(n.x_p), formatNumber(e.v_p), formatNumber(n.v_p), formatNumber(e.a_p), formatNumber(n.a_p)});
+    rows.push_back({static_cast<double>(d), e.x_p, n.x_p, e.v_p, n.v_p, e.a_p, n.a_p});
   }
-  return {{"norton_fig13_8", t}};
+  return kNortonTable.tableSet(std::move(rows));
 }
 
 // The figure's caption.
@@ -38,7 +48,7 @@ class NortonFigurePart final : public Part {
     return {{"norton_fig13_8", false, [base = context.base] { return calcNortonFigureTables(base); }}};
   }
   ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
-  std::vector<std::string> tables() const override { return {"norton_fig13_8"}; }
+  std::vector<const TableSchema*> schemas() const override { return {&kNortonTable}; }
 };
 
 }  // namespace

@@ -1,5 +1,5 @@
-// Report part `torsion` (17): torsional vibration of the crank train, Holzer's constant inertia judged against the
-// exact, variable-inertia train (docs/CONVENTIONS-crankcheck.md, "Torsion"; docs/CONVENTIONS-crankcheck.md).
+// Report part `torsion`: torsional vibration of the crank train, Holzer's constant inertia judged against the exact,
+// variable-inertia train (docs/CONVENTIONS-crankcheck.md, "Torsion").
 //
 // The scenes: every campaign scene with a [crankshaft] table (the example inline four and marine six in the default
 // campaign), each swept over speed from 0.25 to 1.25 times its own speed (17 speeds, and 3 around each of Holzer's
@@ -7,32 +7,7 @@
 // Accuracy of the sweep: Holzer's sum converged to 1e-6 of the largest peak-to-peak (HolzerOptions), the exact steady
 // state integrated at 1e-8 (SteadyStateOptions; its error bound, at most 2e-5 of the largest peak-to-peak, is in the
 // table): both far below the percent differences the part is about, at a third of the cost of `crankcheck torsion`'s
-// 1e-8 / 1e-11.
-//
-// Tables (CSV stems, columns; reports/README.md):
-//   torsion           scene,speed_rpm,holzer,holzer_order24,exact,difference,worst_difference,section,worst_section,
-//                     error_bound: the peak-to-peak twist [rad] of the section that twists most (exact), by Holzer
-//                     (every order, and cut at order 24) and by the exact steady state; difference = exact / holzer - 1
-//                     there, worst_difference the largest |exact / holzer - 1| over the sections (signed)
-//   torsion_sections  scene,speed_rpm,section_index,section,holzer,holzer_order24,exact,difference: every section
-//   torsion_orders    scene,speed_rpm,order,holzer,exact: the order amplitudes [rad] of the section of `torsion`
-//   torsion_modes     scene,mode,holzer_hz,min_hz,max_hz,firings_per_turn: Holzer's natural frequencies (J_eq) and the
-//                     chain's with every throw at J_t + min J_j and at J_t + max J_j over a turn (the spread over the
-//                     cycle); firings per turn: the engine's major orders are its multiples
-//   torsion_inertia   scene,throw,exact_inertia,min_inertia,max_inertia,half_reciprocating,half_reciprocating_error,
-//                     second_order,second_order_error: J_eq exact and by the textbook's shortcuts (torsion.h)
-//   torsion_resonances scene,route,order,mode,speed_rpm,frequency_hz,critical_rpm,twist: the local maxima of the
-//                     `torsion` curves (route holzer or exact; a parabola through the grid's three points), the order
-//                     whose amplitude rises most there, the mode nearest its frequency and Holzer's critical speed
-//   torsion_engines   scene,engine,speed_rpm,section,peak_to_peak,exact,difference,cycles,accuracy,periodicity: each
-//                     engine's own train (Engine::simulate_crank_train) on the first scene at its own speed against
-//                     the analytic steady state, difference = (engine - analytic) / twist scale
-//   torsion_ratio     scene,piston_mass_factor,ratio,order,speed_rpm,holzer,exact,worst_difference: the first scene's
-//                     piston mass scaled, ratio = reciprocating / rotating inertia (torsion.h's textbook split), at
-//                     Holzer's critical speed of mode 1 and the engine's lowest major order; exact empty where the
-//                     train has no periodic state
-//   torsion_cost      scene,route,speed_rpm,seconds: wall time of each route's speed point in the campaign (other
-//                     tasks run beside it: ratios, not benchmarks; bench/README.md "Torsion" has those)
+// 1e-8 / 1e-11. Its tables are declared below, each by its row type and schema (reports/README.md reads them).
 
 #include <algorithm>
 #include <chrono>
@@ -65,20 +40,15 @@ constexpr double kTextbookOrder = 24.0;
 // The engines' trains in the report: a check of the figure's exact curve on the first scene at its own speed, not the
 // gate (tests/gate/torsion_test.cc holds them to 2e-6 of the twist scale at their defaults on both example scenes and
 // three speeds). At a cycle-to-cycle change of `periodicity` what is left of the transient is at most about that much
-// of the twist scale: 1e-4 in the full campaign, 5e-2 in the quick one (a smoke test of the route: on the example four
-// both trains stop after 4 cycles, at a change of 0.049, with differences to the exact orbit of 2.1e-3 of the twist
-// scale; at 1e-2 they ran a fifth cycle, 15 % of Simbody's run, for 8e-4 and 1e-3; 2026-11-26). Samples of the cycle:
-// 1024 in the full campaign; 256 in the quick one, whose peak-to-peaks then carry their aliasing, about 1e-4 of the
-// twist scale on the example four (1e-5 at 1024), far below its periodicity (every sample a step end: at 1024 the
-// sampled cycle was half of Simbody's quick run). The gated routes' accuracy (their integrators' error per step): 1e-7
-// in the full campaign, which leaves their differences to the analytic orbit at 8e-6 (Simbody) and 5e-7 (MuJoCo) of the
-// twist scale on the example four, far below the periodicity and the part's percent differences, at 0.81 and 0.61 of
-// the cost of 1e-8 (9e-7 and 3e-7; 2026-11-26, bench/README.md "Ninth session"); 1e-5 in the quick one, whose
-// differences it leaves at what the periodicity leaves (at 1e-2: 5e-4 to 1e-3 of the twist scale at 1e-6 and at 1e-5
-// alike), at 0.7 of the cost of 1e-6. The soft routes (measured, not gated) at a fixed step of 1/1024 of a cycle in the
-// full campaign (not run in the quick one; at least a step per sample): kSoftDefault's difference, its loops' give
-// (0.12 of the twist scale), is the same as at its default 1/4096; kSoftStiff's, its loops' time constant two steps,
-// 1.7e-3 instead of 9e-5 (3.9e-4 at 1/2048), still a fiftieth of kSoftDefault's; at a quarter of the cost.
+// of the twist scale: 1e-4 in the full campaign, 5e-2 in the quick one (a smoke test of the route). Samples of the
+// cycle: 1024 in the full campaign; 256 in the quick one, whose peak-to-peaks then carry their aliasing, far below its
+// periodicity. The gated routes' accuracy (their integrators' error per step): 1e-7 in the full campaign, which leaves
+// their differences to the analytic orbit far below the periodicity and the part's percent differences, for less than
+// the cost of 1e-8; 1e-5 in the quick one, whose differences it leaves at what the periodicity leaves. The soft routes
+// (measured, not gated) at a fixed step of 1/1024 of a cycle in the full campaign (not run in the quick one; at least a
+// step per sample): kSoftDefault's difference, its loops' give, is the same as at its default 1/4096; kSoftStiff's,
+// its loops' time constant two steps, grows as the step squared yet stays a fiftieth of kSoftDefault's; at a quarter
+// of the cost. The measurements behind each choice: bench/README.md (the accuracies each check needs, part torsion).
 struct EngineRunSettings {
   double accuracy, periodicity;
   int samples;
@@ -88,7 +58,166 @@ EngineRunSettings getEngineRunSettings(bool quick) {
   return quick ? EngineRunSettings{1e-5, 5e-2, 256, 0.0} : EngineRunSettings{1e-7, 1e-4, 1024, 1.0 / 1024};
 }
 
-std::string num(double x) { return formatNumber(x); }
+// torsion: per scene and speed, the peak-to-peak twist of the section that twists most (exact), by Holzer (every order,
+// and cut at order 24) and by the exact steady state; difference = exact / holzer - 1 there, worst_difference the
+// largest |exact / holzer - 1| over the sections (signed).
+struct SweepRow {
+  std::string scene;
+  double speed_rpm = 0.0;                                   ///< [rpm]
+  double holzer = 0.0, holzer_order24 = 0.0, exact = 0.0;   ///< [rad]
+  double difference = 0.0, worst_difference = 0.0;          ///< [-]
+  std::string section, worst_section;
+  double error_bound = 0.0;                                 ///< the exact state's [rad]
+};
+const Schema<SweepRow> kSweepTable{
+    "torsion",
+    {textField("scene", &SweepRow::scene), numberField("speed_rpm", "rpm", &SweepRow::speed_rpm),
+     numberField("holzer", "rad", &SweepRow::holzer), numberField("holzer_order24", "rad", &SweepRow::holzer_order24),
+     numberField("exact", "rad", &SweepRow::exact), numberField("difference", "-", &SweepRow::difference),
+     numberField("worst_difference", "-", &SweepRow::worst_difference), textField("section", &SweepRow::section),
+     textField("worst_section", &SweepRow::worst_section), numberField("error_bound", "rad", &SweepRow::error_bound)}};
+
+// torsion_sections: every section at every speed.
+struct SectionRow {
+  std::string scene;
+  double speed_rpm = 0.0;  ///< [rpm]
+  int section_index = 0;
+  std::string section;
+  double holzer = 0.0, holzer_order24 = 0.0, exact = 0.0;  ///< [rad]
+  double difference = 0.0;                                 ///< exact / holzer - 1 [-]
+};
+const Schema<SectionRow> kSectionsTable{
+    "torsion_sections",
+    {textField("scene", &SectionRow::scene), numberField("speed_rpm", "rpm", &SectionRow::speed_rpm),
+     countField("section_index", &SectionRow::section_index), textField("section", &SectionRow::section),
+     numberField("holzer", "rad", &SectionRow::holzer), numberField("holzer_order24", "rad", &SectionRow::holzer_order24),
+     numberField("exact", "rad", &SectionRow::exact), numberField("difference", "-", &SectionRow::difference)}};
+
+// torsion_orders: the order amplitudes of the section of `torsion`, up to order 24.
+struct OrderRow {
+  std::string scene;
+  double speed_rpm = 0.0;            ///< [rpm]
+  double order = 0.0;                ///< a multiple of the cycle's order step (1/2 four-stroke, 1 two-stroke)
+  double holzer = 0.0, exact = 0.0;  ///< [rad]
+};
+const Schema<OrderRow> kOrdersTable{
+    "torsion_orders",
+    {textField("scene", &OrderRow::scene), numberField("speed_rpm", "rpm", &OrderRow::speed_rpm),
+     numberField("order", "-", &OrderRow::order), numberField("holzer", "rad", &OrderRow::holzer),
+     numberField("exact", "rad", &OrderRow::exact)}};
+
+// torsion_modes: Holzer's natural frequencies (J_eq) and the chain's with every throw at J_t + min J_j and at
+// J_t + max J_j over a turn (the spread over the cycle); the engine's major orders are the multiples of its firings per
+// turn.
+struct ModeRow {
+  std::string scene;
+  int mode = 1;
+  double holzer_hz = 0.0, min_hz = 0.0, max_hz = 0.0;  ///< [Hz]
+  double firings_per_turn = 0.0;
+};
+const Schema<ModeRow> kModesTable{
+    "torsion_modes",
+    {textField("scene", &ModeRow::scene), countField("mode", &ModeRow::mode),
+     numberField("holzer_hz", "Hz", &ModeRow::holzer_hz), numberField("min_hz", "Hz", &ModeRow::min_hz),
+     numberField("max_hz", "Hz", &ModeRow::max_hz), numberField("firings_per_turn", "-", &ModeRow::firings_per_turn)}};
+
+// torsion_inertia: J_eq per throw, exact and by the textbook's shortcuts (torsion.h), with its range over a turn.
+struct InertiaRow {
+  std::string scene;
+  int throw_index = 0;
+  double exact_inertia = 0.0, min_inertia = 0.0, max_inertia = 0.0;  ///< [kg m^2]
+  double half_reciprocating = 0.0, half_reciprocating_error = 0.0;    ///< [kg m^2], [-]
+  double second_order = 0.0, second_order_error = 0.0;                ///< [kg m^2], [-]
+};
+const Schema<InertiaRow> kInertiaTable{
+    "torsion_inertia",
+    {textField("scene", &InertiaRow::scene), countField("throw", &InertiaRow::throw_index),
+     numberField("exact_inertia", "kg m^2", &InertiaRow::exact_inertia),
+     numberField("min_inertia", "kg m^2", &InertiaRow::min_inertia),
+     numberField("max_inertia", "kg m^2", &InertiaRow::max_inertia),
+     numberField("half_reciprocating", "kg m^2", &InertiaRow::half_reciprocating),
+     numberField("half_reciprocating_error", "-", &InertiaRow::half_reciprocating_error),
+     numberField("second_order", "kg m^2", &InertiaRow::second_order),
+     numberField("second_order_error", "-", &InertiaRow::second_order_error)}};
+
+// torsion_engines: each engine's own train (Engine::simulate_crank_train) on the first scene at its own speed against
+// the analytic steady state, per section.
+struct EngineTrainRow {
+  std::string scene, engine;
+  double speed_rpm = 0.0;  ///< [rpm]
+  std::string section;
+  double peak_to_peak = 0.0, exact = 0.0;  ///< [rad]
+  double difference = 0.0;                 ///< (engine - analytic) / twist scale [-]
+  int cycles = 0;
+  double accuracy = 0.0;     ///< a gated route's error per step; a soft route's fixed step as a fraction of a cycle
+  double periodicity = 0.0;  ///< the cycle-to-cycle change the run stopped at, relative to the twist
+};
+const Schema<EngineTrainRow> kEnginesTable{
+    "torsion_engines",
+    {textField("scene", &EngineTrainRow::scene), textField("engine", &EngineTrainRow::engine),
+     numberField("speed_rpm", "rpm", &EngineTrainRow::speed_rpm), textField("section", &EngineTrainRow::section),
+     numberField("peak_to_peak", "rad", &EngineTrainRow::peak_to_peak), numberField("exact", "rad", &EngineTrainRow::exact),
+     numberField("difference", "-", &EngineTrainRow::difference), countField("cycles", &EngineTrainRow::cycles),
+     numberField("accuracy", "-", &EngineTrainRow::accuracy),
+     numberField("periodicity", "-", &EngineTrainRow::periodicity)}};
+
+// torsion_ratio: the first scene's piston mass scaled, ratio = reciprocating / rotating inertia (torsion.h's textbook
+// split), at Holzer's critical speed of mode 1 and the engine's lowest major order; exact and worst_difference empty
+// where the train has no periodic state.
+struct RatioRow {
+  std::string scene;
+  double piston_mass_factor = 0.0, ratio = 0.0, order = 0.0;
+  double speed_rpm = 0.0;                              ///< [rpm]
+  double holzer = 0.0;                                 ///< [rad]
+  std::optional<double> exact;                         ///< [rad]
+  std::optional<double> worst_difference;              ///< [-]
+};
+const Schema<RatioRow> kRatioTable{
+    "torsion_ratio",
+    {textField("scene", &RatioRow::scene), numberField("piston_mass_factor", "-", &RatioRow::piston_mass_factor),
+     numberField("ratio", "-", &RatioRow::ratio), numberField("order", "-", &RatioRow::order),
+     numberField("speed_rpm", "rpm", &RatioRow::speed_rpm), numberField("holzer", "rad", &RatioRow::holzer),
+     optionalField("exact", "rad", &RatioRow::exact),
+     optionalField("worst_difference", "-", &RatioRow::worst_difference)}};
+
+// torsion_cost: wall time of each route's speed point in the campaign (other tasks run beside it: ratios, not
+// benchmarks; bench/README.md "Torsion" has those).
+struct CostRow {
+  std::string scene, route;
+  double speed_rpm = 0.0;  ///< [rpm]
+  double seconds = 0.0;    ///< [s]
+};
+const Schema<CostRow> kCostTable{
+    "torsion_cost",
+    {textField("scene", &CostRow::scene), textField("route", &CostRow::route),
+     numberField("speed_rpm", "rpm", &CostRow::speed_rpm), numberField("seconds", "s", &CostRow::seconds)}};
+
+// torsion_resonances (derived): the local maxima of the `torsion` curves (route holzer or exact; a parabola through
+// the grid's three points), the order whose amplitude rises most there, the mode nearest its frequency and Holzer's
+// critical speed; mode and critical speed empty where no order near a mode rises.
+struct ResonanceRow {
+  std::string scene, route;
+  double order = 0.0;
+  std::optional<double> mode;          ///< 1-based
+  double speed_rpm = 0.0;              ///< [rpm]
+  double frequency_hz = 0.0;           ///< [Hz]
+  std::optional<double> critical_rpm;  ///< [rpm]
+  double twist = 0.0;                  ///< [rad]
+};
+const Schema<ResonanceRow> kResonancesTable{
+    "torsion_resonances",
+    {textField("scene", &ResonanceRow::scene), textField("route", &ResonanceRow::route),
+     numberField("order", "-", &ResonanceRow::order), optionalField("mode", "-", &ResonanceRow::mode),
+     numberField("speed_rpm", "rpm", &ResonanceRow::speed_rpm),
+     numberField("frequency_hz", "Hz", &ResonanceRow::frequency_hz),
+     optionalField("critical_rpm", "rpm", &ResonanceRow::critical_rpm),
+     numberField("twist", "rad", &ResonanceRow::twist)}};
+
+// The rows of `schema`'s table in `tables`, to append to (the table is there: makeEmptyTables).
+template <class Row>
+std::vector<Row>& rowsOf(TableSet& tables, const Schema<Row>& schema) {
+  return tables.at(schema.name()).getRows(schema);
+}
 
 double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
@@ -150,31 +279,18 @@ std::string nameSection(const Mechanism& m, int i, int bodies) {
   return body(i) + "-" + body(i + 1);
 }
 
+// Every table a task writes, empty: each task returns all of them, so that the report has each table (if only its
+// header) whichever tasks ran.
 TableSet makeEmptyTables() {
   TableSet t;
-  t["torsion"] = Table("torsion", {{"scene", kText}, {"speed_rpm", "rpm"}, {"holzer", "rad"}, {"holzer_order24", "rad"},
-                                   {"exact", "rad"}, {"difference", "-"}, {"worst_difference", "-"}, {"section", kText},
-                                   {"worst_section", kText}, {"error_bound", "rad"}});
-  t["torsion_sections"] = Table("torsion_sections", {{"scene", kText}, {"speed_rpm", "rpm"}, {"section_index", "-"},
-                                                     {"section", kText}, {"holzer", "rad"}, {"holzer_order24", "rad"},
-                                                     {"exact", "rad"}, {"difference", "-"}});
-  t["torsion_orders"] = Table("torsion_orders", {{"scene", kText}, {"speed_rpm", "rpm"}, {"order", "-"},
-                                                 {"holzer", "rad"}, {"exact", "rad"}});
-  t["torsion_modes"] = Table("torsion_modes", {{"scene", kText}, {"mode", "-"}, {"holzer_hz", "Hz"}, {"min_hz", "Hz"},
-                                               {"max_hz", "Hz"}, {"firings_per_turn", "-"}});
-  t["torsion_inertia"] = Table("torsion_inertia", {{"scene", kText}, {"throw", "-"}, {"exact_inertia", "kg m^2"},
-                                                   {"min_inertia", "kg m^2"}, {"max_inertia", "kg m^2"},
-                                                   {"half_reciprocating", "kg m^2"}, {"half_reciprocating_error", "-"},
-                                                   {"second_order", "kg m^2"}, {"second_order_error", "-"}});
-  t["torsion_engines"] = Table("torsion_engines", {{"scene", kText}, {"engine", kText}, {"speed_rpm", "rpm"},
-                                                   {"section", kText}, {"peak_to_peak", "rad"}, {"exact", "rad"},
-                                                   {"difference", "-"}, {"cycles", "-"}, {"accuracy", "-"},
-                                                   {"periodicity", "-"}});
-  t["torsion_ratio"] = Table("torsion_ratio", {{"scene", kText}, {"piston_mass_factor", "-"}, {"ratio", "-"},
-                                               {"order", "-"}, {"speed_rpm", "rpm"}, {"holzer", "rad"},
-                                               {"exact", "rad"}, {"worst_difference", "-"}});
-  t["torsion_cost"] = Table("torsion_cost", {{"scene", kText}, {"route", kText}, {"speed_rpm", "rpm"},
-                                             {"seconds", "s"}});
+  t.emplace(kSweepTable.name(), kSweepTable.table());
+  t.emplace(kSectionsTable.name(), kSectionsTable.table());
+  t.emplace(kOrdersTable.name(), kOrdersTable.table());
+  t.emplace(kModesTable.name(), kModesTable.table());
+  t.emplace(kInertiaTable.name(), kInertiaTable.table());
+  t.emplace(kEnginesTable.name(), kEnginesTable.table());
+  t.emplace(kRatioTable.name(), kRatioTable.table());
+  t.emplace(kCostTable.name(), kCostTable.table());
   return t;
 }
 
@@ -200,23 +316,23 @@ TableSet calcSpeedTables(const Mechanism& scene, double rpm, analytic::ThrowLoad
   for (int i = 0; i < n; ++i) {
     if (exact.peak_to_peak[i] > exact.peak_to_peak[most]) most = i;
     if (std::fabs(differenceAt(i)) > std::fabs(differenceAt(worst))) worst = i;
-    tables["torsion_sections"].rows.push_back({m.name, num(rpm), std::to_string(i), nameSection(m, i, n),
-                                               num(holzer.peak_to_peak[i]), num(holzer.peak_to_peak_order24[i]),
-                                               num(exact.peak_to_peak[i]), num(differenceAt(i))});
+    rowsOf(tables, kSectionsTable)
+        .push_back({m.name, rpm, i, nameSection(m, i, n), holzer.peak_to_peak[i], holzer.peak_to_peak_order24[i],
+                    exact.peak_to_peak[i], differenceAt(i)});
   }
-  tables["torsion"].rows.push_back({m.name, num(rpm), num(holzer.peak_to_peak[most]),
-                                    num(holzer.peak_to_peak_order24[most]), num(exact.peak_to_peak[most]),
-                                    num(differenceAt(most)), num(differenceAt(worst)), nameSection(m, most, n),
-                                    nameSection(m, worst, n), num(exact.error_bound)});
+  rowsOf(tables, kSweepTable)
+      .push_back({m.name, rpm, holzer.peak_to_peak[most], holzer.peak_to_peak_order24[most], exact.peak_to_peak[most],
+                  differenceAt(most), differenceAt(worst), nameSection(m, most, n), nameSection(m, worst, n),
+                  exact.error_bound});
   // Order p of the cycle's harmonics h: p = h x step (crank_train.h's PeriodicSignal), up to order 24.
   const double step = getOrderStep(m);
   const auto& hc = holzer.twists[most].coefficients;
   const auto& ec = exact.twists[most].coefficients;
   for (size_t h = 1; h * step <= kTextbookOrder + 1e-9; ++h)
-    tables["torsion_orders"].rows.push_back({m.name, num(rpm), num(h * step), num(h < hc.size() ? std::abs(hc[h]) : 0.0),
-                                             num(h < ec.size() ? std::abs(ec[h]) : 0.0)});
-  tables["torsion_cost"].rows.push_back({m.name, "holzer", num(rpm), num(holzer_seconds)});
-  tables["torsion_cost"].rows.push_back({m.name, getClosedFormEngine().name, num(rpm), num(exact_seconds)});
+    rowsOf(tables, kOrdersTable)
+        .push_back({m.name, rpm, h * step, h < hc.size() ? std::abs(hc[h]) : 0.0, h < ec.size() ? std::abs(ec[h]) : 0.0});
+  rowsOf(tables, kCostTable).push_back({m.name, "holzer", rpm, holzer_seconds});
+  rowsOf(tables, kCostTable).push_back({m.name, getClosedFormEngine().name, rpm, exact_seconds});
   return tables;
 }
 
@@ -241,19 +357,18 @@ TableSet calcModeTables(const Mechanism& m) {
     const auto [jmin, jmax] = findThrowInertiaRange(m, j);
     low[static_cast<size_t>(j + (front ? 1 : 0))] = jmin;
     high[static_cast<size_t>(j + (front ? 1 : 0))] = jmax;
-    tables["torsion_inertia"].rows.push_back(
-        {m.name, std::to_string(j), num(inertia.exact), num(jmin), num(jmax), num(inertia.half_reciprocating),
-         num(inertia.half_reciprocating / inertia.exact - 1.0), num(inertia.second_order),
-         num(inertia.second_order / inertia.exact - 1.0)});
+    rowsOf(tables, kInertiaTable)
+        .push_back({m.name, j, inertia.exact, jmin, jmax, inertia.half_reciprocating,
+                    inertia.half_reciprocating / inertia.exact - 1.0, inertia.second_order,
+                    inertia.second_order / inertia.exact - 1.0});
   }
   // The lightest throws give the highest frequencies.
   const analytic::TorsionModes at_min = analytic::calcChainModes(low, modes.stiffness);
   const analytic::TorsionModes at_max = analytic::calcChainModes(high, modes.stiffness);
   for (int i = 0; i < modes.frequencies.size(); ++i)
-    tables["torsion_modes"].rows.push_back({m.name, std::to_string(i + 1), num(modes.frequencies(i) / (2 * M_PI)),
-                                            num(at_max.frequencies(i) / (2 * M_PI)),
-                                            num(at_min.frequencies(i) / (2 * M_PI)),
-                                            num(m.engine.cylinders * getOrderStep(m))});
+    rowsOf(tables, kModesTable)
+        .push_back({m.name, i + 1, modes.frequencies(i) / (2 * M_PI), at_max.frequencies(i) / (2 * M_PI),
+                    at_min.frequencies(i) / (2 * M_PI), m.engine.cylinders * getOrderStep(m)});
   return tables;
 }
 
@@ -284,13 +399,12 @@ TableSet calcEngineTables(const Mechanism& m, const Engine& engine, bool quick, 
   const int n = static_cast<int>(run.twists.size());
   for (int i = 0; i < n; ++i) {
     const double p2p = analytic::findSignalExtremes(analytic::calcSignalFromSamples(run.twists[i])).peakToPeak();
-    tables["torsion_engines"].rows.push_back({m.name, engine.name, num(m.speed_rpm), nameSection(m, i, n), num(p2p),
-                                              num(exact.peak_to_peak[i]),
-                                              num((p2p - exact.peak_to_peak[i]) / exact.twist_scale),
-                                              std::to_string(run.cycles), num(options.accuracy),
-                                              num(options.periodicity)});
+    rowsOf(tables, kEnginesTable)
+        .push_back({m.name, engine.name, m.speed_rpm, nameSection(m, i, n), p2p, exact.peak_to_peak[i],
+                    (p2p - exact.peak_to_peak[i]) / exact.twist_scale, run.cycles, options.accuracy,
+                    options.periodicity});
   }
-  tables["torsion_cost"].rows.push_back({m.name, engine.name, num(m.speed_rpm), num(run_seconds)});
+  rowsOf(tables, kCostTable).push_back({m.name, engine.name, m.speed_rpm, run_seconds});
   return tables;
 }
 
@@ -316,10 +430,9 @@ TableSet calcRatioTables(const Mechanism& scene, double factor) {
   analytic::HolzerOptions holzer_options;
   holzer_options.convergence = kHolzerConvergence;
   const analytic::HolzerResponse holzer = analytic::calcHolzerResponse(m, holzer_options);
-  std::vector<std::string> row = {scene.name, num(factor), num(calcReciprocatingRatio(m)), num(order), num(rpm)};
   const size_t most_holzer = static_cast<size_t>(
       std::max_element(holzer.peak_to_peak.begin(), holzer.peak_to_peak.end()) - holzer.peak_to_peak.begin());
-  row.push_back(num(holzer.peak_to_peak[most_holzer]));
+  RatioRow row{scene.name, factor, calcReciprocatingRatio(m), order, rpm, holzer.peak_to_peak[most_holzer], {}, {}};
   try {
     analytic::SteadyStateOptions exact_options;
     exact_options.tolerance = kExactTolerance;
@@ -330,13 +443,12 @@ TableSet calcRatioTables(const Mechanism& scene, double factor) {
       if (std::fabs(exact.peak_to_peak[i] / holzer.peak_to_peak[i] - 1.0) >
           std::fabs(exact.peak_to_peak[worst] / holzer.peak_to_peak[worst] - 1.0))
         worst = i;
-    row.push_back(num(exact.peak_to_peak[most_holzer]));
-    row.push_back(num(exact.peak_to_peak[worst] / holzer.peak_to_peak[worst] - 1.0));
+    row.exact = exact.peak_to_peak[most_holzer];
+    row.worst_difference = exact.peak_to_peak[worst] / holzer.peak_to_peak[worst] - 1.0;
   } catch (const std::runtime_error&) {
-    row.emplace_back();  // no periodic steady state (Newton did not converge): the constant-inertia model broke
-    row.emplace_back();
+    // no periodic steady state (Newton did not converge): the constant-inertia model broke; exact stays empty
   }
-  tables["torsion_ratio"].rows.push_back(row);
+  rowsOf(tables, kRatioTable).push_back(std::move(row));
   return tables;
 }
 
@@ -346,29 +458,25 @@ std::vector<double> listRatioFactors(bool quick) {
 
 // ---- derive: the resonances of the sweep ----
 
-struct SweepPoint {
-  double rpm = 0.0, holzer = 0.0, exact = 0.0;
-};
-
 // Local maxima of one route's curve (interior grid points 1 % above both neighbours), each placed by the parabola through
 // the three points; its order the one whose amplitude rises most there (above the mean of its neighbours') among the
 // orders within 25 % of a natural frequency, its mode the nearest (mode and critical speed empty when no such order
 // rises: the order that rises most, no resonance).
-void addResonances(Table& out, const std::string& scene, const std::string& route, const std::vector<SweepPoint>& sweep,
+void addResonances(std::vector<ResonanceRow>& out, const std::string& scene, const std::string& route,
+                   const std::vector<const SweepRow*>& sweep,
                    const std::map<double, std::map<double, double>>& amplitudes, const std::vector<double>& modes_hz) {
   const bool exact = route != "holzer";
-  auto value = [&](size_t i) { return exact ? sweep[i].exact : sweep[i].holzer; };
+  auto value = [&](size_t i) { return exact ? sweep[i]->exact : sweep[i]->holzer; };
   for (size_t i = 1; i + 1 < sweep.size(); ++i) {
     // A resonance stands out: at least 1 % above both neighbours (the example scenes' stand 7 % to 86 % above them on
     // this grid; what is below are ripples of the sum's shoulders, 0.04 % on the example four).
     if (!(value(i) > 1.01 * value(i - 1) && value(i) > 1.01 * value(i + 1))) continue;
     // The vertex of the parabola through (x_{i-1}, y_{i-1}), (x_i, y_i), (x_{i+1}, y_{i+1}).
-    const double x0 = sweep[i - 1].rpm, x1 = sweep[i].rpm, x2 = sweep[i + 1].rpm;
+    const double x0 = sweep[i - 1]->speed_rpm, x1 = sweep[i]->speed_rpm, x2 = sweep[i + 1]->speed_rpm;
     const double y0 = value(i - 1), y1 = value(i), y2 = value(i + 1);
     const double rpm = x1 - 0.5 * ((x1 - x0) * (x1 - x0) * (y1 - y2) - (x1 - x2) * (x1 - x2) * (y1 - y0)) /
                                 ((x1 - x0) * (y1 - y2) - (x1 - x2) * (y1 - y0));
-    const auto at = amplitudes.find(sweep[i].rpm), before = amplitudes.find(sweep[i - 1].rpm),
-               after = amplitudes.find(sweep[i + 1].rpm);
+    const auto at = amplitudes.find(x1), before = amplitudes.find(x0), after = amplitudes.find(x2);
     if (at == amplitudes.end() || before == amplitudes.end() || after == amplitudes.end()) continue;
     // The candidates: orders whose frequency at the peak is within 25 % of a natural frequency (a resonance); the
     // one that rises most. None rising: the order that rises most of all, with no mode.
@@ -395,99 +503,89 @@ void addResonances(Table& out, const std::string& scene, const std::string& rout
     if (!resonant) order = any_order;
     const double hz = order * rpm / 60.0;
     const size_t mode = nearestMode(order);
-    out.rows.push_back({scene, route, num(order), resonant ? std::to_string(mode + 1) : "", num(rpm), num(hz),
-                        resonant ? num(modes_hz[mode] * 60.0 / order) : "", num(y1)});
+    out.push_back({scene, route, order, resonant ? std::optional<double>(mode + 1) : std::nullopt, rpm, hz,
+                   resonant ? std::optional<double>(modes_hz[mode] * 60.0 / order) : std::nullopt, y1});
   }
 }
 
 void deriveTorsion(TableSet& tables) {
-  if (!tables.count("torsion") || !tables.count("torsion_orders") || !tables.count("torsion_modes")) return;
-  Table resonances("torsion_resonances", {{"scene", kText}, {"route", kText}, {"order", "-"}, {"mode", "-"},
-                                          {"speed_rpm", "rpm"}, {"frequency_hz", "Hz"}, {"critical_rpm", "rpm"},
-                                          {"twist", "rad"}});
-  const Table &t = tables.at("torsion"), &o = tables.at("torsion_orders"), &md = tables.at("torsion_modes");
-  const size_t ts = columnOf(t, "scene"), tr = columnOf(t, "speed_rpm"), th = columnOf(t, "holzer"),
-               te = columnOf(t, "exact");
-  std::map<std::string, std::vector<SweepPoint>> sweeps;  // rows are sorted: by scene, then speed
-  for (const auto& row : t.rows) sweeps[row[ts]].push_back({std::stod(row[tr]), std::stod(row[th]), std::stod(row[te])});
-  const size_t os = columnOf(o, "scene"), orr = columnOf(o, "speed_rpm"), op = columnOf(o, "order"),
-               oh = columnOf(o, "holzer"), oe = columnOf(o, "exact");
+  for (const TableSchema* needed : {static_cast<const TableSchema*>(&kSweepTable), static_cast<const TableSchema*>(&kOrdersTable),
+                                    static_cast<const TableSchema*>(&kModesTable)})
+    if (!tables.count(needed->name())) return;
+  std::map<std::string, std::vector<const SweepRow*>> sweeps;  // rows are sorted: by scene, then speed
+  for (const SweepRow& row : getRows(tables, kSweepTable)) sweeps[row.scene].push_back(&row);
+  // scene -> speed -> order -> amplitude
   std::map<std::string, std::map<double, std::map<double, double>>> holzer_orders, exact_orders;
-  for (const auto& row : o.rows) {
-    holzer_orders[row[os]][std::stod(row[orr])][std::stod(row[op])] = std::stod(row[oh]);
-    exact_orders[row[os]][std::stod(row[orr])][std::stod(row[op])] = std::stod(row[oe]);
+  for (const OrderRow& row : getRows(tables, kOrdersTable)) {
+    holzer_orders[row.scene][row.speed_rpm][row.order] = row.holzer;
+    exact_orders[row.scene][row.speed_rpm][row.order] = row.exact;
   }
   std::map<std::string, std::vector<double>> modes;
-  const size_t ms = columnOf(md, "scene"), mh = columnOf(md, "holzer_hz");
-  for (const auto& row : md.rows) modes[row[ms]].push_back(std::stod(row[mh]));
+  for (const ModeRow& row : getRows(tables, kModesTable)) modes[row.scene].push_back(row.holzer_hz);
+  std::vector<ResonanceRow> resonances;
   for (const auto& [scene, sweep] : sweeps) {
     if (!modes.count(scene)) continue;
     addResonances(resonances, scene, "holzer", sweep, holzer_orders[scene], modes[scene]);
     addResonances(resonances, scene, "exact", sweep, exact_orders[scene], modes[scene]);
   }
-  tables["torsion_resonances"] = resonances;
+  tables.insert_or_assign(kResonancesTable.name(), kResonancesTable.table(std::move(resonances)));
 }
 
 // ---- describe ----
 
+// An order of the engine (a multiple of 1/2 up to 24) as the sentences and tables write it.
+std::string formatOrder(double order) { return shortNumber(order, 4); }
 
 void describeSweeps(const TableSet& tables, ReportPart& part) {
-  const Table& t = tables.at("torsion");
-  const size_t ts = columnOf(t, "scene"), tr = columnOf(t, "speed_rpm"), tw = columnOf(t, "worst_difference"),
-               twn = columnOf(t, "worst_section"), th = columnOf(t, "holzer"), t24 = columnOf(t, "holzer_order24");
-  std::map<std::string, std::vector<const std::vector<std::string>*>> by_scene;
-  for (const auto& row : t.rows) by_scene[row[ts]].push_back(&row);
+  std::map<std::string, std::vector<const SweepRow*>> by_scene;
+  for (const SweepRow& row : getRows(tables, kSweepTable)) by_scene[row.scene].push_back(&row);
   for (const auto& [scene, rows] : by_scene) {
     int within = 0, beyond = 0;
-    const std::vector<std::string>* worst = rows.front();
+    const SweepRow* worst = rows.front();
     double cut = 0.0;
     std::string cut_at;
-    for (const auto* row : rows) {
-      const double d = std::fabs(std::stod((*row)[tw]));
+    for (const SweepRow* row : rows) {
+      const double d = std::fabs(row->worst_difference);
       within += d <= 0.01;
       beyond += d > 0.10;
-      if (d > std::fabs(std::stod((*worst)[tw]))) worst = row;
-      const double c = std::fabs(std::stod((*row)[t24]) / std::stod((*row)[th]) - 1.0);
+      if (d > std::fabs(worst->worst_difference)) worst = row;
+      const double c = std::fabs(row->holzer_order24 / row->holzer - 1.0);
       if (c > cut) {
         cut = c;
-        cut_at = shortNumber(std::stod((*row)[tr]), 4);
+        cut_at = shortNumber(row->speed_rpm, 4);
       }
     }
     part.paragraphs.push_back(
-        scene + ", " + std::to_string(rows.size()) + " speeds from " + shortNumber(std::stod(rows.front()->at(tr)), 4) +
-        " to " + shortNumber(std::stod(rows.back()->at(tr)), 4) + " rpm: Holzer's peak-to-peak twist (every order summed) "
-        "is within 1 % of the exact steady state's on every section at " + std::to_string(within) + " of them and off by "
-        "more than 10 % on some section at " + std::to_string(beyond) + "; at worst " +
-        formatPercent(std::stod((*worst)[tw])) + " (" + (*worst)[twn] + ", " + shortNumber(std::stod((*worst)[tr]), 4) +
-        " rpm). The textbook's sum cut at order 24 differs from the converged sum by up to " + formatPercent(cut) +
-        " (at " + cut_at + " rpm).");
+        scene + ", " + std::to_string(rows.size()) + " speeds from " + shortNumber(rows.front()->speed_rpm, 4) + " to " +
+        shortNumber(rows.back()->speed_rpm, 4) + " rpm: Holzer's peak-to-peak twist (every order summed) is within 1 % "
+        "of the exact steady state's on every section at " + std::to_string(within) + " of them and off by more than "
+        "10 % on some section at " + std::to_string(beyond) + "; at worst " + formatPercent(worst->worst_difference) +
+        " (" + worst->worst_section + ", " + shortNumber(worst->speed_rpm, 4) + " rpm). The textbook's sum cut at order "
+        "24 differs from the converged sum by up to " + formatPercent(cut) + " (at " + cut_at + " rpm).");
   }
 }
 
 void describeResonances(const TableSet& tables, ReportPart& part) {
-  const auto it = tables.find("torsion_resonances");
-  if (it == tables.end()) return;
-  const Table& r = it->second;
-  const size_t rs = columnOf(r, "scene"), rr = columnOf(r, "route"), ro = columnOf(r, "order"),
-               rm = columnOf(r, "mode"), rv = columnOf(r, "speed_rpm"), rc = columnOf(r, "critical_rpm");
-  std::map<std::string, std::vector<const std::vector<std::string>*>> exact, holzer;
-  for (const auto& row : r.rows) (row[rr] == "holzer" ? holzer : exact)[row[rs]].push_back(&row);
+  std::map<std::string, std::vector<const ResonanceRow*>> exact, holzer;
+  for (const ResonanceRow& row : getRows(tables, kResonancesTable))
+    (row.route == "holzer" ? holzer : exact)[row.scene].push_back(&row);
   auto join = [](std::string& list, const std::string& item) { list += (list.empty() ? "" : ", ") + item; };
   for (const auto& [scene, peaks] : exact) {
     std::string found, missed;
-    for (const auto* peak : peaks) {
-      const double rpm = std::stod((*peak)[rv]);
-      std::string what = "order " + (*peak)[ro] + " at " + shortNumber(rpm, 4) + " rpm";
-      if ((*peak)[rm].empty()) {
+    for (const ResonanceRow* peak : peaks) {
+      const double rpm = peak->speed_rpm;
+      std::string what = "order " + formatOrder(peak->order) + " at " + shortNumber(rpm, 4) + " rpm";
+      if (!peak->mode || !peak->critical_rpm) {
         what += " (no mode near its frequency)";
       } else {
-        const double critical = std::stod((*peak)[rc]);
-        what += " (mode " + (*peak)[rm] + "; Holzer's critical speed " + shortNumber(critical, 4) + " rpm, " +
-                (rpm >= critical ? "+" : "") + formatPercent(rpm / critical - 1.0) + ")";
+        const double critical = *peak->critical_rpm;
+        what += " (mode " + std::to_string(static_cast<int>(*peak->mode)) + "; Holzer's critical speed " +
+                shortNumber(critical, 4) + " rpm, " + (rpm >= critical ? "+" : "") + formatPercent(rpm / critical - 1.0) +
+                ")";
       }
       bool matched = false;
-      for (const auto* h : holzer[scene])
-        if ((*h)[ro] == (*peak)[ro] && std::fabs(std::stod((*h)[rv]) / rpm - 1.0) < 0.05) matched = true;
+      for (const ResonanceRow* h : holzer[scene])
+        if (h->order == peak->order && std::fabs(h->speed_rpm / rpm - 1.0) < 0.05) matched = true;
       join(matched ? found : missed, what);
     }
     std::string sentence = scene + ": the exact steady state peaks at ";
@@ -502,13 +600,10 @@ void describeResonances(const TableSet& tables, ReportPart& part) {
 }
 
 void describeModes(const TableSet& tables, ReportPart& part) {
-  const Table& md = tables.at("torsion_modes");
-  const size_t ms = columnOf(md, "scene"), mm = columnOf(md, "mode"), mh = columnOf(md, "holzer_hz"),
-               ml = columnOf(md, "min_hz"), mx = columnOf(md, "max_hz");
-  for (const auto& row : md.rows) {
-    if (row[mm] != "1") continue;
-    const double h = std::stod(row[mh]), lo = std::stod(row[ml]), hi = std::stod(row[mx]);
-    part.paragraphs.push_back(row[ms] + ": mode 1 is at " + shortNumber(h, 4) + " Hz with Holzer's J_eq; with every "
+  for (const ModeRow& row : getRows(tables, kModesTable)) {
+    if (row.mode != 1) continue;
+    const double h = row.holzer_hz, lo = row.min_hz, hi = row.max_hz;
+    part.paragraphs.push_back(row.scene + ": mode 1 is at " + shortNumber(h, 4) + " Hz with Holzer's J_eq; with every "
                               "throw at its lightest and at its heaviest over a turn it would be at " +
                               shortNumber(hi, 4) + " and " + shortNumber(lo, 4) + " Hz: a spread of " +
                               formatPercent((hi - lo) / h) + " that the constant inertia cannot show.");
@@ -516,27 +611,24 @@ void describeModes(const TableSet& tables, ReportPart& part) {
 }
 
 void describeRatio(const TableSet& tables, ReportPart& part) {
-  const auto it = tables.find("torsion_ratio");
-  if (it == tables.end() || it->second.rows.empty()) return;
-  const Table& r = it->second;
-  const size_t rs = columnOf(r, "scene"), rq = columnOf(r, "ratio"), ro = columnOf(r, "order"),
-               rw = columnOf(r, "worst_difference");
-  std::vector<std::pair<double, std::optional<double>>> points;
-  for (const auto& row : r.rows)
-    points.push_back({std::stod(row[rq]), row[rw].empty() ? std::nullopt : std::optional(std::stod(row[rw]))});
-  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  const std::string range = points.size() == 1 ? "is " + shortNumber(points.front().first, 3) + " times the rotating one"
-                                                : "runs from " + shortNumber(points.front().first, 3) + " to " +
-                                                      shortNumber(points.back().first, 3) + " times the rotating one";
-  std::string sentence = r.rows.front()[rs] + ", its piston mass scaled so that the reciprocating inertia " + range +
-                         ", at Holzer's critical speed of mode 1 and order " +
-                         r.rows.front()[ro] + ": Holzer's worst section is off by ";
+  const std::vector<RatioRow>& rows = getRows(tables, kRatioTable);
+  if (rows.empty()) return;
+  std::vector<const RatioRow*> points;
+  for (const RatioRow& row : rows) points.push_back(&row);
+  std::stable_sort(points.begin(), points.end(), [](const RatioRow* a, const RatioRow* b) { return a->ratio < b->ratio; });
+  const std::string range = points.size() == 1 ? "is " + shortNumber(points.front()->ratio, 3) + " times the rotating one"
+                                                : "runs from " + shortNumber(points.front()->ratio, 3) + " to " +
+                                                      shortNumber(points.back()->ratio, 3) + " times the rotating one";
+  std::string sentence = rows.front().scene + ", its piston mass scaled so that the reciprocating inertia " + range +
+                         ", at Holzer's critical speed of mode 1 and order " + formatOrder(rows.front().order) +
+                         ": Holzer's worst section is off by ";
   std::string list;
   std::optional<double> breaks;
-  for (const auto& [ratio, d] : points) {
+  for (const RatioRow* point : points) {
+    const std::optional<double>& d = point->worst_difference;
     list += (list.empty() ? "" : ", ") + (d ? formatPercent(*d) : std::string("no periodic state")) + " at " +
-            shortNumber(ratio, 3);
-    if (!breaks && (!d || std::fabs(*d) > 0.10)) breaks = ratio;
+            shortNumber(point->ratio, 3);
+    if (!breaks && (!d || std::fabs(*d) > 0.10)) breaks = point->ratio;
   }
   sentence += list + ". ";
   sentence += breaks ? "The constant-inertia model is off by more than 10 % from a ratio of " + shortNumber(*breaks, 3) +
@@ -546,10 +638,7 @@ void describeRatio(const TableSet& tables, ReportPart& part) {
 }
 
 void describeEnginesAndCost(const TableSet& tables, ReportPart& part) {
-  if (const auto it = tables.find("torsion_engines"); it != tables.end()) {
-    const Table& e = it->second;
-    const size_t ee = columnOf(e, "engine"), es = columnOf(e, "scene"), ed = columnOf(e, "difference"),
-                 ea = columnOf(e, "accuracy"), ep = columnOf(e, "periodicity"), er = columnOf(e, "speed_rpm");
+  if (tables.count(kEnginesTable.name())) {
     std::map<std::string, double> worst;
     std::map<std::string, std::string> where;
     auto isGated = [](const std::string& engine) {
@@ -557,17 +646,16 @@ void describeEnginesAndCost(const TableSet& tables, ReportPart& part) {
         if (known.name == engine) return known.crank_train_gated;
       return true;
     };
-    for (const auto& row : e.rows) {
-      worst[row[ee]] = std::max(worst[row[ee]], std::fabs(std::stod(row[ed])));
-      const double accuracy = std::stod(row[ea]);
+    for (const EngineTrainRow& row : getRows(tables, kEnginesTable)) {
+      worst[row.engine] = std::max(worst[row.engine], std::fabs(row.difference));
       // A soft route's accuracy is its fixed step as a fraction of a cycle.
       std::string how = "its default step";
-      if (accuracy > 0.0)
-        how = isGated(row[ee]) ? "accuracy " + shortNumber(accuracy, 1)
-                               : "a fixed step of 1/" + shortNumber(1.0 / accuracy, 6) + " of a cycle";
-      where[row[ee]] = row[es] + " at " + shortNumber(std::stod(row[er]), 4) + " rpm (" + how +
-                       ", run until the cycle-to-cycle change is below " + shortNumber(std::stod(row[ep]), 1) +
-                       " of the twist)";
+      if (row.accuracy > 0.0)
+        how = isGated(row.engine) ? "accuracy " + shortNumber(row.accuracy, 1)
+                                  : "a fixed step of 1/" + shortNumber(1.0 / row.accuracy, 6) + " of a cycle";
+      where[row.engine] = row.scene + " at " + shortNumber(row.speed_rpm, 4) + " rpm (" + how +
+                          ", run until the cycle-to-cycle change is below " + shortNumber(row.periodicity, 1) +
+                          " of the twist)";
     }
     for (const auto& [engine, w] : worst) {
       const bool gated = isGated(engine);
@@ -578,14 +666,11 @@ void describeEnginesAndCost(const TableSet& tables, ReportPart& part) {
                                 shortNumber(w, 2) + " of the twist scale on " + where[engine] + ".");
     }
   }
-  const auto it = tables.find("torsion_cost");
-  if (it == tables.end()) return;
-  const Table& c = it->second;
-  const size_t cr = columnOf(c, "route"), cs = columnOf(c, "seconds");
-  std::map<std::string, std::pair<double, int>> mean;
-  for (const auto& row : c.rows) {
-    mean[row[cr]].first += std::stod(row[cs]);
-    ++mean[row[cr]].second;
+  if (!tables.count(kCostTable.name())) return;
+  std::map<std::string, std::pair<double, int>> mean;  // route -> (sum of seconds, points)
+  for (const CostRow& row : getRows(tables, kCostTable)) {
+    mean[row.route].first += row.seconds;
+    ++mean[row.route].second;
   }
   std::string list;
   for (const auto& [route, s] : mean)
@@ -597,9 +682,10 @@ void describeEnginesAndCost(const TableSet& tables, ReportPart& part) {
 
 ReportPart describeTorsionPart(const TableSet& tables, const std::string& heading) {
   ReportPart part;
-  for (const char* name : {"torsion", "torsion_modes", "torsion_inertia"})
-    if (!tables.count(name)) return part;
-  if (tables.at("torsion").rows.empty()) return part;
+  for (const TableSchema* needed : {static_cast<const TableSchema*>(&kSweepTable), static_cast<const TableSchema*>(&kModesTable),
+                                    static_cast<const TableSchema*>(&kInertiaTable)})
+    if (!tables.count(needed->name())) return part;
+  if (getRows(tables, kSweepTable).empty()) return part;
   part.heading = heading;
   ReportBlock figure;
   figure.kind = ReportBlock::kFigure;
@@ -623,37 +709,42 @@ ReportPart describeTorsionPart(const TableSet& tables, const std::string& headin
   inertia.kind = ReportBlock::kTable;
   inertia.header = {"scene", "throw", "J_eq exact [kg m^2]", "J min", "J max", "half reciprocating", "error",
                     "second order", "error"};
-  inertia.rows = formatRows(tables, "torsion_inertia",
-                            {"scene", "throw", "exact_inertia", "min_inertia", "max_inertia", "half_reciprocating",
-                             "half_reciprocating_error", "second_order", "second_order_error"},
-                            {false, false, true, true, true, true, true, true, true});
+  for (const InertiaRow& row : getRows(tables, kInertiaTable))
+    inertia.rows.push_back({row.scene, std::to_string(row.throw_index), shortNumber(row.exact_inertia, 4),
+                            shortNumber(row.min_inertia, 4), shortNumber(row.max_inertia, 4),
+                            shortNumber(row.half_reciprocating, 4), shortNumber(row.half_reciprocating_error, 4),
+                            shortNumber(row.second_order, 4), shortNumber(row.second_order_error, 4)});
   part.blocks.push_back(inertia);
-  if (tables.count("torsion_resonances") && !tables.at("torsion_resonances").rows.empty()) {
+  const std::vector<ResonanceRow>& resonances = getRows(tables, kResonancesTable);
+  if (!resonances.empty()) {
     ReportBlock peaks;
     peaks.kind = ReportBlock::kTable;
     peaks.header = {"scene", "route", "order", "mode", "peak [rpm]", "frequency [Hz]", "Holzer critical [rpm]",
                     "twist [rad]"};
-    peaks.rows = formatRows(tables, "torsion_resonances",
-                            {"scene", "route", "order", "mode", "speed_rpm", "frequency_hz", "critical_rpm", "twist"},
-                            {false, false, false, false, true, true, true, true});
+    for (const ResonanceRow& row : resonances)
+      peaks.rows.push_back({row.scene, row.route, formatOrder(row.order),
+                            row.mode ? std::to_string(static_cast<int>(*row.mode)) : "", shortNumber(row.speed_rpm, 4),
+                            shortNumber(row.frequency_hz, 4), row.critical_rpm ? shortNumber(*row.critical_rpm, 4) : "",
+                            shortNumber(row.twist, 4)});
     part.blocks.push_back(peaks);
   }
   return part;
 }
 
-// The notes' prefix of a route part 17 could not compute (calcOrNote).
-constexpr const char* kRefusedNote = "Part 17 (torsion): ";
+// The notes' tag of this part's own lines ("Part N (torsion): "): a refused route's (calcOrNote), which derive looks
+// for. The notes are the campaign's table of sentences (no key column), so the tag is how this part knows its lines.
+std::string getNoteTag(const Part& part) { return "Part " + std::to_string(part.number()) + " (" + part.key() + ")"; }
 
 // A task whose route is refused for its scene (outside the small-twist domain at one of the sweep's speeds, past a
-// work limit): its reason in the report's notes and no numbers (crankcheck torsion refuses the same with status 1).
-// The part then leaves its figure and tables out (derive), rather than draw a sweep with holes; the other parts go
-// on. A logic error still ends the campaign.
+// work limit): its reason in the report's notes, tagged `tag`, and no numbers (crankcheck torsion refuses the same
+// with status 1). The part then leaves its figure and tables out (derive), rather than draw a sweep with holes; the
+// other parts go on. A logic error still ends the campaign.
 template <class Calc>
-TableSet calcOrNote(const std::string& what, Calc calc) {
+TableSet calcOrNote(const std::string& tag, const std::string& what, Calc calc) {
   try {
     return calc();
   } catch (const std::runtime_error& e) {
-    return kNotesTable.tableSet({{kRefusedNote + what + " not computed: " + formatOneLine(e.what())}});
+    return kNotesTable.tableSet({{tag + ": " + what + " not computed: " + formatOneLine(e.what())}});
   }
 }
 
@@ -668,6 +759,7 @@ class TorsionPart final : public Part {
   // engines' trains alone (the soft chains' route has its own test: tests/mujoco/crank_train_test.cc).
   std::vector<Task> tasks(const PartContext& context) const override {
     std::vector<Task> out;
+    const std::string tag = getNoteTag(*this);
     const std::vector<const Mechanism*> scenes = listTrainScenes(context.scenes);
     for (size_t s = 0; s < scenes.size(); ++s) {
       const Mechanism& m = *scenes[s];
@@ -675,9 +767,9 @@ class TorsionPart final : public Part {
       // The throws' speed-free torque orders, computed once for the scene's speed points (torsion_forced.h).
       const auto load_orders = std::make_shared<analytic::ThrowLoadOrders>();
       for (double rpm : listSweepSpeeds(m, context.quick))
-        out.push_back({"torsion " + m.name + " " + num(rpm) + " rpm", false,
-                       [m, rpm, load_orders] {
-                         return calcOrNote(m.name + " at " + num(rpm) + " rpm",
+        out.push_back({"torsion " + m.name + " " + formatNumber(rpm) + " rpm", false,
+                       [m, rpm, load_orders, tag] {
+                         return calcOrNote(tag, m.name + " at " + shortNumber(rpm, 4) + " rpm",
                                            [&] { return calcSpeedTables(m, rpm, *load_orders); });
                        },
                        task_cost::kShort});
@@ -686,17 +778,17 @@ class TorsionPart final : public Part {
       for (const Engine& engine : listEngines())
         if (engine.simulate_crank_train && !engine.closed_form && (engine.crank_train_gated || !context.quick))
           out.push_back({"torsion " + m.name + " " + engine.name, false,
-                         [m, &engine, quick = context.quick, analytic_state] {
-                           return calcOrNote(m.name + " by " + engine.name,
+                         [m, &engine, quick = context.quick, analytic_state, tag] {
+                           return calcOrNote(tag, m.name + " by " + engine.name,
                                              [&] { return calcEngineTables(m, engine, quick, *analytic_state); });
                          },
                          task_cost::kSimbodyRun});
     }
     if (!scenes.empty())
       for (double factor : listRatioFactors(context.quick))
-        out.push_back({"torsion ratio " + num(factor), false,
-                       [m = *scenes.front(), factor] {
-                         return calcOrNote(m.name + " at the inertia ratio's factor " + num(factor),
+        out.push_back({"torsion ratio " + formatNumber(factor), false,
+                       [m = *scenes.front(), factor, tag] {
+                         return calcOrNote(tag, m.name + " at the inertia ratio's factor " + shortNumber(factor, 4),
                                            [&] { return calcRatioTables(m, factor); });
                        },
                        task_cost::kShort});
@@ -711,20 +803,22 @@ class TorsionPart final : public Part {
   }
   void derive(TableSet& tables) const override {
     // A route refused (calcOrNote): the part's tables out, its notes say why and which.
+    const std::string tag = getNoteTag(*this) + ": ";
     const std::vector<NoteRow>& notes = getRows(tables, kNotesTable);
-    if (std::any_of(notes.begin(), notes.end(), [](const NoteRow& row) { return row.note.rfind(kRefusedNote, 0) == 0; })) {
-      for (const std::string& name : this->tables()) tables.erase(name);
+    if (std::any_of(notes.begin(), notes.end(),
+                    [&](const NoteRow& row) { return row.note.compare(0, tag.size(), tag) == 0; })) {
+      for (const TableSchema* schema : schemas()) tables.erase(schema->name());
       addRows(tables, kNotesTable,
-              {{"Part " + std::to_string(number()) + " (" + key() + ") is left out: the routes these notes name could "
-                "not be computed, and a sweep with holes is not drawn. crankcheck torsion on each scene shows the rest."}});
+              {{getNoteTag(*this) + " is left out: the routes these notes name could not be computed, and a sweep "
+                "with holes is not drawn. crankcheck torsion on each scene shows the rest."}});
       return;
     }
     deriveTorsion(tables);
   }
   ReportPart describe(const TableSet& tables) const override { return describeTorsionPart(tables, heading()); }
-  std::vector<std::string> tables() const override {
-    return {"torsion",         "torsion_sections", "torsion_orders", "torsion_modes", "torsion_inertia",
-            "torsion_engines", "torsion_ratio",    "torsion_cost",   "torsion_resonances"};
+  std::vector<const TableSchema*> schemas() const override {
+    return {&kSweepTable,   &kSectionsTable, &kOrdersTable, &kModesTable,      &kInertiaTable,
+            &kEnginesTable, &kRatioTable,    &kCostTable,   &kResonancesTable};
   }
 };
 
