@@ -278,45 +278,6 @@ std::vector<const Engine*> listGradeJudges() {
 
 namespace {
 
-// A number's column backed by element `index` of a vector of optional numbers (a column per judge).
-template <class Row>
-Field<Row> judgeField(std::string name, std::string unit, std::vector<std::optional<double>> Row::*member, size_t index) {
-  return {Column(std::move(name), std::move(unit)),
-          [member, index](const Row& r) {
-            const auto& v = r.*member;
-            return index < v.size() && v[index] ? Cell(*v[index]) : Cell();
-          },
-          [member, index](Row& r, Cell c) {
-            auto& v = r.*member;
-            if (v.size() <= index) v.resize(index + 1);
-            if (const double* x = std::get_if<double>(&c)) v[index] = *x;
-            else v[index] = std::nullopt;
-          }};
-}
-
-// A number's column backed by element `index` of a vector of numbers (a column per judge).
-template <class Row>
-Field<Row> judgeField(std::string name, std::string unit, std::vector<double> Row::*member, size_t index) {
-  return {Column(std::move(name), std::move(unit)),
-          [member, index](const Row& r) { return Cell((r.*member).at(index)); },
-          [member, index](Row& r, Cell c) {
-            auto& v = r.*member;
-            if (v.size() <= index) v.resize(index + 1);
-            v[index] = std::get<double>(c);
-          }};
-}
-
-// An index's column (unit "-") that may be empty, backed by a std::optional<int>.
-template <class Row>
-Field<Row> optionalCountField(std::string name, std::optional<int> Row::*member) {
-  return {Column(std::move(name), "-"),
-          [member](const Row& r) { return r.*member ? Cell(static_cast<double>(*(r.*member))) : Cell(); },
-          [member](Row& r, Cell c) {
-            if (const double* x = std::get_if<double>(&c)) r.*member = static_cast<int>(*x);
-            else r.*member = std::nullopt;
-          }};
-}
-
 }  // namespace
 
 // The tables' names (their CSV stems), each spelled once.
@@ -332,7 +293,7 @@ const Schema<GradeSummaryRow>& getGradeSummarySchema() {
                                     optionalField("largest_rel_error", "-", &R::largest_rel_error)};
     const std::vector<const Engine*> judges = listGradeJudges();
     for (size_t j = 0; j < judges.size(); ++j)
-      fields.push_back(judgeField("largest_rel_error_" + judges[j]->name, "-", &R::largest_rel_error_by, j));
+      fields.push_back(elementField("largest_rel_error_" + judges[j]->name, "-", &R::largest_rel_error_by, j));
     for (Field<R>& f : std::vector<Field<R>>{
              textField("largest_where_case", &R::largest_where_case),
              optionalField("largest_where_phi_deg", "deg", &R::largest_where_phi_deg),
@@ -367,11 +328,11 @@ const Schema<GradeFailureRow>& getGradeFailuresSchema() {
         textField("quantity", &R::quantity), optionalCountField("cylinder", &R::cylinder),
         numberField("phi_deg", "deg", &R::phi_deg), numberField("speed_rpm", "rpm", &R::speed_rpm),
         numberField("program_value", "SI", &R::program_value),
-        judgeField(judges[0]->name + "_value", "SI", &R::judge_values, 0),
-        judgeField(judges[1]->name + "_value", "SI", &R::judge_values, 1),
+        elementField(judges[0]->name + "_value", "SI", &R::judge_values, 0),
+        elementField(judges[1]->name + "_value", "SI", &R::judge_values, 1),
         numberField("rel_error", "-", &R::rel_error), numberField("tolerance_rel", "-", &R::tolerance_rel)};
     for (size_t j = 2; j < judges.size(); ++j)
-      fields.push_back(judgeField(judges[j]->name + "_value", "SI", &R::judge_values, j));
+      fields.push_back(elementField(judges[j]->name + "_value", "SI", &R::judge_values, j));
     return Schema<R>(kFailuresName, std::move(fields));
   }();
   return schema;

@@ -44,17 +44,7 @@ template <class Row>
 void addEngineNumberFields(std::vector<Field<Row>>& fields, const std::string& suffix, const std::string& unit,
                            std::vector<double> Row::*list) {
   const std::vector<const Engine*> references = listReferenceEngines();
-  for (size_t i = 0; i < references.size(); ++i)
-    fields.push_back({Column(references[i]->name + suffix, unit),
-                      [list, i](const Row& r) {
-                        const std::vector<double>& v = r.*list;
-                        return i < v.size() ? Cell(v[i]) : Cell();
-                      },
-                      [list, i](Row& r, Cell c) {
-                        std::vector<double>& v = r.*list;
-                        if (v.size() <= i) v.resize(i + 1);
-                        if (const double* x = std::get_if<double>(&c)) v[i] = *x;
-                      }});
+  for (size_t i = 0; i < references.size(); ++i) fields.push_back(elementField(references[i]->name + suffix, unit, list, i));
 }
 
 }  // namespace crankcheck::validation

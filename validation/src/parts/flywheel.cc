@@ -52,19 +52,6 @@ struct FlywheelCurveRow {
   std::vector<std::optional<double>> engine_delta;
 };
 
-// The column of engine `index`'s delta (ENGINE_delta) in a FlywheelCurveRow: empty where it did not run.
-Field<FlywheelCurveRow> engineDeltaField(const std::string& engine, size_t index) {
-  return {Column(engine + "_delta", "-"),
-          [index](const FlywheelCurveRow& r) {
-            return index < r.engine_delta.size() && r.engine_delta[index] ? Cell(*r.engine_delta[index]) : Cell();
-          },
-          [index](FlywheelCurveRow& r, Cell c) {
-            if (r.engine_delta.size() <= index) r.engine_delta.resize(index + 1);
-            if (const double* x = std::get_if<double>(&c)) r.engine_delta[index] = *x;
-            else r.engine_delta[index] = std::nullopt;
-          }};
-}
-
 // The schema of `flywheel`: one delta column per engine whose free run takes loads, so it is made on first use (the
 // engine registry is complete by then; a namespace-scope schema would be made before main()).
 const Schema<FlywheelCurveRow>& getFlywheelCurveTable() {
@@ -74,7 +61,7 @@ const Schema<FlywheelCurveRow>& getFlywheelCurveTable() {
         numberField("flywheel_inertia", "kg m^2", &FlywheelCurveRow::flywheel_inertia),
         numberField("exact_delta", "-", &FlywheelCurveRow::exact_delta)};
     const std::vector<const Engine*> engines = listLoadedRunEngines();
-    for (size_t i = 0; i < engines.size(); ++i) fields.push_back(engineDeltaField(engines[i]->name, i));
+    for (size_t i = 0; i < engines.size(); ++i) fields.push_back(elementField(engines[i]->name + "_delta", "-", &FlywheelCurveRow::engine_delta, i));
     return Schema<FlywheelCurveRow>("flywheel", std::move(fields));
   }();
   return schema;

@@ -44,16 +44,6 @@ Field<HarmonicsRow> paperClaimField() {
           }};
 }
 
-// Reference engine `i`'s DFT: the column ENGINE_amplitude.
-Field<HarmonicsRow> engineAmplitudeField(const std::string& engine, size_t i) {
-  return {Column(engine + "_amplitude", "N m"),
-          [i](const HarmonicsRow& r) { return Cell(r.engine_amplitudes.at(i)); },
-          [i](HarmonicsRow& r, Cell c) {
-            if (r.engine_amplitudes.size() <= i) r.engine_amplitudes.resize(i + 1);
-            r.engine_amplitudes[i] = std::get<double>(c);
-          }};
-}
-
 // The table's schema: its columns depend on the engine registry, so it is built on first use (after main starts).
 const Schema<HarmonicsRow>& getHarmonicsTable() {
   static const Schema<HarmonicsRow> schema = [] {
@@ -61,7 +51,8 @@ const Schema<HarmonicsRow>& getHarmonicsTable() {
         textField("cycle", &HarmonicsRow::cycle), countField("k", &HarmonicsRow::k), countField("n", &HarmonicsRow::n),
         numberField("analytic_amplitude", "N m", &HarmonicsRow::analytic_amplitude), paperClaimField()};
     const std::vector<const Engine*> references = listReferenceEngines();
-    for (size_t i = 0; i < references.size(); ++i) fields.push_back(engineAmplitudeField(references[i]->name, i));
+    for (size_t i = 0; i < references.size(); ++i) fields.push_back(  // reference engine i's DFT
+          elementField(references[i]->name + "_amplitude", "N m", &HarmonicsRow::engine_amplitudes, i));
     return Schema<HarmonicsRow>("harmonics", std::move(fields));
   }();
   return schema;

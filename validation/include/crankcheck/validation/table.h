@@ -98,6 +98,46 @@ Field<Row> optionalField(std::string name, std::string unit, std::optional<doubl
           }};
 }
 
+/// An index's column (unit "-") that may be empty, backed by a std::optional<int>.
+template <class Row>
+Field<Row> optionalCountField(std::string name, std::optional<int> Row::*member) {
+  return {Column(std::move(name), "-"),
+          [member](const Row& r) { return r.*member ? Cell(static_cast<double>(*(r.*member))) : Cell(); },
+          [member](Row& r, Cell c) {
+            if (const double* x = std::get_if<double>(&c)) r.*member = static_cast<int>(*x);
+            else r.*member = std::nullopt;
+          }};
+}
+
+/// A number's column backed by element `index` of a vector member (one column per engine, per judge, ...): a row whose
+/// vector is shorter gives an empty cell; writing a cell grows the vector.
+template <class Row>
+Field<Row> elementField(std::string name, std::string unit, std::vector<double> Row::*list, size_t index) {
+  return {Column(std::move(name), std::move(unit)),
+          [list, index](const Row& r) { return index < (r.*list).size() ? Cell((r.*list)[index]) : Cell(); },
+          [list, index](Row& r, Cell c) {
+            std::vector<double>& v = r.*list;
+            if (v.size() <= index) v.resize(index + 1);
+            if (const double* x = std::get_if<double>(&c)) v[index] = *x;
+          }};
+}
+
+/// elementField of a vector of optional numbers: an absent element gives an empty cell, an empty cell an absent one.
+template <class Row>
+Field<Row> elementField(std::string name, std::string unit, std::vector<std::optional<double>> Row::*list, size_t index) {
+  return {Column(std::move(name), std::move(unit)),
+          [list, index](const Row& r) {
+            const auto& v = r.*list;
+            return index < v.size() && v[index] ? Cell(*v[index]) : Cell();
+          },
+          [list, index](Row& r, Cell c) {
+            auto& v = r.*list;
+            if (v.size() <= index) v.resize(index + 1);
+            if (const double* x = std::get_if<double>(&c)) v[index] = *x;
+            else v[index] = std::nullopt;
+          }};
+}
+
 /// A table's rows behind the type-erased Table: what the edge (CSV), the sort and the merge need of them.
 class TableRows {
  public:
