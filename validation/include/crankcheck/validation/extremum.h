@@ -21,10 +21,8 @@ inline constexpr double kFineAngleTolerance = 1e-10;
 
 /// Brent's angle tolerance [rad] of a campaign: kFineAngleTolerance in the full one; 1e-6 in the quick one (a smoke
 /// run), at 16-41 % fewer evaluations of the engines in the parts that refine (gravity_significance's engine max |Q|, the pin loads,
-/// the pin offset, the rod models). Measured on the quick report (2026-11-26, bench/README.md "Eleventh session"): a
-/// smooth maximum moves by at most 1e-13 relative (1e-14 on the O(1) ones), a maximum at a kink (a gas table's corner:
-/// the pin loads' at 20 degrees) by up to 3.1e-7, a rounding-level one (an engine's max |Q| at k = 7) by its own
-/// rounding noise; of two equal peaks (to 1e-14) another may be named.
+/// the pin offset, the rod models), a smooth maximum moving by at most 1e-13 relative, one at a kink by up to 3.1e-7
+/// (bench/README.md, "The quick campaign's angle tolerance").
 inline double getAngleTolerance(bool quick) { return quick ? 1e-6 : kFineAngleTolerance; }
 
 /// max over phi in [0, 2 pi) of |f(phi)|, f 2 pi periodic. `samples` (>= 3) evenly spaced angles, then each of the

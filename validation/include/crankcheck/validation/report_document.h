@@ -58,8 +58,8 @@ void drawFigure(const std::string& name, const std::filesystem::path& dir, const
 /// Draws the figures `names` (drawFigure's, without definitions) by one gnuplot, one script after the other, each after
 /// `reset session` (no setting or variable of one script reaches the next: on a report's data the PNGs are
 /// drawFigure's byte for byte, the SVGs differ at most in the stroke attribute of an empty group). One process saves
-/// gnuplot's start and its cairo and fonts set-up, about 30 ms of CPU a figure on this project's VM (bench/README.md,
-/// "Tenth session"). Where a script fails (its error, a missing file), every figure of `names` is drawn again on
+/// gnuplot's start and its cairo and fonts set-up for every figure (bench/README.md, "One gnuplot for several
+/// figures"). Where a script fails (its error, a missing file), every figure of `names` is drawn again on
 /// its own by drawFigure, whose error names the failing script.
 /// @throws EnvironmentError as drawFigure (a missing script before gnuplot starts); when gnuplot has not finished within kGnuplotFigureSeconds a figure (then
 /// it is ended, and nothing is drawn again).
