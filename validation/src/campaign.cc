@@ -1,6 +1,5 @@
 #include "crankcheck/validation/campaign.h"
 
-#include "campaign_tables.h"
 
 #include <algorithm>
 #include <charconv>
@@ -44,11 +43,6 @@ const Schema<SceneRow> kScenesTable{
 
 namespace {
 
-using analytic::Eq5Form;
-using analytic::LambdaSource;
-
-std::string num(double x) { return formatNumber(x); }
-
 // ------------------------------------------------------------------------------------------------------------
 // Scenes
 
@@ -68,88 +62,6 @@ Mechanism makeScene(const std::string& name, int k, Cycle cycle, double gamma_de
   m.flywheel_inertia = 0.15;
   return m;
 }
-
-}  // namespace
-
-// The crank ratio (campaign_tables.h).
-double lambdaOf(const Mechanism& m) { return calcCrankRatio(m); }
-
-namespace {
-
-}  // namespace
-
-// ------------------------------------------------------------------------------------------------------------
-// The helpers of the parts' computations (campaign_tables.h): maxima over a turn that do not depend on the grid
-// (extremum.h), from the exact harmonics where Q is concerned.
-
-// Q's harmonics with exact Lambda_n up to this order: the tail beyond is below q^100 ~ 1e-28 of Q up to lambda = 0.95
-// (q = (lambda / (1 + sqrt(1 - lambda^2)))^2, fourier_series.h).
-constexpr int kExactOrder = 200;
-
-std::vector<analytic::TorqueHarmonic> exactHarmonics(const Mechanism& m, Eq5Form form) {
-  return analytic::calcGravityTorqueHarmonics(m, kExactOrder, LambdaSource::kExact, form);
-}
-
-// The harmonics above `order`: minus the error of the series truncated there (no cancellation: each term is its own
-// size, so the error is exact to rounding however small).
-std::vector<analytic::TorqueHarmonic> harmonicsAbove(const std::vector<analytic::TorqueHarmonic>& h, int order) {
-  std::vector<analytic::TorqueHarmonic> out;
-  for (const analytic::TorqueHarmonic& x : h)
-    if (x.n > order) out.push_back(x);
-  return out;
-}
-
-// a - b, harmonic by harmonic.
-std::vector<analytic::TorqueHarmonic> harmonicsMinus(const std::vector<analytic::TorqueHarmonic>& a,
-                                                     const std::vector<analytic::TorqueHarmonic>& b) {
-  std::map<int, analytic::TorqueHarmonic> by_n;
-  for (const auto& x : a) by_n[x.n] = x;
-  for (const auto& x : b) {
-    analytic::TorqueHarmonic& y = by_n[x.n];
-    y.n = x.n;
-    y.cos_coefficient -= x.cos_coefficient;
-    y.sin_coefficient -= x.sin_coefficient;
-  }
-  std::vector<analytic::TorqueHarmonic> out;
-  for (const auto& [n, x] : by_n) out.push_back(x);
-  return out;
-}
-
-namespace {
-
-// Samples enough for the maximum of a sum of harmonics: 8 per period of the highest harmonic that is at least 1e-3 of
-// the largest (a hump of a smaller one cannot move the maximum by more than its own size), at least 72 (5 degrees).
-int samplesFor(const std::vector<analytic::TorqueHarmonic>& h) {
-  double largest = 0.0;
-  for (const auto& x : h) largest = std::max(largest, std::hypot(x.cos_coefficient, x.sin_coefficient));
-  int highest = 1;
-  for (const auto& x : h)
-    if (std::hypot(x.cos_coefficient, x.sin_coefficient) >= 1e-3 * largest) highest = std::max(highest, x.n);
-  return std::max(72, 8 * highest);
-}
-
-}  // namespace
-
-double maxAbsOfHarmonics(std::vector<analytic::TorqueHarmonic> h) {
-  // Harmonics below 1e-18 of the largest cannot move the maximum above rounding (at most 100 of them): left out.
-  double largest = 0.0;
-  for (const auto& x : h) largest = std::max(largest, std::hypot(x.cos_coefficient, x.sin_coefficient));
-  std::erase_if(h, [&](const analytic::TorqueHarmonic& x) { return !(std::hypot(x.cos_coefficient, x.sin_coefficient) >= 1e-18 * largest); });
-  if (h.empty()) return 0.0;
-  return findMaxAbsOverTurn([&h](double phi) { return analytic::evaluateTorqueHarmonics(h, phi); }, samplesFor(h)).value;
-}
-
-// A maximum of a difference computed in double carries an error up to the agreement tolerance (64 eps x scale x
-// conditioning, the worst rounding either engine shows); it is known to 1 % only above 100 times that. Below, the
-// number is a bound (the quantity is at rounding level), not a measured maximum.
-bool resolvedToOnePercent(double rel_value, double conditioning) {
-  return rel_value > 100.0 * kAgreementMultiple * kEps * conditioning;
-}
-
-// The samples of a turn for quantities that hold harmonics up to about n: 6 per period (3 per hump of |f|), at least 48.
-int samplesForOrder(int n) { return std::max(48, 6 * n); }
-
-namespace {
 
 }  // namespace
 
@@ -180,12 +92,6 @@ std::vector<Mechanism> buildDefaultScenes() {
   small.flywheel_inertia = 0.004;
   scenes.push_back(small);
   return scenes;
-}
-
-Mechanism findMarineScene() {
-  for (const Mechanism& m : buildDefaultScenes())
-    if (m.name.rfind("marine", 0) == 0) return m;
-  throw std::logic_error("campaign: no built-in marine scene");
 }
 
 std::string familyOf(const Mechanism& m) {

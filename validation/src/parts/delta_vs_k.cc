@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "../campaign_tables.h"
+#include "../part_math.h"
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/simbody_models/free_run.h"
 #include "crankcheck/validation/campaign.h"

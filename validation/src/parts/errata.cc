@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "../campaign_tables.h"
+#include "../part_math.h"
 #include "crankcheck/analytic/fourier_series.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/kinematics.h"

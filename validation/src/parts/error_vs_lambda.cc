@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "../campaign_tables.h"
+#include "../part_math.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/potential_energy.h"

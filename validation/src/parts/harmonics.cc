@@ -10,7 +10,7 @@
 
 #include <unsupported/Eigen/FFT>
 
-#include "../campaign_tables.h"
+#include "../part_math.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/balance.h"

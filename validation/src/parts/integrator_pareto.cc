@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "../campaign_tables.h"
+#include "../part_math.h"
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/balance.h"

@@ -2,7 +2,7 @@
 #include <string>
 #include <vector>
 
-#include "../campaign_tables.h"
+#include "../part_math.h"
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/part.h"

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "../campaign_tables.h"
+#include "../part_math.h"
 #include "crankcheck/analytic/batch.h"
 #include "crankcheck/analytic/gravity_torque.h"
 #include "crankcheck/validation/engines.h"

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "../campaign_tables.h"
+#include "../part_math.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/engine_loads.h"

@@ -1,7 +1,7 @@
 #pragma once
-// What the computations of the paper's report parts (parts/*.cc) share with the campaign (campaign.cc): maxima over a turn
-// from Q's exact harmonics, the resolution rule, the marine scene. Each part computes the rows of its tables from one
-// task; the campaign adds the tasks' tables up (appendTables). Tables and columns: campaign.h and each part's file.
+// What the report parts' computations (parts/*.cc) share: maxima over a turn from Q's exact harmonics (found so that
+// they do not depend on the grid: extremum.h), the resolution rule of a maximum at rounding level, the sampling of a
+// turn, the built-in marine scene.
 
 #include <vector>
 
