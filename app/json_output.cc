@@ -33,11 +33,11 @@ std::string formatTable(const Mechanism& m, const std::string& scene_path, const
   std::string banks;  // one bank: its gamma; a layout: every cylinder's bank and throw
   char part[96];
   if (isSingleBank(m)) {
-    std::snprintf(part, sizeof part, "gamma = %.6g deg", degreesFromRadians(m.engine.cylinder_angle));
+    std::snprintf(part, sizeof part, "gamma = %.6g deg", degreesFromRadians(m.machine.cylinder_angle));
     banks = part;
   } else {
     banks = "(bank, throw) deg =";
-    for (int j = 0; j < m.engine.cylinders; ++j) {
+    for (int j = 0; j < m.machine.cylinders; ++j) {
       std::snprintf(part, sizeof part, " (%.6g, %.6g)", degreesFromRadians(getBankAngle(m, j)),
                     degreesFromRadians(getThrowAngle(m, j)));
       banks += part;
@@ -45,13 +45,13 @@ std::string formatTable(const Mechanism& m, const std::string& scene_path, const
   }
   // Within 100 columns (the path on a line of its own; each cylinder's values in two tables).
   std::snprintf(line, sizeof line, ", %.6g rpm, lambda = %.6g, g = %.6g m/s^2\n", m.speed_rpm, calcCrankRatio(m),
-                m.engine.gravity);
+                m.machine.gravity);
   out << "scene " << scene_path << "\n"
-      << wrapText("  k = " + std::to_string(m.engine.cylinders) + ", " + toString(m.engine.cycle) + ", " +
-                      toString(m.engine.acting) + "-acting, " + banks + line,
+      << wrapText("  k = " + std::to_string(m.machine.cylinders) + ", " + toString(m.machine.cycle) + ", " +
+                      toString(m.machine.acting) + "-acting, " + banks + line,
                   kHelpWidth);
   if (hasPinOffsets(m))  // the dead centres move off theta = 0 and 180 degrees and the stroke exceeds 2 r
-    for (int j = 0; j < m.engine.cylinders; ++j) {
+    for (int j = 0; j < m.machine.cylinders; ++j) {
       const analytic::DeadCentres d = analytic::calcDeadCentres(m, getPinOffset(m, j));
       std::snprintf(line, sizeof line,
                     "  cylinder %d: pin offset %.6g m, stroke %.9g m, dead centres at theta =\n"

@@ -15,11 +15,11 @@ namespace crankcheck::bench {
 /// The same mechanism family as the tests: r = 0.05 m, lambda = 0.3, rod centre of mass off the middle, 4500 rpm.
 inline Mechanism benchMechanism(int k) {
   Mechanism m;
-  m.engine.cylinders = k;
-  m.engine.cycle = Cycle::kFourStroke;
-  m.engine.crank_angles = calcPhaseAngles(k, m.engine.cycle, m.engine.acting);
-  m.engine.cylinder_angle = radiansFromDegrees(90.0);
-  m.engine.speed = 4500.0 * M_PI / 30.0;
+  m.machine.cylinders = k;
+  m.machine.cycle = Cycle::kFourStroke;
+  m.machine.crank_angles = calcPhaseAngles(k, m.machine.cycle, m.machine.acting);
+  m.machine.cylinder_angle = radiansFromDegrees(90.0);
+  m.machine.speed = 4500.0 * M_PI / 30.0;
   m.crank = {0.05, 1.7, 0.02, 1.3, 0.04};
   m.rod = {0.05 / 0.3, 0.61, 0.05, 0.61 * (0.05 * 0.05 + 0.045 * 0.045)};
   m.piston.mass = 0.43;

@@ -19,10 +19,10 @@ int main(int argc, char** argv) {
   const std::string kind = argv[1];
   const int k = std::atoi(argv[2]), n = std::atoi(argv[3]);
   crankcheck::Mechanism m;  // the benchmark mechanism (bench/crankcheck_bench.cc)
-  m.engine.cylinders = k;
-  m.engine.cycle = crankcheck::Cycle::kFourStroke;
-  m.engine.crank_angles = crankcheck::calcPhaseAngles(k, m.engine.cycle, m.engine.acting);
-  m.engine.cylinder_angle = crankcheck::radiansFromDegrees(90.0);
+  m.machine.cylinders = k;
+  m.machine.cycle = crankcheck::Cycle::kFourStroke;
+  m.machine.crank_angles = crankcheck::calcPhaseAngles(k, m.machine.cycle, m.machine.acting);
+  m.machine.cylinder_angle = crankcheck::radiansFromDegrees(90.0);
   m.crank = {0.05, 1.7, 0.02, 1.3, 0.04};
   m.rod = {0.05 / 0.3, 0.61, 0.05, 0.61 * (0.05 * 0.05 + 0.045 * 0.045)};
   m.piston.mass = 0.43;

@@ -87,7 +87,7 @@ struct Outputs {
 size_t kernelOutputs(int k) { return 2 + 3 * static_cast<size_t>(k) + 3 + 5 * static_cast<size_t>(k) + 5; }
 
 void runKernels(const Mechanism& m, std::span<const double> phi, Outputs& o) {
-  const int k = m.engine.cylinders;
+  const int k = m.machine.cylinders;
   size_t b = 0;
   analytic::calcPotentialEnergyBatch(m, phi, o[b++]);
   analytic::calcGravityTorqueBatch(m, phi, o[b++]);
@@ -113,7 +113,7 @@ void runKernels(const Mechanism& m, std::span<const double> phi, Outputs& o) {
 void BM_PythonBatchKernels(benchmark::State& state) {
   const Mechanism& m = scene(static_cast<int>(state.range(0)));
   const bool fresh = state.range(1) != 0;
-  const size_t count = kernelOutputs(m.engine.cylinders);
+  const size_t count = kernelOutputs(m.machine.cylinders);
   std::unique_ptr<Outputs> reused = fresh ? nullptr : std::make_unique<Outputs>(count);
   for (auto _ : state) {
     std::unique_ptr<Outputs> outputs = fresh ? std::make_unique<Outputs>(count) : nullptr;
@@ -128,7 +128,7 @@ void BM_PythonBatchKernels(benchmark::State& state) {
 
 void BM_PythonBatchEvaluate(benchmark::State& state) {
   const Mechanism& m = scene(static_cast<int>(state.range(0)));
-  const int k = m.engine.cylinders;
+  const int k = m.machine.cylinders;
   // Every quantity the scene defines, as Scene.evaluate(phi) computes it by default.
   std::vector<const python::QuantityInfo*> wanted;
   size_t count = 0;

@@ -14,7 +14,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     const crankcheck::Mechanism m = crankcheck::parseScene(text, "fuzz.toml");
     // A scene that passed validation must describe a mechanism the engines can take.
-    if (!(m.crank.radius < m.rod.length) || static_cast<int>(m.engine.crank_angles.size()) != m.engine.cylinders)
+    if (!(m.crank.radius < m.rod.length) || static_cast<int>(m.machine.crank_angles.size()) != m.machine.cylinders)
       std::abort();
   } catch (const crankcheck::SceneError&) {
   }

@@ -10,7 +10,7 @@ namespace crankcheck::analytic {
 
 BalanceShaftLoads calcBalanceShaftLoads(const Mechanism& m, double phi) {
   BalanceShaftLoads out;
-  const double g = m.engine.gravity, w = m.engine.speed;
+  const double g = m.machine.gravity, w = m.machine.speed;
   for (const BalanceShaftParams& b : m.balance_shafts) {
     const SinCos phase = calcSinCos(b.phase);
     const SinCos turn = calcSinCos(b.ratio * phi), half = calcSinCos(0.5 * b.ratio * phi);
@@ -38,7 +38,7 @@ ShaftHarmonic calcBalanceShaftHarmonic(const Mechanism& m, const BalanceShaftPar
                                 ": its shaking is not periodic in the crank angle)");
   ShaftHarmonic h;
   if (std::fabs(b.ratio) != n) return h;
-  const double w = m.engine.speed, A = b.mass * b.radius * (b.ratio * w) * (b.ratio * w);
+  const double w = m.machine.speed, A = b.mass * b.radius * (b.ratio * w) * (b.ratio * w);
   const double sign = b.ratio > 0 ? 1.0 : -1.0;
   const SinCos p = calcSinCos(b.phase);
   const auto [x, y, z] = b.position;

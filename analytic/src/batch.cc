@@ -497,8 +497,8 @@ Params makeParams(const Mechanism& m, RodInertiaForm rod = RodInertiaForm::kTrue
   p.r = m.crank.radius;
   p.l = m.rod.length;
   p.lambda = p.r / p.l;
-  p.w = m.engine.speed;
-  p.g = m.engine.gravity;
+  p.w = m.machine.speed;
+  p.g = m.machine.gravity;
   const GravityCoefficients U = calcGravityCoefficients(m);
   p.U1 = U.U1;
   p.U2 = U.U2;
@@ -513,13 +513,13 @@ Params makeParams(const Mechanism& m, RodInertiaForm rod = RodInertiaForm::kTrue
   p.m_p = m.crank.counterweight_mass;
   p.throw_first_moment = m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius;
   p.gas = m.gas.has_value();
-  if (m.engine.crank_angles.size() != static_cast<size_t>(m.engine.cylinders))
-    throw std::invalid_argument("batch kernels: the mechanism has " + std::to_string(m.engine.crank_angles.size()) +
-                                " crank angles for " + std::to_string(m.engine.cylinders) + " cylinders");
-  for (int j = 0; j < m.engine.cylinders; ++j) {
+  if (m.machine.crank_angles.size() != static_cast<size_t>(m.machine.cylinders))
+    throw std::invalid_argument("batch kernels: the mechanism has " + std::to_string(m.machine.crank_angles.size()) +
+                                " crank angles for " + std::to_string(m.machine.cylinders) + " cylinders");
+  for (int j = 0; j < m.machine.cylinders; ++j) {
     Cylinder c;
     c.j = j;
-    const SinCos alpha = calcSinCos(m.engine.crank_angles[static_cast<size_t>(j)]);
+    const SinCos alpha = calcSinCos(m.machine.crank_angles[static_cast<size_t>(j)]);
     const SinCos gamma = calcSinCos(getBankAngle(m, j));
     c.sin_alpha = alpha.sin;
     c.cos_alpha = alpha.cos;
@@ -560,9 +560,9 @@ void requireFinite(const char* who, bool finite) {
 
 std::vector<std::array<double*, 3>> kinematicsPointers(const char* who, const Mechanism& m,
                                                        std::span<const PistonKinematicsSpans> cylinders, size_t n) {
-  if (cylinders.size() != static_cast<size_t>(m.engine.cylinders))
+  if (cylinders.size() != static_cast<size_t>(m.machine.cylinders))
     throw std::invalid_argument(std::string(who) + ": " + std::to_string(cylinders.size()) +
-                                " cylinders of outputs for " + std::to_string(m.engine.cylinders) + " cylinders");
+                                " cylinders of outputs for " + std::to_string(m.machine.cylinders) + " cylinders");
   std::vector<std::array<double*, 3>> out;
   for (const PistonKinematicsSpans& c : cylinders) {
     requireSize(who, "x_p", c.x_p, n);
@@ -577,9 +577,9 @@ ReactionPointers reactionPointers(const char* who, const Mechanism& m, const Rea
   requireSize(who, "drive_torque", spans.drive_torque, n);
   requireSize(who, "bearing_force_X", spans.bearing_force_X, n);
   requireSize(who, "bearing_force_Y", spans.bearing_force_Y, n);
-  if (!spans.cylinders.empty() && spans.cylinders.size() != static_cast<size_t>(m.engine.cylinders))
+  if (!spans.cylinders.empty() && spans.cylinders.size() != static_cast<size_t>(m.machine.cylinders))
     throw std::invalid_argument(std::string(who) + ": " + std::to_string(spans.cylinders.size()) +
-                                " cylinders of outputs for " + std::to_string(m.engine.cylinders) + " cylinders");
+                                " cylinders of outputs for " + std::to_string(m.machine.cylinders) + " cylinders");
   ReactionPointers out{spans.drive_torque.data(), spans.bearing_force_X.data(), spans.bearing_force_Y.data(), {}};
   for (const CylinderReactionsSpans& c : spans.cylinders) {
     requireSize(who, "crank_pin_force_X", c.crank_pin_force_X, n);

@@ -20,7 +20,7 @@ namespace crankcheck::analytic {
 
 Mechanism makeThrowMechanism(const Mechanism& m, int throw_index) {
   Mechanism one = selectThrow(m, throw_index);
-  one.engine.speed = 1.0;  // v_p is then dx_p/dpsi
+  one.machine.speed = 1.0;  // v_p is then dx_p/dpsi
   one.speed_rpm = 30.0 / M_PI;
   return one;
 }
@@ -30,8 +30,8 @@ PreparedThrow prepareThrow(const Mechanism& tm) {
   p.mechanism = tm;
   p.unit = makeUnitSpeedCopy(tm);
   p.gravity = calcGravityCoefficients(tm);
-  for (int j = 0; j < tm.engine.cylinders; ++j) {
-    p.crank_angles.push_back(calcSinCos(tm.engine.crank_angles[static_cast<size_t>(j)]));
+  for (int j = 0; j < tm.machine.cylinders; ++j) {
+    p.crank_angles.push_back(calcSinCos(tm.machine.crank_angles[static_cast<size_t>(j)]));
     p.bank_angles.push_back(calcSinCos(getBankAngle(tm, j)));
   }
   return p;
@@ -48,7 +48,7 @@ ThrowLoads calcThrowLoads(const PreparedThrow& p, double psi) {
   J.J = tm.flywheel_inertia.value_or(0.0) + shafts.inertia;
   double Q = 0.0;
   const SinCos angle = calcSinCos(psi);
-  for (int j = 0; j < tm.engine.cylinders; ++j) {
+  for (int j = 0; j < tm.machine.cylinders; ++j) {
     const SinCos theta = addAngles(angle, p.crank_angles[static_cast<size_t>(j)]);  // calcThrowSinCos
     addCylinderInertia(tm, p.unit, j, theta, RodInertiaForm::kTrueInertia, J);
     Q += calcCylinderGravityTorque(tm, j, theta, p.bank_angles[static_cast<size_t>(j)], p.gravity);
@@ -68,7 +68,7 @@ double calcRigidThrowTorque(const Mechanism& tm, double psi, double omega) {
 
 CrankTrain makeCrankTrain(const Mechanism& m) {
   if (!m.crankshaft) throw std::invalid_argument("torsion: the scene has no [crankshaft] table");
-  if (!(m.engine.speed > 0.0 && std::isfinite(m.engine.speed)))
+  if (!(m.machine.speed > 0.0 && std::isfinite(m.machine.speed)))
     throw std::invalid_argument("torsion: the crank train needs [engine].speed_rpm > 0 (the flywheel's driven speed)");
   const CrankshaftParams& c = *m.crankshaft;
   CrankTrain t;
@@ -84,8 +84,8 @@ CrankTrain makeCrankTrain(const Mechanism& m) {
                                 " values for " + std::to_string(sections) + " sections");
   for (int i = 0; i < sections; ++i) t.section_damping.push_back(getSectionDamping(c, i));
   t.throw_damping = c.throw_damping;
-  t.omega = m.engine.speed;
-  t.cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
+  t.omega = m.machine.speed;
+  t.cycle = m.machine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
   return t;
 }
 

@@ -18,7 +18,7 @@ class Model final : public EngineModel {
   }
   void setSpeed(double omega) override {
     if (!std::isfinite(omega)) throw std::invalid_argument("analytic: crank speed omega must be finite");
-    m_.engine.speed = omega;
+    m_.machine.speed = omega;
     m_.speed_rpm = omega * (30.0 / M_PI);
   }
 

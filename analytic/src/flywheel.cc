@@ -14,7 +14,7 @@
 namespace crankcheck::analytic {
 namespace {
 
-double cycleOf(const Mechanism& m) { return m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI; }
+double cycleOf(const Mechanism& m) { return m.machine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI; }
 
 // The cycle's grid: 0.1 degree steps and the pressure table's corners of every cylinder, sorted, from 0 to the cycle.
 std::vector<double> cycleGrid(const Mechanism& m) {
@@ -129,7 +129,7 @@ SteadyRun steady(const CycleData& d, double I, double omega) {
 
 void checkInputs(const Mechanism& m) {
   if (!m.gas) throw std::invalid_argument("[gas]: missing table (flywheel sizing needs the working torque of a gas cycle)");
-  if (!(m.engine.speed > 0.0)) throw std::invalid_argument("[engine].speed_rpm: must be > 0 (the mean speed of the run)");
+  if (!(m.machine.speed > 0.0)) throw std::invalid_argument("[engine].speed_rpm: must be > 0 (the mean speed of the run)");
 }
 
 }  // namespace
@@ -145,7 +145,7 @@ std::vector<SteadyRun> calcSteadyRuns(const Mechanism& m, const std::vector<doub
   for (size_t i = 0; i < d.phi.size(); ++i) d.work[i] += (d.load_torque - load_torque) * d.phi[i];
   d.load_torque = load_torque;
   std::vector<SteadyRun> out;
-  for (double I : flywheel_inertias) out.push_back(steady(d, I, m.engine.speed));
+  for (double I : flywheel_inertias) out.push_back(steady(d, I, m.machine.speed));
   return out;
 }
 
@@ -153,7 +153,7 @@ FlywheelSizing calcFlywheelSizing(const Mechanism& m, double fluctuation) {
   checkInputs(m);
   if (!(fluctuation > 0.0 && fluctuation < 1.0))
     throw std::invalid_argument("--fluctuation: must be in (0, 1) (got " + std::to_string(fluctuation) + ")");
-  const double omega = m.engine.speed, C = fluctuation;
+  const double omega = m.machine.speed, C = fluctuation;
   const CycleData d = calcCycleData(m);
   FlywheelSizing s;
   s.load_torque = d.load_torque;

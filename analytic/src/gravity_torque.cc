@@ -33,9 +33,9 @@ Eq14Coefficients calcEq14Coefficients(const Mechanism& m, Eq5Form form, int j = 
 // S_n = sum_j e^{i n alpha_j}, as (real, imaginary).
 SinCos sumOverThrows(const Mechanism& m, int n) {
   SinCos s{0.0, 0.0};
-  if (!m.engine.explicit_crank_angles) {
+  if (!m.machine.explicit_crank_angles) {
     // Phase angles are exact fractions of a turn: reduce n * numerator modulo the denominator in integers.
-    const PhaseTurns turns = calcPhaseTurns(m.engine.cylinders, m.engine.cycle, m.engine.acting);
+    const PhaseTurns turns = calcPhaseTurns(m.machine.cylinders, m.machine.cycle, m.machine.acting);
     for (long long numerator : turns.numerators) {
       const long long reduced = (n * numerator) % turns.denominator;
       const SinCos e = calcSinCos(2.0 * M_PI * static_cast<double>(reduced) / static_cast<double>(turns.denominator));
@@ -44,7 +44,7 @@ SinCos sumOverThrows(const Mechanism& m, int n) {
     }
     return s;
   }
-  for (double alpha : m.engine.crank_angles) {
+  for (double alpha : m.machine.crank_angles) {
     const SinCos e = calcSinCos(n * alpha);
     s.cos += e.cos;
     s.sin += e.sin;
@@ -71,8 +71,8 @@ double calcCylinderGravityTorque(const Mechanism& m, int j, const SinCos& theta,
 double calcGravityTorque(const Mechanism& m, double phi, Eq5Form form) {
   const GravityCoefficients c = calcGravityCoefficients(m, form);
   double Q = 0.0;
-  for (int j = 0; j < m.engine.cylinders; ++j)
-    Q += calcCylinderGravityTorque(m, j, calcThrowSinCos(phi, m.engine.crank_angles[j]), c);
+  for (int j = 0; j < m.machine.cylinders; ++j)
+    Q += calcCylinderGravityTorque(m, j, calcThrowSinCos(phi, m.machine.crank_angles[j]), c);
   return Q + calcBalanceShaftLoads(m, phi).Q;  // the balance shafts' masses (balance_shafts.h)
 }
 
@@ -80,8 +80,8 @@ double calcGravityTorqueFourier(const Mechanism& m, double phi, int order, Lambd
   if (order < 1) throw std::invalid_argument("calcGravityTorqueFourier: order must be >= 1");
   const std::vector<double> big_lambda = lambdaCoefficients(m.crank.radius / m.rod.length, order, source);
   double Q = 0.0;
-  for (int j = 0; j < m.engine.cylinders; ++j) {
-    const double alpha = m.engine.crank_angles[j];
+  for (int j = 0; j < m.machine.cylinders; ++j) {
+    const double alpha = m.machine.crank_angles[j];
     const auto [N, N1, N2] = calcEq14Coefficients(m, form, j);
     const SinCos theta = calcThrowSinCos(phi, alpha);
     Q += N * theta.cos + (N1 + N2) * theta.sin;  // Stanczak eq (14), W_1 = N1 + N2
@@ -98,11 +98,11 @@ std::vector<TorqueHarmonic> calcGravityTorqueHarmonics(const Mechanism& m, int o
   const auto [N, N1, N2] = calcEq14Coefficients(m, form);
   const std::vector<double> big_lambda = lambdaCoefficients(m.crank.radius / m.rod.length, order, source);
   std::vector<int> orders;
-  if (m.engine.explicit_crank_angles) {
+  if (m.machine.explicit_crank_angles) {
     orders.push_back(1);
     for (int n = 2; n <= order; n += 2) orders.push_back(n);
   } else {
-    orders = findSurvivingHarmonics(m.engine.cylinders, m.engine.cycle, m.engine.acting, order);
+    orders = findSurvivingHarmonics(m.machine.cylinders, m.machine.cycle, m.machine.acting, order);
   }
   std::vector<TorqueHarmonic> harmonics;
   for (int n : orders) {

@@ -32,10 +32,10 @@ DeadCentres calcDeadCentres(const Mechanism& m, double pin_offset) {
 }
 
 CylinderMotion calcCylinderMotion(const Mechanism& m, int j, double phi) {
-  const double r = m.crank.radius, w = m.engine.speed, mu = m.rod.com_from_wrist_pin / m.rod.length;
+  const double r = m.crank.radius, w = m.machine.speed, mu = m.rod.com_from_wrist_pin / m.rod.length;
   CylinderMotion c;
   c.gamma = calcSinCos(getBankAngle(m, j));
-  c.theta = calcThrowSinCos(phi, m.engine.crank_angles.at(static_cast<size_t>(j)));
+  c.theta = calcThrowSinCos(phi, m.machine.crank_angles.at(static_cast<size_t>(j)));
   c.z = getAxialPosition(m, j);
   const double delta = getPinOffset(m, j);
   c.piston = calcPistonKinematics(m, c.theta, delta);
@@ -52,12 +52,12 @@ CylinderMotion calcCylinderMotion(const Mechanism& m, int j, double phi) {
 
 std::vector<CylinderMotion> calcCylinderMotions(const Mechanism& m, double phi) {
   std::vector<CylinderMotion> motions;
-  for (int j = 0; j < m.engine.cylinders; ++j) motions.push_back(calcCylinderMotion(m, j, phi));
+  for (int j = 0; j < m.machine.cylinders; ++j) motions.push_back(calcCylinderMotion(m, j, phi));
   return motions;
 }
 
 PistonKinematics calcPistonKinematicsNorton(const Mechanism& m, double theta) {
-  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed;
+  const double r = m.crank.radius, l = m.rod.length, w = m.machine.speed;
   const auto [s1, c1] = calcSinCos(theta);
   const double s2 = 2.0 * s1 * c1, c2 = (c1 - s1) * (c1 + s1);
   PistonKinematics k;
@@ -70,7 +70,7 @@ PistonKinematics calcPistonKinematicsNorton(const Mechanism& m, double theta) {
 
 PistonKinematics calcPistonKinematicsFourier(const Mechanism& m, double theta, int order) {
   if (order < 1) throw std::invalid_argument("calcPistonKinematicsFourier: order must be >= 1");
-  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed;
+  const double r = m.crank.radius, l = m.rod.length, w = m.machine.speed;
   const std::vector<double> a = calcRadicalFourierCoefficients(r / l, order);
   const auto [s1, c1] = calcSinCos(theta);
   PistonKinematics k;

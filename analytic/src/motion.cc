@@ -22,7 +22,7 @@ Mechanism makeUnitSpeedCopy(const Mechanism& m) {
   Mechanism unit;
   unit.crank = m.crank;
   unit.rod = m.rod;
-  unit.engine.speed = 1.0;
+  unit.machine.speed = 1.0;
   return unit;
 }
 
@@ -63,20 +63,20 @@ ReducedInertia calcReducedInertia(const Mechanism& m, double phi, RodInertiaForm
   const Mechanism unit = makeUnitSpeedCopy(m);
   ReducedInertia out;
   out.J = m.flywheel_inertia.value_or(0.0) + calcBalanceShaftLoads(m, phi).inertia;  // shafts: m rho^2 ratio^2 each
-  for (int j = 0; j < m.engine.cylinders; ++j)
-    addCylinderInertia(m, unit, j, calcThrowSinCos(phi, m.engine.crank_angles[static_cast<size_t>(j)]), form, out);
+  for (int j = 0; j < m.machine.cylinders; ++j)
+    addCylinderInertia(m, unit, j, calcThrowSinCos(phi, m.machine.crank_angles[static_cast<size_t>(j)]), form, out);
   return out;
 }
 
 double calcGasTorque(const Mechanism& m, double phi) {
   if (!m.gas) return 0.0;
-  if (!(m.engine.speed > 0.0))
+  if (!(m.machine.speed > 0.0))
     throw std::invalid_argument("calcGasTorque: the crank speed must be > 0 (dx_p/dphi is read as v_p / omega)");
   double torque = 0.0;
-  for (int c = 0; c < m.engine.cylinders; ++c) {
+  for (int c = 0; c < m.machine.cylinders; ++c) {
     // The gas pushes piston c with -p A e_c: its power -p A x_p' phi', so its torque on the shaft is -p A x_p'.
-    const double dx_dphi = calcPistonKinematics(m, phi + m.engine.crank_angles[static_cast<size_t>(c)],
-                                                getPinOffset(m, c)).v_p / m.engine.speed;
+    const double dx_dphi = calcPistonKinematics(m, phi + m.machine.crank_angles[static_cast<size_t>(c)],
+                                                getPinOffset(m, c)).v_p / m.machine.speed;
     torque -= calcGasForce(m, c, phi) * dx_dphi;
   }
   return torque;

@@ -10,7 +10,7 @@
 namespace crankcheck::analytic {
 
 GravityCoefficients calcGravityCoefficients(const Mechanism& m, Eq5Form form) {
-  const double g = m.engine.gravity, r = m.crank.radius, l = m.rod.length, z = m.rod.com_from_wrist_pin;
+  const double g = m.machine.gravity, r = m.crank.radius, l = m.rod.length, z = m.rod.com_from_wrist_pin;
   // Eq (2): the rod's share at the wrist pin and at the crank pin.
   const double wrist_share = (form == Eq5Form::kDerived) ? (l - z) / l : z / l;  // printed eq (5): l_z = z_k / l
   const double crank_share = (form == Eq5Form::kDerived) ? z / l : (l - z) / l;  // printed eq (5): l_z* = (l - z_k) / l
@@ -27,8 +27,8 @@ double calcPotentialEnergy(const Mechanism& m, double phi, Eq5Form form) {
   const SinCos half = calcSinCos(0.5 * phi);
   const double sin_phi = 2.0 * half.sin * half.cos;
   double U = 0.0;
-  for (int j = 0; j < m.engine.cylinders; ++j) {
-    const double alpha = m.engine.crank_angles[j];
+  for (int j = 0; j < m.machine.cylinders; ++j) {
+    const double alpha = m.machine.crank_angles[j];
     const SinCos gamma = calcSinCos(getBankAngle(m, j));  // eq (3) per cylinder: each in its own bank
     // x = alpha + phi/2, the mean of the two crank angles theta = alpha + phi and alpha.
     const SinCos a = calcSinCos(alpha);
@@ -58,9 +58,9 @@ double calcPotentialEnergy(const Mechanism& m, double phi, Eq5Form form) {
 double calcDimensionlessUnit(const Mechanism& m) {
   if (!m.flywheel_inertia)
     throw std::invalid_argument("dimensionless values need the flywheel inertia I_w ([flywheel].inertia)");
-  if (m.engine.speed == 0.0)
+  if (m.machine.speed == 0.0)
     throw std::invalid_argument("dimensionless values need a nonzero speed ([engine].speed_rpm)");
-  return *m.flywheel_inertia * m.engine.speed * m.engine.speed;
+  return *m.flywheel_inertia * m.machine.speed * m.machine.speed;
 }
 
 }  // namespace crankcheck::analytic

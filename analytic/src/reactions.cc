@@ -31,7 +31,7 @@ Reactions calcReactions(const Mechanism& m, double phi, RodInertiaForm rod) {
 }
 
 Reactions calcReactions(const Mechanism& m, double phi, const std::vector<CylinderMotion>& motions, RodInertiaForm rod) {
-  const double r = m.crank.radius, w = m.engine.speed, g = m.engine.gravity;
+  const double r = m.crank.radius, w = m.machine.speed, g = m.machine.gravity;
   const double m_o = m.piston.mass, m_k = m.rod.mass;
   // The rod's inertia about the wrist pin A: the two point masses give m_k3 l^2 = m_k z_k l; Delta_I makes up the rest.
   const double I_o = rod == RodInertiaForm::kTwoMassWithoutDeltaI ? m_k * m.rod.com_from_wrist_pin * m.rod.length
@@ -39,7 +39,7 @@ Reactions calcReactions(const Mechanism& m, double phi, const std::vector<Cylind
   const double m_s = m.crank.mass, m_p = m.crank.counterweight_mass;
 
   Reactions out;
-  for (int j = 0; j < m.engine.cylinders; ++j) {
+  for (int j = 0; j < m.machine.cylinders; ++j) {
     const CylinderMotion& c = motions[static_cast<size_t>(j)];
     // R_WC: cylinder frame (e_j, n_j) to global (X, Y); gravity (0, -g) in cylinder j's frame.
     const SinCos gamma = c.gamma;

@@ -18,7 +18,7 @@ namespace crankcheck::analytic {
 Shaking calcShaking(const Mechanism& m, double phi) { return calcShaking(m, calcCylinderMotions(m, phi), phi); }
 
 Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motions, double phi) {
-  const double r = m.crank.radius, w = m.engine.speed;
+  const double r = m.crank.radius, w = m.machine.speed;
   const double m_o = m.piston.mass, m_k = m.rod.mass;
   const double I_G = m.rod.inertia_about_wrist_pin - m_k * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
   const double throw_first_moment = m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius;
@@ -141,7 +141,7 @@ std::vector<ShakingHarmonic> calcShakingHarmonics(const Mechanism& m, int order)
       }
     return h;
   }
-  const double r = m.crank.radius, l = m.rod.length, lambda = r / l, w2 = m.engine.speed * m.engine.speed;
+  const double r = m.crank.radius, l = m.rod.length, lambda = r / l, w2 = m.machine.speed * m.machine.speed;
   const double m_o = m.piston.mass, m_k = m.rod.mass, mu = m.rod.com_from_wrist_pin / l;
   const double I_G = m.rod.inertia_about_wrist_pin - m_k * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
   const double M_t = (m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius) / r;
@@ -171,9 +171,9 @@ std::vector<ShakingHarmonic> calcShakingHarmonics(const Mechanism& m, int order)
   for (int n = 1; n <= order; ++n) {
     ShakingHarmonic s;
     s.n = n;
-    for (int j = 0; j < m.engine.cylinders; ++j) {
+    for (int j = 0; j < m.machine.cylinders; ++j) {
       const SinCos gamma = calcSinCos(getBankAngle(m, j));
-      const SinCos phase = calcSinCos(n * m.engine.crank_angles[j]);  // n alpha_j
+      const SinCos phase = calcSinCos(n * m.machine.crank_angles[j]);  // n alpha_j
       const double z = getAxialPosition(m, j);
       // m a (the mass times acceleration sums) in the cylinder frame: cos(n phi) and sin(n phi) parts.
       //   f_e cos(n theta) = f_e (cos n phi cos n alpha - sin n phi sin n alpha); f_n sin theta = f_n (sin phi cos alpha + cos phi sin alpha)
@@ -247,7 +247,7 @@ HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n) {
   // Angles in eighths of a degree (a V of 45 degrees has banks at 90 +- 22.5), one turn = 2880 parts.
   constexpr long long kTurn = 2880;
   HarmonicSymmetry s;
-  const int k = m.engine.cylinders;
+  const int k = m.machine.cylinders;
   // The centric cylinder's orders (calcShakingHarmonics' series: f_e at 1 and even h, f_n at 1, m_z at odd h).
   bool shaft_at_n = false, centric = true;
   for (const BalanceShaftParams& b : m.balance_shafts) shaft_at_n = shaft_at_n || std::fabs(b.ratio) == n;
@@ -278,7 +278,7 @@ HarmonicSymmetry findHarmonicSymmetry(const Mechanism& m, int n) {
   for (int j = 0; j < k; ++j) {
     const double gamma_deg = degreesFromRadians(getBankAngle(m, j));
     if (!toWhole(gamma_deg, 0.125, gamma[j]) ||
-        !toWhole(gamma_deg + degreesFromRadians(m.engine.crank_angles[j]), 0.125, beta[j]) ||
+        !toWhole(gamma_deg + degreesFromRadians(m.machine.crank_angles[j]), 0.125, beta[j]) ||
         !toWhole(getAxialPosition(m, j), 1e-9, z[j]))
       return s;
   }

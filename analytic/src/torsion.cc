@@ -58,7 +58,7 @@ ThrowInertia calcThrowInertia(const Mechanism& m, int throw_index) {
   const double m_k3 = m.rod.mass * z / l, m_rec = m.piston.mass + m.rod.mass * (l - z) / l;
   const double crank = m.crank.mass * m.crank.com_radius * m.crank.com_radius +
                        m.crank.counterweight_mass * m.crank.counterweight_radius * m.crank.counterweight_radius;
-  const double cylinders = one.engine.cylinders;
+  const double cylinders = one.machine.cylinders;
   out.half_reciprocating = J_t + cylinders * (crank + m_k3 * r * r + 0.5 * m_rec * r * r);
   out.second_order = J_t + cylinders * (crank + m_k3 * r * r + 0.5 * m_rec * r * r * (1.0 + 0.25 * lambda * lambda));
   return out;

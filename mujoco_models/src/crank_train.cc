@@ -133,7 +133,7 @@ void refuseCrankTrain(const std::string& key, const std::string& rule) {
 CrankTrainRunOptions resolveCrankTrainOptions(const Mechanism& m, const CrankTrainRunOptions& asked, double accuracy,
                                               double periodicity) {
   if (!m.crankshaft) refuseCrankTrain("[crankshaft]", "missing table: the train's inertias, sections and damping");
-  if (!(m.engine.speed > 0.0))
+  if (!(m.machine.speed > 0.0))
     refuseCrankTrain("[engine].speed_rpm",
                      "must be > 0: the flywheel end turns at the scene's speed (CONVENTIONS \"Torsion\")");
   try {
@@ -161,7 +161,7 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
 
   const CrankshaftParams& c = *m.crankshaft;
   Train train;
-  train.omega = m.engine.speed;
+  train.omega = m.machine.speed;
   train.front_inertia = c.front_inertia;
   train.throw_inertia = c.throw_inertia;
   train.throw_damping = c.throw_damping;
@@ -176,7 +176,7 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
   for (int i = 0; i < n; ++i) train.damping.push_back(getSectionDamping(c, i));
 
   const double omega = train.omega;
-  const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
+  const double cycle = m.machine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
   // The first cycle's deviation scale: the rigid motion's largest throw torques, summed, over the softest section.
   double scale = 0.0;
   for (KCrankMujocoModel& model : train.throws) {

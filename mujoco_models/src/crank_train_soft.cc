@@ -59,8 +59,8 @@ void applyTrainGas(const mjModel* model, mjData* d) {
 SoftTrainRun::SoftTrainRun(const Mechanism& m, Variant variant, int steps_per_cycle)
     : m_(m), steps_per_cycle_(steps_per_cycle) {
   const CrankshaftParams& c = *m.crankshaft;
-  omega_ = m.engine.speed;
-  cycle_ = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
+  omega_ = m.machine.speed;
+  cycle_ = m.machine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
   const std::vector<std::vector<int>> throws = findThrows(m);
   const int front = c.front_inertia > 0.0 ? 1 : 0;
   // W: 1e9 x the train's own inertias, so that within a step its speed moves by 1e-9 of what a throw's does; it is
@@ -205,7 +205,7 @@ CrankTrainRun simulateCrankTrainSoft(const Mechanism& m, Variant variant, const 
   const long long steps = std::max(1LL, static_cast<long long>(std::ceil(1.0 / options.accuracy / grain))) * grain;
   if (steps > (1LL << 24)) refuseCrankTrain("CrankTrainRunOptions", "the soft route's step is too small (over 2^24 a cycle)");
   SoftTrainRun run(m, variant, static_cast<int>(steps));
-  const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
+  const double cycle = m.machine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
   // One stage (a fixed step), moved to the extrapolation of its cycle starts' whole states as the exact routes.
   return runToPeriodic(run, cycle, options, PeriodicPolicy{options.accuracy, kExtrapolationWindow}, "mujoco");
 }

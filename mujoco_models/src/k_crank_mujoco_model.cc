@@ -67,7 +67,7 @@ KCrankMujocoModel::Impl::Impl(const Mechanism& m, Variant variant) : m_(m), vari
   crank_q_ = mm->jnt_qposadr[crank_joint];
   crank_v_ = mm->jnt_dofadr[crank_joint];
   crank_body_ = mj_name2id(mm, mjOBJ_BODY, "crank");
-  const int k = m_.engine.cylinders;
+  const int k = m_.machine.cylinders;
   cylinders_.resize(k);
   forces_.assign(k, {0.0, 0.0});
   for (int j = 0; j < k; ++j) {
@@ -409,7 +409,7 @@ Evaluation KCrankMujocoModel::Impl::evaluate(double phi) {
   e.phi = phi;
   e.cylinders.resize(cylinders_.size());
   const bool exact = variant_ == Variant::kExact;
-  const double omega = m_.engine.speed;
+  const double omega = m_.machine.speed;
 
   close(phi);
   e.U = potential() - reference_potential_;

@@ -23,7 +23,7 @@ class KCrankMujocoModel::Impl {
   Evaluation evaluate(double phi);
   void setSpeed(double omega) {
     if (!std::isfinite(omega)) throw std::invalid_argument("KCrankMujocoModel: crank speed omega must be finite");
-    m_.engine.speed = omega;
+    m_.machine.speed = omega;
     m_.speed_rpm = omega * (30.0 / M_PI);
   }
   double potentialEnergy(double phi);

@@ -35,7 +35,7 @@ struct PointMass {
 /// the cylinders listed (every cylinder when none are).
 std::vector<PointMass> crankPointMasses(const Mechanism& m, std::vector<int> cylinders = {}) {
   if (cylinders.empty())
-    for (int j = 0; j < m.engine.cylinders; ++j) cylinders.push_back(j);
+    for (int j = 0; j < m.machine.cylinders; ++j) cylinders.push_back(j);
   std::vector<PointMass> points;
   for (int j : cylinders) {
     const double beta = getThrowAngle(m, j);
@@ -93,7 +93,7 @@ std::string writeMjcfHead(const Mechanism& m, Variant variant, int rows) {
   // Inertias exactly as written: none from geometry, no lower bounds, no rebalancing.
   x += "  <compiler angle=\"radian\" inertiafromgeom=\"false\" boundmass=\"0\" boundinertia=\"0\" "
        "balanceinertia=\"false\" settotalmass=\"-1\"/>\n";
-  x += "  <option gravity=\"" + vec3(0.0, -m.engine.gravity, 0.0) + "\" timestep=\"0.002\">\n";
+  x += "  <option gravity=\"" + vec3(0.0, -m.machine.gravity, 0.0) + "\" timestep=\"0.002\">\n";
   // energy: mj_energyPos computes the potential only when enabled
   x += std::string("    <flag contact=\"disable\" energy=\"enable\"") +
        (variant == Variant::kExact ? " constraint=\"disable\"" : "") + "/>\n";
@@ -130,7 +130,7 @@ std::string writeCrankBody(const Mechanism& m, const std::string& name, const st
     x += indent + "  <body name=\"" + name + "_mass" + std::to_string(i) + "\" pos=\"" +
          vec3(points[i].p[0], points[i].p[1], points[i].p[2]) + "\"><inertial pos=\"0 0 0\" mass=\"" +
          num(points[i].mass) + "\" diaginertia=\"0 0 0\"/></body>\n";
-  for (int j = 0; j < m.engine.cylinders; ++j) {
+  for (int j = 0; j < m.machine.cylinders; ++j) {
     if (!cylinders.empty() && std::find(cylinders.begin(), cylinders.end(), j) == cylinders.end()) continue;
     const double beta = getThrowAngle(m, j);
     x += indent + "  <site name=\"crank_pin" + std::to_string(j) + "\" pos=\"" +
@@ -178,7 +178,7 @@ std::string writeLoop(const Mechanism& m, int j, const std::string& crank) {
 
 std::string calcMjcf(const Mechanism& m, Variant variant) {
   checkBuildable(m);
-  const int k = m.engine.cylinders;
+  const int k = m.machine.cylinders;
   const double r = m.crank.radius;
   // The constraint rows this model can have: 3 per connect (the loops), 1 per joint equality (the shafts' gears),
   // a few to spare; no contacts.
@@ -229,11 +229,11 @@ std::string calcTrainMjcf(const Mechanism& m, Variant variant, double flywheel_i
   for (size_t j = 0; j < throws.size(); ++j)
     inner = writeCrankBody(m, "throw" + std::to_string(j), throws[j], c.throw_inertia,
                            section(static_cast<int>(j) + front), inner, "    ");
-  std::string x = writeMjcfHead(m, variant, 3 * m.engine.cylinders + 8);
+  std::string x = writeMjcfHead(m, variant, 3 * m.machine.cylinders + 8);
   x += "    <body name=\"flywheel\" pos=\"0 0 0\">\n      <joint name=\"flywheel\" type=\"hinge\" axis=\"0 0 1\" "
        "pos=\"0 0 0\"/>\n      <inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"" +
        vec3(flywheel_inertia, flywheel_inertia, flywheel_inertia) + "\"/>\n" + inner + "    </body>\n";
-  for (int j = 0; j < m.engine.cylinders; ++j) x += writeCylinder(m, j);
+  for (int j = 0; j < m.machine.cylinders; ++j) x += writeCylinder(m, j);
   x += "  </worldbody>\n  <equality>\n";
   for (size_t j = 0; j < throws.size(); ++j)
     for (int cylinder : throws[j]) x += writeLoop(m, cylinder, "throw" + std::to_string(j));

@@ -94,7 +94,7 @@ mjModel* loadModel(const std::string& xml) {
 }
 
 void setCrankPinAnchors(mjModel* model, const Mechanism& m) {
-  for (int j = 0; j < m.engine.cylinders; ++j) {
+  for (int j = 0; j < m.machine.cylinders; ++j) {
     const int equality = mj_name2id(model, mjOBJ_EQUALITY, ("loop" + std::to_string(j)).c_str());
     const double beta = getThrowAngle(m, j);
     double* data = model->eq_data + mjNEQDATA * equality;

@@ -47,7 +47,7 @@ const QuantityInfo* findQuantity(const std::string& name) {
 bool isDefined(const Mechanism& m, const std::string& name) {
   const QuantityInfo* q = findQuantity(name);
   if (!q) return false;
-  if (q->star) return m.flywheel_inertia.has_value() && m.engine.speed > 0.0;
+  if (q->star) return m.flywheel_inertia.has_value() && m.machine.speed > 0.0;
   return isQuantityDefined(*q->quantity, m);
 }
 
@@ -138,7 +138,7 @@ void evaluateAnalyticBatch(const Mechanism& m, std::span<const double> phi, cons
     return;
   }
   const size_t n = phi.size();
-  const int k = m.engine.cylinders;
+  const int k = m.machine.cylinders;
   Scratch scratch(n);
   auto span = [n](double* p) { return std::span<double>(p, n); };
   // What each kernel writes (null: not asked for).
@@ -152,10 +152,10 @@ void evaluateAnalyticBatch(const Mechanism& m, std::span<const double> phi, cons
            wanted[Id::kRodOmega], wanted[Id::kRodAlpha]};
 
   // U and Q (U_star and Q_star are the same divided by I_w omega^2).
-  const bool dimensionless = m.flywheel_inertia && m.engine.speed > 0.0;
+  const bool dimensionless = m.flywheel_inertia && m.machine.speed > 0.0;
   if ((out.U_star || out.Q_star) && !dimensionless)
     throw std::invalid_argument(starsNotDefined());
-  const double unit = dimensionless ? *m.flywheel_inertia * m.engine.speed * m.engine.speed : 1.0;
+  const double unit = dimensionless ? *m.flywheel_inertia * m.machine.speed * m.machine.speed : 1.0;
   if (out.U || out.U_star) {
     double* U = scratch.orScratch(out.U);
     analytic::calcPotentialEnergyBatch(m, phi, span(U));
@@ -248,15 +248,15 @@ void evaluateModel(const Mechanism& m, const Engine& engine, EngineModel& model,
                    const BatchOutput& out) {
   checkAngles(phi);
   const size_t n = phi.size();
-  const int k = m.engine.cylinders;
+  const int k = m.machine.cylinders;
   const std::vector<Quantity>& catalogue = getQuantityCatalogue();
-  const bool dimensionless = m.flywheel_inertia && m.engine.speed > 0.0;
+  const bool dimensionless = m.flywheel_inertia && m.machine.speed > 0.0;
   for (const Quantity& q : catalogue) {
     if (out.star(q.id) && !dimensionless)
       throw std::invalid_argument(starsNotDefined());
     if (out[q.id] && !isQuantityDefined(q, m)) throw std::invalid_argument(std::string(q.name) + ": not defined without [gas]");
   }
-  const double unit = dimensionless ? *m.flywheel_inertia * m.engine.speed * m.engine.speed : 1.0;
+  const double unit = dimensionless ? *m.flywheel_inertia * m.machine.speed * m.machine.speed : 1.0;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (size_t i = 0; i < n; ++i) {
     Evaluation ev;

@@ -190,8 +190,8 @@ py::dict evaluate(const ScenePtr& scene, const py::handle& phi_in, const std::st
   BatchOutput out;
   for (const QuantityInfo& q : listQuantities())
     if (seen.count(q.name)) {
-      outputs.push_back(reused ? reuse(q, m.engine.cylinders, angle_shape, *reused)
-                               : allocate(q, m.engine.cylinders, angle_shape));
+      outputs.push_back(reused ? reuse(q, m.machine.cylinders, angle_shape, *reused)
+                               : allocate(q, m.machine.cylinders, angle_shape));
       out.at(q.name) = static_cast<double*>(outputs.back().buffer.mutable_data());
     }
   std::span<const double> angles = spanOf(phi);
@@ -325,7 +325,7 @@ std::string toResponse(const validation::GradeCase& c, const py::handle& answer)
     throw py::type_error(where + "the function must return a dict of eval's quantities (as Scene.evaluate does), not " +
                          std::string(py::str(answer.get_type().attr("__name__"))));
   const size_t n = c.phi_deg.size();
-  const int k = c.mechanism.engine.cylinders;
+  const int k = c.mechanism.machine.cylinders;
   const bool axial = hasAxialPositions(c.mechanism);
   nlohmann::ordered_json results = nlohmann::ordered_json::array();
   for (size_t i = 0; i < n; ++i) results.push_back({{"phi_deg", c.phi_deg[i]}});
@@ -549,7 +549,7 @@ Mechanism unitSliderCrank(double lambda, double r, double omega) {
   Mechanism m;
   m.crank.radius = r;
   m.rod.length = r / lambda;
-  m.engine.speed = omega;
+  m.machine.speed = omega;
   return m;
 }
 
@@ -696,7 +696,7 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
            "The free run: `crankcheck motion SCENE --format json` as a dict (series=True adds each integrating engine's "
            "run with gravity: time [s], phi [rad], phi_dot [rad/s], energy [J]).")
       .def("__repr__", [](const Scene& s) {
-        return "<crankcheck.Scene " + s.m.name + " (" + s.source + "): k = " + std::to_string(s.m.engine.cylinders) +
+        return "<crankcheck.Scene " + s.m.name + " (" + s.source + "): k = " + std::to_string(s.m.machine.cylinders) +
                ", lambda = " + validation::formatNumber(calcCrankRatio(s.m)) + ", " + validation::formatNumber(s.m.speed_rpm) + " rpm>";
       });
 

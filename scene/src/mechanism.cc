@@ -11,23 +11,23 @@ namespace crankcheck {
 double calcCrankRatio(const Mechanism& m) { return m.crank.radius / m.rod.length; }
 
 double getBankAngle(const Mechanism& m, int j) {
-  return m.engine.bank_angles.empty() ? m.engine.cylinder_angle : m.engine.bank_angles.at(static_cast<size_t>(j));
+  return m.machine.bank_angles.empty() ? m.machine.cylinder_angle : m.machine.bank_angles.at(static_cast<size_t>(j));
 }
 
 double getThrowAngle(const Mechanism& m, int j) {
-  return getBankAngle(m, j) + m.engine.crank_angles.at(static_cast<size_t>(j));
+  return getBankAngle(m, j) + m.machine.crank_angles.at(static_cast<size_t>(j));
 }
 
 double getAxialPosition(const Mechanism& m, int j) {
-  return m.engine.axial_positions.empty() ? 0.0 : m.engine.axial_positions.at(static_cast<size_t>(j));
+  return m.machine.axial_positions.empty() ? 0.0 : m.machine.axial_positions.at(static_cast<size_t>(j));
 }
 
 double getPinOffset(const Mechanism& m, int j) {
-  return m.engine.pin_offsets.empty() ? 0.0 : m.engine.pin_offsets.at(static_cast<size_t>(j));
+  return m.machine.pin_offsets.empty() ? 0.0 : m.machine.pin_offsets.at(static_cast<size_t>(j));
 }
 
 bool hasPinOffsets(const Mechanism& m) {
-  for (double delta : m.engine.pin_offsets)
+  for (double delta : m.machine.pin_offsets)
     if (delta != 0.0) return true;
   return false;
 }
@@ -36,7 +36,7 @@ std::vector<std::vector<int>> findThrows(const Mechanism& m) {
   // Angles within 1e-9 rad modulo a turn are the same (beta_j = gamma_j + alpha_j rounds differently for a V pair
   // typed with the same throw_angle_deg); 1e-9 rad is the tolerance of the firing-angle rule as well.
   const auto same = [](double a, double b) { return std::fabs(std::remainder(a - b, 2.0 * M_PI)) <= 1e-9; };
-  std::vector<int> along(static_cast<size_t>(std::max(m.engine.cylinders, 0)));
+  std::vector<int> along(static_cast<size_t>(std::max(m.machine.cylinders, 0)));
   std::iota(along.begin(), along.end(), 0);
   std::stable_sort(along.begin(), along.end(),
                    [&](int a, int b) { return getAxialPosition(m, a) < getAxialPosition(m, b); });
@@ -60,20 +60,20 @@ Mechanism selectThrow(const Mechanism& m, int throw_index) {
   one.flywheel_inertia.reset();
   one.balance_shafts.clear();
   one.crankshaft.reset();
-  one.engine.crank_angles.clear();
-  one.engine.bank_angles.clear();
-  one.engine.axial_positions.clear();
-  one.engine.pin_offsets.clear();
+  one.machine.crank_angles.clear();
+  one.machine.bank_angles.clear();
+  one.machine.axial_positions.clear();
+  one.machine.pin_offsets.clear();
   one.firing_angles.clear();
   for (int c : throws[static_cast<size_t>(throw_index)]) {
-    one.engine.crank_angles.push_back(m.engine.crank_angles.at(static_cast<size_t>(c)));
-    one.engine.bank_angles.push_back(getBankAngle(m, c));
-    one.engine.axial_positions.push_back(getAxialPosition(m, c));
-    one.engine.pin_offsets.push_back(getPinOffset(m, c));
+    one.machine.crank_angles.push_back(m.machine.crank_angles.at(static_cast<size_t>(c)));
+    one.machine.bank_angles.push_back(getBankAngle(m, c));
+    one.machine.axial_positions.push_back(getAxialPosition(m, c));
+    one.machine.pin_offsets.push_back(getPinOffset(m, c));
     if (m.gas) one.firing_angles.push_back(m.firing_angles.at(static_cast<size_t>(c)));
   }
-  one.engine.cylinders = static_cast<int>(one.engine.crank_angles.size());
-  one.engine.explicit_crank_angles = true;
+  one.machine.cylinders = static_cast<int>(one.machine.crank_angles.size());
+  one.machine.explicit_crank_angles = true;
   return one;
 }
 
@@ -87,12 +87,12 @@ double getSectionDamping(const CrankshaftParams& c, int i) {
 }
 
 bool isSingleBank(const Mechanism& m) {
-  for (double gamma : m.engine.bank_angles)
-    if (gamma != m.engine.cylinder_angle) return false;
+  for (double gamma : m.machine.bank_angles)
+    if (gamma != m.machine.cylinder_angle) return false;
   return true;
 }
 
-bool hasAxialPositions(const Mechanism& m) { return !m.engine.axial_positions.empty(); }
+bool hasAxialPositions(const Mechanism& m) { return !m.machine.axial_positions.empty(); }
 
 Mechanism withLoads(const Mechanism& m, bool gas, bool inertia, bool gravity) {
   Mechanism out = m;
@@ -100,8 +100,8 @@ Mechanism withLoads(const Mechanism& m, bool gas, bool inertia, bool gravity) {
     out.gas.reset();
     out.firing_angles.clear();
   }
-  if (!inertia) out.engine.speed = out.speed_rpm = 0.0;
-  if (!gravity) out.engine.gravity = 0.0;
+  if (!inertia) out.machine.speed = out.speed_rpm = 0.0;
+  if (!gravity) out.machine.gravity = 0.0;
   return out;
 }
 

@@ -207,39 +207,39 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
             std::string("magnitude must be at most ") + kMaxAngleDeg.text, degreesFromRadians(radians));
   };
 
-  require(m.engine.cylinders >= 1 && m.engine.cylinders <= kMaxCylinders, "[engine].cylinders",
-          "must be between 1 and 64", m.engine.cylinders);
-  require(static_cast<int>(m.engine.crank_angles.size()) == m.engine.cylinders, "[engine].crank_angles_deg",
-          "must have one angle per cylinder", static_cast<double>(m.engine.crank_angles.size()));
+  require(m.machine.cylinders >= 1 && m.machine.cylinders <= kMaxCylinders, "[engine].cylinders",
+          "must be between 1 and 64", m.machine.cylinders);
+  require(static_cast<int>(m.machine.crank_angles.size()) == m.machine.cylinders, "[engine].crank_angles_deg",
+          "must have one angle per cylinder", static_cast<double>(m.machine.crank_angles.size()));
   // A layout's alpha_j is its throw angle minus its bank angle: name the cylinder, not a key it does not have.
-  for (size_t i = 0; i < m.engine.crank_angles.size(); ++i)
-    requireAngle(m.engine.crank_angles[i],
-                 m.engine.bank_angles.empty()
+  for (size_t i = 0; i < m.machine.crank_angles.size(); ++i)
+    requireAngle(m.machine.crank_angles[i],
+                 m.machine.bank_angles.empty()
                      ? "[engine].crank_angles_deg[" + std::to_string(i) + "]"
                      : "cylinder[" + std::to_string(i) + "] (throw_angle_deg - bank_angle_deg)");
-  requireAngle(m.engine.cylinder_angle, "[engine].cylinder_angle_deg");
-  const size_t k = static_cast<size_t>(std::max(m.engine.cylinders, 0));
-  require(m.engine.bank_angles.empty() || m.engine.bank_angles.size() == k, "[[cylinder]]",
-          "must give every cylinder a bank angle", static_cast<double>(m.engine.bank_angles.size()));
-  for (size_t i = 0; i < m.engine.bank_angles.size(); ++i)
-    requireAngle(m.engine.bank_angles[i], "cylinder[" + std::to_string(i) + "].bank_angle_deg");
-  require(m.engine.axial_positions.empty() || m.engine.axial_positions.size() == k, "[[cylinder]]",
-          "must give every cylinder an axial position", static_cast<double>(m.engine.axial_positions.size()));
-  for (size_t i = 0; i < m.engine.axial_positions.size(); ++i) {
+  requireAngle(m.machine.cylinder_angle, "[engine].cylinder_angle_deg");
+  const size_t k = static_cast<size_t>(std::max(m.machine.cylinders, 0));
+  require(m.machine.bank_angles.empty() || m.machine.bank_angles.size() == k, "[[cylinder]]",
+          "must give every cylinder a bank angle", static_cast<double>(m.machine.bank_angles.size()));
+  for (size_t i = 0; i < m.machine.bank_angles.size(); ++i)
+    requireAngle(m.machine.bank_angles[i], "cylinder[" + std::to_string(i) + "].bank_angle_deg");
+  require(m.machine.axial_positions.empty() || m.machine.axial_positions.size() == k, "[[cylinder]]",
+          "must give every cylinder an axial position", static_cast<double>(m.machine.axial_positions.size()));
+  for (size_t i = 0; i < m.machine.axial_positions.size(); ++i) {
     const std::string key = "cylinder[" + std::to_string(i) + "].axial_position";
-    requireFinite(m.engine.axial_positions[i], key);
-    require(std::fabs(m.engine.axial_positions[i]) <= kMaxLength.value, key,
-            "magnitude " + atMost(kMaxLength), m.engine.axial_positions[i]);
+    requireFinite(m.machine.axial_positions[i], key);
+    require(std::fabs(m.machine.axial_positions[i]) <= kMaxLength.value, key,
+            "magnitude " + atMost(kMaxLength), m.machine.axial_positions[i]);
   }
   // The speed is checked in rpm, the unit of the limit: the scene's value as typed when it is the one omega came
   // from, else omega converted.
-  const double rpm = m.speed_rpm * (M_PI / 30.0) == m.engine.speed ? m.speed_rpm : m.engine.speed * (30.0 / M_PI);
-  require(finite(m.engine.speed), "[engine].speed_rpm", "must be finite", rpm);
+  const double rpm = m.speed_rpm * (M_PI / 30.0) == m.machine.speed ? m.speed_rpm : m.machine.speed * (30.0 / M_PI);
+  require(finite(m.machine.speed), "[engine].speed_rpm", "must be finite", rpm);
   require(rpm >= 0, "[engine].speed_rpm", "must be >= 0", rpm);
   require(rpm <= kMaxSpeedRpm.value, "[engine].speed_rpm", atMost(kMaxSpeedRpm), rpm);
-  requireFinite(m.engine.gravity, "[engine].gravity");
-  require(m.engine.gravity >= 0, "[engine].gravity", "must be >= 0", m.engine.gravity);
-  require(m.engine.gravity <= kMaxGravity.value, "[engine].gravity", atMost(kMaxGravity), m.engine.gravity);
+  requireFinite(m.machine.gravity, "[engine].gravity");
+  require(m.machine.gravity >= 0, "[engine].gravity", "must be >= 0", m.machine.gravity);
+  require(m.machine.gravity <= kMaxGravity.value, "[engine].gravity", atMost(kMaxGravity), m.machine.gravity);
 
   requirePositiveLength(m.crank.radius, "[crank].radius");
   requireMass(m.crank.mass, "[crank].mass");
@@ -276,11 +276,11 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
     }
   }
   // The pin offset: the rod reaches the crank pin at every angle only if |delta| + r < l.
-  require(m.engine.pin_offsets.empty() || m.engine.pin_offsets.size() == k, "[[cylinder]]",
-          "must give every cylinder a pin offset", static_cast<double>(m.engine.pin_offsets.size()));
-  for (size_t i = 0; i < m.engine.pin_offsets.size(); ++i) {
-    const std::string key = m.engine.bank_angles.empty() ? "[engine].pin_offset" : "cylinder[" + std::to_string(i) + "].pin_offset";
-    const double delta = m.engine.pin_offsets[i];
+  require(m.machine.pin_offsets.empty() || m.machine.pin_offsets.size() == k, "[[cylinder]]",
+          "must give every cylinder a pin offset", static_cast<double>(m.machine.pin_offsets.size()));
+  for (size_t i = 0; i < m.machine.pin_offsets.size(); ++i) {
+    const std::string key = m.machine.bank_angles.empty() ? "[engine].pin_offset" : "cylinder[" + std::to_string(i) + "].pin_offset";
+    const double delta = m.machine.pin_offsets[i];
     requireFinite(delta, key);
     require(std::fabs(delta) < m.rod.length - m.crank.radius, key,
             "|pin_offset| must be < l - r = " + formatNumber(m.rod.length - m.crank.radius) +
@@ -303,8 +303,8 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
   if (m.gas) {
     const GasParams& g = *m.gas;
     requirePositiveLength(g.bore, "[gas].bore");
-    require(m.engine.acting == Acting::kSingle, "[gas]", "is modelled for single-acting cylinders only",
-            m.engine.acting == Acting::kSingle ? 1.0 : 2.0);
+    require(m.machine.acting == Acting::kSingle, "[gas]", "is modelled for single-acting cylinders only",
+            m.machine.acting == Acting::kSingle ? 1.0 : 2.0);
     require(!g.cycle_angles.empty() && g.cycle_angles.size() == g.pressures.size(), "[gas].pressure_pa",
             "must have one pressure per cycle angle", static_cast<double>(g.pressures.size()));
     for (size_t i = 0; i < g.pressures.size(); ++i) {
@@ -316,16 +316,16 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
     }
     require(m.firing_angles.size() == k, "[gas]", "needs a firing angle for every cylinder",
             static_cast<double>(m.firing_angles.size()));
-    for (size_t i = 0; i < m.firing_angles.size() && i < m.engine.crank_angles.size(); ++i) {
+    for (size_t i = 0; i < m.firing_angles.size() && i < m.machine.crank_angles.size(); ++i) {
       // At its firing angle the cylinder must be at its outer dead centre: theta = firing + alpha_j = 0 (mod 360).
-      const double theta = std::remainder(m.firing_angles[i] + m.engine.crank_angles[i], 2.0 * M_PI);
+      const double theta = std::remainder(m.firing_angles[i] + m.machine.crank_angles[i], 2.0 * M_PI);
       // Where it is: phi = -alpha_j (mod 360), and 360 deg later too in a four-stroke cycle.
-      const double odc = std::fmod(std::fmod(-degreesFromRadians(m.engine.crank_angles[i]), 360.0) + 360.0, 360.0);
-      const std::string valid = m.engine.cycle == Cycle::kFourStroke
+      const double odc = std::fmod(std::fmod(-degreesFromRadians(m.machine.crank_angles[i]), 360.0) + 360.0, 360.0);
+      const std::string valid = m.machine.cycle == Cycle::kFourStroke
                                     ? formatNumber(odc) + " or " + formatNumber(odc + 360.0) + " deg"
                                     : formatNumber(odc) + " deg";
       require(std::fabs(theta) <= 1e-9,
-              m.engine.bank_angles.empty() ? "[gas].firing_order" : "cylinder[" + std::to_string(i) + "].firing_angle_deg",
+              m.machine.bank_angles.empty() ? "[gas].firing_order" : "cylinder[" + std::to_string(i) + "].firing_angle_deg",
               "cylinder " + std::to_string(i) + " is not at its outer dead centre at its firing angle (its own crank angle theta is " +
                   formatNumber(degreesFromRadians(theta)) + " deg); it is there at phi = " + valid,
               degreesFromRadians(m.firing_angles[i]));
@@ -446,14 +446,14 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
   }
   if (cylinders < 1 || cylinders > kMaxCylinders)
     fail(source, engine.key("cylinders"), "must be between 1 and 64 (got " + std::to_string(cylinders) + ")");
-  m.engine.cylinders = static_cast<int>(cylinders);
+  m.machine.cylinders = static_cast<int>(cylinders);
   const std::string cycle = engine.string("cycle");
-  if (cycle == "two-stroke") m.engine.cycle = Cycle::kTwoStroke;
-  else if (cycle == "four-stroke") m.engine.cycle = Cycle::kFourStroke;
+  if (cycle == "two-stroke") m.machine.cycle = Cycle::kTwoStroke;
+  else if (cycle == "four-stroke") m.machine.cycle = Cycle::kFourStroke;
   else fail(source, engine.key("cycle"), "must be \"two-stroke\" or \"four-stroke\" (got \"" + cycle + "\")");
   const std::string acting = engine.string("acting", "single");
-  if (acting == "single") m.engine.acting = Acting::kSingle;
-  else if (acting == "double") m.engine.acting = Acting::kDouble;
+  if (acting == "single") m.machine.acting = Acting::kSingle;
+  else if (acting == "double") m.machine.acting = Acting::kDouble;
   else fail(source, engine.key("acting"), "must be \"single\" or \"double\" (got \"" + acting + "\")");
 
   if (layout != nullptr) {
@@ -471,17 +471,17 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
         fail(source, cylinder.key("throw_angle_deg"),
              std::string("throw_angle_deg - bank_angle_deg must be at most ") + kMaxAngleDeg.text +
                  " in magnitude (got " + formatNumber(throw_deg - bank_deg) + ")");
-      m.engine.bank_angles.push_back(radiansFromDegrees(bank_deg));
-      m.engine.crank_angles.push_back(radiansFromDegrees(throw_deg - bank_deg));
+      m.machine.bank_angles.push_back(radiansFromDegrees(bank_deg));
+      m.machine.crank_angles.push_back(radiansFromDegrees(throw_deg - bank_deg));
       if (const auto z = cylinder.optionalNumber("axial_position")) {
-        m.engine.axial_positions.push_back(*z);
+        m.machine.axial_positions.push_back(*z);
         ++with_axial;
       } else {
-        m.engine.axial_positions.push_back(0.0);
+        m.machine.axial_positions.push_back(0.0);
       }
       if (with_axial != 0 && with_axial != j + 1)
         fail(source, cylinder.key("axial_position"), "give it for every cylinder or for none");
-      m.engine.pin_offsets.push_back(cylinder.number("pin_offset", 0.0));  // a cylinder without one is centric
+      m.machine.pin_offsets.push_back(cylinder.number("pin_offset", 0.0));  // a cylinder without one is centric
       if (has_gas) {
         const double firing_deg = cylinder.number("firing_angle_deg");
         requireAngleDegrees(firing_deg, source, cylinder.key("firing_angle_deg"));
@@ -490,10 +490,10 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
         fail(source, cylinder.key("firing_angle_deg"), "belongs with a [gas] table (the scene has none)");
       }
     }
-    if (with_axial == 0) m.engine.axial_positions.clear();
-    if (!hasPinOffsets(m)) m.engine.pin_offsets.clear();
-    m.engine.explicit_crank_angles = true;
-    m.engine.cylinder_angle = m.engine.bank_angles.front();
+    if (with_axial == 0) m.machine.axial_positions.clear();
+    if (!hasPinOffsets(m)) m.machine.pin_offsets.clear();
+    m.machine.explicit_crank_angles = true;
+    m.machine.cylinder_angle = m.machine.bank_angles.front();
   } else {
     if (auto angles = engine.optionalNumberArray("crank_angles_deg")) {
       if (static_cast<long long>(angles->size()) != cylinders)
@@ -502,28 +502,28 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
                  std::to_string(angles->size()));
       for (size_t i = 0; i < angles->size(); ++i) {
         requireAngleDegrees((*angles)[i], source, engine.key("crank_angles_deg") + "[" + std::to_string(i) + "]");
-        m.engine.crank_angles.push_back(radiansFromDegrees((*angles)[i]));
+        m.machine.crank_angles.push_back(radiansFromDegrees((*angles)[i]));
       }
-      m.engine.explicit_crank_angles = true;
+      m.machine.explicit_crank_angles = true;
     } else {
-      m.engine.crank_angles = calcPhaseAngles(m.engine.cylinders, m.engine.cycle, m.engine.acting);
+      m.machine.crank_angles = calcPhaseAngles(m.machine.cylinders, m.machine.cycle, m.machine.acting);
     }
     const double cylinder_angle_deg = engine.number("cylinder_angle_deg");
     requireAngleDegrees(cylinder_angle_deg, source, engine.key("cylinder_angle_deg"));
-    m.engine.cylinder_angle = radiansFromDegrees(cylinder_angle_deg);
+    m.machine.cylinder_angle = radiansFromDegrees(cylinder_angle_deg);
     if (const auto spacing = engine.optionalNumber("cylinder_spacing")) {
       if (!(std::fabs(*spacing) * static_cast<double>(cylinders - 1) <= kMaxLength.value))
         fail(source, engine.key("cylinder_spacing"),
              std::string("must keep every cylinder within ") + kMaxLength.text + " of the first (got " +
                  formatNumber(*spacing) + ")");
-      for (long long j = 0; j < cylinders; ++j) m.engine.axial_positions.push_back(static_cast<double>(j) * *spacing);
+      for (long long j = 0; j < cylinders; ++j) m.machine.axial_positions.push_back(static_cast<double>(j) * *spacing);
     }
     if (const auto delta = engine.optionalNumber("pin_offset"))  // every cylinder of the bank
-      m.engine.pin_offsets.assign(static_cast<size_t>(cylinders), *delta);
+      m.machine.pin_offsets.assign(static_cast<size_t>(cylinders), *delta);
   }
   m.speed_rpm = engine.number("speed_rpm");
-  m.engine.speed = m.speed_rpm * (M_PI / 30.0);
-  m.engine.gravity = engine.number("gravity", 9.80665);
+  m.machine.speed = m.speed_rpm * (M_PI / 30.0);
+  m.machine.gravity = engine.number("gravity", 9.80665);
 
   TableReader crank(root, "crank", source, true,
                     {"radius", "mass", "com_radius", "counterweight_mass", "counterweight_radius"});
@@ -590,7 +590,7 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
   TableReader gas(root, "gas", source, false, {"bore", "cycle_angle_deg", "pressure_pa", "firing_order"});
   if (gas.present()) {
     GasParams g;
-    g.cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
+    g.cycle = m.machine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
     g.bore = gas.number("bore");
     const auto angles = gas.optionalNumberArray("cycle_angle_deg");
     const auto pressures = gas.optionalNumberArray("pressure_pa");
@@ -599,7 +599,7 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
     if (angles->size() != pressures->size())
       fail(source, gas.key("pressure_pa"), "must have one pressure per cycle angle: " + std::to_string(angles->size()) +
                                                " expected, got " + std::to_string(pressures->size()));
-    const double cycle_deg = m.engine.cycle == Cycle::kFourStroke ? 720.0 : 360.0;
+    const double cycle_deg = m.machine.cycle == Cycle::kFourStroke ? 720.0 : 360.0;
     for (size_t i = 0; i < angles->size(); ++i) {
       const std::string key = gas.key("cycle_angle_deg") + "[" + std::to_string(i) + "]";
       const double a = (*angles)[i];
@@ -635,7 +635,7 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
 
   validateMechanism(m, source);
   // The flywheel end of the elastic crank train turns at omega t ("Torsion"): a scene with [crankshaft] needs a speed.
-  if (m.crankshaft && !(m.engine.speed > 0.0))
+  if (m.crankshaft && !(m.machine.speed > 0.0))
     fail(source, "[engine].speed_rpm",
          "must be > 0 with a [crankshaft] table (its flywheel end turns at the scene's speed) (got " +
              formatNumber(m.speed_rpm) + ")");

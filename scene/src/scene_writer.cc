@@ -30,8 +30,8 @@ double same(double x) { return x; }
 // The firing order of an inline scene with [gas]: firing_order[i] fires at phi = i x cycle / k. Empty when the
 // firing angles are not of that form.
 std::vector<int> findFiringOrder(const Mechanism& m) {
-  const int k = m.engine.cylinders;
-  const double cycle_deg = m.engine.cycle == Cycle::kFourStroke ? 720.0 : 360.0;
+  const int k = m.machine.cylinders;
+  const double cycle_deg = m.machine.cycle == Cycle::kFourStroke ? 720.0 : 360.0;
   std::vector<int> order;
   for (int i = 0; i < k; ++i) {
     const double angle = radiansFromDegrees(cycle_deg * static_cast<double>(i) / static_cast<double>(k));
@@ -47,7 +47,7 @@ std::vector<int> findFiringOrder(const Mechanism& m) {
 
 // The spacing s with z_j = j s exactly (as the parser computes them), or NaN.
 double findSpacing(const Mechanism& m) {
-  const auto& z = m.engine.axial_positions;
+  const auto& z = m.machine.axial_positions;
   if (z.size() < 2 || z[0] != 0.0) return std::nan("");
   for (size_t j = 0; j < z.size(); ++j)
     if (z[j] != static_cast<double>(j) * z[1]) return std::nan("");
@@ -57,33 +57,33 @@ double findSpacing(const Mechanism& m) {
 }  // namespace
 
 std::string formatSceneToml(const Mechanism& m) {
-  const int k = m.engine.cylinders;
+  const int k = m.machine.cylinders;
   const bool with_gas = m.gas.has_value();
   const std::vector<int> firing_order = with_gas ? findFiringOrder(m) : std::vector<int>{};
   const double spacing = hasAxialPositions(m) ? findSpacing(m) : 0.0;
   bool same_offsets = true;  // [engine].pin_offset gives every cylinder the same one
-  for (double delta : m.engine.pin_offsets) same_offsets = same_offsets && delta == m.engine.pin_offsets.front();
-  const bool inline_form = isSingleBank(m) && m.engine.bank_angles.empty() && !std::isnan(spacing) &&
+  for (double delta : m.machine.pin_offsets) same_offsets = same_offsets && delta == m.machine.pin_offsets.front();
+  const bool inline_form = isSingleBank(m) && m.machine.bank_angles.empty() && !std::isnan(spacing) &&
                            (!with_gas || !firing_order.empty()) && same_offsets;
-  const double speed_rpm = m.engine.speed * (30.0 / M_PI) == m.speed_rpm || m.speed_rpm * (M_PI / 30.0) == m.engine.speed
+  const double speed_rpm = m.machine.speed * (30.0 / M_PI) == m.speed_rpm || m.speed_rpm * (M_PI / 30.0) == m.machine.speed
                                ? m.speed_rpm
-                               : m.engine.speed * (30.0 / M_PI);
+                               : m.machine.speed * (30.0 / M_PI);
   std::ostringstream out;
   out << "# Written by crankcheck (SI units, angles in degrees: docs/SCENE-FORMAT.md).\n";
   out << "format_version = 1\n\n";
   out << "[engine]\n";
   out << "cylinders = " << k << "\n";
-  out << "cycle = \"" << toString(m.engine.cycle) << "\"\n";
-  out << "acting = \"" << toString(m.engine.acting) << "\"\n";
+  out << "cycle = \"" << toString(m.machine.cycle) << "\"\n";
+  out << "acting = \"" << toString(m.machine.acting) << "\"\n";
   if (inline_form) {
-    out << "cylinder_angle_deg = " << formatShortest(degreesFromRadians(m.engine.cylinder_angle)) << "\n";
-    if (m.engine.crank_angles != calcPhaseAngles(k, m.engine.cycle, m.engine.acting))
-      out << "crank_angles_deg = " << list(m.engine.crank_angles, degreesFromRadians) << "\n";
+    out << "cylinder_angle_deg = " << formatShortest(degreesFromRadians(m.machine.cylinder_angle)) << "\n";
+    if (m.machine.crank_angles != calcPhaseAngles(k, m.machine.cycle, m.machine.acting))
+      out << "crank_angles_deg = " << list(m.machine.crank_angles, degreesFromRadians) << "\n";
     if (hasAxialPositions(m)) out << "cylinder_spacing = " << formatShortest(spacing) << "\n";
-    if (!m.engine.pin_offsets.empty()) out << "pin_offset = " << formatShortest(getPinOffset(m, 0)) << "\n";
+    if (!m.machine.pin_offsets.empty()) out << "pin_offset = " << formatShortest(getPinOffset(m, 0)) << "\n";
   }
   out << "speed_rpm = " << formatShortest(speed_rpm) << "\n";
-  out << "gravity = " << formatShortest(m.engine.gravity) << "\n";
+  out << "gravity = " << formatShortest(m.machine.gravity) << "\n";
   out << "\n[crank]\n";
   out << "radius = " << formatShortest(m.crank.radius) << "\n";
   out << "mass = " << formatShortest(m.crank.mass) << "\n";
@@ -135,7 +135,7 @@ std::string formatSceneToml(const Mechanism& m) {
       out << "bank_angle_deg = " << formatShortest(degreesFromRadians(getBankAngle(m, j))) << "\n";
       out << "throw_angle_deg = " << formatShortest(degreesFromRadians(getThrowAngle(m, j))) << "\n";
       if (hasAxialPositions(m)) out << "axial_position = " << formatShortest(getAxialPosition(m, j)) << "\n";
-      if (!m.engine.pin_offsets.empty()) out << "pin_offset = " << formatShortest(getPinOffset(m, j)) << "\n";
+      if (!m.machine.pin_offsets.empty()) out << "pin_offset = " << formatShortest(getPinOffset(m, j)) << "\n";
       if (with_gas)
         out << "firing_angle_deg = " << formatShortest(degreesFromRadians(m.firing_angles[static_cast<size_t>(j)])) << "\n";
     }

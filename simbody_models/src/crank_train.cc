@@ -162,7 +162,7 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
   if (options.max_steps == 0) options.max_steps = kCrankTrainMaxSteps;
   checkModelInputs(m, ModelOptions{}, "simulateCrankTrainSteadyState");
   if (!m.crankshaft) throw std::invalid_argument("simulateCrankTrainSteadyState: the scene has no [crankshaft] table");
-  const double omega = m.engine.speed;
+  const double omega = m.machine.speed;
   if (!(omega > 0.0)) throw std::invalid_argument("simulateCrankTrainSteadyState: the train needs a speed > 0");
   if (!(m.rod.mass > 0.0 && m.rod.inertia_about_wrist_pin > 0.0))
     throw std::invalid_argument("simulateCrankTrainSteadyState: the Simbody model needs a rod with mass > 0 and "
@@ -175,14 +175,14 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
   SimTK::MultibodySystem system;
   SimTK::SimbodyMatterSubsystem matter(system);
   SimTK::GeneralForceSubsystem forces(system);
-  SimTK::Force::Gravity gravity(forces, matter, SimTK::UnitVec3(0, -1, 0), m.engine.gravity);
+  SimTK::Force::Gravity gravity(forces, matter, SimTK::UnitVec3(0, -1, 0), m.machine.gravity);
   // Bodies along the shaft, front first: q of each pin is its angle psi (the throws' frames turned by gamma, as
   // KCrankModel's crankshaft, whose q is phi; the front mass's too, so that all start at q = 0).
   std::vector<SimTK::MobilizedBody::Pin> shaft;
   std::vector<bool> is_throw;
   std::vector<MechanismBodies> throws;
   auto drive = std::make_shared<CrankDrive>();  // gas on; the pins are free (no Motion)
-  const SimTK::Transform X_GF(SimTK::Rotation(m.engine.cylinder_angle, SimTK::ZAxis), SimTK::Vec3(0));
+  const SimTK::Transform X_GF(SimTK::Rotation(m.machine.cylinder_angle, SimTK::ZAxis), SimTK::Vec3(0));
   if (c.front_inertia > 0.0) {
     // A disk of polar inertia J_F; its unit mass sits on the axis (no torque from gravity, none on the twist).
     const double J = c.front_inertia;
@@ -224,7 +224,7 @@ CrankTrainRun simulateCrankTrainSteadyState(const Mechanism& m, const CrankTrain
 
   TrainRun run(system, shaft, throws, omega, std::min(options.accuracy, 1e-6), tolerance, state);
   run.setMaxSteps(options.max_steps);
-  const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * SimTK::Pi : 2.0 * SimTK::Pi;
+  const double cycle = m.machine.cycle == Cycle::kFourStroke ? 4.0 * SimTK::Pi : 2.0 * SimTK::Pi;
   return runToPeriodic(run, cycle, options, PeriodicPolicy{1000.0 * options.accuracy, kExtrapolationWindow}, "simbody");
 }
 

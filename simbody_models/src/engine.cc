@@ -35,7 +35,7 @@ class Model final : public EngineModel {
 // The reduced model of gravity alone (k_crank_gravity_model.h): U and Q at rest, the rest NaN.
 class GravityModel final : public EngineModel {
  public:
-  explicit GravityModel(const Mechanism& m) : model_(m), cylinders_(m.engine.cylinders) {}
+  explicit GravityModel(const Mechanism& m) : model_(m), cylinders_(m.machine.cylinders) {}
   Evaluation evaluate(double phi) override {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
     Evaluation e;

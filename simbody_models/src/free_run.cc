@@ -100,7 +100,7 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOp
   SimTK::MultibodySystem system;
   SimTK::SimbodyMatterSubsystem matter(system);
   SimTK::GeneralForceSubsystem forces(system);
-  SimTK::Force::Gravity gravity(forces, matter, SimTK::UnitVec3(0, -1, 0), options.gravity ? m.engine.gravity : 0.0);
+  SimTK::Force::Gravity gravity(forces, matter, SimTK::UnitVec3(0, -1, 0), options.gravity ? m.machine.gravity : 0.0);
   // The mechanism as KCrankModel builds it (every layout), the crankshaft also carrying the shaft and flywheel: a
   // disk of polar inertia I_w about Z.
   const double I_w = *m.flywheel_inertia;

@@ -39,14 +39,14 @@ long long findPeriod(double step) {
 }
 
 std::vector<Group> groupCylinders(const Mechanism& m, double step) {
-  if (m.engine.cylinders < 1 || m.engine.crank_angles.size() != static_cast<size_t>(m.engine.cylinders))
+  if (m.machine.cylinders < 1 || m.machine.crank_angles.size() != static_cast<size_t>(m.machine.cylinders))
     throw std::invalid_argument("grid sweep: the mechanism needs one crank angle per cylinder (k >= 1)");
   if (!m.balance_shafts.empty())
     throw std::invalid_argument("grid sweep: superposing one-cylinder models has no room for balance shafts; use "
                                 "KCrankModel angle by angle");
   std::vector<Group> groups;
-  for (int j = 0; j < m.engine.cylinders; ++j) {
-    const double alpha = m.engine.crank_angles[static_cast<size_t>(j)];
+  for (int j = 0; j < m.machine.cylinders; ++j) {
+    const double alpha = m.machine.crank_angles[static_cast<size_t>(j)];
     const double gamma = getBankAngle(m, j);
     const double steps = std::nearbyint(alpha / step);
     // alpha_j a whole number of steps: the group's common grid, shifted; otherwise a grid of its own.
@@ -67,13 +67,13 @@ std::vector<Group> groupCylinders(const Mechanism& m, double step) {
 // and Q are gravity's).
 Mechanism oneCylinder(const Mechanism& m, double gamma, double delta) {
   Mechanism one = m;
-  one.engine.pin_offsets.assign(1, delta);
-  one.engine.cylinders = 1;
-  one.engine.crank_angles = {0.0};
-  one.engine.explicit_crank_angles = true;
-  one.engine.cylinder_angle = gamma;
-  one.engine.bank_angles.clear();
-  one.engine.axial_positions.clear();
+  one.machine.pin_offsets.assign(1, delta);
+  one.machine.cylinders = 1;
+  one.machine.crank_angles = {0.0};
+  one.machine.explicit_crank_angles = true;
+  one.machine.cylinder_angle = gamma;
+  one.machine.bank_angles.clear();
+  one.machine.axial_positions.clear();
   one.gas.reset();
   one.firing_angles.clear();
   one.crankshaft.reset();  // rigid: a [crankshaft] has one section per throw of the scene it came with
@@ -121,7 +121,7 @@ std::vector<double> superpose(Quantity quantity, const Mechanism& m, double phi0
     for (const Member& member : group.members) {
       // U_1(theta_j) - U_1(alpha_j): each cylinder's energy relative to phi = 0, as the k-cylinder model's U.
       const double reference =
-          quantity == Quantity::kPotentialEnergy ? evaluate(model, m.engine.crank_angles[member.j]) : 0.0;
+          quantity == Quantity::kPotentialEnergy ? evaluate(model, m.machine.crank_angles[member.j]) : 0.0;
       for (size_t i = 0; i < n; ++i) {
         const long long index = wrap(static_cast<long long>(i) + member.shift, period);
         const size_t v = static_cast<size_t>(std::lower_bound(indices.begin(), indices.end(), index) - indices.begin());

@@ -35,14 +35,14 @@ class KCrankGravityModel::Impl {
       throw std::invalid_argument("KCrankGravityModel: the piston with its share of the rod has no mass; use KCrankModel");
     tolerance_ = options.projection_tolerance * std::max(1.0, l + r);  // as KCrankModel: relative above 1 m
     simbody_projections_ = options.simbody_projections;
-    const double gamma = m_.engine.cylinder_angle;
+    const double gamma = m_.machine.cylinder_angle;
 
-    gravity_ = SimTK::Force::Gravity(forces_, matter_, SimTK::UnitVec3(0, -1, 0), m_.engine.gravity);
+    gravity_ = SimTK::Force::Gravity(forces_, matter_, SimTK::UnitVec3(0, -1, 0), m_.machine.gravity);
     SimTK::Real crank_mass = 0.0;
     SimTK::Vec3 first_moment(0);
     SimTK::Inertia crank_inertia(0);
     std::vector<SimTK::Vec3>& pins = pins_;
-    for (double alpha : m_.engine.crank_angles) {
+    for (double alpha : m_.machine.crank_angles) {
       const SimTK::Vec3 u(std::cos(alpha), std::sin(alpha), 0.0);
       pins.push_back(r * u);
       const SimTK::Vec3 p_s = m_.crank.com_radius * u, p_p = -m_.crank.counterweight_radius * u, p_b = r * u;
@@ -92,7 +92,7 @@ class KCrankGravityModel::Impl {
     const bool warm = assembled_ && std::abs(std::remainder(phi - assembled_phi_, 2.0 * SimTK::Pi)) <= 1.0;
     if (!(warm && ((!simbody_projections_ && closeByNewton()) || project()) && physical())) {
       for (size_t j = 0; j < pistons_.size(); ++j)
-        pistons_[j].setQ(state_, m_.rod.length + m_.crank.radius * std::cos(phi + m_.engine.crank_angles[j]));
+        pistons_[j].setQ(state_, m_.rod.length + m_.crank.radius * std::cos(phi + m_.machine.crank_angles[j]));
       if (!((!simbody_projections_ && closeByNewton()) || (project() && physical()))) {
         assembled_ = false;
         throw std::runtime_error("KCrankGravityModel: Simbody could not assemble the physical branch at phi = " +
@@ -135,7 +135,7 @@ class KCrankGravityModel::Impl {
   // The physical branch: each wrist pin lies beyond its crank pin along the cylinder axis (x_p - r cos theta > 0).
   bool physical() {
     system_.realize(state_, SimTK::Stage::Position);
-    const double gamma = m_.engine.cylinder_angle;
+    const double gamma = m_.machine.cylinder_angle;
     const SimTK::Vec3 e(std::cos(gamma), std::sin(gamma), 0.0);
     for (size_t j = 0; j < pistons_.size(); ++j) {
       const double crank_pin_along_e = SimTK::dot(crank_.findStationLocationInGround(state_, pins_[j]), e);

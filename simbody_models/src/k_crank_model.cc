@@ -65,7 +65,7 @@ class KCrankModel::Impl {
   Evaluation evaluateAt(double phi, Diagnostics* diagnostics, bool motion_only = false);
   void setSpeed(double omega) {
     if (!std::isfinite(omega)) throw std::invalid_argument("KCrankModel: crank speed omega must be finite");
-    m_.engine.speed = omega;
+    m_.machine.speed = omega;
     m_.speed_rpm = omega * (30.0 / M_PI);
   }
   double potentialEnergy(double phi);
@@ -155,7 +155,7 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
         "KCrankModel: the Simbody model needs a rod with mass > 0 and inertia about the wrist pin > 0 (a massless "
         "rod makes Simbody's mass matrix singular)");
 
-  k_ = m_.engine.cylinders;
+  k_ = m_.machine.cylinders;
   for (int j = 0; j < k_; ++j) {
     const double gamma_j = getBankAngle(m_, j);
     e_.emplace_back(std::cos(gamma_j), std::sin(gamma_j), 0.0);
@@ -175,7 +175,7 @@ KCrankModel::Impl::Impl(const Mechanism& m, ModelOptions options) : m_(m), optio
 
   try {
     // Gravity (0, -g): Simbody's potential energy has zero height at the Ground origin O.
-    gravity_ = SimTK::Force::Gravity(forces_, matter_, SimTK::UnitVec3(0, -1, 0), m_.engine.gravity);
+    gravity_ = SimTK::Force::Gravity(forces_, matter_, SimTK::UnitVec3(0, -1, 0), m_.machine.gravity);
 
     MechanismBodies bodies = buildMechanismBodies(matter_, m_);
     crank_ = bodies.crank;
@@ -227,9 +227,9 @@ void KCrankModel::Impl::startAssemblyFrom(const Impl& donor) {
   if (&donor == this || !donor.assembled_) return;
   const Mechanism& d = donor.m_;
   // The coordinates depend on the geometry in each cylinder's own frame alone (theta_j = phi + alpha_j, r, l, delta_j).
-  const bool same = d.engine.cylinders == m_.engine.cylinders && d.engine.crank_angles == m_.engine.crank_angles &&
+  const bool same = d.machine.cylinders == m_.machine.cylinders && d.machine.crank_angles == m_.machine.crank_angles &&
                     d.crank.radius == m_.crank.radius && d.rod.length == m_.rod.length &&
-                    d.engine.pin_offsets == m_.engine.pin_offsets && shafts_.size() == donor.shafts_.size();
+                    d.machine.pin_offsets == m_.machine.pin_offsets && shafts_.size() == donor.shafts_.size();
   if (!same) return;
   for (int j = 0; j < k_; ++j) {
     pistons_[j].setQ(state_, donor.pistons_[j].getQ(donor.state_));
@@ -437,7 +437,7 @@ Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics, b
   Evaluation ev;
   ev.engine = "simbody";
   ev.phi = phi;
-  const double omega = m_.engine.speed;
+  const double omega = m_.machine.speed;
   if (motion_only && diagnostics == nullptr) {
     // The dynamic pass alone, from the assembled positions and zero velocities, as evaluate()'s after its static pass
     // (which leaves u = 0: at rest the velocities project to zero). The assembly as evaluate()'s: reused where its
@@ -523,7 +523,7 @@ double KCrankModel::Impl::potentialEnergy(double phi) {
 
 double KCrankModel::Impl::kineticEnergy(double phi) {
   assemble(phi);
-  drive_->omega = m_.engine.speed;
+  drive_->omega = m_.machine.speed;
   state_.invalidateAllCacheAtOrAbove(SimTK::Stage::Position);
   system_.projectU(state_, projection_tolerance_);
   system_.realize(state_, SimTK::Stage::Dynamics);

@@ -103,13 +103,13 @@ struct MechanismBodies {
 MechanismBodies buildMechanismBodies(SimTK::SimbodyMatterSubsystem& matter, const Mechanism& m,
                                      const SimTK::Inertia& shaft_inertia = SimTK::Inertia(0)) {
   MechanismBodies b;
-  const int k = m.engine.cylinders;
-  const double r = m.crank.radius, l = m.rod.length, gamma = m.engine.cylinder_angle;
+  const int k = m.machine.cylinders;
+  const double r = m.crank.radius, l = m.rod.length, gamma = m.machine.cylinder_angle;
   SimTK::Real crank_mass = 0.0;
   SimTK::Vec3 first_moment(0);
   SimTK::Inertia crank_inertia = shaft_inertia;  // about the body origin O
   for (int j = 0; j < k; ++j) {
-    const double pin_angle = (getBankAngle(m, j) - gamma) + m.engine.crank_angles[j];
+    const double pin_angle = (getBankAngle(m, j) - gamma) + m.machine.crank_angles[j];
     const SimTK::Vec3 u(std::cos(pin_angle), std::sin(pin_angle), 0.0), z(0.0, 0.0, getAxialPosition(m, j));
     b.crank_pins_in_crank.push_back(r * u + z);
     const SimTK::Vec3 p_s = m.crank.com_radius * u + z;

@@ -64,7 +64,7 @@ struct BatchOutputs {
 };
 
 BatchOutputs runBatch(const Mechanism& m, const std::vector<double>& phi, RodInertiaForm rod) {
-  BatchOutputs b(m.engine.cylinders, phi.size());
+  BatchOutputs b(m.machine.cylinders, phi.size());
   calcGravityTorqueBatch(m, phi, b.Q);
   calcPotentialEnergyBatch(m, phi, b.U);
   calcPistonKinematicsBatch(m, phi, b.kinematics);
@@ -74,7 +74,7 @@ BatchOutputs runBatch(const Mechanism& m, const std::vector<double>& phi, RodIne
 }
 
 BatchOutputs runGrid(const Mechanism& m, double phi0, double step, size_t n, RodInertiaForm rod) {
-  BatchOutputs b(m.engine.cylinders, n);
+  BatchOutputs b(m.machine.cylinders, n);
   calcGravityTorqueOnGrid(m, phi0, step, b.Q);
   calcPotentialEnergyOnGrid(m, phi0, step, b.U);
   calcPistonKinematicsOnGrid(m, phi0, step, b.kinematics);

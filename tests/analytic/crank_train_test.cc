@@ -36,7 +36,7 @@ double calcTorqueScale(const Mechanism& tm, double omega) {
   if (tm.gas)
     for (double p : tm.gas->pressures) p_max = std::max(p_max, std::fabs(p));
   const double area = tm.gas ? M_PI * tm.gas->bore * tm.gas->bore / 4.0 : 0.0;
-  return tm.engine.cylinders * (masses * r * r * omega * omega + (masses + tm.crank.mass) * tm.engine.gravity * r +
+  return tm.machine.cylinders * (masses * r * r * omega * omega + (masses + tm.crank.mass) * tm.machine.gravity * r +
                                 p_max * area * r);
 }
 
@@ -54,7 +54,7 @@ TEST(CrankTrainLoads, RigidThrowTorqueIsMinusTheDriveTorqueOfReactions) {
     double worst = 0.0;
     for (size_t j = 0; j < train.throws.size(); ++j) {
       Mechanism at_speed = train.throws[j];
-      at_speed.engine.speed = train.omega;
+      at_speed.machine.speed = train.omega;
       const double scale = calcTorqueScale(at_speed, train.omega);
       for (int i = 0; i < 720; ++i) {
         const double psi = 4.0 * M_PI * i / 720.0;

@@ -64,7 +64,7 @@ TEST_P(GravityTorqueTest, Eq16EqualsEq14TermByTerm) {
           const double phi = radiansFromDegrees(phi_deg);
           EXPECT_TRUE(isClose(calcGravityTorqueSummed(m, phi, order, source),
                               calcGravityTorqueFourier(m, phi, order, source),
-                              16 * m.engine.cylinders * kEps * testing::calcEnergyScale(m)))
+                              16 * m.machine.cylinders * kEps * testing::calcEnergyScale(m)))
               << "lambda " << lambda << " order " << order << " phi_deg " << phi_deg;
         }
   }
@@ -81,7 +81,7 @@ TEST_P(GravityTorqueTest, SurvivingHarmonicsMatchDftOfExactQ) {
   std::vector<double> q(M);
   for (int i = 0; i < M; ++i) q[i] = calcGravityTorque(m, 2 * M_PI * i / M);
   const std::vector<int> predicted =
-      findSurvivingHarmonics(m.engine.cylinders, m.engine.cycle, m.engine.acting, max_order);
+      findSurvivingHarmonics(m.machine.cylinders, m.machine.cycle, m.machine.acting, max_order);
   for (int n = 1; n <= max_order; ++n) {
     double a = 0, b = 0;
     for (int i = 0; i < M; ++i) {
@@ -90,7 +90,7 @@ TEST_P(GravityTorqueTest, SurvivingHarmonicsMatchDftOfExactQ) {
     }
     const double amplitude = 2 * std::hypot(a, b) / M;
     // Even orders carry W_n = N1 Lambda_n with N1 = -U1 sin(gamma): a lying engine (gamma = 0, 180) has none.
-    const bool lying = std::fabs(std::sin(m.engine.cylinder_angle)) < 0.5;
+    const bool lying = std::fabs(std::sin(m.machine.cylinder_angle)) < 0.5;
     const bool survives = std::find(predicted.begin(), predicted.end(), n) != predicted.end() && !(lying && n > 1);
     SCOPED_TRACE("n = " + std::to_string(n));
     if (survives) EXPECT_GT(amplitude, 1e-8 * E);

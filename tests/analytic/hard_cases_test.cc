@@ -45,7 +45,7 @@ TEST(HardCases, TinyLambdaKeepsRelativeAccuracy) {
       EXPECT_TRUE(isClose(calcPotentialEnergy(m, theta), U_ref, 16 * kEps * std::fabs(U_ref)));
       EXPECT_TRUE(isClose(calcGravityTorque(m, theta), Q_ref, 16 * kEps * std::fabs(Q_ref)));
       // The piston's velocity and acceleration, relative to themselves, against the same series.
-      const double r = m.crank.radius, w = m.engine.speed;
+      const double r = m.crank.radius, w = m.machine.speed;
       const PistonKinematics k = calcPistonKinematics(m, theta);
       const double v_ref = -r * w * (s + lambda * s * c * (1 + u / 2));
       EXPECT_TRUE(isClose(k.v_p, v_ref, 16 * kEps * std::fabs(v_ref)));

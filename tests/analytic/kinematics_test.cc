@@ -30,7 +30,7 @@ std::string lambdaName(const ::testing::TestParamInfo<double>& info) {
 // and x' = D' - r sin, x'' = D'' - r cos, x''' = D''' + r sin. A different route from the code's derivatives.
 TEST_P(KinematicsTest, DerivativesMatchImplicitLoopClosure) {
   const Mechanism m = mechanism();
-  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed, lambda = r / l;
+  const double r = m.crank.radius, l = m.rod.length, w = m.machine.speed, lambda = r / l;
   const double stiff = 1.0 / ((1.0 - lambda) * (1.0 + lambda));  // 1 / (1 - lambda^2)
   for (double phi_deg = -180.0; phi_deg <= 540.0; phi_deg += 7.5) {
     SCOPED_TRACE("phi_deg = " + std::to_string(phi_deg));
@@ -65,7 +65,7 @@ TEST_P(KinematicsTest, DeadCentresAreExact) {
   EXPECT_EQ(inner.j_p, 0.0);
   // At the dead centres the rod is aligned with the cylinder: a_p = -r w^2 (1 +- lambda), exactly as far as
   // the closed form's roundings allow (4 eps of the value).
-  const double w = m.engine.speed, lambda = r / l;
+  const double w = m.machine.speed, lambda = r / l;
   EXPECT_TRUE(isClose(outer.a_p, -r * w * w * (1 + lambda), 4 * kEps * r * w * w * (1 + lambda)));
   EXPECT_TRUE(isClose(inner.a_p, r * w * w * (1 - lambda), 4 * kEps * r * w * w * (1 + lambda)));
   const RodKinematics rod = calcRodKinematics(m, radiansFromDegrees(180.0));
@@ -81,7 +81,7 @@ class KinematicsSeriesTest : public KinematicsTest {};
 
 TEST_P(KinematicsSeriesTest, RodAngleDerivativesMatchFiniteDifferences) {
   const Mechanism m = mechanism();
-  const double r = m.crank.radius, l = m.rod.length, lambda = r / l, w = m.engine.speed;
+  const double r = m.crank.radius, l = m.rod.length, lambda = r / l, w = m.machine.speed;
   const auto beta_of = [&](double theta) {
     const double x = calcPistonKinematics(m, theta).x_p;
     // B - A in the cylinder frame: (r cos - x, r sin) = l (-cos beta, sin beta)
@@ -118,7 +118,7 @@ TEST_P(KinematicsTest, NortonTwoTermErrorWithinTaylorBound) {
 // the truncation is below q^60 < 1e-24 for lambda <= 0.9; what remains is the rounding of ~60 terms.
 TEST_P(KinematicsSeriesTest, FourierSeriesOfHighOrderEqualsExact) {
   const Mechanism m = mechanism();
-  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed, lambda = r / l;
+  const double r = m.crank.radius, l = m.rod.length, w = m.machine.speed, lambda = r / l;
   for (double theta = -1.0; theta < 7.0; theta += 0.29) {
     const PistonKinematics exact = calcPistonKinematics(m, theta);
     const PistonKinematics series = calcPistonKinematicsFourier(m, theta, 120);
@@ -136,7 +136,7 @@ TEST(NortonTwoTerm, IsTheSecondOrderFourierApproximation) {
   // Norton's 13.3c-e equal the exact kinematics to first order in lambda: at lambda = 1e-3 the acceleration
   // error is O(lambda^3) r w^2 (the lambda^3 terms of a_p), so below r w^2 lambda^2.
   const Mechanism m = testing::makeMechanism({1, Cycle::kFourStroke, Acting::kSingle, 1e-3, 90.0, 3000.0});
-  const double r = m.crank.radius, w = m.engine.speed;
+  const double r = m.crank.radius, w = m.machine.speed;
   for (double theta = 0.0; theta < 2 * M_PI; theta += 0.1) {
     const PistonKinematics exact = calcPistonKinematics(m, theta), norton = calcPistonKinematicsNorton(m, theta);
     EXPECT_LE(std::fabs(exact.a_p - norton.a_p), r * w * w * 1e-6);

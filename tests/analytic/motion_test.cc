@@ -46,7 +46,7 @@ TEST_P(MotionTest, TwoMassRodWithDeltaIIsExact) {
 TEST_P(MotionTest, NewtonEulerDriveTorqueIsLagrangesEquation) {
   for (double lambda : testing::sweepLambdas()) {
     const Mechanism m = mechanismAt(lambda);
-    const double w = m.engine.speed;
+    const double w = m.machine.speed;
     for (double phi_deg : testing::sweepPhisDeg()) {
       const double phi = radiansFromDegrees(phi_deg);
       const double lagrange = 0.5 * calcReducedInertia(m, phi).dJ * w * w + calcGravityTorque(m, phi);
@@ -85,7 +85,7 @@ TEST(FreeRun, EnergyIntegralMatchesIntegratedLagrangeEquation) {
   for (bool gravity : {true, false}) {
     Mechanism m = testing::makeMechanism({1, Cycle::kFourStroke, Acting::kSingle, 0.3, 90.0, 60.0});
     m.flywheel_inertia = 0.002;  // a light flywheel at 60 rpm: gravity makes a visible fluctuation
-    const double w0 = m.engine.speed;
+    const double w0 = m.machine.speed;
     const FreeRun run = calcFreeRun(m, w0, gravity);
     double phi = 0.0, v = w0, t = 0.0, vmax = w0, vmin = w0;
     const double h = 2 * M_PI / run.omega_mean / 20000;
@@ -119,17 +119,17 @@ TEST(FreeRun, EnergyIntegralMatchesIntegratedLagrangeEquation) {
 
 TEST(FreeRun, GravityOffIsTheInertiaOnlyFluctuation) {
   Mechanism m = testing::makeMechanism({1, Cycle::kFourStroke, Acting::kSingle, 0.3, 90.0, 300.0});
-  const FreeRun with = calcFreeRun(m, m.engine.speed, true), without = calcFreeRun(m, m.engine.speed, false);
+  const FreeRun with = calcFreeRun(m, m.machine.speed, true), without = calcFreeRun(m, m.machine.speed, false);
   EXPECT_NE(with.delta, without.delta);
-  m.engine.gravity = 0.0;  // no weight: the two must be the same computation
-  EXPECT_EQ(calcFreeRun(m, m.engine.speed, true).delta, calcFreeRun(m, m.engine.speed, false).delta);
+  m.machine.gravity = 0.0;  // no weight: the two must be the same computation
+  EXPECT_EQ(calcFreeRun(m, m.machine.speed, true).delta, calcFreeRun(m, m.machine.speed, false).delta);
 }
 
 TEST(FreeRun, RefusesARunThatCannotCompleteARevolution) {
   // Hanging (gamma = -90): at phi = 0 the piston is at its lowest, so every other angle lifts it.
   Mechanism m = testing::makeMechanism({1, Cycle::kFourStroke, Acting::kSingle, 0.3, -90.0, 1.0});
   m.flywheel_inertia = 1e-4;
-  EXPECT_THROW(calcFreeRun(m, m.engine.speed, true), std::domain_error);
+  EXPECT_THROW(calcFreeRun(m, m.machine.speed, true), std::domain_error);
   m.flywheel_inertia.reset();
   EXPECT_THROW(calcFreeRun(m, 10.0, true), std::invalid_argument);
 }
@@ -146,11 +146,11 @@ TEST_P(GasTorqueTest, VirtualWorkEqualsMinusTheDriveTorqueOfTheGasAlone) {
   const Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / GetParam());
   ASSERT_TRUE(m.gas.has_value()) << GetParam() << " has no [gas]";
   const Mechanism gas_only = withLoads(m, true, false, false);
-  const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
+  const double cycle = m.machine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
   double largest = 0.0;  // the largest gas force of any cylinder over the cycle
   for (int i = 0; i < 1440; ++i)
-    for (int j = 0; j < m.engine.cylinders; ++j) largest = std::max(largest, std::fabs(calcGasForce(m, j, cycle * i / 1440)));
-  const double scale = m.engine.cylinders * largest * m.crank.radius;
+    for (int j = 0; j < m.machine.cylinders; ++j) largest = std::max(largest, std::fabs(calcGasForce(m, j, cycle * i / 1440)));
+  const double scale = m.machine.cylinders * largest * m.crank.radius;
   ASSERT_GT(scale, 0.0);
   for (int i = 0; i <= 1440; ++i)
     for (double off : {0.0, 1e-3}) {

@@ -34,10 +34,10 @@ class PinOffsetTest : public ::testing::TestWithParam<OffsetCase> {
  protected:
   Mechanism mechanism() const {
     Mechanism m = testing::makeMechanism({1, Cycle::kFourStroke, Acting::kSingle, GetParam().lambda, 37.0, 4200.0});
-    m.engine.pin_offsets = {GetParam().fraction * (m.rod.length - m.crank.radius)};
+    m.machine.pin_offsets = {GetParam().fraction * (m.rod.length - m.crank.radius)};
     return m;
   }
-  double delta() const { return mechanism().engine.pin_offsets[0]; }
+  double delta() const { return mechanism().machine.pin_offsets[0]; }
   // 1 / cos^2(beta) at its largest: (1 - (lambda + |delta| / l)^2)^-1, how close the loop comes to its singularity.
   double stiffness() const {
     const Mechanism m = mechanism();
@@ -53,7 +53,7 @@ class PinOffsetTest : public ::testing::TestWithParam<OffsetCase> {
 // more, so derivative n carries the rounding of a few terms times (1 / cos^2 beta)^(n + 1/2) of r omega^n; 64 eps of it.
 TEST_P(PinOffsetTest, DerivativesMatchImplicitLoopClosure) {
   const Mechanism m = mechanism();
-  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed, d = delta(), k = stiffness();
+  const double r = m.crank.radius, l = m.rod.length, w = m.machine.speed, d = delta(), k = stiffness();
   for (double deg = -180.0; deg <= 540.0; deg += 7.5) {
     SCOPED_TRACE("theta_deg = " + std::to_string(deg));
     const double theta = radiansFromDegrees(deg);
@@ -79,7 +79,7 @@ TEST_P(PinOffsetTest, DerivativesMatchImplicitLoopClosure) {
 // |beta'''| <= 3 lambda k^2.5, rounding 2 eps / h).
 TEST_P(PinOffsetTest, RodRatesMatchFiniteDifferences) {
   Mechanism m = mechanism();
-  m.engine.speed = 1.0;
+  m.machine.speed = 1.0;
   const double h = 1e-4, d = delta(), k = stiffness(), lambda = m.crank.radius / m.rod.length;
   for (double deg = 0.0; deg < 360.0; deg += 15.0) {
     const double theta = radiansFromDegrees(deg);
@@ -95,7 +95,7 @@ TEST_P(PinOffsetTest, RodRatesMatchFiniteDifferences) {
 // one the nearest, and their difference is the stroke, 2 r only when centric (longer with an offset).
 TEST_P(PinOffsetTest, DeadCentresAndStroke) {
   const Mechanism m = mechanism();
-  const double r = m.crank.radius, l = m.rod.length, d = delta(), w = m.engine.speed, k = stiffness();
+  const double r = m.crank.radius, l = m.rod.length, d = delta(), w = m.machine.speed, k = stiffness();
   const DeadCentres dc = calcDeadCentres(m, d);
   const PistonKinematics outer = calcPistonKinematics(m, dc.outer, d), inner = calcPistonKinematics(m, dc.inner, d);
   EXPECT_NEAR(outer.v_p, 0.0, 16 * kEps * r * w * std::sqrt(k));
@@ -116,7 +116,7 @@ TEST_P(PinOffsetTest, DeadCentresAndStroke) {
 TEST_P(PinOffsetTest, GravityTorqueIsTheDerivativeOfThePotential) {
   const Mechanism m = mechanism();
   const double h = 1e-4, k = stiffness();
-  const double E = m.engine.gravity * (m.piston.mass + m.rod.mass + m.crank.mass + m.crank.counterweight_mass);
+  const double E = m.machine.gravity * (m.piston.mass + m.rod.mass + m.crank.mass + m.crank.counterweight_mass);
   const double tol = h * h / 6 * 3 * E * m.crank.radius * std::pow(k, 2.5) + 4 * kEps * E * (m.rod.length + m.crank.radius) / h;
   for (double deg = 0.0; deg < 360.0; deg += 15.0) {
     const double phi = radiansFromDegrees(deg);
@@ -134,7 +134,7 @@ class PinOffsetHarmonicsTest : public PinOffsetTest {};
 TEST_P(PinOffsetHarmonicsTest, ShakingHarmonicsSumToTheShaking) {
   const Mechanism m = mechanism();
   const std::vector<ShakingHarmonic> h = calcShakingHarmonics(m, 40);
-  const double w = m.engine.speed;
+  const double w = m.machine.speed;
   const double scale = (m.piston.mass + m.rod.mass + m.crank.mass + m.crank.counterweight_mass) * m.crank.radius * w * w *
                        stiffness() * stiffness();
   for (double phi : {0.1, 1.3, 2.9, 4.4}) {

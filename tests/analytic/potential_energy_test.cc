@@ -18,9 +18,9 @@ using testing::kEps;
 // V(phi) = sum over bodies of m g y, with the rod's centre of mass at z_k from the wrist pin, all positions
 // built from CONVENTIONS.md's geometry.
 double calcHeightEnergy(const Mechanism& m, double phi) {
-  const double r = m.crank.radius, l = m.rod.length, g = m.engine.gravity, gamma = m.engine.cylinder_angle;
+  const double r = m.crank.radius, l = m.rod.length, g = m.machine.gravity, gamma = m.machine.cylinder_angle;
   double V = 0.0;
-  for (double alpha : m.engine.crank_angles) {
+  for (double alpha : m.machine.crank_angles) {
     const double theta = phi + alpha;
     const double y_B = r * std::sin(gamma + theta);
     const double x = r * std::cos(theta) + std::sqrt(l * l - r * r * std::sin(theta) * std::sin(theta));
@@ -44,7 +44,7 @@ TEST_P(PotentialEnergyTest, EqualsHeightsOfTheBodies) {
     // eps g k (m_o + m_k) l; 16 eps of that plus the energy scale covers both sides' ~10 roundings.
     const double tol = 16 * kEps *
                        (testing::calcEnergyScale(m) +
-                        m.engine.gravity * m.engine.cylinders * (m.piston.mass + m.rod.mass) * m.rod.length);
+                        m.machine.gravity * m.machine.cylinders * (m.piston.mass + m.rod.mass) * m.rod.length);
     const double V0 = calcHeightEnergy(m, 0.0);
     for (double phi_deg : testing::sweepPhisDeg()) {
       const double phi = radiansFromDegrees(phi_deg);
@@ -82,7 +82,7 @@ TEST_P(PotentialEnergyTest, Eq5AsPrintedMeasuresTheRodFromTheWrongEnd) {
   // gamma), which cancels over balanced throws (k >= 2 two-stroke, k >= 3 four-stroke), and the wrist-pin share
   // through U1 sin(gamma) sum_j x_p, whose surviving harmonics are O(lambda^(k-1)). For a single cylinder the rod
   // (m_k g = 6 N, centre of mass misplaced by 0.4 l) makes an error of order m_k g r: far above rounding.
-  if (m.engine.cylinders == 1) EXPECT_GT(largest_difference, 1e-2 * testing::calcEnergyScale(m));
+  if (m.machine.cylinders == 1) EXPECT_GT(largest_difference, 1e-2 * testing::calcEnergyScale(m));
 }
 
 std::vector<CaseSpec> potentialEnergyCases() {

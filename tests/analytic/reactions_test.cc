@@ -22,17 +22,17 @@ struct Frame {
   Vec2 e, n;
 };
 Frame cylinderFrame(const Mechanism& m) {
-  const double g = m.engine.cylinder_angle;
+  const double g = m.machine.cylinder_angle;
   return {{std::cos(g), std::sin(g)}, {-std::sin(g), std::cos(g)}};
 }
 
 // Kinetic energy of the whole mechanism from the (separately tested) kinematics: pistons, rods (velocity of
 // the centre of mass and spin about it, I_G = I_o - m_k z_k^2), crank point masses.
 double calcKineticEnergy(const Mechanism& m, double phi) {
-  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed, mu = m.rod.com_from_wrist_pin / l;
+  const double r = m.crank.radius, l = m.rod.length, w = m.machine.speed, mu = m.rod.com_from_wrist_pin / l;
   const double I_G = m.rod.inertia_about_wrist_pin - m.rod.mass * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
   double T = 0.0;
-  for (double alpha : m.engine.crank_angles) {
+  for (double alpha : m.machine.crank_angles) {
     const double theta = phi + alpha;
     const PistonKinematics p = calcPistonKinematics(m, theta);
     const RodKinematics rod = calcRodKinematics(m, theta);
@@ -62,7 +62,7 @@ class ReactionsTest : public ::testing::TestWithParam<CaseSpec> {
 TEST_P(ReactionsTest, DriveTorquePowerEqualsEnergyRate) {
   for (double lambda : testing::sweepModerateLambdas()) {
     const Mechanism m = mechanismAt(lambda, 4500.0);
-    const double w = m.engine.speed, h = 1e-3;
+    const double w = m.machine.speed, h = 1e-3;
     const auto energy = [&](double phi) { return calcKineticEnergy(m, phi) + calcPotentialEnergy(m, phi); };
     const double energy_scale = testing::calcTorqueScale(m);  // >= peak kinetic energy per radian of crank
     const double tol = energy_scale * (std::pow(h, 4) * 32 / 30 * std::pow((1 - lambda) * (1 + lambda), -4.5) + 3 * kEps / h);
@@ -96,14 +96,14 @@ TEST_P(ReactionsTest, ExternalForcesBalanceMomentumRate) {
     for (double rpm : {0.0, 6000.0}) {
       const Mechanism m = mechanismAt(lambda, rpm);
       const Frame f = cylinderFrame(m);
-      const double r = m.crank.radius, w = m.engine.speed, g = m.engine.gravity, mu = m.rod.com_from_wrist_pin / m.rod.length;
+      const double r = m.crank.radius, w = m.machine.speed, g = m.machine.gravity, mu = m.rod.com_from_wrist_pin / m.rod.length;
       for (double phi_deg : testing::sweepPhisDeg()) {
         const double phi = radiansFromDegrees(phi_deg);
         const Reactions reactions = calcReactions(m, phi);
         double Fx = reactions.bearing_force[0], Fy = reactions.bearing_force[1], max_x = 0, max_y = 0;
         double total_mass = 0;
-        for (size_t j = 0; j < m.engine.crank_angles.size(); ++j) {
-          const double theta = phi + m.engine.crank_angles[j];
+        for (size_t j = 0; j < m.machine.crank_angles.size(); ++j) {
+          const double theta = phi + m.machine.crank_angles[j];
           Fx += reactions.cylinders[j].wall_force * f.n[0];
           Fy += reactions.cylinders[j].wall_force * f.n[1];
           const PistonKinematics p = calcPistonKinematics(m, theta);
@@ -138,8 +138,8 @@ TEST_P(ReactionsTest, RodMomentBalanceAboutCentreOfMass) {
     for (double phi_deg : testing::sweepPhisDeg()) {
       const double phi = radiansFromDegrees(phi_deg);
       const Reactions reactions = calcReactions(m, phi);
-      for (size_t j = 0; j < m.engine.crank_angles.size(); ++j) {
-        const double theta = phi + m.engine.crank_angles[j];
+      for (size_t j = 0; j < m.machine.crank_angles.size(); ++j) {
+        const double theta = phi + m.machine.crank_angles[j];
         const double x = calcPistonKinematics(m, theta).x_p;
         const Vec2 A{x * f.e[0], x * f.e[1]};
         const Vec2 B{r * (std::cos(theta) * f.e[0] + std::sin(theta) * f.n[0]),

@@ -154,8 +154,8 @@ TEST(ShakingHarmonics, ACentricCylindersOrdersAreTheSeriesOfItsMotion) {
       for (double offset : {0.0, 0.004}) {
         Mechanism m = testing::makeMechanism(testing::CaseSpec{1, Cycle::kFourStroke, Acting::kSingle, lambda,
                                                                gamma_deg, 6000.0});
-        m.engine.axial_positions = {0.05};
-        if (offset != 0.0) m.engine.pin_offsets = {offset};
+        m.machine.axial_positions = {0.05};
+        if (offset != 0.0) m.machine.pin_offsets = {offset};
         SCOPED_TRACE("lambda " + std::to_string(lambda) + " gamma " + std::to_string(gamma_deg) + " offset " +
                      std::to_string(offset));
         const validation::Scales sc = validation::calcScales(m);

@@ -95,7 +95,7 @@ TEST(HolzerResponse, SharedLoadOrdersGiveEachSpeedItsOwnSum) {
     SCOPED_TRACE(rpm);
     Mechanism m = scene;
     m.speed_rpm = rpm;
-    m.engine.speed = rpm * M_PI / 30.0;
+    m.machine.speed = rpm * M_PI / 30.0;
     const HolzerResponse fresh = calcHolzerResponse(m), kept = calcHolzerResponse(m, {}, shared);
     ASSERT_EQ(kept.orders, fresh.orders);
     EXPECT_EQ(kept.peak_to_peak, fresh.peak_to_peak);

@@ -75,7 +75,7 @@ TEST(ExactSteadyState, AnotherIntegratorReturnsToThePeriodicState) {
     SCOPED_TRACE(rpm);
     Mechanism m = loadWithCrankshaft("inline4_four_stroke.toml", kInline4Train);
     m.speed_rpm = rpm;
-    m.engine.speed = rpm * M_PI / 30.0;
+    m.machine.speed = rpm * M_PI / 30.0;
     const CrankTrain train = makeCrankTrain(m);
     // Both entries: at 2000 rpm its own Holzer start (1e-4), at 6000 rpm the caller's converged Holzer response.
     const ExactSteadyState e = rpm < 3000.0 ? calcExactSteadyState(m) : calcExactSteadyState(m, calcHolzerResponse(m));
@@ -132,7 +132,7 @@ TEST(ExactSteadyState, ErrorBoundCoversTheDistanceToATighterState) {
     SCOPED_TRACE(std::string(c.scene) + " at " + std::to_string(c.rpm) + " rpm");
     Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / c.scene);
     m.speed_rpm = c.rpm;
-    m.engine.speed = c.rpm * M_PI / 30.0;
+    m.machine.speed = c.rpm * M_PI / 30.0;
     SteadyStateOptions report;
     report.tolerance = 1e-8;
     report.samples = 2048;
@@ -184,7 +184,7 @@ TEST(ExactSteadyState, ConstantInertiaAndSmallLoadsGiveHolzersResponse) {
     m.rod.mass = 0.0;
     m.rod.inertia_about_wrist_pin = 0.0;
     for (double& p : m.gas->pressures) p *= a;
-    m.engine.gravity *= a;
+    m.machine.gravity *= a;
     const ExactSteadyState e = calcExactSteadyState(m);
     const HolzerResponse h = calcHolzerResponse(m);
     double worst = 0.0;

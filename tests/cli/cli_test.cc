@@ -227,7 +227,7 @@ TEST(Cli, EvalJsonForEveryExampleSceneWithBothEngines) {
     for (size_t i = 0; i < doc["results"].size(); ++i) {
       const auto& result = doc["results"][i];
       EXPECT_EQ(result["engine"], i % 2 == 0 ? "analytic" : "simbody");
-      EXPECT_EQ(result["cylinders"].size(), static_cast<size_t>(m.engine.cylinders));
+      EXPECT_EQ(result["cylinders"].size(), static_cast<size_t>(m.machine.cylinders));
       for (const char* key : {"phi_deg", "U", "Q", "drive_torque"}) EXPECT_TRUE(result[key].is_number()) << key;
       EXPECT_EQ(result["bearing_force"].size(), 2u);
       for (const auto& c : result["cylinders"]) {

@@ -132,7 +132,7 @@ void checkEveryMaximumIsWithinOnePercentOrABound(const Reports& reports) {
 void checkFourierErrorDoesNotDependOnTheGrid(const Reports& reports) {
   Mechanism m = validation::buildDefaultScenes().front();  // the base of the figures
   m.speed_rpm = 0.0;
-  m.engine.speed = 0.0;
+  m.machine.speed = 0.0;
   double dense = 0.0;
   for (int i = 0; i < 36000; ++i) {
     const double phi = 2.0 * M_PI * i / 36000.0;

@@ -169,13 +169,13 @@ TEST_P(CrossCheckTest, EveryQuantityAgrees) {
       SCOPED_TRACE(testing::caseName(GetParam()) + " at " + std::to_string(m.speed_rpm) + " rpm, phi_deg " +
                    std::to_string(phi_deg));
       const Scales sc = calcScales(m);
-      simbody.setSpeed(m.engine.speed);
+      simbody.setSpeed(m.machine.speed);
       const Evaluation a = analytic::calcEvaluation(m, phi), s = simbody.evaluate(phi);
       expectEvaluationsAgree(m, a, s);
       if (m.speed_rpm == 0.0)
         EXPECT_TRUE(agree("Q (virtual power)", a.Q, simbody.calcVirtualPowerQ(phi), sc.energy, sc.conditioning));
       for (auto& [engine, model] : others) {
-        model->setSpeed(m.engine.speed);
+        model->setSpeed(m.machine.speed);
         const Evaluation e = model->evaluate(phi);
         ASSERT_EQ(a.cylinders.size(), e.cylinders.size());
         for (const Comparison& c : validation::compareEvaluations(m, a, e)) EXPECT_TRUE(agreeEngines(c, "analytic", engine->name));
@@ -307,7 +307,7 @@ TEST(PaperAsPrinted, NortonTwoTermIsAnApproximationOfSimbodysMotion) {
     EXPECT_LE(std::fabs(norton.x_p - s.x_p), bound_x + kAgreementMultiple * kEps * sc.position);
     worst_a = std::max(worst_a, std::fabs(norton.a_p - s.a_p));
   }
-  EXPECT_GT(worst_a, 1e-3 * m.crank.radius * m.engine.speed * m.engine.speed);
+  EXPECT_GT(worst_a, 1e-3 * m.crank.radius * m.machine.speed * m.machine.speed);
 }
 
 

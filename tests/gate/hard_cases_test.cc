@@ -66,7 +66,7 @@ TEST_P(GateScalesTest, EveryQuantityAgrees) {
                m.crank.counterweight_radius * L};
     m.rod = {m.rod.length * L, m.rod.mass * M, m.rod.com_from_wrist_pin * L, m.rod.inertia_about_wrist_pin * M * L * L};
     m.piston.mass *= M;
-    m.engine.gravity = sc.gravity;
+    m.machine.gravity = sc.gravity;
     simbody_models::KCrankModel model(m);
     References references(m);
     for (double phi_deg : testing::sweepPhisDeg()) expectAgreementAt(m, references, radiansFromDegrees(phi_deg));
@@ -90,9 +90,9 @@ INSTANTIATE_TEST_SUITE_P(Gate, GateScalesTest,
 TEST(GateHardCases, ExplicitCrankAngles) {
   for (const std::vector<double>& degrees : {std::vector<double>{0.0, 100.0, 250.0}, std::vector<double>{0.0, 0.0, 180.0, 33.3}}) {
     Mechanism m = testing::makeMechanism({static_cast<int>(degrees.size()), Cycle::kTwoStroke, Acting::kSingle, 0.3, 60.0, 3000.0});
-    m.engine.crank_angles.clear();
-    for (double d : degrees) m.engine.crank_angles.push_back(radiansFromDegrees(d));
-    m.engine.explicit_crank_angles = true;
+    m.machine.crank_angles.clear();
+    for (double d : degrees) m.machine.crank_angles.push_back(radiansFromDegrees(d));
+    m.machine.explicit_crank_angles = true;
     References references(m);
     for (double phi_deg : testing::sweepPhisDeg()) expectAgreementAt(m, references, radiansFromDegrees(phi_deg));
   }

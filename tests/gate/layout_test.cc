@@ -50,7 +50,7 @@ Mechanism withGas(Mechanism m) {
   gas.pressures = {3.2e6, 5.2e6, 5.6e6, 4.8e6, 3.4e6, 2.4e6, 1.3e6, 0.8e6, 0.35e6, 0.05e6, 0.02e6, -0.02e6, 0.25e6, 1.1e6};
   m.gas = gas;
   m.firing_angles.clear();
-  for (double alpha : m.engine.crank_angles) m.firing_angles.push_back(std::fmod(4.0 * M_PI - alpha, 4.0 * M_PI));
+  for (double alpha : m.machine.crank_angles) m.firing_angles.push_back(std::fmod(4.0 * M_PI - alpha, 4.0 * M_PI));
   return m;
 }
 
@@ -63,7 +63,7 @@ TEST_P(LayoutGateTest, EveryQuantityAgrees) {
     Mechanism m = validation::makeLayoutMechanism(GetParam().layout, parts(), GetParam().rotation_deg);
     if (gas) m = withGas(m);
     m.speed_rpm = rpm;
-    m.engine.speed = rpm * (M_PI / 30.0);
+    m.machine.speed = rpm * (M_PI / 30.0);
     // every exact engine besides the analytic one: simbody, mujoco (the registry's references)
     std::vector<std::pair<const Engine*, std::unique_ptr<EngineModel>>> references;
     for (const Engine* engine : validation::listReferenceEngines()) references.emplace_back(engine, engine->build(m));
@@ -222,9 +222,9 @@ INSTANTIATE_TEST_SUITE_P(Gate, BalanceGateTest, ::testing::ValuesIn(standingLayo
 // inline answers (the V8's left bank alone against the same four cylinders described inline).
 TEST(LayoutGate, OneBankLayoutIsTheInlineEngine) {
   Mechanism inline4 = parts();
-  inline4.engine.cylinders = 4;
-  inline4.engine.explicit_crank_angles = true;
-  inline4.engine.crank_angles = {0.0, M_PI, M_PI, 0.0};
+  inline4.machine.cylinders = 4;
+  inline4.machine.explicit_crank_angles = true;
+  inline4.machine.crank_angles = {0.0, M_PI, M_PI, 0.0};
   validation::Layout one_bank{"one_bank", "", {{90.0, 90.0, 0.0}, {90.0, 270.0, 0.0}, {90.0, 270.0, 0.0}, {90.0, 90.0, 0.0}}};
   const Mechanism layout = validation::makeLayoutMechanism(one_bank, parts());
   for (double phi_deg : testing::sweepPhisDeg()) {

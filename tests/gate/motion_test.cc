@@ -38,7 +38,7 @@ class FreeRunGateTest : public ::testing::TestWithParam<MotionCase> {};
 // precision; Simbody's are refined between 360 samples per revolution (parabola and Hermite cubic, below 1e-11
 // relative here).
 void expectFreeRunAgrees(const Mechanism& m, IntegratorKind kind, double accuracy, double multiple, bool gravity) {
-  const double w0 = m.engine.speed;
+  const double w0 = m.machine.speed;
   FreeRunOptions options;
   options.integrator = kind;
   options.accuracy = accuracy;
@@ -84,7 +84,7 @@ TEST(FreeRunGate, CPodesAgreesAtItsOwnAccuracy) {
 TEST(FreeRunGate, BalanceShaftsAndPinOffsetTurnWithTheCrank) {
   Mechanism m = testing::makeMechanism({1, Cycle::kTwoStroke, Acting::kSingle, 0.3, 37.0, 300.0});
   m.flywheel_inertia = 0.01;
-  m.engine.pin_offsets = {0.004};
+  m.machine.pin_offsets = {0.004};
   m.balance_shafts = {{-1.0, 1.1, 0.03, 0.7, {0.0, 0.1, 0.0}}, {2.0, 0.2, 0.02, -0.4, {0.05, -0.08, 0.0}}};
   for (bool gravity : {true, false}) expectFreeRunAgrees(m, IntegratorKind::kRungeKuttaMerson, 1e-10, 1e3, gravity);
 }
@@ -102,7 +102,7 @@ TEST(FlywheelGate, ExactInertiaGivesTheFluctuationInSimbody) {
       // delta and the mean speed are sums over the ~1e4 intervals of the cycle's grid (Simpson's rule for the cycle
       // time): their rounding is up to ~1e4 eps relative, and the roots stop there.
       EXPECT_NEAR(s.exact.delta, C, 1e4 * testing::kEps * C);
-      EXPECT_NEAR(s.exact.omega_mean, m.engine.speed, 1e4 * testing::kEps * m.engine.speed);
+      EXPECT_NEAR(s.exact.omega_mean, m.machine.speed, 1e4 * testing::kEps * m.machine.speed);
       Mechanism with = m;
       with.flywheel_inertia = s.exact_inertia;
       simbody_models::FreeRunOptions run;
@@ -117,7 +117,7 @@ TEST(FlywheelGate, ExactInertiaGivesTheFluctuationInSimbody) {
       EXPECT_NEAR(r.delta, C, 1e-4 * C);
       // Scale: the mean speed is 2 pi / (the cycle's time); the time of the revolutions is interpolated from the
       // steps to ~1e-7 relative (same reasoning), so 1e-6 of the speed keeps a margin of 10.
-      EXPECT_NEAR(r.omega_mean, m.engine.speed, 1e-6 * m.engine.speed);
+      EXPECT_NEAR(r.omega_mean, m.machine.speed, 1e-6 * m.machine.speed);
       EXPECT_GT(std::fabs(s.norton_inertia / s.exact_inertia - 1.0), 1e-2);
       EXPECT_GT(std::fabs(s.norton.delta / C - 1.0), 1e-2);
     }
@@ -143,7 +143,7 @@ TEST(FlywheelGate, RefusesWhatItCannotSize) {
 TEST(FreeRunGate, MujocosSoftLoopsLoseEnergy) {
   Mechanism m = testing::makeMechanism({1, Cycle::kTwoStroke, Acting::kSingle, 0.3, 37.0, 300.0});
   m.flywheel_inertia = 0.01;
-  const double w0 = m.engine.speed;
+  const double w0 = m.machine.speed;
   const analytic::FreeRun a = analytic::calcFreeRun(m, w0, true);
   for (const char* name : {"mujoco-soft", "mujoco-soft-stiff"})
     for (const char* integrator : {"RK4", "Euler", "implicit"}) {
@@ -185,13 +185,13 @@ TEST(FreeRunGate, ARunPastItsStepLimitIsRefused) {
   FreeRunOptions options;
   options.max_steps_per_revolution = 50;
   try {
-    simbody_models::simulateFreeRun(single, single.engine.speed, options);
+    simbody_models::simulateFreeRun(single, single.machine.speed, options);
     ADD_FAILURE() << "a run past its step limit was not refused";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("took more than 50 steps per revolution at accuracy 1e-10"), std::string::npos)
         << e.what();
   }
-  const simbody_models::FreeRunResult r = simbody_models::simulateFreeRun(single, single.engine.speed, FreeRunOptions{});
+  const simbody_models::FreeRunResult r = simbody_models::simulateFreeRun(single, single.machine.speed, FreeRunOptions{});
   EXPECT_LT(r.steps, 2 * 20000);
   EXPECT_GT(r.steps, 2 * 50);
 }

@@ -40,7 +40,7 @@ std::string fractionTag(double f) {
 std::vector<OffsetGateCase> offsetCases() {
   std::vector<OffsetGateCase> cases;
   auto offset = [](Mechanism m, double fraction) {
-    m.engine.pin_offsets.assign(static_cast<size_t>(m.engine.cylinders), fraction * (m.rod.length - m.crank.radius));
+    m.machine.pin_offsets.assign(static_cast<size_t>(m.machine.cylinders), fraction * (m.rod.length - m.crank.radius));
     return m;
   };
   const Mechanism single = testing::makeMechanism({1, Cycle::kFourStroke, Acting::kSingle, 0.3, 90.0, 6000.0});
@@ -51,7 +51,7 @@ std::vector<OffsetGateCase> offsetCases() {
   for (double f : {-0.9, 0.9}) cases.push_back({"twin_lambda0p9_offset" + fractionTag(f), offset(lambda09, f)});
   // A V8 with offsets of alternating sign (1 mm), and a gas-driven inline four with a 1.2 mm offset each way.
   Mechanism v8 = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "v8_cross_plane.toml");
-  for (int j = 0; j < v8.engine.cylinders; ++j) v8.engine.pin_offsets.push_back(j % 2 ? -0.001 : 0.001);
+  for (int j = 0; j < v8.machine.cylinders; ++j) v8.machine.pin_offsets.push_back(j % 2 ? -0.001 : 0.001);
   cases.push_back({"v8_cross_plane_alternating_offsets", v8});
   // Balance shafts: a Lanchester pair and a primary balancer on a single cylinder, off the crank's plane and axis.
   Mechanism lanchester = single;
@@ -67,7 +67,7 @@ std::vector<OffsetGateCase> offsetCases() {
   const Mechanism gas = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
   for (double d : {-0.0012, 0.0012}) {
     Mechanism m = gas;
-    m.engine.pin_offsets.assign(4, d);
+    m.machine.pin_offsets.assign(4, d);
     cases.push_back({std::string("inline4_gas_offset") + (d < 0 ? "_minus" : "_plus") + "1p2mm", m});
   }
   return cases;
@@ -78,13 +78,13 @@ class OffsetGateTest : public ::testing::TestWithParam<OffsetGateCase> {};
 TEST_P(OffsetGateTest, EveryExactEngineAgrees) {
   for (bool at_speed : {true, false}) {
     Mechanism m = GetParam().m;
-    if (!at_speed) m.engine.speed = m.speed_rpm = 0.0;
+    if (!at_speed) m.machine.speed = m.speed_rpm = 0.0;
     std::vector<double> phis;
     for (double deg : testing::sweepPhisDeg()) phis.push_back(radiansFromDegrees(deg));
-    for (int j = 0; j < m.engine.cylinders; ++j) {  // each cylinder's dead centres, in phi
+    for (int j = 0; j < m.machine.cylinders; ++j) {  // each cylinder's dead centres, in phi
       const analytic::DeadCentres dc = analytic::calcDeadCentres(m, getPinOffset(m, j));
-      phis.push_back(dc.outer - m.engine.crank_angles[static_cast<size_t>(j)]);
-      phis.push_back(dc.inner - m.engine.crank_angles[static_cast<size_t>(j)]);
+      phis.push_back(dc.outer - m.machine.crank_angles[static_cast<size_t>(j)]);
+      phis.push_back(dc.inner - m.machine.crank_angles[static_cast<size_t>(j)]);
     }
     for (const Engine* engine : validation::listReferenceEngines()) {
       const std::unique_ptr<EngineModel> model = engine->build(m);
@@ -109,7 +109,7 @@ INSTANTIATE_TEST_SUITE_P(Gate, OffsetGateTest, ::testing::ValuesIn(offsetCases()
 TEST(BalanceShaftDesign, CancelsTheHarmonicInEveryEngine) {
   Mechanism single = testing::makeMechanism({1, Cycle::kFourStroke, Acting::kSingle, 0.3, 90.0, 6000.0});
   Mechanism inline4 = testing::makeMechanism({4, Cycle::kFourStroke, Acting::kSingle, 0.3, 90.0, 6000.0});
-  inline4.engine.pin_offsets.assign(4, -0.001);
+  inline4.machine.pin_offsets.assign(4, -0.001);
   for (auto [m, n] : {std::pair{single, 1}, std::pair{inline4, 2}}) {
     const double before = validation::calcBalance(m, n, 64)[static_cast<size_t>(n - 1)].analytic.calcForceAmplitude();
     const std::vector<BalanceShaftParams> shafts = validation::designBalanceShafts(m, n);

@@ -30,7 +30,7 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // terms of order N: geometric convergence), N doubled from 16 until two sums agree to 4 eps.
 double calcSimbodyMeanInertia(const Mechanism& throw_mechanism) {
   simbody_models::KCrankModel model(throw_mechanism);
-  const double w = throw_mechanism.engine.speed;
+  const double w = throw_mechanism.machine.speed;
   auto J = [&](double phi) { return 2.0 * model.calcKineticEnergy(phi) / (w * w); };
   int n = 16;
   double sum = 0.0;
@@ -62,7 +62,7 @@ TEST(TorsionGate, ThrowInertiaIsTheMeanOfSimbodysKineticEnergy) {
     const int throws = static_cast<int>(findThrows(m).size());
     for (int j = 0; j < throws; ++j) {
       Mechanism tm = analytic::makeThrowMechanism(m, j);
-      tm.engine.speed = 100.0;  // any speed: J = 2 T / omega^2
+      tm.machine.speed = 100.0;  // any speed: J = 2 T / omega^2
       const double simbody = m.crankshaft->throw_inertia + calcSimbodyMeanInertia(tm);
       const double exact = analytic::calcThrowInertia(m, j).exact;
       EXPECT_NEAR(simbody, exact, 16 * kEps * exact) << "throw " << j;
@@ -92,7 +92,7 @@ class TorsionSteadyGateTest : public ::testing::TestWithParam<SteadyCase> {};
 TEST_P(TorsionSteadyGateTest, SimbodyAgreesWithTheAnalyticSteadyState) {
   Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / GetParam().scene);
   m.speed_rpm = GetParam().rpm;
-  m.engine.speed = GetParam().rpm * M_PI / 30.0;
+  m.machine.speed = GetParam().rpm * M_PI / 30.0;
   const analytic::ExactSteadyState exact = analytic::calcExactSteadyState(m);
   const CrankTrainRunOptions options;  // Simbody's defaults
   const CrankTrainRun run = simbody_models::simulateCrankTrainSteadyState(m, options);
@@ -127,7 +127,7 @@ TEST_P(TorsionSteadyGateTest, SimbodyAgreesWithTheAnalyticSteadyState) {
 TEST_P(TorsionSteadyGateTest, MujocoAgreesWithTheAnalyticSteadyState) {
   Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / GetParam().scene);
   m.speed_rpm = GetParam().rpm;
-  m.engine.speed = GetParam().rpm * M_PI / 30.0;
+  m.machine.speed = GetParam().rpm * M_PI / 30.0;
   const analytic::ExactSteadyState exact = analytic::calcExactSteadyState(m);
   const Engine& mujoco = validation::findEngine("mujoco");
   ASSERT_TRUE(mujoco.simulate_crank_train);

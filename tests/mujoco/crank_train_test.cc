@@ -37,7 +37,7 @@ TEST(MujocoCrankTrain, ThrowTorqueLineIsMujocosOwnInverseDynamics) {
   KCrankMujocoModel model(tm);
   const Mechanism still = withLoads(tm, false, true, true);
   KCrankMujocoModel at_rest(still);
-  const double w = tm.engine.speed, h = 1e-4;
+  const double w = tm.machine.speed, h = 1e-4;
   double largest_torque = 0.0, largest_slope = 0.0;
   for (int k = 0; k < 72; ++k) largest_torque = std::max(largest_torque, std::fabs(model.evaluate(k * M_PI / 18).drive_torque));
   for (int k = 0; k < 72; ++k) {
@@ -76,7 +76,7 @@ TEST(MujocoCrankTrain, RefusesNamingTheRule) {
   const Mechanism four = loadExample("inline4_four_stroke.toml");
   expectRefusal(loadExample("v8_cross_plane.toml"), {}, "[crankshaft]");
   Mechanism m = four;
-  m.engine.speed = 0.0;
+  m.machine.speed = 0.0;
   expectRefusal(m, {}, "[engine].speed_rpm");
   m = four;
   CrankshaftParams short_of_one = four.crankshaft.value();

@@ -23,10 +23,10 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 Mechanism single(double lambda, double rpm, double gamma_deg = 90.0) {
   Mechanism m;
   m.name = "single";
-  m.engine.cylinders = 1;
-  m.engine.crank_angles = {0.0};
-  m.engine.cylinder_angle = radiansFromDegrees(gamma_deg);
-  m.engine.speed = rpm * M_PI / 30.0;
+  m.machine.cylinders = 1;
+  m.machine.crank_angles = {0.0};
+  m.machine.cylinder_angle = radiansFromDegrees(gamma_deg);
+  m.machine.speed = rpm * M_PI / 30.0;
   m.speed_rpm = rpm;
   m.crank = {0.05, 1.7, 0.02, 1.3, 0.04};
   m.rod.length = 0.05 / lambda;
@@ -39,7 +39,7 @@ Mechanism single(double lambda, double rpm, double gamma_deg = 90.0) {
 
 // The absolute potential MuJoCo subtracts to form U = V(phi) - V(0): every mass at up to l + r from O [J].
 double absolutePotential(const Mechanism& m) {
-  return m.engine.gravity * (m.piston.mass + m.rod.mass + m.crank.mass + m.crank.counterweight_mass) *
+  return m.machine.gravity * (m.piston.mass + m.rod.mass + m.crank.mass + m.crank.counterweight_mass) *
          (m.rod.length + m.crank.radius);
 }
 
@@ -92,7 +92,7 @@ TEST(MujocoModel, LoopClosesToRounding) {
 TEST(MujocoModel, RatesAgreeWithFiniteDifferencesOfItsOwnPositions) {
   const Mechanism m = single(0.3, 3000.0, 37.0);
   KCrankMujocoModel model(m);
-  const double h = 1e-4, w = m.engine.speed, r = m.crank.radius, size = m.rod.length + r;
+  const double h = 1e-4, w = m.machine.speed, r = m.crank.radius, size = m.rod.length + r;
   const double V = absolutePotential(m);
   for (double deg = 0.0; deg < 360.0; deg += 30.0) {
     const double phi = radiansFromDegrees(deg);
@@ -118,11 +118,11 @@ TEST(MujocoModel, RatesAgreeWithFiniteDifferencesOfItsOwnPositions) {
 TEST(MujocoModel, ClosureStartedFromItsLastMotionGivesTheSameEvaluation) {
   for (double lambda : {0.05, 0.3, 0.999}) {
     Mechanism m = single(lambda, 3000.0, 37.0);
-    m.engine.cylinders = 4;
-    m.engine.crank_angles = {0.0, M_PI, M_PI, 0.0};
-    const double w = m.engine.speed, r = m.crank.radius, L = m.rod.length + r;
+    m.machine.cylinders = 4;
+    m.machine.crank_angles = {0.0, M_PI, M_PI, 0.0};
+    const double w = m.machine.speed, r = m.crank.radius, L = m.rod.length + r;
     const double mass = 4 * (m.piston.mass + m.rod.mass + m.crank.mass + m.crank.counterweight_mass);
-    const double F = mass * (m.engine.gravity + r * w * w * (1 + lambda)), T = F * r, v = r * w * (1 + lambda);
+    const double F = mass * (m.machine.gravity + r * w * w * (1 + lambda)), T = F * r, v = r * w * (1 + lambda);
     const double closure = 1.0 / std::sqrt(1.0 - lambda * lambda), c = 16 * kEps * std::pow(closure, 3);
     KCrankMujocoModel taylor(m), cold(m);
     for (double deg : {0.0, 17.0, 90.0, 133.0, 222.5, 300.0})
@@ -154,7 +154,7 @@ TEST(MujocoModel, ClosureStartedFromItsLastMotionGivesTheSameEvaluation) {
 TEST(MujocoModel, StandingEngineIsMirrorSymmetric) {
   const Mechanism m = single(0.3, 0.0);
   KCrankMujocoModel model(m);
-  const double E = m.engine.gravity * (m.piston.mass + m.rod.mass + m.crank.mass + m.crank.counterweight_mass) * m.crank.radius;
+  const double E = m.machine.gravity * (m.piston.mass + m.rod.mass + m.crank.mass + m.crank.counterweight_mass) * m.crank.radius;
   for (double deg : {17.0, 45.0, 90.0, 133.0}) {
     const Evaluation a = model.evaluate(radiansFromDegrees(deg)), b = model.evaluate(radiansFromDegrees(-deg));
     EXPECT_NEAR(a.cylinders[0].x_p, b.cylinders[0].x_p, 8 * kEps * (m.rod.length + m.crank.radius));

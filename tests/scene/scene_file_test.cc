@@ -41,7 +41,7 @@ TEST(SceneFile, EveryExampleSceneLoads) {
     if (entry.path().extension() != ".toml") continue;
     SCOPED_TRACE(entry.path().string());
     const Mechanism m = loadSceneFile(entry.path());
-    EXPECT_EQ(static_cast<int>(m.engine.crank_angles.size()), m.engine.cylinders);
+    EXPECT_EQ(static_cast<int>(m.machine.crank_angles.size()), m.machine.cylinders);
     EXPECT_LT(calcCrankRatio(m), 1.0);
     ++count;
   }
@@ -50,14 +50,14 @@ TEST(SceneFile, EveryExampleSceneLoads) {
 
 TEST(SceneFile, GoodSceneHasDefaultsAndSiUnits) {
   const Mechanism m = parseScene(kGoodScene, "good.toml");
-  EXPECT_EQ(m.engine.cylinders, 2);
-  EXPECT_EQ(m.engine.acting, Acting::kSingle);
-  EXPECT_EQ(m.engine.gravity, 9.80665);
-  EXPECT_EQ(m.engine.cylinder_angle, M_PI_2);
-  EXPECT_DOUBLE_EQ(m.engine.speed, 100 * M_PI);
+  EXPECT_EQ(m.machine.cylinders, 2);
+  EXPECT_EQ(m.machine.acting, Acting::kSingle);
+  EXPECT_EQ(m.machine.gravity, 9.80665);
+  EXPECT_EQ(m.machine.cylinder_angle, M_PI_2);
+  EXPECT_DOUBLE_EQ(m.machine.speed, 100 * M_PI);
   EXPECT_EQ(m.crank.counterweight_mass, 0.0);
   EXPECT_FALSE(m.flywheel_inertia.has_value());
-  EXPECT_EQ(m.engine.crank_angles, (std::vector<double>{0.0, 0.0}));  // four-stroke k = 2: 4 pi / 2 = one full turn
+  EXPECT_EQ(m.machine.crank_angles, (std::vector<double>{0.0, 0.0}));  // four-stroke k = 2: 4 pi / 2 = one full turn
 }
 
 TEST(PhaseAngles, FollowEquations8To11) {
@@ -172,7 +172,7 @@ TEST(SceneFormatVersion, VersionOneNameAndDescriptionAreAccepted) {
                "format_version = 1\nname = \"Twin\"\ndescription = \"\"\"Two cylinders,\nstanding.\"\"\"\n[engine]");
   const Mechanism m = parseScene(text, "scenes/twin.toml");
   EXPECT_EQ(m.name, "twin") << "a scene is named by its file's stem; `name` is for people";
-  EXPECT_EQ(m.engine.cylinders, 2);
+  EXPECT_EQ(m.machine.cylinders, 2);
   EXPECT_EQ(kSceneFormatVersion, 1);
 }
 
@@ -221,11 +221,11 @@ axial_position = 0.02
 // theta_j = phi + beta_j - gamma_j: alpha_j = throw - bank, exact in degrees; each cylinder in its own bank.
 TEST(SceneLayout, CylinderTablesGiveBanksThrowsAndAxialPositions) {
   const Mechanism m = parseScene(kLayoutScene, "v2.toml");
-  ASSERT_EQ(m.engine.cylinders, 2);
-  EXPECT_EQ(m.engine.bank_angles, (std::vector<double>{radiansFromDegrees(135), radiansFromDegrees(45)}));
-  EXPECT_EQ(m.engine.crank_angles, (std::vector<double>{radiansFromDegrees(-45), radiansFromDegrees(45)}));
-  EXPECT_EQ(m.engine.axial_positions, (std::vector<double>{0.0, 0.02}));
-  EXPECT_EQ(m.engine.cylinder_angle, radiansFromDegrees(135));
+  ASSERT_EQ(m.machine.cylinders, 2);
+  EXPECT_EQ(m.machine.bank_angles, (std::vector<double>{radiansFromDegrees(135), radiansFromDegrees(45)}));
+  EXPECT_EQ(m.machine.crank_angles, (std::vector<double>{radiansFromDegrees(-45), radiansFromDegrees(45)}));
+  EXPECT_EQ(m.machine.axial_positions, (std::vector<double>{0.0, 0.02}));
+  EXPECT_EQ(m.machine.cylinder_angle, radiansFromDegrees(135));
   EXPECT_FALSE(isSingleBank(m));
   EXPECT_TRUE(hasAxialPositions(m));
   EXPECT_EQ(getThrowAngle(m, 1), radiansFromDegrees(45) + radiansFromDegrees(45));
@@ -236,7 +236,7 @@ TEST(SceneLayout, PinOffsetsPerEngineAndPerCylinder) {
   std::string text = kGoodScene;
   text.replace(text.find("cylinders = 2"), 13, "cylinders = 2\npin_offset = -0.0012");
   const Mechanism m = parseScene(text, "inline2.toml");
-  EXPECT_EQ(m.engine.pin_offsets, (std::vector<double>{-0.0012, -0.0012}));
+  EXPECT_EQ(m.machine.pin_offsets, (std::vector<double>{-0.0012, -0.0012}));
   EXPECT_TRUE(hasPinOffsets(m));
   std::string layout = kLayoutScene;
   layout.replace(layout.find("axial_position = 0.02"), 21, "axial_position = 0.02\npin_offset = 0.0008");
@@ -244,14 +244,14 @@ TEST(SceneLayout, PinOffsetsPerEngineAndPerCylinder) {
   EXPECT_EQ(getPinOffset(v, 0), 0.0);
   EXPECT_EQ(getPinOffset(v, 1), 0.0008);
   EXPECT_FALSE(hasPinOffsets(parseScene(kLayoutScene, "v2.toml")));
-  EXPECT_TRUE(parseScene(kLayoutScene, "v2.toml").engine.pin_offsets.empty());
+  EXPECT_TRUE(parseScene(kLayoutScene, "v2.toml").machine.pin_offsets.empty());
 }
 
 TEST(SceneLayout, InlineSpacingPlacesCylindersAlongTheShaft) {
   std::string text = kGoodScene;
   text.replace(text.find("cylinders = 2"), 13, "cylinders = 2\ncylinder_spacing = 0.09");
   const Mechanism m = parseScene(text, "inline2.toml");
-  EXPECT_EQ(m.engine.axial_positions, (std::vector<double>{0.0, 0.09}));
+  EXPECT_EQ(m.machine.axial_positions, (std::vector<double>{0.0, 0.09}));
   EXPECT_TRUE(isSingleBank(m));
   EXPECT_FALSE(hasAxialPositions(parseScene(kGoodScene, "inline2.toml")));
 }
@@ -355,31 +355,31 @@ TEST(SceneCrankshaft, TableIsReadWithItsDefaults) {
 // (the example V8); a flat-plane V8 (pins 0, 180, 180, 0) has four; a radial star one.
 TEST(SceneCrankshaft, ThrowsAreTheCrankPinsAlongTheShaft) {
   Mechanism m = parseScene(kGoodScene, "inline2.toml");
-  m.engine.cylinders = 4;
-  m.engine.crank_angles = {0.0, M_PI, M_PI, 0.0};
+  m.machine.cylinders = 4;
+  m.machine.crank_angles = {0.0, M_PI, M_PI, 0.0};
   EXPECT_EQ(findThrows(m), (std::vector<std::vector<int>>{{0}, {1}, {2}, {3}}));
-  m.engine.axial_positions = {0.0, -0.1, -0.2, -0.3};  // a negative spacing: the front is cylinder 3
+  m.machine.axial_positions = {0.0, -0.1, -0.2, -0.3};  // a negative spacing: the front is cylinder 3
   EXPECT_EQ(findThrows(m), (std::vector<std::vector<int>>{{3}, {2}, {1}, {0}}));
   const Mechanism example = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "v8_cross_plane.toml");
   EXPECT_EQ(findThrows(example), (std::vector<std::vector<int>>{{0, 4}, {1, 5}, {2, 6}, {3, 7}}));
   Mechanism v8 = m;
-  v8.engine.cylinders = 8;
-  v8.engine.bank_angles.clear();
-  v8.engine.crank_angles.clear();
-  v8.engine.axial_positions.clear();
+  v8.machine.cylinders = 8;
+  v8.machine.bank_angles.clear();
+  v8.machine.crank_angles.clear();
+  v8.machine.axial_positions.clear();
   for (double pin_deg : {0.0, 180.0, 180.0, 0.0})
     for (double bank_deg : {135.0, 45.0}) {
-      v8.engine.bank_angles.push_back(radiansFromDegrees(bank_deg));
-      v8.engine.crank_angles.push_back(radiansFromDegrees(pin_deg - bank_deg));
+      v8.machine.bank_angles.push_back(radiansFromDegrees(bank_deg));
+      v8.machine.crank_angles.push_back(radiansFromDegrees(pin_deg - bank_deg));
     }
   EXPECT_EQ(findThrows(v8), (std::vector<std::vector<int>>{{0, 1}, {2, 3}, {4, 5}, {6, 7}}));
   Mechanism radial = v8;
-  radial.engine.cylinders = 5;
-  radial.engine.bank_angles.clear();
-  radial.engine.crank_angles.clear();
+  radial.machine.cylinders = 5;
+  radial.machine.bank_angles.clear();
+  radial.machine.crank_angles.clear();
   for (int j = 0; j < 5; ++j) {
-    radial.engine.bank_angles.push_back(radiansFromDegrees(72.0 * j));
-    radial.engine.crank_angles.push_back(radiansFromDegrees(-72.0 * j));
+    radial.machine.bank_angles.push_back(radiansFromDegrees(72.0 * j));
+    radial.machine.crank_angles.push_back(radiansFromDegrees(-72.0 * j));
   }
   EXPECT_EQ(findThrows(radial), (std::vector<std::vector<int>>{{0, 1, 2, 3, 4}}));
 }
@@ -619,11 +619,11 @@ TEST(SceneLimits, BuiltMechanismsObeyTheSameLimits) {
   };
   Mechanism fast = good;
   fast.speed_rpm = 0;  // not set by whoever built it: the limit is checked on omega
-  fast.engine.speed = 2e6 * (M_PI / 30.0);
+  fast.machine.speed = 2e6 * (M_PI / 30.0);
   EXPECT_EQ(message(fast).rfind("built: [engine].speed_rpm: must be at most 1e6 rpm (got ", 0), 0u)
       << message(fast);
   Mechanism turned = good;
-  turned.engine.cylinder_angle = radiansFromDegrees(-2e6);
+  turned.machine.cylinder_angle = radiansFromDegrees(-2e6);
   EXPECT_EQ(message(turned).rfind("built: [engine].cylinder_angle_deg: magnitude must be at most 1e6 deg (got ", 0), 0u)
       << message(turned);
   Mechanism heavy = good;
@@ -634,7 +634,7 @@ TEST(SceneLimits, BuiltMechanismsObeyTheSameLimits) {
   EXPECT_EQ(message(tiny),
             "built: [crank].mass: must be 0 or at least 1e-9 kg (a microgram) (got 1e-12)");
   Mechanism nan_angle = good;
-  nan_angle.engine.crank_angles[1] = std::nan("");
+  nan_angle.machine.crank_angles[1] = std::nan("");
   EXPECT_EQ(message(nan_angle), "built: [engine].crank_angles_deg[1]: must be finite (got nan)");
 }
 

@@ -26,20 +26,20 @@ void expectSameAngle(double a, double b, const std::string& what) {
 }
 
 void expectSameMechanism(const Mechanism& a, const Mechanism& b) {
-  const int k = a.engine.cylinders;
-  ASSERT_EQ(b.engine.cylinders, k);
-  EXPECT_EQ(a.engine.cycle, b.engine.cycle);
-  EXPECT_EQ(a.engine.acting, b.engine.acting);
+  const int k = a.machine.cylinders;
+  ASSERT_EQ(b.machine.cylinders, k);
+  EXPECT_EQ(a.machine.cycle, b.machine.cycle);
+  EXPECT_EQ(a.machine.acting, b.machine.acting);
   for (int j = 0; j < k; ++j) {
     expectSameAngle(getBankAngle(a, j), getBankAngle(b, j), "bank " + std::to_string(j));
     expectSameAngle(getThrowAngle(a, j), getThrowAngle(b, j), "throw " + std::to_string(j));
-    expectSameAngle(a.engine.crank_angles[j], b.engine.crank_angles[j], "alpha " + std::to_string(j));
+    expectSameAngle(a.machine.crank_angles[j], b.machine.crank_angles[j], "alpha " + std::to_string(j));
     EXPECT_EQ(getAxialPosition(a, j), getAxialPosition(b, j));
     EXPECT_EQ(getPinOffset(a, j), getPinOffset(b, j));
   }
   EXPECT_EQ(hasAxialPositions(a), hasAxialPositions(b));
-  EXPECT_EQ(a.engine.speed, b.engine.speed);
-  EXPECT_EQ(a.engine.gravity, b.engine.gravity);
+  EXPECT_EQ(a.machine.speed, b.machine.speed);
+  EXPECT_EQ(a.machine.gravity, b.machine.gravity);
   EXPECT_EQ(a.crank.radius, b.crank.radius);
   EXPECT_EQ(a.crank.mass, b.crank.mass);
   EXPECT_EQ(a.crank.com_radius, b.crank.com_radius);
@@ -97,7 +97,7 @@ TEST(SceneWriterTest, BuiltInScenesAndLayoutsReadBackAsThemselves) {
     }
   // Pin offsets: one for every cylinder of an inline engine ([engine].pin_offset), one per cylinder of a layout.
   Mechanism inline_offset = parts;
-  inline_offset.engine.pin_offsets.assign(static_cast<size_t>(parts.engine.cylinders), -0.0013);
+  inline_offset.machine.pin_offsets.assign(static_cast<size_t>(parts.machine.cylinders), -0.0013);
   expectSameMechanism(inline_offset, parseScene(formatSceneToml(inline_offset), "written"));
   EXPECT_NE(formatSceneToml(inline_offset).find("[engine]"), std::string::npos);
   Mechanism shafts = inline_offset;  // and balance shafts
@@ -114,7 +114,7 @@ TEST(SceneWriterTest, BuiltInScenesAndLayoutsReadBackAsThemselves) {
     expectSameAngle(read.balance_shafts[i].phase, shafts.balance_shafts[i].phase, "shaft phase");
   }
   Mechanism mixed = validation::makeLayoutMechanism(validation::getBalanceLayouts().back(), parts);
-  for (int j = 0; j < mixed.engine.cylinders; ++j) mixed.engine.pin_offsets.push_back(0.0004 * (j - 1));
+  for (int j = 0; j < mixed.machine.cylinders; ++j) mixed.machine.pin_offsets.push_back(0.0004 * (j - 1));
   expectSameMechanism(mixed, parseScene(formatSceneToml(mixed), "written"));
 }
 
@@ -123,7 +123,7 @@ TEST(SceneWriterTest, BuiltInScenesAndLayoutsReadBackAsThemselves) {
 TEST(SceneWriterTest, CrankshaftReadsBackAsItself) {
   Mechanism parts = validation::buildDefaultScenes().front();
   parts.speed_rpm = 3000.0;
-  parts.engine.speed = 3000.0 * (M_PI / 30.0);
+  parts.machine.speed = 3000.0 * (M_PI / 30.0);
   std::vector<Mechanism> scenes = {parts};
   for (const validation::Layout& layout : validation::getBalanceLayouts())
     scenes.push_back(validation::makeLayoutMechanism(layout, parts));

@@ -89,13 +89,13 @@ void PrintTo(const Case& c, std::ostream* os) { *os << caseName(c); }  // stable
 Mechanism makeMechanism(const Case& c) {
   Mechanism m;
   m.name = "test";
-  m.engine.cylinders = c.k;
-  m.engine.cycle = c.cycle;
-  m.engine.acting = Acting::kSingle;
-  m.engine.crank_angles = calcPhaseAngles(c.k, c.cycle, Acting::kSingle);
-  m.engine.cylinder_angle = radiansFromDegrees(c.gamma_deg);
-  m.engine.speed = c.omega;
-  m.engine.gravity = 9.80665;
+  m.machine.cylinders = c.k;
+  m.machine.cycle = c.cycle;
+  m.machine.acting = Acting::kSingle;
+  m.machine.crank_angles = calcPhaseAngles(c.k, c.cycle, Acting::kSingle);
+  m.machine.cylinder_angle = radiansFromDegrees(c.gamma_deg);
+  m.machine.speed = c.omega;
+  m.machine.gravity = 9.80665;
   m.crank.radius = 0.05;
   m.crank.mass = 1.3;
   m.crank.com_radius = 0.021;
@@ -126,13 +126,13 @@ struct Scales {
 
 Scales scalesOf(const Mechanism& m) {
   Scales s{};
-  s.m_total = m.engine.cylinders *
+  s.m_total = m.machine.cylinders *
               (m.piston.mass + m.rod.mass + m.crank.mass + m.crank.counterweight_mass);
   s.r = m.crank.radius;
   s.l = m.rod.length;
   s.lambda = s.r / s.l;
-  s.omega = m.engine.speed;
-  s.g = m.engine.gravity;
+  s.omega = m.machine.speed;
+  s.g = m.machine.gravity;
   s.torque_gravity = s.m_total * s.g * s.r;
   s.force = s.m_total * (s.g + s.r * s.omega * s.omega * (1.0 + s.lambda));
   s.torque = s.force * s.r;
@@ -283,9 +283,9 @@ TEST_P(KCrankModelTest, DeadCentres) {
   const double x_tolerance = 16 * kEps * (l + r);
   const double v_scale = std::max(r * scales_.omega, kEps);  // omega = 0: v_p must be exactly 0 anyway
   const double v_tolerance = 64 * kEps * v_scale;
-  for (int j = 0; j < mechanism_.engine.cylinders; ++j) {
+  for (int j = 0; j < mechanism_.machine.cylinders; ++j) {
     SCOPED_TRACE("cylinder " + std::to_string(j));
-    const double alpha = mechanism_.engine.crank_angles[j];
+    const double alpha = mechanism_.machine.crank_angles[j];
     const Evaluation outer = model_.evaluate(-alpha);
     EXPECT_WITHIN("x_p outer dead centre", outer.cylinders[j].x_p, r + l, x_tolerance, l + r);
     EXPECT_WITHIN("v_p outer dead centre", outer.cylinders[j].v_p, 0.0, v_tolerance, v_scale);
@@ -306,12 +306,12 @@ TEST_P(KCrankModelTest, DeadCentres) {
 // Allowed: 16 (k + 2) eps F for forces and 16 (k + 2) eps F r for moments (arms are <= r, l; l/r ~ 3.4 absorbed
 // in the 16). Seen: at most 1 eps F, resp. 1 eps F r.
 TEST_P(KCrankModelTest, NewtonEulerBalanceOfEveryBody) {
-  const int k = mechanism_.engine.cylinders;
+  const int k = mechanism_.machine.cylinders;
   const double F = scales_.force;
   const double T = scales_.torque;
   const double force_tolerance = 16 * (k + 2) * kEps * F;
   const double moment_tolerance = 16 * (k + 2) * kEps * T;
-  const double gamma = mechanism_.engine.cylinder_angle;
+  const double gamma = mechanism_.machine.cylinder_angle;
   const Vec2 n{-std::sin(gamma), std::cos(gamma)};
   const Vec2 gravity{0.0, -scales_.g};
   for (double phi : kAngles) {
@@ -360,15 +360,15 @@ TEST_P(KCrankModelTest, AssembledGeometry) {
   const double r = scales_.r;
   const double l = scales_.l;
   const double tolerance = 16 * kEps * (l + r);
-  const double gamma = mechanism_.engine.cylinder_angle;
+  const double gamma = mechanism_.machine.cylinder_angle;
   const Vec2 e{std::cos(gamma), std::sin(gamma)};
   for (double phi : kAngles) {
     SCOPED_TRACE("phi = " + std::to_string(phi));
     const Diagnostics d = model_.calcDiagnostics(phi);
     EXPECT_LE(d.position_constraint_error, tolerance);
-    for (int j = 0; j < mechanism_.engine.cylinders; ++j) {
+    for (int j = 0; j < mechanism_.machine.cylinders; ++j) {
       const CylinderDiagnostics& cd = d.cylinders[j];
-      const double angle = gamma + phi + mechanism_.engine.crank_angles[j];
+      const double angle = gamma + phi + mechanism_.machine.crank_angles[j];
       for (int i = 0; i < 2; ++i) {
         EXPECT_WITHIN("big end on crank pin", cd.rod_big_end[i], cd.crank_pin[i], tolerance, l + r);
         EXPECT_WITHIN("wrist pin on axis", cd.wrist_pin[i], d.evaluation.cylinders[j].x_p * e[i], tolerance, l + r);
@@ -405,7 +405,7 @@ TEST_P(KCrankModelTest, EnergyBalance) {
 // T_g against the virtual-power route (as HoldingTorqueEqualsVirtualPower), exact zeros for the rest state.
 TEST_P(KCrankModelTest, StaticLimitDriveTorqueIsQ) {
   Mechanism still = mechanism_;
-  still.engine.speed = 0.0;
+  still.machine.speed = 0.0;
   KCrankModel model(still);
   for (double phi : kAngles) {
     SCOPED_TRACE("phi = " + std::to_string(phi));
@@ -429,13 +429,13 @@ TEST_P(KCrankModelTest, StaticLimitDriveTorqueIsQ) {
 // moment from it. Allowed: 16 eps F (one reaction, a few terms bounded by F; seen 0.3 eps F) and 16 eps F r.
 TEST_P(KCrankModelTest, WallForceIsNormalToTheCylinder) {
   const double F = scales_.force;
-  const double gamma = mechanism_.engine.cylinder_angle;
+  const double gamma = mechanism_.machine.cylinder_angle;
   const Vec2 e{std::cos(gamma), std::sin(gamma)};
   const Vec2 n{-std::sin(gamma), std::cos(gamma)};
   for (double phi : kAngles) {
     SCOPED_TRACE("phi = " + std::to_string(phi));
     const Diagnostics d = model_.calcDiagnostics(phi);
-    for (int j = 0; j < mechanism_.engine.cylinders; ++j) {
+    for (int j = 0; j < mechanism_.machine.cylinders; ++j) {
       const CylinderDiagnostics& cd = d.cylinders[j];
       EXPECT_WITHIN("wall force e-component", dot(cd.slider_reaction, e), 0.0, 16 * kEps * F, F);
       EXPECT_WITHIN("wall force n-component", dot(cd.slider_reaction, n), d.evaluation.cylinders[j].wall_force,
@@ -517,7 +517,7 @@ void expectLoopsNewtonIsSimbodysProjection(const Mechanism& m) {
   simbody_options.simbody_projections = true;
   KCrankModel newton(m), simbody(m, simbody_options);
   const double F = s.force, L = s.l + s.r, v = s.r * std::abs(s.omega) * (1.0 + s.lambda);
-  const double equations = 2.0 * m.engine.cylinders + static_cast<double>(m.balance_shafts.size());
+  const double equations = 2.0 * m.machine.cylinders + static_cast<double>(m.balance_shafts.size());
   const double v_tolerance =
       16 * kEps * v + 0.1 * simbody_options.projection_tolerance * std::max(1.0, L) * std::sqrt(equations);
   for (double phi : kAngles)
@@ -590,7 +590,7 @@ TEST(KCrankModelHandChecks, PotentialEnergyBetweenDeadCentres) {
     const Mechanism m = makeMechanism({1, Cycle::kFourStroke, gamma_deg, 0.0});
     const Scales s = scalesOf(m);
     KCrankModel model(m);
-    const double expected = -2.0 * m.engine.gravity * std::sin(m.engine.cylinder_angle) *
+    const double expected = -2.0 * m.machine.gravity * std::sin(m.machine.cylinder_angle) *
                             (m.crank.radius * (m.piston.mass + m.rod.mass) + m.crank.com_radius * m.crank.mass -
                              m.crank.counterweight_radius * m.crank.counterweight_mass);
     EXPECT_WITHIN("U(pi) single cylinder", model.calcPotentialEnergy(kPi), expected, 16 * kEps * s.energy, s.energy);
@@ -607,7 +607,7 @@ TEST(KCrankModelHandChecks, StandingStaticDeadCentreCarriesTheWeight) {
   const Scales s = scalesOf(m);
   KCrankModel model(m);
   const Evaluation ev = model.evaluate(0.0);
-  const double g = m.engine.gravity;
+  const double g = m.machine.gravity;
   const double tolerance = 16 * kEps * s.force;
   const CylinderEvaluation& c = ev.cylinders[0];
   EXPECT_WITHIN("wrist pin carries the piston", c.wrist_pin_force[1], m.piston.mass * g, tolerance, s.force);
@@ -627,7 +627,7 @@ TEST(KCrankModelHandChecks, PistonAccelerationAtOuterDeadCentre) {
     const Mechanism m = makeMechanism({1, Cycle::kFourStroke, gamma_deg, 600.0});
     KCrankModel model(m);
     const double r = m.crank.radius;
-    const double w = m.engine.speed;
+    const double w = m.machine.speed;
     const double lambda = r / m.rod.length;
     const Evaluation ev = model.evaluate(0.0);
     EXPECT_WITHIN("a_p at outer dead centre", ev.cylinders[0].a_p, -r * w * w * (1 + lambda),
@@ -647,7 +647,7 @@ TEST_P(SceneFileTest, QRoutesAndCrankshaftBalance) {
   const Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / (GetParam() + ".toml"));
   const Scales s = scalesOf(m);
   KCrankModel model(m);
-  const int k = m.engine.cylinders;
+  const int k = m.machine.cylinders;
   const double h = 2e-5;
   const double energy_gravity = s.m_total * s.g * (s.l + 2 * s.r);
   for (double phi : kAngles) {
@@ -722,7 +722,7 @@ TEST(KCrankModelErrors, RejectsInvalidInput) {
   Mechanism m = makeMechanism({2, Cycle::kFourStroke, 90.0, 0.0});
   {
     Mechanism bad = m;
-    bad.engine.crank_angles.pop_back();
+    bad.machine.crank_angles.pop_back();
     EXPECT_THROW(KCrankModel{bad}, std::invalid_argument);
   }
   {

@@ -26,14 +26,14 @@ const std::vector<double>& sweepPhisDeg() {
 Mechanism makeMechanism(const CaseSpec& spec) {
   Mechanism m;
   m.name = caseName(spec);
-  m.engine.cylinders = spec.cylinders;
-  m.engine.cycle = spec.cycle;
-  m.engine.acting = spec.acting;
-  m.engine.crank_angles = calcPhaseAngles(spec.cylinders, spec.cycle, spec.acting);
-  m.engine.cylinder_angle = radiansFromDegrees(spec.gamma_deg);
+  m.machine.cylinders = spec.cylinders;
+  m.machine.cycle = spec.cycle;
+  m.machine.acting = spec.acting;
+  m.machine.crank_angles = calcPhaseAngles(spec.cylinders, spec.cycle, spec.acting);
+  m.machine.cylinder_angle = radiansFromDegrees(spec.gamma_deg);
   m.speed_rpm = spec.rpm;
-  m.engine.speed = spec.rpm * (M_PI / 30.0);
-  m.engine.gravity = 9.80665;
+  m.machine.speed = spec.rpm * (M_PI / 30.0);
+  m.machine.gravity = 9.80665;
   m.crank.radius = 0.05;
   m.crank.mass = 1.7;
   m.crank.com_radius = 0.4 * m.crank.radius;

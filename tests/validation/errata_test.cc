@@ -131,10 +131,10 @@ TEST(GravitySignificanceTest, MaximaMatchADenseGridOfEq13) {
     const Cycle cycle = cycle_name == "two-stroke" ? Cycle::kTwoStroke : Cycle::kFourStroke;
     if (!((cycle == Cycle::kTwoStroke && (k == 1 || k == 4 || k == 7 || k == 12)) || (cycle == Cycle::kFourStroke && k == 8))) continue;
     Mechanism m = base;
-    m.engine.cylinders = k;
-    m.engine.cycle = cycle;
-    m.engine.crank_angles = calcPhaseAngles(k, cycle, Acting::kSingle);
-    m.engine.cylinder_angle = M_PI / 2.0;
+    m.machine.cylinders = k;
+    m.machine.cycle = cycle;
+    m.machine.crank_angles = calcPhaseAngles(k, cycle, Acting::kSingle);
+    m.machine.cylinder_angle = M_PI / 2.0;
     double dense = 0.0;
     for (int i = 0; i < 36000; ++i) dense = std::max(dense, std::fabs(analytic::calcGravityTorque(m, 2.0 * M_PI * i / 36000.0)));
     const double reported = std::get<double>(t.cell(row, max_column));

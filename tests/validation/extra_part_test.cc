@@ -43,7 +43,7 @@ class ExtraPart final : public Part {
   std::vector<Task> tasks(const PartContext& context) const override {
     return {{"extra", false, [scenes = context.scenes] {
                std::vector<ExtraRow> rows;
-               for (const Mechanism& m : scenes) rows.push_back({m.name, calcCrankRatio(m), m.engine.cylinders});
+               for (const Mechanism& m : scenes) rows.push_back({m.name, calcCrankRatio(m), m.machine.cylinders});
                return kExtraTable.tableSet(std::move(rows));
              }}};
   }

@@ -14,7 +14,7 @@
 
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/scene_file.h"
-#include "crankcheck/validation/engine_loads.h"
+#include "crankcheck/validation/example_gas.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/parts.h"
@@ -42,7 +42,7 @@ Mechanism makeOffsetEngine(const Mechanism& base, double f) {
   Mechanism m = withSpeed(withGasAtDeadCentres(withGamma(withCylinders(base, 1, Cycle::kFourStroke), 90.0),
                                                makeExampleGas(Cycle::kFourStroke, 2.0 * base.crank.radius)),
                           6000.0);
-  m.engine.pin_offsets = {f * m.crank.radius};
+  m.machine.pin_offsets = {f * m.crank.radius};
   return m;
 }
 

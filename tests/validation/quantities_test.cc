@@ -221,7 +221,7 @@ TEST(QuantityCatalogue, JsonOfTheV6IsTheFieldsByName) {
 TEST(QuantityCatalogue, UndefinedComponentsAndQuantities) {
   Mechanism m = parseScene(kV6, "v6");
   m.gas.reset();
-  m.engine.axial_positions.clear();  // no placement along the shaft (hasAxialPositions)
+  m.machine.axial_positions.clear();  // no placement along the shaft (hasAxialPositions)
   m.firing_angles.clear();
   ASSERT_FALSE(hasAxialPositions(m));
   const Evaluation ev = validation::getClosedFormEngine().build(m)->evaluate(0.3);

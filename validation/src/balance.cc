@@ -86,14 +86,14 @@ analytic::ShakingHarmonic withExactZeros(analytic::ShakingHarmonic h, const anal
 std::vector<BalanceShaftParams> designBalanceShafts(const Mechanism& m, int n) {
   if (n < 1) throw std::invalid_argument("--design: the harmonic must be >= 1");
   Mechanism unit = m;
-  if (!(unit.engine.speed > 0.0)) unit.engine.speed = 1.0;
-  const double w = unit.engine.speed, r = m.crank.radius;
+  if (!(unit.machine.speed > 0.0)) unit.machine.speed = 1.0;
+  const double w = unit.machine.speed, r = m.crank.radius;
   const analytic::ShakingHarmonic h = analytic::calcShakingHarmonics(unit, n).back();
   const std::complex<double> c(h.force_cos[0], h.force_cos[1]), s(h.force_sin[0], h.force_sin[1]);
   const std::complex<double> forward = 0.5 * (c - std::complex<double>(0.0, 1.0) * s);
   const std::complex<double> backward = 0.5 * (c + std::complex<double>(0.0, 1.0) * s);
   double z = 0.0;
-  for (int j = 0; j < m.engine.cylinders; ++j) z += getAxialPosition(m, j) / m.engine.cylinders;
+  for (int j = 0; j < m.machine.cylinders; ++j) z += getAxialPosition(m, j) / m.machine.cylinders;
   const double floor = kAgreementMultiple * kEps * calcForceScale(unit);
   std::vector<BalanceShaftParams> shafts;
   for (const auto& [part, ratio, x] : {std::tuple{forward, static_cast<double>(n), r}, std::tuple{backward, -static_cast<double>(n), -r}}) {

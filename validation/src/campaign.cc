@@ -49,12 +49,12 @@ namespace {
 Mechanism makeScene(const std::string& name, int k, Cycle cycle, double gamma_deg, double rpm) {
   Mechanism m;
   m.name = name;
-  m.engine.cylinders = k;
-  m.engine.cycle = cycle;
-  m.engine.crank_angles = calcPhaseAngles(k, cycle, Acting::kSingle);
-  m.engine.cylinder_angle = radiansFromDegrees(gamma_deg);
+  m.machine.cylinders = k;
+  m.machine.cycle = cycle;
+  m.machine.crank_angles = calcPhaseAngles(k, cycle, Acting::kSingle);
+  m.machine.cylinder_angle = radiansFromDegrees(gamma_deg);
   m.speed_rpm = rpm;
-  m.engine.speed = rpm * (M_PI / 30.0);
+  m.machine.speed = rpm * (M_PI / 30.0);
   // A passenger-car cylinder (the example scene scenes/single_cylinder.toml).
   m.crank = {0.043, 1.2, 0.02, 0.8, 0.035};
   m.rod = {0.145, 0.55, 0.105, 0.0072};
@@ -125,11 +125,11 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
   // The paper's figures are about one bank of cylinders: a layout's base scene gives them its parts as
   // a standing inline engine of the same k and cycle, and the report says so.
   const Mechanism& first = scenes.front();
-  Mechanism base = isSingleBank(first) ? first : withGamma(withCylinders(first, first.engine.cylinders, first.engine.cycle), 90.0);
+  Mechanism base = isSingleBank(first) ? first : withGamma(withCylinders(first, first.machine.cylinders, first.machine.cycle), 90.0);
   // The paper's figures are about centric cylinders: an offset base scene gives them its parts centric (the offset part
   // and the cross-checks show the offset engine itself).
   const bool offset_base = hasPinOffsets(base) || !base.balance_shafts.empty();
-  base.engine.pin_offsets.clear();
+  base.machine.pin_offsets.clear();
   base.balance_shafts.clear();
 
   std::vector<Task> tasks;

@@ -57,11 +57,11 @@ std::vector<CrossCheckRow> crossCheckCases(const std::string& family, const std:
       for (size_t s = 0; s < c.at_speed.size(); ++s) {
         const Mechanism& case_m = c.at_speed[s];
         const double rpm = case_m.speed_rpm;
-        c.closed_form->setSpeed(case_m.engine.speed);
+        c.closed_form->setSpeed(case_m.machine.speed);
         const Evaluation a = c.closed_form->evaluate(phi);
         for (size_t e = 0; e < c.others.size(); ++e) {
           auto& [engine, other] = c.others[e];
-          other->setSpeed(case_m.engine.speed);
+          other->setSpeed(case_m.machine.speed);
           const std::vector<Comparison> comparisons = compareEvaluations(case_m, c.scales[s], a, other->evaluate(phi));
           for (size_t i = 0; i < comparisons.size(); ++i)
             c.worst[e].note(i, comparisons[i], phi_deg, rpm);

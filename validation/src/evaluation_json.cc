@@ -34,17 +34,17 @@ nlohmann::ordered_json sceneToJson(const Mechanism& m) {
   nlohmann::ordered_json j;
   j["name"] = m.name;
   j["engine"] = {
-      {"cylinders", m.engine.cylinders},
-      {"cycle", toString(m.engine.cycle)},
-      {"acting", toString(m.engine.acting)},
-      {"crank_angles", m.engine.crank_angles},
-      {"explicit_crank_angles", m.engine.explicit_crank_angles},
-      {"cylinder_angle", m.engine.cylinder_angle},
-      {"bank_angles", m.engine.bank_angles},
-      {"axial_positions", m.engine.axial_positions},
-      {"pin_offsets", m.engine.pin_offsets},
-      {"speed", m.engine.speed},
-      {"gravity", m.engine.gravity},
+      {"cylinders", m.machine.cylinders},
+      {"cycle", toString(m.machine.cycle)},
+      {"acting", toString(m.machine.acting)},
+      {"crank_angles", m.machine.crank_angles},
+      {"explicit_crank_angles", m.machine.explicit_crank_angles},
+      {"cylinder_angle", m.machine.cylinder_angle},
+      {"bank_angles", m.machine.bank_angles},
+      {"axial_positions", m.machine.axial_positions},
+      {"pin_offsets", m.machine.pin_offsets},
+      {"speed", m.machine.speed},
+      {"gravity", m.machine.gravity},
   };
   j["crank"] = {{"radius", m.crank.radius},
                 {"mass", m.crank.mass},
@@ -65,9 +65,9 @@ nlohmann::ordered_json sceneToJson(const Mechanism& m) {
   // Each cylinder's dead centres (theta: its own crank angle; phi: cylinder 0's, in [0, 360)) and stroke: with a pin
   // offset they move off theta = 0 and 180 degrees and the stroke exceeds 2 r.
   j["dead_centres"] = nlohmann::ordered_json::array();
-  for (int c = 0; c < m.engine.cylinders; ++c) {
+  for (int c = 0; c < m.machine.cylinders; ++c) {
     const analytic::DeadCentres d = analytic::calcDeadCentres(m, getPinOffset(m, c));
-    const double alpha = m.engine.crank_angles[static_cast<size_t>(c)];
+    const double alpha = m.machine.crank_angles[static_cast<size_t>(c)];
     auto phiDeg = [&](double theta) {
       const double deg = std::fmod(degreesFromRadians(theta - alpha), 360.0);
       return deg < 0.0 ? deg + 360.0 : deg;
@@ -97,8 +97,8 @@ nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, co
   j["phi_deg"] = phi_deg;
   // The paper's dimensionless values NAME_star (divided by I_w omega^2): only with a flywheel and a speed, else null.
   // They follow the whole mechanism's numbers, before its vectors.
-  const bool dimensionless = m.flywheel_inertia && m.engine.speed > 0.0;
-  const double unit = dimensionless ? *m.flywheel_inertia * m.engine.speed * m.engine.speed : 1.0;
+  const bool dimensionless = m.flywheel_inertia && m.machine.speed > 0.0;
+  const double unit = dimensionless ? *m.flywheel_inertia * m.machine.speed * m.machine.speed : 1.0;
   bool stars_written = false;
   auto writeStars = [&] {
     for (const Quantity& q : getQuantityCatalogue())

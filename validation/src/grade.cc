@@ -163,7 +163,7 @@ std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string
   if (results.size() != c.phi_deg.size())
     fail("expected " + std::to_string(c.phi_deg.size()) + " results (one per angle of phi_deg), got " +
          std::to_string(results.size()));
-  const int k = c.mechanism.engine.cylinders;
+  const int k = c.mechanism.machine.cylinders;
   const double kNotProvided = std::nan("");
   std::vector<Evaluation> out;
   for (size_t i = 0; i < results.size(); ++i) {
@@ -260,7 +260,7 @@ namespace {
 // The regime of a case besides "all" (getGradeRegimes): moving or at rest, lambda up to 0.4 (the gate's fine
 // sweep; 1e-9 for the rounding of r / l) or beyond.
 std::string regimeOf(const Mechanism& m) {
-  return std::string(m.engine.speed > 0.0 ? "moving" : "at_rest") + (lambdaOf(m) <= 0.4 + 1e-9 ? "_lambda_le_0.4" : "_lambda_gt_0.4");
+  return std::string(m.machine.speed > 0.0 ? "moving" : "at_rest") + (lambdaOf(m) <= 0.4 + 1e-9 ? "_lambda_le_0.4" : "_lambda_gt_0.4");
 }
 
 // An error / scale or error / tolerance as a number: one beyond double's range (a program's 1e308 against a scale

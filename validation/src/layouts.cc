@@ -95,23 +95,23 @@ std::vector<Layout> getBalanceLayouts() {
 Mechanism makeLayoutMechanism(const Layout& layout, const Mechanism& parts, double rotation_deg) {
   Mechanism m = parts;
   m.name = layout.name + "_rot" + std::to_string(static_cast<int>(std::lround(rotation_deg)));
-  m.engine.cylinders = static_cast<int>(layout.cylinders.size());
-  m.engine.cycle = Cycle::kFourStroke;
-  m.engine.acting = Acting::kSingle;
-  m.engine.explicit_crank_angles = true;
-  m.engine.crank_angles.clear();
-  m.engine.bank_angles.clear();
-  m.engine.axial_positions.clear();
-  m.engine.pin_offsets.clear();  // the textbook's layouts are centric
+  m.machine.cylinders = static_cast<int>(layout.cylinders.size());
+  m.machine.cycle = Cycle::kFourStroke;
+  m.machine.acting = Acting::kSingle;
+  m.machine.explicit_crank_angles = true;
+  m.machine.crank_angles.clear();
+  m.machine.bank_angles.clear();
+  m.machine.axial_positions.clear();
+  m.machine.pin_offsets.clear();  // the textbook's layouts are centric
   m.gas.reset();                 // and without gas: a pressure table needs a firing angle per cylinder of the layout
   m.firing_angles.clear();
   m.crankshaft.reset();          // and rigid: a [crankshaft] has one section per throw of the scene it came with
   for (const CylinderPlace& c : layout.cylinders) {
-    m.engine.bank_angles.push_back(radiansFromDegrees(c.bank_deg + rotation_deg));
-    m.engine.crank_angles.push_back(radiansFromDegrees(c.throw_deg - c.bank_deg));  // theta offset: beta - gamma
-    m.engine.axial_positions.push_back(c.axial_position);
+    m.machine.bank_angles.push_back(radiansFromDegrees(c.bank_deg + rotation_deg));
+    m.machine.crank_angles.push_back(radiansFromDegrees(c.throw_deg - c.bank_deg));  // theta offset: beta - gamma
+    m.machine.axial_positions.push_back(c.axial_position);
   }
-  m.engine.cylinder_angle = m.engine.bank_angles.front();
+  m.machine.cylinder_angle = m.machine.bank_angles.front();
   return m;
 }
 

@@ -10,7 +10,7 @@ namespace crankcheck::validation {
 double calcEnergyScale(const Mechanism& m) {
   double shafts = 0.0;  // each balance shaft: Q = m g rho ratio cos(psi)
   for (const BalanceShaftParams& b : m.balance_shafts) shafts += b.mass * b.radius * std::fabs(b.ratio);
-  return m.engine.gravity * (m.engine.cylinders * (m.crank.radius * (m.piston.mass + m.rod.mass) +
+  return m.machine.gravity * (m.machine.cylinders * (m.crank.radius * (m.piston.mass + m.rod.mass) +
                                                    m.crank.mass * m.crank.com_radius +
                                                    m.crank.counterweight_mass * m.crank.counterweight_radius) +
                              shafts);
@@ -23,20 +23,20 @@ double calcStaticAcceleration(const Mechanism& m) {
   double gas = 0.0;
   if (m.gas && m.piston.mass + m.rod.mass > 0.0)
     for (double p : m.gas->pressures) gas = std::max(gas, std::fabs(p) * calcBoreArea(*m.gas) / (m.piston.mass + m.rod.mass));
-  return m.engine.gravity + gas;
+  return m.machine.gravity + gas;
 }
 
 }  // namespace
 
 double calcLoopRatio(const Mechanism& m) {
   double offset = 0.0;
-  for (int j = 0; j < m.engine.cylinders; ++j) offset = std::max(offset, std::fabs(getPinOffset(m, j)));
+  for (int j = 0; j < m.machine.cylinders; ++j) offset = std::max(offset, std::fabs(getPinOffset(m, j)));
   return (m.crank.radius + offset) / m.rod.length;
 }
 
 double calcAccelerationScale(const Mechanism& m) {
   const double lambda = calcLoopRatio(m);  // lambda for centric cylinders
-  const double w = m.engine.speed;
+  const double w = m.machine.speed;
   // Simbody finds accelerations from the forces it balances: with gas, the largest gas force over the masses it
   // pushes sets the size of its rounding (a_p at rest is 0 exactly in the closed form, rounding of that in Simbody).
   return calcStaticAcceleration(m) + m.crank.radius * w * w * (1.0 + std::pow((1.0 - lambda) * (1.0 + lambda), -1.5));
@@ -47,13 +47,13 @@ double calcForceScale(const Mechanism& m) {
                       m.crank.mass + m.crank.counterweight_mass;
   double shafts = 0.0;  // each balance shaft's mass: its weight and m rho (ratio omega)^2
   for (const BalanceShaftParams& b : m.balance_shafts)
-    shafts += b.mass * (m.engine.gravity + b.radius * b.ratio * b.ratio * m.engine.speed * m.engine.speed);
-  return m.engine.cylinders * mass * calcAccelerationScale(m) + shafts;
+    shafts += b.mass * (m.machine.gravity + b.radius * b.ratio * b.ratio * m.machine.speed * m.machine.speed);
+  return m.machine.cylinders * mass * calcAccelerationScale(m) + shafts;
 }
 
 double calcTorqueScale(const Mechanism& m) {
   double shafts = 0.0;  // the torque the crank gives the shafts: ratio m g rho
-  for (const BalanceShaftParams& b : m.balance_shafts) shafts += std::fabs(b.ratio) * b.mass * m.engine.gravity * b.radius;
+  for (const BalanceShaftParams& b : m.balance_shafts) shafts += std::fabs(b.ratio) * b.mass * m.machine.gravity * b.radius;
   return calcForceScale(m) * std::max({m.crank.radius, m.crank.com_radius, m.crank.counterweight_radius}) + shafts;
 }
 
@@ -66,19 +66,19 @@ Scales calcScales(const Mechanism& m) {
   const double offset = lambda * l - r;  // max |delta_j|
   Scales s;
   s.energy = calcEnergyScale(m);
-  s.simbody_energy = s.energy + m.engine.cylinders * m.engine.gravity * (m.piston.mass + m.rod.mass) * (l + r);
+  s.simbody_energy = s.energy + m.machine.cylinders * m.machine.gravity * (m.piston.mass + m.rod.mass) * (l + r);
   s.position = l + r + offset;
-  s.velocity = r * m.engine.speed * (1.0 + std::sqrt(stiff));
+  s.velocity = r * m.machine.speed * (1.0 + std::sqrt(stiff));
   s.acceleration = calcAccelerationScale(m);
   s.force = calcForceScale(m);
   s.torque = calcTorqueScale(m);
   double z_max = 0.0, shaft_arm = 0.0;
-  for (int j = 0; j < m.engine.cylinders; ++j) z_max = std::max(z_max, std::fabs(getAxialPosition(m, j)));
+  for (int j = 0; j < m.machine.cylinders; ++j) z_max = std::max(z_max, std::fabs(getAxialPosition(m, j)));
   for (const BalanceShaftParams& b : m.balance_shafts)  // a shaft's mass at up to |(x, y, z)| + rho from O
     shaft_arm = std::max(shaft_arm, std::hypot(b.position[0], b.position[1], b.position[2]) + b.radius);
   s.moment = s.force * (std::max(l + r + offset, shaft_arm) + z_max);
   // Simbody's and MuJoCo's U subtract absolute heights: the shafts' masses at up to their arm from O
-  for (const BalanceShaftParams& b : m.balance_shafts) s.simbody_energy += m.engine.gravity * b.mass * shaft_arm;
+  for (const BalanceShaftParams& b : m.balance_shafts) s.simbody_energy += m.machine.gravity * b.mass * shaft_arm;
   s.closure = std::sqrt(stiff);
   s.conditioning = stiff * (l + r) / r;
   s.velocity_conditioning = s.closure * (l + r) / r;
@@ -101,8 +101,8 @@ Scales calcPositiveScales(const Mechanism& m) {
   const double static_load = calcStaticAcceleration(m);
   const double load = zero(static_load) ? kStandardGravity : static_load;
   Mechanism loaded = m;
-  loaded.engine.gravity = load;
-  loaded.engine.speed = 0.0;
+  loaded.machine.gravity = load;
+  loaded.machine.speed = 0.0;
   loaded.gas.reset();
   const Scales at_rest = calcScales(loaded);
   auto floor = [&](double& scale, double value) {

@@ -17,23 +17,23 @@ Mechanism withLambda(const Mechanism& base, double lambda) {
 Mechanism withSpeed(const Mechanism& base, double rpm) {
   Mechanism m = base;
   m.speed_rpm = rpm;
-  m.engine.speed = rpm * (M_PI / 30.0);
+  m.machine.speed = rpm * (M_PI / 30.0);
   return m;
 }
 
 Mechanism withCylinders(const Mechanism& base, int k, Cycle cycle) {
   Mechanism m = base;
-  m.engine.cylinders = k;
-  m.engine.cycle = cycle;
-  m.engine.acting = Acting::kSingle;
-  m.engine.explicit_crank_angles = false;
-  m.engine.crank_angles = calcPhaseAngles(k, cycle, Acting::kSingle);
-  m.engine.bank_angles.clear();      // one bank, at cylinder_angle
-  m.engine.axial_positions.clear();  // in one plane
+  m.machine.cylinders = k;
+  m.machine.cycle = cycle;
+  m.machine.acting = Acting::kSingle;
+  m.machine.explicit_crank_angles = false;
+  m.machine.crank_angles = calcPhaseAngles(k, cycle, Acting::kSingle);
+  m.machine.bank_angles.clear();      // one bank, at cylinder_angle
+  m.machine.axial_positions.clear();  // in one plane
   // An offset shared by every cylinder ([engine].pin_offset) stays with every new cylinder; per-cylinder ones cannot.
-  bool common = !m.engine.pin_offsets.empty();
-  for (double delta : m.engine.pin_offsets) common = common && delta == m.engine.pin_offsets.front();
-  m.engine.pin_offsets = common ? std::vector<double>(static_cast<size_t>(k), base.engine.pin_offsets.front())
+  bool common = !m.machine.pin_offsets.empty();
+  for (double delta : m.machine.pin_offsets) common = common && delta == m.machine.pin_offsets.front();
+  m.machine.pin_offsets = common ? std::vector<double>(static_cast<size_t>(k), base.machine.pin_offsets.front())
                                 : std::vector<double>{};
   m.gas.reset();                     // a pressure table needs a firing angle per cylinder: none for the new k
   m.firing_angles.clear();
@@ -43,8 +43,8 @@ Mechanism withCylinders(const Mechanism& base, int k, Cycle cycle) {
 
 Mechanism withGamma(const Mechanism& base, double gamma_deg) {
   Mechanism m = base;
-  m.engine.cylinder_angle = radiansFromDegrees(gamma_deg);
-  for (double& bank : m.engine.bank_angles) bank += m.engine.cylinder_angle - base.engine.cylinder_angle;
+  m.machine.cylinder_angle = radiansFromDegrees(gamma_deg);
+  for (double& bank : m.machine.bank_angles) bank += m.machine.cylinder_angle - base.machine.cylinder_angle;
   return m;
 }
 

@@ -9,7 +9,7 @@ namespace crankcheck::validation {
 
 FlywheelResult calcFlywheel(const Mechanism& m, double fluctuation) {
   if (!m.gas) throw std::invalid_argument("[gas]: missing table (flywheel sizing needs the working torque of a gas cycle)");
-  if (!(m.engine.speed > 0.0)) throw std::invalid_argument("[engine].speed_rpm: must be > 0 (the mean speed)");
+  if (!(m.machine.speed > 0.0)) throw std::invalid_argument("[engine].speed_rpm: must be > 0 (the mean speed)");
   FlywheelResult result;
   try {
     result.sizing = analytic::calcFlywheelSizing(m, fluctuation);
@@ -28,7 +28,7 @@ FlywheelResult calcFlywheel(const Mechanism& m, double fluctuation) {
     run.accuracy = engine.default_accuracy;
     run.gas = true;
     run.load_torque = s.load_torque;
-    run.revolutions = m.engine.cycle == Cycle::kFourStroke ? 2 : 1;  // one working cycle
+    run.revolutions = m.machine.cycle == Cycle::kFourStroke ? 2 : 1;  // one working cycle
     FreeRunResult r;
     try {
       r = engine.simulate(with, s.exact.omega0, run);

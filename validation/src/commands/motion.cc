@@ -36,8 +36,8 @@ int chooseIntegrator(FreeRunChoices& choices, const std::string& integrator, dou
 std::vector<MotionRun> calcMotion(const Mechanism& m, const FreeRunChoices& choices) {
   if (!m.flywheel_inertia)
     throw std::invalid_argument("[flywheel].inertia: missing key (the free run needs the flywheel inertia)");
-  if (!(m.engine.speed > 0.0)) throw std::invalid_argument("[engine].speed_rpm: must be > 0 for the free run (the release speed)");
-  const double w0 = m.engine.speed;
+  if (!(m.machine.speed > 0.0)) throw std::invalid_argument("[engine].speed_rpm: must be > 0 for the free run (the release speed)");
+  const double w0 = m.machine.speed;
   std::vector<MotionRun> runs;
   try {
     const analytic::FreeRun with = analytic::calcFreeRun(m, w0, true), without = analytic::calcFreeRun(m, w0, false);

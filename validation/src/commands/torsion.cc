@@ -37,7 +37,7 @@ TorsionResult calcTorsion(const Mechanism& scene, const std::vector<double>& rpm
     throw UncomputableError(e.what());
   }
   // Critical speeds of every order n <= 24 of every mode, in the range asked (one speed: half to twice it).
-  const double order_step = scene.engine.cycle == Cycle::kFourStroke ? 0.5 : 1.0;
+  const double order_step = scene.machine.cycle == Cycle::kFourStroke ? 0.5 : 1.0;
   result.range_lo = rpms.size() > 1 ? rpms.front() : 0.5 * rpms.front();
   result.range_hi = rpms.size() > 1 ? rpms.back() : 2.0 * rpms.front();
   for (int i = 0; i < result.modes.frequencies.size(); ++i)

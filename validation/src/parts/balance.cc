@@ -73,7 +73,7 @@ TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>&
   std::vector<BalanceHarmonicRow> harmonics;
   Mechanism base = parts;
   base.speed_rpm = 6000.0;
-  base.engine.speed = 6000.0 * (M_PI / 30.0);
+  base.machine.speed = 6000.0 * (M_PI / 30.0);
   std::vector<Layout> layouts = getBalanceLayouts();
   std::vector<Mechanism> mechanisms;
   for (const Layout& layout : layouts) mechanisms.push_back(makeLayoutMechanism(layout, base));

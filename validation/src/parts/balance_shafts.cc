@@ -59,7 +59,7 @@ TableSet calcBalanceShaftTables(const Mechanism& parts, const std::vector<Mechan
   std::vector<BalanceShaftRow> t;
   Mechanism base = withSpeed(withGamma(parts, 90.0), 6000.0);
   base.balance_shafts.clear();
-  base.engine.pin_offsets.clear();
+  base.machine.pin_offsets.clear();
   base.gas.reset();
   struct Case {
     std::string name;

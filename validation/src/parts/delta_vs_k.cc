@@ -38,8 +38,8 @@ TableSet calcDeltaVsKTables(const Mechanism& base, Cycle cycle, bool quick) {
       const Mechanism m = withSpeed(withGamma(withCylinders(base, k, cycle), 90.0), rpm);
       double with = std::nan(""), without = std::nan("");
       try {
-        with = analytic::calcFreeRun(m, m.engine.speed, true).delta;
-        without = analytic::calcFreeRun(m, m.engine.speed, false).delta;
+        with = analytic::calcFreeRun(m, m.machine.speed, true).delta;
+        without = analytic::calcFreeRun(m, m.machine.speed, false).delta;
       } catch (const std::domain_error&) {  // too slow to turn over against gravity: no free run to report
       }
       rows.push_back({toString(cycle), k, rpm, with, without, std::fabs(with - without)});

@@ -74,7 +74,7 @@ Task buildEngineCostTask(const Mechanism& base, bool quick) {
             std::vector<double> angles;
             for (double d : anglesDeg(quick ? 30.0 : 5.0)) angles.push_back(radiansFromDegrees(d));
             for (int k : {1, 12}) {
-              const Mechanism m = withGamma(withCylinders(base, k, base.engine.cycle), 90.0);
+              const Mechanism m = withGamma(withCylinders(base, k, base.machine.cycle), 90.0);
               for (const Engine& engine : listEngines()) {
                 std::shared_ptr<EngineModel> model = engine.build(m);
                 auto counter = std::make_shared<size_t>(0);

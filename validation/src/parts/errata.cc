@@ -248,7 +248,7 @@ TableSet calcErrataTables(const Mechanism& base) {
     const Mechanism m3 = withCylinders(rest, 3, Cycle::kTwoStroke);
     Mechanism single = withCylinders(rest, 1, Cycle::kTwoStroke);
     double offset = 0.0;
-    for (double alpha : m3.engine.crank_angles) offset += analytic::calcPotentialEnergy(single, alpha);
+    for (double alpha : m3.machine.crank_angles) offset += analytic::calcPotentialEnergy(single, alpha);
     add("Stanczak eq (12): U_w(0) of a standing three-cylinder two-stroke [J]", "sum of eq (3) per cylinder (U_w(0) != 0)",
         "a choice of zero level; crankcheck uses U = V(phi) - V(0); Q is the same", "U_w(0) [J]", offset, "not an error");
   }
@@ -263,7 +263,7 @@ TableSet calcErrataTables(const Mechanism& base) {
   }
   for (const Engine* engine : listReferenceEngines()) {
     const std::unique_ptr<EngineModel> model = engine->build(base);
-    const double r = base.crank.radius, w = base.engine.speed;
+    const double r = base.crank.radius, w = base.machine.speed;
     const double worst = findMaxAbsOverTurn([&](double phi) {
       return analytic::calcPistonKinematicsNorton(base, phi).a_p - model->evaluate(phi).cylinders[0].a_p; }, 72).value;
     add("Norton 13.3e: piston acceleration at lambda = " + shortNumber(lambdaOf(base), 3), "-r w^2 (cos + lambda cos 2theta)", "exact (" + engine->name + ")",

@@ -48,7 +48,7 @@ const Schema<ErrorVsLambdaRow> kErrorVsLambdaTable{
 
 TableSet calcErrorVsLambdaTables(const Mechanism& base, double lambda) {
   const Mechanism m = withLambda(base, lambda);
-  const double r = m.crank.radius, w = m.engine.speed;
+  const double r = m.crank.radius, w = m.machine.speed;
   const double E = calcEnergyScale(m);
   const Scales sc = calcScales(m);
   std::vector<ErrorVsLambdaRow> rows;

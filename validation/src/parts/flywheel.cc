@@ -14,7 +14,7 @@
 
 #include "crankcheck/analytic/flywheel.h"
 #include "crankcheck/validation/engines.h"
-#include "crankcheck/validation/engine_loads.h"
+#include "crankcheck/validation/example_gas.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/variants.h"
@@ -162,13 +162,13 @@ TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, const std::vect
                                  SharedResult<Curve>& shared) {
   std::vector<FlywheelCurveRow> curve;
   std::vector<FlywheelSizingRow> sizing;
-  if (!m.gas || !(m.engine.speed > 0.0)) return makeFlywheelTables({}, {}, {});
+  if (!m.gas || !(m.machine.speed > 0.0)) return makeFlywheelTables({}, {}, {});
   const Curve& c = shared.get();
   const std::optional<analytic::FlywheelSizing>& s = c.sizing;
   if (!s) return makeFlywheelTables({}, {}, {});
   const analytic::FlywheelSizing& exact = *s;
   if (point < 0)
-    sizing.push_back({m.name, toString(m.engine.cycle), m.engine.cylinders, m.speed_rpm, exact.exact_inertia,
+    sizing.push_back({m.name, toString(m.machine.cycle), m.machine.cylinders, m.speed_rpm, exact.exact_inertia,
                       exact.norton_inertia, exact.norton_inertia / exact.exact_inertia - 1.0, exact.norton.delta});
   for (int i = 0; i < calcPointCount(quick); ++i) {  // this task's points: the runs alone, the rest together
     const bool run_here = std::find(runs.begin(), runs.end(), i) != runs.end();
@@ -203,7 +203,7 @@ TableSet calcFlywheelNortonTables(const Mechanism& parts, bool quick) {
   const std::vector<int> ks = quick ? std::vector<int>{1, 4} : std::vector<int>{1, 2, 3, 4, 6};
   const std::vector<double> speeds = quick ? std::vector<double>{3000.0} : std::vector<double>{1500.0, 3000.0, 6000.0};
   Mechanism base = parts;
-  base.engine.pin_offsets.clear();
+  base.machine.pin_offsets.clear();
   base.balance_shafts.clear();
   for (int k : ks)
     for (double rpm : speeds) {

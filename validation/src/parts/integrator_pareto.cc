@@ -50,7 +50,7 @@ const Schema<IntegratorParetoRow> kIntegratorParetoTable{
 
 TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick) {
   const Mechanism m = withSpeed(base, 300.0);
-  const analytic::FreeRun exact = analytic::calcFreeRun(m, m.engine.speed, true);
+  const analytic::FreeRun exact = analytic::calcFreeRun(m, m.machine.speed, true);
   // Every gated reference engine that simulates (Engine::simulate: Simbody's), by each of its integrators.
   struct Run {
     const Engine* engine;
@@ -86,7 +86,7 @@ TableSet calcIntegratorParetoTables(const Mechanism& base, bool quick) {
     timed.emplace_back(run.name, [m, engine = run.engine, settings = run.settings, result, failure] {
       if (!failure->empty()) return;
       try {
-        *result = engine->simulate(m, m.engine.speed, settings);
+        *result = engine->simulate(m, m.machine.speed, settings);
       } catch (const std::exception& e) {
         *failure = e.what();
       }

@@ -20,7 +20,7 @@
 
 #include "crankcheck/analytic/kinematics.h"
 #include "crankcheck/analytic/reactions.h"
-#include "crankcheck/validation/engine_loads.h"
+#include "crankcheck/validation/example_gas.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/scales.h"
@@ -95,7 +95,7 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
   std::vector<OffsetCostRow> cost;
   std::vector<OffsetThrustRow> thrust;
   Mechanism m = single;
-  m.engine.pin_offsets = {f * r};
+  m.machine.pin_offsets = {f * r};
   const Scales sc = calcScales(m);
   const double stroke = analytic::calcDeadCentres(m, f * r).stroke;
   // The closed forms first, then each reference engine: the thrust of each, and each one's difference from the exact
@@ -119,7 +119,7 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
     for (const auto& model : models) e.push_back(model->evaluateMotion(phi));  // no U, no Q read here
     const Evaluation& exact = e[0];
     const CylinderEvaluation &x = exact.cylinders[0], &c = centric.cylinders[0];
-    const double a_scale = r * m.engine.speed * m.engine.speed;
+    const double a_scale = r * m.machine.speed * m.machine.speed;
     worst["x_p"] = std::max(worst["x_p"], std::fabs(c.x_p - x.x_p) / stroke);
     worst["a_p"] = std::max(worst["a_p"], std::fabs(c.a_p - x.a_p) / a_scale);
     worst["wall_force"] = std::max(worst["wall_force"], std::fabs(c.wall_force - x.wall_force) / sc.force);

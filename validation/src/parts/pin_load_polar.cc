@@ -11,7 +11,7 @@
 
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/validation/campaign.h"
-#include "crankcheck/validation/engine_loads.h"
+#include "crankcheck/validation/example_gas.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/part.h"
@@ -69,7 +69,7 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
     const std::vector<const Engine*> engines = listComparedEngines();
     std::vector<std::unique_ptr<EngineModel>> models;
     for (const Engine* e : engines) models.push_back(e->build(m));
-    const double cycle = m.engine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
+    const double cycle = m.machine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
     // The crank pin of cylinder 0 is at angle phi + beta_0 from +X (CONVENTIONS.md, layouts).
     auto crankFrame = [&m](const Evaluation& e) {
       const double angle = e.phi + getThrowAngle(m, 0);

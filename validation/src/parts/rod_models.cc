@@ -11,7 +11,7 @@
 #include "../part_math.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/validation/campaign.h"
-#include "crankcheck/validation/engine_loads.h"
+#include "crankcheck/validation/example_gas.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/part.h"

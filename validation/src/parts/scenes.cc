@@ -13,11 +13,11 @@ namespace {
 std::vector<SceneRow> listSceneRows(const std::vector<std::pair<std::string, Mechanism>>& families) {
   std::vector<SceneRow> rows;
   for (const auto& [family, m] : families)
-    rows.push_back({family, m.name, m.engine.cylinders, toString(m.engine.cycle), toString(m.engine.acting),
-                    degreesFromRadians(m.engine.cylinder_angle), m.speed_rpm, m.crank.radius, m.rod.length,
+    rows.push_back({family, m.name, m.machine.cylinders, toString(m.machine.cycle), toString(m.machine.acting),
+                    degreesFromRadians(m.machine.cylinder_angle), m.speed_rpm, m.crank.radius, m.rod.length,
                     calcCrankRatio(m), m.piston.mass, m.rod.mass, m.rod.com_from_wrist_pin,
                     m.rod.inertia_about_wrist_pin, m.crank.mass, m.crank.com_radius, m.crank.counterweight_mass,
-                    m.crank.counterweight_radius, m.engine.gravity, m.flywheel_inertia});
+                    m.crank.counterweight_radius, m.machine.gravity, m.flywheel_inertia});
   return rows;
 }
 

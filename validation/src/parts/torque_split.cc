@@ -11,7 +11,7 @@
 #include "../part_math.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/validation/campaign.h"
-#include "crankcheck/validation/engine_loads.h"
+#include "crankcheck/validation/example_gas.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/part.h"
@@ -84,13 +84,13 @@ TableSet calcTorqueSplitTables(const Mechanism& car, const Mechanism& marine) {
   const std::vector<const Engine*> references = listReferenceEngines();
   const Mechanism car4 = withSpeed(withGasAtDeadCentres(inlineOf(car, 4, Cycle::kFourStroke),
                                                         makeExampleGas(Cycle::kFourStroke, 2.0 * car.crank.radius)), 6000.0);
-  const Mechanism ship = withGasAtDeadCentres(inlineOf(marine, marine.engine.cylinders, Cycle::kTwoStroke),
+  const Mechanism ship = withGasAtDeadCentres(inlineOf(marine, marine.machine.cylinders, Cycle::kTwoStroke),
                                               makeExampleGas(Cycle::kTwoStroke, 2.0 * marine.crank.radius / 3.0));
   for (const auto& [name, m] : {std::pair<std::string, const Mechanism&>{"car_inline4_6000rpm", car4},
                                 std::pair<std::string, const Mechanism&>{"marine_inline6_two_stroke", ship}}) {
     std::vector<std::unique_ptr<EngineModel>> models;
     for (const Engine* e : references) models.push_back(e->build(m));
-    const double cycle_deg = m.engine.cycle == Cycle::kFourStroke ? 720.0 : 360.0;
+    const double cycle_deg = m.machine.cycle == Cycle::kFourStroke ? 720.0 : 360.0;
     for (double d = 0.0; d < cycle_deg; d += 2.5) {
       const double phi = radiansFromDegrees(d);
       const Parts p = splitAt(m, phi);

@@ -226,12 +226,12 @@ double seconds(std::chrono::steady_clock::time_point since) {
 std::vector<const Mechanism*> listTrainScenes(const std::vector<Mechanism>& scenes) {
   std::vector<const Mechanism*> out;
   for (const Mechanism& m : scenes)
-    if (m.crankshaft && m.engine.speed > 0.0) out.push_back(&m);
+    if (m.crankshaft && m.machine.speed > 0.0) out.push_back(&m);
   return out;
 }
 
 // The working cycle's order step: 1/2 (four-stroke), 1 (two-stroke).
-double getOrderStep(const Mechanism& m) { return m.engine.cycle == Cycle::kFourStroke ? 0.5 : 1.0; }
+double getOrderStep(const Mechanism& m) { return m.machine.cycle == Cycle::kFourStroke ? 0.5 : 1.0; }
 
 // The sweep's speeds [rpm], ascending: 0.25 .. 1.25 of the scene's speed in 16 steps, and around each of Holzer's
 // critical speeds of mode 1 and the four lowest major orders in that range (findMajorOrder) the speeds at 0.98, 1 and
@@ -246,7 +246,7 @@ std::vector<double> listSweepSpeeds(const Mechanism& m, bool quick) {
   }
   for (int i = 0; i <= 16; ++i) out.push_back(m.speed_rpm * (0.25 + i / 16.0));
   const double mode1 = analytic::calcTorsionModes(m).frequencies(0);
-  const double firings = m.engine.cylinders * getOrderStep(m);
+  const double firings = m.machine.cylinders * getOrderStep(m);
   int refined = 0;
   for (double p = firings; p <= kTextbookOrder + 1e-9 && refined < 4; p += firings) {
     const double critical = mode1 / p * 30.0 / M_PI;
@@ -262,7 +262,7 @@ std::vector<double> listSweepSpeeds(const Mechanism& m, bool quick) {
 // two-stroke): where the gas torques of evenly spaced firings add. The lowest one whose mode-1 critical speed is at
 // most 1.25 x the scene's speed (the sweep's top), or the lowest at all.
 double findMajorOrder(const Mechanism& m, double mode1) {
-  const double firings = m.engine.cylinders * getOrderStep(m);
+  const double firings = m.machine.cylinders * getOrderStep(m);
   for (double p = firings; p <= kTextbookOrder + 1e-9; p += firings)
     if (mode1 / p * 30.0 / M_PI <= 1.25 * m.speed_rpm) return p;
   return firings;
@@ -368,7 +368,7 @@ TableSet calcModeTables(const Mechanism& m) {
   for (int i = 0; i < modes.frequencies.size(); ++i)
     rowsOf(tables, kModesTable)
         .push_back({m.name, i + 1, modes.frequencies(i) / (2 * M_PI), at_max.frequencies(i) / (2 * M_PI),
-                    at_min.frequencies(i) / (2 * M_PI), m.engine.cylinders * getOrderStep(m)});
+                    at_min.frequencies(i) / (2 * M_PI), m.machine.cylinders * getOrderStep(m)});
   return tables;
 }
 

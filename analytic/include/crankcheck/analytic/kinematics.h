@@ -8,7 +8,7 @@
 /// x_p is measured from the crank centre O along the cylinder axis e (CONVENTIONS.md); the wrist pin is at
 /// A = x_p e + delta n. With s = sin(beta) = lambda sin(theta) - delta / l:
 ///   x_p = r cos(theta) + l sqrt(1 - s^2)   (delta = 0: Norton 13.1d).
-/// Time derivatives are at the scene's constant omega = m.engine.speed: v_p = omega dx_p/dtheta, etc.
+/// Time derivatives are at the scene's constant omega = m.machine.speed: v_p = omega dx_p/dtheta, etc.
 
 #include <Eigen/Core>
 #include <cmath>
@@ -64,7 +64,7 @@ PistonKinematics calcPistonKinematics(const Mechanism& m, double theta, double p
 /// rest (the jerk's divisions); the same operations wherever it is inlined (bit for bit while the build contracts no
 /// multiply-adds: the project sets no -march, and x86-64's baseline has no FMA).
 inline PistonKinematics calcPistonKinematics(const Mechanism& m, const SinCos& theta, double pin_offset = 0.0) {
-  const double r = m.crank.radius, l = m.rod.length, w = m.engine.speed;
+  const double r = m.crank.radius, l = m.rod.length, w = m.machine.speed;
   const double lambda = r / l;
   const auto [s1, c1] = theta;
   const double s = lambda * s1 - pin_offset / l;       // sin(beta)
@@ -102,7 +102,7 @@ inline double calcRodSine(const Mechanism& m, const SinCos& theta, double pin_of
 /// beta_dot and beta_ddot alone (beta left 0: no asin), the same operations as calcRodKinematics: for a caller that
 /// reads the rates only (the reduced inertia, at every step of the crank train's integration).
 inline RodKinematics calcRodRates(const Mechanism& m, const SinCos& theta, double pin_offset = 0.0) {
-  const double lambda = m.crank.radius / m.rod.length, w = m.engine.speed;
+  const double lambda = m.crank.radius / m.rod.length, w = m.machine.speed;
   const auto [s1, c1] = theta;
   const double s = calcRodSine(m, theta, pin_offset);
   const double cos_beta = std::sqrt((1.0 - s) * (1.0 + s));

@@ -36,7 +36,7 @@ struct Reactions {
   std::vector<CylinderReactions> cylinders;
 };
 
-/// Reactions at crank angle phi [rad] and the scene's omega (m.engine.speed), with the rod as `rod` models it:
+/// Reactions at crank angle phi [rad] and the scene's omega (m.machine.speed), with the rod as `rod` models it:
 /// the rigid rod (kTrueInertia); the paper's two-mass rod with Delta_I (m_k1 at A, m_k3 at B, Delta_I = I_o - l z_k m_k
 /// turning with the rod: the same mass, first moment and inertia about A, so the same reactions); or the common
 /// two-mass rod without Delta_I, a body of mass m_k with its centre of mass at G and inertia m_k3 l^2 = m_k z_k l

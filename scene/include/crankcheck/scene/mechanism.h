@@ -21,8 +21,9 @@ enum class Cycle { kTwoStroke, kFourStroke };
 /// Single- or double-acting cylinders: double-acting halves the phase angle (eqs 9, 10).
 enum class Acting { kSingle, kDouble };
 
-/// The engine as a whole.
-struct EngineParams {
+/// The machine as a whole: its cylinders, their layout, its speed and gravity (an engine or a compressor: the scene
+/// file's [engine] table; in code "engine" means a solver of engine.h).
+struct MachineParams {
   int cylinders = 1;                         ///< k, number of cylinders (= crank throws), >= 1
   Cycle cycle = Cycle::kFourStroke;
   Acting acting = Acting::kSingle;
@@ -96,7 +97,7 @@ struct CrankshaftParams {
 /// A complete scene: the mechanism plus what a scene file may add (a name, the flywheel inertia).
 struct Mechanism {
   std::string name;                          ///< for reports; the scene file's stem
-  EngineParams engine;
+  MachineParams machine;                     ///< the machine as a whole (the TOML table [engine])
   CrankParams crank;
   RodParams rod;
   PistonParams piston;

@@ -86,7 +86,7 @@ struct Diagnostics {
 /// (the previous configuration is the warm start of the next assembly). Not thread-safe: one object per thread.
 class KCrankModel {
  public:
-  /// Builds the Simbody system for `m` (k = m.engine.cylinders, phases m.engine.crank_angles, gamma, omega, g)
+  /// Builds the Simbody system for `m` (k = m.machine.cylinders, phases m.machine.crank_angles, gamma, omega, g)
   /// and assembles it at phi = 0 to get the reference potential V(0).
   /// @throws std::invalid_argument if m is not a valid mechanism (k < 1, crank angle count != k, non-positive
   ///         lengths, lambda >= 1, negative masses, I_o < m_k z_k^2, non-finite values, projection tolerance

@@ -1,4 +1,4 @@
-#include "crankcheck/validation/engine_loads.h"
+#include "crankcheck/validation/example_gas.h"
 
 #include <cmath>
 #include <vector>
@@ -29,7 +29,7 @@ Mechanism withGasAtDeadCentres(const Mechanism& m, const GasParams& gas) {
   Mechanism out = m;
   out.gas = gas;
   out.firing_angles.clear();
-  for (double alpha : m.engine.crank_angles) {
+  for (double alpha : m.machine.crank_angles) {
     double firing = std::fmod(-alpha, gas.cycle);
     if (firing < 0.0) firing += gas.cycle;
     out.firing_angles.push_back(firing);
