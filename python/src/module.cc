@@ -182,7 +182,7 @@ py::dict evaluate(const ScenePtr& scene, const py::handle& phi_in, const std::st
       throw py::value_error("quantities: " + quoteText(name) + " is not a quantity of eval (one of " + joinQuantityNames() + ")");
     if (!isDefined(m, name))
       throw py::value_error("quantities: " + name + " is not defined for " + scene->source +
-                            (name == "gas_force" ? " (it has no [gas] table)" : " (it needs [flywheel].inertia and speed_rpm > 0)"));
+                            (findQuantity(name)->star ? " (it needs [flywheel].inertia and speed_rpm > 0)" : " (it has no [gas] table)"));
     if (!seen.insert(name).second) throw py::value_error("quantities: " + name + " is given twice");
   }
   if (reused && angle_shape.empty()) throw py::value_error("out: needs phi with at least one dimension (arrays to write into)");
@@ -222,7 +222,7 @@ py::dict evaluate(const ScenePtr& scene, const py::handle& phi_in, const std::st
   for (const QuantityInfo& q : listQuantities()) {
     if (next < outputs.size() && outputs[next].info == &q) {
       result[q.name] = view(outputs[next++], angle_shape.size());
-    } else if (!quantities && (std::string(q.name) == "U_star" || std::string(q.name) == "Q_star")) {
+    } else if (!quantities && q.star) {
       result[q.name] = py::none();  // eval: null without a flywheel or at rest
     }
   }
@@ -326,14 +326,13 @@ std::string toResponse(const validation::GradeCase& c, const py::handle& answer)
                          std::string(py::str(answer.get_type().attr("__name__"))));
   const size_t n = c.phi_deg.size();
   const int k = c.mechanism.machine.cylinders;
-  const bool axial = hasAxialPositions(c.mechanism);
   nlohmann::ordered_json results = nlohmann::ordered_json::array();
   for (size_t i = 0; i < n; ++i) results.push_back({{"phi_deg", c.phi_deg[i]}});
   for (const auto& [key_handle, value] : py::reinterpret_borrow<py::dict>(answer)) {
     const std::string key = py::str(key_handle);
     const QuantityInfo* q = findQuantity(key);
     if (!q) throw py::value_error(where + quoteText(key) + " is not a quantity of eval (one of " + joinQuantityNames() + ")");
-    if (value.is_none() || key == "U_star" || key == "Q_star") continue;  // not provided; U_star, Q_star are not graded
+    if (value.is_none() || q->star) continue;  // not provided; the dimensionless NAME_star are not graded
     const Angles a = asAngles(value);
     std::vector<py::ssize_t> expected = {static_cast<py::ssize_t>(n)};
     if (q->per_cylinder) expected.push_back(k);
@@ -354,7 +353,7 @@ std::string toResponse(const validation::GradeCase& c, const py::handle& answer)
           nlohmann::ordered_json number = x;
           if (!std::isfinite(x)) {
             // shaking_moment X, Y without axial positions are not defined (eval: null; Scene.evaluate: NaN): not graded.
-            if (key == "shaking_moment" && comp < 2 && !axial) {
+            if (!isComponentDefined(*q->quantity, comp, c.mechanism)) {
               number = nullptr;
             } else {
               throw py::value_error(where + "result[\"" + key + "\"][" + std::to_string(i) + (q->per_cylinder ? ", " + std::to_string(j) : "") +

@@ -97,4 +97,6 @@ bool isComponentDefined(const Quantity& q, int component, const Mechanism& m) {
   return q.presence != QuantityPresence::kXYWithAxialPositions || component >= 2 || hasAxialPositions(m);
 }
 
+std::string nameOf(QuantityId id) { return getQuantity(id).name; }
+
 }  // namespace crankcheck

@@ -17,6 +17,7 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/extremum.h"
+#include "crankcheck/scene/quantities.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
@@ -60,11 +61,11 @@ TableSet calcErrorVsLambdaTables(const Mechanism& base, double lambda) {
     const double value = findMaxAbsOverTurn(error, 360).value;
     add(quantity, method, value, scale, resolvedToOnePercent(value / scale));
   };
-  direct("x_p", "norton_two_term", r, [&](double phi) {
+  direct(nameOf(QuantityId::kPistonPosition), "norton_two_term", r, [&](double phi) {
     return analytic::calcPistonKinematicsNorton(m, phi).x_p - analytic::calcPistonKinematics(m, phi).x_p; });
-  direct("v_p", "norton_two_term", r * w, [&](double phi) {
+  direct(nameOf(QuantityId::kPistonVelocity), "norton_two_term", r * w, [&](double phi) {
     return analytic::calcPistonKinematicsNorton(m, phi).v_p - analytic::calcPistonKinematics(m, phi).v_p; });
-  direct("a_p", "norton_two_term", r * w * w, [&](double phi) {
+  direct(nameOf(QuantityId::kPistonAcceleration), "norton_two_term", r * w * w, [&](double phi) {
     return analytic::calcPistonKinematicsNorton(m, phi).a_p - analytic::calcPistonKinematics(m, phi).a_p; });
   const auto exact = exactHarmonics(m);
   for (int order : {2, 4, 6, 8, 10, 12}) {
@@ -91,12 +92,15 @@ TableSet calcErrorVsLambdaTables(const Mechanism& base, double lambda) {
       auto track = [&](const std::string& key, double error) { worst[key] = std::max(worst[key], std::fabs(error)); };
       track("Q", a.Q - s.Q);
       track("U", a.U - s.U);
-      track("x_p", a.cylinders[0].x_p - s.cylinders[0].x_p);
-      track("v_p", a.cylinders[0].v_p - s.cylinders[0].v_p);
-      track("a_p", a.cylinders[0].a_p - s.cylinders[0].a_p);
+      track(nameOf(QuantityId::kPistonPosition), a.cylinders[0].x_p - s.cylinders[0].x_p);
+      track(nameOf(QuantityId::kPistonVelocity), a.cylinders[0].v_p - s.cylinders[0].v_p);
+      track(nameOf(QuantityId::kPistonAcceleration), a.cylinders[0].a_p - s.cylinders[0].a_p);
     }
     for (const auto& [quantity, error] : worst) {
-      const double scale = quantity == "x_p" ? r : quantity == "v_p" ? r * w : quantity == "a_p" ? r * w * w : E;
+      const double scale = quantity == nameOf(QuantityId::kPistonPosition)       ? r
+                                 : quantity == nameOf(QuantityId::kPistonVelocity)     ? r * w
+                                 : quantity == nameOf(QuantityId::kPistonAcceleration) ? r * w * w
+                                                                                      : E;
       add(quantity, "analytic_vs_" + engine->name, error, scale, resolvedToOnePercent(error / scale, sc.conditioning));
     }
   }

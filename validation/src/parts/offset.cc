@@ -24,6 +24,7 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/scales.h"
+#include "crankcheck/scene/quantities.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/variants.h"
 #include "engine_fields.h"
@@ -118,20 +119,22 @@ TableSet calcOffsetTables(const Mechanism& parts, double f, bool quick) {
     std::vector<Evaluation> e;
     for (const auto& model : models) e.push_back(model->evaluateMotion(phi));  // no U, no Q read here
     const Evaluation& exact = e[0];
-    const CylinderEvaluation &x = exact.cylinders[0], &c = centric.cylinders[0];
+    const CylinderEvaluation& x = exact.cylinders[0];
     const double a_scale = r * m.machine.speed * m.machine.speed;
-    worst["x_p"] = std::max(worst["x_p"], std::fabs(c.x_p - x.x_p) / stroke);
-    worst["a_p"] = std::max(worst["a_p"], std::fabs(c.a_p - x.a_p) / a_scale);
-    worst["wall_force"] = std::max(worst["wall_force"], std::fabs(c.wall_force - x.wall_force) / sc.force);
-    worst["drive_torque"] = std::max(worst["drive_torque"], std::fabs(centric.drive_torque - exact.drive_torque) / sc.torque);
-    for (size_t j = 1; j < engines.size(); ++j) {
-      const CylinderEvaluation& y = e[j].cylinders[0];
-      std::map<std::string, double>& w = worst_engine[j];
-      w["x_p"] = std::max(w["x_p"], std::fabs(y.x_p - x.x_p) / stroke);
-      w["a_p"] = std::max(w["a_p"], std::fabs(y.a_p - x.a_p) / a_scale);
-      w["wall_force"] = std::max(w["wall_force"], std::fabs(y.wall_force - x.wall_force) / sc.force);
-      w["drive_torque"] = std::max(w["drive_torque"], std::fabs(e[j].drive_torque - exact.drive_torque) / sc.torque);
-    }
+    // The largest of each quantity's relative differences from the exact engine's (by the catalogue's names).
+    auto noteAll = [&](std::map<std::string, double>& into, const Evaluation& other) {
+      const CylinderEvaluation& y = other.cylinders[0];
+      auto note = [&](QuantityId id, double difference) {
+        double& w = into[nameOf(id)];
+        w = std::max(w, difference);
+      };
+      note(QuantityId::kPistonPosition, std::fabs(y.x_p - x.x_p) / stroke);
+      note(QuantityId::kPistonAcceleration, std::fabs(y.a_p - x.a_p) / a_scale);
+      note(QuantityId::kWallForce, std::fabs(y.wall_force - x.wall_force) / sc.force);
+      note(QuantityId::kDriveTorque, std::fabs(other.drive_torque - exact.drive_torque) / sc.torque);
+    };
+    noteAll(worst, centric);
+    for (size_t j = 1; j < engines.size(); ++j) noteAll(worst_engine[j], e[j]);
     for (size_t j = 0; j < engines.size(); ++j) {
       Thrust& t = by_engine[j];
       const double n = e[j].cylinders[0].wall_force;

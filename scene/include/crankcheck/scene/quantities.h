@@ -8,6 +8,7 @@
 /// engine's computation (docs/contributing.md, "Adding a quantity").
 
 #include <string_view>
+#include <string>
 #include <vector>
 
 #include "crankcheck/scene/evaluation.h"
@@ -79,6 +80,8 @@ struct Quantity {
 
 /// Every quantity of an Evaluation, in eval's JSON order (the whole mechanism's, then each cylinder's).
 const std::vector<Quantity>& getQuantityCatalogue();
+/// The name of quantity `id` (getQuantity(id).name), for code that speaks of one quantity by its id.
+std::string nameOf(QuantityId id);
 /// The catalogue's entry of `id`.
 const Quantity& getQuantity(QuantityId id);
 /// The catalogue's entry called `name`, or nullptr.
