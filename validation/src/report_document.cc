@@ -180,8 +180,11 @@ void drawFigure(const std::string& name, const fs::path& dir, const std::string&
 void drawFigures(const std::vector<std::string>& names, const fs::path& dir) {
   if (names.size() > 1) {
     ProgramCall call{{"gnuplot"}, dir};
-    for (const std::string& name : names)  // "reset session" on its own: gnuplot 5.4 refuses more on its line
-      call.argv.insert(call.argv.end(), {"-e", "reset session", "-e", kFigureFolders, findFigureScript(name).string()});
+    // "reset session" on its own: gnuplot 5.4 refuses more on its line. It keeps `set datafile columnheaders` (the
+    // scripts read columns by header name), so each script also starts with the header mode off, as when alone.
+    for (const std::string& name : names)
+      call.argv.insert(call.argv.end(), {"-e", "reset session", "-e", "unset datafile columnheaders", "-e",
+                                         kFigureFolders, findFigureScript(name).string()});
     call.timeout_seconds = kGnuplotFigureSeconds * static_cast<double>(names.size());
     const ProgramResult r = runProgram(call);
     if (r.timed_out) {  // not drawn again: a gnuplot that hangs would hang again, a figure at a time

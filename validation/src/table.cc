@@ -131,14 +131,23 @@ void Table::sort() {
   const size_t n = size();
   if (n < 2) return;
   const size_t width = columns_.size();
+  auto keyOf = [&](size_t r, size_t c) { return typed_ ? typed_->cell(r, c) : sortKeyOf(rows[r][c]); };
+  auto widthOf = [&](size_t r) { return typed_ ? width : rows[r].size(); };
+  // The second sort of a report finds most tables in order already: checked row against row, reading only the cells
+  // up to the first that differs.
+  bool sorted = true;
+  for (size_t r = 1; r < n && sorted; ++r) {
+    const size_t common = std::min(widthOf(r), widthOf(r - 1));
+    int c = 0;
+    for (size_t i = 0; i < common && c == 0; ++i) c = compareCells(keyOf(r - 1, i), keyOf(r, i));
+    sorted = c < 0 || (c == 0 && widthOf(r - 1) <= widthOf(r));
+  }
+  if (sorted) return;
   // Each cell read once, not at every comparison.
   std::vector<std::vector<Cell>> keys(n);
   for (size_t r = 0; r < n; ++r) {
-    if (typed_) {
-      for (size_t c = 0; c < width; ++c) keys[r].push_back(typed_->cell(r, c));
-    } else {
-      for (const std::string& field : rows[r]) keys[r].push_back(sortKeyOf(field));
-    }
+    keys[r].reserve(widthOf(r));
+    for (size_t c = 0; c < widthOf(r); ++c) keys[r].push_back(keyOf(r, c));
   }
   auto less = [&](size_t a, size_t b) {
     const size_t common = std::min(keys[a].size(), keys[b].size());
@@ -146,9 +155,6 @@ void Table::sort() {
       if (const int c = compareCells(keys[a][i], keys[b][i]); c != 0) return c < 0;
     return keys[a].size() < keys[b].size();
   };
-  bool sorted = true;  // the second sort of a report finds most tables in order already
-  for (size_t r = 1; r < n && sorted; ++r) sorted = !less(r, r - 1);
-  if (sorted) return;
   std::vector<size_t> order(n);
   for (size_t r = 0; r < n; ++r) order[r] = r;
   std::stable_sort(order.begin(), order.end(), less);
