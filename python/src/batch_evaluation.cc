@@ -133,7 +133,7 @@ void evaluateAnalyticBatch(const Mechanism& m, std::span<const double> phi, cons
       all_here = false;
   if (!batchKernelsAccept(m) || !all_here) {
     // What the kernels do not cover: the analytic engine itself (calcEvaluation), angle by angle.
-    const Engine& analytic = validation::findEngine("analytic");
+    const Engine& analytic = validation::getClosedFormEngine();
     evaluateModel(m, analytic, *analytic.build(m), phi, wanted);
     return;
   }

@@ -42,7 +42,7 @@ std::vector<MotionRun> calcMotion(const Mechanism& m, const FreeRunChoices& choi
   try {
     const analytic::FreeRun with = analytic::calcFreeRun(m, w0, true), without = analytic::calcFreeRun(m, w0, false);
     MotionRun a;
-    a.engine = "analytic";
+    a.engine = getClosedFormEngine().name;  // the closed forms' free run (motion.h)
     a.delta_gravity = with.delta;
     a.delta_no_gravity = without.delta;
     a.omega_min = with.omega_min;
