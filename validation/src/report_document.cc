@@ -177,7 +177,7 @@ void drawFigure(const std::string& name, const fs::path& dir, const std::string&
     throw EnvironmentError("gnuplot failed on " + quotePath(script) + ":\n" + r.out + r.err);
 }
 
-void drawFigures(const std::vector<std::string>& names, const fs::path& dir) {
+bool drawFigures(const std::vector<std::string>& names, const fs::path& dir) {
   if (names.size() > 1) {
     ProgramCall call{{"gnuplot"}, dir};
     // "reset session" on its own: gnuplot 5.4 refuses more on its line. It keeps `set datafile columnheaders` (the
@@ -196,9 +196,10 @@ void drawFigures(const std::vector<std::string>& names, const fs::path& dir) {
     }
     if (r.exit_status == 0 &&
         std::all_of(names.begin(), names.end(), [&](const std::string& name) { return isDrawn(dir, name); }))
-      return;
+      return true;
   }
   for (const std::string& name : names) drawFigure(name, dir);
+  return names.size() <= 1;
 }
 
 }  // namespace crankcheck::validation

@@ -63,6 +63,8 @@ void drawFigure(const std::string& name, const std::filesystem::path& dir, const
 /// its own by drawFigure, whose error names the failing script.
 /// @throws EnvironmentError as drawFigure (a missing script before gnuplot starts); when gnuplot has not finished within kGnuplotFigureSeconds a figure (then
 /// it is ended, and nothing is drawn again).
-void drawFigures(const std::vector<std::string>& names, const std::filesystem::path& dir);
+/// @return true when one gnuplot drew them all; false when they were drawn again one by one (every figure drawn, at
+///         twice the cost: a script failed, or one left a setting behind that broke the next).
+bool drawFigures(const std::vector<std::string>& names, const std::filesystem::path& dir);
 
 }  // namespace crankcheck::validation
