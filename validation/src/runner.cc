@@ -74,12 +74,12 @@ CampaignRun runTasks(const std::vector<Task>& tasks, const RunOptions& options) 
       std::lock_guard<std::mutex> lock(mutex);
       errors.push_back(tasks[i].id + ": " + e.what());
     }
+    // Counted and reported under one lock: the calls come one at a time, their counts in order.
+    std::lock_guard<std::mutex> lock(mutex);
     const size_t finished = ++done;
-    if (options.on_progress) {
-      std::lock_guard<std::mutex> lock(mutex);
+    if (options.on_progress)
       options.on_progress({finished, tasks.size(),
                            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), &tasks[i]});
-    }
   };
   std::vector<size_t> parallel, timed;
   for (size_t i = 0; i < tasks.size(); ++i) (tasks[i].measures_time ? timed : parallel).push_back(i);
