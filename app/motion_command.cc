@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "crankcheck/validation/commands/motion.h"
+#include "crankcheck/validation/evaluation_json.h"
 #include "help_format.h"
 #include "json_output.h"
 #include "scene_input.h"
@@ -33,20 +34,6 @@ void addMotionOptions(CLI::App& command, MotionOptions& options) {
       ->capture_default_str();
 }
 
-namespace {
-
-nlohmann::ordered_json toJson(const validation::MotionRun& r) {
-  nlohmann::ordered_json j = {{"delta_gravity", r.delta_gravity}, {"delta_no_gravity", r.delta_no_gravity},
-                              {"omega_min", r.omega_min}, {"omega_max", r.omega_max}, {"omega_mean", r.omega_mean}};
-  if (!r.integrator.empty()) {
-    j["integrator"] = r.integrator;
-    j["energy_drift_per_revolution"] = r.energy_drift;
-    j["steps"] = r.steps;
-  }
-  return j;
-}
-
-}  // namespace
 
 std::string runMotion(const MotionOptions& options) {
   const Mechanism m = loadScene(options.scene_path);
@@ -64,7 +51,7 @@ std::string runMotion(const MotionOptions& options) {
   }
   if (options.format == "json") {
     nlohmann::ordered_json doc;
-    for (const validation::MotionRun& r : results) doc[r.engine] = toJson(r);
+    for (const validation::MotionRun& r : results) doc[r.engine] = validation::motionRunToJson(r);
     return dumpJson(doc);
   }
   char buffer[512];

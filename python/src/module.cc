@@ -285,14 +285,7 @@ py::object motion(const ScenePtr& scene, const std::string& integrator, double a
   }
   nlohmann::ordered_json doc;
   for (const validation::MotionRun& r : runs) {
-    nlohmann::ordered_json j = {{"delta_gravity", r.delta_gravity}, {"delta_no_gravity", r.delta_no_gravity},
-                                {"omega_min", r.omega_min}, {"omega_max", r.omega_max}, {"omega_mean", r.omega_mean}};
-    if (!r.integrator.empty()) {
-      j["integrator"] = r.integrator;
-      j["energy_drift_per_revolution"] = r.energy_drift;
-      j["steps"] = r.steps;
-    }
-    doc[r.engine] = j;
+    doc[r.engine] = validation::motionRunToJson(r);
   }
   py::object result = toPython(doc);
   if (series)

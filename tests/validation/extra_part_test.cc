@@ -19,6 +19,7 @@
 #include "crankcheck/validation/report.h"
 #include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/runner.h"
+#include "fresh_folder.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -91,9 +92,8 @@ TEST(ExtraPartTest, ReachesTheReportAndItsCsvAndReadsBackTyped) {
   const CampaignRun run = runCampaign(options, ShardSelection{}, run_options);
   ASSERT_TRUE(run.tables.count(kKey));
 
-  const fs::path dir = fs::path(::testing::TempDir()) / "crankcheck_extra_part_report";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const testing::FreshFolder folder;  // made for this test, removed with what the report wrote in it
+  const fs::path& dir = folder.path();
   ReportInfo info;
   info.quick = true;
   renderReport(run.tables, info, dir);
@@ -118,7 +118,6 @@ TEST(ExtraPartTest, ReachesTheReportAndItsCsvAndReadsBackTyped) {
   EXPECT_EQ(rows[0].lambda, calcCrankRatio(four));
   EXPECT_EQ(rows[0].cylinders, 4);
   EXPECT_EQ(rows[1].lambda, calcCrankRatio(one));
-  fs::remove_all(dir);
 }
 
 }  // namespace

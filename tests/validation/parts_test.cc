@@ -13,6 +13,7 @@
 #include <string>
 
 #include "crankcheck/validation/engines.h"
+#include "part_fixture.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -33,15 +34,7 @@ Table makeTable(const std::string& name, std::vector<Column> columns, std::vecto
   return parseTable(name, parseCsv(formatCsv(t), name), name);
 }
 
-// The paragraph (of the sentences or the blocks) that contains `needle`, or "" (the test then fails on its expectations).
-std::string findParagraph(const ReportPart& part, const std::string& needle) {
-  for (const std::string& p : part.paragraphs)
-    if (p.find(needle) != std::string::npos) return p;
-  for (const ReportBlock& b : part.blocks)
-    if (b.kind == ReportBlock::kParagraph && b.text.find(needle) != std::string::npos) return b.text;
-  ADD_FAILURE() << "no paragraph with \"" << needle << "\"";
-  return "";
-}
+using testing::findParagraph;
 
 // part.h's contract: a part whose tables are missing (not run: validate --parts) is left out, its heading empty.
 TEST(PartsTest, EveryPartIsLeftOutWithoutItsTables) {

@@ -148,4 +148,15 @@ nlohmann::ordered_json balanceToJson(const std::vector<BalanceRow>& rows, bool a
   return out;
 }
 
+nlohmann::ordered_json motionRunToJson(const MotionRun& run) {
+  nlohmann::ordered_json j = {{"delta_gravity", run.delta_gravity}, {"delta_no_gravity", run.delta_no_gravity},
+                              {"omega_min", run.omega_min}, {"omega_max", run.omega_max}, {"omega_mean", run.omega_mean}};
+  if (!run.integrator.empty()) {
+    j["integrator"] = run.integrator;
+    j["energy_drift_per_revolution"] = run.energy_drift;
+    j["steps"] = run.steps;
+  }
+  return j;
+}
+
 }  // namespace crankcheck::validation

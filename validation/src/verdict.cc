@@ -94,14 +94,9 @@ std::string formatVerdict(const std::vector<EngineVerdict>& verdicts) {
   std::ostringstream out;
   size_t width = 6;
   for (const EngineVerdict& v : verdicts) width = std::max(width, v.engine.size());
-  size_t gated_comparisons = 0, failed = 0;
-  std::string gated_names;
   char line[600];
   for (const EngineVerdict& v : verdicts) {
     if (v.gated) {
-      gated_comparisons += v.comparisons;
-      failed += v.failed;
-      gated_names += (gated_names.empty() ? "" : ", ") + v.engine;
       // Two lines within 100 columns: the count and the verdict, then where the worst comparison is.
       std::snprintf(line, sizeof line, "  %-*s gated    %6zu cases %7zu comparisons  %s\n    worst %s of tolerance (%s: %s)\n",
                     static_cast<int>(width), v.engine.c_str(), v.cases, v.comparisons,
@@ -114,16 +109,25 @@ std::string formatVerdict(const std::vector<EngineVerdict>& verdicts) {
     }
     out << line;
   }
-  if (gated_comparisons == 0) {
-    out << "No comparison of a gated engine: nothing was checked\n";
-    return out.str();
-  }
+  out << formatVerdictClosing(verdicts) << "\n";
+  return out.str();
+}
+
+std::string formatVerdictClosing(const std::vector<EngineVerdict>& verdicts) {
+  size_t gated_comparisons = 0, failed = 0;
+  std::string gated_names;
+  for (const EngineVerdict& v : verdicts)
+    if (v.gated) {
+      gated_comparisons += v.comparisons;
+      failed += v.failed;
+      gated_names += (gated_names.empty() ? "" : ", ") + v.engine;
+    }
+  if (gated_comparisons == 0) return "No comparison of a gated engine: nothing was checked";
   // ctest's closing line: "100% tests passed, 0 tests failed out of 7". The percentage is floored, so that 100% is
   // printed only when nothing failed.
   const size_t percent = (gated_comparisons - failed) * 100 / gated_comparisons;
-  out << percent << "% of comparisons agree, " << failed << " failed out of " << gated_comparisons << " (gated engines: "
-      << gated_names << ")\n";
-  return out.str();
+  return std::to_string(percent) + "% of comparisons agree, " + std::to_string(failed) + " failed out of " +
+         std::to_string(gated_comparisons) + " (gated engines: " + gated_names + ")";
 }
 
 VerdictMatrix calcVerdictMatrix(const TableSet& tables) {

@@ -13,21 +13,12 @@
 #include "crankcheck/validation/csv.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/parts.h"
+#include "part_fixture.h"
 
 namespace crankcheck::validation {
 namespace {
 
-// The registered part `key`. @throws std::logic_error when there is none.
-const Part& findPart(const std::string& key) {
-  for (const Part* part : listParts())
-    if (part->key() == key) return *part;
-  throw std::logic_error("no part " + key);
-}
-
-// Table `name` from its CSV text (the header line first), read into the typed rows of its schema.
-Table readCsvTable(const std::string& name, const std::string& text) {
-  return parseTable(name, parseCsv(text, name), name);
-}
+using testing::readTable;
 
 // The paragraphs of `part` (its sentences and its blocks' paragraphs), in order.
 std::vector<std::string> listParagraphs(const ReportPart& part) {
@@ -70,7 +61,7 @@ TEST(FormulasGroupTest, ErrorVsLambdaIsItsFigure) {
   const Part& part = findPart("error_vs_lambda");
   const TableSet tables = {
       {"error_vs_lambda",
-       readCsvTable("error_vs_lambda",
+       readTable("error_vs_lambda",
                     "quantity,method,lambda [-],max_abs_error [SI],max_rel_error [-],resolved\n"
                     "x_p,norton_two_term,0.3,0.0002,0.004,1\n"
                     "Q,analytic_vs_simbody,0.3,1e-15,2e-16,0\n")}};
@@ -89,7 +80,7 @@ TEST(FormulasGroupTest, ErrorVsLambdaIsItsFigure) {
 TEST(FormulasGroupTest, SpeedVsErrorListsEveryMethod) {
   const Part& part = findPart("speed_vs_error");
   const TableSet tables = {
-      {"speed_vs_error", readCsvTable("speed_vs_error",
+      {"speed_vs_error", readTable("speed_vs_error",
                                       "method,ns_per_eval [ns],max_rel_error [-],resolved\n"
                                       "exact_closed_form,45.09569847526984,6.865069790820466e-16,0\n"
                                       "fourier_order_4,135.24,7.28312e-06,1\n")}};
@@ -111,7 +102,7 @@ TEST(FormulasGroupTest, IntegratorParetoListsEveryRunAFailedOneAsNan) {
   const Part& part = findPart("integrator_pareto");
   const TableSet tables = {
       {"integrator_pareto",
-       readCsvTable("integrator_pareto",
+       readTable("integrator_pareto",
                     "integrator,accuracy [-],ns_per_revolution [ns],delta_error [-],energy_drift [-],status,engine\n"
                     "CPodes,1e-07,31118234.5,4.62712e-05,3.61711e-06,ok,simbody\n"
                     "ExplicitEuler,0.001,nan,nan,nan,failed,simbody\n")}};
@@ -195,10 +186,10 @@ const char* const kEq15EnginesCsv =
     "two-stroke,12,0.45,12,1,1.5,1.5,0.5\n";
 
 TableSet makeErrataTables() {
-  return {{"errata", readCsvTable("errata", kErrataCsv)},
-          {"eq5_layouts", readCsvTable("eq5_layouts", kEq5LayoutsCsv)},
-          {"eq15_coefficients", readCsvTable("eq15_coefficients", kEq15CoefficientsCsv)},
-          {"eq15_engines", readCsvTable("eq15_engines", kEq15EnginesCsv)}};
+  return {{"errata", readTable("errata", kErrataCsv)},
+          {"eq5_layouts", readTable("eq5_layouts", kEq5LayoutsCsv)},
+          {"eq15_coefficients", readTable("eq15_coefficients", kEq15CoefficientsCsv)},
+          {"eq15_engines", readTable("eq15_engines", kEq15EnginesCsv)}};
 }
 
 TEST(FormulasGroupTest, ErrataReadsEachEntryByItsItemAndMeasure) {
@@ -257,7 +248,7 @@ TEST(FormulasGroupTest, ErrataLeavesOutWhatItsTablesDoNotHold) {
   EXPECT_NE(eq15.find("Lambda_12 by 37.5 %, Lambda_10 by 7 %"), std::string::npos) << eq15;
   // An empty errata table: the part is shown, its table empty, only the sentences that need no row.
   tables = makeErrataTables();
-  tables["errata"] = readCsvTable("errata", "item,printed,holds,measure,value [see measure],verdict\n");
+  tables["errata"] = readTable("errata", "item,printed,holds,measure,value [see measure],verdict\n");
   d = part.describe(tables);
   EXPECT_EQ(d.heading, part.heading());
   ASSERT_NE(findTableBlock(d), nullptr);
@@ -285,9 +276,9 @@ const char* const kFlywheelCsv =
     "car,0.3,0.007,\n";
 
 TableSet makeFlywheelTables() {
-  return {{"flywheel_sizing", readCsvTable("flywheel_sizing", kFlywheelSizingCsv)},
-          {"flywheel_norton", readCsvTable("flywheel_norton", kFlywheelNortonCsv)},
-          {"flywheel", readCsvTable("flywheel", kFlywheelCsv)}};
+  return {{"flywheel_sizing", readTable("flywheel_sizing", kFlywheelSizingCsv)},
+          {"flywheel_norton", readTable("flywheel_norton", kFlywheelNortonCsv)},
+          {"flywheel", readTable("flywheel", kFlywheelCsv)}};
 }
 
 TEST(FormulasGroupTest, FlywheelReadsNortonsErrorAndSimbodysAgreement) {
@@ -317,7 +308,7 @@ TEST(FormulasGroupTest, FlywheelNeedsItsThreeTables) {
   }
   // No engine of the sweep needs a flywheel: the scenes' sentences alone.
   TableSet tables = makeFlywheelTables();
-  tables["flywheel_norton"] = readCsvTable(
+  tables["flywheel_norton"] = readTable(
       "flywheel_norton",
       "speed_rpm [rpm],k [-],exact_inertia [kg m^2],norton_inertia [kg m^2],norton_error [-],norton_delta [-]\n");
   const ReportPart d = part.describe(tables);

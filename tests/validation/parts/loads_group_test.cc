@@ -12,22 +12,13 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/parts.h"
+#include "part_fixture.h"
 
 namespace crankcheck::validation {
 namespace {
 
-// The registered part `key`; fails the test when there is none.
-const Part& findPart(const std::string& key) {
-  for (const Part* part : listParts())
-    if (part->key() == key) return *part;
-  ADD_FAILURE() << "no part " << key;
-  return *listParts().front();
-}
-
-// Table `name` from its CSV header and rows (as the report writes data/NAME.csv), read through its schema.
-Table readTable(const std::string& name, const std::string& csv) {
-  return parseTable(name, parseCsv(csv, name), name);
-}
+using testing::findParagraph;
+using testing::readTable;
 
 // "ENGINE" + suffix for every reference engine of the registry, joined by commas, each preceded by one: the
 // per-engine columns of a header.
@@ -36,16 +27,6 @@ std::string engineColumns(const std::vector<std::string>& suffixes) {
   for (const Engine* e : listReferenceEngines())
     for (const std::string& suffix : suffixes) s += "," + e->name + suffix;
   return s;
-}
-
-// The paragraph (of the sentences or the blocks) that contains `needle`, or "" (the test then fails on its expectations).
-std::string findParagraph(const ReportPart& part, const std::string& needle) {
-  for (const std::string& p : part.paragraphs)
-    if (p.find(needle) != std::string::npos) return p;
-  for (const ReportBlock& b : part.blocks)
-    if (b.kind == ReportBlock::kParagraph && b.text.find(needle) != std::string::npos) return b.text;
-  ADD_FAILURE() << "no paragraph with \"" << needle << "\"";
-  return "";
 }
 
 // The table block whose header's column `column` is `name`; nullptr when there is none.

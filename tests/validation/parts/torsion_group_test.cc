@@ -10,30 +10,13 @@
 
 #include "crankcheck/validation/csv.h"
 #include "crankcheck/validation/parts.h"
+#include "part_fixture.h"
 
 namespace crankcheck::validation {
 namespace {
 
-// The registered part `key`; fails the test when there is none.
-const Part& getPart(const std::string& key) {
-  for (const Part* part : listParts())
-    if (part->key() == key) return *part;
-  ADD_FAILURE() << "no part " << key;
-  return *listParts().front();
-}
-
-// Table `name` from its CSV text (the header first), typed through its schema as `report merge` reads it.
-Table readTable(const std::string& name, const std::string& csv) { return parseTable(name, parseCsv(csv, name), name); }
-
-// The paragraph (of the sentences or the blocks) that contains `needle`, or "" (the test then fails on its expectations).
-std::string findParagraph(const ReportPart& part, const std::string& needle) {
-  for (const std::string& p : part.paragraphs)
-    if (p.find(needle) != std::string::npos) return p;
-  for (const ReportBlock& b : part.blocks)
-    if (b.kind == ReportBlock::kParagraph && b.text.find(needle) != std::string::npos) return b.text;
-  ADD_FAILURE() << "no paragraph with \"" << needle << "\"";
-  return "";
-}
+using testing::findParagraph;
+using testing::readTable;
 
 // Row `row`'s cell in column `column` of `t` as a number (fails the test for any other cell).
 double getNumber(const Table& t, size_t row, const std::string& column) {
@@ -96,7 +79,7 @@ TableSet makeTorsionTables() {
 
 TEST(TorsionGroupTest, TorsionFindsTheResonancesAndReadsHolzersError) {
   TableSet tables = makeTorsionTables();
-  const Part& part = getPart("torsion");
+  const Part& part = findPart("torsion");
   part.derive(tables);
   ASSERT_TRUE(tables.count("torsion_resonances"));
   const Table& peaks = tables.at("torsion_resonances");
@@ -154,7 +137,7 @@ TEST(TorsionGroupTest, TorsionSaysWhichPeaksHolzerMatchesAndWhichHaveNoMode) {
                                     "s,exact,6,2,2000,200,2500,0.003\n"
                                     "s,exact,1.5,,1200,30,,0.001\n"
                                     "s,holzer,6,2,2090,209,2500,0.003\n"));
-  const ReportPart d = getPart("torsion").describe(tables);
+  const ReportPart d = findPart("torsion").describe(tables);
   // 2090 / 2000 - 1 = 4.5 % < 5 %: matched; 2000 / 2500 - 1 = -20 %. Order 1.5 has no Holzer peak: missed.
   EXPECT_NE(findParagraph(d, "s: the exact steady state peaks at order 6 at 2000 rpm (mode 2; Holzer's critical speed 2500 "
                              "rpm, -20 %), where Holzer's sum peaks too (within 5 %); and at order 1.5 at 1200 rpm (no "
@@ -177,7 +160,7 @@ TEST(TorsionGroupTest, TorsionReadsTheEnginesTrainsAndTheirCost) {
                                                     "s,holzer,1000,0.1\n"
                                                     "s,holzer,2000,0.3\n"
                                                     "s,simbody,3000,2.5\n"));
-  const ReportPart d = getPart("torsion").describe(tables);
+  const ReportPart d = findPart("torsion").describe(tables);
   EXPECT_EQ(findParagraph(d, "simbody's own"),
             "simbody's own elastic train agrees with the analytic steady state's peak-to-peak twists to 5e-06 of the twist "
             "scale on s at 3000 rpm (accuracy 1e-07, run until the cycle-to-cycle change is below 0.0001 of the twist).");
@@ -194,7 +177,7 @@ TEST(TorsionGroupTest, TorsionReadsTheEnginesTrainsAndTheirCost) {
 // A route refused (its task's line in the notes, tagged with the part): the part's tables out, and a note that says
 // so. A note of the campaign's own, even one that names torsion, leaves the part in.
 TEST(TorsionGroupTest, TorsionIsLeftOutWhenARouteWasRefused) {
-  const Part& part = getPart("torsion");
+  const Part& part = findPart("torsion");
   auto makeNotes = [](const std::vector<std::string>& lines) {
     std::vector<NoteRow> rows;
     for (const std::string& line : lines) rows.push_back({line});
@@ -222,7 +205,7 @@ TEST(TorsionGroupTest, TorsionIsLeftOutWhenARouteWasRefused) {
 
 // The part needs its sweep, modes and inertias, and at least one speed of the sweep.
 TEST(TorsionGroupTest, TorsionIsLeftOutWithoutItsTables) {
-  const Part& part = getPart("torsion");
+  const Part& part = findPart("torsion");
   for (const char* missing : {"torsion", "torsion_modes", "torsion_inertia"}) {
     TableSet tables = makeTorsionTables();
     tables.erase(missing);
@@ -262,7 +245,7 @@ TEST(TorsionGroupTest, HarmonicsReadsEveryReferenceEnginesColumnAndThePapersClai
   EXPECT_THROW(readTable("harmonics", "cycle,k [-],n [-],analytic_amplitude [N m],paper_nonzero,simbody_amplitude [N m]\n"),
                std::runtime_error);
 
-  const Part& part = getPart("harmonics");
+  const Part& part = findPart("harmonics");
   EXPECT_TRUE(part.describe({}).heading.empty());
   const ReportPart d = part.describe({{"harmonics", t}});
   EXPECT_EQ(d.heading, "3. Harmonics of Q");
@@ -279,7 +262,7 @@ TEST(TorsionGroupTest, DeltaVsKIsItsFigure) {
   ASSERT_NE(t.schema(), nullptr);
   EXPECT_EQ(formatCsv(t), csv);
   EXPECT_EQ(getNumber(t, 1, "k"), 1.0);
-  const Part& part = getPart("delta_vs_k");
+  const Part& part = findPart("delta_vs_k");
   EXPECT_TRUE(part.describe({}).heading.empty());
   const ReportPart d = part.describe({{"delta_vs_k", t}});
   EXPECT_EQ(d.heading, "6. Speed fluctuation due to gravity in the free run");
@@ -296,7 +279,7 @@ TEST(TorsionGroupTest, NortonFigureIsItsFigure) {
   const Table t = readTable("norton_fig13_8", csv);
   ASSERT_NE(t.schema(), nullptr);
   EXPECT_EQ(formatCsv(t), csv);
-  const Part& part = getPart("norton_fig13_8");
+  const Part& part = findPart("norton_fig13_8");
   EXPECT_TRUE(part.describe({}).heading.empty());
   const ReportPart d = part.describe({{"norton_fig13_8", t}});
   EXPECT_EQ(d.heading, "5. Piston motion (after Norton fig. 13-8)");

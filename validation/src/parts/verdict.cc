@@ -100,9 +100,7 @@ class VerdictPart final : public Part {
     if (!tables.count(kCrossCheckTable.name())) return part;  // not run: left out
     const std::vector<EngineVerdict> verdicts = calcVerdicts(tables);
     part.heading = heading();
-    std::string closing = formatVerdict(verdicts);
-    closing = closing.substr(closing.rfind('\n', closing.size() - 2) + 1);
-    closing.pop_back();
+    const std::string closing = formatVerdictClosing(verdicts);
     part.blocks.push_back({ReportBlock::kParagraph,
                            std::string(allAgree(verdicts) ? "**Pass.** " : "**FAIL.** ") + closing + "."});
     ReportBlock verdict_table{ReportBlock::kTable, "", {"engine", "gated", "cases", "comparisons",

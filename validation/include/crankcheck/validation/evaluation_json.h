@@ -9,6 +9,7 @@
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/validation/balance.h"
+#include "crankcheck/validation/commands/motion.h"
 
 namespace crankcheck::validation {
 
@@ -27,6 +28,10 @@ nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, co
 /// {"force", "moment_xy", "moment_z"} (null where not decided)}; each harmonic {"shaking_force": {"amplitude", "cos",
 /// "sin"}, "shaking_moment": {"X", "Y", "Z": {"amplitude", "cos", "sin"}}}, X and Y null when `axial` is false (the
 /// scene places no cylinder along the shaft).
+/// One way's free run (commands/motion.h) as `crankcheck motion --json` and the Python module give it: delta with and
+/// without gravity, omega's extremes and mean, and for a simulation its integrator, energy drift and steps.
+nlohmann::ordered_json motionRunToJson(const MotionRun& run);
+
 nlohmann::ordered_json balanceToJson(const std::vector<BalanceRow>& rows, bool axial);
 
 }  // namespace crankcheck::validation

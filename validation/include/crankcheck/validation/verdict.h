@@ -51,6 +51,10 @@ std::string formatWhere(const CrossCheckRow& row);
 /// @return the lines, each ended by '\n'.
 std::string formatVerdict(const std::vector<EngineVerdict>& verdicts);
 
+/// The verdict's closing line alone, without a line break (formatVerdict's last line): ctest's style, "100% of
+/// comparisons agree, 0 failed out of N (gated engines: ...)", or that no gated engine was compared.
+std::string formatVerdictClosing(const std::vector<EngineVerdict>& verdicts);
+
 /// True when every gated engine's comparisons all agree (true for a table without comparisons: a shard may hold none).
 bool allAgree(const std::vector<EngineVerdict>& verdicts);
 
