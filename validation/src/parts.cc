@@ -9,6 +9,7 @@ namespace crankcheck::validation {
 // file, validation/src/parts/KEY.cc, defines in namespace parts (docs/contributing.md, "Adding a report part").
 #define CRANKCHECK_REPORT_PARTS(PART) \
   PART(verdict)                       \
+  PART(yourEngine)                    \
   PART(summary)                       \
   PART(scenes)                        \
   PART(errorVsLambda)        /*  1 */ \

@@ -183,6 +183,9 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
         case ReportBlock::kParagraph: doc.push_back({Block::kParagraph, b.text}); break;
         case ReportBlock::kTable: doc.push_back({Block::kTable, "", b.header, b.rows}); break;
         case ReportBlock::kFigure: doc.push_back({Block::kFigure, b.text, {}, {}, b.figure}); break;
+        case ReportBlock::kHeading:
+          doc.push_back({Block::kHeading, b.text, {}, {}, std::string(static_cast<size_t>(std::max(b.level, 3)), '#'), b.id});
+          break;
       }
     }
   }

@@ -13,11 +13,13 @@ namespace crankcheck::validation {
 
 /// One piece of a part's content under its heading.
 struct ReportBlock {
-  enum Kind { kParagraph, kTable, kFigure } kind = kParagraph;
-  std::string text = {};                          ///< the paragraph, or the figure's caption
+  enum Kind { kParagraph, kTable, kFigure, kHeading } kind = kParagraph;
+  std::string text = {};                          ///< the paragraph, the figure's caption or the heading
   std::vector<std::string> header = {};           ///< the table's
   std::vector<std::vector<std::string>> rows = {};
   std::string figure = {};                        ///< the figure's stem (NAME.png, NAME.svg, data/NAME.csv)
+  int level = 3;                                  ///< a heading's level, below the part's (2): 3, 4, ...
+  std::string id = {};                            ///< a heading's anchor; empty: made of its text
 };
 
 struct ReportPart {

@@ -1,0 +1,57 @@
+// The scene sections' topics, in the order of a section, and the tables several of them share (topic.h).
+#include <cmath>
+
+#include "crankcheck/validation/report_format.h"
+#include "topic.h"
+
+namespace crankcheck::validation::your_engine {
+
+const Schema<SceneFactsRow> kSceneFactsTable{
+    "your_engine",
+    {countField("scene_index", &SceneFactsRow::scene_index), textField("scene", &SceneFactsRow::scene),
+     textField("given", &SceneFactsRow::given), textField("layout", &SceneFactsRow::layout),
+     countField("cylinders", &SceneFactsRow::cylinders), textField("cycle", &SceneFactsRow::cycle),
+     textField("acting", &SceneFactsRow::acting), numberField("speed_rpm", "rpm", &SceneFactsRow::speed_rpm),
+     numberField("lambda", "-", &SceneFactsRow::lambda), countField("gas", &SceneFactsRow::gas),
+     countField("flywheel", &SceneFactsRow::flywheel), countField("crankshaft", &SceneFactsRow::crankshaft),
+     countField("balance_shafts", &SceneFactsRow::balance_shafts), countField("pin_offsets", &SceneFactsRow::pin_offsets),
+     numberField("max_pin_offset", "m", &SceneFactsRow::max_pin_offset)}};
+
+const Schema<FitnessRow> kFitnessTable{
+    "your_engine_fitness",
+    {textField("scene", &FitnessRow::scene), countField("order", &FitnessRow::order),
+     textField("formula", &FitnessRow::formula), textField("quantity", &FitnessRow::quantity),
+     textField("reference", &FitnessRow::reference), numberField("max_error_rel", "-", &FitnessRow::max_error_rel),
+     textField("scale", &FitnessRow::scale), numberField("scale_value", "SI", &FitnessRow::scale_value),
+     textField("scale_unit", &FitnessRow::scale_unit),
+     optionalField("phi_deg_at_max", "deg", &FitnessRow::phi_deg_at_max), countField("resolved", &FitnessRow::resolved)}};
+
+const Schema<GravityRow> kGravityTable{
+    "your_engine_gravity",
+    {textField("scene", &GravityRow::scene), textField("engine", &GravityRow::engine),
+     numberField("max_abs_Q", "N m", &GravityRow::max_abs_Q), numberField("phi_deg_at_max", "deg", &GravityRow::phi_deg_at_max),
+     numberField("max_abs_inertia_torque", "N m", &GravityRow::max_abs_inertia_torque),
+     numberField("ratio", "-", &GravityRow::ratio)}};
+
+std::optional<SceneFactsRow> findSceneFacts(const TableSet& tables, const std::string& scene) {
+  for (const SceneFactsRow& row : getRows(tables, kSceneFactsTable))
+    if (row.scene == scene) return row;
+  return std::nullopt;
+}
+
+std::string formatFitness(double max_error_rel, bool resolved) {
+  if (!resolved) return "exact to rounding";
+  if (max_error_rel < 0.01) return "within 1 %";
+  return "off by " + formatPercent(max_error_rel);
+}
+
+// The topics, in the order of a section: each defined in its own file of this folder as `const SceneTopic& NAME()`.
+namespace topics {
+}  // namespace topics
+
+const std::vector<const SceneTopic*>& listTopics() {
+  static const std::vector<const SceneTopic*> all = {};
+  return all;
+}
+
+}  // namespace crankcheck::validation::your_engine
