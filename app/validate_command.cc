@@ -18,6 +18,7 @@
 #include "crankcheck/validation/report.h"
 #include "crankcheck/validation/interrupt.h"
 #include "crankcheck/validation/runner.h"
+#include "crankcheck/validation/scene_sections.h"
 #include "crankcheck/validation/verdict.h"
 #include "crankcheck/validation/errors.h"
 #include "help_format.h"
@@ -102,7 +103,7 @@ int reportAndInstall(const TableSet& unsorted, validation::ReportInfo& info, val
             << (info.shards > 1 ? ", merged from " + std::to_string(info.shards) + " shards"
                                 : ", in " + validation::shortNumber(info.seconds, 3) + " s")
             << "\n"
-            << validation::formatVerdict(verdicts)
+            << validation::formatVerdict(verdicts) << validation::formatSceneHeadlines(tables)
             << "Report: " << (out.getTarget() / "index.md").string() << " (also index.html)\n";
   return pass ? 0 : 1;
 }

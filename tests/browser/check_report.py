@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Opens a report's index.html in headless Chromium and fails on anything a reader would see broken.
 
-    check_report.py CHROMIUM REPORT_DIR SCREENSHOT.png [--verdict-first] [--anchors ID,ID,...]
+    check_report.py CHROMIUM REPORT_DIR SCREENSHOT.png [--verdict-first] [--anchors ID,ID,...] [--near-top ID,...]
+                    [--section-shot ID OUT.png]
 
 Talks to Chromium over the DevTools protocol on a pipe (--remote-debugging-pipe: file descriptors 3 and 4, JSON
 messages ended by NUL), so no network port and no extra package is needed. Fails (exit status 1, one line per
@@ -9,7 +10,10 @@ problem) on: a console error or warning of level error, an uncaught exception, a
 image whose naturalWidth is 0, a page without lang, title or table of contents, a page that scrolls sideways at 1200 px
 (a wide table scrolls in its own box); with --verdict-first, a page whose first screen (1200 x 900) does not show the
 heading "Verdict", its engine table and its coloured engine x quantity matrix whole; with --anchors, a listed id that
-is not a heading's (a part's anchor is its key, the same in every report: #torsion). Keeps a full-page screenshot, and SCREENSHOT_first.png of the first screen.
+is not a heading's (a part's anchor is its key, the same in every report: #torsion); with --near-top, a listed heading
+that does not begin within the first two screens (a scene's section, #your-engine-STEM, right after the verdict). With
+--section-shot, OUT.png is a picture of the section that heading ID opens (down to the next heading of its level or
+above), as README shows one. Keeps a full-page screenshot, and SCREENSHOT_first.png of the first screen.
 The page is opened from the file system with the network disabled: the report must work offline.
 """
 import base64
@@ -95,6 +99,13 @@ def main():
     anchors = []
     if "--anchors" in sys.argv[4:]:
         anchors = sys.argv[sys.argv.index("--anchors") + 1].split(",")
+    near_top = []
+    if "--near-top" in sys.argv[4:]:
+        near_top = sys.argv[sys.argv.index("--near-top") + 1].split(",")
+    section_shot = None
+    if "--section-shot" in sys.argv[4:]:
+        at = sys.argv.index("--section-shot")
+        section_shot = (sys.argv[at + 1], sys.argv[at + 2])
     index = os.path.abspath(os.path.join(report_dir, "index.html"))
     if not os.path.isfile(index):
         print("check_report: no index.html in " + report_dir)
@@ -137,6 +148,34 @@ def main():
                     return problems;
                 })()
             })"""}, session=session)["result"]["value"]
+            tops = tools.send("Runtime.evaluate", {"returnByValue": True, "expression": "(" + json.dumps(near_top) + """)
+                .map(id => [id, document.getElementById(id), innerHeight])
+                .map(([id, e, h]) => [id, e ? e.getBoundingClientRect().top + scrollY : -1, h])"""}, session=session)["result"]["value"]
+            for anchor, top, height in tops:
+                if top < 0:
+                    problems.append("no heading #" + anchor + " for --near-top")
+                elif top > 2 * height:
+                    problems.append("#%s begins at %d px, below the first two screens (%d px)" % (anchor, top, 2 * height))
+            if section_shot:
+                box = tools.send("Runtime.evaluate", {"returnByValue": True, "expression": """(() => {
+                    const h = document.getElementById(%s);
+                    if (!h) return null;
+                    const level = Number(h.tagName[1]);
+                    let end = h.nextElementSibling;
+                    while (end && !(/^H[1-6]$/.test(end.tagName) && Number(end.tagName[1]) <= level)) end = end.nextElementSibling;
+                    const top = h.getBoundingClientRect().top + scrollY;
+                    const bottom = end ? end.getBoundingClientRect().top + scrollY : document.documentElement.scrollHeight;
+                    const left = h.parentElement.getBoundingClientRect().left;
+                    return {x: Math.max(0, left - 8), y: top - 8, width: Math.min(innerWidth, h.parentElement.getBoundingClientRect().width + 16), height: bottom - top};
+                })()""" % json.dumps(section_shot[0])}, session=session)["result"].get("value")
+                if not box:
+                    problems.append("no heading #" + section_shot[0] + " for --section-shot")
+                else:
+                    box["scale"] = 1
+                    shot = tools.send("Page.captureScreenshot", {"format": "png", "captureBeyondViewport": True, "clip": box},
+                                      session=session)
+                    with open(section_shot[1], "wb") as out:
+                        out.write(base64.b64decode(shot["data"]))
             first = tools.send("Page.captureScreenshot", {"format": "png"}, session=session)
             with open(screenshot[:-4] + "_first.png" if screenshot.endswith(".png") else screenshot + "_first", "wb") as out:
                 out.write(base64.b64decode(first["data"]))

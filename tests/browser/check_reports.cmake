@@ -25,6 +25,16 @@ endif()
 # The anchors: the report's sections and a part's key (#torsion in every report), not positions (#part20).
 run("validate report in Chromium" ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/check_report.py ${CHROMIUM} ${VALIDATE_REPORT}
     ${WORK_DIR}/validate_report.png --verdict-first --anchors verdict,summary,scenes,error_vs_lambda,torsion)
+# A user's report (USER_REPORT: the quick campaign of one example scene as a user gives it): the scene's own section
+# ("NAME: your engine") begins within the first two screens, right after the verdict.
+if(USER_REPORT)
+  if(NOT EXISTS ${USER_REPORT}/index.html)
+    message(FATAL_ERROR "${USER_REPORT}: no index.html (the one-scene campaign's report)")
+  endif()
+  run("user report in Chromium" ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/check_report.py ${CHROMIUM} ${USER_REPORT}
+      ${WORK_DIR}/user_report.png --verdict-first --near-top your-engine-${USER_SCENE}
+      --section-shot your-engine-${USER_SCENE} ${WORK_DIR}/user_scene_section.png)
+endif()
 run("grade --quick" ${CRANKCHECK} grade --quick --batch --out ${WORK_DIR}/grade -- ${GRADE_PROGRAM})
 run("grade report in Chromium" ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/check_report.py ${CHROMIUM} ${WORK_DIR}/grade
     ${WORK_DIR}/grade_report.png)

@@ -1,0 +1,35 @@
+// The terminal's line per user scene (scene_sections.h): its most telling numbers, from the sections' tables.
+#include <algorithm>
+#include <cmath>
+
+#include "crankcheck/validation/report_format.h"
+#include "crankcheck/validation/scene_sections.h"
+#include "topic.h"
+
+namespace crankcheck::validation {
+
+std::string formatSceneHeadlines(const TableSet& tables) {
+  using namespace your_engine;
+  std::vector<SceneFactsRow> facts = getRows(tables, kSceneFactsTable);
+  std::sort(facts.begin(), facts.end(), [](const SceneFactsRow& a, const SceneFactsRow& b) { return a.scene_index < b.scene_index; });
+  std::string out;
+  for (const SceneFactsRow& f : facts) {
+    if (f.given != "user") continue;
+    std::vector<std::string> clauses;
+    // Norton's two-term a_p: the formula engineers use most, judged on this scene against the exact closed forms.
+    for (const FitnessRow& r : getRows(tables, kFitnessTable))
+      if (r.scene == f.scene && r.reference == "analytic" && r.quantity == "a_p" && r.formula.rfind("Norton", 0) == 0)
+        clauses.push_back("Norton's two-term a_p " + formatFitness(r.max_error_rel, r.resolved != 0) + " of " + r.scale);
+    // The paper's question: does gravity matter for this engine at its speed.
+    for (const GravityRow& r : getRows(tables, kGravityTable))
+      if (r.scene == f.scene && r.engine == "analytic" && std::isfinite(r.ratio))
+        clauses.push_back("gravity " + shortNumber(r.ratio, 2) + " of the inertia torque");
+    if (clauses.empty()) continue;
+    out += "  " + f.scene + ": ";
+    for (size_t i = 0; i < clauses.size(); ++i) out += (i == 0 ? "" : "; ") + clauses[i];
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace crankcheck::validation
