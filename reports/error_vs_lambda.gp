@@ -156,7 +156,7 @@ do for [i = 1:nyours] {
     if (L < lmin) { lmin = L }
     if (L > lmax) { lmax = L }
     set arrow (10 + i) from first L, graph 0 to first L, graph 1 nohead dt 4 lw 2 lc rgb "#2ca02c" back
-    set label (10 + i) "your engine: " . yname at first L, graph 0.97 right rotate by 90 offset -0.7, 0 font ",8" tc rgb "#2ca02c"
+    set label (10 + i) "your engine: " . yname at first L, graph 0.97 right rotate by 90 offset -0.7, 0 font ",8" tc rgb "#2ca02c" noenhanced
 }
 set xrange [lmin / 1.12 : lmax * 1.06]
 
