@@ -62,12 +62,15 @@ TEST(SurveyReportTest, UserCampaignPlacesTheSurveyAndMarksYourEngine) {
     const validation::ReportPart described = part->describe(tables);
     ASSERT_FALSE(described.heading.empty()) << "the quick user campaign runs every part";
     const std::string text = collectText(described);
-    if (!own_speed_only.count(part->key()))
+    if (!own_speed_only.count(part->key())) {
       EXPECT_NE(text.find("not your scene's speed"), std::string::npos) << text;
+    }
     const bool names_example_gas = text.find("example spark-ignition") != std::string::npos ||
                                    text.find("example pressure") != std::string::npos;
     EXPECT_EQ(names_example_gas, example_gas.count(part->key()) > 0) << text;
-    if (names_example_gas) EXPECT_NE(text.find("not your scene's [gas]"), std::string::npos) << text;
+    if (names_example_gas) {
+      EXPECT_NE(text.find("not your scene's [gas]"), std::string::npos) << text;
+    }
   }
 }
 
