@@ -8,6 +8,8 @@
 # Left panel: piston kinematics (x_p, v_p, a_p; Norton's two-term form and, if present, the
 # analytic library against Simbody). Right panel: gravity torque Q (exact Fourier series of
 # order 2..12, the paper's eq (15) and eq (5) as printed, analytic against Simbody) plus U.
+# Reads also in_dir/your_engine.csv (the scene sections' facts, columns scene, given and lambda [-]) when it is there:
+# each scene the user gave (given = "user") is marked by a dash-dotted vertical line at its lambda.
 # Any (quantity, method) pair absent from the CSV is left out of the plot and the legend.
 # Rows may come in any order. Errors of 0 (or below 1e-17) are drawn at 1e-17.
 
@@ -47,6 +49,20 @@ if (ndata > 0) {
 }
 
 has(q, m) = strstrt(present, "|" . q . ":" . m . "|") > 0
+
+# ---- your engines: each scene the user gave (in_dir/your_engine.csv, given = "user", by the columns scene and
+#      lambda [-]) is marked by a dash-dotted vertical line at its lambda, labelled with its name; none in the default
+#      campaign (its scenes are "example") or when the file is missing --------------------------------------------
+yours_lambda = ""; yours_name = ""
+yfile = in_dir . "/your_engine.csv"
+ylines = 0
+stats yfile using (ylines = ylines + 1, 1) nooutput
+if (ylines > 0) {
+    stats yfile using (u = (strcol("given") eq "user" && fin(column("lambda [-]")) && column("lambda [-]") > 0), \
+        yours_lambda = u ? yours_lambda . sprintf("%.17g ", column("lambda [-]")) : yours_lambda, \
+        yours_name = u ? yours_name . strcol("scene") . "|" : yours_name, 0) nooutput
+}
+nyours = words(yours_lambda)
 
 # ---- the candidate series: quantity, method, legend title, line style -------------------------
 N = 17
@@ -130,6 +146,19 @@ cmd2 = (cmd2 eq "NaN notitle") ? epsline : cmd2 . ", " . epsline
 # largest engine lambda: a dotted vertical line, labelled just above the frame
 set arrow 2 from first 0.4, graph 0 to first 0.4, graph 1 nohead dt 3 lw 2 lc rgb "#444444" back
 set label 2 "largest engine λ = 0.4" at first 0.4, graph 1 center offset 0, 0.55 font ",9" tc rgb "#444444"
+# your engines' lambdas: dash-dotted green lines, each labelled with its scene's name inside the frame, read upward
+rest = yours_name
+do for [i = 1:nyours] {
+    L = real(word(yours_lambda, i))
+    p = strstrt(rest, "|")
+    yname = rest[1:p - 1]
+    rest = rest[p + 1:]
+    if (L < lmin) { lmin = L }
+    if (L > lmax) { lmax = L }
+    set arrow (10 + i) from first L, graph 0 to first L, graph 1 nohead dt 4 lw 2 lc rgb "#2ca02c" back
+    set label (10 + i) "your engine: " . yname at first L, graph 0.97 right rotate by 90 offset -0.7, 0 font ",8" tc rgb "#2ca02c" noenhanced
+}
+set xrange [lmin / 1.12 : lmax * 1.06]
 
 if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) { pngterm = "pngcairo" } else { pngterm = "png" }
 

@@ -12,6 +12,7 @@ namespace crankcheck::validation {
   PART(yourEngine)                    \
   PART(summary)                       \
   PART(scenes)                        \
+  PART(survey)                        \
   PART(errorVsLambda)        /*  1 */ \
   PART(speedVsError)         /*  2 */ \
   PART(harmonics)            /*  3 */ \

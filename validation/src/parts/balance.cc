@@ -12,6 +12,7 @@
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/part.h"
 #include "engine_fields.h"
+#include "survey.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -65,7 +66,7 @@ const Schema<BalanceHarmonicRow> kBalanceHarmonicsTable{
      textField("couple_vanishes", &BalanceHarmonicRow::couple_vanishes)}};
 
 // The report's balance tables for every layout of layouts.h, built on `parts` (its crank, rod and piston) at
-// 6000 rpm, and for each of `scenes` as it is (the user's scenes: harmonics only, no textbook claim), harmonics 1..8
+// 6000 rpm, and for each of `scenes` as it is (the user's scenes, at their own speed: no textbook claim), harmonics 1..8
 // from the closed forms and each reference engine.
 TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>& scenes) {
   constexpr int kOrder = 8;
@@ -94,14 +95,14 @@ TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>&
       const double rocking = s.moment_z_cancels ? 0.0 : row.analytic.calcMomentAmplitude(2);
       harmonics.push_back({static_cast<int>(index), layout.name, row.n, force / sc.force, couple / sc.moment,
                            rocking / sc.moment, s.force_cancels ? "1" : "0", s.moment_xy_cancels ? "1" : "0"});
-      if (row.n > 2 || index >= mechanisms.size() - scenes.size()) continue;  // the summary: the balance layouts
+      if (row.n > 2) continue;  // the summary: the balance layouts, then the user's scenes (no textbook claim)
       const std::optional<bool> claims[2] = {row.n == 1 ? layout.textbook.F1 : layout.textbook.F2,
                                              row.n == 1 ? layout.textbook.M1 : layout.textbook.M2};
       for (int part = 0; part < 2; ++part) {
         const bool vanishes = part == 0 ? s.force_cancels : s.moment_xy_cancels;
         const double analytic = part == 0 ? force : couple;
         const std::optional<bool>& claim = claims[part];
-        BalanceSummaryRow fields{layout.name, layout.description, (part == 0 ? "F" : "M") + std::to_string(row.n),
+        BalanceSummaryRow fields{layout.name, layout.description, std::string(part == 0 ? "F" : "M").append(std::to_string(row.n)),
                                  !claim ? "no claim" : *claim ? "vanishes" : "does not vanish", vanishes ? "yes" : "no",
                                  analytic, {}, analytic / (part == 0 ? sc.force : sc.moment),
                                  !claim ? "-" : *claim == vanishes ? "agrees" : "DIFFERS"};
@@ -118,23 +119,32 @@ TableSet calcBalanceTables(const Mechanism& parts, const std::vector<Mechanism>&
 
 // The part: the balance table (computed, beside the textbook's claims), what the two-term rules miss, the figure.
 void addBalancePart(ReportPart& part, const TableSet& tables, const std::string& caption) {
-  part.blocks.push_back({ReportBlock::kParagraph,
-                 "Each layout is built on the base scene's crank, rod and piston at 6000 rpm, cylinders spaced along "
-                 "the shaft (throws 0.1 m apart, the two cylinders of a shared pin 0.02 m apart, O in the middle). F1, F2: "
-                 "primary and secondary shaking force [N]; M1, M2: primary and secondary couple about X and Y [N m]. "
-                 "'Vanishes exactly' is decided in integers (sums of roots of unity over the throws), not read off a "
-                 "small number; the amplitudes are the closed form's and each reference engine's (a DFT of each engine's own "
-                 "shaking force and moment over one revolution). The textbook column is the claim of the standard balance tables "
-                 "(two-term piston motion, both cylinders of a pin in one plane). A DIFFERS is a finding, not a failure "
-                 "of the engines (they agree, see the summary): for example the 0.02 m between the two cylinders of a "
-                 "shared pin, which the tables ignore, gives a flat-plane V8 a secondary couple."});
+  std::vector<std::string> yours;  // the user's scenes: their rows follow the layouts'
+  for (const your_engine::SceneFactsRow& f : survey::listUserScenes(tables)) yours.push_back(f.scene);
+  auto isYours = [&yours](const std::string& layout) { return std::find(yours.begin(), yours.end(), layout) != yours.end(); };
+  std::string about = "Each layout is built on the base scene's crank, rod and piston at 6000 rpm (";
+  about += survey::kNotSceneSpeed;
+  about += "; the relative amplitudes do not depend on it), cylinders spaced along "
+           "the shaft (throws 0.1 m apart, the two cylinders of a shared pin 0.02 m apart, O in the middle). F1, F2: "
+           "primary and secondary shaking force [N]; M1, M2: primary and secondary couple about X and Y [N m]. "
+           "'Vanishes exactly' is decided in integers (sums of roots of unity over the throws), not read off a "
+           "small number; the amplitudes are the closed form's and each reference engine's (a DFT of each engine's own "
+           "shaking force and moment over one revolution). The textbook column is the claim of the standard balance tables "
+           "(two-term piston motion, both cylinders of a pin in one plane). A DIFFERS is a finding, not a failure "
+           "of the engines (they agree, see the summary): for example the 0.02 m between the two cylinders of a "
+           "shared pin, which the tables ignore, gives a flat-plane V8 a secondary couple.";
+  if (!yours.empty())
+    about += " Below the layouts, marked 'your engine': " + survey::joinNames(yours) +
+             ", each exactly as given, at its own speed (no textbook claim).";
+  part.blocks.push_back({ReportBlock::kParagraph, about});
   {
     std::vector<std::string> headings = {"layout", "part", "textbook", "vanishes exactly", "amplitude (closed form)"};
     for (const Engine* e : listReferenceEngines()) headings.push_back("amplitude (" + e->name + ")");  // each one's DFT
     headings.insert(headings.end(), {"relative", "verdict"});
     std::vector<std::vector<std::string>> rows;
     for (const BalanceSummaryRow& r : getRows(tables, balanceSummaryTable())) {
-      std::vector<std::string> row = {r.layout, r.part, r.textbook, r.vanishes_exactly, shortNumber(r.analytic_amplitude, 4)};
+      std::vector<std::string> row = {isYours(r.layout) ? r.layout + " (your engine)" : r.layout, r.part, r.textbook,
+                                      r.vanishes_exactly, shortNumber(r.analytic_amplitude, 4)};
       for (double a : r.engine_amplitudes) row.push_back(shortNumber(a, 4));
       row.insert(row.end(), {shortNumber(r.relative_amplitude, 4), r.verdict});
       rows.push_back(std::move(row));
@@ -161,7 +171,7 @@ void addBalancePart(ReportPart& part, const TableSet& tables, const std::string&
     for (const std::string& name : order) {
       const auto& f = worst_force[name];
       const auto& c = worst_couple[name];
-      beyond.rows.push_back({name, f.n == 0 ? "none up to 8" : "n = " + std::to_string(f.n), shortNumber(f.relative, 3),
+      beyond.rows.push_back({isYours(name) ? name + " (your engine)" : name, f.n == 0 ? "none up to 8" : "n = " + std::to_string(f.n), shortNumber(f.relative, 3),
                              c.n == 0 ? "none up to 8" : "n = " + std::to_string(c.n), shortNumber(c.relative, 3)});
     }
     part.blocks.push_back({ReportBlock::kParagraph,
@@ -187,8 +197,9 @@ class BalancePart final : public Part {
     if (!tables.count(kBalanceHarmonicsTable.name())) return part;
     part.heading = heading();
     addBalancePart(part, tables,
-                   "The shaking force and the couple about X and Y of every layout of the balance table (and of the "
-                   "campaign's own scenes, below the layouts, when scene files were given), harmonics 1-8, relative "
+                   "The shaking force and the couple about X and Y of every layout of the balance table (at 6000 rpm, "
+                   "not your scene's speed; and of the campaign's own scenes as given, below the layouts, when scene "
+                   "files were given), harmonics 1-8, relative "
                    "to the force and moment scales: closed form from the exact Fourier coefficients (Simbody's DFT "
                    "agrees, see the summary); white with a dot where the harmonic vanishes exactly by the layout's "
                    "symmetry");

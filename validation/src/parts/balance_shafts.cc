@@ -18,6 +18,7 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/variants.h"
+#include "survey.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -96,9 +97,10 @@ ReportPart describeBalanceShaftPart(const TableSet& tables, const std::string& h
   part.heading = heading;
   part.caption =
       "The amplitude of each harmonic n of the shaking force relative to the force scale, without balance shafts "
-      "(grey) and with them (colours: the closed form as a line, each other exact engine's DFT as points), at 6000 rpm: "
-      "the base scene's parts as a single cylinder with the shafts crankcheck balance --design 1 gives, "
-      "as an inline four with the Lanchester pair of --design 2, and each campaign scene with [[balance_shaft]] tables. "
+      "(grey) and with them (colours: the closed form as a line, each other exact engine's DFT as points): "
+      "the base scene's parts at 6000 rpm (" + std::string(survey::kNotSceneSpeed) + ", without gas) as a single "
+      "cylinder with the shafts crankcheck balance --design 1 gives and as an inline four with the Lanchester pair of "
+      "--design 2, and each campaign scene with [[balance_shaft]] tables as given, at its own speed. "
       "Exact zeros and amplitudes below 1e-17 are drawn at 1e-17";
   // case -> n -> (analytic without, analytic with, worst engine with (relative), its engine)
   struct Harmonic {

@@ -11,6 +11,7 @@
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/variants.h"
+#include "survey.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -66,7 +67,12 @@ class DeltaVsKPart final : public Part {
                      [base = context.base, cycle, quick = context.quick] { return calcDeltaVsKTables(base, cycle, quick); }});
     return out;
   }
-  ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
+  // The caption with the speeds read from the table.
+  ReportPart describe(const TableSet& tables) const override {
+    std::vector<double> speeds;
+    for (const DeltaRow& row : getRows(tables, kDeltaVsKTable)) speeds.push_back(row.speed_rpm);
+    return describeFigure(tables, std::string(kCaption) + (speeds.empty() ? "" : "; " + survey::atSurveySpeeds(speeds)));
+  }
   std::vector<const TableSchema*> schemas() const override { return {&kDeltaVsKTable}; }
   std::vector<ReportedMaximum> maxima() const override {
     return {{"delta_vs_k", {"cycle", "k", "speed_rpm"}, {"delta_gravity", "delta_no_gravity"}, "", ""}};

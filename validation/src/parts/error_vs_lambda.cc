@@ -21,6 +21,8 @@
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
+#include "crankcheck/validation/report_format.h"
+#include "survey.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -129,7 +131,17 @@ class ErrorVsLambdaPart final : public Part {
     }
     return out;
   }
-  ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
+  // The caption, and where the user's engines sit: the figure marks each one's lambda (reports/error_vs_lambda.gp
+  // reads data/your_engine.csv), and the caption names them.
+  ReportPart describe(const TableSet& tables) const override {
+    std::string caption = kCaption;
+    std::vector<std::string> marks;
+    for (const your_engine::SceneFactsRow& f : survey::listUserScenes(tables))
+      marks.push_back(f.scene + " at lambda = " + shortNumber(f.lambda, 4));
+    if (!marks.empty())
+      caption += ". The dash-dotted vertical lines mark your engines' lambda: " + survey::joinNames(marks);
+    return describeFigure(tables, caption);
+  }
   std::vector<const TableSchema*> schemas() const override { return {&kErrorVsLambdaTable}; }
   std::vector<ReportedMaximum> maxima() const override {
     return {{"error_vs_lambda", {"quantity", "method", "lambda"}, {"max_abs_error", "max_rel_error"}, "resolved", "0"}};

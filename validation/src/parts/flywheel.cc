@@ -18,6 +18,7 @@
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/variants.h"
+#include "survey.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -226,11 +227,15 @@ ReportPart describeFlywheelPart(const TableSet& tables, const std::string& headi
       !tables.count(curve_table.name()))
     return part;
   part.heading = heading;
+  std::vector<double> speeds;  // the right panel's, read from its table
+  for (const FlywheelNortonRow& row : getRows(tables, kFlywheelNortonTable)) speeds.push_back(row.speed_rpm);
   part.caption =
-      "Left: the steady run's speed fluctuation delta against the flywheel inertia for each scene with gas (the exact "
-      "energy integral as lines, Simbody's run over a working cycle as dots), the exact inertia for delta = 0.01 marked "
-      "by the dashed line. Right: the error of Norton's inertia (13.9) against the exact one, for C = 0.01, against the "
-      "number of cylinders of an inline four-stroke on the base scene's parts, one line per speed";
+      "Left: the steady run's speed fluctuation delta against the flywheel inertia for each scene with gas, at its own "
+      "speed with its own [gas] (the exact energy integral as lines, Simbody's run over a working cycle as dots), the "
+      "exact inertia for delta = 0.01 marked by the dashed line. Right: the error of Norton's inertia (13.9) against "
+      "the exact one, for C = 0.01, against the number of cylinders of an inline four-stroke on the base scene's parts "
+      "with " + std::string(survey::kExampleGas) + ", one line per speed" +
+      (speeds.empty() ? std::string() : ", " + survey::atSurveySpeeds(speeds));
   for (const FlywheelSizingRow& row : getRows(tables, kFlywheelSizingTable))
     part.paragraphs.push_back(row.scene + " at C = 0.01: the exact flywheel is " + shortNumber(row.exact_inertia, 4) +
                               " kg m^2, Norton's " + shortNumber(row.norton_inertia, 4) + " kg m^2 (" +

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -19,6 +20,7 @@
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
 #include "engine_fields.h"
+#include "survey.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -176,8 +178,14 @@ class GravitySignificancePart final : public Part {
     ReportPart part;
     if (!tables.count(key())) return part;
     part.heading = heading();
+    // The speed of the inertia torque: the survey's base's (the first scene's), said by name where the table has it.
+    const std::optional<survey::SurveyBaseRow> base = survey::findSurveyBase(tables);
+    const std::string speed = base ? base->scene + "'s speed, " + shortNumber(base->speed_rpm, 4) + " rpm, for every k"
+                                   : "the base scene's speed";
+    const std::vector<your_engine::SceneFactsRow> users = survey::listUserScenes(tables);
     part.blocks.push_back({ReportBlock::kFigure,
-                           "Max |Q| against k, relative to k = 1 and relative to the inertia torque at the base scene's speed",
+                           "Max |Q| against k (standing inline engines on the base scene's parts), relative to k = 1 "
+                           "and relative to the inertia torque at " + speed,
                            {}, {}, key()});
     part.blocks.push_back({ReportBlock::kParagraph,
                            "max |Q| is the maximum over the turn of Q's exact harmonics (no cancellation, so it is exact however "
@@ -189,15 +197,34 @@ class GravitySignificancePart final : public Part {
                                          "max |Q| / inertia", "rounding bound [N m]"};
     for (const Engine* e : listReferenceEngines())
       headings.insert(headings.end(), {e->name + " max |Q| [N m]", e->name + " resolves"});
+    // Where the user's engines sit: the rows of their k and cycle (the scenes given; none in the default campaign).
+    if (!users.empty()) headings.push_back("your engine(s)");
+    auto yours = [&users](const GravitySignificanceRow& r) {
+      std::vector<std::string> names;
+      for (const your_engine::SceneFactsRow& f : users)
+        if (f.cylinders == r.k && f.cycle == r.cycle) names.push_back(f.scene);
+      return names.empty() ? std::string() : "your engine(s): " + survey::joinNames(names);
+    };
     std::vector<std::vector<std::string>> rows;
     for (const GravitySignificanceRow& r : getRows(tables, gravitySignificanceTable())) {
       std::vector<std::string> row = {r.cycle, std::to_string(r.k), std::to_string(r.first_order), shortNumber(r.max_abs_Q, 4),
                                       shortNumber(r.ratio_to_k1, 4), shortNumber(r.max_inertia_torque, 4),
                                       shortNumber(r.ratio_to_inertia, 4), shortNumber(r.rounding_bound, 4)};
       for (const GravityEngineMaximum& e : r.engines) row.insert(row.end(), {shortNumber(e.max_abs_Q, 4), e.resolved});
+      if (!users.empty()) row.push_back(yours(r));
       rows.push_back(std::move(row));
     }
     part.blocks.push_back({ReportBlock::kTable, "", headings, std::move(rows)});
+    if (!users.empty()) {
+      std::vector<std::string> names;
+      for (const your_engine::SceneFactsRow& f : users)
+        names.push_back(f.scene + " (k = " + std::to_string(f.cylinders) + ", " + f.cycle + ")");
+      part.blocks.push_back({ReportBlock::kParagraph,
+                             "The column 'your engine(s)' marks the rows of your engines' k and cycle: " +
+                                 survey::joinNames(names) + ". Those rows are standing inline engines on the base "
+                                 "scene's parts; each engine's own gravity, in its layout at its speed, is in its "
+                                 "section above."});
+    }
     addGravityClaims(part, tables);
     return part;
   }

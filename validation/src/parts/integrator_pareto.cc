@@ -23,6 +23,7 @@
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/timing.h"
 #include "crankcheck/validation/variants.h"
+#include "survey.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -128,7 +129,8 @@ class IntegratorParetoPart final : public Part {
     part.caption =
         "Simbody's free run by RungeKuttaMerson, CPodes and SemiExplicitEuler2 at accuracies 1e-3 to 1e-10: cost per "
         "simulated revolution (one Google Benchmark run) against the relative error of delta and the energy drift per "
-        "revolution, the analytic energy integral as reference";
+        "revolution, the analytic energy integral as reference; the free run of the base scene released at 300 rpm (" +
+        std::string(survey::kNotSceneSpeed) + "), without gas";
     part.header = {"integrator", "accuracy [-]", "time per revolution [ns]", "delta error [-]", "energy drift [-]", "status"};
     for (const IntegratorParetoRow& row : getRows(tables, kIntegratorParetoTable))
       part.rows.push_back({row.integrator, shortNumber(row.accuracy, 4), shortNumber(row.ns_per_revolution, 4),

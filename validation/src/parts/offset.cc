@@ -28,6 +28,7 @@
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/variants.h"
 #include "engine_fields.h"
+#include "survey.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -213,7 +214,8 @@ ReportPart describeOffsetPart(const TableSet& tables, const std::string& heading
       "torque: the force and torque scales), against delta / r; dots: the analytic offset engine against Simbody on "
       "the same samples. Right: the largest side thrust on the major side (N_w > 0) and on the minor side, analytic "
       "lines and Simbody dots, against delta / r (negative: the pin toward the major-thrust side). The base scene's "
-      "parts, one standing cylinder at 6000 rpm with the example spark-ignition pressures";
+      "parts, one standing four-stroke cylinder at 6000 rpm (" + std::string(survey::kNotSceneSpeed) + ") with " +
+      survey::kExampleGas + ". Your engines' own offsets, at their speed with their [gas], are in their sections above";
   // What the centric formula costs at a production offset (|delta| / r = 0.04) and at a desaxe one (0.5).
   for (double at : {0.04, 0.5}) {
     std::string s = "At |delta| / r = " + shortNumber(at) + " the centric forms are off by";

@@ -17,6 +17,7 @@
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
+#include "survey.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -103,10 +104,13 @@ TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine, bool 
 
 
 // The figure's caption.
-constexpr const char* kCaption =
-    "The largest drive-torque error over the turn of the two-mass rod (m_k1 at the wrist pin, m_k3 at the crank "
-    "pin) against Simbody's rigid rod, relative to the torque scale, against lambda and against Delta_I / I_G, for "
-    "the car and the marine engine; dashed: the paper's two-mass rod with Delta_I, exact to rounding";
+std::string makeCaption() {
+  return std::string("The largest drive-torque error over the turn of the two-mass rod (m_k1 at the wrist pin, m_k3 at the "
+                "crank pin) against Simbody's rigid rod, relative to the torque scale, against lambda and against "
+                "Delta_I / I_G, for the car (a standing single cylinder on the base scene's parts at 6000 rpm, ") +
+    survey::kNotSceneSpeed + ", without gas) and the built-in marine engine (at its own speed); dashed: the paper's "
+         "two-mass rod with Delta_I, exact to rounding";
+}
 
 class RodModelsPart final : public Part {
  public:
@@ -119,7 +123,7 @@ class RodModelsPart final : public Part {
                return calcRodModelTables(base, marine, quick);
              }}};
   }
-  ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
+  ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, makeCaption()); }
   std::vector<const TableSchema*> schemas() const override { return {&kRodModelsTable}; }
   std::vector<ReportedMaximum> maxima() const override {
     return {{"rod_models", {"engine", "variable", "x", "reference"}, {"two_mass_error"}, "", ""},

@@ -12,6 +12,7 @@
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/example_gas.h"
+#include "survey.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/part.h"
@@ -125,14 +126,20 @@ TableSet calcTorqueSplitTables(const Mechanism& car, const Mechanism& marine) {
 }
 
 
-// The figure's caption.
-constexpr const char* kCaption =
-    "The drive torque over one working cycle of a car inline four (the base scene's parts, bore 2 r, the example "
-    "spark-ignition pressure table, 6000 rpm) and of the marine two-stroke (bore 2 r / 3, a diesel table), split "
-    "into its gas, inertia and gravity parts (each the analytic drive torque with the other loads off; Simbody's "
-    "whole drive torque as dots); right: gravity's share of the mean absolute drive torque against k, at 600 and "
-    "6000 rpm, both strokes (gravity torques below double precision left out): the sources' question answered "
-    "against the real working torque";
+// The figure's caption: the speeds of the right panel read from its table (gravity_share).
+std::string makeCaption(const TableSet& tables) {
+  std::vector<double> speeds;
+  for (const GravityShareRow& row : getRows(tables, kGravityShareTable)) speeds.push_back(row.speed_rpm);
+  return std::string("The drive torque over one working cycle of a car inline four (the base scene's parts, bore 2 r, "
+                     "with ") + survey::kExampleGas + ", at 6000 rpm, " + survey::kNotSceneSpeed +
+         ") and of the built-in marine two-stroke (bore 2 r / 3, an example diesel pressure table, at its own speed), "
+         "split into its gas, inertia and gravity parts (each the analytic drive torque with the other loads off; "
+         "Simbody's whole drive torque as dots); right: gravity's share of the mean absolute drive torque against k, "
+         "inline engines on the base scene's parts with the example pressure table of each stroke " +
+         (speeds.empty() ? std::string("at several speeds") : survey::atSurveySpeeds(speeds)) +
+         " (the figure draws 600 and 6000 rpm), both strokes (gravity torques below double precision left out): the sources' question answered against the "
+         "real working torque. Your engines' own torques, at their speed with their [gas], are in their sections above";
+}
 
 class TorqueSplitPart final : public Part {
  public:
@@ -143,7 +150,7 @@ class TorqueSplitPart final : public Part {
     return {{"torque_split", false,
              [base = context.base, marine = findMarineScene()] { return calcTorqueSplitTables(base, marine); }}};
   }
-  ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, kCaption); }
+  ReportPart describe(const TableSet& tables) const override { return describeFigure(tables, makeCaption(tables)); }
   std::vector<const TableSchema*> schemas() const override { return {&torqueSplitTable(), &kGravityShareTable}; }
 };
 

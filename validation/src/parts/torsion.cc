@@ -28,6 +28,7 @@
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/variants.h"
+#include "survey.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -696,7 +697,10 @@ ReportPart describeTorsionPart(const TableSet& tables, const std::string& headin
       "(filled) and of Holzer's sum (open) on their order's ray. Bottom left and middle: the peak-to-peak twist of the "
       "section that twists most against speed, Holzer's sum of every order (line) and the exact steady state (dots). "
       "Right: exact / Holzer - 1 of the worst section against speed (top), and against the ratio of reciprocating to "
-      "rotating inertia at the major order's critical speed (bottom)";
+      "rotating inertia at the major order's critical speed (bottom). Each scene with [crankshaft] as given, with its "
+      "own [gas], swept over speed from 0.25 to 1.25 times its own speed (the sweep's other speeds are " +
+      std::string(survey::kNotSceneSpeed) + "); the ratio sweep scales the first such scene's piston mass and runs at "
+      "Holzer's critical speed";
   ReportPart sentences;
   describeSweeps(tables, sentences);
   describeResonances(tables, sentences);
