@@ -25,6 +25,7 @@ namespace {
 
 constexpr int kOrder = 8;             // the harmonics computed, 1..8
 constexpr double kShownFloor = 1e-6;  // [-] an order whose every amplitude is below this of its scale is not shown
+                                      // (the describe's sentence names it)
 const std::string kClosedForm = "closed form";
 const std::string kDft = "DFT";
 
@@ -249,7 +250,8 @@ std::vector<ReportBlock> BalanceTopic::describe(const TableSet& tables, const st
   const bool couple = with->moment == "couple X, Y";
   const std::string moment_name = couple ? "shaking couple about X and Y" : "rocking torque about Z";
   auto value = [](double v, int resolved, const std::string& unit) {
-    return resolved ? shortNumber(v, 4) + " " + unit : "0 to rounding (" + shortNumber(v, 2) + " " + unit + ")";
+    if (resolved) return shortNumber(v, 4) + " " + unit;
+    return v == 0.0 ? "0 " + unit : "0 to rounding (" + shortNumber(v, 2) + " " + unit + ")";
   };
   std::string text = "At " + shortNumber(facts->speed_rpm, 4) + " rpm the largest shaking force over a turn is " +
                      value(with->max_force, with->force_resolved, "N") +
@@ -269,7 +271,8 @@ std::vector<ReportBlock> BalanceTopic::describe(const TableSet& tables, const st
   }
   text += couple ? " The cylinders sit along the shaft, so the moment is the couple about X and Y (about O)."
                  : " The scene places every cylinder in one plane (no axial positions), so the moment is the rocking "
-                   "torque about Z; give axial positions (docs/SCENE-FORMAT.md) to see the couple about X and Y.";
+                   "torque about Z; give them axial positions ([engine] cylinder_spacing or [[cylinder]] axial_position, "
+                   "docs/SCENE-FORMAT.md) to see the couple about X and Y.";
   out.push_back({ReportBlock::kParagraph, text});
 
   // The harmonics: the closed form's per variant, and the engines' largest differences per order.
@@ -330,8 +333,7 @@ std::vector<ReportBlock> BalanceTopic::describe(const TableSet& tables, const st
       shortNumber(moment_scale, 3) + " N m), over force and moment" + (shafts > 0 ? ", with and without shafts." : ".");
   const int computed = orders.rbegin()->first;
   if (last < computed)
-    after += " Orders " + std::to_string(last + 1) + " to " + std::to_string(computed) + " are below " +
-             shortNumber(kShownFloor, 1) + " of those scales or vanish exactly (data/your_engine_balance_harmonics.csv).";
+    after += " Orders " + std::to_string(last + 1) + " to " + std::to_string(computed) + " are below 1e-6 of those scales or vanish exactly (data/your_engine_balance_harmonics.csv).";
   out.push_back(std::move(table));
   out.push_back({ReportBlock::kParagraph, after});
   return out;
