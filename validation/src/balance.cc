@@ -9,10 +9,9 @@
 #include <optional>
 #include <stdexcept>
 
-#include <unsupported/Eigen/FFT>
-
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/scales.h"
+#include "shaking_spectrum.h"
 
 namespace crankcheck::validation {
 
@@ -22,8 +21,8 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples) 
   if (samples < 2 * order + 1) throw std::invalid_argument("calcBalance: samples must be >= 2 order + 1");
   const std::vector<analytic::ShakingHarmonic> closed = analytic::calcShakingHarmonics(m, order);
 
-  // Each reference engine's F_s and M_s over one revolution, at phi_i = 2 pi i / N.
-  std::vector<std::pair<std::string, std::vector<Evaluation>>> values;
+  // Each reference engine's F_s and M_s over one revolution, at phi_i = 2 pi i / N, and its harmonics by a DFT.
+  std::vector<std::pair<std::string, std::vector<analytic::ShakingHarmonic>>> spectra;
   for (const Engine* engine : listReferenceEngines()) {
     std::unique_ptr<EngineModel> model;
     try {
@@ -31,43 +30,14 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples) 
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("--engine " + engine->name + ": " + e.what());
     }
-    std::vector<Evaluation> turn;
-    for (int i = 0; i < samples; ++i) turn.push_back(model->evaluateMotion(2.0 * M_PI * i / samples));  // shaking alone
-    values.emplace_back(engine->name, std::move(turn));
+    spectra.emplace_back(engine->name, calcShakingSpectrum(sampleShakingTurn(*model, samples), order));
   }
-
-  // Each engine's spectrum of the 5 signals (F_s X, Y; M_s X, Y, Z) by Eigen's FFT: X_n = sum_i f(phi_i) exp(-i n phi_i),
-  // so c_n = (2 / N) Re X_n and s_n = -(2 / N) Im X_n (n < N / 2).
-  constexpr int kSignals = 5;
-  std::vector<std::array<std::vector<std::complex<double>>, kSignals>> spectra;
-  Eigen::FFT<double> fft;
-  for (const auto& [name, turn] : values) {
-    std::array<std::vector<std::complex<double>>, kSignals>& spectrum = spectra.emplace_back();
-    std::vector<double> signal(samples);
-    for (int k = 0; k < kSignals; ++k) {
-      for (int i = 0; i < samples; ++i) signal[i] = k < 2 ? turn[i].shaking_force[k] : turn[i].shaking_moment[k - 2];
-      fft.fwd(spectrum[k], signal);
-    }
-  }
-  const double to_coefficient = 2.0 / samples;
   std::vector<BalanceRow> rows;
   for (int n = 1; n <= order; ++n) {
     BalanceRow row;
     row.n = n;
     row.analytic = closed[n - 1];
-    for (size_t e = 0; e < values.size(); ++e) {
-      analytic::ShakingHarmonic h;
-      h.n = n;
-      for (int k = 0; k < 2; ++k) {
-        h.force_cos[k] = to_coefficient * spectra[e][k][n].real();
-        h.force_sin[k] = -to_coefficient * spectra[e][k][n].imag();
-      }
-      for (int k = 0; k < 3; ++k) {
-        h.moment_cos[k] = to_coefficient * spectra[e][k + 2][n].real();
-        h.moment_sin[k] = -to_coefficient * spectra[e][k + 2][n].imag();
-      }
-      row.engines.emplace_back(values[e].first, h);
-    }
+    for (const auto& [name, spectrum] : spectra) row.engines.emplace_back(name, spectrum[n - 1]);
     row.symmetry = analytic::findHarmonicSymmetry(m, n);
     rows.push_back(row);
   }
