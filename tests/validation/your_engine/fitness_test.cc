@@ -297,8 +297,15 @@ TEST_P(FitnessSceneTest, GravityFormulasAgainstAFourierAnalysisOfQ) {
     const Harmonics h = analyseQ(m);
     for (int order : {2, 4, 6, 8, 10, 12}) {
       const Real rest = maxAbsOverTurn([&](const Real& phi) {
-        Real sum = 0;
-        for (size_t n = order + 1; n < h.a.size(); ++n) sum += h.a[n] * cos(int(n) * phi) + h.b[n] * sin(int(n) * phi);
+        // cos n phi, sin n phi by angle addition from n = 1 (two sines per angle rather than 60)
+        const Real c1 = cos(phi), s1 = sin(phi);
+        Real c = c1, s = s1, sum = 0;
+        for (size_t n = 1; n < h.a.size(); ++n) {
+          if (static_cast<int>(n) > order) sum += h.a[n] * c + h.b[n] * s;
+          const Real next = c * c1 - s * s1;
+          s = s * c1 + c * s1;
+          c = next;
+        }
         return sum;
       }, 360);
       const FitnessRow* row = findRow(tables, 10 + order / 2 - 1);

@@ -352,9 +352,11 @@ class FitnessTopic final : public SceneTopic {
                      "paper's eq (15), 2 to 12; data/your_engine_fitness.csv has every reference engine's row)."});
       ReportBlock table{ReportBlock::kTable, "", {"formula", "quantity", "max error", "scale", "verdict", "where"}};
       for (const FitnessRow* row : shown)
-        table.rows.push_back({row->formula, row->quantity, row->resolved ? shortNumber(row->max_error_rel, 3) : "< " + shortNumber(std::max(row->max_error_rel, 1e-16), 1),
+        // A bound (rounding) has no place of its own: its angle is left out.
+        table.rows.push_back({row->formula, row->quantity, shortNumber(row->max_error_rel, row->resolved ? 3 : 2),
                               row->scale + " = " + shortNumber(row->scale_value, 4) + " " + row->scale_unit,
-                              formatFitness(row->max_error_rel, row->resolved != 0), formatWhere(*row)});
+                              formatFitness(row->max_error_rel, row->resolved != 0),
+                              row->resolved ? formatWhere(*row) : std::string("-")});
       out.push_back(std::move(table));
       if (!references.empty()) {
         std::string list;
