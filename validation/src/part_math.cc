@@ -69,13 +69,16 @@ int samplesFor(const std::vector<analytic::TorqueHarmonic>& h) {
 
 }  // namespace
 
-double maxAbsOfHarmonics(std::vector<analytic::TorqueHarmonic> h) {
+double maxAbsOfHarmonics(std::vector<analytic::TorqueHarmonic> h) { return findMaxAbsOfHarmonics(std::move(h)).value; }
+
+TurnMaximum findMaxAbsOfHarmonics(std::vector<analytic::TorqueHarmonic> h, int refinements) {
   // Harmonics below 1e-18 of the largest cannot move the maximum above rounding (at most 100 of them): left out.
   double largest = 0.0;
   for (const auto& x : h) largest = std::max(largest, std::hypot(x.cos_coefficient, x.sin_coefficient));
   std::erase_if(h, [&](const analytic::TorqueHarmonic& x) { return !(std::hypot(x.cos_coefficient, x.sin_coefficient) >= 1e-18 * largest); });
-  if (h.empty()) return 0.0;
-  return findMaxAbsOverTurn([&h](double phi) { return analytic::evaluateTorqueHarmonics(h, phi); }, samplesFor(h)).value;
+  if (h.empty() || largest == 0.0) return {};
+  return findMaxAbsOverTurn([&h](double phi) { return analytic::evaluateTorqueHarmonics(h, phi); }, samplesFor(h),
+                            refinements);
 }
 
 // A maximum of a difference computed in double carries an error up to the agreement tolerance (64 eps x scale x

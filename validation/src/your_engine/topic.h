@@ -73,7 +73,8 @@ struct GravityRow {
 };
 extern const Schema<GravityRow> kGravityTable;
 
-/// "within 1 %", "off by 3.1 %", "exact to rounding": a formula's verdict from its error relative to the scale.
+/// "within 1 %", "off by 3.1 %", "off by 44.3 times the scale" (an error beyond the scale itself), "exact to
+/// rounding": a formula's verdict from its error relative to the scale.
 std::string formatFitness(double max_error_rel, bool resolved);
 
 /// One topic of every scene's section.

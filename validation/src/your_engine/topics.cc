@@ -42,16 +42,19 @@ std::optional<SceneFactsRow> findSceneFacts(const TableSet& tables, const std::s
 std::string formatFitness(double max_error_rel, bool resolved) {
   if (!resolved) return "exact to rounding";
   if (max_error_rel < 0.01) return "within 1 %";
+  // Beyond the scale itself a percentage misleads ("4.43e+03 %"): the factor reads at a glance.
+  if (max_error_rel >= 1.0) return "off by " + shortNumber(max_error_rel, 3) + " times the scale";
   return "off by " + formatPercent(max_error_rel);
 }
 
 // The topics, in the order of a section: each defined in its own file of this folder as `const SceneTopic& NAME()`.
 namespace topics {
+const SceneTopic& fitness();
 const SceneTopic& balance();
 }  // namespace topics
 
 const std::vector<const SceneTopic*>& listTopics() {
-  static const std::vector<const SceneTopic*> all = {&topics::balance()};
+  static const std::vector<const SceneTopic*> all = {&topics::fitness(), &topics::balance()};
   return all;
 }
 
