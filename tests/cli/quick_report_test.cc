@@ -74,7 +74,8 @@ std::string listFullParts() {
   const std::set<std::string> read_here = {"gravity_significance", "errata", "balance", "engines", "torsion"};
   std::string parts;
   for (const validation::Part* part : validation::listParts())
-    if (!part->maxima().empty() || read_here.count(part->key())) parts += (parts.empty() ? "" : ",") + part->key();
+    if (!part->always() && (!part->maxima().empty() || read_here.count(part->key())))  // always run: no --parts key
+      parts += (parts.empty() ? "" : ",") + part->key();
   return parts;
 }
 

@@ -22,8 +22,8 @@
 namespace crankcheck::validation::your_engine {
 namespace {
 
-// your_engine_loads: per scene, engine and load, the load's peak over one working cycle (refined: the largest |value|,
-// signed; the side thrust's largest positive and most negative), where and on which cylinder, the torques' mean over
+// your_engine_loads: per scene, engine and load, the load's peak over one working cycle (refined: the largest |value|;
+// the side thrust's largest positive and most negative, signed), where and on which cylinder, the torques' mean over
 // the cycle, and the largest |engine - closed form| of the load over the engine's samples relative to the scale.
 struct LoadRow {
   std::string scene, engine;
@@ -31,7 +31,7 @@ struct LoadRow {
   int order = 0;                  ///< the load's place in the topic's table
   std::string load;               ///< "drive_torque", "gas_torque", ..., "side_thrust_negative"
   std::string unit;               ///< "N m" or "N": the unit of peak, mean and scale
-  double peak = 0.0;              ///< [SI] the value of largest |.| over the cycle (signed)
+  double peak = 0.0;              ///< [SI] the largest |.| over the cycle; the side thrust's signed (its own side)
   double phi_deg_at_peak = 0.0;   ///< [deg] where, in [0, cycle)
   std::optional<int> cylinder;    ///< the cylinder it is on; empty for the drive torque, its parts and the bearing
   std::optional<double> mean;     ///< [SI] the mean over the cycle (torques); empty for the forces
@@ -73,10 +73,10 @@ struct LoadSpec {
   bool torque;
 };
 constexpr std::array<LoadSpec, kLoadCount> kLoads = {{
-    {"drive_torque", "drive torque", true},
-    {"gas_torque", "its gas part", true},
-    {"inertia_torque", "its inertia part", true},
-    {"gravity_torque", "its gravity part (Q)", true},
+    {"drive_torque", "|drive torque|", true},
+    {"gas_torque", "|its gas part|", true},
+    {"inertia_torque", "|its inertia part|", true},
+    {"gravity_torque", "|its gravity part (Q)|", true},
     {"crank_pin_force", "crank-pin force |F|", false},
     {"wrist_pin_force", "wrist-pin force |F|", false},
     {"main_bearing_force", "main-bearing force |F|", false},
@@ -208,13 +208,14 @@ TableSet calcLoadTables(const Mechanism& m, bool quick) {
                                                  samples[l], 4, tolerance);
     const LoadValue there = closed_models.at(load, best.phi);
     closed_phi[l] = best.phi;
-    makeRow(closed, l, std::copysign(best.value, there.value), best.phi, there.cylinder,
+    makeRow(closed, l, l == kThrustNegative ? -best.value : best.value, best.phi, there.cylinder,
             kLoads[l].torque ? std::optional<double>(sums[l] / n) : std::nullopt, 0.0);
   }
 
-  // Every other engine: its samples (its means, its differences from the closed form, a soft way's maxima). An exact
-  // engine's maxima are refined within one of the closed form's sampling steps either side of the closed form's (the
-  // gate holds it to the closed forms, so its maximum is there); a soft way's from its own samples, the best two.
+  // Every other engine: its samples (its means, its differences from the closed form, a soft way's maxima). Its maxima
+  // are refined within one of the closed form's sampling steps either side of the closed form's (the gate holds an
+  // exact engine to the closed forms, so its maximum is there); a soft way's also from its own samples, the best two
+  // refined, and the larger kept.
   const int n_engine = engineSamples(m, quick);
   const double bracket = cycle / n;
   for (const Engine& engine : listEngines()) {
@@ -235,11 +236,13 @@ TableSet calcLoadTables(const Mechanism& m, bool quick) {
       if (l == kGas && !has_gas) continue;
       const Load load = static_cast<Load>(l);
       const auto f = [&](double phi) { return models.at(load, phi).value; };
-      const TurnMaximum best = engine.gated
-                                   ? refineMaxAbs(f, closed_phi[l] - bracket, closed_phi[l] + bracket, tolerance)
-                                   : findMaxAbsOverCycle(f, cycle, engine_samples[l], 2, tolerance);
+      TurnMaximum best = refineMaxAbs(f, closed_phi[l] - bracket, closed_phi[l] + bracket, tolerance);
+      if (!engine.gated) {
+        const TurnMaximum own = findMaxAbsOverCycle(f, cycle, engine_samples[l], 2, tolerance);
+        if (own.value > best.value) best = own;
+      }
       const LoadValue there = models.at(load, best.phi);
-      makeRow(engine, l, std::copysign(best.value, there.value), best.phi, there.cylinder,
+      makeRow(engine, l, l == kThrustNegative ? -best.value : best.value, best.phi, there.cylinder,
               kLoads[l].torque ? std::optional<double>(engine_sums[l] / n_engine) : std::nullopt, worst[l]);
     }
   }
