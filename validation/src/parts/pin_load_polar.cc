@@ -17,6 +17,7 @@
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
+#include "../working_cycle.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -69,13 +70,7 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
     const std::vector<const Engine*> engines = listComparedEngines();
     std::vector<std::unique_ptr<EngineModel>> models;
     for (const Engine* e : engines) models.push_back(e->build(m));
-    const double cycle = m.machine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI;
-    // The crank pin of cylinder 0 is at angle phi + beta_0 from +X (CONVENTIONS.md, layouts).
-    auto crankFrame = [&m](const Evaluation& e) {
-      const double angle = e.phi + getThrowAngle(m, 0);
-      const Vec2& F = e.cylinders[0].crank_pin_force;
-      return std::pair{F[0] * std::cos(angle) + F[1] * std::sin(angle), -F[0] * std::sin(angle) + F[1] * std::cos(angle)};
-    };
+    const double cycle = calcCycleAngle(m);
     const double scale = calcScales(m).force;
     // The largest |closed form - engine| over the samples, per engine (the closed form's own row: the largest of them).
     std::vector<double> worst_pin(engines.size(), 0.0), worst_bearing(engines.size(), 0.0);
@@ -86,7 +81,7 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
       std::vector<Evaluation> e;
       for (const auto& model : models) e.push_back(model->evaluateMotion(phi));  // forces alone: no U, no Q
       for (size_t j = 0; j < engines.size(); ++j) {
-        const auto [radial, tangential] = crankFrame(e[j]);
+        const auto [radial, tangential] = calcCrankPinForceInCrankFrame(m, e[j], 0);
         polar.push_back({first_index + static_cast<int>(index), engines[j]->name, d, radial, tangential,
                          e[j].bearing_force[0], e[j].bearing_force[1], m.name});
         magnitudes[j]["crank_pin"].push_back(std::hypot(e[j].cylinders[0].crank_pin_force[0], e[j].cylinders[0].crank_pin_force[1]));
@@ -107,14 +102,13 @@ TableSet calcPinLoadTables(const std::vector<Mechanism>& scenes, int first_index
     for (size_t j = 0; j < engines.size(); ++j)
       for (const char* force : {"crank_pin", "bearing"}) {
         const bool is_pin = std::string(force) == "crank_pin";
-        const auto magnitude = [&](double u) {
-          const double phi = u * cycle / (2.0 * M_PI);
+        const auto magnitude = [&](double phi) {
           const Evaluation e = models[j]->evaluateMotion(phi);
           const Vec2& F = is_pin ? e.cylinders[0].crank_pin_force : e.bearing_force;
           return std::hypot(F[0], F[1]);
         };
-        const TurnMaximum best = findMaxAbsOverTurn(magnitude, magnitudes[j][force], 2, angle_tolerance);
-        summary.push_back({m.name, engines[j]->name, force, best.value, degreesFromRadians(best.phi * cycle / (2.0 * M_PI)),
+        const TurnMaximum best = findMaxAbsOverCycle(magnitude, cycle, magnitudes[j][force], 2, angle_tolerance);
+        summary.push_back({m.name, engines[j]->name, force, best.value, degreesFromRadians(best.phi),
                            (is_pin ? worst_pin[j] : worst_bearing[j]) / scale});
       }
   }

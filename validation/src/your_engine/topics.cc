@@ -50,11 +50,14 @@ std::string formatFitness(double max_error_rel, bool resolved) {
 // The topics, in the order of a section: each defined in its own file of this folder as `const SceneTopic& NAME()`.
 namespace topics {
 const SceneTopic& fitness();
+const SceneTopic& loads();
 const SceneTopic& balance();
+const SceneTopic& gravity();
 }  // namespace topics
 
 const std::vector<const SceneTopic*>& listTopics() {
-  static const std::vector<const SceneTopic*> all = {&topics::fitness(), &topics::balance()};
+  static const std::vector<const SceneTopic*> all = {&topics::fitness(), &topics::loads(), &topics::balance(),
+                                                     &topics::gravity()};
   return all;
 }
 
