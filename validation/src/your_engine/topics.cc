@@ -47,10 +47,11 @@ std::string formatFitness(double max_error_rel, bool resolved) {
 
 // The topics, in the order of a section: each defined in its own file of this folder as `const SceneTopic& NAME()`.
 namespace topics {
+const SceneTopic& dynamics();
 }  // namespace topics
 
 const std::vector<const SceneTopic*>& listTopics() {
-  static const std::vector<const SceneTopic*> all = {};
+  static const std::vector<const SceneTopic*> all = {&topics::dynamics()};
   return all;
 }
 
