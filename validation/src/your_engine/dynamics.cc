@@ -326,6 +326,10 @@ std::vector<ReportBlock> describeFlywheel(const TableSet& tables, const SceneFac
       table.rows.push_back({r.engine, shortNumber(r.delta, 4), shortNumber(r.omega_min, 6), shortNumber(r.omega_max, 6),
                             deg(r.phi_deg_at_omega_max), deg(r.phi_deg_at_omega_min)});
   out.push_back(std::move(table));
+  if (rows.size() > 1)
+    out.push_back({ReportBlock::kParagraph,
+                   "An engine's angles are at its nearest step; where the firings are evenly spaced an extreme recurs "
+                   "once per firing, so two ways may name different firings."});
   return out;
 }
 
