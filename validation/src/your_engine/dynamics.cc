@@ -78,6 +78,7 @@ struct TwistRow {
   double error_bound = 0.0;                                ///< [rad] the exact state's
   double omega1 = 0.0;                                     ///< [rad/s] Holzer's first natural frequency
   double omega1_lo = 0.0, omega1_hi = 0.0;                 ///< [rad/s] the variable-inertia train's band
+  std::string note;  ///< why the train was not computed (one row, no section): outside the model's domain; else empty
 };
 const Schema<TwistRow> kTwistTable{
     "your_engine_twist",
@@ -86,7 +87,7 @@ const Schema<TwistRow> kTwistTable{
      numberField("holzer", "rad", &TwistRow::holzer), numberField("holzer_order24", "rad", &TwistRow::holzer_order24),
      numberField("exact", "rad", &TwistRow::exact), numberField("error_bound", "rad", &TwistRow::error_bound),
      numberField("omega1", "rad/s", &TwistRow::omega1), numberField("omega1_lo", "rad/s", &TwistRow::omega1_lo),
-     numberField("omega1_hi", "rad/s", &TwistRow::omega1_hi)}};
+     numberField("omega1_hi", "rad/s", &TwistRow::omega1_hi), textField("note", &TwistRow::note)}};
 
 // The critical speeds listed: the major orders' within 0.25 .. 1.25 of the scene's speed (the torsion part's sweep).
 constexpr double kCriticalLow = 0.25, kCriticalHigh = 1.25;
@@ -177,7 +178,7 @@ TableSet calcEngineRun(const Mechanism& m, const Engine& engine, SharedResult<Ex
   const ExactRun& exact = shared.get();
   if (!exact.row.note.empty()) return tables;  // the analytic row says why
   FlywheelRow r{m.name, engine.name, engine.gated ? 1 : 0, exact.row.gas, exact.row.flywheel_inertia,
-                exact.row.load_torque, exact.row.omega0};
+                exact.row.load_torque, exact.row.omega0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, {}};
   const FreeRunSettings settings = makeFlywheelRunSettings(engine, m.gas.has_value(), exact.row.load_torque);
   r.accuracy = settings.accuracy;
   try {
@@ -222,9 +223,25 @@ TableSet calcExactTables(const Mechanism& m, SharedResult<ExactRun>& shared) {
   return tables;
 }
 
+TableSet calcTrainTablesOrThrow(const Mechanism& m);
+
 // The crank train at the scene's speed: the critical speeds in range, each section's twist by Holzer and the exact
 // steady state, Holzer's fitness (first natural frequency against the variable-inertia band, twist against the exact).
 TableSet calcTrainTables(const Mechanism& m) {
+  try {
+    return calcTrainTablesOrThrow(m);
+  } catch (const std::exception& e) {  // outside the model's domain (torsion_domain.h), or no periodic state
+    TableSet tables = makeTables();
+    TwistRow row;
+    row.scene = m.name;
+    row.speed_rpm = m.speed_rpm;
+    row.note = e.what();
+    tables.at(kTwistTable.name()).getRows(kTwistTable).push_back(std::move(row));
+    return tables;
+  }
+}
+
+TableSet calcTrainTablesOrThrow(const Mechanism& m) {
   TableSet tables = makeTables();
   const TorsionModeBand band = calcTorsionModeBand(m);
   const double lo = kCriticalLow * m.speed_rpm, hi = kCriticalHigh * m.speed_rpm;
@@ -246,7 +263,7 @@ TableSet calcTrainTables(const Mechanism& m) {
     tables.at(kTwistTable.name())
         .getRows(kTwistTable)
         .push_back({m.name, i, nameSection(m, i, n), m.speed_rpm, holzer.peak_to_peak[i], holzer.peak_to_peak_order24[i],
-                    exact.peak_to_peak[i], exact.error_bound, w1, w1_lo, w1_hi});
+                    exact.peak_to_peak[i], exact.error_bound, w1, w1_lo, w1_hi, {}});
     scale = std::max(scale, exact.peak_to_peak[i]);
     err = std::max(err, std::fabs(holzer.peak_to_peak[i] - exact.peak_to_peak[i]));
     err24 = std::max(err24, std::fabs(holzer.peak_to_peak_order24[i] - exact.peak_to_peak[i]));
@@ -342,6 +359,11 @@ std::vector<ReportBlock> describeTorsion(const TableSet& tables, const SceneFact
   }
   const std::vector<TwistRow> twist = rowsOfScene(tables, kTwistTable, facts.scene);
   if (twist.empty()) return out;
+  if (!twist.front().note.empty()) {
+    out.push_back({ReportBlock::kParagraph, "The torsional vibration at " + shortNumber(facts.speed_rpm, 4) +
+                                                " rpm was not computed: " + twist.front().note + "."});
+    return out;
+  }
   const std::vector<CriticalRow> critical = rowsOfScene(tables, kCriticalTable, facts.scene);
   const TwistRow& first = twist.front();
   std::string text = "Holzer's first natural frequency is " + shortNumber(first.omega1 / (2 * M_PI), 4) +
@@ -380,7 +402,7 @@ class DynamicsTopic final : public SceneTopic {
  public:
   std::string title() const override { return "Flywheel and torsion"; }
   // One task for the exact flywheel run, one per engine's run (released at the exact run's speed, shared), one for
-  // the crank train. The quick campaign runs the same (the energy integral and the train have no grid to coarsen; the
+  // the crank train; each a few tenths of a second at most (task_cost::kShort). The quick campaign runs the same (the energy integral and the train have no grid to coarsen; the
   // engines' runs are the accuracy the flywheel part uses).
   std::vector<Task> tasks(const Mechanism& scene, bool quick) const override {
     (void)quick;
@@ -392,7 +414,7 @@ class DynamicsTopic final : public SceneTopic {
       for (const Engine* engine : listRunEngines(scene))
         out.push_back({"your_engine dynamics " + scene.name + " " + engine->name, false,
                        [scene, engine, shared] { return calcEngineRun(scene, *engine, *shared); },
-                       engine->gated ? task_cost::kSimbodyRun : task_cost::kShort});
+                       task_cost::kShort});
     }
     if (scene.crankshaft && scene.machine.speed > 0.0)
       out.push_back({"your_engine dynamics " + scene.name + " torsion", false, [scene] { return calcTrainTables(scene); },
