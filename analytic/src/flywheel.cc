@@ -89,14 +89,26 @@ double cycleTime(const CycleData& d, const std::vector<double>& w) {
   return t;
 }
 
-// The extreme of samples f around index i by the parabola through it and its neighbours (cyclic).
-double refinedExtreme(const std::vector<double>& f, size_t i) {
+// The extreme of samples f around index i by the parabola through it and its neighbours (cyclic): its value and
+// where, in steps from i (the grid nearly uniform there).
+struct Vertex {
+  double value = 0.0, steps = 0.0;
+};
+Vertex refineExtreme(const std::vector<double>& f, size_t i) {
   const size_t n = f.size() - 1;  // the last node is the first again
   const double a = f[(i + n - 1) % n], b = f[i % n], c = f[(i + 1) % n];
   const double denominator = a - 2.0 * b + c;
-  if (denominator == 0.0) return b;
-  const double s = 0.5 * (a - c) / denominator;  // the vertex, in steps from i (grid nearly uniform there)
-  return b - 0.25 * (a - c) * s;
+  if (denominator == 0.0) return {b, 0.0};
+  const double s = 0.5 * (a - c) / denominator;
+  return {b - 0.25 * (a - c) * s, s};
+}
+
+// The angle [rad] of sample i moved by `steps` (a fraction of the neighbouring interval), in [0, cycle).
+double angleAt(const CycleData& d, size_t i, double steps) {
+  const size_t n = d.phi.size() - 1;
+  const double h = steps >= 0.0 ? d.phi[i + 1] - d.phi[i] : d.phi[i] - (i == 0 ? d.phi[n - 1] - d.cycle : d.phi[i - 1]);
+  const double phi = d.phi[i] + steps * h;
+  return std::fmod(std::fmod(phi, d.cycle) + d.cycle, d.cycle);
 }
 
 SteadyRun steady(const CycleData& d, double I, double omega) {
@@ -121,10 +133,26 @@ SteadyRun steady(const CycleData& d, double I, double omega) {
   r.omega_mean = d.cycle / cycleTime(d, w);
   const size_t imax = static_cast<size_t>(std::max_element(w.begin(), w.end() - 1) - w.begin());
   const size_t imin = static_cast<size_t>(std::min_element(w.begin(), w.end() - 1) - w.begin());
-  r.omega_max = std::max(w[imax], refinedExtreme(w, imax));
-  r.omega_min = std::min(w[imin], refinedExtreme(w, imin));
+  const Vertex top = refineExtreme(w, imax), bottom = refineExtreme(w, imin);
+  r.omega_max = std::max(w[imax], top.value);
+  r.omega_min = std::min(w[imin], bottom.value);
+  r.phi_at_omega_max = angleAt(d, imax, top.value > w[imax] ? top.steps : 0.0);
+  r.phi_at_omega_min = angleAt(d, imin, bottom.value < w[imin] ? bottom.steps : 0.0);
   r.delta = (r.omega_max - r.omega_min) / r.omega_mean;
   return r;
+}
+
+// Norton 13.9: the energy swing of the integral of T - T_L at constant speed, T = minus the whole drive torque.
+double calcNortonEnergy(const Mechanism& m, const CycleData& d) {
+  double E = 0.0, lo = 0.0, hi = 0.0, previous = -calcReactions(m, 0.0).drive_torque - d.load_torque;
+  for (size_t i = 1; i < d.phi.size(); ++i) {
+    const double now = -calcReactions(m, d.phi[i]).drive_torque - d.load_torque;
+    E += 0.5 * (d.phi[i] - d.phi[i - 1]) * (previous + now);
+    previous = now;
+    lo = std::min(lo, E);
+    hi = std::max(hi, E);
+  }
+  return hi - lo;
 }
 
 void checkInputs(const Mechanism& m) {
@@ -149,6 +177,20 @@ std::vector<SteadyRun> calcSteadyRuns(const Mechanism& m, const std::vector<doub
   return out;
 }
 
+FlywheelFluctuation calcFlywheelFluctuation(const Mechanism& m, double flywheel_inertia) {
+  checkInputs(m);
+  if (!(flywheel_inertia > 0.0))
+    throw std::invalid_argument("[flywheel].inertia: must be > 0 (got " + std::to_string(flywheel_inertia) + ")");
+  const double omega = m.machine.speed;
+  const CycleData d = calcCycleData(m);
+  FlywheelFluctuation f;
+  f.load_torque = d.load_torque;
+  f.exact = steady(d, flywheel_inertia, omega);
+  f.norton_energy = calcNortonEnergy(m, d);
+  f.norton_delta = f.norton_energy / (flywheel_inertia * omega * omega);
+  return f;
+}
+
 FlywheelSizing calcFlywheelSizing(const Mechanism& m, double fluctuation) {
   checkInputs(m);
   if (!(fluctuation > 0.0 && fluctuation < 1.0))
@@ -157,19 +199,8 @@ FlywheelSizing calcFlywheelSizing(const Mechanism& m, double fluctuation) {
   const CycleData d = calcCycleData(m);
   FlywheelSizing s;
   s.load_torque = d.load_torque;
-  // Norton 13.9: the integral of T - T_L at constant speed, T = minus the whole drive torque.
-  {
-    double E = 0.0, lo = 0.0, hi = 0.0, previous = -calcReactions(m, 0.0).drive_torque - d.load_torque;
-    for (size_t i = 1; i < d.phi.size(); ++i) {
-      const double now = -calcReactions(m, d.phi[i]).drive_torque - d.load_torque;
-      E += 0.5 * (d.phi[i] - d.phi[i - 1]) * (previous + now);
-      previous = now;
-      lo = std::min(lo, E);
-      hi = std::max(hi, E);
-    }
-    s.norton_energy = hi - lo;
-    s.norton_inertia = s.norton_energy / (C * omega * omega);
-  }
+  s.norton_energy = calcNortonEnergy(m, d);
+  s.norton_inertia = s.norton_energy / (C * omega * omega);
   s.norton = steady(d, s.norton_inertia, omega);
   // Without a flywheel the mechanism's own inertia may already hold the fluctuation below C: then there is no I_f.
   try {

@@ -139,10 +139,13 @@ FreeRun calcFreeRun(const Mechanism& m, double omega0, bool gravity) {
   run.omega_mean = 2.0 * M_PI / period;
   // Extremes: the zeros of the slope of phi_dot^2, bracketed by sign changes between samples, refined by TOMS 748
   // (Boost.Math) to the bracket's rounding (about 6 evaluations where bisection took 50).
-  double vmax = v2[0], vmin = v2[0];
+  double vmax = v2[0], vmin = v2[0], phi_max = 0.0, phi_min = 0.0;
+  auto keep = [&](double v, double phi) {
+    if (v > vmax) vmax = v, phi_max = phi;
+    if (v < vmin) vmin = v, phi_min = phi;
+  };
   for (int i = 0; i < n; ++i) {
-    vmax = std::max(vmax, v2[i]);
-    vmin = std::min(vmin, v2[i]);
+    keep(v2[i], i * h);
     const int j = (i + 1) % n;
     if ((slope[i] > 0.0) == (slope[j] > 0.0) || slope[i] == 0.0) continue;
     const double a = i * h, b = (i + 1) * h;
@@ -155,12 +158,13 @@ FreeRun calcFreeRun(const Mechanism& m, double omega0, bool gravity) {
     } else {
       root = {b, b};
     }
-    const double v = speedSquared(m, E, 0.5 * (root.first + root.second), gravity).value;
-    vmax = std::max(vmax, v);
-    vmin = std::min(vmin, v);
+    const double phi = 0.5 * (root.first + root.second);
+    keep(speedSquared(m, E, phi, gravity).value, std::fmod(phi, 2.0 * M_PI));
   }
   run.omega_max = std::sqrt(vmax);
   run.omega_min = std::sqrt(vmin);
+  run.phi_at_omega_max = phi_max;
+  run.phi_at_omega_min = phi_min;
   run.delta = (run.omega_max - run.omega_min) / run.omega_mean;
   return run;
 }

@@ -18,28 +18,13 @@
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/variants.h"
+#include "../flywheel_run.h"
 #include "survey.h"
 
 namespace crankcheck::validation {
 namespace {
 
 constexpr double kFluctuation = 0.01;
-
-// The accuracy of the engines' free runs (Simbody's integrator accuracy), quick and full alike: what the check needs.
-// The runs confirm the exact energy integral's delta, against which Norton's method is judged (its error on the example
-// scenes: 11 % to 265 %); at 3e-7 Simbody's delta agrees with the exact one to 3.6e-3 (relative, the full campaign),
-// 30 times below the smallest of those errors, at 0.8 of the cost of 1e-7 (which agreed to 1.7e-3; 1e-6 to 1.7e-2,
-// 1e-8 to 3.9e-4, 1e-10 to 1.2e-6). bench/README.md has the measurements ("The flywheel's Simbody runs at accuracy
-// 3e-7").
-constexpr double kRunAccuracy = 3e-7;
-
-// The reference engines whose free run takes the gas forces and the load (Engine::simulates_loads): Simbody's.
-std::vector<const Engine*> listLoadedRunEngines() {
-  std::vector<const Engine*> out;
-  for (const Engine* e : listReferenceEngines())
-    if (e->simulate && e->simulates_loads) out.push_back(e);
-  return out;
-}
 
 // flywheel: for each campaign scene with [gas], the steady run's delta against the flywheel inertia I_f, 0.3 to 3 times
 // the exact inertia for C = 0.01: the exact energy integral's, and each loaded-run engine's where it ran (empty
@@ -185,13 +170,8 @@ TableSet calcFlywheelSceneTables(const Mechanism& m, bool quick, const std::vect
       }
       Mechanism with = m;
       with.flywheel_inertia = I;
-      FreeRunSettings settings;
-      settings.integrator = engine->integrators.front();
-      settings.gas = true;
-      settings.load_torque = exact.load_torque;
-      settings.revolutions = 2;
-      settings.accuracy = kRunAccuracy;
-      row.engine_delta.emplace_back(engine->simulate(with, steady.omega0, settings).delta);
+      row.engine_delta.emplace_back(
+          engine->simulate(with, steady.omega0, makeFlywheelRunSettings(*engine, true, exact.load_torque)).delta);
     }
     curve.push_back(std::move(row));
   }

@@ -28,15 +28,12 @@
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/variants.h"
+#include "../torsion_train.h"
 #include "survey.h"
 
 namespace crankcheck::validation {
 namespace {
 
-constexpr double kHolzerConvergence = 1e-6;
-constexpr double kExactTolerance = 1e-8;
-constexpr int kExactSamples = 2048;  // the series' aliasing, a few 1e-7 of a small section's value, is below the part's
-                                     // percent differences (torsion_steady.h)
 constexpr double kTextbookOrder = 24.0;
 // The engines' trains in the report: a check of the figure's exact curve on the first scene at its own speed, not the
 // gate (tests/gate/torsion_test.cc holds them to 2e-6 of the twist scale at their defaults on both example scenes and
@@ -231,8 +228,6 @@ std::vector<const Mechanism*> listTrainScenes(const std::vector<Mechanism>& scen
   return out;
 }
 
-// The working cycle's order step: 1/2 (four-stroke), 1 (two-stroke).
-double getOrderStep(const Mechanism& m) { return m.machine.cycle == Cycle::kFourStroke ? 0.5 : 1.0; }
 
 // The sweep's speeds [rpm], ascending: 0.25 .. 1.25 of the scene's speed in 16 steps, and around each of Holzer's
 // critical speeds of mode 1 and the four lowest major orders in that range (findMajorOrder) the speeds at 0.98, 1 and
@@ -269,17 +264,6 @@ double findMajorOrder(const Mechanism& m, double mode1) {
   return firings;
 }
 
-// Section i's name as a bare word: front-throw0, throw0-throw1, ..., throw3-flywheel.
-std::string nameSection(const Mechanism& m, int i, int bodies) {
-  const bool front = m.crankshaft->front_inertia > 0.0;
-  auto body = [&](int b) {
-    if (b >= bodies) return std::string("flywheel");
-    if (front && b == 0) return std::string("front");
-    return "throw" + std::to_string(b - (front ? 1 : 0));
-  };
-  return body(i) + "-" + body(i + 1);
-}
-
 // Every table a task writes, empty: each task returns all of them, so that the report has each table (if only its
 // header) whichever tasks ran.
 TableSet makeEmptyTables() {
@@ -300,14 +284,11 @@ TableSet makeEmptyTables() {
 TableSet calcSpeedTables(const Mechanism& scene, double rpm, analytic::ThrowLoadOrders& load_orders) {
   TableSet tables = makeEmptyTables();
   const Mechanism m = withSpeed(scene, rpm);
-  analytic::HolzerOptions holzer_options;
-  holzer_options.convergence = kHolzerConvergence;
+  const analytic::HolzerOptions holzer_options = makeTrainHolzerOptions();
   auto start = std::chrono::steady_clock::now();
   const analytic::HolzerResponse holzer = analytic::calcHolzerResponse(m, holzer_options, load_orders);
   const double holzer_seconds = seconds(start);
-  analytic::SteadyStateOptions exact_options;
-  exact_options.tolerance = kExactTolerance;
-  exact_options.samples = kExactSamples;
+  const analytic::SteadyStateOptions exact_options = makeTrainSteadyStateOptions();
   start = std::chrono::steady_clock::now();
   const analytic::ExactSteadyState exact = analytic::calcExactSteadyState(m, holzer, exact_options);
   const double exact_seconds = seconds(start);
@@ -337,35 +318,21 @@ TableSet calcSpeedTables(const Mechanism& scene, double rpm, analytic::ThrowLoad
   return tables;
 }
 
-// J_min and J_max of throw j over a turn [kg m^2], J_t included (extremum.h: sampled, refined by Brent).
-std::pair<double, double> findThrowInertiaRange(const Mechanism& m, int j) {
-  auto J = [&](double psi) { return analytic::calcThrowReducedInertia(m, j, psi); };
-  const double top = findMaxAbsOverTurn(J, 720).value;
-  const double below = findMaxAbsOverTurn([&](double psi) { return top - J(psi); }, 720).value;
-  const double jt = m.crankshaft->throw_inertia;
-  return {jt + top - below, jt + top};
-}
-
 // The scene's inertias and modes: J_eq and its shortcuts per throw, and the frequencies at J_eq, J_min and J_max.
 TableSet calcModeTables(const Mechanism& m) {
   TableSet tables = makeEmptyTables();
-  const analytic::TorsionModes modes = analytic::calcTorsionModes(m);
-  std::vector<double> low = modes.inertias, high = modes.inertias;
-  const bool front = m.crankshaft->front_inertia > 0.0;
-  const int throws = static_cast<int>(findThrows(m).size());
-  for (int j = 0; j < throws; ++j) {
-    const analytic::ThrowInertia inertia = analytic::calcThrowInertia(m, j);
-    const auto [jmin, jmax] = findThrowInertiaRange(m, j);
-    low[static_cast<size_t>(j + (front ? 1 : 0))] = jmin;
-    high[static_cast<size_t>(j + (front ? 1 : 0))] = jmax;
+  const TorsionModeBand band = calcTorsionModeBand(m);
+  const analytic::TorsionModes& modes = band.holzer;
+  for (int j = 0; j < static_cast<int>(band.inertias.size()); ++j) {
+    const analytic::ThrowInertia& inertia = band.inertias[static_cast<size_t>(j)];
+    const auto [jmin, jmax] = band.ranges[static_cast<size_t>(j)];
     rowsOf(tables, kInertiaTable)
         .push_back({m.name, j, inertia.exact, jmin, jmax, inertia.half_reciprocating,
                     inertia.half_reciprocating / inertia.exact - 1.0, inertia.second_order,
                     inertia.second_order / inertia.exact - 1.0});
   }
-  // The lightest throws give the highest frequencies.
-  const analytic::TorsionModes at_min = analytic::calcChainModes(low, modes.stiffness);
-  const analytic::TorsionModes at_max = analytic::calcChainModes(high, modes.stiffness);
+  const analytic::TorsionModes& at_min = band.at_min;
+  const analytic::TorsionModes& at_max = band.at_max;
   for (int i = 0; i < modes.frequencies.size(); ++i)
     rowsOf(tables, kModesTable)
         .push_back({m.name, i + 1, modes.frequencies(i) / (2 * M_PI), at_max.frequencies(i) / (2 * M_PI),
@@ -377,9 +344,7 @@ TableSet calcModeTables(const Mechanism& m) {
 // for the engines' tasks, by the first that needs it (each asks after its own run, so the others rarely wait).
 using SharedSteadyState = SharedResult<analytic::ExactSteadyState>;
 analytic::ExactSteadyState calcTrainReference(const Mechanism& m) {
-  analytic::SteadyStateOptions exact_options;
-  exact_options.tolerance = kExactTolerance;
-  exact_options.samples = kExactSamples;
+  const analytic::SteadyStateOptions exact_options = makeTrainSteadyStateOptions();
   return analytic::calcExactSteadyState(m, exact_options);
 }
 
@@ -428,16 +393,13 @@ TableSet calcRatioTables(const Mechanism& scene, double factor) {
   const double order = findMajorOrder(scene, analytic::calcTorsionModes(scene).frequencies(0));
   const double rpm = modes.frequencies(0) / order * 30.0 / M_PI;
   m = withSpeed(m, rpm);
-  analytic::HolzerOptions holzer_options;
-  holzer_options.convergence = kHolzerConvergence;
+  const analytic::HolzerOptions holzer_options = makeTrainHolzerOptions();
   const analytic::HolzerResponse holzer = analytic::calcHolzerResponse(m, holzer_options);
   const size_t most_holzer = static_cast<size_t>(
       std::max_element(holzer.peak_to_peak.begin(), holzer.peak_to_peak.end()) - holzer.peak_to_peak.begin());
   RatioRow row{scene.name, factor, calcReciprocatingRatio(m), order, rpm, holzer.peak_to_peak[most_holzer], {}, {}};
   try {
-    analytic::SteadyStateOptions exact_options;
-    exact_options.tolerance = kExactTolerance;
-    exact_options.samples = kExactSamples;
+    const analytic::SteadyStateOptions exact_options = makeTrainSteadyStateOptions();
     const analytic::ExactSteadyState exact = analytic::calcExactSteadyState(m, holzer, exact_options);
     size_t worst = 0;
     for (size_t i = 0; i < exact.peak_to_peak.size(); ++i)

@@ -53,11 +53,12 @@ const SceneTopic& fitness();
 const SceneTopic& loads();
 const SceneTopic& balance();
 const SceneTopic& gravity();
+const SceneTopic& dynamics();
 }  // namespace topics
 
 const std::vector<const SceneTopic*>& listTopics() {
   static const std::vector<const SceneTopic*> all = {&topics::fitness(), &topics::loads(), &topics::balance(),
-                                                     &topics::gravity()};
+                                                     &topics::gravity(), &topics::dynamics()};
   return all;
 }
 

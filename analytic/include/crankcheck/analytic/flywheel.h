@@ -31,6 +31,7 @@ struct SteadyRun {
   double omega_mean = 0.0;   ///< [rad/s] cycle angle / cycle time (the scene's omega)
   double omega_min = 0.0, omega_max = 0.0;  ///< [rad/s]
   double delta = 0.0;        ///< (omega_max - omega_min) / omega_mean
+  double phi_at_omega_min = 0.0, phi_at_omega_max = 0.0;  ///< [rad] where, in [0, cycle) (the parabola's vertex)
 };
 
 struct FlywheelSizing {
@@ -46,6 +47,20 @@ struct FlywheelSizing {
 ///         std::domain_error if no flywheel >= 0 gives delta = C (the mechanism alone already runs at delta <= C, or
 ///         the speed cannot stay positive); std::runtime_error if the root does not converge.
 FlywheelSizing calcFlywheelSizing(const Mechanism& m, double fluctuation);
+
+/// A given flywheel judged (the report's scene sections): the steady run with flywheel_inertia [kg m^2] in place of
+/// the scene's under the load T_L (the cycle mean of the gas torque, as calcFlywheelSizing), and the delta Norton's
+/// method predicts for it, E / (I_f omega^2) (13.9 solved for C), from one computation of the cycle's integrals.
+struct FlywheelFluctuation {
+  double load_torque = 0.0;    ///< [N m] T_L
+  SteadyRun exact;             ///< the steady run with flywheel_inertia
+  double norton_energy = 0.0;  ///< [J] E
+  double norton_delta = 0.0;   ///< [-] E / (flywheel_inertia omega^2)
+};
+
+/// @throws std::invalid_argument if the scene has no [gas], omega <= 0 or flywheel_inertia <= 0;
+///         std::domain_error if the energy integral leaves no positive speed.
+FlywheelFluctuation calcFlywheelFluctuation(const Mechanism& m, double flywheel_inertia);
 
 /// The steady run of m with flywheel_inertia in place of the scene's and load_torque.
 /// @throws std::domain_error if the energy integral leaves no positive speed.

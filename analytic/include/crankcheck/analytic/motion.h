@@ -46,6 +46,7 @@ struct FreeRun {
   double omega_mean = 0.0;  ///< [rad/s] 2 pi / (time of one revolution)
   double delta = 0.0;       ///< (omega_max - omega_min) / omega_mean, the coefficient of speed fluctuation
   double energy = 0.0;      ///< E [J]
+  double phi_at_omega_min = 0.0, phi_at_omega_max = 0.0;  ///< [rad] where, in [0, 2 pi)
 };
 
 /// phi_dot [rad/s] of the free run at phi. @throws std::domain_error if the crank cannot reach phi (E < U).
