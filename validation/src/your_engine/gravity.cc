@@ -12,6 +12,8 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/report_format.h"
+#include "crankcheck/validation/scales.h"
+#include "../part_math.h"
 #include "gravity_model.h"
 #include "topic.h"
 
@@ -76,8 +78,11 @@ TableSet calcGravityTables(const Mechanism& m, bool quick) {
       closed_inertia = inertia;
     }
     // At speed 0 there is no inertia torque: the ratio is not defined (NaN in the table, said so in the report).
+    // max |Q| at rounding level (a layout whose gravity torques cancel, such as a lying inline three) is a bound.
+    const Scales scales = calcScales(m);
     rows.push_back({m.name, engine->name, q.value, degreesFromRadians(q.phi), inertia.value,
-                    moving ? q.value / inertia.value : std::numeric_limits<double>::quiet_NaN()});
+                    moving ? q.value / inertia.value : std::numeric_limits<double>::quiet_NaN(), engine->gated ? 1 : 0,
+                    resolvedToOnePercent(q.value / scales.energy, scales.conditioning) ? 1 : 0});
   }
   return kGravityTable.tableSet(std::move(rows));
 }
@@ -100,6 +105,15 @@ class GravityTopic final : public SceneTopic {
     const std::optional<SceneFactsRow> facts = findSceneFacts(tables, scene);
     std::string text = "max |Q| = " + shortNumber(closed->max_abs_Q, 4) + " N m at " +
                        shortNumber(closed->phi_deg_at_max, 4) + " deg";
+    if (!closed->resolved) {
+      const bool all_exact = std::all_of(rows.begin(), rows.end(), [](const GravityRow& r) { return !r.gated || !r.resolved; });
+      out.push_back({ReportBlock::kParagraph,
+                     "Gravity's torque cancels over the turn for this layout: max |Q| is at rounding level (" +
+                         shortNumber(closed->max_abs_Q, 2) + " N m, a bound) in the closed forms" +
+                         (all_exact ? " and every exact engine" : " (an exact engine finds more: see data/your_engine_gravity.csv)") +
+                         ", so gravity puts no torque on the crankshaft of this engine at any speed."});
+      return out;
+    }
     if (std::isnan(closed->ratio) || closed->max_abs_inertia_torque == 0.0) {
       text += "; at 0 rpm there is no inertia torque, so gravity's share of it is not defined: at rest gravity's torque "
               "is the whole drive torque without gas. Give the scene a speed ([engine] speed_rpm, docs/SCENE-FORMAT.md) "
@@ -116,10 +130,7 @@ class GravityTopic final : public SceneTopic {
     for (const GravityRow& r : rows) {
       if (r.engine == closed_name) continue;
       const double d = std::fabs(r.max_abs_Q - closed->max_abs_Q) / std::max(closed->max_abs_Q, 1e-300);
-      bool gated = true;
-      for (const Engine& e : listEngines())
-        if (e.name == r.engine) gated = e.gated;
-      if (gated) exact = std::max(exact, d);
+      if (r.gated) exact = std::max(exact, d);
       else {
         soft = std::max(soft, d);
         any_soft = true;
@@ -132,9 +143,9 @@ class GravityTopic final : public SceneTopic {
   }
   std::vector<const TableSchema*> schemas() const override { return {&kGravityTable}; }
   std::vector<ReportedMaximum> maxima() const override {
-    // max |Q| is compared through the loads topic's gravity part (the same Q, with its rounding-level rows marked:
-    // where the cylinders cancel gravity it is rounding, a bound); this table has no such mark.
-    return {{kGravityTable.name(), {"scene", "engine"}, {"max_abs_inertia_torque"}, "", ""}};
+    // max |Q| where it is resolved (column resolved 0: the cylinders cancel gravity, a bound at rounding level).
+    return {{kGravityTable.name(), {"scene", "engine"}, {"max_abs_inertia_torque"}, "", ""},
+            {kGravityTable.name(), {"scene", "engine"}, {"max_abs_Q"}, "resolved", "0"}};
   }
 };
 

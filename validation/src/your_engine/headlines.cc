@@ -22,8 +22,9 @@ std::string formatSceneHeadlines(const TableSet& tables) {
         clauses.push_back("Norton's two-term a_p " + formatFitness(r.max_error_rel, r.resolved != 0) + " of " + r.scale);
     // The paper's question: does gravity matter for this engine at its speed.
     for (const GravityRow& r : getRows(tables, kGravityTable))
-      if (r.scene == f.scene && r.engine == "analytic" && std::isfinite(r.ratio))
-        clauses.push_back("gravity " + shortNumber(r.ratio, 2) + " of the inertia torque");
+      if (r.scene == f.scene && r.engine == "analytic" && (std::isfinite(r.ratio) || !r.resolved))
+        clauses.push_back(r.resolved ? "gravity " + shortNumber(r.ratio, 2) + " of the inertia torque"
+                                     : std::string("gravity's torque cancels (rounding)"));
     if (clauses.empty()) continue;
     out += "  " + f.scene + ": ";
     for (size_t i = 0; i < clauses.size(); ++i) out += (i == 0 ? "" : "; ") + clauses[i];

@@ -69,7 +69,9 @@ struct GravityRow {
   double max_abs_Q = 0.0;               ///< [N m] max |Q| over a turn (Q = dU/dphi, the gravity torque on the crank)
   double phi_deg_at_max = 0.0;          ///< [deg] where
   double max_abs_inertia_torque = 0.0;  ///< [N m] max |drive torque| over a turn at the scene's speed, gas and gravity off
-  double ratio = 0.0;                   ///< [-] max_abs_Q / max_abs_inertia_torque (infinite at speed 0: refused)
+  double ratio = 0.0;                   ///< [-] max_abs_Q / max_abs_inertia_torque (NaN at speed 0: not defined)
+  int gated = 1;                        ///< 0: a soft way, measured beside the exact engines
+  int resolved = 1;                     ///< 0: max |Q| is at rounding level (gravity's torque cancels: a bound)
 };
 extern const Schema<GravityRow> kGravityTable;
 

@@ -31,7 +31,8 @@ const Schema<GravityRow> kGravityTable{
     {textField("scene", &GravityRow::scene), textField("engine", &GravityRow::engine),
      numberField("max_abs_Q", "N m", &GravityRow::max_abs_Q), numberField("phi_deg_at_max", "deg", &GravityRow::phi_deg_at_max),
      numberField("max_abs_inertia_torque", "N m", &GravityRow::max_abs_inertia_torque),
-     numberField("ratio", "-", &GravityRow::ratio)}};
+     numberField("ratio", "-", &GravityRow::ratio), countField("gated", &GravityRow::gated),
+     countField("resolved", &GravityRow::resolved)}};
 
 std::optional<SceneFactsRow> findSceneFacts(const TableSet& tables, const std::string& scene) {
   for (const SceneFactsRow& row : getRows(tables, kSceneFactsTable))
