@@ -116,8 +116,8 @@ std::string ReportDocument::toHtml() const {
                                  {"</table>", "</table></div>"}})
     for (size_t at = fragment.find(from); at != std::string::npos; at = fragment.find(from, at + to.size()))
       fragment.replace(at, from.size(), to);
-  // Anchors on the level-2 and level-3 headings (stable: a part's key, or made of the heading's text), in order, for
-  // the table of contents.
+  // Anchors on every heading (stable: a part's key, or made of the heading's text), in order; the level-2 and level-3
+  // ones make the table of contents (a scene section's topics, level 4, would push the sections off the first screens).
   std::string toc = "<nav><h2>Contents</h2><ul>\n";
   size_t search = 0;
   for (const Heading& heading : headings_) {
@@ -126,6 +126,7 @@ std::string ReportDocument::toHtml() const {
     if (at == std::string::npos) break;
     fragment.insert(at + tag.size() - 1, " id=\"" + escapeHtml(heading.id) + "\"");
     search = at + tag.size();
+    if (heading.level > 3) continue;
     toc += std::string(heading.level == 3 ? "<li class=\"sub\">" : "<li>") + "<a href=\"#" + escapeHtml(heading.id) +
            "\">" + escapeHtml(heading.text) + "</a></li>\n";
   }
@@ -139,7 +140,7 @@ std::string ReportDocument::toHtml() const {
   return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escapeHtml(title_) +
          "</title>\n<style>\nbody{font-family:sans-serif;max-width:72em;margin:2em auto;padding:0 1em;line-height:1.4}\n"
          "table{border-collapse:collapse;margin:1em 0;line-height:1.2}td,th{border:1px solid #bbb;padding:.15em .5em}\n"
-         "img{max-width:100%}code{background:#f4f4f4}nav li.sub{margin-left:1.5em}\n"
+         "img{max-width:100%}code{background:#f4f4f4}nav li.sub{margin-left:1.5em}nav>ul{columns:3 18em}\n"
          "div.scroll{overflow-x:auto;max-width:100%;margin:1em 0}div.scroll>table{margin:0}pre{overflow-x:auto}\n"
          "td.mark0{background:#c6efc6}td.mark1{background:#fff2a8}td.mark2{background:#ffd29e}"
          "td.mark3{background:#ff9e9e;font-weight:bold}\n</style>\n</head>\n<body>\n" +

@@ -19,16 +19,24 @@ std::string formatSceneHeadlines(const TableSet& tables) {
     // Norton's two-term a_p: the formula engineers use most, judged on this scene against the exact closed forms.
     for (const FitnessRow& r : getRows(tables, kFitnessTable))
       if (r.scene == f.scene && r.reference == "analytic" && r.quantity == "a_p" && r.formula.rfind("Norton", 0) == 0)
-        clauses.push_back("Norton's two-term a_p " + formatFitness(r.max_error_rel, r.resolved != 0) + " of " + r.scale);
+        clauses.push_back("Norton's a_p " + formatFitness(r.max_error_rel, r.resolved != 0) + " of " + r.scale);
     // The paper's question: does gravity matter for this engine at its speed.
     for (const GravityRow& r : getRows(tables, kGravityTable))
       if (r.scene == f.scene && r.engine == "analytic" && (std::isfinite(r.ratio) || !r.resolved))
         clauses.push_back(r.resolved ? "gravity " + shortNumber(r.ratio, 2) + " of the inertia torque"
                                      : std::string("gravity's torque cancels (rounding)"));
     if (clauses.empty()) continue;
-    out += "  " + f.scene + ": ";
-    for (size_t i = 0; i < clauses.size(); ++i) out += (i == 0 ? "" : "; ") + clauses[i];
-    out += "\n";
+    // Within 100 columns, as every line crankcheck prints: a clause that does not fit goes on a line of its own.
+    std::string line = "  " + f.scene + ":";
+    for (size_t i = 0; i < clauses.size(); ++i) {
+      const std::string clause = " " + clauses[i] + (i + 1 < clauses.size() ? ";" : "");
+      if (line.size() + clause.size() > 100 && line.size() > 4) {
+        out += line + "\n";
+        line = "   ";
+      }
+      line += clause;
+    }
+    out += line + "\n";
   }
   return out;
 }
