@@ -56,16 +56,17 @@ std::vector<analytic::TorqueHarmonic> harmonicsMinus(const std::vector<analytic:
 
 namespace {
 
-// Samples enough for the maximum of a sum of harmonics: 8 per period of the highest harmonic that is at least 1e-3 of
-// the largest (a hump of a smaller one cannot move the maximum by more than its own size), at least 72 (5 degrees).
-int samplesFor(const std::vector<analytic::TorqueHarmonic>& h) {
+// The highest order of a sum of harmonics that is at least 1e-3 of the largest (a hump of a smaller one cannot move the
+// maximum by more than its own size); samples enough for its maximum: 8 per period of that order, at least 72 (5 deg).
+int findHighestOrder(const std::vector<analytic::TorqueHarmonic>& h) {
   double largest = 0.0;
   for (const auto& x : h) largest = std::max(largest, std::hypot(x.cos_coefficient, x.sin_coefficient));
   int highest = 1;
   for (const auto& x : h)
     if (std::hypot(x.cos_coefficient, x.sin_coefficient) >= 1e-3 * largest) highest = std::max(highest, x.n);
-  return std::max(72, 8 * highest);
+  return highest;
 }
+int samplesFor(const std::vector<analytic::TorqueHarmonic>& h) { return std::max(72, 8 * findHighestOrder(h)); }
 
 }  // namespace
 
@@ -77,6 +78,7 @@ TurnMaximum findMaxAbsOfHarmonics(std::vector<analytic::TorqueHarmonic> h, int r
   for (const auto& x : h) largest = std::max(largest, std::hypot(x.cos_coefficient, x.sin_coefficient));
   std::erase_if(h, [&](const analytic::TorqueHarmonic& x) { return !(std::hypot(x.cos_coefficient, x.sin_coefficient) >= 1e-18 * largest); });
   if (h.empty() || largest == 0.0) return {};
+  if (refinements <= 0) refinements = 2 * findHighestOrder(h) + 2;  // every hump of |sum|
   return findMaxAbsOverTurn([&h](double phi) { return analytic::evaluateTorqueHarmonics(h, phi); }, samplesFor(h),
                             refinements);
 }

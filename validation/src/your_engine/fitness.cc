@@ -186,7 +186,7 @@ TableSet calcFitnessTables(const Mechanism& m, bool quick) {
                           [series](double phi, int) { return analytic::evaluateTorqueHarmonics(series, phi); }, exact_Q,
                           engine_Q,
                           [above] {  // every hump of the remainder's first harmonic refined (part_math.h)
-                            return findMaxAbsOfHarmonics(above, above.empty() ? 0 : 2 * above.front().n + 2);
+                            return findMaxAbsOfHarmonics(above);
                           },
                           rounding(E, sc.conditioning)});
       }
