@@ -2,7 +2,7 @@
 """Opens a report's index.html in headless Chromium and fails on anything a reader would see broken.
 
     check_report.py CHROMIUM REPORT_DIR SCREENSHOT.png [--verdict-first] [--anchors ID,ID,...] [--near-top ID,...]
-                    [--section-shot ID OUT.png]
+                    [--section-shot ID OUT.png] [--shot-height PX]
 
 Talks to Chromium over the DevTools protocol on a pipe (--remote-debugging-pipe: file descriptors 3 and 4, JSON
 messages ended by NUL), so no network port and no extra package is needed. Fails (exit status 1, one line per
@@ -13,7 +13,7 @@ heading "Verdict", its engine table and its coloured engine x quantity matrix wh
 is not a heading's (a part's anchor is its key, the same in every report: #torsion); with --near-top, a listed heading
 that does not begin within the first two screens (a scene's section, #your-engine-STEM, right after the verdict). With
 --section-shot, OUT.png is a picture of the section that heading ID opens (down to the next heading of its level or
-above), as README shows one. Keeps a full-page screenshot, and SCREENSHOT_first.png of the first screen.
+above), as README shows one; --shot-height cuts the picture at PX pixels. Keeps a full-page screenshot, and SCREENSHOT_first.png of the first screen.
 The page is opened from the file system with the network disabled: the report must work offline.
 """
 import base64
@@ -106,6 +106,9 @@ def main():
     if "--section-shot" in sys.argv[4:]:
         at = sys.argv.index("--section-shot")
         section_shot = (sys.argv[at + 1], sys.argv[at + 2])
+    shot_height = None
+    if "--shot-height" in sys.argv[4:]:
+        shot_height = int(sys.argv[sys.argv.index("--shot-height") + 1])
     index = os.path.abspath(os.path.join(report_dir, "index.html"))
     if not os.path.isfile(index):
         print("check_report: no index.html in " + report_dir)
@@ -172,6 +175,8 @@ def main():
                     problems.append("no heading #" + section_shot[0] + " for --section-shot")
                 else:
                     box["scale"] = 1
+                    if shot_height:
+                        box["height"] = min(box["height"], shot_height)
                     shot = tools.send("Page.captureScreenshot", {"format": "png", "captureBeyondViewport": True, "clip": box},
                                       session=session)
                     with open(section_shot[1], "wb") as out:
