@@ -317,6 +317,34 @@ TEST_F(ValidateTest, BadInputIsRefusedWithStatus2) {
 
 // --parts runs those parts alone, with every cross-check: their tables, figures and headings and no other part's; the
 // report says so. An unknown or repeated key is refused before any work.
+// Three scenes of a user (issue 49): the verdict with one line per scene under it, still within 15 lines; each scene's
+// section in the report, after the verdict and before the survey, with a line for each table the scene lacks.
+TEST_F(ValidateTest, ThreeUserScenesGetTheirSectionsAndAVerdictOf15Lines) {
+  std::string scenes;
+  for (const char* stem : {"v8_cross_plane", "inline4_pin_offset", "inline3_lying_two_stroke"})
+    scenes += std::string(CRANKCHECK_SCENES_DIR) + "/" + stem + ".toml ";
+  const fs::path report = dir_ / "report";
+  const RunResult r = run("validate --quick " + scenes + "--parts offset --out " + report.string());
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_LE(std::count(r.out.begin(), r.out.end(), '\n'), 15) << r.out;
+  for (const char* stem : {"v8_cross_plane", "inline4_pin_offset", "inline3_lying_two_stroke"})
+    EXPECT_NE(r.out.find(std::string("\n  ") + stem + ": Norton's a_p "), std::string::npos) << r.out;
+  const std::string index = readFile(report / "index.md");
+  const size_t verdict = index.find("## Verdict"), survey = index.find("## The textbook survey on v8_cross_plane's parts");
+  for (const char* stem : {"v8_cross_plane", "inline4_pin_offset", "inline3_lying_two_stroke"}) {
+    const size_t section = index.find(std::string("### ") + stem + ": your engine");
+    EXPECT_TRUE(section != std::string::npos && verdict < section && section < survey) << stem;
+  }
+  // None of the three has a [crankshaft]; the lying inline three has no [gas] either: one line each, never a gap.
+  auto count = [&index](const std::string& text) {
+    size_t n = 0;
+    for (size_t at = index.find(text); at != std::string::npos; at = index.find(text, at + 1)) ++n;
+    return n;
+  };
+  EXPECT_EQ(count("No [crankshaft] table: add one"), 3u);
+  EXPECT_EQ(count("No [gas] table:"), 1u);
+}
+
 TEST_F(ValidateTest, PartsRunsOnlyThoseParts) {
   const std::string scene = std::string(CRANKCHECK_SCENES_DIR) + "/single_cylinder.toml";
   const fs::path report = dir_ / "report";

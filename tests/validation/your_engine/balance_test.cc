@@ -17,6 +17,7 @@
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include "../../../validation/src/your_engine/topic.h"
+#include "scene_section_fixture.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/csv.h"
@@ -199,24 +200,10 @@ Maxima calcMaxima(const Spectrum& sp, bool couple) {
   return out;
 }
 
-const SceneTopic& balanceTopic() {
-  for (const SceneTopic* topic : listTopics())
-    if (topic->title() == "Balance") return *topic;
-  throw std::logic_error("no topic Balance");
-}
+const SceneTopic& balanceTopic() { return testing::findTopic("Balance"); }
 
 // The topic's tables on m, and the scene facts its describe reads.
-TableSet runTopic(const Mechanism& m, bool quick = false) {
-  TableSet out;
-  for (const Task& task : balanceTopic().tasks(m, quick)) out.merge(task.run());
-  SceneFactsRow facts;
-  facts.scene = m.name;
-  facts.cylinders = m.machine.cylinders;
-  facts.speed_rpm = m.speed_rpm;
-  facts.balance_shafts = static_cast<int>(m.balance_shafts.size());
-  out.merge(kSceneFactsTable.tableSet({facts}));
-  return out;
-}
+TableSet runTopic(const Mechanism& m, bool quick = false) { return testing::runTopic(balanceTopic(), m, quick); }
 
 std::vector<std::map<std::string, std::string>> rowsOf(const TableSet& t, const std::string& name) {
   return readRecords(t, name);
@@ -310,16 +297,7 @@ std::map<std::string, std::string> closedRow(const TableSet& t, const std::strin
   return {};
 }
 
-std::string joinText(const std::vector<ReportBlock>& blocks) {
-  std::string s;
-  for (const ReportBlock& b : blocks) {
-    s += b.text + "\n";
-    for (const std::string& h : b.header) s += h + " | ";
-    for (const auto& row : b.rows)
-      for (const std::string& f : row) s += f + " | ";
-  }
-  return s;
-}
+using testing::joinText;
 
 const std::string kParts = R"(
 [crank]

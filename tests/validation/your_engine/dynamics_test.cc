@@ -21,19 +21,14 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/csv.h"
 #include "../../../validation/src/your_engine/topic.h"
+#include "scene_section_fixture.h"
 
 namespace crankcheck::validation::your_engine {
 namespace {
 
-Mechanism loadExample(const std::string& stem) {
-  return loadSceneFile(std::string(CRANKCHECK_SCENES_DIR) + "/" + stem + ".toml");
-}
+using testing::loadExample;
 
-const SceneTopic& findDynamics() {
-  for (const SceneTopic* topic : listTopics())
-    if (topic->title() == "Flywheel and torsion") return *topic;
-  throw std::logic_error("no topic \"Flywheel and torsion\"");
-}
+const SceneTopic& findDynamics() { return testing::findTopic("Flywheel and torsion"); }
 
 // The topic's tables on m: every task run (the engines' runs left out unless `engines`), the facts row added.
 TableSet runTopic(const Mechanism& m, bool engines) {
@@ -43,14 +38,7 @@ TableSet runTopic(const Mechanism& m, bool engines) {
     if (engine_run && !engines) continue;
     appendTables(tables, task.run());
   }
-  SceneFactsRow facts;
-  facts.scene = m.name;
-  facts.cycle = toString(m.machine.cycle);
-  facts.speed_rpm = m.speed_rpm;
-  facts.gas = m.gas ? 1 : 0;
-  facts.flywheel = m.flywheel_inertia ? 1 : 0;
-  facts.crankshaft = m.crankshaft ? 1 : 0;
-  addRows(tables, kSceneFactsTable, {facts});
+  addRows(tables, kSceneFactsTable, {calcSceneFacts(m, 0, true)});
   return tables;
 }
 
@@ -253,11 +241,7 @@ TEST(DynamicsTopicTest, EngineRunAgreesWithTheEnergyIntegral) {
   EXPECT_EQ(runs, 1);
 }
 
-std::string joinText(const std::vector<ReportBlock>& blocks) {
-  std::string out;
-  for (const ReportBlock& b : blocks) out += b.text + "\n";
-  return out;
-}
+using testing::joinText;
 
 TEST(DynamicsTopicTest, MissingTablesGiveOneLineEach) {
   Mechanism m = loadExample("single_cylinder");

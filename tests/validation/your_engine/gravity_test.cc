@@ -13,6 +13,7 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/report_part.h"
 #include "independent_loads.h"
+#include "scene_section_fixture.h"
 
 namespace crankcheck {
 namespace {
@@ -22,11 +23,7 @@ using testing::independent::Model;
 using validation::TableSet;
 namespace ye = validation::your_engine;
 
-const ye::SceneTopic& gravityTopic() {
-  for (const ye::SceneTopic* t : ye::listTopics())
-    if (t->title() == "Gravity") return *t;
-  throw std::logic_error("no gravity topic");
-}
+const ye::SceneTopic& gravityTopic() { return testing::findTopic("Gravity"); }
 
 std::vector<ye::GravityRow> run(const Mechanism& m, bool quick = false) {
   std::vector<ye::GravityRow> rows;

@@ -14,6 +14,7 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/report_part.h"
 #include "independent_loads.h"
+#include "scene_section_fixture.h"
 
 namespace crankcheck {
 namespace {
@@ -23,22 +24,9 @@ using testing::independent::Model;
 using validation::TableSet;
 namespace ye = validation::your_engine;
 
-const ye::SceneTopic& findTopic(const std::string& title) {
-  for (const ye::SceneTopic* t : ye::listTopics())
-    if (t->title() == title) return *t;
-  throw std::logic_error("no topic " + title);
-}
-
-TableSet runTopic(const ye::SceneTopic& topic, const Mechanism& m, bool quick = false) {
-  TableSet out;
-  for (const validation::Task& task : topic.tasks(m, quick))
-    for (auto& [name, table] : task.run()) out.insert_or_assign(name, table);
-  return out;
-}
-
-Mechanism loadExample(const std::string& stem) {
-  return loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / (stem + ".toml"));
-}
+using testing::findTopic;
+using testing::loadExample;
+using testing::runTopic;
 
 // A 90 degree V-twin, one throw, uneven firing 270 / 450 degrees, spark-ignition pressures.
 constexpr const char* kVTwin = R"(format_version = 1

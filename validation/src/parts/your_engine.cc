@@ -17,50 +17,6 @@ namespace {
 using your_engine::SceneFactsRow;
 using your_engine::kSceneFactsTable;
 
-// One line naming m's layout: "inline 3, two-stroke, single-acting, cylinders at 90 deg from +X".
-std::string describeLayout(const Mechanism& m) {
-  const int k = m.machine.cylinders;
-  std::vector<double> banks;  // distinct bank angles [deg], in the order of the cylinders
-  for (int j = 0; j < k; ++j) {
-    const double gamma = std::remainder(degreesFromRadians(getBankAngle(m, j)), 360.0);
-    if (std::none_of(banks.begin(), banks.end(), [&](double b) { return std::abs(b - gamma) < 1e-9; }))
-      banks.push_back(gamma);
-  }
-  std::string out;
-  if (banks.size() == 1)
-    out = (k == 1 ? std::string("single cylinder") : "inline " + std::to_string(k)) + " at " + shortNumber(banks[0], 4) +
-          " deg from +X";
-  else {
-    std::string list;
-    for (size_t i = 0; i < banks.size(); ++i)
-      list += (i == 0 ? "" : i + 1 == banks.size() ? " and " : ", ") + shortNumber(banks[i], 4);
-    const bool opposed = banks.size() == 2 && std::abs(std::abs(std::remainder(banks[0] - banks[1], 360.0)) - 180.0) < 1e-9;
-    out = (opposed ? "opposed " : banks.size() == 2 ? "V" : std::to_string(banks.size()) + "-bank ") + std::to_string(k) +
-          ", banks at " + list + " deg from +X";
-  }
-  return out + ", " + toString(m.machine.cycle) + ", " + toString(m.machine.acting) + "-acting";
-}
-
-SceneFactsRow findFacts(const Mechanism& m, int index, bool user) {
-  double max_offset = 0.0;
-  for (int j = 0; j < m.machine.cylinders; ++j) max_offset = std::max(max_offset, std::abs(getPinOffset(m, j)));
-  return {index,
-          m.name,
-          user ? "user" : "example",
-          describeLayout(m),
-          m.machine.cylinders,
-          toString(m.machine.cycle),
-          toString(m.machine.acting),
-          m.speed_rpm,
-          calcCrankRatio(m),
-          m.gas ? 1 : 0,
-          m.flywheel_inertia ? 1 : 0,
-          m.crankshaft ? 1 : 0,
-          static_cast<int>(m.balance_shafts.size()),
-          hasPinOffsets(m) ? 1 : 0,
-          max_offset};
-}
-
 // "with its [gas] table, 1 balance shaft, a flywheel; no [crankshaft]": what the scene has and lacks.
 std::string describeHas(const SceneFactsRow& f) {
   std::vector<std::string> has, lacks;
@@ -90,7 +46,7 @@ class YourEnginePart final : public Part {
     const bool user = !context.user_scenes.empty();
     const std::vector<Mechanism>& scenes = user ? context.user_scenes : context.scenes;
     std::vector<SceneFactsRow> facts;
-    for (size_t i = 0; i < scenes.size(); ++i) facts.push_back(findFacts(scenes[i], static_cast<int>(i), user));
+    for (size_t i = 0; i < scenes.size(); ++i) facts.push_back(your_engine::calcSceneFacts(scenes[i], static_cast<int>(i), user));
     std::vector<Task> out = {{"your_engine facts", false, [facts] { return kSceneFactsTable.tableSet(facts); }}};
     for (const Mechanism& m : scenes)
       for (const your_engine::SceneTopic* topic : your_engine::listTopics())

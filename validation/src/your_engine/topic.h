@@ -39,6 +39,9 @@ struct SceneFactsRow {
 };
 extern const Schema<SceneFactsRow> kSceneFactsTable;
 
+/// The facts of m: its place `index` among the scenes, `user` true for a scene the user gave (false: an example scene).
+SceneFactsRow calcSceneFacts(const Mechanism& m, int index, bool user);
+
 /// The facts of `scene`, or none when the table lacks it (the section was not run).
 std::optional<SceneFactsRow> findSceneFacts(const TableSet& tables, const std::string& scene);
 
