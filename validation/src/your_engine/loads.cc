@@ -287,13 +287,19 @@ class LoadsTopic final : public SceneTopic {
     const LoadRow* bearing = find("main_bearing_force");
     if (!drive || !gravity || !pin || !bearing) return out;
     const bool has_gas = facts ? facts->gas != 0 : find("gas_torque") != nullptr;
+    // A mean at rounding level (the inertia torque's, whose work over a cycle is zero) reads as such, not as 1e-15 N m.
+    auto meanText = [](const LoadRow& r) {
+      const double mean = r.mean.value_or(0.0);
+      return resolvedToOnePercent(std::fabs(mean) / r.scale) ? shortNumber(mean, 4) + " " + r.unit
+                                                              : std::string("0 (rounding)");
+    };
     const std::string cycle = facts && facts->cycle == "two-stroke" ? "360" : "720";
     std::string text = "Over one working cycle (" + cycle + " deg)" +
                        (facts ? " at " + shortNumber(facts->speed_rpm, 4) + " rpm" : std::string()) +
                        (has_gas ? " with the scene's [gas] table" : std::string()) +
                        ", the closed forms' largest |drive torque| is " + shortNumber(std::fabs(drive->peak), 4) +
                        " N m at " + degreesText(drive->phi_deg_at_peak) + ", its mean " +
-                       shortNumber(drive->mean.value_or(0.0), 4) + " N m. Gravity's part is at most " +
+                       meanText(*drive) + ". Gravity's part is at most " +
                        shortNumber(std::fabs(gravity->peak), 3) + " N m, " +
                        formatPercent(std::fabs(gravity->peak) / std::max(std::fabs(drive->peak), 1e-300)) +
                        " of the largest |drive torque|. ";
@@ -323,7 +329,7 @@ class LoadsTopic final : public SceneTopic {
       table.rows.push_back({kLoads[static_cast<size_t>(r.order)].label,
                             shortNumber(r.peak, 4) + " " + r.unit + (r.resolved ? "" : " (rounding)"),
                             shortNumber(r.phi_deg_at_peak, 4), r.cylinder ? std::to_string(*r.cylinder) : "",
-                            r.mean ? shortNumber(*r.mean, 4) + " " + r.unit : "", shortNumber(exact, 2),
+                            r.mean ? meanText(r) : "", shortNumber(exact, 2),
                             any_soft ? shortNumber(soft, 2) : ""});
     }
     out.push_back(std::move(table));
