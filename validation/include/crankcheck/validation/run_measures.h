@@ -1,0 +1,76 @@
+#pragma once
+/// @file
+/// Measures of a time-stepped run of the crank train: a program steps the mechanism through time (a free run under
+/// gravity alone: no gas, no drive, no load) and hands back its samples; these functions judge them against the exact
+/// free run of analytic/motion.h (the energy integral (1/2) J(phi) phi_dot^2 + U(phi) = E).
+///
+/// The run is read between its samples by local Lagrange interpolation of degree 5 (the six samples around the
+/// instant) of phi(t) and, separately, of omega(t) at omega's own instants, so that a run's own integration error is
+/// measured rather than the reading's: on a smooth run the reading's error falls as the step to the sixth power.
+/// A phase phi* is reached at the time where the interpolated phi(t) equals phi* (TOMS 748 between the two samples that
+/// bracket it).
+
+#include <vector>
+
+#include "crankcheck/scene/mechanism.h"
+
+namespace crankcheck::validation {
+
+/// A program's run, as samples.
+struct SteppedRun {
+  std::vector<double> time;   ///< [s], strictly increasing
+  std::vector<double> phi;    ///< [rad] the crank angle (the scene's convention), unwrapped and strictly increasing
+  std::vector<double> omega;  ///< [rad/s] the crank speed
+  /// true: omega[i] stands at time[i] - (time[i] - time[i-1]) / 2 (a backward difference, as many game and engine
+  /// simulators store it; omega[0] is then not used), not at time[i].
+  bool omega_half_step_behind = false;
+};
+
+/// The fewest samples a run may have (the interpolation's six, and one more for a half-step-behind omega).
+inline constexpr int kMinRunSamples = 8;
+
+/// [1 / revolution] The energy's trend: E = (1/2) J(phi) omega^2 + U(phi) at each crossing of phi = phi(0) + 2 pi k
+/// (k = 0, 1, ..., the run read at that phase and omega at the same instant), the least-squares slope of E_k against k,
+/// relative to E_0. At a fixed phase the run's sampling (and a half-step-behind omega) does not show as an oscillation
+/// of E; only the loss or gain per revolution does.
+/// @throws std::invalid_argument if the run is malformed (sizes differ, fewer than kMinRunSamples, NaN, time or phi not
+///         strictly increasing), the scene has no flywheel inertia, or the run is shorter than one revolution.
+double calcEnergyTrend(const Mechanism& m, const SteppedRun& run);
+
+/// The speed's fluctuation over one revolution.
+struct SpeedFluctuationOfRun {
+  double delta = 0.0;             ///< (omega_max - omega_min) / omega_mean [-]
+  double phi_at_omega_max = 0.0;  ///< [rad] in [0, 2 pi)
+  double phi_at_omega_min = 0.0;  ///< [rad] in [0, 2 pi)
+};
+
+/// The run's fluctuation against the exact free run's.
+struct SpeedFluctuationComparison {
+  SpeedFluctuationOfRun run;    ///< over the run's first revolution, phi(0) to phi(0) + 2 pi: the extremes of the
+                                ///< interpolated omega refined by Brent's method, omega_mean = 2 pi / its duration
+  SpeedFluctuationOfRun exact;  ///< calcFreeRun released at phi = 0 with the run's omega at its first phi = 0 (mod 2 pi)
+  double omega_at_zero = 0.0;   ///< [rad/s] that release speed
+  double delta_error = 0.0;     ///< run.delta - exact.delta [-]
+  double phi_max_error = 0.0;   ///< [rad] run's - exact phi at omega_max, wrapped to (-pi, pi]
+  double phi_min_error = 0.0;   ///< [rad] run's - exact phi at omega_min, wrapped to (-pi, pi]
+};
+
+/// The speed fluctuation of the run's first revolution and of the exact free run.
+/// @throws std::invalid_argument as calcEnergyTrend; std::domain_error if the exact free run does not complete a
+///         revolution at that release speed.
+SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const SteppedRun& run);
+
+/// [rad] phi_run(horizon) - phi_exact(horizon): phi_run read at time `horizon` [s] (a time of the run, between its first
+/// and its last sample), phi_exact the free run through the run's first state (phi(0), and omega read at time(0)),
+/// from the energy integral t(phi) = integral of dphi / phi_dot(phi): one turn's time times the whole turns plus the
+/// rest (Gauss-Kronrod quadrature), inverted by TOMS 748.
+/// @throws std::invalid_argument if the run is malformed (as calcEnergyTrend), the scene has no flywheel inertia, or
+///         horizon is outside [time.front(), time.back()]; std::domain_error if the exact run does not turn over.
+double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon);
+
+/// The observed order of convergence: the least-squares slope of log|error| against log(step).
+/// @throws std::invalid_argument if the sizes differ, there are fewer than 2 points, a step is not finite and > 0, an
+///         error is not finite or is 0, or the steps are all equal.
+double calcObservedOrder(const std::vector<double>& steps, const std::vector<double>& errors);
+
+}  // namespace crankcheck::validation
