@@ -208,14 +208,16 @@ double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon)
   const double t0 = run.time.front(), phi0 = run.phi.front();
   const double omega0 = releaseSpeed(m, energyAt(m, phi0, reader.omegaAt(t0)));
   const analytic::FreeRun turn = analytic::calcFreeRun(m, omega0);  // throws if it does not turn over
-  const double period = kTwoPi / turn.omega_mean;
   auto slowness = [&](double p) { return 1.0 / analytic::calcFreeRunSpeed(m, omega0, p); };
-  // t(phi) from phi = 0: whole turns times the period plus the rest's integral.
+  auto integral = [&](double to) {
+    return to > 0.0 ? boost::math::quadrature::gauss_kronrod<double, 61>::integrate(slowness, 0.0, to, 10, 1e-11) : 0.0;
+  };
+  // t(phi) from phi = 0: whole turns times one turn's time plus the rest's integral (the turn's time by the same
+  // quadrature as the rest's, so that t(phi) has no step at a whole turn).
+  const double period = integral(kTwoPi);
   auto elapsed = [&](double p) {
-    const double turns = std::floor(p / kTwoPi), rest = p - turns * kTwoPi;
-    const double part =
-        rest > 0.0 ? boost::math::quadrature::gauss_kronrod<double, 61>::integrate(slowness, 0.0, rest, 15, 1e-15) : 0.0;
-    return turns * period + part;
+    const double turns = std::floor(p / kTwoPi);
+    return turns * period + integral(p - turns * kTwoPi);
   };
   const double target = elapsed(phi0) + (horizon - t0);
   auto g = [&](double p) { return elapsed(p) - target; };
