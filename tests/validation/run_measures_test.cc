@@ -212,6 +212,10 @@ TEST(RunMeasuresTest, Refusals) {
   expectRefusal([&] { calcEnergyTrend(no_flywheel, good); }, "flywheel");
   expectRefusal([&] { calcSpeedFluctuation(no_flywheel, good); }, "flywheel");
   expectRefusal([&] { calcPhaseError(no_flywheel, good, good.time.back()); }, "flywheel");
+  // A scene with gas is not a free run under gravity alone: refused, not judged against the wrong reference.
+  const Mechanism with_gas = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
+  expectRefusal([&] { calcEnergyTrend(with_gas, good); }, "[gas]");
+  expectRefusal([&] { calcPhaseError(with_gas, good, good.time.back()); }, "[gas]");
   r = runExact(m, kOmegaSlow, 16, 1);
   for (int i = 0; i < 2; ++i) r.time.pop_back(), r.phi.pop_back(), r.omega.pop_back();  // short of a whole turn
   expectRefusal([&] { calcEnergyTrend(m, r); }, "shorter than one revolution");

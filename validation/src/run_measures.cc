@@ -44,6 +44,9 @@ void checkRun(const Mechanism& m, const SteppedRun& run, const char* who) {
       throw std::invalid_argument(std::string(who) + ": omega[" + std::to_string(i) + "] is not finite");
   if (!m.flywheel_inertia)
     throw std::invalid_argument(std::string(who) + ": the scene needs the flywheel inertia [flywheel].inertia");
+  if (m.gas)
+    throw std::invalid_argument(std::string(who) + ": the scene has a [gas] table; these measures judge a free run "
+                                "under gravity alone");
 }
 
 void checkOneRevolution(const SteppedRun& run, const char* who) {
