@@ -147,13 +147,15 @@ MechanismBodies buildMechanismBodies(SimTK::SimbodyMatterSubsystem& matter, cons
                          b.rod_big_end_in_rod);
   }
   // Balance shafts: a body on a pin about Z through (x, y, z) from Ground, its eccentric point mass at (rho, 0, 0) of
-  // the body (at angle q from +X), geared to the crank by a coordinate coupler q_shaft - ratio q_crank - phase = 0 (the
-  // crank's q is phi): a constraint, never a prescribed function of time.
+  // the pin's frame (at angle q from +X), geared to the crank by a coordinate coupler q_shaft - ratio q_crank - phase =
+  // 0 (the crank's q is phi): a constraint, never a prescribed function of time. The body's origin is the point mass
+  // itself (the pin's frame M at (-rho, 0, 0) of the body), so its central inertia is exactly zero: given about the axis
+  // as m rho^2, Simbody's m rho^2 - m rho^2 came out at -1 ulp for some masses and was refused (a marine engine's
+  // designed shafts).
   for (const BalanceShaftParams& s : m.balance_shafts) {
-    const SimTK::Vec3 station(s.radius, 0.0, 0.0);
-    const SimTK::Body::Rigid shaft_body(SimTK::MassProperties(s.mass, station, SimTK::Inertia(station, s.mass)));
+    const SimTK::Body::Rigid shaft_body(SimTK::MassProperties(s.mass, SimTK::Vec3(0), SimTK::Inertia(0)));
     b.shafts.emplace_back(matter.Ground(), SimTK::Transform(SimTK::Vec3(s.position[0], s.position[1], s.position[2])),
-                          shaft_body, SimTK::Transform());
+                          shaft_body, SimTK::Transform(SimTK::Vec3(-s.radius, 0.0, 0.0)));
     SimTK::Vector coefficients(3);
     coefficients[0] = -s.ratio;  // q_crank
     coefficients[1] = 1.0;       // q_shaft

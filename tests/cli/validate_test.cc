@@ -345,6 +345,15 @@ TEST_F(ValidateTest, ThreeUserScenesGetTheirSectionsAndAVerdictOf15Lines) {
   EXPECT_EQ(count("No [gas] table:"), 1u);
 }
 
+// The marine example as the one scene: the balance-shaft part designs shafts of tens of tonnes on its parts, which
+// Simbody refused to build (a point mass's central inertia came out at -1 ulp; simbody_models/src/model_support.h).
+TEST_F(ValidateTest, TheMarineSceneValidatesAlone) {
+  const std::string scene = std::string(CRANKCHECK_SCENES_DIR) + "/inline6_two_stroke_marine.toml";
+  const RunResult r = run("validate --quick " + scene + " --parts balance_shafts --out " + (dir_ / "report").string());
+  EXPECT_EQ(r.exit_status, 0) << r.err << r.out;
+  EXPECT_EQ(r.err, "");
+}
+
 TEST_F(ValidateTest, PartsRunsOnlyThoseParts) {
   const std::string scene = std::string(CRANKCHECK_SCENES_DIR) + "/single_cylinder.toml";
   const fs::path report = dir_ / "report";
