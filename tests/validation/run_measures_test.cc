@@ -163,6 +163,27 @@ TEST(RunMeasuresTest, HalfStepBehindRunAtFixedPhase) {
   EXPECT_LT(std::fabs(own.phi_max_error), std::fabs(same.phi_max_error) / 100.0);
 }
 
+// Each omega's own instant, given sample by sample (protocol 2's omega_t), reads omega as the half-step flag does: the
+// same samples at the same instants (to an ulp of t), so the same interpolation.
+TEST(RunMeasuresTest, OmegaInstantsGivenSampleBySample) {
+  const Mechanism m = loadSingle();
+  const double omega0 = m.machine.speed, h = 2e-4;
+  const SteppedRun flagged = runSymplecticEuler(m, omega0, h, static_cast<int>(std::round(3.0 * periodOf(m, omega0) / h)));
+  SteppedRun timed = flagged;
+  timed.omega_half_step_behind = false;
+  timed.time.erase(timed.time.begin());  // omega[0] stands at no half step: the sample is dropped, as the flag drops it
+  timed.phi.erase(timed.phi.begin());
+  timed.omega.erase(timed.omega.begin());
+  for (double t : timed.time) timed.omega_time.push_back(t - 0.5 * h);
+  // The flag computes t_i - (t_i - t_{i-1}) / 2, the instants above t_i - h / 2: they agree to an ulp of t, so the
+  // readings agree to the interpolation's conditioning times that (a few ulps of omega).
+  const SteppedRunReader a(flagged), b(timed);
+  for (double t = 0.01; t < 2.0 * periodOf(m, omega0); t += 0.0137)
+    EXPECT_NEAR(a.findOmega(t), b.findOmega(t), 64.0 * kEps * omega0) << t;
+  timed.omega_time.pop_back();
+  EXPECT_THROW(SteppedRunReader{timed}, std::invalid_argument);
+}
+
 // A power law's order, exactly.
 TEST(RunMeasuresTest, ObservedOrderOfAPowerLaw) {
   const std::vector<double> steps{1e-2, 5e-3, 2e-3, 1e-3};

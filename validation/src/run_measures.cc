@@ -71,43 +71,47 @@ double interpolate(const std::vector<double>& xs, const std::vector<double>& ys,
   return y;
 }
 
-// The run read between its samples: phi(t), omega(t) at omega's own instants, and the time at which phi reaches a phase.
-class RunReader {
- public:
-  explicit RunReader(const SteppedRun& run) : run_(run) {
-    if (run.omega_half_step_behind) {
-      for (size_t i = 1; i < run.time.size(); ++i) {
-        omega_time_.push_back(run.time[i] - 0.5 * (run.time[i] - run.time[i - 1]));
-        omega_.push_back(run.omega[i]);
-      }
-    } else {
-      omega_time_ = run.time;
-      omega_ = run.omega;
-    }
-  }
-  double phiAt(double t) const { return interpolate(run_.time, run_.phi, t); }
-  double omegaAt(double t) const { return interpolate(omega_time_, omega_, t); }
-  /// The time at which phi reaches `target` (within [phi.front(), phi.back()]).
-  double timeAtPhase(double target) const {
-    const auto& phi = run_.phi;
-    const size_t upper = static_cast<size_t>(std::upper_bound(phi.begin(), phi.end(), target) - phi.begin());
-    if (upper == 0) return run_.time.front();
-    const size_t i = upper - 1;
-    if (phi[i] == target || i + 1 == phi.size()) return run_.time[i];
-    const double a = run_.time[i], b = run_.time[i + 1];
-    auto g = [&](double t) { return phiAt(t) - target; };
-    const double ga = phi[i] - target, gb = phi[i + 1] - target;
-    std::uintmax_t iterations = 100;
-    const auto root = boost::math::tools::toms748_solve(g, a, b, ga, gb, boost::math::tools::eps_tolerance<double>(52),
-                                                        iterations);
-    return 0.5 * (root.first + root.second);
-  }
-  double omegaAtPhase(double target) const { return omegaAt(timeAtPhase(target)); }
+}  // namespace
 
- private:
-  const SteppedRun& run_;
-  std::vector<double> omega_time_, omega_;
-};
+SteppedRunReader::SteppedRunReader(const SteppedRun& run) : run_(run) {
+  if (!run.omega_time.empty()) {
+    if (run.omega_time.size() != run.omega.size())
+      throw std::invalid_argument("the run has " + std::to_string(run.omega.size()) + " omega samples but " +
+                                  std::to_string(run.omega_time.size()) + " omega instants");
+    checkStrictlyIncreasing(run.omega_time, "omega's instants", "the run");
+    omega_time_ = run.omega_time;
+    omega_ = run.omega;
+  } else if (run.omega_half_step_behind) {
+    for (size_t i = 1; i < run.time.size(); ++i) {
+      omega_time_.push_back(run.time[i] - 0.5 * (run.time[i] - run.time[i - 1]));
+      omega_.push_back(run.omega[i]);
+    }
+  } else {
+    omega_time_ = run.time;
+    omega_ = run.omega;
+  }
+}
+
+double SteppedRunReader::findPhi(double t) const { return interpolate(run_.time, run_.phi, t); }
+
+double SteppedRunReader::findOmega(double t) const { return interpolate(omega_time_, omega_, t); }
+
+double SteppedRunReader::findTimeAtPhase(double target) const {
+  const auto& phi = run_.phi;
+  const size_t upper = static_cast<size_t>(std::upper_bound(phi.begin(), phi.end(), target) - phi.begin());
+  if (upper == 0) return run_.time.front();
+  const size_t i = upper - 1;
+  if (phi[i] == target || i + 1 == phi.size()) return run_.time[i];
+  const double a = run_.time[i], b = run_.time[i + 1];
+  auto g = [&](double t) { return findPhi(t) - target; };
+  const double ga = phi[i] - target, gb = phi[i + 1] - target;
+  std::uintmax_t iterations = 100;
+  const auto root =
+      boost::math::tools::toms748_solve(g, a, b, ga, gb, boost::math::tools::eps_tolerance<double>(52), iterations);
+  return 0.5 * (root.first + root.second);
+}
+
+namespace {
 
 double energyAt(const Mechanism& m, double phi, double omega) {
   return 0.5 * analytic::calcReducedInertia(m, phi).J * omega * omega + analytic::calcPotentialEnergy(m, phi);
@@ -142,7 +146,7 @@ double calcEnergyTrend(const Mechanism& m, const SteppedRun& run) {
   constexpr const char* kWho = "calcEnergyTrend";
   checkRun(m, run, kWho);
   checkOneRevolution(run, kWho);
-  const RunReader reader(run);
+  const SteppedRunReader reader(run);
   const double phi0 = run.phi.front();
   const int turns = static_cast<int>(std::floor((run.phi.back() - phi0) / kTwoPi));
   std::vector<double> k, energy;
@@ -150,7 +154,7 @@ double calcEnergyTrend(const Mechanism& m, const SteppedRun& run) {
     const double phase = phi0 + kTwoPi * i;
     if (phase > run.phi.back()) break;
     k.push_back(i);
-    energy.push_back(energyAt(m, phase, reader.omegaAtPhase(phase)));
+    energy.push_back(energyAt(m, phase, reader.findOmegaAtPhase(phase)));
   }
   return leastSquaresSlope(k, energy) / energy.front();
 }
@@ -159,22 +163,22 @@ SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Steppe
   constexpr const char* kWho = "calcSpeedFluctuation";
   checkRun(m, run, kWho);
   checkOneRevolution(run, kWho);
-  const RunReader reader(run);
+  const SteppedRunReader reader(run);
   const double phi0 = run.phi.front(), phi1 = phi0 + kTwoPi;
   // omega against phase over the first revolution: the samples in it and its end, then the extremes refined.
   std::vector<double> phase, omega;
   for (size_t i = 0; i < run.phi.size() && run.phi[i] < phi1; ++i) {
     phase.push_back(run.phi[i]);
-    omega.push_back(reader.omegaAt(run.time[i]));
+    omega.push_back(reader.findOmega(run.time[i]));
   }
   phase.push_back(phi1);
-  omega.push_back(reader.omegaAtPhase(phi1));
+  omega.push_back(reader.findOmegaAtPhase(phi1));
   const size_t imax = static_cast<size_t>(std::max_element(omega.begin(), omega.end()) - omega.begin());
   const size_t imin = static_cast<size_t>(std::min_element(omega.begin(), omega.end()) - omega.begin());
   auto bracket = [&](size_t i) {
     return std::pair{phase[i == 0 ? 0 : i - 1], phase[std::min(i + 1, phase.size() - 1)]};
   };
-  auto w = [&](double p) { return reader.omegaAtPhase(p); };
+  auto w = [&](double p) { return reader.findOmegaAtPhase(p); };
   const auto [amax, bmax] = bracket(imax);
   const TurnMaximum top = refineMaxAbs(w, amax, bmax);
   const double ceiling = 2.0 * std::max(top.value, omega[imax]);  // min omega = max of (ceiling - omega) > 0
@@ -183,7 +187,7 @@ SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Steppe
   const double omega_max = std::max(top.value, omega[imax]), omega_min = std::min(ceiling - bottom.value, omega[imin]);
   const double phi_max = top.value >= omega[imax] ? top.phi : phase[imax];
   const double phi_min = ceiling - bottom.value <= omega[imin] ? bottom.phi : phase[imin];
-  const double omega_mean = kTwoPi / (reader.timeAtPhase(phi1) - run.time.front());
+  const double omega_mean = kTwoPi / (reader.findTimeAtPhase(phi1) - run.time.front());
 
   SpeedFluctuationComparison out;
   out.run.delta = (omega_max - omega_min) / omega_mean;
@@ -191,7 +195,7 @@ SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Steppe
   out.run.phi_at_omega_min = std::fmod(std::fmod(phi_min, kTwoPi) + kTwoPi, kTwoPi);
   // The exact free run, released at phi = 0 with the run's omega at its first phi = 0 (mod 2 pi).
   const double zero = kTwoPi * std::ceil(phi0 / kTwoPi);
-  out.omega_at_zero = reader.omegaAtPhase(zero);
+  out.omega_at_zero = reader.findOmegaAtPhase(zero);
   const analytic::FreeRun exact = analytic::calcFreeRun(m, out.omega_at_zero);
   out.exact = {exact.delta, exact.phi_at_omega_max, exact.phi_at_omega_min};
   out.delta_error = out.run.delta - out.exact.delta;
@@ -207,9 +211,9 @@ double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon)
     throw std::invalid_argument(std::string(kWho) + ": the horizon " + std::to_string(horizon) +
                                 " s is outside the run's time [" + std::to_string(run.time.front()) + ", " +
                                 std::to_string(run.time.back()) + "] s");
-  const RunReader reader(run);
+  const SteppedRunReader reader(run);
   const double t0 = run.time.front(), phi0 = run.phi.front();
-  const double omega0 = releaseSpeed(m, energyAt(m, phi0, reader.omegaAt(t0)));
+  const double omega0 = releaseSpeed(m, energyAt(m, phi0, reader.findOmega(t0)));
   const analytic::FreeRun turn = analytic::calcFreeRun(m, omega0);  // throws if it does not turn over
   auto slowness = [&](double p) { return 1.0 / analytic::calcFreeRunSpeed(m, omega0, p); };
   auto integral = [&](double to) {
@@ -226,14 +230,14 @@ double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon)
   auto g = [&](double p) { return elapsed(p) - target; };
   // phi advances at least omega_min and at most omega_max per second.
   const double dt = horizon - t0;
-  if (dt == 0.0) return reader.phiAt(horizon) - phi0;
+  if (dt == 0.0) return reader.findPhi(horizon) - phi0;
   double a = phi0 + turn.omega_min * dt, b = phi0 + turn.omega_max * dt;
   const double margin = 1e-9 * (std::fabs(b) + 1.0);
   a -= margin;
   b += margin;
   std::uintmax_t iterations = 100;
   const auto root = boost::math::tools::toms748_solve(g, a, b, boost::math::tools::eps_tolerance<double>(52), iterations);
-  return reader.phiAt(horizon) - 0.5 * (root.first + root.second);
+  return reader.findPhi(horizon) - 0.5 * (root.first + root.second);
 }
 
 double calcObservedOrder(const std::vector<double>& steps, const std::vector<double>& errors) {

@@ -24,6 +24,26 @@ struct SteppedRun {
   /// true: omega[i] stands at time[i] - (time[i] - time[i-1]) / 2 (a backward difference, as many game and engine
   /// simulators store it; omega[0] is then not used), not at time[i].
   bool omega_half_step_behind = false;
+  /// When not empty: the instant each omega stands at [s] (strictly increasing, as many as omega), in place of time and
+  /// of omega_half_step_behind (a program that says at which time each value stands, as protocol 2 lets it).
+  std::vector<double> omega_time;
+};
+
+/// A run read between its samples (the interpolation above). Keeps a reference to the run: the run must outlive it.
+class SteppedRunReader {
+ public:
+  /// @throws std::invalid_argument if omega_time is given but is not as long as omega, finite and strictly increasing.
+  explicit SteppedRunReader(const SteppedRun& run);
+  double findPhi(double t) const;    ///< [rad] phi at time t [s]
+  double findOmega(double t) const;  ///< [rad/s] omega at time t, read at omega's own instants
+  /// [s] The time at which phi reaches `phase` [rad] (within [phi.front(), phi.back()]; the first or last sample's time
+  /// outside it).
+  double findTimeAtPhase(double phase) const;
+  double findOmegaAtPhase(double phase) const { return findOmega(findTimeAtPhase(phase)); }
+
+ private:
+  const SteppedRun& run_;
+  std::vector<double> omega_time_, omega_;
 };
 
 /// The fewest samples a run may have (the interpolation's six, and one more for a half-step-behind omega).
