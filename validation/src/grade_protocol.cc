@@ -1,0 +1,167 @@
+// The pieces of `crankcheck grade`'s protocols that protocol 1 (grade.cc) and protocol 2 (free_run_grade.cc) share:
+// case ids, quoting a program's output, running it under the process rules, reading its values.
+#include "grade_protocol.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "crankcheck/scene/quantities.h"
+#include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/process.h"
+#include "crankcheck/validation/table.h"
+
+namespace crankcheck::validation {
+
+using Json = nlohmann::json;
+
+// "0.3" -> "0p3", "-90" -> "m90": a number in a case id.
+std::string numberTag(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", x);
+  std::string text = buffer;
+  for (char& c : text) {
+    if (c == '.') c = 'p';
+    if (c == '-') c = 'm';
+    if (c == '+') c = '_';
+  }
+  return text;
+}
+
+std::string safeStem(const std::string& name) {
+  std::string out;
+  for (char c : name) out += std::isalnum(static_cast<unsigned char>(c)) || c == '_' ? c : '_';
+  return out.empty() ? std::string("scene") : out;
+}
+
+// The first line of `text` that holds byte `at` (or the first line), at most 160 bytes, for a message: quoted, its
+// control bytes escaped (an ESC never reaches the terminal, a NUL never cuts the message), the quote closed.
+std::string quoteLine(const std::string& text, size_t at) {
+  at = std::min(at, text.empty() ? size_t{0} : text.size() - 1);
+  size_t begin = text.rfind('\n', at == 0 ? 0 : at - (text[at] == '\n' ? 1 : 0));
+  begin = begin == std::string::npos || begin > at ? 0 : begin + 1;
+  if (at == 0) begin = 0;
+  size_t end = text.find('\n', begin);
+  if (end == std::string::npos) end = text.size();
+  const std::string line = text.substr(begin, std::min<size_t>(end - begin, 160));
+  const size_t line_number = static_cast<size_t>(std::count(text.begin(), text.begin() + static_cast<long>(begin), '\n')) + 1;
+  return "line " + std::to_string(line_number) + ": " + quoteText(line) + (end - begin > 160 ? "..." : "");
+}
+
+std::string describeSignal(int signal) {
+  const char* name = ::strsignal(signal);
+  return "signal " + std::to_string(signal) + (name ? std::string(" (") + name + ")" : std::string());
+}
+
+// True when `out` holds `requests` complete JSON responses (one per line in batch; one document otherwise), whatever
+// they say: the program answered, even if it did not exit.
+bool isCompleteAnswer(const std::string& out, size_t requests, bool batch) {
+  if (!batch) return out.find_first_not_of(" \t\r\n") != std::string::npos && Json::accept(out);
+  size_t complete = 0;
+  for (size_t begin = 0; begin < out.size();) {
+    size_t end = out.find('\n', begin);
+    if (end == std::string::npos) end = out.size();
+    const std::string line = out.substr(begin, end - begin);
+    if (line.find_first_not_of(" \t\r") != std::string::npos) {
+      if (!Json::accept(line)) return false;
+      ++complete;
+    }
+    begin = end + 1;
+  }
+  return complete == requests;
+}
+
+std::string runOnce(const GradeProgram& program, const std::string& input, size_t requests, const std::string& what) {
+  ProgramCall call{program.argv};
+  call.input = input;
+  call.timeout_seconds = program.timeout_seconds * static_cast<double>(requests);
+  call.output_limit = program.output_limit * requests;
+  const ProgramResult r = runProgram(call);
+  const std::string name = program.argv.front();
+  auto stderrLine = [&] {  // its first line, quoted with its control bytes escaped
+    const std::string err = r.err.substr(0, r.err.find('\n')).substr(0, 200);
+    return err.empty() ? std::string() : "; its stderr: " + quoteText(err);
+  };
+  if (r.timed_out && isCompleteAnswer(r.out, requests, program.batch))
+    throw EnvironmentError(name + ": " + what + ": answered completely but did not exit within " +
+                           formatNumber(call.timeout_seconds) + " s (killed; the program must exit when its stdin ends)");
+  if (r.timed_out)
+    throw EnvironmentError(name + ": " + what + ": no complete answer within " + formatNumber(call.timeout_seconds) +
+                           " s (killed; --timeout sets the time per request)");
+  if (r.output_limit_exceeded)
+    throw EnvironmentError(name + ": " + what + ": wrote more than " + std::to_string(call.output_limit) +
+                           " bytes to stdout (killed)");
+  if (r.signal != 0) throw EnvironmentError(name + ": " + what + ": ended by " + describeSignal(r.signal) + stderrLine());
+  if (r.exit_status != 0)
+    throw EnvironmentError(name + ": " + what + ": exited with status " + std::to_string(r.exit_status) + stderrLine());
+  return r.out;
+}
+
+Evaluation readProgramValues(const Json& r, const std::string& at, const Mechanism& m,
+                             const std::function<void(const std::string&)>& fail) {
+  const int k = m.machine.cylinders;
+  const double kNotProvided = std::nan("");
+  if (!r.is_object() && !r.is_null()) fail(at + " must be an object or null");
+  // A number, or null / absent for "not provided"; anything else is not the protocol.
+  auto number = [&](const Json& parent, const std::string& key, const std::string& path) -> double {
+    if (!parent.is_object() || !parent.contains(key) || parent[key].is_null()) return kNotProvided;
+    const Json& v = parent[key];
+    if (!v.is_number()) fail(path + "." + key + " must be a number or null");
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) fail(path + "." + key + " is not a finite number");
+    return x;
+  };
+  auto vector = [&](const Json& parent, const std::string& key, const std::string& path, double* into, size_t n) {
+    for (size_t e = 0; e < n; ++e) into[e] = kNotProvided;
+    if (!parent.is_object() || !parent.contains(key) || parent[key].is_null()) return;
+    const Json& v = parent[key];
+    if (!v.is_array() || v.size() != n) fail(path + "." + key + " must be an array of " + std::to_string(n) + " numbers (or null)");
+    for (size_t e = 0; e < n; ++e) {
+      if (v[e].is_null()) continue;
+      if (!v[e].is_number()) fail(path + "." + key + "[" + std::to_string(e) + "] must be a number or null");
+      into[e] = v[e].get<double>();
+      if (!std::isfinite(into[e])) fail(path + "." + key + "[" + std::to_string(e) + "] is not a finite number");
+    }
+  };
+  Evaluation e;
+  e.engine = "program";
+  e.cylinders.assign(static_cast<size_t>(k), CylinderEvaluation{});
+  // Every value "not provided" until read; a quantity the scene does not define is never read (gas_force without
+  // [gas]), a component it does not define is not provided whatever the program says (shaking_moment X and Y
+  // without axial positions).
+  auto read = [&](const Quantity& q, const Json& parent, const std::string& path, int cylinder) {
+    double* values = accessQuantity(q, e, cylinder);
+    if (!isQuantityDefined(q, m)) {
+      for (int n = 0; n < q.components; ++n) values[n] = kNotProvided;
+      return;
+    }
+    if (q.components == 1)
+      values[0] = number(parent, q.name, path);
+    else
+      vector(parent, q.name, path, values, static_cast<size_t>(q.components));
+    for (int n = 0; n < q.components; ++n)
+      if (!isComponentDefined(q, n, m)) values[n] = kNotProvided;
+  };
+  for (const Quantity& q : getQuantityCatalogue()) {
+    if (!q.per_cylinder) read(q, r, at, -1);
+    for (int j = 0; j < k && q.per_cylinder; ++j)
+      for (int n = 0; n < q.components; ++n) accessQuantity(q, e, j)[n] = kNotProvided;
+  }
+  if (r.is_object() && r.contains("cylinders") && !r["cylinders"].is_null()) {
+    const Json& cylinders = r["cylinders"];
+    if (!cylinders.is_array() || cylinders.size() > static_cast<size_t>(k))
+      fail(at + ".cylinders must be an array of at most " + std::to_string(k) + " objects (one per cylinder, in order)");
+    for (size_t j = 0; j < cylinders.size(); ++j) {
+      const Json& cj = cylinders[j];
+      if (cj.is_null()) continue;
+      const std::string cat = at + ".cylinders[" + std::to_string(j) + "]";
+      if (!cj.is_object()) fail(cat + " must be an object or null");
+      for (const Quantity& q : getQuantityCatalogue())
+        if (q.per_cylinder) read(q, cj, cat, static_cast<int>(j));
+    }
+  }
+  return e;
+}
+
+}  // namespace crankcheck::validation

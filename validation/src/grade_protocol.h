@@ -1,0 +1,42 @@
+#pragma once
+// The pieces of `crankcheck grade`'s two protocols (grade.h: states, free_run_grade.h: time-stepped runs) that both
+// use: internal to the validation library.
+
+#include <cstddef>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "crankcheck/scene/evaluation.h"
+#include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/grade.h"
+
+namespace crankcheck::validation {
+
+/// "0.3" -> "0p3", "-90" -> "m90": a number in a case id.
+std::string numberTag(double x);
+/// `name` with every character but [A-Za-z0-9_] replaced by '_' ("scene" when empty): a case id, a file stem.
+std::string safeStem(const std::string& name);
+/// The first line of `text` that holds byte `at` (or the first line), at most 160 bytes, for a message: quoted, its
+/// control bytes escaped (an ESC never reaches the terminal, a NUL never cuts the message), the quote closed.
+std::string quoteLine(const std::string& text, size_t at = 0);
+/// "signal 9 (Killed)".
+std::string describeSignal(int signal);
+/// True when `out` holds `requests` complete JSON responses (one per line in batch; one document otherwise), whatever
+/// they say: the program answered, even if it did not exit.
+bool isCompleteAnswer(const std::string& out, size_t requests, bool batch);
+/// Runs the program on `input` (`requests` requests: the time limit and the output limit are per request); returns
+/// its stdout. `what` names the request in messages ("case ID").
+/// @throws EnvironmentError on anything but a clean exit: not started, killed at the time or output limit, ended by
+/// a signal, a non-zero exit status (with the first line of its stderr, quoted).
+std::string runOnce(const GradeProgram& program, const std::string& input, size_t requests, const std::string& what);
+
+/// The values a program gave in one JSON object `r` (a result of protocol 1, a sample of protocol 2): every quantity of
+/// the catalogue at the top and per cylinder under "cylinders", NaN where not provided (left out or null) or not
+/// defined for m; engine "program". `at` names the object in messages ("results[3]").
+/// `fail(what)` is called (and must throw) on anything that is not the protocol: a string where a number belongs, a
+/// number that is not finite, an array of the wrong size, more cylinders than m has.
+Evaluation readProgramValues(const nlohmann::json& r, const std::string& at, const Mechanism& m,
+                             const std::function<void(const std::string&)>& fail);
+
+}  // namespace crankcheck::validation
