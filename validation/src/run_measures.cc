@@ -142,20 +142,26 @@ double releaseSpeed(const Mechanism& m, double E) {
 
 }  // namespace
 
-double calcEnergyTrend(const Mechanism& m, const SteppedRun& run) {
-  constexpr const char* kWho = "calcEnergyTrend";
+std::vector<double> calcEnergyAtTurns(const Mechanism& m, const SteppedRun& run) {
+  constexpr const char* kWho = "calcEnergyAtTurns";
   checkRun(m, run, kWho);
   checkOneRevolution(run, kWho);
   const SteppedRunReader reader(run);
   const double phi0 = run.phi.front();
   const int turns = static_cast<int>(std::floor((run.phi.back() - phi0) / kTwoPi));
-  std::vector<double> k, energy;
+  std::vector<double> energy;
   for (int i = 0; i <= turns; ++i) {
     const double phase = phi0 + kTwoPi * i;
     if (phase > run.phi.back()) break;
-    k.push_back(i);
     energy.push_back(energyAt(m, phase, reader.findOmegaAtPhase(phase)));
   }
+  return energy;
+}
+
+double calcEnergyTrend(const Mechanism& m, const SteppedRun& run) {
+  const std::vector<double> energy = calcEnergyAtTurns(m, run);
+  std::vector<double> k;
+  for (size_t i = 0; i < energy.size(); ++i) k.push_back(static_cast<double>(i));
   return leastSquaresSlope(k, energy) / energy.front();
 }
 
@@ -204,13 +210,14 @@ SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Steppe
   return out;
 }
 
-double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon) {
+std::vector<double> calcPhaseErrors(const Mechanism& m, const SteppedRun& run, const std::vector<double>& horizons) {
   constexpr const char* kWho = "calcPhaseError";
   checkRun(m, run, kWho);
-  if (!(horizon >= run.time.front() && horizon <= run.time.back()))
-    throw std::invalid_argument(std::string(kWho) + ": the horizon " + std::to_string(horizon) +
-                                " s is outside the run's time [" + std::to_string(run.time.front()) + ", " +
-                                std::to_string(run.time.back()) + "] s");
+  for (double horizon : horizons)
+    if (!(horizon >= run.time.front() && horizon <= run.time.back()))
+      throw std::invalid_argument(std::string(kWho) + ": the horizon " + std::to_string(horizon) +
+                                  " s is outside the run's time [" + std::to_string(run.time.front()) + ", " +
+                                  std::to_string(run.time.back()) + "] s");
   const SteppedRunReader reader(run);
   const double t0 = run.time.front(), phi0 = run.phi.front();
   const double omega0 = releaseSpeed(m, energyAt(m, phi0, reader.findOmega(t0)));
@@ -226,18 +233,31 @@ double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon)
     const double turns = std::floor(p / kTwoPi);
     return turns * period + integral(p - turns * kTwoPi);
   };
-  const double target = elapsed(phi0) + (horizon - t0);
-  auto g = [&](double p) { return elapsed(p) - target; };
-  // phi advances at least omega_min and at most omega_max per second.
-  const double dt = horizon - t0;
-  if (dt == 0.0) return reader.findPhi(horizon) - phi0;
-  double a = phi0 + turn.omega_min * dt, b = phi0 + turn.omega_max * dt;
-  const double margin = 1e-9 * (std::fabs(b) + 1.0);
-  a -= margin;
-  b += margin;
-  std::uintmax_t iterations = 100;
-  const auto root = boost::math::tools::toms748_solve(g, a, b, boost::math::tools::eps_tolerance<double>(52), iterations);
-  return reader.findPhi(horizon) - 0.5 * (root.first + root.second);
+  const double start = elapsed(phi0);
+  std::vector<double> out;
+  for (double horizon : horizons) {
+    const double dt = horizon - t0;
+    if (dt == 0.0) {
+      out.push_back(reader.findPhi(horizon) - phi0);
+      continue;
+    }
+    const double target = start + dt;
+    auto g = [&](double p) { return elapsed(p) - target; };
+    // phi advances at least omega_min and at most omega_max per second.
+    double a = phi0 + turn.omega_min * dt, b = phi0 + turn.omega_max * dt;
+    const double margin = 1e-9 * (std::fabs(b) + 1.0);
+    a -= margin;
+    b += margin;
+    std::uintmax_t iterations = 100;
+    const auto root =
+        boost::math::tools::toms748_solve(g, a, b, boost::math::tools::eps_tolerance<double>(52), iterations);
+    out.push_back(reader.findPhi(horizon) - 0.5 * (root.first + root.second));
+  }
+  return out;
+}
+
+double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon) {
+  return calcPhaseErrors(m, run, {horizon}).front();
 }
 
 double calcObservedOrder(const std::vector<double>& steps, const std::vector<double>& errors) {

@@ -56,6 +56,9 @@ inline constexpr int kMinRunSamples = 8;
 /// @throws std::invalid_argument if the run is malformed (sizes differ, fewer than kMinRunSamples, NaN, time or phi not
 ///         strictly increasing), the scene has no flywheel inertia, or the run is shorter than one revolution.
 double calcEnergyTrend(const Mechanism& m, const SteppedRun& run);
+/// The energies E_k [J] that calcEnergyTrend fits, k = 0, 1, ... (every crossing of phi(0) + 2 pi k within the run).
+/// @throws std::invalid_argument as calcEnergyTrend.
+std::vector<double> calcEnergyAtTurns(const Mechanism& m, const SteppedRun& run);
 
 /// The speed's fluctuation over one revolution.
 struct SpeedFluctuationOfRun {
@@ -87,6 +90,8 @@ SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Steppe
 /// @throws std::invalid_argument if the run is malformed (as calcEnergyTrend), the scene has no flywheel inertia, or
 ///         horizon is outside [time.front(), time.back()]; std::domain_error if the exact run does not turn over.
 double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon);
+/// calcPhaseError at each of `horizons` (the exact run's quadrature set up once).
+std::vector<double> calcPhaseErrors(const Mechanism& m, const SteppedRun& run, const std::vector<double>& horizons);
 
 /// The observed order of convergence: the least-squares slope of log|error| against log(step).
 /// @throws std::invalid_argument if the sizes differ, there are fewer than 2 points, a step is not finite and > 0, an
