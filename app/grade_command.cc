@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include "crankcheck/validation/errors.h"
 #include "flag_checks.h"
 #include "help_format.h"
+#include "crankcheck/validation/free_run_grade.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/process.h"
@@ -28,8 +30,9 @@ namespace crankcheck::app {
 void addGradeOptions(CLI::App& command, GradeOptions& options) {
   command.add_option("scene", options.scene_paths,
                      "Scene files (TOML) to grade on; none: the built-in campaign (validate's scenes)");
-  command.add_option("--out", options.out, "Report folder (replaced only if missing, empty or written by crankcheck)")
-      ->capture_default_str();
+  command.add_option("--out", options.out,
+                     "Report folder (replaced only if missing, empty or written by crankcheck); default out/grade, "
+                     "with --free-run out/grade-free-run");
   command.add_flag("--quick", options.quick, "Fewer lambdas and angles (seconds, not minutes)");
   command.add_flag("--batch", options.batch,
                    "Start the program once per job and send it every request, one JSON per line; it answers one "
@@ -38,6 +41,45 @@ void addGradeOptions(CLI::App& command, GradeOptions& options) {
       ->check(CLI::Range(1, 256));
   command.add_option("--timeout", options.timeout_seconds, "Seconds the program may take per request")
       ->check(FiniteRange(0.001, 1e6))
+      ->capture_default_str();
+  command.add_flag("--free-run", options.free_run,
+                   "Grade a time-stepped run (protocol 2): the program steps the crank train through time and answers "
+                   "its trajectory; the energy's trend, the speed fluctuation and the phase are measured against the "
+                   "exact run (one scene at least; docs/grade.md, \"Time-stepped runs\")");
+  command.add_option("--drive", options.drive, "--free-run: free (no drive, no load, gravity alone) or held (the crank "
+                     "held at the scene's speed; the program reports the torque it takes)")
+      ->check(CLI::IsMember({"free", "held"}))
+      ->capture_default_str();
+  command.add_option("--revolutions", options.revolutions, "--free-run: the horizon, in revolutions of the exact run")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  command.add_option("--dt", options.dt, "--free-run: the step [s] the program must take, or `own` (its own choice); "
+                     "default 1/720 of a revolution");
+  command.add_option("--dt-sweep", options.dt_sweep, "--free-run: N runs at dt, dt/2, ... dt/2^(N-1): the largest step "
+                     "meeting each tolerance and each measure's observed order")
+      ->check(CLI::Range(1, 20))
+      ->capture_default_str();
+  command.add_option("--output-interval", options.output_interval,
+                     "--free-run: seconds between the samples the program reports (default: every step; with --dt own, 1/720 of a revolution)")
+      ->check(FiniteRange(1e-12, 1e6));
+  command.add_option("--energy-tolerance", options.energy_tolerance,
+                     "--free-run: the energy's trend per revolution, relative to its start")
+      ->check(FiniteRange(0.0, 1e6))
+      ->capture_default_str();
+  command.add_option("--delta-tolerance", options.delta_tolerance,
+                     "--free-run: the speed fluctuation delta's error, relative to the exact delta")
+      ->check(FiniteRange(0.0, 1e6))
+      ->capture_default_str();
+  command.add_option("--extreme-phase-tolerance", options.extreme_phase_tolerance,
+                     "--free-run: [deg] the crank angles of the largest and smallest speed against the exact run's")
+      ->check(FiniteRange(0.0, 360.0))
+      ->capture_default_str();
+  command.add_option("--phase-tolerance", options.phase_tolerance, "--free-run: [rad] the crank angle at the horizon")
+      ->check(FiniteRange(0.0, 1e6))
+      ->capture_default_str();
+  command.add_option("--values-tolerance", options.values_tolerance,
+                     "--free-run: a value's error at the program's own state, relative to the quantity's scale")
+      ->check(FiniteRange(0.0, 1e6))
       ->capture_default_str();
   command.footer(
       "The program follows `--`: crankcheck grade [SCENE...] [options] -- PROGRAM [ARG...]. It is started without a "
@@ -55,7 +97,15 @@ void addGradeOptions(CLI::App& command, GradeOptions& options) {
       "(docs/grade.md).\n"
       "Exit status 0: every value it provided agrees with every reference engine; 1: some do not (or none was "
       "provided); 2: bad usage; 3: it could not be run, crashed, timed out, wrote more than 64 MiB per request or "
-      "broke the protocol (one line names the case and quotes the offending output).");
+      "broke the protocol (one line names the case and quotes the offending output).\n"
+      "--free-run: protocol 2, one request per step (JSON, one line): {\"protocol\": 2, \"case\": ID, \"scene\": {...}, "
+      "\"scene_toml\": \"...\", \"drive\": \"free\"|\"held\", \"gravity\": true, \"phi0\": 0, \"omega0\": RAD/S, \"dt\": S|\"own\", "
+      "\"t_end\": S, \"output_interval\": S, \"quantities\": [...]}; the response: {\"samples\": [{\"t\": S, \"phi\": RAD, "
+      "\"omega\": RAD/S, \"omega_t\": S, \"values_t\": S, \"drive_torque\": ..., \"cylinders\": [...]}, ...]}, a sample at "
+      "t = 0, one every output_interval, the last at t_end; phi unwrapped; omega_t and values_t (optional, default t) "
+      "the instants omega and the other values stand at (a backward-difference velocity: t - dt/2). Exit status 0: every "
+      "measure of the asked step within its tolerance; 1: some are not; 3: a broken run (not the protocol, NaN, time "
+      "or phi not increasing, fewer than 8 samples, stopping before t_end, no answer in time).");
 }
 
 std::vector<std::string> splitGradeProgram(int argc, char** argv, std::vector<std::string>& program) {
@@ -72,16 +122,39 @@ std::vector<std::string> splitGradeProgram(int argc, char** argv, std::vector<st
   return args;
 }
 
+namespace {
+
+// The program's words checked before anything runs (both protocols).
+void checkProgram(const std::vector<std::string>& program, const char* usage) {
+  if (program.empty())
+    throw UsageError(std::string("grade: no program given; put it after `--`: ") + usage);
+  if (program.front().empty())
+    throw UsageError("grade: the program after `--` is an empty word; name the program to grade");
+  if (validation::findProgram(program.front()).empty())
+    throw EnvironmentError(program.front() + ": cannot be run (not found, or not an executable file; a name "
+                           "without '/' is looked up on PATH)");
+}
+
+}  // namespace
+
 int runGrade(const GradeOptions& options) {
+  if (options.free_run) return runFreeRunGrade(options);
+  const GradeOptions d;  // a flag of the time-stepped run given without --free-run
+  for (const auto& [flag, given] : std::vector<std::pair<const char*, bool>>{
+           {"--drive", options.drive != d.drive},
+           {"--revolutions", options.revolutions != d.revolutions},
+           {"--dt", options.dt != d.dt},
+           {"--dt-sweep", options.dt_sweep != d.dt_sweep},
+           {"--output-interval", options.output_interval != d.output_interval},
+           {"--energy-tolerance", options.energy_tolerance != d.energy_tolerance},
+           {"--delta-tolerance", options.delta_tolerance != d.delta_tolerance},
+           {"--extreme-phase-tolerance", options.extreme_phase_tolerance != d.extreme_phase_tolerance},
+           {"--phase-tolerance", options.phase_tolerance != d.phase_tolerance},
+           {"--values-tolerance", options.values_tolerance != d.values_tolerance}})
+    if (given) throw UsageError(std::string(flag) + ": applies to a time-stepped run only; add --free-run");
   // Everything that can be checked is checked before the first request: the program, the scenes, the output
   // folder, gnuplot.
-  if (options.program.empty())
-    throw UsageError("grade: no program given; put it after `--`: crankcheck grade [SCENE...] -- PROGRAM [ARG...]");
-  if (options.program.front().empty())
-    throw UsageError("grade: the program after `--` is an empty word; name the program to grade");
-  if (validation::findProgram(options.program.front()).empty())
-    throw EnvironmentError(options.program.front() + ": cannot be run (not found, or not an executable file; a name "
-                           "without '/' is looked up on PATH)");
+  checkProgram(options.program, "crankcheck grade [SCENE...] -- PROGRAM [ARG...]");
   std::vector<Mechanism> scenes;
   std::set<std::string> names;
   for (const std::string& path : options.scene_paths) {
@@ -90,7 +163,7 @@ int runGrade(const GradeOptions& options) {
     validation::checkEveryEngineBuilds(scenes.back(), path);  // the references grade against (and the rest)
   }
   const int jobs = options.jobs > 0 ? options.jobs : validation::getDefaultJobs();
-  validation::OutputFolder out(options.out, "--out");
+  validation::OutputFolder out(options.out.empty() ? std::string("out/grade") : options.out, "--out");
   validation::GradeReportInfo info;
   info.gnuplot_version = validation::checkGnuplot();
   const std::vector<validation::GradeCase> cases = validation::buildGradeCases(scenes, options.quick);
@@ -147,6 +220,74 @@ int runGrade(const GradeOptions& options) {
   std::printf("%s\nReport: %s (also index.html)\n",
               status == 0 ? ("Every provided value agrees with " + references + ".").c_str()
                           : "SOME VALUES DISAGREE, or none was provided (see the report's failing cases).",
+              (out.getTarget() / "index.md").string().c_str());
+  return status;
+}
+
+int runFreeRunGrade(const GradeOptions& options) {
+  const char* usage = "crankcheck grade --free-run SCENE... [options] -- PROGRAM [ARG...]";
+  checkProgram(options.program, usage);
+  if (options.batch) throw UsageError("--batch: does not apply to --free-run (one program per run)");
+  if (options.jobs != 0) throw UsageError("--jobs: does not apply to --free-run (the runs go one at a time)");
+  if (options.scene_paths.empty())
+    throw UsageError("grade --free-run: give the scene file(s) to run (a scene with [flywheel] for a free run): " +
+                     std::string(usage));
+  validation::RunSettings settings;
+  settings.drive = options.drive == "held" ? validation::RunDrive::kHeld : validation::RunDrive::kFree;
+  settings.revolutions = options.revolutions;
+  settings.dt_sweep = options.dt_sweep;
+  settings.own_step = options.dt == "own";
+  if (!options.dt.empty() && options.dt != "own") {
+    char* end = nullptr;
+    const double dt = std::strtod(options.dt.c_str(), &end);
+    if (end != options.dt.c_str() + options.dt.size() || !std::isfinite(dt) || !(dt > 0.0))
+      throw UsageError("--dt: " + options.dt + " is neither a step > 0 [s] nor `own`");
+    settings.dt = dt;
+  }
+  if (options.dt == "own" && options.dt_sweep != 1)
+    throw UsageError("--dt-sweep: needs a step to halve; give --dt S (the program's own step cannot be swept)");
+  if (options.output_interval > 0.0) settings.output_interval = options.output_interval;
+  settings.tolerances = {options.energy_tolerance, options.delta_tolerance, options.extreme_phase_tolerance,
+                         options.phase_tolerance, options.values_tolerance};
+  std::vector<validation::RunCase> cases;
+  std::set<std::string> names;
+  for (const std::string& path : options.scene_paths) {
+    Mechanism m = loadScene(path);
+    if (!names.insert(m.name).second) throw UsageError(path + ": a scene named " + m.name + " is given twice");
+    try {
+      for (validation::RunCase& c : validation::buildRunCases(m, settings)) cases.push_back(std::move(c));
+    } catch (const UsageError& e) {
+      throw UsageError(path + ": " + e.what());
+    }
+  }
+  validation::OutputFolder out(options.out.empty() ? std::string("out/grade-free-run") : options.out, "--out");
+  validation::RunGradeReportInfo info;
+  info.gnuplot_version = validation::checkGnuplot();
+  validation::InterruptGuard interrupt(out);
+  out.createStaging();
+
+  validation::GradeProgram program;
+  program.argv = options.program;
+  program.timeout_seconds = options.timeout_seconds;
+  const bool show_progress = ::isatty(STDERR_FILENO);
+  const auto start = std::chrono::steady_clock::now();
+  const validation::TableSet tables =
+      validation::runRunGrade(cases, program, settings.tolerances, [&](size_t done, size_t total) {
+        if (show_progress) std::fprintf(stderr, "\r\033[Kgrade --free-run: %zu of %zu runs", done, total);
+      });
+  if (show_progress) std::fprintf(stderr, "\r\033[K");
+  info.program = options.program;
+  info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  info.timeout_seconds = options.timeout_seconds;
+  info.tolerances = settings.tolerances;
+  validation::renderRunGradeReport(tables, cases, info, out.getStaging());
+  out.install("report");
+
+  const int status = validation::findRunGradeExitStatus(tables);
+  std::printf("%s", validation::formatRunGradeSummary(tables, cases).c_str());
+  std::printf("%s\nReport: %s (also index.html)\n",
+              status == 0 ? "Every measure of the asked step is within its tolerance."
+                          : "SOME MEASURES ARE OUT OF TOLERANCE at the asked step (or none was graded).",
               (out.getTarget() / "index.md").string().c_str());
   return status;
 }

@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// `crankcheck grade [SCENE...] [--quick] [--out DIR] [--jobs N] [--timeout S] [--batch] -- PROGRAM [ARG...]`:
-/// the user's program graded against both engines (validation/grade.h, docs/grade.md).
+/// the user's program graded against both engines (validation/grade.h, docs/grade.md); with `--free-run`, its
+/// time-stepped runs (validation/free_run_grade.h).
 
 #include <CLI/CLI.hpp>
 #include <string>
@@ -11,12 +12,21 @@ namespace crankcheck::app {
 
 struct GradeOptions {
   std::vector<std::string> scene_paths;
-  std::string out = "out/grade";
+  std::string out;  ///< empty: out/grade (--free-run: out/grade-free-run)
   bool quick = false;
   bool batch = false;
   int jobs = 0;                  ///< 0: one per core
   double timeout_seconds = 60.0; ///< per request
   std::vector<std::string> program;  ///< everything after `--`
+  // --free-run: a time-stepped run (validation/free_run_grade.h, docs/grade.md "Time-stepped runs")
+  bool free_run = false;
+  std::string drive = "free";        ///< free, held
+  int revolutions = 10;              ///< the horizon
+  std::string dt;                    ///< a step [s], "own", or empty: 1/720 of a revolution
+  int dt_sweep = 1;                  ///< steps dt, dt/2, ...
+  double output_interval = 0.0;      ///< [s] 0: every step
+  double energy_tolerance = 1e-6, delta_tolerance = 1e-3, extreme_phase_tolerance = 1.0, phase_tolerance = 1e-3,
+         values_tolerance = 1e-3;
 };
 
 void addGradeOptions(CLI::App& command, GradeOptions& options);
@@ -30,5 +40,9 @@ std::vector<std::string> splitGradeProgram(int argc, char** argv, std::vector<st
 /// @throws UsageError for bad scenes or flags (2); EnvironmentError when the program cannot be run, crashes, times
 /// out or breaks the protocol (3).
 int runGrade(const GradeOptions& options);
+
+/// `grade --free-run`: the program's time-stepped runs graded and reported. @return 0 when every measure of the asked
+/// step passes, 1 otherwise. @throws UsageError (2), EnvironmentError (3) as runGrade.
+int runFreeRunGrade(const GradeOptions& options);
 
 }  // namespace crankcheck::app

@@ -5,6 +5,7 @@
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -18,6 +19,7 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
 constexpr int kWindow = 6;  // Lagrange interpolation of degree 5
+constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 
 void checkStrictlyIncreasing(const std::vector<double>& v, const char* what, const char* who) {
   for (size_t i = 0; i < v.size(); ++i) {
@@ -205,8 +207,31 @@ SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Steppe
   const analytic::FreeRun exact = analytic::calcFreeRun(m, out.omega_at_zero);
   out.exact = {exact.delta, exact.phi_at_omega_max, exact.phi_at_omega_min};
   out.delta_error = out.run.delta - out.exact.delta;
-  out.phi_max_error = wrapAngle(out.run.phi_at_omega_max - out.exact.phi_at_omega_max);
-  out.phi_min_error = wrapAngle(out.run.phi_at_omega_min - out.exact.phi_at_omega_min);
+  // An extreme can be reached at several phases with speeds the run cannot tell apart (a centric standing single:
+  // omega(phi) = omega(-phi), two equal minima): the run's phase is compared with the nearest of the exact run's
+  // local extremes whose speed is within the run's own speed error (|delta error| x omega_mean, at least rounding) of
+  // the extreme.
+  const double speed_error = std::max(std::fabs(out.delta_error) * omega_mean, 64.0 * kEpsilon * exact.omega_max);
+  auto nearest = [&](double run_phase, double exact_phase, double extreme, double sign) {
+    double best = wrapAngle(run_phase - exact_phase);
+    constexpr int kSamples = 720;
+    auto w = [&](double p) { return sign * analytic::calcFreeRunSpeed(m, out.omega_at_zero, p); };
+    std::vector<double> v(kSamples);
+    for (int i = 0; i < kSamples; ++i) v[static_cast<size_t>(i)] = w(kTwoPi * i / kSamples);
+    for (int i = 0; i < kSamples; ++i) {
+      const double here = v[static_cast<size_t>(i)];
+      if (!(here >= v[static_cast<size_t>((i + kSamples - 1) % kSamples)] && here >= v[static_cast<size_t>((i + 1) % kSamples)]))
+        continue;  // not a local extreme of the samples
+      const TurnMaximum local = refineMaxAbs([&](double p) { return w(p) + 2.0 * exact.omega_max; },
+                                             kTwoPi * (i - 1) / kSamples, kTwoPi * (i + 1) / kSamples);
+      if (std::fabs(local.value - 2.0 * exact.omega_max - sign * extreme) > speed_error) continue;
+      const double error = wrapAngle(run_phase - local.phi);
+      if (std::fabs(error) < std::fabs(best)) best = error;
+    }
+    return best;
+  };
+  out.phi_max_error = nearest(out.run.phi_at_omega_max, out.exact.phi_at_omega_max, exact.omega_max, 1.0);
+  out.phi_min_error = nearest(out.run.phi_at_omega_min, out.exact.phi_at_omega_min, exact.omega_min, -1.0);
   return out;
 }
 

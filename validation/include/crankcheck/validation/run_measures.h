@@ -74,8 +74,11 @@ struct SpeedFluctuationComparison {
   SpeedFluctuationOfRun exact;  ///< calcFreeRun released at phi = 0 with the run's omega at its first phi = 0 (mod 2 pi)
   double omega_at_zero = 0.0;   ///< [rad/s] that release speed
   double delta_error = 0.0;     ///< run.delta - exact.delta [-]
-  double phi_max_error = 0.0;   ///< [rad] run's - exact phi at omega_max, wrapped to (-pi, pi]
-  double phi_min_error = 0.0;   ///< [rad] run's - exact phi at omega_min, wrapped to (-pi, pi]
+  /// [rad] run's - exact phi at omega_max, wrapped to (-pi, pi]: against the nearest phase where the exact run's speed
+  /// has a local maximum within the run's own speed error (|delta_error| x omega_mean, at least 64 eps) of omega_max
+  /// (a centric standing single has two equal extremes, at phi and -phi: either is the extreme)
+  double phi_max_error = 0.0;
+  double phi_min_error = 0.0;   ///< [rad] the same for omega_min
 };
 
 /// The speed fluctuation of the run's first revolution and of the exact free run.

@@ -1,0 +1,434 @@
+#include "crankcheck/validation/free_run_grade.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <stdexcept>
+
+#include "crankcheck/analytic/motion.h"
+#include "crankcheck/analytic/reactions.h"
+#include "crankcheck/scene/quantities.h"
+#include "crankcheck/scene/scene_file.h"
+#include "crankcheck/scene/scene_writer.h"
+#include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/evaluation_json.h"
+#include "crankcheck/validation/scales.h"
+#include "crankcheck/validation/variants.h"
+#include "grade_protocol.h"
+
+namespace crankcheck::validation {
+
+namespace {
+
+using Json = nlohmann::json;
+constexpr double kTwoPi = 2.0 * M_PI;
+constexpr int kHistoryPointsPerRevolution = 8;
+
+// The table names (CSV stems), each spelled once.
+constexpr const char* kMeasuresName = "free_run_measures";
+constexpr const char* kConvergenceName = "free_run_convergence";
+constexpr const char* kHistoryName = "free_run_history";
+
+// The measures of a run, in the tables' order, with the scale below which an error is rounding (for the observed
+// order: errors under 1e3 eps of it are left out of the fit).
+struct MeasureInfo {
+  const char* name;
+  const char* unit;
+  double rounding_scale;  // in the measure's unit
+};
+const MeasureInfo kEnergyTrend{"energy_trend", "1/rev", 1.0};
+const MeasureInfo kDelta{"delta", "-", 1.0};
+const MeasureInfo kPhiAtOmegaMax{"phi_at_omega_max", "deg", 360.0};
+const MeasureInfo kPhiAtOmegaMin{"phi_at_omega_min", "deg", 360.0};
+const MeasureInfo kPhase{"phase", "rad", kTwoPi};
+
+std::string verdictOf(double error, double tolerance) { return error <= tolerance ? "pass" : "FAIL"; }
+
+std::string describeDt(const std::optional<double>& dt) { return dt ? formatNumber(*dt) + " s" : "its own step"; }
+
+// The exact values at a state the program reached: the crank at phi turning at omega (held: at constant speed).
+Evaluation calcExactValuesAt(const RunCase& c, double phi, double omega) {
+  return analytic::calcEvaluation(withSpeed(c.mechanism, omega * 60.0 / kTwoPi), phi);
+}
+
+}  // namespace
+
+const char* nameOf(RunDrive drive) { return drive == RunDrive::kFree ? "free" : "held"; }
+
+double calcRunPeriod(const Mechanism& m, RunDrive drive) {
+  if (!(m.machine.speed > 0.0)) throw std::invalid_argument("calcRunPeriod: the scene has no speed");
+  if (drive == RunDrive::kHeld) return kTwoPi / m.machine.speed;
+  Mechanism free = m;
+  free.gas.reset();
+  return kTwoPi / analytic::calcFreeRun(free, m.machine.speed).omega_mean;
+}
+
+double getDefaultRunStep(const Mechanism& m, RunDrive drive) { return calcRunPeriod(m, drive) / 720.0; }
+
+std::vector<RunCase> buildRunCases(const Mechanism& scene, const RunSettings& settings) {
+  const std::string& name = scene.name;
+  if (!(scene.machine.speed > 0.0))
+    throw UsageError(name + ": [engine].speed_rpm: a time-stepped run starts at the scene's speed; give one > 0");
+  if (settings.revolutions < 1) throw UsageError("--revolutions: at least 1");
+  if (settings.dt_sweep < 1) throw UsageError("--dt-sweep: at least 1");
+  Mechanism m = scene;
+  m.crankshaft.reset();  // the rigid shaft
+  if (settings.drive == RunDrive::kFree) {
+    m.gas.reset();  // a free run under gravity alone
+    if (!m.flywheel_inertia)
+      throw UsageError(name + ": [flywheel].inertia: a free run needs the flywheel's inertia (the measures are per "
+                       "revolution of a crank that keeps turning); add a [flywheel] table");
+  }
+  double period = 0.0;
+  try {
+    period = calcRunPeriod(m, settings.drive);
+  } catch (const std::domain_error&) {
+    throw UsageError(name + ": the crank released at " + formatNumber(scene.speed_rpm) +
+                     " rpm does not turn over against gravity; a free run needs a higher [engine].speed_rpm");
+  }
+  const double first = settings.dt && !settings.own_step ? *settings.dt : period / 720.0;
+  if (!(first > 0.0 && std::isfinite(first))) throw UsageError("--dt: a step > 0");
+  const double interval = settings.output_interval ? *settings.output_interval : first;
+  if (!(interval > 0.0 && std::isfinite(interval))) throw UsageError("--output-interval: a time > 0");
+  const double t_end = settings.revolutions * period;
+  if (interval > t_end / kMinRunSamples)
+    throw UsageError("--output-interval: " + formatNumber(interval) + " s leaves fewer than " +
+                     std::to_string(kMinRunSamples) + " samples in the run's " + formatNumber(t_end) + " s");
+  if (!settings.own_step && first > t_end / kMinRunSamples)
+    throw UsageError("--dt: " + formatNumber(first) + " s leaves fewer than " + std::to_string(kMinRunSamples) +
+                     " steps in the run's " + formatNumber(t_end) + " s");
+  std::vector<RunCase> cases;
+  for (int i = 0; i < (settings.own_step ? 1 : settings.dt_sweep); ++i) {
+    RunCase c;
+    c.drive = settings.drive;
+    c.family = name;
+    if (!settings.own_step) c.dt = first / std::pow(2.0, i);
+    c.id = safeStem(name) + "_" + nameOf(settings.drive) + (c.dt ? "_dt" + numberTag(*c.dt) : std::string("_own"));
+    c.scene_toml = formatSceneToml(m);
+    c.mechanism = parseScene(c.scene_toml, c.id);
+    c.mechanism.name = name;
+    c.phi0 = 0.0;
+    c.omega0 = c.mechanism.machine.speed;
+    c.t_end = t_end;
+    c.output_interval = settings.output_interval ? interval : c.dt ? *c.dt : interval;  // default: every step
+    c.revolutions = settings.revolutions;
+    cases.push_back(std::move(c));
+  }
+  return cases;
+}
+
+std::string makeRunRequest(const RunCase& c) {
+  nlohmann::ordered_json request;
+  request["protocol"] = 2;
+  request["case"] = c.id;
+  request["scene"] = sceneToJson(c.mechanism);
+  request["scene_toml"] = c.scene_toml;
+  request["drive"] = nameOf(c.drive);
+  request["gas"] = false;
+  request["load_torque"] = 0.0;
+  request["gravity"] = true;
+  request["phi0"] = c.phi0;
+  request["omega0"] = c.omega0;
+  if (c.dt)
+    request["dt"] = *c.dt;
+  else
+    request["dt"] = "own";
+  request["t_end"] = c.t_end;
+  request["output_interval"] = c.output_interval;
+  nlohmann::ordered_json quantities = nlohmann::ordered_json::array();
+  for (const Quantity& q : getQuantityCatalogue())
+    if (isQuantityDefined(q, c.mechanism) && q.id != QuantityId::kU && q.id != QuantityId::kQ) quantities.push_back(q.name);
+  request["quantities"] = quantities;
+  return request.dump();
+}
+
+ProgramRun parseRunResponse(const RunCase& c, const std::string& response, const std::string& program) {
+  const std::string where = program + ": case " + c.id + ": ";
+  auto fail = [&](const std::string& what, size_t at = 0) -> void {
+    throw EnvironmentError(where + what + "; " +
+                           (response.empty() ? std::string("no output at all") : quoteLine(response, at)));
+  };
+  if (response.find_first_not_of(" \t\r\n") == std::string::npos) fail("no response on stdout");
+  Json doc;
+  try {
+    doc = Json::parse(response);
+  } catch (const Json::parse_error& e) {
+    fail("the response is not JSON (" + escapeText(e.what()) + ")", e.byte > 0 ? e.byte - 1 : 0);
+  }
+  if (!doc.is_object() || !doc.contains("samples") || !doc["samples"].is_array())
+    fail("the response must be an object {\"samples\": [...]}");
+  const Json& samples = doc["samples"];
+  if (samples.size() < static_cast<size_t>(kMinRunSamples))
+    fail("too few samples (" + std::to_string(samples.size()) + "; at least " + std::to_string(kMinRunSamples) + ")");
+  ProgramRun out;
+  std::vector<double> omega_time;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const Json& s = samples[i];
+    const std::string at = "samples[" + std::to_string(i) + "]";
+    if (!s.is_object()) fail(at + " must be an object");
+    auto number = [&](const char* key, bool required) -> std::optional<double> {
+      if (!s.contains(key) || s[key].is_null()) {
+        if (required) fail(at + "." + key + " is missing (every sample gives t, phi and omega)");
+        return std::nullopt;
+      }
+      if (!s[key].is_number()) fail(at + "." + key + " must be a number");
+      const double x = s[key].get<double>();
+      if (!std::isfinite(x)) fail(at + "." + key + " is not a finite number");
+      return x;
+    };
+    const double t = *number("t", true), phi = *number("phi", true), omega = *number("omega", true);
+    const std::optional<double> omega_t = number("omega_t", false), values_t = number("values_t", false);
+    if (i > 0 && !(t > out.run.time.back()))
+      fail(at + ".t is " + formatNumber(t) + " s, not after the sample before (" + formatNumber(out.run.time.back()) +
+           " s): time must increase");
+    if (i > 0 && !(phi > out.run.phi.back()))
+      fail(at + ".phi is " + formatNumber(phi) + " rad, not past the sample before (" + formatNumber(out.run.phi.back()) +
+           " rad): the crank angle must keep increasing (unwrapped, the crank turning forward)");
+    const double t_omega = omega_t ? *omega_t : t;
+    if (i > 0 && !(t_omega > omega_time.back()))
+      fail(at + ": omega stands at " + formatNumber(t_omega) + " s, not after the sample before's (" +
+           formatNumber(omega_time.back()) + " s)");
+    out.run.time.push_back(t);
+    out.run.phi.push_back(phi);
+    out.run.omega.push_back(omega);
+    omega_time.push_back(t_omega);
+    out.values_time.push_back(values_t ? *values_t : t);
+    Evaluation e = readProgramValues(s, at, c.mechanism, [&](const std::string& what) { fail(what); });
+    for (const Quantity& q : getQuantityCatalogue())
+      for (int j = 0; j < (q.per_cylinder ? c.mechanism.machine.cylinders : 1); ++j)
+        for (int n = 0; n < q.components; ++n)
+          if (std::isfinite(readQuantity(q, e, q.per_cylinder ? j : -1)[n])) out.any_value = true;
+    e.phi = phi;
+    out.values.push_back(std::move(e));
+  }
+  const double tolerance = 1e-9 * c.t_end;
+  if (std::fabs(out.run.time.front()) > tolerance)
+    fail("the first sample is at t = " + formatNumber(out.run.time.front()) + " s; it must be at t = 0");
+  if (out.run.time.back() < c.t_end - tolerance)
+    fail("the run stops at t = " + formatNumber(out.run.time.back()) + " s, before t_end = " + formatNumber(c.t_end) + " s");
+  out.run.omega_time = std::move(omega_time);
+  return out;
+}
+
+const Schema<RunMeasureRow>& getRunMeasuresSchema() {
+  using R = RunMeasureRow;
+  static const Schema<R> schema(
+      kMeasuresName,
+      {textField("case", &R::case_id), textField("scene", &R::scene), textField("drive", &R::drive),
+       optionalField("dt", "s", &R::dt), textField("measure", &R::measure), textField("unit", &R::unit),
+       optionalField("program", "SI", &R::program), optionalField("exact", "SI", &R::exact),
+       optionalField("error", "SI", &R::error), numberField("tolerance", "SI", &R::tolerance),
+       numberField("horizon", "s", &R::horizon_s), textField("where", &R::where), textField("verdict", &R::verdict)});
+  return schema;
+}
+
+const Schema<RunConvergenceRow>& getRunConvergenceSchema() {
+  using R = RunConvergenceRow;
+  static const Schema<R> schema(
+      kConvergenceName,
+      {textField("scene", &R::scene), textField("drive", &R::drive), textField("measure", &R::measure),
+       optionalField("observed_order", "-", &R::observed_order), optionalField("largest_step", "s", &R::largest_step),
+       numberField("tolerance", "SI", &R::tolerance)});
+  return schema;
+}
+
+const Schema<RunHistoryRow>& getRunHistorySchema() {
+  using R = RunHistoryRow;
+  static const Schema<R> schema(kHistoryName,
+                                {textField("case", &R::case_id), optionalField("dt", "s", &R::dt),
+                                 numberField("time", "s", &R::time), numberField("phase_error", "rad", &R::phase_error),
+                                 optionalField("energy_error", "-", &R::energy_error)});
+  return schema;
+}
+
+namespace {
+
+// Grades one answer: its measure rows and its history rows.
+void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& tol, const std::string& program,
+              std::vector<RunMeasureRow>& measures, std::vector<RunHistoryRow>& history) {
+  const Mechanism& m = c.mechanism;
+  const SteppedRun& run = answer.run;
+  auto row = [&](const MeasureInfo& info, std::optional<double> value, std::optional<double> exact, double error,
+                 double tolerance, std::string where) {
+    RunMeasureRow r;
+    r.case_id = c.id;
+    r.scene = c.family;
+    r.drive = nameOf(c.drive);
+    r.dt = c.dt;
+    r.measure = info.name;
+    r.unit = info.unit;
+    r.program = value;
+    r.exact = exact;
+    r.error = error;
+    r.tolerance = tolerance;
+    r.horizon_s = c.t_end;
+    r.where = std::move(where);
+    r.verdict = verdictOf(error, tolerance);
+    measures.push_back(std::move(r));
+  };
+  const size_t first_history = history.size();
+  try {
+    const SteppedRunReader reader(run);
+    const double revolutions = (run.phi.back() - run.phi.front()) / kTwoPi;
+    // The history's instants: kHistoryPointsPerRevolution per revolution of the horizon, and t_end.
+    std::vector<double> times;
+    const int points = c.revolutions * kHistoryPointsPerRevolution;
+    for (int i = 0; i <= points; ++i) times.push_back(c.t_end * i / points);
+    if (c.drive == RunDrive::kFree) {
+      const std::vector<double> energy = calcEnergyAtTurns(m, run);
+      const double trend = calcEnergyTrend(m, run);
+      row(kEnergyTrend, trend, 0.0, std::fabs(trend), tol.energy_trend,
+          "over " + std::to_string(energy.size() - 1) + " revolutions, at phi = phi0 + 2 pi k");
+      const SpeedFluctuationComparison f = calcSpeedFluctuation(m, run);
+      row(kDelta, f.run.delta, f.exact.delta, std::fabs(f.delta_error) / f.exact.delta, tol.delta, "first revolution");
+      const double to_deg = 180.0 / M_PI;
+      row(kPhiAtOmegaMax, f.run.phi_at_omega_max * to_deg, f.exact.phi_at_omega_max * to_deg,
+          std::fabs(f.phi_max_error) * to_deg, tol.extreme_phase, "first revolution");
+      row(kPhiAtOmegaMin, f.run.phi_at_omega_min * to_deg, f.exact.phi_at_omega_min * to_deg,
+          std::fabs(f.phi_min_error) * to_deg, tol.extreme_phase, "first revolution");
+      // The turns' crossings join the history with their energy.
+      std::vector<double> turn_times;
+      for (size_t k = 0; k < energy.size(); ++k) turn_times.push_back(reader.findTimeAtPhase(run.phi.front() + kTwoPi * k));
+      std::vector<double> all = times;
+      all.insert(all.end(), turn_times.begin(), turn_times.end());
+      const std::vector<double> errors = calcPhaseErrors(m, run, all);
+      const double at_end = errors[times.size() - 1];
+      row(kPhase, reader.findPhi(c.t_end), reader.findPhi(c.t_end) - at_end, std::fabs(at_end), tol.phase,
+          "t = " + formatNumber(c.t_end) + " s (" + formatNumber(std::round(revolutions * 10) / 10) + " revolutions)");
+      for (size_t i = 0; i < times.size(); ++i) history.push_back({c.id, c.dt, times[i], errors[i], std::nullopt});
+      for (size_t k = 0; k < turn_times.size(); ++k)
+        history.push_back({c.id, c.dt, turn_times[k], errors[times.size() + k], energy[k] / energy.front() - 1.0});
+    } else {
+      auto held = [&](double t) { return reader.findPhi(t) - (c.phi0 + c.omega0 * t); };
+      const double at_end = held(c.t_end);
+      row(kPhase, reader.findPhi(c.t_end), c.phi0 + c.omega0 * c.t_end, std::fabs(at_end), tol.phase,
+          "t = " + formatNumber(c.t_end) + " s (" + std::to_string(c.revolutions) + " revolutions)");
+      for (double t : times) history.push_back({c.id, c.dt, t, held(t), std::nullopt});
+    }
+    std::stable_sort(history.begin() + static_cast<long>(first_history), history.end(),
+                     [](const RunHistoryRow& a, const RunHistoryRow& b) { return a.time < b.time; });
+
+    // The values at the program's own states against the exact values at those states.
+    const Scales scales = calcPositiveScales(m);
+    struct Worst {
+      double error = -1.0, t = 0.0, phi = 0.0;
+      int cylinder = -1;
+    };
+    std::map<std::string, Worst> worst;  // by quantity
+    std::vector<std::string> order;
+    for (size_t i = 0; i < answer.values.size(); ++i) {
+      const Evaluation& given = answer.values[i];
+      std::optional<Evaluation> exact;
+      const double tv = answer.values_time[i];
+      for (const Quantity& q : getQuantityCatalogue()) {
+        if (q.id == QuantityId::kU || q.id == QuantityId::kQ) continue;  // functions of phi alone: the state grade's
+        for (int j = 0; j < (q.per_cylinder ? m.machine.cylinders : 1); ++j) {
+          const double* p = readQuantity(q, given, q.per_cylinder ? j : -1);
+          for (int n = 0; n < q.components; ++n) {
+            if (!std::isfinite(p[n])) continue;
+            if (!(tv >= run.time.front() && tv <= run.time.back()))
+              throw std::invalid_argument("samples[" + std::to_string(i) + "].values_t = " + formatNumber(tv) +
+                                          " s is outside the run");
+            const double phi = reader.findPhi(tv);
+            if (!exact) exact = calcExactValuesAt(c, phi, reader.findOmega(tv));
+            const double e = readQuantity(q, *exact, q.per_cylinder ? j : -1)[n];
+            const double error = std::fabs(p[n] - e) / getQuantityScale(scales, q.scale, m);
+            auto [it, inserted] = worst.try_emplace(q.name);
+            if (inserted) order.push_back(q.name);
+            if (error > it->second.error) it->second = {error, tv, phi, q.per_cylinder ? j : -1};
+          }
+        }
+      }
+    }
+    for (const std::string& name : order) {
+      const Worst& w = worst[name];
+      const double phi_deg = std::fmod(w.phi, kTwoPi) * 180.0 / M_PI;
+      row({name.c_str(), "-", 1.0}, std::nullopt, std::nullopt, w.error, tol.values,
+          "t = " + formatNumber(w.t) + " s, phi = " + formatNumber(std::round(phi_deg * 100) / 100) + " deg" +
+              (w.cylinder >= 0 ? ", cylinder " + std::to_string(w.cylinder) : std::string()));
+      measures.back().measure = name;
+    }
+  } catch (const std::invalid_argument& e) {
+    throw EnvironmentError(program + ": case " + c.id + ": the run cannot be measured: " + e.what());
+  } catch (const std::domain_error& e) {
+    throw EnvironmentError(program + ": case " + c.id + ": the run cannot be measured: " + e.what());
+  }
+}
+
+}  // namespace
+
+TableSet runRunGrade(const std::vector<RunCase>& cases, const GradeProgram& program, const RunTolerances& tolerances,
+                     const std::function<void(size_t, size_t)>& progress) {
+  if (program.argv.empty()) throw UsageError("grade: no program given (crankcheck grade --free-run SCENE -- PROGRAM)");
+  const std::string name = program.argv.front();
+  std::vector<RunMeasureRow> measures;
+  std::vector<RunHistoryRow> history;
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const RunCase& c = cases[i];
+    const std::string out = runOnce(program, makeRunRequest(c) + "\n", 1, "case " + c.id);
+    const ProgramRun answer = parseRunResponse(c, out, name);
+    gradeRun(c, answer, tolerances, name, measures, history);
+    if (progress) progress(i + 1, cases.size());
+  }
+
+  // Convergence over each scene's sweep: per measure, the observed order and the largest step meeting the tolerance.
+  std::vector<RunConvergenceRow> convergence;
+  std::vector<std::string> scenes;
+  for (const RunCase& c : cases)
+    if (std::find(scenes.begin(), scenes.end(), c.family) == scenes.end()) scenes.push_back(c.family);
+  for (const std::string& scene : scenes) {
+    std::vector<std::string> names;
+    std::map<std::string, std::vector<const RunMeasureRow*>> by_measure;
+    for (const RunMeasureRow& r : measures)
+      if (r.scene == scene && r.dt && r.error) {
+        if (!by_measure.count(r.measure)) names.push_back(r.measure);
+        by_measure[r.measure].push_back(&r);
+      }
+    for (const std::string& measure : names) {
+      std::vector<const RunMeasureRow*> rows = by_measure[measure];
+      if (rows.size() < 2) continue;
+      std::sort(rows.begin(), rows.end(), [](const RunMeasureRow* a, const RunMeasureRow* b) { return *a->dt > *b->dt; });
+      RunConvergenceRow out;
+      out.scene = scene;
+      out.drive = rows.front()->drive;
+      out.measure = measure;
+      out.tolerance = rows.front()->tolerance;
+      const double rounding = measure == kPhiAtOmegaMax.name || measure == kPhiAtOmegaMin.name ? 360.0
+                              : measure == kPhase.name ? kTwoPi * cases.front().revolutions
+                                                        : 1.0;
+      std::vector<double> steps, errors;
+      for (const RunMeasureRow* r : rows)
+        if (*r->error > 1e3 * kEps * rounding) steps.push_back(*r->dt), errors.push_back(*r->error);
+      if (steps.size() >= 2 && steps.front() != steps.back()) out.observed_order = calcObservedOrder(steps, errors);
+      for (size_t i = rows.size(); i-- > 0;) {  // from the smallest step up, while each meets the tolerance
+        if (!(*rows[i]->error <= rows[i]->tolerance)) break;
+        out.largest_step = *rows[i]->dt;
+      }
+      convergence.push_back(std::move(out));
+    }
+  }
+  TableSet tables;
+  tables.emplace(kMeasuresName, getRunMeasuresSchema().table(std::move(measures)));
+  tables.emplace(kHistoryName, getRunHistorySchema().table(std::move(history)));
+  if (!convergence.empty()) tables.emplace(kConvergenceName, getRunConvergenceSchema().table(std::move(convergence)));
+  return tables;
+}
+
+int findRunGradeExitStatus(const TableSet& tables) {
+  // The largest step of each scene: the one asked (--dt); the sweep's smaller steps are the convergence study.
+  std::map<std::string, double> largest;
+  for (const RunMeasureRow& r : getRows(tables, getRunMeasuresSchema()))
+    largest[r.scene] = std::max(largest[r.scene], r.dt ? *r.dt : 0.0);
+  int graded = 0;
+  for (const RunMeasureRow& r : getRows(tables, getRunMeasuresSchema())) {
+    if ((r.dt ? *r.dt : 0.0) != largest[r.scene] || r.verdict == "not provided") continue;
+    ++graded;
+    if (r.verdict != "pass") return 1;
+  }
+  return graded > 0 ? 0 : 1;
+}
+
+}  // namespace crankcheck::validation
