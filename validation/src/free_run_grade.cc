@@ -32,18 +32,16 @@ constexpr const char* kMeasuresName = "free_run_measures";
 constexpr const char* kConvergenceName = "free_run_convergence";
 constexpr const char* kHistoryName = "free_run_history";
 
-// The measures of a run, in the tables' order, with the scale below which an error is rounding (for the observed
-// order: errors under 1e3 eps of it are left out of the fit).
+// The measures of a run, in the tables' order.
 struct MeasureInfo {
   const char* name;
   const char* unit;
-  double rounding_scale;  // in the measure's unit
 };
-const MeasureInfo kEnergyTrend{"energy_trend", "1/rev", 1.0};
-const MeasureInfo kDelta{"delta", "-", 1.0};
-const MeasureInfo kPhiAtOmegaMax{"phi_at_omega_max", "deg", 360.0};
-const MeasureInfo kPhiAtOmegaMin{"phi_at_omega_min", "deg", 360.0};
-const MeasureInfo kPhase{"phase", "rad", kTwoPi};
+const MeasureInfo kEnergyTrend{"energy_trend", "1/rev"};
+const MeasureInfo kDelta{"delta", "-"};
+const MeasureInfo kPhiAtOmegaMax{"phi_at_omega_max", "deg"};
+const MeasureInfo kPhiAtOmegaMin{"phi_at_omega_min", "deg"};
+const MeasureInfo kPhase{"phase", "rad"};
 
 std::string verdictOf(double error, double tolerance) { return error <= tolerance ? "pass" : "FAIL"; }
 
@@ -221,6 +219,7 @@ const Schema<RunMeasureRow>& getRunMeasuresSchema() {
        optionalField("dt", "s", &R::dt), textField("measure", &R::measure), textField("unit", &R::unit),
        optionalField("program", "SI", &R::program), optionalField("exact", "SI", &R::exact),
        optionalField("error", "SI", &R::error), numberField("tolerance", "SI", &R::tolerance),
+       numberField("resolution", "SI", &R::resolution),
        numberField("horizon", "s", &R::horizon_s), textField("where", &R::where), textField("verdict", &R::verdict)});
   return schema;
 }
@@ -252,7 +251,7 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
   const Mechanism& m = c.mechanism;
   const SteppedRun& run = answer.run;
   auto row = [&](const MeasureInfo& info, std::optional<double> value, std::optional<double> exact, double error,
-                 double tolerance, std::string where) {
+                 double tolerance, double resolution, std::string where) {
     RunMeasureRow r;
     r.case_id = c.id;
     r.scene = c.family;
@@ -264,6 +263,7 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
     r.exact = exact;
     r.error = error;
     r.tolerance = tolerance;
+    r.resolution = resolution;
     r.horizon_s = c.t_end;
     r.where = std::move(where);
     r.verdict = verdictOf(error, tolerance);
@@ -280,15 +280,16 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
     if (c.drive == RunDrive::kFree) {
       const std::vector<double> energy = calcEnergyAtTurns(m, run);
       const double trend = calcEnergyTrend(m, run);
-      row(kEnergyTrend, trend, 0.0, std::fabs(trend), tol.energy_trend,
+      row(kEnergyTrend, trend, 0.0, std::fabs(trend), tol.energy_trend, 64.0 * kEps,
           "over " + std::to_string(energy.size() - 1) + " revolutions, at phi = phi0 + 2 pi k");
       const SpeedFluctuationComparison f = calcSpeedFluctuation(m, run);
-      row(kDelta, f.run.delta, f.exact.delta, std::fabs(f.delta_error) / f.exact.delta, tol.delta, "first revolution");
-      const double to_deg = 180.0 / M_PI;
+      row(kDelta, f.run.delta, f.exact.delta, std::fabs(f.delta_error) / f.exact.delta, tol.delta,
+          64.0 * kEps / f.exact.delta, "first revolution");
+      const double to_deg = 180.0 / M_PI, flat = 8.0 * std::sqrt(kEps / f.exact.delta) * to_deg;
       row(kPhiAtOmegaMax, f.run.phi_at_omega_max * to_deg, f.exact.phi_at_omega_max * to_deg,
-          std::fabs(f.phi_max_error) * to_deg, tol.extreme_phase, "first revolution");
+          std::fabs(f.phi_max_error) * to_deg, tol.extreme_phase, flat, "first revolution");
       row(kPhiAtOmegaMin, f.run.phi_at_omega_min * to_deg, f.exact.phi_at_omega_min * to_deg,
-          std::fabs(f.phi_min_error) * to_deg, tol.extreme_phase, "first revolution");
+          std::fabs(f.phi_min_error) * to_deg, tol.extreme_phase, flat, "first revolution");
       // The turns' crossings join the history with their energy.
       std::vector<double> turn_times;
       for (size_t k = 0; k < energy.size(); ++k) turn_times.push_back(reader.findTimeAtPhase(run.phi.front() + kTwoPi * k));
@@ -297,7 +298,7 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
       const std::vector<double> errors = calcPhaseErrors(m, run, all);
       const double at_end = errors[times.size() - 1];
       row(kPhase, reader.findPhi(c.t_end), reader.findPhi(c.t_end) - at_end, std::fabs(at_end), tol.phase,
-          "t = " + formatNumber(c.t_end) + " s (" + formatNumber(std::round(revolutions * 10) / 10) + " revolutions)");
+          64.0 * kEps * reader.findPhi(c.t_end), "t = " + formatNumber(c.t_end) + " s (" + formatNumber(std::round(revolutions * 10) / 10) + " revolutions)");
       for (size_t i = 0; i < times.size(); ++i) history.push_back({c.id, c.dt, times[i], errors[i], std::nullopt});
       for (size_t k = 0; k < turn_times.size(); ++k)
         history.push_back({c.id, c.dt, turn_times[k], errors[times.size() + k], energy[k] / energy.front() - 1.0});
@@ -305,7 +306,7 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
       auto held = [&](double t) { return reader.findPhi(t) - (c.phi0 + c.omega0 * t); };
       const double at_end = held(c.t_end);
       row(kPhase, reader.findPhi(c.t_end), c.phi0 + c.omega0 * c.t_end, std::fabs(at_end), tol.phase,
-          "t = " + formatNumber(c.t_end) + " s (" + std::to_string(c.revolutions) + " revolutions)");
+          64.0 * kEps * reader.findPhi(c.t_end), "t = " + formatNumber(c.t_end) + " s (" + std::to_string(c.revolutions) + " revolutions)");
       for (double t : times) history.push_back({c.id, c.dt, t, held(t), std::nullopt});
     }
     std::stable_sort(history.begin() + static_cast<long>(first_history), history.end(),
@@ -346,7 +347,7 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
     for (const std::string& name : order) {
       const Worst& w = worst[name];
       const double phi_deg = std::fmod(w.phi, kTwoPi) * 180.0 / M_PI;
-      row({name.c_str(), "-", 1.0}, std::nullopt, std::nullopt, w.error, tol.values,
+      row({name.c_str(), "-"}, std::nullopt, std::nullopt, w.error, tol.values, 64.0 * kEps,
           "t = " + formatNumber(w.t) + " s, phi = " + formatNumber(std::round(phi_deg * 100) / 100) + " deg" +
               (w.cylinder >= 0 ? ", cylinder " + std::to_string(w.cylinder) : std::string()));
       measures.back().measure = name;
@@ -396,12 +397,9 @@ TableSet runRunGrade(const std::vector<RunCase>& cases, const GradeProgram& prog
       out.drive = rows.front()->drive;
       out.measure = measure;
       out.tolerance = rows.front()->tolerance;
-      const double rounding = measure == kPhiAtOmegaMax.name || measure == kPhiAtOmegaMin.name ? 360.0
-                              : measure == kPhase.name ? kTwoPi * cases.front().revolutions
-                                                        : 1.0;
       std::vector<double> steps, errors;
       for (const RunMeasureRow* r : rows)
-        if (*r->error > 1e3 * kEps * rounding) steps.push_back(*r->dt), errors.push_back(*r->error);
+        if (*r->error > 10.0 * r->resolution) steps.push_back(*r->dt), errors.push_back(*r->error);
       if (steps.size() >= 2 && steps.front() != steps.back()) out.observed_order = calcObservedOrder(steps, errors);
       for (size_t i = rows.size(); i-- > 0;) {  // from the smallest step up, while each meets the tolerance
         if (!(*rows[i]->error <= rows[i]->tolerance)) break;

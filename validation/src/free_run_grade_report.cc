@@ -124,9 +124,10 @@ void renderRunGradeReport(const TableSet& tables, const std::vector<RunCase>& ca
     std::vector<std::vector<std::string>> table;
     for (const RunMeasureRow* r : rowsOf(measures, c.id))
       table.push_back({r->measure, r->unit, orDash(r->program, 6), orDash(r->exact, 6), orDash(r->error),
-                       shortNumber(r->tolerance), r->where, r->verdict == "FAIL" ? "**FAIL**" : r->verdict});
+                       shortNumber(r->tolerance), shortNumber(r->resolution), r->where,
+                       r->verdict == "FAIL" ? "**FAIL**" : r->verdict});
     doc.addParagraph("**" + describeCase(c) + "**");
-    doc.addTable({"measure", "unit", "program", "exact", "error", "tolerance", "where", "verdict"}, table);
+    doc.addTable({"measure", "unit", "program", "exact", "error", "tolerance", "resolution", "where", "verdict"}, table);
   }
 
   if (!convergence.empty()) {
@@ -137,7 +138,7 @@ void renderRunGradeReport(const TableSet& tables, const std::vector<RunCase>& ca
                        r.largest_step ? shortNumber(*r.largest_step) + " s" : "none of the steps",
                        shortNumber(r.tolerance)});
     doc.addParagraph("Each measure over the sweep of steps: its observed order of convergence (the least-squares slope "
-                     "of log error against log dt over the steps whose error is above rounding) and the largest step "
+                     "of log error against log dt over the steps whose error is above 10 times the measure's resolution, the smallest error it resolves: data/free_run_measures.csv) and the largest step "
                      "that meets its tolerance together with every smaller step of the sweep. Different measures of "
                      "one run converge at different orders.");
     doc.addTable({"scene", "measure", "observed order", "largest step meeting the tolerance", "tolerance"}, table);

@@ -110,6 +110,11 @@ struct RunMeasureRow {
   std::optional<double> exact;       ///< the exact run's
   std::optional<double> error;       ///< as the tolerance measures it; none: not provided
   double tolerance = 0.0;
+  /// The smallest error the measure resolves (errors below are rounding; the observed order leaves them out): 64 eps
+  /// for the energy trend and a value / scale, 64 eps / delta for delta, 8 sqrt(eps / delta) rad for the phase of an
+  /// extreme of speed (a flat extreme's phase is known to the square root of its speed's rounding), 64 eps phi(t_end)
+  /// for the phase
+  double resolution = 0.0;
   double horizon_s = 0.0;            ///< [s] the run's t_end
   std::string where;                 ///< where the error is (the revolutions, the time, the sample)
   std::string verdict;               ///< "pass", "FAIL", "not provided"
@@ -120,7 +125,7 @@ const Schema<RunMeasureRow>& getRunMeasuresSchema();
 struct RunConvergenceRow {
   std::string scene, drive, measure;
   std::optional<double> observed_order;      ///< the slope of log error against log dt over the steps whose error is
-                                             ///< above 1e3 eps of its tolerance's scale (none: fewer than 2)
+                                             ///< above 10 times its resolution (none: fewer than 2)
   std::optional<double> largest_step;        ///< [s] the largest step that meets the tolerance with every smaller one
   double tolerance = 0.0;
 };
