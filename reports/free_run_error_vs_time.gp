@@ -6,11 +6,12 @@
 # Writes out_dir/free_run_error_vs_time.svg and out_dir/free_run_error_vs_time.png
 #
 # Top: |phi_run - phi_exact| [rad] against time, one line per run (case: scene, drive and step). Bottom: the energy's
-# error (E - E_0) / E_0 at each crossing of phi0 + 2 pi k (free runs), against time. Errors of 0 are drawn at 1e-17.
+# error (E - E_0) / E_0 at each crossing of phi0 + 2 pi k, against time (free runs; energy=0 leaves it out). Errors of 0 are drawn at 1e-17.
 
 if (!exists("in_dir"))  in_dir  = "."
 if (!exists("out_dir")) out_dir = "."
 if (!exists("runs")) runs = ""
+if (!exists("energy")) energy = 1   # 0: no free run, no energy panel
 name = "free_run_error_vs_time"
 file = in_dir . "/free_run_history.csv"
 
@@ -33,7 +34,7 @@ do for [fmt in "svg png"] {
         }
     }
     set output out_dir . "/" . name . "." . fmt
-    set multiplot layout 2,1
+    if (energy) { set multiplot layout 2,1 } else { set multiplot layout 1,1 }
     set logscale y
     set format y "10^{%L}"
     set grid
@@ -43,8 +44,10 @@ do for [fmt in "svg png"] {
     plot for [r in runs] file using "time [s]":(strcol("case") eq r ? clamp(column("phase_error [rad]")) : NaN) \
          with lines lw 2 title r noenhanced
     set ylabel "|E - E_0| / E_0 at phi_0 + 2 pi k"
-    plot for [r in runs] file using "time [s]":(strcol("case") eq r && strcol("energy_error [-]") ne "" ? \
+    if (energy) {
+        plot for [r in runs] file using "time [s]":(strcol("case") eq r && strcol("energy_error [-]") ne "" ? \
              clamp(column("energy_error [-]")) : NaN) with linespoints lw 2 pt 7 ps 0.6 title r noenhanced
+    }
     unset multiplot
     unset output
 }

@@ -92,12 +92,12 @@ std::vector<RunCase> buildRunCases(const Mechanism& scene, const RunSettings& se
   const double interval = settings.output_interval ? *settings.output_interval : first;
   if (!(interval > 0.0 && std::isfinite(interval))) throw UsageError("--output-interval: a time > 0");
   const double t_end = settings.revolutions * period;
-  if (interval > t_end / kMinRunSamples)
-    throw UsageError("--output-interval: " + formatNumber(interval) + " s leaves fewer than " +
-                     std::to_string(kMinRunSamples) + " samples in the run's " + formatNumber(t_end) + " s");
   if (!settings.own_step && first > t_end / kMinRunSamples)
     throw UsageError("--dt: " + formatNumber(first) + " s leaves fewer than " + std::to_string(kMinRunSamples) +
                      " steps in the run's " + formatNumber(t_end) + " s");
+  if (interval > t_end / kMinRunSamples)
+    throw UsageError("--output-interval: " + formatNumber(interval) + " s leaves fewer than " +
+                     std::to_string(kMinRunSamples) + " samples in the run's " + formatNumber(t_end) + " s");
   std::vector<RunCase> cases;
   for (int i = 0; i < (settings.own_step ? 1 : settings.dt_sweep); ++i) {
     RunCase c;

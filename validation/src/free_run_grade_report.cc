@@ -161,10 +161,13 @@ void renderRunGradeReport(const TableSet& tables, const std::vector<RunCase>& ca
   doc.addHeading(2, "Error against time");
   std::string runs;
   for (const RunCase& c : cases) runs += (runs.empty() ? "" : " ") + c.id;  // ids are [A-Za-z0-9_]
-  drawFigure("free_run_error_vs_time", dir, "runs='" + runs + "'");
+  bool free = false;
+  for (const RunCase& c : cases) free = free || c.drive == RunDrive::kFree;
+  drawFigure("free_run_error_vs_time", dir, "runs='" + runs + "'; energy=" + (free ? "1" : "0"));
   doc.addFigure("free_run_error_vs_time",
-                "Top: the phase error |phi_run - phi_exact| of each run against time. Bottom: the energy's error at "
-                "each crossing of phi = 2 pi k (free runs): the trend the energy_trend measure fits");
+                free ? "Top: the phase error |phi_run - phi_exact| of each run against time. Bottom: the energy's error "
+                       "at each crossing of phi = 2 pi k (free runs): the trend the energy_trend measure fits"
+                     : "The phase error |phi_run - (phi0 + omega0 t)| of each run against time");
   writeNewFile(dir / "index.md", doc.toMarkdown());
   writeNewFile(dir / "index.html", doc.toHtml());
 }

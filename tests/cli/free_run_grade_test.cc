@@ -1,0 +1,127 @@
+// `crankcheck grade --free-run` as a user runs it with programs that answer a wrong run (graded: exit 1), a broken
+// run or none at all (refused: exit 3, one clear line, no report), and with bad flags (exit 2, before any work).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "run_cli.h"
+
+#if !defined(CRANKCHECK_FREE_RUN_FAKE) || !defined(CRANKCHECK_SCENES_DIR)
+#error "the build defines CRANKCHECK_FREE_RUN_FAKE and CRANKCHECK_SCENES_DIR"
+#endif
+
+namespace crankcheck {
+namespace {
+namespace fs = std::filesystem;
+using testing::FreshFolder;
+using testing::runCrankcheck;
+
+const std::string kSingle = std::string(CRANKCHECK_SCENES_DIR) + "/single_cylinder.toml";
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A run at constant speed keeps the protocol but not the physics: the energy read at phi = 2 pi k does not change
+// (E(2 pi k) is the same state each turn), so its trend passes; its delta is 0 against the exact free run's, so delta
+// fails, and the phase drifts from the exact run's. Graded, reported, exit status 1.
+TEST(FreeRunGradeTest, AConstantSpeedRunIsGradedAndFailsOnDelta) {
+  FreshFolder dir;
+  const fs::path out = dir.path() / "report";
+  const auto r = runCrankcheck({"grade", "--free-run", kSingle, "--revolutions", "3", "--out", out.string(), "--",
+                                CRANKCHECK_FREE_RUN_FAKE, "constant"});
+  EXPECT_EQ(r.exit_status, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("energy_trend [1/rev]"), std::string::npos) << r.out;
+  const std::string csv = readFile(out / "data" / "free_run_measures.csv");
+  const size_t delta = csv.find(",delta,-,");
+  ASSERT_NE(delta, std::string::npos) << csv;
+  const std::string row = csv.substr(delta, csv.find('\n', delta) - delta);
+  EXPECT_NE(row.find(",FAIL"), std::string::npos) << row;
+  EXPECT_TRUE(fs::exists(out / "index.html"));
+  EXPECT_TRUE(fs::exists(out / "free_run_error_vs_time.svg"));
+}
+
+// Held at constant speed, the same run is exact in phase; a drive torque of 0 is wrong wherever gravity and the
+// parts' inertia load the crank: the value is graded against the exact torque at the run's own state.
+TEST(FreeRunGradeTest, AHeldRunIsGradedOnItsPhaseAndItsTorque) {
+  FreshFolder dir;
+  const fs::path out = dir.path() / "report";
+  const auto r = runCrankcheck({"grade", "--free-run", kSingle, "--drive", "held", "--revolutions", "2", "--out",
+                                out.string(), "--", CRANKCHECK_FREE_RUN_FAKE, "held-torque"});
+  EXPECT_EQ(r.exit_status, 1) << r.out << r.err;
+  const std::string csv = readFile(out / "data" / "free_run_measures.csv");
+  EXPECT_NE(csv.find(",phase,rad,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find(",drive_torque,-,"), std::string::npos) << csv;
+}
+
+struct Broken {
+  std::string mode;
+  std::string expected;  // a part of the one-line message
+  std::string timeout = "20";
+};
+void PrintTo(const Broken& b, std::ostream* os) { *os << b.mode; }
+
+class FreeRunBrokenTest : public ::testing::TestWithParam<Broken> {};
+
+TEST_P(FreeRunBrokenTest, ExitStatus3WithOneClearLine) {
+  FreshFolder dir;
+  const fs::path out = dir.path() / "report";
+  const auto r = runCrankcheck({"grade", "--free-run", kSingle, "--revolutions", "2", "--timeout", GetParam().timeout,
+                                "--out", out.string(), "--", CRANKCHECK_FREE_RUN_FAKE, GetParam().mode});
+  EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find(GetParam().expected), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+  EXPECT_FALSE(fs::exists(out)) << "no partial report";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    FreeRun, FreeRunBrokenTest,
+    ::testing::Values(Broken{"nan", "is not JSON"},
+                      Broken{"time-back", "time must increase"},
+                      Broken{"phi-back", "the crank angle must keep increasing"},
+                      Broken{"few", "too few samples (5; at least 8)"},
+                      Broken{"short", "the run stops at t = "},
+                      // 1 s: the run's one request is a few kilobytes; the program never answers.
+                      Broken{"hang", "no complete answer within 1 s", "1"}),
+    [](const ::testing::TestParamInfo<Broken>& info) {
+      std::string name = info.param.mode;
+      for (char& c : name)
+        if (c == '-') c = '_';
+      return name;
+    });
+
+TEST(FreeRunGradeTest, BadFlagsAndScenesAreRefusedBeforeAnyWork) {
+  FreshFolder dir;
+  const fs::path out = dir.path() / "report";
+  auto refused = [&](std::vector<std::string> args, const std::string& expected) {
+    const auto r = runCrankcheck(args);
+    EXPECT_EQ(r.exit_status, 2) << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
+  };
+  refused({"grade", "--free-run", "--out", out.string(), "--", CRANKCHECK_FREE_RUN_FAKE}, "give the scene file");
+  refused({"grade", "--dt", "1e-4", "--out", out.string(), "--", CRANKCHECK_FREE_RUN_FAKE}, "--dt: applies to a time-stepped run");
+  refused({"grade", "--free-run", kSingle, "--dt", "fast", "--", CRANKCHECK_FREE_RUN_FAKE}, "--dt: fast is neither");
+  refused({"grade", "--free-run", kSingle, "--dt", "own", "--dt-sweep", "3", "--", CRANKCHECK_FREE_RUN_FAKE},
+          "--dt-sweep: needs a step");
+  refused({"grade", "--free-run", kSingle, "--batch", "--", CRANKCHECK_FREE_RUN_FAKE}, "--batch: does not apply");
+  refused({"grade", "--free-run", kSingle, "--dt", "1", "--", CRANKCHECK_FREE_RUN_FAKE}, "fewer than 8 steps");
+  // A scene without a flywheel cannot run free (the measures are per revolution of a crank that keeps turning).
+  const fs::path bare = dir.path() / "bare.toml";
+  std::string text = readFile(kSingle);
+  const size_t at = text.find("[flywheel]");
+  ASSERT_NE(at, std::string::npos);
+  text.erase(at, text.find("\n[", at + 1) == std::string::npos ? std::string::npos : text.find("\n[", at + 1) - at + 1);
+  std::ofstream(bare) << text;
+  refused({"grade", "--free-run", bare.string(), "--", CRANKCHECK_FREE_RUN_FAKE}, "[flywheel].inertia");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace crankcheck
