@@ -22,6 +22,16 @@ set datafile columnheaders
 floor = 1e-17
 clamp(v) = (v < floor) ? floor : v
 
+# One datablock per measure, its rows pulled out by their key columns whatever the file's order (then sorted by dt).
+N = words(measures)
+do for [i = 1:N] {
+    eval sprintf("set table $M%d separator comma", i)
+    plot file using (column("dt [s]")):(clamp(column("error [SI]") / column("tolerance [SI]"))) with table \
+        if (strcol("scene") eq scene && strcol("measure") eq word(measures, i))
+    unset table
+}
+unset datafile columnheaders
+
 set logscale xy
 set format y "10^{%L}"
 set xlabel "time step dt [s]"
@@ -41,8 +51,8 @@ do for [fmt in "svg png"] {
         }
     }
     set output out_dir . "/" . name . "." . fmt
-    plot for [q in measures] file using "dt [s]":(strcol("scene") eq scene && strcol("measure") eq q ? \
-             clamp(column("error [SI]") / column("tolerance [SI]")) : NaN) with linespoints lw 2 pt 7 title q noenhanced, \
+    plot for [i = 1:N] sprintf("$M%d", i) using 1:2 smooth unique with linespoints lw 2 pt 7 \
+             title word(measures, i) noenhanced, \
          1 with lines dt 2 lc rgb "gray40" title "tolerance"
     unset output
 }

@@ -21,6 +21,23 @@ set datafile separator ","
 set datafile columnheaders
 floor = 1e-17
 clamp(v) = (abs(v) < floor) ? floor : abs(v)
+fin(v) = (v == v && abs(v) < 1e308)   # an empty cell reads as NaN
+
+# One datablock per run and panel, its rows pulled out by their key column whatever the file's order (then sorted by
+# time).
+N = words(runs)
+do for [i = 1:N] {
+    eval sprintf("set table $P%d separator comma", i)
+    plot file using (column("time [s]")):(clamp(column("phase_error [rad]"))) with table if (strcol("case") eq word(runs, i))
+    unset table
+    if (energy) {
+        eval sprintf("set table $E%d separator comma", i)
+        plot file using (column("time [s]")):(clamp(column("energy_error [-]"))) with table \
+            if (strcol("case") eq word(runs, i) && fin(column("energy_error [-]")))
+        unset table
+    }
+}
+unset datafile columnheaders
 
 if (strstrt(GPVAL_TERMINALS, "pngcairo") > 0) { pngterm = "pngcairo" } else { pngterm = "png" }
 do for [fmt in "svg png"] {
@@ -41,12 +58,11 @@ do for [fmt in "svg png"] {
     set key outside right top
     set xlabel "time [s]"
     set ylabel "|phase error| [rad]"
-    plot for [r in runs] file using "time [s]":(strcol("case") eq r ? clamp(column("phase_error [rad]")) : NaN) \
-         with lines lw 2 title r noenhanced
+    plot for [i = 1:N] sprintf("$P%d", i) using 1:2 smooth unique with lines lw 2 title word(runs, i) noenhanced
     set ylabel "|E - E_0| / E_0 at phi_0 + 2 pi k"
     if (energy) {
-        plot for [r in runs] file using "time [s]":(strcol("case") eq r && strcol("energy_error [-]") ne "" ? \
-             clamp(column("energy_error [-]")) : NaN) with linespoints lw 2 pt 7 ps 0.6 title r noenhanced
+        plot for [i = 1:N] sprintf("$E%d", i) using 1:2 smooth unique with linespoints lw 2 pt 7 ps 0.6 \
+             title word(runs, i) noenhanced
     }
     unset multiplot
     unset output
