@@ -54,5 +54,5 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/crankcheckConfig.cmake
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/crankcheckConfigVersion.cmake
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/crankcheckConfig.cmake ${PROJECT_BINARY_DIR}/crankcheckConfigVersion.cmake
-              ${PROJECT_SOURCE_DIR}/cmake/crankcheckGrade.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/crankcheckGrade.cmake ${PROJECT_SOURCE_DIR}/cmake/crankcheckExpectStatus1.cmake
         DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})

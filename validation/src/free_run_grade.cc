@@ -364,14 +364,20 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
 TableSet runRunGrade(const std::vector<RunCase>& cases, const GradeProgram& program, const RunTolerances& tolerances,
                      const std::function<void(size_t, size_t)>& progress) {
   if (program.argv.empty()) throw UsageError("grade: no program given (crankcheck grade --free-run SCENE -- PROGRAM)");
-  const std::string name = program.argv.front();
+  return gradeRunAnswers(
+      cases, [&](const RunCase& c) { return runOnce(program, makeRunRequest(c) + "\n", 1, "case " + c.id); },
+      tolerances, program.argv.front(), progress);
+}
+
+TableSet gradeRunAnswers(const std::vector<RunCase>& cases, const std::function<std::string(const RunCase&)>& answer,
+                         const RunTolerances& tolerances, const std::string& name,
+                         const std::function<void(size_t, size_t)>& progress) {
   std::vector<RunMeasureRow> measures;
   std::vector<RunHistoryRow> history;
   for (size_t i = 0; i < cases.size(); ++i) {
     const RunCase& c = cases[i];
-    const std::string out = runOnce(program, makeRunRequest(c) + "\n", 1, "case " + c.id);
-    const ProgramRun answer = parseRunResponse(c, out, name);
-    gradeRun(c, answer, tolerances, name, measures, history);
+    const ProgramRun run = parseRunResponse(c, answer(c), name);
+    gradeRun(c, run, tolerances, name, measures, history);
     if (progress) progress(i + 1, cases.size());
   }
 

@@ -17,6 +17,7 @@
 /// the grade evaluates the exact values at those instants.
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -166,6 +167,14 @@ struct RunGradeReportInfo {
 /// @throws EnvironmentError if gnuplot fails or a file cannot be written.
 void renderRunGradeReport(const TableSet& tables, const std::vector<RunCase>& cases, const RunGradeReportInfo& info,
                           const std::filesystem::path& dir);
+
+/// The grade of runGrade with the answers from `answer(case)` (the response line of each case, in order) instead of a
+/// program: the Python module's grade of a function. `name` names the answerer in messages.
+/// @throws EnvironmentError as runRunGrade for an answer that is not the protocol or cannot be measured; what `answer`
+///         throws.
+TableSet gradeRunAnswers(const std::vector<RunCase>& cases, const std::function<std::string(const RunCase&)>& answer,
+                         const RunTolerances& tolerances, const std::string& name,
+                         const std::function<void(size_t, size_t)>& progress = {});
 
 /// 0 when every measure of the largest step of every scene passes (a measure not provided does not count) and at least
 /// one was graded, 1 otherwise.
