@@ -39,6 +39,7 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/evaluation_json.h"
+#include "crankcheck/validation/free_run_grade.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/report.h"
@@ -533,6 +534,72 @@ py::dict gradeResult(GradeRun& run) {
   return result;
 }
 
+// crankcheck.grade_free_run (__init__.py): the runs of `crankcheck grade --free-run` answered by `answer(request line)
+// -> response line`, a Python callable that calls the user's function under the per-run timeout; graded by the CLI's
+// own code (validation::gradeRunAnswers), so the measures, tolerances, refusals and report are the CLI's.
+py::dict gradeFreeRun(const std::vector<py::object>& scenes, const std::string& drive, int revolutions,
+                      const std::optional<double>& dt, bool own_step, int dt_sweep,
+                      const std::optional<double>& output_interval, const std::vector<double>& tolerances,
+                      double timeout_seconds, const std::optional<py::object>& out, const py::function& answer,
+                      const std::string& program_name) {
+  if (scenes.empty()) throw py::value_error("scenes: give at least one scene (a scene with [flywheel] for a free run)");
+  if (drive != "free" && drive != "held") throw py::value_error("drive: \"free\" or \"held\", not \"" + drive + "\"");
+  if (tolerances.size() != 5) throw std::logic_error("gradeFreeRun: five tolerances");
+  for (double t : tolerances)
+    if (!(t >= 0.0) || !std::isfinite(t)) throw py::value_error("tolerances: each a finite number >= 0");
+  validation::RunSettings settings;
+  settings.drive = drive == "held" ? validation::RunDrive::kHeld : validation::RunDrive::kFree;
+  settings.revolutions = revolutions;
+  settings.dt = dt;
+  settings.own_step = own_step;
+  settings.dt_sweep = dt_sweep;
+  settings.output_interval = output_interval;
+  settings.tolerances = {tolerances[0], tolerances[1], tolerances[2], tolerances[3], tolerances[4]};
+  std::vector<validation::RunCase> cases;
+  std::set<std::string> names;
+  for (const py::object& item : scenes) {
+    const ScenePtr scene = py::isinstance<Scene>(item) ? item.cast<ScenePtr>() : loadScene(item);
+    if (!names.insert(scene->m.name).second)
+      throw SceneError(scene->source + ": a scene named " + scene->m.name + " is given twice");
+    try {
+      for (validation::RunCase& c : validation::buildRunCases(scene->m, settings)) cases.push_back(std::move(c));
+    } catch (const UsageError& e) {
+      throw SceneError(scene->source + ": " + e.what());
+    }
+  }
+  std::unique_ptr<validation::OutputFolder> folder;
+  std::optional<std::string> out_dir;
+  validation::RunGradeReportInfo info;
+  if (out) {
+    out_dir = pathArgument(*out);
+    if (hasNul(*out_dir)) throw py::value_error("out: " + quotePath(*out_dir) + ": a path with a NUL byte (no folder has that name)");
+    folder = std::make_unique<validation::OutputFolder>(*out_dir, "out");
+    info.gnuplot_version = validation::checkGnuplot();
+  }
+  const std::string name = escapeText(program_name);
+  const auto start = std::chrono::steady_clock::now();
+  const validation::TableSet tables = validation::gradeRunAnswers(
+      cases, [&](const validation::RunCase& c) { return answer(validation::makeRunRequest(c)).cast<std::string>(); },
+      settings.tolerances, "crankcheck.grade_free_run: " + name);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  py::dict result;
+  result["tables"] = tablesToPython(tables);
+  result["exit_status"] = validation::findRunGradeExitStatus(tables);
+  result["runs"] = cases.size();
+  result["seconds"] = seconds;
+  if (folder) {
+    info.program = {name};
+    info.seconds = seconds;
+    info.timeout_seconds = timeout_seconds;
+    info.tolerances = settings.tolerances;
+    folder->createStaging();
+    validation::renderRunGradeReport(tables, cases, info, folder->getStaging());
+    folder->install("report");
+  }
+  result["report"] = out_dir ? py::object(py::str(*out_dir + "/index.md")) : py::object(py::none());
+  return result;
+}
+
 // ---- Plain functions of lambda.
 Mechanism unitSliderCrank(double lambda, double r, double omega) {
   if (!(lambda > 0.0 && lambda < 1.0)) throw py::value_error("lam: must be in (0, 1) (lambda = r / l)");
@@ -739,6 +806,9 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
           }, py::arg("case_id"));
   mod.def("_grade_start", &startGrade, py::arg("scenes"), py::arg("quick"), py::arg("jobs"), py::arg("timeout"),
           py::arg("out"), py::arg("relay"), py::arg("program_name"));
+  mod.def("_grade_free_run", &gradeFreeRun, py::arg("scenes"), py::arg("drive"), py::arg("revolutions"), py::arg("dt"),
+          py::arg("own_step"), py::arg("dt_sweep"), py::arg("output_interval"), py::arg("tolerances"), py::arg("timeout"),
+          py::arg("out"), py::arg("answer"), py::arg("program_name"));
   mod.def("_raise_in_thread", [](unsigned long thread_id, const py::object& exception) {
         // PyThreadState_SetAsyncExc: `exception` (a class) raised in that thread at its next Python bytecode; None
         // clears one not yet raised. The number of threads changed.
