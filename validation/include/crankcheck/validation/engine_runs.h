@@ -1,0 +1,95 @@
+#pragma once
+/// @file
+/// The free runs of the engines that simulate (Engine::simulate), judged by the measures a user's time-stepped run is
+/// judged by (run_measures.h): `crankcheck grade --free-run`'s references and its report's table of engines. Each run
+/// is the mechanism under gravity alone with its crankshaft free (carrying the flywheel), released at phi = 0 with
+/// omega0, stepped by one of the engine's integrators at one accuracy in the engine's own sense
+/// (Engine::accuracy_meaning).
+///
+/// Where a run's speed stands: an integrator that updates the velocity before the position (semi-implicit Euler, as
+/// MuJoCo's Euler and implicit integrators step) records at each step the position at t_i and the velocity that moved
+/// it there, phi_i = phi_{i-1} + (t_i - t_{i-1}) phi_dot_i: a backward difference, which stands half a step behind
+/// t_i (SteppedRun::omega_half_step_behind). calcEngineRuns recognises such a run by that identity, held to rounding
+/// at every step, rather than by the engine's name; a run whose speed is its own state at t_i (Runge-Kutta, Simbody's
+/// integrators) fails it by the step's change of speed times the step.
+
+#include <string>
+#include <vector>
+
+#include "crankcheck/scene/free_run.h"
+#include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/run_measures.h"
+#include "crankcheck/validation/table.h"
+
+namespace crankcheck::validation {
+
+/// One run to make: an engine of the registry (validation/engines.h) that simulates, one of its integrators (by the
+/// engine's own name for it), and its accuracy in the engine's sense (Engine::accuracy_meaning).
+struct EngineRunSpec {
+  std::string engine;
+  std::string integrator;
+  double accuracy = 0.0;
+};
+
+/// One run, measured.
+struct EngineRunRow {
+  std::string engine;
+  std::string integrator;
+  double accuracy = 0.0;               ///< [-] as in the spec
+  std::string accuracy_meaning_short;  ///< what `accuracy` is, in a few words (Engine::accuracy_meaning's first clause)
+  double energy_trend_per_revolution = 0.0;  ///< [1 / revolution] calcEnergyTrend
+  double delta = 0.0;                  ///< [-] the run's speed fluctuation over its first revolution (calcSpeedFluctuation)
+  double delta_exact = 0.0;            ///< [-] the exact free run's, released with the run's speed at phi = 0
+  double delta_error_rel = 0.0;        ///< [-] (delta - delta_exact) / delta_exact
+  double phi_max_error = 0.0;          ///< [rad] where omega is largest, the run's minus the exact, wrapped to (-pi, pi]
+  double phi_min_error = 0.0;          ///< [rad] where omega is smallest, likewise. Where the speed has two equal
+                                       ///< extremes a turn (a standing single's mirror symmetry, an inline four's
+                                       ///< half-turn period) the run and the exact run may settle on different ones:
+                                       ///< an error of a whole distance between them (pi on the inline four), not of
+                                       ///< the run's
+  double phase_error_at_horizon = 0.0; ///< [rad] calcPhaseError at horizon_s
+  double horizon_s = 0.0;              ///< [s] `revolutions` exact turns from the release, or the run's last sample if
+                                       ///< the run ends sooner (a run that gains speed)
+  int revolutions = 0;                 ///< the revolutions run (FreeRunSettings::revolutions)
+  int steps = 0;                       ///< the integrator's steps (FreeRunResult::steps)
+  std::string omega_reading;           ///< where the run's speed stands: "at the step" or "half a step behind" (a
+                                       ///< backward difference: see the file's comment)
+  double cpu_seconds_per_revolution = 0.0;  ///< [s] processor time of the engine's run (std::clock) / revolutions
+};
+
+/// An engine's free run as a SteppedRun: its time, phi and phi_dot (a sample at the same time as the one before it
+/// dropped: an integrator that reports its start twice), with omega_half_step_behind set when every step
+/// satisfies phi_i - phi_{i-1} = (t_i - t_{i-1}) phi_dot_i to rounding (16 eps x (|phi_i| + |phi_dot_i| t_i): the
+/// rounding of the position's and of the clock's sums).
+/// @throws std::invalid_argument if time, phi and phi_dot differ in size or have fewer than 2 samples.
+SteppedRun toSteppedRun(const FreeRunResult& result);
+
+/// Runs each spec on m (no gas: the free run under gravity alone) released at phi = 0 with omega0 [rad/s] for
+/// `revolutions` revolutions, and measures each run (run_measures.h), in the order of the specs. Every spec is checked
+/// before the first run.
+/// @throws std::invalid_argument if omega0 is not finite and > 0, revolutions < 1, m has [gas] or no flywheel inertia,
+///         or a spec names an engine the registry does not have, an engine that does not simulate, an integrator the
+///         engine does not have (the message lists the engine's), or an accuracy that is not finite and > 0;
+///         std::runtime_error (from the engine) if a run fails; std::domain_error if the exact run does not turn over.
+std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int revolutions,
+                                         const std::vector<EngineRunSpec>& specs);
+
+/// The runs the report shows, for every engine of the registry that simulates, read from the engine's description
+/// (no engine is named here):
+/// - an engine whose accuracy is a tolerance (a gated engine, Engine::gated: Simbody's integrators): its default
+///   integrator at 1e4, 1e2 and 1 times its default accuracy (1e-6, 1e-8, 1e-10), each other integrator of order
+///   above 1 at 1e2 times (1e-8), each of order 1 at 1e4 times (1e-6; a first-order integrator's steps grow as the
+///   inverse of the accuracy);
+/// - an engine stepped at a fixed step (not gated: MuJoCo's soft ways): its default integrator (RK4) at its default
+///   step, whose fourth-order error there is already far below the soft constraints' own loss (a tenth of the step
+///   would cost ten times as much and change nothing the table shows), and its next (semi-implicit Euler, first
+///   order) at the default step and a tenth of it.
+/// quick: the runs at the default accuracy or step alone, and the gated engine's other integrators left out.
+/// The steps and accuracies are chosen by cost: the whole set runs in a few seconds of one core on the example scenes
+/// over 5 revolutions (calcEngineRuns' cpu_seconds_per_revolution says what each run cost).
+std::vector<EngineRunSpec> listDefaultEngineRuns(bool quick);
+
+/// The table `free_run_engines`: one row per run (EngineRunRow's members, in order).
+const Schema<EngineRunRow>& getFreeRunEnginesSchema();
+
+}  // namespace crankcheck::validation
