@@ -42,11 +42,8 @@ struct EngineRunRow {
   double delta_exact = 0.0;            ///< [-] the exact free run's, released with the run's speed at phi = 0
   double delta_error_rel = 0.0;        ///< [-] (delta - delta_exact) / delta_exact
   double phi_max_error = 0.0;          ///< [rad] where omega is largest, the run's minus the exact, wrapped to (-pi, pi]
-  double phi_min_error = 0.0;          ///< [rad] where omega is smallest, likewise. Where the speed has two equal
-                                       ///< extremes a turn (a standing single's mirror symmetry, an inline four's
-                                       ///< half-turn period) the run and the exact run may settle on different ones:
-                                       ///< an error of a whole distance between them (pi on the inline four), not of
-                                       ///< the run's
+  double phi_min_error = 0.0;          ///< [rad] where omega is smallest, likewise (both against the nearest of
+                                       ///< equal extremes: calcSpeedFluctuation)
   double phase_error_at_horizon = 0.0; ///< [rad] calcPhaseError at horizon_s
   double horizon_s = 0.0;              ///< [s] `revolutions` exact turns from the release, or the run's last sample if
                                        ///< the run ends sooner (a run that gains speed)
