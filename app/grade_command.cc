@@ -33,7 +33,8 @@ void addGradeOptions(CLI::App& command, GradeOptions& options) {
   command.add_option("--out", options.out,
                      "Report folder (replaced only if missing, empty or written by crankcheck); default out/grade, "
                      "with --free-run out/grade-free-run");
-  command.add_flag("--quick", options.quick, "Fewer lambdas and angles (seconds, not minutes)");
+  command.add_flag("--quick", options.quick, "Fewer lambdas and angles (seconds, not minutes); --free-run: the engines' "
+                   "reference runs at their default accuracy or step only");
   command.add_flag("--batch", options.batch,
                    "Start the program once per job and send it every request, one JSON per line; it answers one "
                    "JSON per line, in order");
@@ -271,10 +272,12 @@ int runFreeRunGrade(const GradeOptions& options) {
   program.timeout_seconds = options.timeout_seconds;
   const bool show_progress = ::isatty(STDERR_FILENO);
   const auto start = std::chrono::steady_clock::now();
-  const validation::TableSet tables =
+  validation::TableSet tables =
       validation::runRunGrade(cases, program, settings.tolerances, [&](size_t done, size_t total) {
         if (show_progress) std::fprintf(stderr, "\r\033[Kgrade --free-run: %zu of %zu runs", done, total);
       });
+  if (show_progress) std::fprintf(stderr, "\r\033[Kgrade --free-run: the engines' own runs");
+  validation::addEngineRuns(tables, cases, options.quick);
   if (show_progress) std::fprintf(stderr, "\r\033[K");
   info.program = options.program;
   info.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

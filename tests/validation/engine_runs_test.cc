@@ -39,6 +39,7 @@ TEST(EngineRunsTest, SimbodyFollowsTheExactRunAndMujocoSoftLosesEnergy) {
                      {{"simbody", "RungeKuttaMerson", kAccuracy}, {"mujoco-soft", "RK4", 1e-3}, {"mujoco-soft-stiff", "RK4", 1e-3}});
   ASSERT_EQ(rows.size(), 3u);
   const EngineRunRow& simbody = rows[0];
+  EXPECT_EQ(simbody.scene, m.name);
   EXPECT_EQ(simbody.engine, "simbody");
   EXPECT_EQ(simbody.integrator, "RungeKuttaMerson");
   EXPECT_EQ(simbody.accuracy, kAccuracy);
@@ -192,7 +193,7 @@ TEST(EngineRunsTest, Schema) {
   std::vector<std::string> headers;
   for (const Column& c : schema.columns()) headers.push_back(c.text ? c.name : c.name + " [" + c.unit + "]");
   EXPECT_EQ(headers, (std::vector<std::string>{
-                         "engine", "integrator", "accuracy [-]", "accuracy_meaning", "energy_trend_per_revolution [-]",
+                         "scene", "engine", "integrator", "accuracy [-]", "accuracy_meaning", "energy_trend_per_revolution [-]",
                          "delta [-]", "delta_exact [-]", "delta_error_rel [-]", "phi_max_error [rad]",
                          "phi_min_error [rad]", "phase_error_at_horizon [rad]", "horizon [s]", "revolutions [-]",
                          "steps [-]", "omega_reading", "cpu_per_revolution [s]"}));

@@ -124,6 +124,7 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
     const SteppedRun run = toSteppedRun(result);
 
     EngineRunRow row;
+    row.scene = m.name;
     row.engine = spec.engine;
     row.integrator = spec.integrator;
     row.accuracy = spec.accuracy;
@@ -178,7 +179,7 @@ const Schema<EngineRunRow>& getFreeRunEnginesSchema() {
   using R = EngineRunRow;
   static const Schema<R> schema(
       "free_run_engines",
-      {textField("engine", &R::engine), textField("integrator", &R::integrator),
+      {textField("scene", &R::scene), textField("engine", &R::engine), textField("integrator", &R::integrator),
        numberField("accuracy", "-", &R::accuracy), textField("accuracy_meaning", &R::accuracy_meaning_short),
        numberField("energy_trend_per_revolution", "-", &R::energy_trend_per_revolution),
        numberField("delta", "-", &R::delta), numberField("delta_exact", "-", &R::delta_exact),

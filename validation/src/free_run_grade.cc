@@ -421,6 +421,17 @@ TableSet gradeRunAnswers(const std::vector<RunCase>& cases, const std::function<
   return tables;
 }
 
+void addEngineRuns(TableSet& tables, const std::vector<RunCase>& cases, bool quick) {
+  std::vector<EngineRunRow> rows;
+  std::set<std::string> done;
+  for (const RunCase& c : cases) {
+    if (c.drive != RunDrive::kFree || !done.insert(c.family).second) continue;
+    for (EngineRunRow& row : calcEngineRuns(c.mechanism, c.omega0, c.revolutions, listDefaultEngineRuns(quick)))
+      rows.push_back(std::move(row));
+  }
+  if (!rows.empty()) addRows(tables, getFreeRunEnginesSchema(), std::move(rows));
+}
+
 int findRunGradeExitStatus(const TableSet& tables) {
   // The largest step of each scene: the one asked (--dt); the sweep's smaller steps are the convergence study.
   std::map<std::string, double> largest;

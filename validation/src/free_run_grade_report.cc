@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 
+#include "crankcheck/validation/engine_runs.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/free_run_grade.h"
 #include "crankcheck/validation/output_folder.h"
@@ -156,6 +157,27 @@ void renderRunGradeReport(const TableSet& tables, const std::vector<RunCase>& ca
       doc.addFigure("free_run_error_vs_step", "Each measure's error over its tolerance against the step, on " + scene +
                                                   " (below the dashed line: within tolerance; the slope: the order)");
     }
+  }
+
+  const std::vector<EngineRunRow>& engines = getRows(tables, getFreeRunEnginesSchema());
+  if (!engines.empty()) {
+    doc.addHeading(2, "Beside the engines' own runs");
+    doc.addParagraph(
+        "The same free run (each scene from phi = 0 at its speed, gravity alone, over the same revolutions) stepped by "
+        "every engine that simulates, through the same measures: Simbody's integrators at a relative accuracy, "
+        "MuJoCo's soft constraint solver (as its users run it) at a fixed step given as a fraction of a revolution. "
+        "Energy trend per revolution relative to E_0; delta's error relative to the exact delta; the phase error at the "
+        "horizon; the processor time per simulated revolution. *omega read*: where the engine's recorded speed stands "
+        "(a semi-implicit Euler's is a backward difference, half a step behind its angle; found by that identity at "
+        "every step).");
+    std::vector<std::vector<std::string>> table;
+    for (const EngineRunRow& r : engines)
+      table.push_back({r.scene, r.engine, r.integrator, shortNumber(r.accuracy), shortNumber(r.energy_trend_per_revolution),
+                       shortNumber(r.delta_error_rel), shortNumber(r.phase_error_at_horizon),
+                       shortNumber(r.cpu_seconds_per_revolution) + " s", r.omega_reading});
+    doc.addTable({"scene", "engine", "integrator", "accuracy or step", "energy trend / rev", "delta error",
+                  "phase error [rad]", "cost / revolution", "omega read"},
+                 table);
   }
 
   doc.addHeading(2, "Error against time");

@@ -33,6 +33,7 @@ struct EngineRunSpec {
 
 /// One run, measured.
 struct EngineRunRow {
+  std::string scene;                   ///< the mechanism's name (Mechanism::name)
   std::string engine;
   std::string integrator;
   double accuracy = 0.0;               ///< [-] as in the spec

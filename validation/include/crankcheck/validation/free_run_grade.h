@@ -24,6 +24,7 @@
 
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/engine_runs.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/run_measures.h"
 #include "crankcheck/validation/table.h"
@@ -148,6 +149,12 @@ const Schema<RunHistoryRow>& getRunHistorySchema();
 ///         answers a run the measures cannot read (not covering one revolution, phi not increasing).
 TableSet runRunGrade(const std::vector<RunCase>& cases, const GradeProgram& program, const RunTolerances& tolerances,
                      const std::function<void(size_t, size_t)>& progress = {});
+
+/// The engines' own free runs of each scene of `cases` that runs free (engine_runs.h: listDefaultEngineRuns(quick), over
+/// the cases' revolutions from the scene's speed), added to `tables` as free_run_engines: what the program's measures
+/// stand beside. Costs a few seconds of one core per scene (quick: under one).
+/// @throws std::runtime_error if an engine's run fails.
+void addEngineRuns(TableSet& tables, const std::vector<RunCase>& cases, bool quick);
 
 /// The terminal's summary: per scene, each step's measures (program, exact, error, tolerance, verdict), then with a
 /// sweep each measure's observed order and largest step meeting its tolerance; within 100 columns.
