@@ -96,7 +96,8 @@ TEST_P(AcceleratingCrankTest, AtZeroAlphaIsTheConstantSpeedEngineBitForBit) {
   const double w0 = m.machine.speed;
   for (int i = 0; i < 73; ++i) {
     const double phi = 4.0 * M_PI * i / 73 + 0.0071;
-    expectSameEvaluation(calcEvaluationAtState(m, phi, w0, 0.0), calcEvaluation(m, phi), "scene speed phi " + std::to_string(phi));
+    expectSameEvaluation(calcEvaluationAtState(m, phi, w0, 0.0), calcEvaluation(m, phi),
+                         "scene speed phi " + std::to_string(phi));
     for (double omega : {0.0, -0.7 * w0, 2.5 * w0})
       expectSameEvaluation(calcEvaluationAtState(m, phi, omega, 0.0), calcEvaluation(atSpeed(m, omega), phi),
                            "omega " + std::to_string(omega) + " phi " + std::to_string(phi));
@@ -108,7 +109,7 @@ TEST_P(AcceleratingCrankTest, AtZeroAlphaIsTheConstantSpeedEngineBitForBit) {
 // Newton-Euler of every body: an independent route. Tolerance: 64 eps of the torque scale at the effective speed
 // sqrt(omega^2 + |alpha|) (calcTorqueScale: every m a r term and the gas; the multiple and the 1 / (1 - lambda^2) of
 // the constant-speed check in motion_test.cc, which these are the same roundings of, plus one add per throw), and of
-// J |alpha| (the flywheel's I_w alpha, added once on each side).
+// J |alpha| (the flywheel's I_w alpha, added once on each side). Seen: at most 2 eps of that scale.
 TEST_P(AcceleratingCrankTest, DriveTorqueIsLagrangesEquation) {
   const Mechanism m = loadScene(GetParam());
   const double lambda = validation::calcLoopRatio(m);
@@ -117,7 +118,8 @@ TEST_P(AcceleratingCrankTest, DriveTorqueIsLagrangesEquation) {
     const ReducedInertia inertia = calcReducedInertia(m, s.phi);
     const double lagrange = inertia.J * s.alpha + 0.5 * inertia.dJ * s.omega * s.omega + calcGravityTorque(m, s.phi) -
                             calcGasTorque(m, s.phi);
-    const double scale = testing::calcTorqueScale(atEffectiveSpeed(m, s.omega, s.alpha)) + inertia.J * std::fabs(s.alpha);
+    const double scale =
+        testing::calcTorqueScale(atEffectiveSpeed(m, s.omega, s.alpha)) + inertia.J * std::fabs(s.alpha);
     const double drive = calcEvaluationAtState(m, s.phi, s.omega, s.alpha).drive_torque;
     EXPECT_TRUE(testing::isClose(drive, lagrange, 64 * kEps * scale / ((1 - lambda) * (1 + lambda))))
         << s.phi << " " << s.omega << " " << s.alpha;
@@ -133,9 +135,11 @@ TEST_P(AcceleratingCrankTest, DriveTorqueIsLagrangesEquation) {
 // k^2 lambda / 4 + ...) (the radical's harmonic 2 is -(lambda r / 4) cos 2 theta), bounded here by D = r (1 + 8 lambda
 // (1 - lambda^2)^(-7/2)); beta' = lambda cos / cos(beta) and its derivatives by D_b = 4 lambda (1 - lambda^2)^(-7/2),
 // lambda the loop ratio (r + max |delta|) / l. The truncation is then h^2 |d^4 x_p / dt^4| / 12 <= h^2 D S^4 / 4
-// (second difference of x_p) and h^2 |d^4 beta / dt^4| / 6 <= h^2 D_b S^4 / 2 (first difference of rod_omega). Rounding: each x_p within 2 eps of l + r + max |delta| and, from its rounded angle
+// (second difference of x_p) and h^2 |d^4 beta / dt^4| / 6 <= h^2 D_b S^4 / 2 (first difference of rod_omega).
+// Rounding: each x_p within 2 eps of l + r + max |delta| and, from its rounded angle
 // (|phi| < 4 pi + 1), eps (|phi| + 1) D; the second difference's weights sum to 4, over h^2. Each rod_omega within
 // (4 + |phi| + 1) eps D_b S, the first difference's weights sum to 1 / h. Step h = 1e-3 / S: the truncation dominates.
+// Seen: at most 0.36 of the bound for a_p, 0.21 for rod_alpha; a wrong alpha term would be off by about r |alpha|.
 TEST_P(AcceleratingCrankTest, AccelerationsAreTimeDerivativesAlongTheTrajectory) {
   const Mechanism m = loadScene(GetParam());
   const double r = m.crank.radius, l = m.rod.length, lambda = validation::calcLoopRatio(m);
@@ -157,7 +161,8 @@ TEST_P(AcceleratingCrankTest, AccelerationsAreTimeDerivativesAlongTheTrajectory)
     for (size_t j = 0; j < mid.cylinders.size(); ++j) {
       const double a_fd = (plus.cylinders[j].x_p - 2 * mid.cylinders[j].x_p + minus.cylinders[j].x_p) / (h * h);
       const double rod_fd = (plus.cylinders[j].rod_omega - minus.cylinders[j].rod_omega) / (2 * h);
-      EXPECT_TRUE(testing::isClose(mid.cylinders[j].a_p, a_fd, tol_a)) << j << " " << s.phi << " " << s.omega << " " << s.alpha;
+      EXPECT_TRUE(testing::isClose(mid.cylinders[j].a_p, a_fd, tol_a))
+          << j << " " << s.phi << " " << s.omega << " " << s.alpha;
       EXPECT_TRUE(testing::isClose(mid.cylinders[j].rod_alpha, rod_fd, tol_rod))
           << j << " " << s.phi << " " << s.omega << " " << s.alpha;
       worst_a = std::max(worst_a, std::fabs(mid.cylinders[j].a_p - a_fd) / tol_a);
@@ -173,7 +178,8 @@ TEST_P(AcceleratingCrankTest, AccelerationsAreTimeDerivativesAlongTheTrajectory)
 // their moments about O with the drive torque are dH_O/dt = -M_s,Z. The reactions and the shaking are computed by
 // different sums (per-body Newton-Euler against m a and p x m a). Tolerance: 64 eps of the force scale (moment: of the
 // force scale times l + r + max |delta|, and of the flywheel's I_w |alpha|) at the effective speed sqrt(omega^2 +
-// |alpha|) (calcForceScale: every m a and the gas; k cylinders of about ten roundings each).
+// |alpha|) (calcForceScale: every m a and the gas; k cylinders of about ten roundings each). Seen: at most
+// 0.017 of it (about 1 eps of the scale).
 TEST_P(AcceleratingCrankTest, ExternalForcesAreTheMomentumRate) {
   Mechanism m = loadScene(GetParam());
   m.balance_shafts.clear();
@@ -201,7 +207,8 @@ TEST_P(AcceleratingCrankTest, ExternalForcesAreTheMomentumRate) {
       const double Bc[2] = {r * std::cos(theta), r * std::sin(theta)};
       const double B[2] = {Bc[0] * e[0] + Bc[1] * n[0], Bc[0] * e[1] + Bc[1] * n[1]};
       const double G_x = A[0] + mu * (B[0] - A[0]);
-      const double throw_moment = m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius;
+      const double throw_moment =
+          m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius;
       F[1] -= g * (m.piston.mass + m.rod.mass + m.crank.mass + m.crank.counterweight_mass);
       M -= g * (m.piston.mass * A[0] + m.rod.mass * G_x + throw_moment / r * B[0]);
     }
@@ -211,7 +218,8 @@ TEST_P(AcceleratingCrankTest, ExternalForcesAreTheMomentumRate) {
     EXPECT_TRUE(testing::isClose(F[0], -ev.shaking_force[0], tol_f)) << s.phi << " " << s.omega << " " << s.alpha;
     EXPECT_TRUE(testing::isClose(F[1], -ev.shaking_force[1], tol_f)) << s.phi << " " << s.omega << " " << s.alpha;
     EXPECT_TRUE(testing::isClose(M, -ev.shaking_moment[2], tol_m)) << s.phi << " " << s.omega << " " << s.alpha;
-    worst_f = std::max({worst_f, std::fabs(F[0] + ev.shaking_force[0]) / tol_f, std::fabs(F[1] + ev.shaking_force[1]) / tol_f});
+    worst_f = std::max(
+        {worst_f, std::fabs(F[0] + ev.shaking_force[0]) / tol_f, std::fabs(F[1] + ev.shaking_force[1]) / tol_f});
     worst_m = std::max(worst_m, std::fabs(M + ev.shaking_moment[2]) / tol_m);
   }
   RecordProperty("worst_force_of_tolerance", std::to_string(worst_f));
@@ -241,7 +249,8 @@ TEST(AcceleratingCrankShaftsTest, ShaftsShakingIsMinusTheirMassTimesAcceleration
     for (const BalanceShaftParams& b : m.balance_shafts) {
       auto position = [&](double t) {
         const double psi = b.ratio * (s.phi + s.omega * t + 0.5 * s.alpha * t * t) + b.phase;
-        return std::array<double, 2>{b.position[0] + b.radius * std::cos(psi), b.position[1] + b.radius * std::sin(psi)};
+        return std::array<double, 2>{b.position[0] + b.radius * std::cos(psi),
+                                     b.position[1] + b.radius * std::sin(psi)};
       };
       const auto minus = position(-h), mid = position(0.0), plus = position(h);
       const double a[2] = {(plus[0] - 2 * mid[0] + minus[0]) / (h * h), (plus[1] - 2 * mid[1] + minus[1]) / (h * h)};
@@ -254,7 +263,8 @@ TEST(AcceleratingCrankShaftsTest, ShaftsShakingIsMinusTheirMassTimesAcceleration
       M[2] -= b.mass * (mid[0] * a[1] - mid[1] * a[0]);
       const double reach = std::hypot(b.position[0], b.position[1], z) + b.radius;
       const double psi_max = std::fabs(b.ratio * s.phi) + std::fabs(b.phase) + 1.0;
-      const double each = b.mass * (h * h * b.radius * std::pow(S, 4) / 4 + 4 * kEps * (reach + psi_max * b.radius) / (h * h));
+      const double each =
+          b.mass * (h * h * b.radius * std::pow(S, 4) / 4 + 4 * kEps * (reach + psi_max * b.radius) / (h * h));
       tol_f += each;
       tol_m += each * reach;
     }
@@ -272,8 +282,8 @@ TEST(AcceleratingCrankShaftsTest, ShaftsShakingIsMinusTheirMassTimesAcceleration
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, AcceleratingCrankTest,
-                         ::testing::Values("single_cylinder.toml", "inline4_four_stroke.toml", "inline4_pin_offset.toml",
-                                           "v8_cross_plane.toml", "boxer4_four_stroke.toml",
+                         ::testing::Values("single_cylinder.toml", "inline4_four_stroke.toml",
+                                           "inline4_pin_offset.toml", "v8_cross_plane.toml", "boxer4_four_stroke.toml",
                                            "inline3_lying_two_stroke.toml", "compressor2_explicit_angles.toml",
                                            "inline6_two_stroke_marine.toml"),
                          [](const ::testing::TestParamInfo<std::string>& info) {

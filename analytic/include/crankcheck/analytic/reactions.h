@@ -1,7 +1,8 @@
 #pragma once
 /// @file
-/// Joint reactions of the k-crank mechanism (any layout: each cylinder in its own bank gamma_j and plane z_j) at constant crank speed (or at a state of an accelerating crank) with gravity: Newton-Euler of piston
-/// (a particle), rod (a rigid body with its true inertia I_o about the wrist pin) and crank throw, per cylinder.
+/// Joint reactions of the k-crank mechanism (any layout: each cylinder in its own bank gamma_j and plane z_j) at
+/// constant crank speed, or at a state of an accelerating crank, with gravity: Newton-Euler of piston (a particle),
+/// rod (a rigid body with its true inertia I_o about the wrist pin) and crank throw, per cylinder.
 /// Names and signs: CONVENTIONS.md ("force ON b FROM a", global X, Y components).
 ///
 /// Per cylinder, in the cylinder frame (e, n), with F_A = wrist_pin_force, F_B = crank_pin_force, G the rod's
