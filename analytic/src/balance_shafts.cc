@@ -9,8 +9,12 @@
 namespace crankcheck::analytic {
 
 BalanceShaftLoads calcBalanceShaftLoads(const Mechanism& m, double phi) {
+  return calcBalanceShaftLoads(m, phi, m.machine.speed, 0.0);
+}
+
+BalanceShaftLoads calcBalanceShaftLoads(const Mechanism& m, double phi, double omega, double alpha) {
   BalanceShaftLoads out;
-  const double g = m.machine.gravity, w = m.machine.speed;
+  const double g = m.machine.gravity, w = omega;
   for (const BalanceShaftParams& b : m.balance_shafts) {
     const SinCos phase = calcSinCos(b.phase);
     const SinCos turn = calcSinCos(b.ratio * phi), half = calcSinCos(0.5 * b.ratio * phi);
@@ -28,6 +32,16 @@ BalanceShaftLoads calcBalanceShaftLoads(const Mechanism& m, double phi) {
     out.shaking_moment[1] += A * (z * psi.cos);
     out.shaking_moment[2] += A * (x * psi.sin - y * psi.cos);
     out.inertia += b.mass * b.radius * b.radius * b.ratio * b.ratio;
+    if (alpha != 0.0) {
+      // -m times the tangential acceleration rho Omega_dot (-sin psi, cos psi), and its moment -p x m a about O.
+      const double T = b.mass * b.radius * (b.ratio * alpha);  // m rho Omega_dot
+      out.drive_torque += b.mass * b.radius * b.radius * b.ratio * b.ratio * alpha;
+      out.shaking_force[0] += T * psi.sin;
+      out.shaking_force[1] -= T * psi.cos;
+      out.shaking_moment[0] += T * z * psi.cos;
+      out.shaking_moment[1] += T * z * psi.sin;
+      out.shaking_moment[2] -= T * (x * psi.cos + y * psi.sin + b.radius);
+    }
   }
   return out;
 }

@@ -1,10 +1,12 @@
 #include "crankcheck/analytic/kinematics.h"
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "crankcheck/analytic/exact_trig.h"
 #include "crankcheck/analytic/fourier_series.h"
+#include "cylinder_terms.h"
 
 namespace crankcheck::analytic {
 
@@ -32,27 +34,53 @@ DeadCentres calcDeadCentres(const Mechanism& m, double pin_offset) {
 }
 
 CylinderMotion calcCylinderMotion(const Mechanism& m, int j, double phi) {
-  const double r = m.crank.radius, w = m.machine.speed, mu = m.rod.com_from_wrist_pin / m.rod.length;
+  return calcCylinderMotion(m, j, phi, m.machine.speed, 0.0);
+}
+
+std::vector<CylinderMotion> calcCylinderMotions(const Mechanism& m, double phi) {
+  return calcCylinderMotions(m, phi, m.machine.speed, 0.0);
+}
+
+CylinderMotion calcCylinderMotion(const Mechanism& m, int j, double phi, double omega, double alpha) {
+  const double r = m.crank.radius, w = omega, mu = m.rod.com_from_wrist_pin / m.rod.length;
+  // The constant-speed kinematics read r, l and m.machine.speed: at another omega, a light copy of those.
+  std::optional<Mechanism> at_omega;
+  if (omega != m.machine.speed) {
+    at_omega = makeUnitSpeedCopy(m);
+    at_omega->machine.speed = omega;
+  }
+  const Mechanism& k = at_omega ? *at_omega : m;
   CylinderMotion c;
   c.gamma = calcSinCos(getBankAngle(m, j));
   c.theta = calcThrowSinCos(phi, m.machine.crank_angles.at(static_cast<size_t>(j)));
   c.z = getAxialPosition(m, j);
   const double delta = getPinOffset(m, j);
-  c.piston = calcPistonKinematics(m, c.theta, delta);
-  c.rod = calcRodKinematics(m, c.theta, delta);
-  c.psi_ddot = -c.rod.beta_ddot;  // the rod turns about +Z by -beta
+  c.piston = calcPistonKinematics(k, c.theta, delta);
+  c.rod = calcRodKinematics(k, c.theta, delta);
   c.p_OA = {c.piston.x_p, delta};  // the wrist pin on x_p e + delta n
   c.p_OB = {r * c.theta.cos, r * c.theta.sin};
   c.p_OG = c.p_OA + mu * (c.p_OB - c.p_OA);
+  c.a_B = -w * w * c.p_OB;  // the crank pin's centripetal part (all of it at constant omega)
+  if (alpha != 0.0) {
+    // The crank's acceleration adds alpha times the derivatives per radian (the kinematics at unit speed: v_p = x',
+    // a_p = x'', beta_dot = beta'), and the crank pin's tangential part alpha Z x p_OB.
+    const Mechanism unit = makeUnitSpeedCopy(m);
+    const PistonKinematics per_radian = calcPistonKinematics(unit, c.theta, delta);
+    const RodKinematics rod_per_radian = calcRodRates(unit, c.theta, delta);
+    c.piston.a_p += per_radian.v_p * alpha;
+    c.piston.j_p += 3.0 * per_radian.a_p * omega * alpha;
+    c.rod.beta_ddot += rod_per_radian.beta_dot * alpha;
+    c.a_B += alpha * Eigen::Vector2d{-c.p_OB.y(), c.p_OB.x()};
+  }
+  c.psi_ddot = -c.rod.beta_ddot;  // the rod turns about +Z by -beta
   c.a_A = {c.piston.a_p, 0.0};
-  c.a_B = -w * w * c.p_OB;  // the crank pin turns at constant omega
   c.a_G = (1.0 - mu) * c.a_A + mu * c.a_B;
   return c;
 }
 
-std::vector<CylinderMotion> calcCylinderMotions(const Mechanism& m, double phi) {
+std::vector<CylinderMotion> calcCylinderMotions(const Mechanism& m, double phi, double omega, double alpha) {
   std::vector<CylinderMotion> motions;
-  for (int j = 0; j < m.machine.cylinders; ++j) motions.push_back(calcCylinderMotion(m, j, phi));
+  for (int j = 0; j < m.machine.cylinders; ++j) motions.push_back(calcCylinderMotion(m, j, phi, omega, alpha));
   return motions;
 }
 

@@ -31,7 +31,12 @@ Reactions calcReactions(const Mechanism& m, double phi, RodInertiaForm rod) {
 }
 
 Reactions calcReactions(const Mechanism& m, double phi, const std::vector<CylinderMotion>& motions, RodInertiaForm rod) {
-  const double r = m.crank.radius, w = m.machine.speed, g = m.machine.gravity;
+  return calcReactionsAtState(m, phi, m.machine.speed, 0.0, motions, rod);
+}
+
+Reactions calcReactionsAtState(const Mechanism& m, double phi, double omega, double alpha,
+                               const std::vector<CylinderMotion>& motions, RodInertiaForm rod) {
+  const double r = m.crank.radius, w = omega, g = m.machine.gravity;
   const double m_o = m.piston.mass, m_k = m.rod.mass;
   // The rod's inertia about the wrist pin A: the two point masses give m_k3 l^2 = m_k z_k l; Delta_I makes up the rest.
   const double I_o = rod == RodInertiaForm::kTwoMassWithoutDeltaI ? m_k * m.rod.com_from_wrist_pin * m.rod.length
@@ -65,8 +70,16 @@ Reactions calcReactions(const Mechanism& m, double phi, const std::vector<Cylind
 
     const Vector2d p_OS = (m.crank.com_radius / r) * p_OB;
     const Vector2d p_OC = (-m.crank.counterweight_radius / r) * p_OB;
-    const Vector2d F_O = m_s * ((-w * w) * p_OS - g_C) + m_p * ((-w * w) * p_OC - g_C) + F_B;
-    const double tau = cross(p_OB, F_B) - cross(p_OS, m_s * g_C) - cross(p_OC, m_p * g_C);
+    Vector2d a_S = (-w * w) * p_OS, a_C = (-w * w) * p_OC;  // the throw's masses on the crank line
+    if (alpha != 0.0) {
+      a_S += alpha * Vector2d{-p_OS.y(), p_OS.x()};
+      a_C += alpha * Vector2d{-p_OC.y(), p_OC.x()};
+    }
+    const Vector2d F_O = m_s * (a_S - g_C) + m_p * (a_C - g_C) + F_B;
+    double tau = cross(p_OB, F_B) - cross(p_OS, m_s * g_C) - cross(p_OC, m_p * g_C);
+    if (alpha != 0.0)  // the rate of the throw's angular momentum about O
+      tau += (m_s * m.crank.com_radius * m.crank.com_radius +
+              m_p * m.crank.counterweight_radius * m.crank.counterweight_radius) * alpha;
 
     out.cylinders.push_back({toVec2(R_WC * F_B), toVec2(R_WC * F_A), N_w});
     const Vector2d F_O_W = R_WC * F_O;
@@ -74,24 +87,29 @@ Reactions calcReactions(const Mechanism& m, double phi, const std::vector<Cylind
     out.bearing_force[1] += F_O_W.y();
     out.drive_torque += tau;
   }
-  // The balance shafts: the gear gives each the torque it needs (its gravity torque at constant speed), times the ratio
-  // at the crank; no force on the main bearing (balance_shafts.h).
-  out.drive_torque += calcBalanceShaftLoads(m, phi).drive_torque;
+  // The balance shafts: the gear gives each the torque it needs (its gravity torque at constant speed; plus its inertia
+  // at an accelerating crank), times the ratio at the crank; no force on the main bearing (balance_shafts.h).
+  out.drive_torque += calcBalanceShaftLoads(m, phi, omega, alpha).drive_torque;
+  if (alpha != 0.0) out.drive_torque += m.flywheel_inertia.value_or(0.0) * alpha;  // the flywheel (I_w, motion.h's J)
   return out;
 }
 
 Evaluation calcEvaluation(const Mechanism& m, double phi) {
+  return calcEvaluationAtState(m, phi, m.machine.speed, 0.0);
+}
+
+Evaluation calcEvaluationAtState(const Mechanism& m, double phi, double omega, double alpha) {
   Evaluation ev;
   ev.engine = "analytic";
   ev.phi = phi;
   ev.U = calcPotentialEnergy(m, phi);
   ev.Q = calcGravityTorque(m, phi);
   // Every cylinder's motion once: the reactions, the shaking and the kinematics below all read it.
-  const std::vector<CylinderMotion> motions = calcCylinderMotions(m, phi);
-  const Reactions reactions = calcReactions(m, phi, motions);
+  const std::vector<CylinderMotion> motions = calcCylinderMotions(m, phi, omega, alpha);
+  const Reactions reactions = calcReactionsAtState(m, phi, omega, alpha, motions);
   ev.drive_torque = reactions.drive_torque;
   ev.bearing_force = reactions.bearing_force;
-  const Shaking shaking = calcShaking(m, motions, phi);
+  const Shaking shaking = calcShaking(m, motions, phi, omega, alpha);
   ev.shaking_force = shaking.force;
   ev.shaking_moment = shaking.moment;
   for (size_t j = 0; j < motions.size(); ++j) {

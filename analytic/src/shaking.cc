@@ -18,7 +18,12 @@ namespace crankcheck::analytic {
 Shaking calcShaking(const Mechanism& m, double phi) { return calcShaking(m, calcCylinderMotions(m, phi), phi); }
 
 Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motions, double phi) {
-  const double r = m.crank.radius, w = m.machine.speed;
+  return calcShaking(m, motions, phi, m.machine.speed, 0.0);
+}
+
+Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motions, double phi, double omega,
+                    double alpha) {
+  const double r = m.crank.radius, w = omega;
   const double m_o = m.piston.mass, m_k = m.rod.mass;
   const double I_G = m.rod.inertia_about_wrist_pin - m_k * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
   const double throw_first_moment = m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius;
@@ -29,7 +34,8 @@ Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motio
     // m a of the piston, the rod and the throw (m_s at r_s, m_p at -r_p on the crank line: a = -omega^2 p), and
     // p x m a about O, all in cylinder j's frame (planar cross products are the same in every rotated frame).
     const Eigen::Vector2d piston = m_o * c.a_A, rod = m_k * c.a_G;
-    const Eigen::Vector2d crank = (-w * w * throw_first_moment / r) * c.p_OB;
+    Eigen::Vector2d crank = (-w * w * throw_first_moment / r) * c.p_OB;
+    if (alpha != 0.0) crank += (alpha * throw_first_moment / r) * Eigen::Vector2d{-c.p_OB.y(), c.p_OB.x()};
     const Eigen::Vector2d f_C = piston + rod + crank;
     const double moment_Z = (c.p_OA.x() * piston.y() - c.p_OA.y() * piston.x()) +
                             (c.p_OG.x() * rod.y() - c.p_OG.y() * rod.x()) +
@@ -39,7 +45,13 @@ Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motio
     P_dot += f_W;
     H_dot += Eigen::Vector3d{0.0, 0.0, c.z}.cross(f_W) + Eigen::Vector3d{0.0, 0.0, moment_Z};
   }
-  const BalanceShaftLoads shafts = calcBalanceShaftLoads(m, phi);
+  if (alpha != 0.0) {
+    // The crankshaft's spin: its throws' point masses (their p x m a about O has the Z part m r^2 alpha) and the flywheel.
+    const double throw_inertia = m.crank.mass * m.crank.com_radius * m.crank.com_radius +
+                                 m.crank.counterweight_mass * m.crank.counterweight_radius * m.crank.counterweight_radius;
+    H_dot.z() += (m.flywheel_inertia.value_or(0.0) + m.machine.cylinders * throw_inertia) * alpha;
+  }
+  const BalanceShaftLoads shafts = calcBalanceShaftLoads(m, phi, omega, alpha);
   Shaking s;
   s.force = {-P_dot.x() + shafts.shaking_force[0], -P_dot.y() + shafts.shaking_force[1]};
   s.moment = {-H_dot.x() + shafts.shaking_moment[0], -H_dot.y() + shafts.shaking_moment[1],

@@ -27,8 +27,14 @@ struct BalanceShaftLoads {
   std::array<double, 3> shaking_moment{};  ///< [N m] about O
   double inertia = 0.0;       ///< [kg m^2] their share of J, constant
 };
-/// The sum over every shaft of m.
+/// The sum over every shaft of m, at the scene's constant omega: calcBalanceShaftLoads(m, phi, m.machine.speed, 0.0).
 BalanceShaftLoads calcBalanceShaftLoads(const Mechanism& m, double phi);
+/// The same at a state of an accelerating crank (speed omega [rad/s], acceleration alpha [rad/s^2]): a shaft's mass
+/// then also has the tangential acceleration rho Omega_dot (-sin psi, cos psi), Omega_dot = ratio alpha, so
+///   drive torque += m rho^2 ratio^2 alpha (the shafts' share of J, times alpha),
+///   F_s += m rho Omega_dot (sin psi, -cos psi),  M_s += m rho Omega_dot (z cos psi, z sin psi, -(x cos psi + y sin psi + rho)).
+/// At omega = m.machine.speed and alpha = 0 the same operations as at constant speed.
+BalanceShaftLoads calcBalanceShaftLoads(const Mechanism& m, double phi, double omega, double alpha);
 
 /// Shaft `b`'s share of harmonic n of F_s and M_s (n = |ratio|: F = c cos(n phi) + s sin(n phi)); zeros for another
 /// n. @throws std::invalid_argument if its ratio is not a whole number (its shaking is then not periodic in phi).

@@ -8,7 +8,8 @@
 /// x_p is measured from the crank centre O along the cylinder axis e (CONVENTIONS.md); the wrist pin is at
 /// A = x_p e + delta n. With s = sin(beta) = lambda sin(theta) - delta / l:
 ///   x_p = r cos(theta) + l sqrt(1 - s^2)   (delta = 0: Norton 13.1d).
-/// Time derivatives are at the scene's constant omega = m.machine.speed: v_p = omega dx_p/dtheta, etc.
+/// Time derivatives are at the scene's constant omega = m.machine.speed: v_p = omega dx_p/dtheta, etc.; the cylinder's
+/// whole motion (calcCylinderMotion) also at any state (phi, omega, alpha) of an accelerating crank.
 
 #include <Eigen/Core>
 #include <cmath>
@@ -38,7 +39,8 @@ struct RodKinematics {
 
 /// The moving points of cylinder j at crank angle phi, in its own cylinder frame (e_j, n_j) (a planar frame in the
 /// plane z = z_j, right-handed about +Z, so planar cross products equal global ones): wrist pin A, crank pin B, the
-/// rod's centre of mass G, their accelerations at constant omega, and the rod's angular acceleration.
+/// rod's centre of mass G, their accelerations (at constant omega, or at a state (phi, omega, alpha) of an accelerating
+/// crank) and the rod's angular acceleration.
 struct CylinderMotion {
   SinCos gamma;                ///< bank angle gamma_j: e_j = (cos, sin), n_j = (-sin, cos) in global X, Y
   SinCos theta;                ///< theta_j = phi + alpha_j
@@ -49,10 +51,23 @@ struct CylinderMotion {
   Eigen::Vector2d a_A, a_B, a_G;     ///< [m/s^2] (e, n) components
   double psi_ddot = 0.0;       ///< [rad/s^2] the rod's angular acceleration about +Z (= -beta_ddot)
 };
+/// At the scene's constant omega = m.machine.speed: calcCylinderMotion(m, j, phi, m.machine.speed, 0.0).
 /// @throws std::out_of_range if j is not a cylinder of m.
 CylinderMotion calcCylinderMotion(const Mechanism& m, int j, double phi);
 /// calcCylinderMotion of every cylinder, in order: computed once where several quantities need it (calcEvaluation).
 std::vector<CylinderMotion> calcCylinderMotions(const Mechanism& m, double phi);
+/// The motion at a state of an accelerating crank: angle phi [rad], speed omega [rad/s] and angular acceleration
+/// alpha [rad/s^2] of the crank about +Z (any signs; omega = 0 allowed). With ' = d/dtheta (the forms per radian of
+/// calcPistonKinematics and calcRodKinematics), the constant-speed part at omega plus alpha times the first derivative:
+///   v_p = x' omega,  a_p = x'' omega^2 + x' alpha,  j_p = x''' omega^3 + 3 x'' omega alpha  (the jerk at constant alpha),
+///   beta_dot = beta' omega,  beta_ddot = beta'' omega^2 + beta' alpha,  psi_ddot = -beta_ddot,
+///   a_B = -omega^2 p_OB + alpha Z x p_OB,  a_A = a_p e,  a_G = (1 - mu) a_A + mu a_B.
+/// At omega = m.machine.speed and alpha = 0 it is the constant-speed motion, bit for bit (the same operations: the
+/// alpha terms are not formed at alpha = 0).
+/// @throws std::out_of_range if j is not a cylinder of m.
+CylinderMotion calcCylinderMotion(const Mechanism& m, int j, double phi, double omega, double alpha);
+/// calcCylinderMotion at (phi, omega, alpha) of every cylinder, in order.
+std::vector<CylinderMotion> calcCylinderMotions(const Mechanism& m, double phi, double omega, double alpha);
 
 /// Exact piston kinematics (Norton 13.1d and its derivatives; closed forms, no series), with the pin offset
 /// pin_offset = delta [m] (|delta| < l - r; 0: centric). Per radian of crank, c = cos(beta) = sqrt(1 - s^2):

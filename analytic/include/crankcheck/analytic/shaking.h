@@ -30,6 +30,13 @@ Shaking calcShaking(const Mechanism& m, double phi);
 /// The same from every cylinder's motion at crank angle phi (calcCylinderMotions), when it is already at hand; the
 /// balance shafts' share (balance_shafts.h) from phi.
 Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motions, double phi);
+/// The same at a state of an accelerating crank (speed omega [rad/s], acceleration alpha [rad/s^2]), motions =
+/// calcCylinderMotions(m, phi, omega, alpha): the throws' masses also have alpha Z x p, so F_s gains -alpha Z x (the
+/// throw's first moment), and M_s's Z part -(I_w + sum_j (m_s r_s^2 + m_p r_p^2)) alpha (the crankshaft's own angular
+/// momentum rate: its throws' point masses and the flywheel, motion.h's J); the shafts' share at (omega, alpha).
+/// calcShaking(m, motions, phi) is this at (m.machine.speed, 0), bit for bit.
+Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motions, double phi, double omega,
+                    double alpha);
 
 }  // namespace crankcheck::analytic
 
