@@ -47,9 +47,12 @@ std::string verdictOf(double error, double tolerance) { return error <= toleranc
 
 std::string describeDt(const std::optional<double>& dt) { return dt ? formatNumber(*dt) + " s" : "its own step"; }
 
-// The exact values at a state the program reached: the crank at phi turning at omega (held: at constant speed).
+// The exact values at a state the program reached: the crank at phi turning at omega, its angular acceleration that of
+// the equation of motion there (free: no drive, gravity alone: Lagrange's J phi'' + 1/2 J' phi'^2 + Q = 0; held: 0, the
+// drive supplying whatever torque that takes).
 Evaluation calcExactValuesAt(const RunCase& c, double phi, double omega) {
-  return analytic::calcEvaluation(withSpeed(c.mechanism, omega * 60.0 / kTwoPi), phi);
+  const double alpha = c.drive == RunDrive::kFree ? analytic::calcCrankAcceleration(c.mechanism, phi, omega, 0.0) : 0.0;
+  return analytic::calcEvaluationAtState(c.mechanism, phi, omega, alpha);
 }
 
 }  // namespace
