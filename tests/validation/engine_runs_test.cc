@@ -202,9 +202,9 @@ TEST(EngineRunsTest, Schema) {
   row.steps = 12;
   row.horizon_s = 0.25;
   const Table t = schema.table({row});
-  EXPECT_EQ(std::get<std::string>(t.cell(0, 0)), "simbody");
-  EXPECT_EQ(std::get<double>(t.cell(0, 11)), 0.25);
-  EXPECT_EQ(std::get<double>(t.cell(0, 13)), 12.0);
+  EXPECT_EQ(std::get<std::string>(t.cell(0, 1)), "simbody");
+  EXPECT_EQ(std::get<double>(t.cell(0, 12)), 0.25);
+  EXPECT_EQ(std::get<double>(t.cell(0, 14)), 12.0);
 }
 
 // The refusals, each one clear line naming what is wrong (checked before any run).

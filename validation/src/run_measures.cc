@@ -208,10 +208,13 @@ SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Steppe
   out.exact = {exact.delta, exact.phi_at_omega_max, exact.phi_at_omega_min};
   out.delta_error = out.run.delta - out.exact.delta;
   // An extreme can be reached at several phases with speeds the run cannot tell apart (a centric standing single:
-  // omega(phi) = omega(-phi), two equal minima): the run's phase is compared with the nearest of the exact run's
-  // local extremes whose speed is within the run's own speed error (|delta error| x omega_mean, at least rounding) of
-  // the extreme.
-  const double speed_error = std::max(std::fabs(out.delta_error) * omega_mean, 64.0 * kEpsilon * exact.omega_max);
+  // omega(phi) = omega(-phi), two equal minima; an inline four: two equal humps a turn): the run's phase is compared
+  // with the nearest of the exact run's local extremes whose speed is within the run's own speed error of the extreme:
+  // |delta error| x omega_mean, or the run's change of speed over the revolution (a run that loses energy is fastest
+  // where it starts), at least rounding.
+  const double drift = std::fabs(reader.findOmegaAtPhase(phi1) - reader.findOmegaAtPhase(phi0));  // 0 on the exact run
+  const double speed_error =
+      std::max({std::fabs(out.delta_error) * omega_mean, drift, 64.0 * kEpsilon * exact.omega_max});
   auto nearest = [&](double run_phase, double exact_phase, double extreme, double sign) {
     double best = wrapAngle(run_phase - exact_phase);
     constexpr int kSamples = 720;

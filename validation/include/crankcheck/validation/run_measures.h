@@ -75,8 +75,9 @@ struct SpeedFluctuationComparison {
   double omega_at_zero = 0.0;   ///< [rad/s] that release speed
   double delta_error = 0.0;     ///< run.delta - exact.delta [-]
   /// [rad] run's - exact phi at omega_max, wrapped to (-pi, pi]: against the nearest phase where the exact run's speed
-  /// has a local maximum within the run's own speed error (|delta_error| x omega_mean, at least 64 eps) of omega_max
-  /// (a centric standing single has two equal extremes, at phi and -phi: either is the extreme)
+  /// has a local maximum within the run's own speed error of omega_max (the larger of |delta_error| x omega_mean and
+  /// the run's change of speed over the revolution, at least 64 eps x omega_max): a centric standing single has two
+  /// equal extremes, at phi and -phi, and a run that loses energy is fastest where it starts)
   double phi_max_error = 0.0;
   double phi_min_error = 0.0;   ///< [rad] the same for omega_min
 };
