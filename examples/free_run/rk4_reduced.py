@@ -216,8 +216,6 @@ def answer(request):
             fail("dt must be > 0 or \"own\"")
         steps = max(1, math.ceil(t_end / dt - 1e-9))
     every = max(1, round(interval / dt))
-    if engine.gas is None:
-        gas = False
 
     def accel(phi, w):
         J, dJ = engine.inertia(phi)
@@ -231,7 +229,7 @@ def answer(request):
     def sample(n, phi, w):
         s = {"t": n * dt, "phi": phi, "omega": w}
         if drive == "held":
-            J, dJ = engine.inertia(phi)
+            _, dJ = engine.inertia(phi)
             acc = 0.0
             torque = 0.5 * dJ * w * w
             if grav_on:
