@@ -11,9 +11,9 @@ with J, J' = dJ/dphi, Q = dU/dphi and the gas torque from this script's own clos
 
 Drives: "free" (T_drive = T_load = 0), "loaded" (T_load = the request's load_torque), "held" (phi = phi0 + omega0 t
 exactly, so J phi'' = 0 and drive_torque = (1/2) J' omega0^2 + Q - T_gas). The gas torque acts when the request says
-"gas": true. phi and omega are reported at the same instant t (no omega_t, no values_t); x_p, v_p, a_p and the
-reactions (crank_pin_force, wrist_pin_force, wall_force, bearing_force) come from Newton's laws of each body at the
-integrated state, with phi'' from the equation above.
+"gas": true. phi and omega are reported at the same instant t (no omega_t, no values_t); x_p, v_p, a_p, rod_angle,
+rod_omega, rod_alpha and the reactions (crank_pin_force, wrist_pin_force, wall_force, bearing_force) come from
+Newton's laws of each body at the integrated state, with phi'' from the equation above.
 
 Step: the request's dt, or with "own" 1/720 of a revolution at omega0 (shortened so a whole number of steps ends at
 t_end). A sample is written at t = 0 and every round(output_interval / dt) >= 1 steps, and at the last step.
@@ -137,7 +137,7 @@ class Engine:
         return -sum(self.gas_force(j, phi) * self.kin(cy, phi)[2] for j, cy in enumerate(self.cyl))
 
     def values(self, phi, w, acc, gas, grav_on):
-        """Per-cylinder x_p, v_p, a_p and reactions, and the bearing force, at the state (phi, w) with phi'' = acc."""
+        """Per-cylinder x_p, v_p, a_p, the rod's angle, speed and acceleration and the reactions, and the bearing force, at the state (phi, w) with phi'' = acc."""
         g = (0.0, -self.grav if grav_on else 0.0)
 
         def glob(cy, a_e, a_n):
@@ -175,7 +175,8 @@ class Engine:
             for i in range(2):
                 bearing[i] += mr * (-w * w * u[i] + acc * up[i]) - mass * g[i] + Fc[i]
             cylinders.append({"x_p": x, "v_p": v_p, "a_p": a_p, "crank_pin_force": list(Fc),
-                              "wrist_pin_force": list(Fw), "wall_force": Nw})
+                              "wrist_pin_force": list(Fw), "wall_force": Nw, "rod_angle": beta,
+                              "rod_omega": b1 * w, "rod_alpha": beta_dd})
         return cylinders, bearing
 
 
@@ -240,7 +241,8 @@ def answer(request):
                 s["drive_torque"] = torque
         else:
             acc = accel(phi, w)
-        per_cylinder = {"x_p", "v_p", "a_p", "crank_pin_force", "wrist_pin_force", "wall_force"} & quantities
+        per_cylinder = {"x_p", "v_p", "a_p", "crank_pin_force", "wrist_pin_force", "wall_force", "rod_angle",
+                        "rod_omega", "rod_alpha"} & quantities
         if per_cylinder or "bearing_force" in quantities:
             cylinders, bearing = engine.values(phi, w, acc, gas, grav_on)
             if "bearing_force" in quantities:

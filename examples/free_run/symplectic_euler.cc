@@ -25,7 +25,8 @@
 // Reported (the protocol's names and signs): phi (the crank coordinate, unwrapped) at t = t_{n+1}; omega = v_{n+1}'s
 // crank component, a backward difference of phi, standing at t - dt/2 ("omega_t"). The other values belong to the
 // configuration q_n the step was computed at, t_n = t - dt ("values_t"): x_p = e_j . P(q_n); v_p = e_j . v_P(n+1), the
-// velocity the step's constraints make consistent with q_n; a_p = e_j . (v_P(n+1) - v_P(n)) / dt; drive_torque = the
+// velocity the step's constraints make consistent with q_n; a_p = e_j . (v_P(n+1) - v_P(n)) / dt; rod_angle, rod_omega
+// and rod_alpha likewise from psi(q_n), psi_dot(n+1) and its change (with the conventions' sign); drive_torque = the
 // drive row's impulse / dt; crank_pin_force (on the rod from the crank) = its rows' impulse / dt; wrist_pin_force (on
 // the piston from the rod) = minus its rows' impulse / dt; wall_force = the line row's impulse / dt; bearing_force (on
 // the crank from the main bearing) from Newton's law of the crank's point masses, M_c a_c = F_bearing + gravity -
@@ -262,6 +263,11 @@ class Simulator {
       if (wanted.count("crank_pin_force")) cyl["crank_pin_force"] = {crank_pin.x(), crank_pin.y()};
       if (wanted.count("wrist_pin_force")) cyl["wrist_pin_force"] = {wrist_pin.x(), wrist_pin.y()};
       if (wanted.count("wall_force")) cyl["wall_force"] = impulse_[5 * j + 4] / dt;
+      // The rod angle beta of the conventions: u(psi) = -cos(beta) e + sin(beta) n, so beta = gamma + pi - psi.
+      if (wanted.count("rod_angle"))
+        cyl["rod_angle"] = std::remainder(c.gamma + std::numbers::pi - q_old_[b + 2], 2.0 * std::numbers::pi);
+      if (wanted.count("rod_omega")) cyl["rod_omega"] = -v_[b + 2];
+      if (wanted.count("rod_alpha")) cyl["rod_alpha"] = -(v_[b + 2] - v_old_[b + 2]) / dt;
       cylinders.push_back(cyl);
     }
     if (wanted.count("bearing_force")) out["bearing_force"] = {bearing.x(), bearing.y()};
