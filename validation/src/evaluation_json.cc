@@ -61,6 +61,13 @@ nlohmann::ordered_json sceneToJson(const Mechanism& m) {
                 {"cycle", m.gas->cycle}};
     j["engine"]["firing_angles"] = m.firing_angles;
   }
+  if (!m.balance_shafts.empty()) {  // only a scene that has them: every other scene's document is unchanged
+    nlohmann::ordered_json shafts = nlohmann::ordered_json::array();
+    for (const BalanceShaftParams& b : m.balance_shafts)
+      shafts.push_back({{"ratio", b.ratio}, {"mass", b.mass}, {"radius", b.radius}, {"phase", b.phase},
+                        {"position", b.position}});
+    j["balance_shafts"] = shafts;
+  }
   j["flywheel"] = m.flywheel_inertia ? nlohmann::ordered_json{{"inertia", *m.flywheel_inertia}} : nlohmann::ordered_json(nullptr);
   // Each cylinder's dead centres (theta: its own crank angle; phi: cylinder 0's, in [0, 360)) and stroke: with a pin
   // offset they move off theta = 0 and 180 degrees and the stroke exceeds 2 r.

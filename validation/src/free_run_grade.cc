@@ -128,7 +128,7 @@ std::string makeRunRequest(const RunCase& c) {
   request["scene"] = sceneToJson(c.mechanism);
   request["scene_toml"] = c.scene_toml;
   request["drive"] = nameOf(c.drive);
-  request["gas"] = false;
+  request["gas"] = c.mechanism.gas.has_value();  // free: never (the scene's [gas] is left out); held: the scene's
   request["load_torque"] = 0.0;
   request["gravity"] = true;
   request["phi0"] = c.phi0;
