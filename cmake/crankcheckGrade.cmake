@@ -59,14 +59,15 @@ endfunction()
 #                                      [DRIVE free|held] [DT seconds|own] [DT_SWEEP n] [REVOLUTIONS n]
 #                                      [OUTPUT_INTERVAL seconds] [ENERGY_TOLERANCE x] [DELTA_TOLERANCE x]
 #                                      [EXTREME_PHASE_TOLERANCE deg] [PHASE_TOLERANCE rad] [VALUES_TOLERANCE x]
-#                                      [TIMEOUT seconds] [WILL_FAIL] [LABELS l...])
+#                                      [TIMEOUT seconds] [QUICK] [WILL_FAIL] [LABELS l...])
 #
+# QUICK: the engines' reference runs at their default accuracy or step only (seconds less per scene).
 # The test runs `crankcheck grade --free-run SCENES [flags] --out <current binary dir>/NAME-report -- COMMAND...` and
 # passes when every measure of the asked step is within its tolerance (exit status 0); WILL_FAIL: when some are not
 # (exit status 1: a run graded and found wrong, the way a test holds that a bad step is caught). A broken run, a
 # program that cannot be run or bad flags (exit status 2 or 3) fail the test either way. Labels: `grade` by default.
 function(crankcheck_add_free_run_grade_test)
-  cmake_parse_arguments(PARSE_ARGV 0 arg "WILL_FAIL"
+  cmake_parse_arguments(PARSE_ARGV 0 arg "WILL_FAIL;QUICK"
     "NAME;DRIVE;DT;DT_SWEEP;REVOLUTIONS;OUTPUT_INTERVAL;ENERGY_TOLERANCE;DELTA_TOLERANCE;EXTREME_PHASE_TOLERANCE;PHASE_TOLERANCE;VALUES_TOLERANCE;TIMEOUT"
     "COMMAND;SCENES;LABELS")
   if(NOT arg_NAME OR NOT arg_COMMAND OR NOT arg_SCENES)
@@ -87,6 +88,9 @@ function(crankcheck_add_free_run_grade_test)
       list(APPEND flags --${flag} ${arg_${option}})
     endif()
   endforeach()
+  if(arg_QUICK)
+    list(APPEND flags --quick)
+  endif()
   set(program ${arg_COMMAND})
   list(POP_FRONT program first)
   if(TARGET ${first})
