@@ -39,7 +39,7 @@ from ._crankcheck import (  # noqa: F401  (the public API)
 from . import _crankcheck
 
 __all__ = [
-    "Scene", "SceneError", "SceneTable", "GradeResult", "grade", "engines", "quantities", "batch_target",
+    "Scene", "SceneError", "SceneTable", "GradeResult", "grade", "FreeRunGradeResult", "grade_free_run", "engines", "quantities", "batch_target",
     "radical_fourier_coefficients", "inverse_radical_fourier_coefficients", "lambda_coefficients",
     "lambda_coefficients_as_printed", "lambda_series_coefficient", "piston_kinematics", "norton_two_term",
     "fourier_piston_kinematics", "radians_from_degrees", "__version__",
@@ -355,6 +355,166 @@ def grade(function, scenes=None, quick=True, *, jobs=None, timeout=60.0, out=Non
         error_vs_lambda=_rows(tables["grade_error_vs_lambda"]),
         failures=_rows(tables["grade_failures"]),
         cases=r["cases"],
+        seconds=r["seconds"],
+        report=r["report"],
+    )
+
+
+@_dataclass
+class FreeRunGradeResult:
+    """What `crankcheck grade --free-run` found for a function's runs: the tables of its report
+    (validation/free_run_grade.h) as lists of dicts.
+
+    measures     one row per measure of each run: case, scene, drive, dt, measure (energy_trend, delta,
+                 phi_at_omega_max, phi_at_omega_min, phase, or a quantity's name), unit, program, exact, error,
+                 tolerance, resolution, horizon, where, verdict ("pass" or "FAIL")
+    convergence  with dt_sweep > 1: scene, drive, measure, observed_order, largest_step, tolerance
+    history      case, dt, time, phase_error, energy_error (at each turn of a free run)
+    engines      the engines' own free runs of each scene: scene, engine, integrator, accuracy, accuracy_meaning,
+                 energy_trend_per_revolution, delta, delta_exact, delta_error_rel, phi_max_error, phi_min_error,
+                 phase_error_at_horizon, horizon, revolutions, steps, omega_reading, cpu_per_revolution
+    exit_status  the CLI's: 0 when every measure of the asked step is within its tolerance, 1 otherwise
+    """
+
+    exit_status: int
+    measures: list = _field(default_factory=list)
+    convergence: list = _field(default_factory=list)
+    history: list = _field(default_factory=list)
+    engines: list = _field(default_factory=list)
+    runs: int = 0
+    seconds: float = 0.0
+    report: str = None
+
+    @property
+    def passed(self):
+        return self.exit_status == 0
+
+    def verdict(self, measure, dt=None):
+        """The verdict of `measure` ("pass", "FAIL"; None when not graded) at step `dt` (default: the asked step, the
+        largest of each scene's sweep); "FAIL" when it fails in any scene."""
+        rows = [r for r in self.measures if r["measure"] == measure]
+        if dt is None:
+            largest = {}
+            for r in self.measures:
+                largest[r["scene"]] = max(largest.get(r["scene"], 0.0), r["dt"] or 0.0)
+            rows = [r for r in rows if (r["dt"] or 0.0) == largest[r["scene"]]]
+        else:
+            rows = [r for r in rows if r["dt"] is not None and abs(r["dt"] - dt) <= 1e-12 * dt]
+        if not rows:
+            return None
+        return "FAIL" if any(r["verdict"] == "FAIL" for r in rows) else rows[0]["verdict"]
+
+
+def _as_run_response(answer):
+    """The function's answer as protocol 2's response: {"samples": [...]} as it is, or columns {"t": [...], "phi": [...],
+    "omega": [...], ...} (sequences or NumPy arrays of one length n; per-cylinder quantities (n, k) or (n, k, 2))
+    turned into samples."""
+    if not isinstance(answer, dict):
+        raise TypeError("grade_free_run: the function must return a dict: {\"samples\": [...]} or columns "
+                        "{\"t\": [...], \"phi\": [...], \"omega\": [...], ...}, not %s" % type(answer).__name__)
+    if "samples" in answer:
+        return answer
+    def listed(value):
+        return value.tolist() if hasattr(value, "tolist") else list(value)
+    columns = {key: listed(value) for key, value in answer.items() if value is not None}
+    for key in ("t", "phi", "omega"):
+        if key not in columns:
+            raise ValueError("grade_free_run: the function's columns need %r (it gave: %s)" % (key, ", ".join(answer)))
+    n = len(columns["t"])
+    per_cylinder = set(_crankcheck._per_cylinder_quantities())
+    samples = []
+    for i in range(n):
+        sample = {}
+        cylinders = []
+        for key, column in columns.items():
+            if len(column) != n:
+                raise ValueError("grade_free_run: column %r has %d values, t has %d" % (key, len(column), n))
+            if key in per_cylinder:
+                for j, value in enumerate(column[i]):
+                    while len(cylinders) <= j:
+                        cylinders.append({})
+                    cylinders[j][key] = value
+            else:
+                sample[key] = column[i]
+        if cylinders:
+            sample["cylinders"] = cylinders
+        samples.append(sample)
+    return {"samples": samples}
+
+
+def grade_free_run(function, scenes, *, drive="free", revolutions=10, dt=None, dt_sweep=1, output_interval=None,
+                   energy_tolerance=1e-6, delta_tolerance=1e-3, extreme_phase_tolerance=1.0, phase_tolerance=1e-3,
+                   values_tolerance=1e-3, quick=False, timeout=60.0, out=None):
+    """Grades `function`'s time-stepped runs by the measures, tolerances and rules of `crankcheck grade --free-run`
+    (docs/grade.md, "Time-stepped runs").
+
+    function(request) -> dict: `request` is protocol 2's request as a dict (the scene as eval's "scene", "drive",
+    "phi0", "omega0", "dt" (a number, or "own"), "t_end", "output_interval", "quantities", ...); the function returns
+    the run as protocol 2's response {"samples": [{"t": ..., "phi": ..., "omega": ..., "omega_t": ..., ...}, ...]} or
+    as columns {"t": array, "phi": array, "omega": array, optional "omega_t", "values_t" and quantities: whole-engine
+    ones (n,) or (n, 2), per-cylinder ones (n, k) or (n, k, 2)}. A non-finite number is refused (RuntimeError, as the
+    CLI's exit status 3: a broken run), as are t or phi not increasing, fewer than 8 samples, or a run stopping before
+    t_end. An exception of the function is raised here (with a note naming the run).
+
+    scenes: scene files or Scenes (at least one; with [flywheel] for a free run). drive, revolutions, dt (None: 1/720
+    of a revolution; "own": the function's own), dt_sweep, output_interval, the tolerances and quick: the CLI's flags.
+    timeout: seconds per run, as --timeout (the call is interrupted as crankcheck.grade's are). out: a folder for the
+    report (the same folder rule as --out; needs gnuplot).
+    """
+    import json as _json
+    if not callable(function):
+        raise TypeError("grade_free_run: function must be callable as function(request) -> dict")
+    if isinstance(scenes, (str, bytes, _os.PathLike, Scene)):
+        raise TypeError("grade_free_run: scenes must be a list of scene files or Scenes, not one (scenes=[...])")
+    own = isinstance(dt, str)
+    if own and dt != "own":
+        raise ValueError("grade_free_run: dt must be a step [s], None or \"own\", not %r" % dt)
+    if own and dt_sweep != 1:
+        raise ValueError("grade_free_run: dt_sweep needs a step to halve; give dt=S (the function's own step cannot be swept)")
+    name = getattr(function, "__qualname__", None) or repr(function)
+    module = getattr(function, "__module__", None)
+    program = "python: %s.%s" % (module, name) if module else "python: %s" % name
+    reports = None
+    if out is not None and "CRANKCHECK_REPORTS_DIR" not in _os.environ:
+        reports = _find_reports_dir()
+        if reports is not None:
+            _os.environ["CRANKCHECK_REPORTS_DIR"] = reports
+    clock = _CallClock(float(timeout))
+
+    def answer(line):
+        request = _json.loads(line)
+        try:
+            response = clock.call(function, request)
+        except _Interrupted as e:
+            raise RuntimeError("crankcheck.grade_free_run: %s: case %s: no complete answer within %s s (interrupted; "
+                               "timeout= sets the seconds per run)" % (program, request["case"], timeout)) from e
+        except Exception as e:
+            if hasattr(e, "add_note"):
+                e.add_note("crankcheck.grade_free_run: raised on run %s" % request["case"])
+            raise
+        # NaN and Infinity are written as such: not JSON, refused by the grade as a broken run.
+        return _json.dumps(_as_run_response(response), allow_nan=True)
+
+    try:
+        r = _crankcheck._grade_free_run(
+            list(scenes), str(drive), int(revolutions), None if (dt is None or own) else float(dt), own, int(dt_sweep),
+            None if output_interval is None else float(output_interval),
+            [float(energy_tolerance), float(delta_tolerance), float(extreme_phase_tolerance), float(phase_tolerance),
+             float(values_tolerance)],
+            bool(quick), float(timeout), out, answer, program)
+    finally:
+        clock.close()
+        if reports is not None:
+            del _os.environ["CRANKCHECK_REPORTS_DIR"]
+    tables = r["tables"]
+    empty = {"columns": [], "rows": []}
+    return FreeRunGradeResult(
+        exit_status=r["exit_status"],
+        measures=_rows(tables.get("free_run_measures", empty)),
+        convergence=_rows(tables.get("free_run_convergence", empty)),
+        history=_rows(tables.get("free_run_history", empty)),
+        engines=_rows(tables.get("free_run_engines", empty)),
+        runs=r["runs"],
         seconds=r["seconds"],
         report=r["report"],
     )

@@ -540,8 +540,8 @@ py::dict gradeResult(GradeRun& run) {
 py::dict gradeFreeRun(const std::vector<py::object>& scenes, const std::string& drive, int revolutions,
                       const std::optional<double>& dt, bool own_step, int dt_sweep,
                       const std::optional<double>& output_interval, const std::vector<double>& tolerances,
-                      double timeout_seconds, const std::optional<py::object>& out, const py::function& answer,
-                      const std::string& program_name) {
+                      bool quick, double timeout_seconds, const std::optional<py::object>& out,
+                      const py::function& answer, const std::string& program_name) {
   if (scenes.empty()) throw py::value_error("scenes: give at least one scene (a scene with [flywheel] for a free run)");
   if (drive != "free" && drive != "held") throw py::value_error("drive: \"free\" or \"held\", not \"" + drive + "\"");
   if (tolerances.size() != 5) throw std::logic_error("gradeFreeRun: five tolerances");
@@ -578,9 +578,13 @@ py::dict gradeFreeRun(const std::vector<py::object>& scenes, const std::string& 
   }
   const std::string name = escapeText(program_name);
   const auto start = std::chrono::steady_clock::now();
-  const validation::TableSet tables = validation::gradeRunAnswers(
+  validation::TableSet tables = validation::gradeRunAnswers(
       cases, [&](const validation::RunCase& c) { return answer(validation::makeRunRequest(c)).cast<std::string>(); },
       settings.tolerances, "crankcheck.grade_free_run: " + name);
+  {
+    py::gil_scoped_release release;
+    validation::addEngineRuns(tables, cases, quick);  // the engines' own runs beside the function's, as the CLI's
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   py::dict result;
   result["tables"] = tablesToPython(tables);
@@ -777,6 +781,12 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
         for (const QuantityInfo& q : listQuantities()) list.append(q.name);
         return list;
       }, "The names Scene.evaluate returns, in eval's order.");
+  mod.def("_per_cylinder_quantities", [] {
+        py::list list;  // the catalogue's per-cylinder quantities (scene/quantities.h): grade_free_run's columns (n, k)
+        for (const Quantity& q : getQuantityCatalogue())
+          if (q.per_cylinder) list.append(q.name);
+        return list;
+      });
   mod.def("batch_target", [] { return std::string(analytic::getBatchTargetName()); },
           "The instruction set the analytic batch kernels run on here (AVX3, AVX2, SSE4, SSSE3 or SCALAR).");
   mod.attr("__version__") = validation::getCrankcheckVersion();
@@ -807,8 +817,8 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
   mod.def("_grade_start", &startGrade, py::arg("scenes"), py::arg("quick"), py::arg("jobs"), py::arg("timeout"),
           py::arg("out"), py::arg("relay"), py::arg("program_name"));
   mod.def("_grade_free_run", &gradeFreeRun, py::arg("scenes"), py::arg("drive"), py::arg("revolutions"), py::arg("dt"),
-          py::arg("own_step"), py::arg("dt_sweep"), py::arg("output_interval"), py::arg("tolerances"), py::arg("timeout"),
-          py::arg("out"), py::arg("answer"), py::arg("program_name"));
+          py::arg("own_step"), py::arg("dt_sweep"), py::arg("output_interval"), py::arg("tolerances"), py::arg("quick"),
+          py::arg("timeout"), py::arg("out"), py::arg("answer"), py::arg("program_name"));
   mod.def("_raise_in_thread", [](unsigned long thread_id, const py::object& exception) {
         // PyThreadState_SetAsyncExc: `exception` (a class) raised in that thread at its next Python bytecode; None
         // clears one not yet raised. The number of threads changed.

@@ -253,6 +253,9 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
               std::vector<RunMeasureRow>& measures, std::vector<RunHistoryRow>& history) {
   const Mechanism& m = c.mechanism;
   const SteppedRun& run = answer.run;
+  // The horizon: t_end, or the run's last sample where that stands within rounding before it (parseRunResponse allows
+  // 1e-9 of t_end: a run that adds its steps up reaches t_end to rounding).
+  const double horizon = std::min(c.t_end, run.time.back());
   auto row = [&](const MeasureInfo& info, std::optional<double> value, std::optional<double> exact, double error,
                  double tolerance, double resolution, std::string where) {
     RunMeasureRow r;
@@ -267,7 +270,7 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
     r.error = error;
     r.tolerance = tolerance;
     r.resolution = resolution;
-    r.horizon_s = c.t_end;
+    r.horizon_s = horizon;
     r.where = std::move(where);
     r.verdict = verdictOf(error, tolerance);
     measures.push_back(std::move(r));
@@ -279,7 +282,7 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
     // The history's instants: kHistoryPointsPerRevolution per revolution of the horizon, and t_end.
     std::vector<double> times;
     const int points = c.revolutions * kHistoryPointsPerRevolution;
-    for (int i = 0; i <= points; ++i) times.push_back(c.t_end * i / points);
+    for (int i = 0; i <= points; ++i) times.push_back(horizon * i / points);
     if (c.drive == RunDrive::kFree) {
       const std::vector<double> energy = calcEnergyAtTurns(m, run);
       const double trend = calcEnergyTrend(m, run);
@@ -300,16 +303,16 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
       all.insert(all.end(), turn_times.begin(), turn_times.end());
       const std::vector<double> errors = calcPhaseErrors(m, run, all);
       const double at_end = errors[times.size() - 1];
-      row(kPhase, reader.findPhi(c.t_end), reader.findPhi(c.t_end) - at_end, std::fabs(at_end), tol.phase,
-          64.0 * kEps * reader.findPhi(c.t_end), "t = " + formatNumber(c.t_end) + " s (" + formatNumber(std::round(revolutions * 10) / 10) + " revolutions)");
+      row(kPhase, reader.findPhi(horizon), reader.findPhi(horizon) - at_end, std::fabs(at_end), tol.phase,
+          64.0 * kEps * reader.findPhi(horizon), "t = " + formatNumber(horizon) + " s (" + formatNumber(std::round(revolutions * 10) / 10) + " revolutions)");
       for (size_t i = 0; i < times.size(); ++i) history.push_back({c.id, c.dt, times[i], errors[i], std::nullopt});
       for (size_t k = 0; k < turn_times.size(); ++k)
         history.push_back({c.id, c.dt, turn_times[k], errors[times.size() + k], energy[k] / energy.front() - 1.0});
     } else {
       auto held = [&](double t) { return reader.findPhi(t) - (c.phi0 + c.omega0 * t); };
-      const double at_end = held(c.t_end);
-      row(kPhase, reader.findPhi(c.t_end), c.phi0 + c.omega0 * c.t_end, std::fabs(at_end), tol.phase,
-          64.0 * kEps * reader.findPhi(c.t_end), "t = " + formatNumber(c.t_end) + " s (" + std::to_string(c.revolutions) + " revolutions)");
+      const double at_end = held(horizon);
+      row(kPhase, reader.findPhi(horizon), c.phi0 + c.omega0 * horizon, std::fabs(at_end), tol.phase,
+          64.0 * kEps * reader.findPhi(horizon), "t = " + formatNumber(horizon) + " s (" + std::to_string(c.revolutions) + " revolutions)");
       for (double t : times) history.push_back({c.id, c.dt, t, held(t), std::nullopt});
     }
     std::stable_sort(history.begin() + static_cast<long>(first_history), history.end(),
