@@ -36,7 +36,8 @@ install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CRANKCHECK_DATA_INST
 # What the docs link to, at the same places relative to them: the examples (a consumer project, the grade gate, the
 # graded programs), the measurements' log and the engines' notes (every link of the installed docs resolves:
 # tests/package/check_install.cmake runs tests/meta/check_links.py on the install).
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/ DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/examples)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/ DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/examples
+        USE_SOURCE_PERMISSIONS)  # the example programs stay executable
 install(FILES ${PROJECT_SOURCE_DIR}/bench/README.md DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/bench)
 foreach(engine simbody_models mujoco_models)
   install(FILES ${PROJECT_SOURCE_DIR}/${engine}/README.md DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/${engine})

@@ -1,5 +1,5 @@
 """`cmake --install` puts the package into PREFIX/lib/pythonX.Y/dist-packages (Debian; site-packages elsewhere), where
-it imports and runs without the build tree: evaluate, and a grade with its report (the relay program and the
+it imports and runs without the build tree: evaluate, a grade and a grade of runs with their reports (the relay program and the
 report's gnuplot scripts found from the package's own place)."""
 import os
 import subprocess
@@ -28,6 +28,15 @@ def test_the_installed_package_runs(tmp_path):
         result = crankcheck.grade(lambda s, phi: s.evaluate(phi), [scene], quick=True, out=sys.argv[3])
         assert result.passed, result
         print(result.report)
+        # The time-stepped grade from the install: the installed RK4 example answering as a function.
+        import json, subprocess
+        rk4 = sys.argv[2] + "/share/crankcheck/examples/free_run/rk4_reduced.py"
+        def run(request):
+            out = subprocess.run([sys.executable, rk4], input=json.dumps(request) + "\\n", capture_output=True,
+                                 text=True, check=True).stdout
+            return json.loads(out)
+        runs = crankcheck.grade_free_run(run, [scene], revolutions=2, quick=True, out=sys.argv[3] + "-free-run")
+        assert runs.passed, runs.measures
     """)
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "CRANKCHECK_REPORTS_DIR")}
     env["PYTHONPATH"] = str(package)
@@ -36,3 +45,4 @@ def test_the_installed_package_runs(tmp_path):
     assert run.returncode == 0, run.stderr
     assert (tmp_path / "report" / "index.html").is_file()
     assert (tmp_path / "report" / "grade_error_vs_lambda.svg").is_file()
+    assert (tmp_path / "report-free-run" / "free_run_error_vs_time.svg").is_file()
