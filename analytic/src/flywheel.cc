@@ -7,29 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "crankcheck/analytic/gas_work.h"
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/analytic/reactions.h"
 
 namespace crankcheck::analytic {
 namespace {
-
-double cycleOf(const Mechanism& m) { return m.machine.cycle == Cycle::kFourStroke ? 4.0 * M_PI : 2.0 * M_PI; }
-
-// The cycle's grid: 0.1 degree steps and the pressure table's corners of every cylinder, sorted, from 0 to the cycle.
-std::vector<double> cycleGrid(const Mechanism& m) {
-  const double cycle = cycleOf(m);
-  std::vector<double> grid;
-  const int n = static_cast<int>(std::lround(degreesFromRadians(cycle) * 10.0));
-  for (int i = 0; i <= n; ++i) grid.push_back(cycle * i / n);
-  for (size_t j = 0; j < m.firing_angles.size(); ++j)
-    for (double a : m.gas->cycle_angles) grid.push_back(std::fmod(std::fmod(m.firing_angles[j] + a, cycle) + cycle, cycle));
-  std::sort(grid.begin(), grid.end());
-  std::vector<double> out;
-  for (double x : grid)
-    if (out.empty() || x - out.back() > 1e-12) out.push_back(x);
-  return out;
-}
 
 // What the steady run needs at each grid node, independent of I_f: J, W - T_L phi - U (T_L from W over the cycle).
 struct CycleData {
@@ -39,26 +23,16 @@ struct CycleData {
 };
 
 CycleData calcCycleData(const Mechanism& m) {
-  static const double kNodes[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
-                                   0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
-  static const double kWeights[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
-                                     0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+  const GasWork gas(m);  // W at the cycle's grid (0.1 degree and every pressure-table corner)
   CycleData d;
-  d.cycle = cycleOf(m);
-  d.phi = cycleGrid(m);
+  d.cycle = gas.getCycle();
+  d.phi = gas.getGrid();
+  d.load_torque = gas.getMeanTorque();
   Mechanism bare = m;
   bare.flywheel_inertia = 0.0;  // the flywheel is I_f, added below
-  std::vector<double> W(d.phi.size(), 0.0);
-  for (size_t i = 1; i < d.phi.size(); ++i) {
-    const double a = d.phi[i - 1], b = d.phi[i], half = 0.5 * (b - a), mid = 0.5 * (a + b);
-    double sum = 0.0;
-    for (int q = 0; q < 8; ++q) sum += kWeights[q] * calcGasTorque(m, mid + half * kNodes[q]);
-    W[i] = W[i - 1] + half * sum;
-  }
-  d.load_torque = W.back() / d.cycle;
   for (size_t i = 0; i < d.phi.size(); ++i) {
     d.J.push_back(calcReducedInertia(bare, d.phi[i]).J);
-    d.work.push_back(W[i] - d.load_torque * d.phi[i] - calcPotentialEnergy(m, d.phi[i]));
+    d.work.push_back(gas.getNodeWork()[i] - d.load_torque * d.phi[i] - calcPotentialEnergy(m, d.phi[i]));
   }
   return d;
 }
