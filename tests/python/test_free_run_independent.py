@@ -310,7 +310,7 @@ def test_the_measures_agree_with_an_independent_computation(euler, tmp_path, dt)
     for name, g, m, _ in pairs:
         assert abs(m - g) <= 1e-6 * abs(g), (name, g, m)
     # The energy trend and the phase are properties of the trajectory, not of its reading: a reading of degree 7 gives
-    # them within 1e-6 as well (measured: 3e-10 and 2e-11 at 1e-4 s, smaller below). Delta is not asserted so: this
+    # them within 1e-6 as well (to 3e-10 or better at these steps). Delta is not asserted so: this
     # run's fastest instant of its first revolution lies between its first two speeds, which are equal (omega0 at t = 0,
     # and at dt / 2 omega0 + dt a(0) with a(0) = 0 at the dead centre), so its refined maximum is an overshoot of the
     # interpolant of size O(dt^2) (2.3e-4 rad/s at 1e-4 s) that depends on the degree by some 10 %: delta moves by
