@@ -5,10 +5,15 @@
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
+#include <tuple>
+#include <optional>
+#include <memory>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "crankcheck/analytic/gas_work.h"
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/validation/extremum.h"
@@ -31,7 +36,7 @@ void checkStrictlyIncreasing(const std::vector<double>& v, const char* what, con
   }
 }
 
-void checkRun(const Mechanism& m, const SteppedRun& run, const char* who) {
+void checkRun(const Mechanism& m, const SteppedRun& run, const RunLoad& load, const char* who) {
   if (run.phi.size() != run.time.size() || run.omega.size() != run.time.size())
     throw std::invalid_argument(std::string(who) + ": time, phi and omega must have as many samples (" +
                                 std::to_string(run.time.size()) + ", " + std::to_string(run.phi.size()) + ", " +
@@ -46,14 +51,16 @@ void checkRun(const Mechanism& m, const SteppedRun& run, const char* who) {
       throw std::invalid_argument(std::string(who) + ": omega[" + std::to_string(i) + "] is not finite");
   if (!m.flywheel_inertia)
     throw std::invalid_argument(std::string(who) + ": the scene needs the flywheel inertia [flywheel].inertia");
-  if (m.gas)
-    throw std::invalid_argument(std::string(who) + ": the scene has a [gas] table; these measures judge a free run "
-                                "under gravity alone");
+  if (m.gas && !load.gas)
+    throw std::invalid_argument(std::string(who) + ": the scene has a [gas] table; a free run is judged under gravity "
+                                "alone (RunLoad::gas for a run under gas)");
+  if (load.gas && !m.gas) throw std::invalid_argument(std::string(who) + ": a run under gas needs the scene's [gas] table");
 }
 
-void checkOneRevolution(const SteppedRun& run, const char* who) {
-  if (run.phi.back() - run.phi.front() < kTwoPi)
-    throw std::invalid_argument(std::string(who) + ": the run is shorter than one revolution (" +
+void checkOnePeriod(const SteppedRun& run, double period, const char* who) {
+  if (run.phi.back() - run.phi.front() < period)
+    throw std::invalid_argument(std::string(who) + ": the run is shorter than one " +
+                                (period > kTwoPi ? "working cycle" : "revolution") + " (" +
                                 std::to_string(run.phi.back() - run.phi.front()) + " rad)");
 }
 
@@ -115,10 +122,6 @@ double SteppedRunReader::findTimeAtPhase(double target) const {
 
 namespace {
 
-double energyAt(const Mechanism& m, double phi, double omega) {
-  return 0.5 * analytic::calcReducedInertia(m, phi).J * omega * omega + analytic::calcPotentialEnergy(m, phi);
-}
-
 double leastSquaresSlope(const std::vector<double>& x, const std::vector<double>& y) {
   const double n = static_cast<double>(x.size());
   double mx = 0.0, my = 0.0;
@@ -130,50 +133,178 @@ double leastSquaresSlope(const std::vector<double>& x, const std::vector<double>
   return sxy / sxx;
 }
 
-double wrapAngle(double a) {  // to (-pi, pi]
-  a = std::remainder(a, kTwoPi);
-  return a <= -M_PI ? a + kTwoPi : a;
+double wrapAngle(double a, double period) {  // to (-period / 2, period / 2]
+  a = std::remainder(a, period);
+  return a <= -0.5 * period ? a + period : a;
 }
 
-// Release speed at phi = 0 of the free run with energy E (U(0) = 0 by the convention of potential_energy.h).
-double releaseSpeed(const Mechanism& m, double E) {
-  const double v2 = 2.0 * E / analytic::calcReducedInertia(m, 0.0).J;
+// What the exact run conserves, and its period: a free run (gravity alone) conserves E = (1/2) J omega^2 + U over a
+// revolution; a run under gas with the cycle-mean load conserves E - W(phi) + T_L phi (gas_work.h), periodic over the
+// working cycle.
+class RunInvariant {
+ public:
+  RunInvariant(const Mechanism& m, const RunLoad& load) : m_(m) {
+    if (load.gas) gas_.emplace(m);
+  }
+  double getPeriod() const { return gas_ ? gas_->getCycle() : kTwoPi; }
+  double getLoadTorque() const { return gas_ ? gas_->getMeanTorque() : 0.0; }
+  /// The invariant's value at a state.
+  double calcValue(double phi, double omega) const {
+    const double e = 0.5 * analytic::calcReducedInertia(m_, phi).J * omega * omega + analytic::calcPotentialEnergy(m_, phi);
+    return gas_ ? e - (gas_->calcWork(phi) - gas_->getMeanTorque() * phi) : e;
+  }
+  /// The exact run's speed at phi for the invariant's value `value`. @throws std::domain_error where it cannot turn.
+  double calcSpeed(double phi, double value) const {
+    const double potential = analytic::calcPotentialEnergy(m_, phi) -
+                             (gas_ ? gas_->calcWork(phi) - gas_->getMeanTorque() * phi : 0.0);
+    const double v2 = 2.0 * (value - potential) / analytic::calcReducedInertia(m_, phi).J;
+    if (!(v2 > 0.0))
+      throw std::domain_error("the exact run does not reach phi = " + std::to_string(phi) + " rad (it stops before)");
+    return std::sqrt(v2);
+  }
+  const analytic::GasWork* getGasWork() const { return gas_ ? &*gas_ : nullptr; }
+
+ private:
+  const Mechanism& m_;
+  std::optional<analytic::GasWork> gas_;
+};
+
+// The exact run through a state, over its period: its speed at any phase, its extremes and mean speed, and the time it
+// takes from phi = 0 to any phase.
+struct ExactRun {
+  double period = 0.0;
+  std::function<double(double)> speed;    // [rad/s] at phi
+  double omega_max = 0.0, omega_min = 0.0, omega_mean = 0.0;
+  double phi_at_omega_max = 0.0, phi_at_omega_min = 0.0;  // in [0, period)
+  std::function<double(double)> elapsed;  // [s] from phi = 0 (monotone)
+};
+
+// The free run (analytic/motion.h) with speed omega_zero at phi = 0: its extremes to double precision, its time by
+// Gauss-Kronrod over whole turns and the rest (the turn's time by the same quadrature, so that t(phi) has no step).
+ExactRun makeFreeRun(const Mechanism& m, double omega_zero) {
+  const analytic::FreeRun turn = analytic::calcFreeRun(m, omega_zero);  // throws if it does not turn over
+  ExactRun out;
+  out.period = kTwoPi;
+  out.speed = [&m, omega_zero](double p) { return analytic::calcFreeRunSpeed(m, omega_zero, p); };
+  out.omega_max = turn.omega_max;
+  out.omega_min = turn.omega_min;
+  out.omega_mean = turn.omega_mean;
+  out.phi_at_omega_max = turn.phi_at_omega_max;
+  out.phi_at_omega_min = turn.phi_at_omega_min;
+  auto integral = [&m, omega_zero](double to) {
+    auto slowness = [&](double p) { return 1.0 / analytic::calcFreeRunSpeed(m, omega_zero, p); };
+    return to > 0.0 ? boost::math::quadrature::gauss_kronrod<double, 61>::integrate(slowness, 0.0, to, 10, 1e-11) : 0.0;
+  };
+  const double period_time = integral(kTwoPi);
+  out.elapsed = [integral, period_time](double p) {
+    const double turns = std::floor(p / kTwoPi);
+    return turns * period_time + integral(p - turns * kTwoPi);
+  };
+  return out;
+}
+
+// The run under gas with the cycle-mean load through invariant value `value`: periodic over the working cycle. Its
+// time by 8-point Gauss-Legendre on every interval of the gas work's grid (0.1 degree and every pressure corner: the
+// speed is smooth between them), its extremes from the grid's nodes refined by Brent's method on the two intervals
+// around the best.
+ExactRun makeGasRun(const RunInvariant& invariant, double value) {
+  static const double kNodes[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
+                                   0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
+  static const double kWeights[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
+                                     0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+  const analytic::GasWork& gas = *invariant.getGasWork();
+  const std::vector<double>& grid = gas.getGrid();
+  auto speed = [&invariant, value](double p) { return invariant.calcSpeed(p, value); };
+  auto cellTime = [speed](double a, double b) {
+    const double half = 0.5 * (b - a), mid = 0.5 * (a + b);
+    double sum = 0.0;
+    for (int q = 0; q < 8; ++q) sum += kWeights[q] / speed(mid + half * kNodes[q]);
+    return half * sum;
+  };
+  auto times = std::make_shared<std::vector<double>>(grid.size(), 0.0);
+  std::vector<double> node_speed(grid.size());
+  for (size_t i = 0; i < grid.size(); ++i) {
+    node_speed[i] = speed(grid[i]);
+    if (i > 0) (*times)[i] = (*times)[i - 1] + cellTime(grid[i - 1], grid[i]);
+  }
+  ExactRun out;
+  out.period = gas.getCycle();
+  out.speed = speed;
+  out.omega_mean = out.period / times->back();
+  const size_t n = grid.size() - 1;  // grid[n] = the cycle = grid[0] + cycle
+  auto refine = [&](size_t i, double sign) {
+    const double a = i == 0 ? grid[n - 1] - out.period : grid[i - 1], b = grid[i + 1 > n ? 1 : i + 1] + (i == n ? out.period : 0.0);
+    const double lift = 2.0 * *std::max_element(node_speed.begin(), node_speed.end());
+    const TurnMaximum best = refineMaxAbs([&](double p) { return lift + sign * speed(p); }, a, b);
+    return std::pair{sign * (best.value - lift), std::fmod(std::fmod(best.phi, out.period) + out.period, out.period)};
+  };
+  const size_t imax = static_cast<size_t>(std::max_element(node_speed.begin(), node_speed.end() - 1) - node_speed.begin());
+  const size_t imin = static_cast<size_t>(std::min_element(node_speed.begin(), node_speed.end() - 1) - node_speed.begin());
+  std::tie(out.omega_max, out.phi_at_omega_max) = refine(imax, 1.0);
+  std::tie(out.omega_min, out.phi_at_omega_min) = refine(imin, -1.0);
+  out.omega_max = std::max(out.omega_max, node_speed[imax]);
+  out.omega_min = std::min(-out.omega_min, node_speed[imin]);
+  const double cycle_time = times->back(), cycle = out.period;
+  out.elapsed = [grid, times, cellTime, cycle_time, cycle](double p) {
+    const double cycles = std::floor(p / cycle);
+    const double rest = p - cycles * cycle;
+    const size_t i = std::min(static_cast<size_t>(std::upper_bound(grid.begin(), grid.end(), rest) - grid.begin()) - 1,
+                              grid.size() - 2);
+    return cycles * cycle_time + (*times)[i] + cellTime(grid[i], rest);
+  };
+  return out;
+}
+
+// The exact run with speed omega at phase phi (for a free run: released at phi = 0 with the same energy).
+ExactRun makeExactRun(const Mechanism& m, const RunInvariant& invariant, double phi, double omega) {
+  const double value = invariant.calcValue(phi, omega);
+  if (invariant.getGasWork()) return makeGasRun(invariant, value);
+  // U(0) = 0 by the convention of potential_energy.h: the release speed at phi = 0 with energy `value`.
+  const double v2 = 2.0 * value / analytic::calcReducedInertia(m, 0.0).J;
   if (!(v2 > 0.0)) throw std::domain_error("the exact free run does not reach phi = 0 (its energy is not > 0)");
-  return std::sqrt(v2);
+  return makeFreeRun(m, std::sqrt(v2));
 }
 
 }  // namespace
 
-std::vector<double> calcEnergyAtTurns(const Mechanism& m, const SteppedRun& run) {
+std::vector<double> calcEnergyAtTurns(const Mechanism& m, const SteppedRun& run, const RunLoad& load) {
   constexpr const char* kWho = "calcEnergyAtTurns";
-  checkRun(m, run, kWho);
-  checkOneRevolution(run, kWho);
+  checkRun(m, run, load, kWho);
+  const RunInvariant invariant(m, load);
+  const double period = invariant.getPeriod();
+  checkOnePeriod(run, period, kWho);
   const SteppedRunReader reader(run);
   const double phi0 = run.phi.front();
-  const int turns = static_cast<int>(std::floor((run.phi.back() - phi0) / kTwoPi));
+  const int turns = static_cast<int>(std::floor((run.phi.back() - phi0) / period));
   std::vector<double> energy;
   for (int i = 0; i <= turns; ++i) {
-    const double phase = phi0 + kTwoPi * i;
+    const double phase = phi0 + period * i;
     if (phase > run.phi.back()) break;
-    energy.push_back(energyAt(m, phase, reader.findOmegaAtPhase(phase)));
+    energy.push_back(invariant.calcValue(phase, reader.findOmegaAtPhase(phase)));
   }
   return energy;
 }
 
-double calcEnergyTrend(const Mechanism& m, const SteppedRun& run) {
-  const std::vector<double> energy = calcEnergyAtTurns(m, run);
+double calcEnergyTrend(const Mechanism& m, const SteppedRun& run, const RunLoad& load) {
+  const std::vector<double> energy = calcEnergyAtTurns(m, run, load);
   std::vector<double> k;
   for (size_t i = 0; i < energy.size(); ++i) k.push_back(static_cast<double>(i));
-  return leastSquaresSlope(k, energy) / energy.front();
+  const SteppedRunReader reader(run);
+  // Relative to the kinetic and potential energy at the start (the invariant's value there, less the gas terms).
+  const double phi0 = run.phi.front(), omega0 = reader.findOmegaAtPhase(phi0);
+  const double start = 0.5 * analytic::calcReducedInertia(m, phi0).J * omega0 * omega0 + analytic::calcPotentialEnergy(m, phi0);
+  return leastSquaresSlope(k, energy) / (load.gas ? start : energy.front());
 }
 
-SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const SteppedRun& run) {
+SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const SteppedRun& run, const RunLoad& load) {
   constexpr const char* kWho = "calcSpeedFluctuation";
-  checkRun(m, run, kWho);
-  checkOneRevolution(run, kWho);
+  checkRun(m, run, load, kWho);
+  const RunInvariant invariant(m, load);
+  const double period = invariant.getPeriod();
+  checkOnePeriod(run, period, kWho);
   const SteppedRunReader reader(run);
-  const double phi0 = run.phi.front(), phi1 = phi0 + kTwoPi;
-  // omega against phase over the first revolution: the samples in it and its end, then the extremes refined.
+  const double phi0 = run.phi.front(), phi1 = phi0 + period;
+  // omega against phase over the first period: the samples in it and its end, then the extremes refined.
   std::vector<double> phase, omega;
   for (size_t i = 0; i < run.phi.size() && run.phi[i] < phi1; ++i) {
     phase.push_back(run.phi[i]);
@@ -195,40 +326,42 @@ SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Steppe
   const double omega_max = std::max(top.value, omega[imax]), omega_min = std::min(ceiling - bottom.value, omega[imin]);
   const double phi_max = top.value >= omega[imax] ? top.phi : phase[imax];
   const double phi_min = ceiling - bottom.value <= omega[imin] ? bottom.phi : phase[imin];
-  const double omega_mean = kTwoPi / (reader.findTimeAtPhase(phi1) - run.time.front());
+  const double omega_mean = period / (reader.findTimeAtPhase(phi1) - run.time.front());
 
   SpeedFluctuationComparison out;
   out.run.delta = (omega_max - omega_min) / omega_mean;
-  out.run.phi_at_omega_max = std::fmod(std::fmod(phi_max, kTwoPi) + kTwoPi, kTwoPi);
-  out.run.phi_at_omega_min = std::fmod(std::fmod(phi_min, kTwoPi) + kTwoPi, kTwoPi);
-  // The exact free run, released at phi = 0 with the run's omega at its first phi = 0 (mod 2 pi).
-  const double zero = kTwoPi * std::ceil(phi0 / kTwoPi);
+  out.run.phi_at_omega_max = std::fmod(std::fmod(phi_max, period) + period, period);
+  out.run.phi_at_omega_min = std::fmod(std::fmod(phi_min, period) + period, period);
+  // The exact run through the run's state at its first phi = 0 (mod the period).
+  const double zero = period * std::ceil(phi0 / period);
   out.omega_at_zero = reader.findOmegaAtPhase(zero);
-  const analytic::FreeRun exact = analytic::calcFreeRun(m, out.omega_at_zero);
-  out.exact = {exact.delta, exact.phi_at_omega_max, exact.phi_at_omega_min};
+  const ExactRun exact = makeExactRun(m, invariant, zero, out.omega_at_zero);
+  out.exact = {(exact.omega_max - exact.omega_min) / exact.omega_mean, exact.phi_at_omega_max, exact.phi_at_omega_min};
+  if (!load.gas) out.exact.delta = analytic::calcFreeRun(m, out.omega_at_zero).delta;  // the analytic engine's own
   out.delta_error = out.run.delta - out.exact.delta;
   // An extreme can be reached at several phases with speeds the run cannot tell apart (a centric standing single:
   // omega(phi) = omega(-phi), two equal minima; an inline four: two equal humps a turn): the run's phase is compared
   // with the nearest of the exact run's local extremes whose speed is within the run's own speed error of the extreme:
-  // |delta error| x omega_mean, or the run's change of speed over the revolution (a run that loses energy is fastest
+  // |delta error| x omega_mean, or the run's change of speed over the period (a run that loses energy is fastest
   // where it starts), at least rounding.
   const double drift = std::fabs(reader.findOmegaAtPhase(phi1) - reader.findOmegaAtPhase(phi0));  // 0 on the exact run
   const double speed_error =
       std::max({std::fabs(out.delta_error) * omega_mean, drift, 64.0 * kEpsilon * exact.omega_max});
+  const int samples = static_cast<int>(std::lround(720.0 * period / kTwoPi));
   auto nearest = [&](double run_phase, double exact_phase, double extreme, double sign) {
-    double best = wrapAngle(run_phase - exact_phase);
-    constexpr int kSamples = 720;
-    auto w = [&](double p) { return sign * analytic::calcFreeRunSpeed(m, out.omega_at_zero, p); };
-    std::vector<double> v(kSamples);
-    for (int i = 0; i < kSamples; ++i) v[static_cast<size_t>(i)] = w(kTwoPi * i / kSamples);
-    for (int i = 0; i < kSamples; ++i) {
-      const double here = v[static_cast<size_t>(i)];
-      if (!(here >= v[static_cast<size_t>((i + kSamples - 1) % kSamples)] && here >= v[static_cast<size_t>((i + 1) % kSamples)]))
+    double best = wrapAngle(run_phase - exact_phase, period);
+    auto v = [&](double p) { return sign * exact.speed(p); };
+    std::vector<double> values(static_cast<size_t>(samples));
+    for (int i = 0; i < samples; ++i) values[static_cast<size_t>(i)] = v(period * i / samples);
+    for (int i = 0; i < samples; ++i) {
+      const double here = values[static_cast<size_t>(i)];
+      if (!(here >= values[static_cast<size_t>((i + samples - 1) % samples)] &&
+            here >= values[static_cast<size_t>((i + 1) % samples)]))
         continue;  // not a local extreme of the samples
-      const TurnMaximum local = refineMaxAbs([&](double p) { return w(p) + 2.0 * exact.omega_max; },
-                                             kTwoPi * (i - 1) / kSamples, kTwoPi * (i + 1) / kSamples);
+      const TurnMaximum local = refineMaxAbs([&](double p) { return v(p) + 2.0 * exact.omega_max; },
+                                             period * (i - 1) / samples, period * (i + 1) / samples);
       if (std::fabs(local.value - 2.0 * exact.omega_max - sign * extreme) > speed_error) continue;
-      const double error = wrapAngle(run_phase - local.phi);
+      const double error = wrapAngle(run_phase - local.phi, period);
       if (std::fabs(error) < std::fabs(best)) best = error;
     }
     return best;
@@ -238,9 +371,10 @@ SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Steppe
   return out;
 }
 
-std::vector<double> calcPhaseErrors(const Mechanism& m, const SteppedRun& run, const std::vector<double>& horizons) {
+std::vector<double> calcPhaseErrors(const Mechanism& m, const SteppedRun& run, const std::vector<double>& horizons,
+                                    const RunLoad& load) {
   constexpr const char* kWho = "calcPhaseError";
-  checkRun(m, run, kWho);
+  checkRun(m, run, load, kWho);
   for (double horizon : horizons)
     if (!(horizon >= run.time.front() && horizon <= run.time.back()))
       throw std::invalid_argument(std::string(kWho) + ": the horizon " + std::to_string(horizon) +
@@ -248,20 +382,9 @@ std::vector<double> calcPhaseErrors(const Mechanism& m, const SteppedRun& run, c
                                   std::to_string(run.time.back()) + "] s");
   const SteppedRunReader reader(run);
   const double t0 = run.time.front(), phi0 = run.phi.front();
-  const double omega0 = releaseSpeed(m, energyAt(m, phi0, reader.findOmega(t0)));
-  const analytic::FreeRun turn = analytic::calcFreeRun(m, omega0);  // throws if it does not turn over
-  auto slowness = [&](double p) { return 1.0 / analytic::calcFreeRunSpeed(m, omega0, p); };
-  auto integral = [&](double to) {
-    return to > 0.0 ? boost::math::quadrature::gauss_kronrod<double, 61>::integrate(slowness, 0.0, to, 10, 1e-11) : 0.0;
-  };
-  // t(phi) from phi = 0: whole turns times one turn's time plus the rest's integral (the turn's time by the same
-  // quadrature as the rest's, so that t(phi) has no step at a whole turn).
-  const double period = integral(kTwoPi);
-  auto elapsed = [&](double p) {
-    const double turns = std::floor(p / kTwoPi);
-    return turns * period + integral(p - turns * kTwoPi);
-  };
-  const double start = elapsed(phi0);
+  const RunInvariant invariant(m, load);
+  const ExactRun exact = makeExactRun(m, invariant, phi0, reader.findOmega(t0));  // throws if it does not turn over
+  const double start = exact.elapsed(phi0);
   std::vector<double> out;
   for (double horizon : horizons) {
     const double dt = horizon - t0;
@@ -270,9 +393,9 @@ std::vector<double> calcPhaseErrors(const Mechanism& m, const SteppedRun& run, c
       continue;
     }
     const double target = start + dt;
-    auto g = [&](double p) { return elapsed(p) - target; };
+    auto g = [&](double p) { return exact.elapsed(p) - target; };
     // phi advances at least omega_min and at most omega_max per second.
-    double a = phi0 + turn.omega_min * dt, b = phi0 + turn.omega_max * dt;
+    double a = phi0 + exact.omega_min * dt, b = phi0 + exact.omega_max * dt;
     const double margin = 1e-9 * (std::fabs(b) + 1.0);
     a -= margin;
     b += margin;
@@ -284,8 +407,8 @@ std::vector<double> calcPhaseErrors(const Mechanism& m, const SteppedRun& run, c
   return out;
 }
 
-double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon) {
-  return calcPhaseErrors(m, run, {horizon}).front();
+double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon, const RunLoad& load) {
+  return calcPhaseErrors(m, run, {horizon}, load).front();
 }
 
 double calcObservedOrder(const std::vector<double>& steps, const std::vector<double>& errors) {

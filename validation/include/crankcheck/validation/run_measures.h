@@ -46,6 +46,15 @@ class SteppedRunReader {
   std::vector<double> omega_time_, omega_;
 };
 
+/// What acts on the crank in the run besides gravity.
+struct RunLoad {
+  /// false: nothing (a free run; the scene must have no [gas]; the measures' period is a revolution). true: the scene's
+  /// gas pressure on the pistons and a constant load torque against the crank equal to the gas torque's cycle mean
+  /// (gas_work.h), so that the exact run is periodic over the working cycle (4 pi four-stroke, 2 pi two-stroke), the
+  /// measures' period; its invariant is E - W(phi) + T_L phi.
+  bool gas = false;
+};
+
 /// The fewest samples a run may have (the interpolation's six, and one more for a half-step-behind omega).
 inline constexpr int kMinRunSamples = 8;
 
@@ -55,10 +64,10 @@ inline constexpr int kMinRunSamples = 8;
 /// of E; only the loss or gain per revolution does.
 /// @throws std::invalid_argument if the run is malformed (sizes differ, fewer than kMinRunSamples, NaN, time or phi not
 ///         strictly increasing), the scene has no flywheel inertia, or the run is shorter than one revolution.
-double calcEnergyTrend(const Mechanism& m, const SteppedRun& run);
+double calcEnergyTrend(const Mechanism& m, const SteppedRun& run, const RunLoad& load = {});
 /// The energies E_k [J] that calcEnergyTrend fits, k = 0, 1, ... (every crossing of phi(0) + 2 pi k within the run).
 /// @throws std::invalid_argument as calcEnergyTrend.
-std::vector<double> calcEnergyAtTurns(const Mechanism& m, const SteppedRun& run);
+std::vector<double> calcEnergyAtTurns(const Mechanism& m, const SteppedRun& run, const RunLoad& load = {});
 
 /// The speed's fluctuation over one revolution.
 struct SpeedFluctuationOfRun {
@@ -85,7 +94,7 @@ struct SpeedFluctuationComparison {
 /// The speed fluctuation of the run's first revolution and of the exact free run.
 /// @throws std::invalid_argument as calcEnergyTrend; std::domain_error if the exact free run does not complete a
 ///         revolution at that release speed.
-SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const SteppedRun& run);
+SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const SteppedRun& run, const RunLoad& load = {});
 
 /// [rad] phi_run(horizon) - phi_exact(horizon): phi_run read at time `horizon` [s] (a time of the run, between its first
 /// and its last sample), phi_exact the free run through the run's first state (phi(0), and omega read at time(0)),
@@ -93,9 +102,10 @@ SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Steppe
 /// rest (Gauss-Kronrod quadrature), inverted by TOMS 748.
 /// @throws std::invalid_argument if the run is malformed (as calcEnergyTrend), the scene has no flywheel inertia, or
 ///         horizon is outside [time.front(), time.back()]; std::domain_error if the exact run does not turn over.
-double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon);
+double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon, const RunLoad& load = {});
 /// calcPhaseError at each of `horizons` (the exact run's quadrature set up once).
-std::vector<double> calcPhaseErrors(const Mechanism& m, const SteppedRun& run, const std::vector<double>& horizons);
+std::vector<double> calcPhaseErrors(const Mechanism& m, const SteppedRun& run, const std::vector<double>& horizons,
+                                    const RunLoad& load = {});
 
 /// The observed order of convergence: the least-squares slope of log|error| against log(step).
 /// @throws std::invalid_argument if the sizes differ, there are fewer than 2 points, a step is not finite and > 0, an
