@@ -47,9 +47,10 @@ void addGradeOptions(CLI::App& command, GradeOptions& options) {
                    "Grade a time-stepped run (protocol 2): the program steps the crank train through time and answers "
                    "its trajectory; the energy's trend, the speed fluctuation and the phase are measured against the "
                    "exact run (one scene at least; docs/grade.md, \"Time-stepped runs\")");
-  command.add_option("--drive", options.drive, "--free-run: free (no drive, no load, gravity alone) or held (the crank "
-                     "held at the scene's speed; the program reports the torque it takes)")
-      ->check(CLI::IsMember({"free", "held"}))
+  command.add_option("--drive", options.drive, "--free-run: free (no drive, no load, gravity alone), held (the crank "
+                     "held at the scene's speed; the program reports the torque it takes) or loaded (the scene's gas "
+                     "against a constant load, the gas torque's cycle mean: the working cycle's steady run)")
+      ->check(CLI::IsMember({"free", "held", "loaded"}))
       ->capture_default_str();
   command.add_option("--revolutions", options.revolutions, "--free-run: the horizon, in revolutions of the exact run")
       ->check(CLI::Range(1, 100000))
@@ -234,7 +235,9 @@ int runFreeRunGrade(const GradeOptions& options) {
     throw UsageError("grade --free-run: give the scene file(s) to run (a scene with [flywheel] for a free run): " +
                      std::string(usage));
   validation::RunSettings settings;
-  settings.drive = options.drive == "held" ? validation::RunDrive::kHeld : validation::RunDrive::kFree;
+  settings.drive = options.drive == "held"     ? validation::RunDrive::kHeld
+                   : options.drive == "loaded" ? validation::RunDrive::kLoaded
+                                               : validation::RunDrive::kFree;
   settings.revolutions = options.revolutions;
   settings.dt_sweep = options.dt_sweep;
   settings.own_step = options.dt == "own";

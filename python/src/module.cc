@@ -543,12 +543,15 @@ py::dict gradeFreeRun(const std::vector<py::object>& scenes, const std::string& 
                       bool quick, double timeout_seconds, const std::optional<py::object>& out,
                       const py::function& answer, const std::string& program_name) {
   if (scenes.empty()) throw py::value_error("scenes: give at least one scene (a scene with [flywheel] for a free run)");
-  if (drive != "free" && drive != "held") throw py::value_error("drive: \"free\" or \"held\", not \"" + drive + "\"");
+  if (drive != "free" && drive != "held" && drive != "loaded")
+    throw py::value_error("drive: \"free\", \"held\" or \"loaded\", not \"" + drive + "\"");
   if (tolerances.size() != 5) throw std::logic_error("gradeFreeRun: five tolerances");
   for (double t : tolerances)
     if (!(t >= 0.0) || !std::isfinite(t)) throw py::value_error("tolerances: each a finite number >= 0");
   validation::RunSettings settings;
-  settings.drive = drive == "held" ? validation::RunDrive::kHeld : validation::RunDrive::kFree;
+  settings.drive = drive == "held"     ? validation::RunDrive::kHeld
+                   : drive == "loaded" ? validation::RunDrive::kLoaded
+                                       : validation::RunDrive::kFree;
   settings.revolutions = revolutions;
   settings.dt = dt;
   settings.own_step = own_step;

@@ -8,6 +8,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "crankcheck/analytic/flywheel.h"
+#include "crankcheck/analytic/gas_work.h"
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/quantities.h"
@@ -38,6 +40,7 @@ struct MeasureInfo {
   const char* unit;
 };
 const MeasureInfo kEnergyTrend{"energy_trend", "1/rev"};
+const MeasureInfo kEnergyTrendPerCycle{"energy_trend", "1/cycle"};  // a four-stroke's working cycle under gas
 const MeasureInfo kDelta{"delta", "-"};
 const MeasureInfo kPhiAtOmegaMax{"phi_at_omega_max", "deg"};
 const MeasureInfo kPhiAtOmegaMin{"phi_at_omega_min", "deg"};
@@ -45,23 +48,25 @@ const MeasureInfo kPhase{"phase", "rad"};
 
 std::string verdictOf(double error, double tolerance) { return error <= tolerance ? "pass" : "FAIL"; }
 
-std::string describeDt(const std::optional<double>& dt) { return dt ? formatNumber(*dt) + " s" : "its own step"; }
-
 // The exact values at a state the program reached: the crank at phi turning at omega, its angular acceleration that of
-// the equation of motion there (free: no drive, gravity alone: Lagrange's J phi'' + 1/2 J' phi'^2 + Q = 0; held: 0, the
-// drive supplying whatever torque that takes).
+// the equation of motion there (free: no drive, gravity alone: Lagrange's J phi'' + 1/2 J' phi'^2 + Q = 0; loaded: the
+// gas torque less the load on the right; held: 0, the drive supplying whatever torque that takes).
 Evaluation calcExactValuesAt(const RunCase& c, double phi, double omega) {
-  const double alpha = c.drive == RunDrive::kFree ? analytic::calcCrankAcceleration(c.mechanism, phi, omega, 0.0) : 0.0;
+  const double net = c.drive == RunDrive::kLoaded ? analytic::calcGasTorque(c.mechanism, phi) - c.load_torque : 0.0;
+  const double alpha =
+      c.drive == RunDrive::kHeld ? 0.0 : analytic::calcCrankAcceleration(c.mechanism, phi, omega, net);
   return analytic::calcEvaluationAtState(c.mechanism, phi, omega, alpha);
 }
 
 }  // namespace
 
-const char* nameOf(RunDrive drive) { return drive == RunDrive::kFree ? "free" : "held"; }
+const char* nameOf(RunDrive drive) {
+  return drive == RunDrive::kFree ? "free" : drive == RunDrive::kHeld ? "held" : "loaded";
+}
 
 double calcRunPeriod(const Mechanism& m, RunDrive drive) {
   if (!(m.machine.speed > 0.0)) throw std::invalid_argument("calcRunPeriod: the scene has no speed");
-  if (drive == RunDrive::kHeld) return kTwoPi / m.machine.speed;
+  if (drive != RunDrive::kFree) return kTwoPi / m.machine.speed;  // loaded: the steady run's mean speed is the scene's
   Mechanism free = m;
   free.gas.reset();
   return kTwoPi / analytic::calcFreeRun(free, m.machine.speed).omega_mean;
@@ -72,22 +77,35 @@ double getDefaultRunStep(const Mechanism& m, RunDrive drive) { return calcRunPer
 std::vector<RunCase> buildRunCases(const Mechanism& scene, const RunSettings& settings) {
   const std::string& name = scene.name;
   if (!(scene.machine.speed > 0.0))
-    throw UsageError(name + ": [engine].speed_rpm: a time-stepped run starts at the scene's speed; give one > 0");
+    throw UsageError("[engine].speed_rpm: a time-stepped run starts at the scene's speed; give one > 0");
   if (settings.revolutions < 1) throw UsageError("--revolutions: at least 1");
   if (settings.dt_sweep < 1) throw UsageError("--dt-sweep: at least 1");
   Mechanism m = scene;
   m.crankshaft.reset();  // the rigid shaft
-  if (settings.drive == RunDrive::kFree) {
-    m.gas.reset();  // a free run under gravity alone
-    if (!m.flywheel_inertia)
-      throw UsageError(name + ": [flywheel].inertia: a free run needs the flywheel's inertia (the measures are per "
-                       "revolution of a crank that keeps turning); add a [flywheel] table");
+  if (settings.drive == RunDrive::kFree) m.gas.reset();  // a free run under gravity alone
+  if (settings.drive != RunDrive::kHeld && !m.flywheel_inertia)
+    throw UsageError(std::string("[flywheel].inertia: a ") + nameOf(settings.drive) + " run needs the flywheel's "
+                     "inertia (the measures are per revolution of a crank that keeps turning); add a [flywheel] table");
+  if (settings.drive == RunDrive::kLoaded && !m.gas)
+    throw UsageError("[gas]: a loaded run is driven by the gas pressure against a constant load; add a [gas] "
+                     "table (or run it --drive free)");
+  // Loaded: the load is the gas torque's cycle mean and the run starts at the steady run's speed at phi = 0, so that the
+  // exact run is periodic over the working cycle at the scene's mean speed (analytic/flywheel.h).
+  double load_torque = 0.0, omega0 = m.machine.speed;
+  if (settings.drive == RunDrive::kLoaded) {
+    try {
+      load_torque = analytic::GasWork(m).getMeanTorque();
+      omega0 = analytic::calcSteadyRun(m, *m.flywheel_inertia, load_torque).omega0;
+    } catch (const std::domain_error&) {
+      throw UsageError("[flywheel].inertia: the crank under this gas and its mean load does not keep turning "
+                       "at the scene's speed; a loaded run needs a larger flywheel");
+    }
   }
   double period = 0.0;
   try {
     period = calcRunPeriod(m, settings.drive);
   } catch (const std::domain_error&) {
-    throw UsageError(name + ": the crank released at " + formatNumber(scene.speed_rpm) +
+    throw UsageError("the crank released at " + formatNumber(scene.speed_rpm) +
                      " rpm does not turn over against gravity; a free run needs a higher [engine].speed_rpm");
   }
   const double first = settings.dt && !settings.own_step ? *settings.dt : period / 720.0;
@@ -112,7 +130,8 @@ std::vector<RunCase> buildRunCases(const Mechanism& scene, const RunSettings& se
     c.mechanism = parseScene(c.scene_toml, c.id);
     c.mechanism.name = name;
     c.phi0 = 0.0;
-    c.omega0 = c.mechanism.machine.speed;
+    c.omega0 = omega0;
+    c.load_torque = load_torque;
     c.t_end = t_end;
     c.output_interval = settings.output_interval ? interval : c.dt ? *c.dt : interval;  // default: every step
     c.revolutions = settings.revolutions;
@@ -129,7 +148,7 @@ std::string makeRunRequest(const RunCase& c) {
   request["scene_toml"] = c.scene_toml;
   request["drive"] = nameOf(c.drive);
   request["gas"] = c.mechanism.gas.has_value();  // free: never (the scene's [gas] is left out); held: the scene's
-  request["load_torque"] = 0.0;
+  request["load_torque"] = c.load_torque;
   request["gravity"] = true;
   request["phi0"] = c.phi0;
   request["omega0"] = c.omega0;
@@ -283,25 +302,30 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
     std::vector<double> times;
     const int points = c.revolutions * kHistoryPointsPerRevolution;
     for (int i = 0; i <= points; ++i) times.push_back(horizon * i / points);
-    if (c.drive == RunDrive::kFree) {
-      const std::vector<double> energy = calcEnergyAtTurns(m, run);
-      const double trend = calcEnergyTrend(m, run);
-      row(kEnergyTrend, trend, 0.0, std::fabs(trend), tol.energy_trend, 64.0 * kEps,
-          "over " + std::to_string(energy.size() - 1) + " revolutions, at phi = phi0 + 2 pi k");
-      const SpeedFluctuationComparison f = calcSpeedFluctuation(m, run);
+    if (c.drive != RunDrive::kHeld) {
+      const RunLoad load{c.drive == RunDrive::kLoaded};
+      const bool cycles = load.gas && m.machine.cycle == Cycle::kFourStroke;  // the period: a working cycle of 4 pi
+      const std::string period = cycles ? "working cycle" : "revolution";
+      const std::vector<double> energy = calcEnergyAtTurns(m, run, load);
+      const double trend = calcEnergyTrend(m, run, load);
+      row(cycles ? kEnergyTrendPerCycle : kEnergyTrend, trend, 0.0, std::fabs(trend), tol.energy_trend, 64.0 * kEps,
+          "over " + std::to_string(energy.size() - 1) + " " + period + "s, at phi = phi0 + " +
+              (cycles ? "4 pi k" : "2 pi k") + (load.gas ? " (E - W + T_L phi)" : ""));
+      const SpeedFluctuationComparison f = calcSpeedFluctuation(m, run, load);
       row(kDelta, f.run.delta, f.exact.delta, std::fabs(f.delta_error) / f.exact.delta, tol.delta,
-          64.0 * kEps / f.exact.delta, "first revolution");
+          64.0 * kEps / f.exact.delta, "first " + period);
       const double to_deg = 180.0 / M_PI, flat = 8.0 * std::sqrt(kEps / f.exact.delta) * to_deg;
       row(kPhiAtOmegaMax, f.run.phi_at_omega_max * to_deg, f.exact.phi_at_omega_max * to_deg,
-          std::fabs(f.phi_max_error) * to_deg, tol.extreme_phase, flat, "first revolution");
+          std::fabs(f.phi_max_error) * to_deg, tol.extreme_phase, flat, "first " + period);
       row(kPhiAtOmegaMin, f.run.phi_at_omega_min * to_deg, f.exact.phi_at_omega_min * to_deg,
-          std::fabs(f.phi_min_error) * to_deg, tol.extreme_phase, flat, "first revolution");
+          std::fabs(f.phi_min_error) * to_deg, tol.extreme_phase, flat, "first " + period);
       // The turns' crossings join the history with their energy.
       std::vector<double> turn_times;
-      for (size_t k = 0; k < energy.size(); ++k) turn_times.push_back(reader.findTimeAtPhase(run.phi.front() + kTwoPi * k));
+      const double turn = cycles ? 2.0 * kTwoPi : kTwoPi;
+      for (size_t k = 0; k < energy.size(); ++k) turn_times.push_back(reader.findTimeAtPhase(run.phi.front() + turn * k));
       std::vector<double> all = times;
       all.insert(all.end(), turn_times.begin(), turn_times.end());
-      const std::vector<double> errors = calcPhaseErrors(m, run, all);
+      const std::vector<double> errors = calcPhaseErrors(m, run, all, load);
       const double at_end = errors[times.size() - 1];
       row(kPhase, reader.findPhi(horizon), reader.findPhi(horizon) - at_end, std::fabs(at_end), tol.phase,
           64.0 * kEps * reader.findPhi(horizon), "t = " + formatNumber(horizon) + " s (" + formatNumber(std::round(revolutions * 10) / 10) + " revolutions)");

@@ -33,7 +33,10 @@ std::vector<const RunMeasureRow*> rowsOf(const std::vector<RunMeasureRow>& rows,
 
 // What the run is, in one line: "inline4_four_stroke: free run, 10 revolutions (0.2 s), step 2.8e-05 s".
 std::string describeCase(const RunCase& c) {
-  return c.family + ": " + (c.drive == RunDrive::kFree ? "free run" : "crank held at its speed") + ", " +
+  const char* what = c.drive == RunDrive::kFree   ? "free run"
+                     : c.drive == RunDrive::kHeld ? "crank held at its speed"
+                                                  : "loaded run (gas against its cycle-mean load)";
+  return c.family + ": " + what + ", " +
          std::to_string(c.revolutions) + " revolutions (" + shortNumber(c.t_end) + " s), step " + describeStep(c.dt);
 }
 

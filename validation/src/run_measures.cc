@@ -233,7 +233,7 @@ ExactRun makeGasRun(const RunInvariant& invariant, double value) {
   out.omega_mean = out.period / times->back();
   const size_t n = grid.size() - 1;  // grid[n] = the cycle = grid[0] + cycle
   auto refine = [&](size_t i, double sign) {
-    const double a = i == 0 ? grid[n - 1] - out.period : grid[i - 1], b = grid[i + 1 > n ? 1 : i + 1] + (i == n ? out.period : 0.0);
+    const double a = i == 0 ? grid[n - 1] - out.period : grid[i - 1], b = grid[i + 1];  // i < n: the last node is the first
     const double lift = 2.0 * *std::max_element(node_speed.begin(), node_speed.end());
     const TurnMaximum best = refineMaxAbs([&](double p) { return lift + sign * speed(p); }, a, b);
     return std::pair{sign * (best.value - lift), std::fmod(std::fmod(best.phi, out.period) + out.period, out.period)};
@@ -243,7 +243,7 @@ ExactRun makeGasRun(const RunInvariant& invariant, double value) {
   std::tie(out.omega_max, out.phi_at_omega_max) = refine(imax, 1.0);
   std::tie(out.omega_min, out.phi_at_omega_min) = refine(imin, -1.0);
   out.omega_max = std::max(out.omega_max, node_speed[imax]);
-  out.omega_min = std::min(-out.omega_min, node_speed[imin]);
+  out.omega_min = std::min(out.omega_min, node_speed[imin]);
   const double cycle_time = times->back(), cycle = out.period;
   out.elapsed = [grid, times, cellTime, cycle_time, cycle](double p) {
     const double cycles = std::floor(p / cycle);

@@ -35,8 +35,11 @@ namespace crankcheck::validation {
 enum class RunDrive {
   kFree,  ///< nothing: the crank turns freely under gravity alone (no gas, no load), released at phi0 with omega0
   kHeld,  ///< the crank is held at the constant speed omega0 (phi = phi0 + omega0 t); the program reports the torque
+  /// the crank turns freely under the scene's gas and gravity against a constant load torque, the gas torque's cycle
+  /// mean, from the steady run's speed at phi = 0: the exact run is periodic over the working cycle at the scene's speed
+  kLoaded,
 };
-/// "free", "held".
+/// "free", "held", "loaded".
 const char* nameOf(RunDrive drive);
 
 /// What is asked of a run and what it is held to. Every tolerance states its horizon: the run's t_end.
@@ -59,8 +62,8 @@ struct RunSettings {
   RunTolerances tolerances;
 };
 
-/// The exact run's period at the scene's speed: one revolution of the free run released at phi = 0 with the scene's
-/// speed (free), 2 pi / omega (held) [s].
+/// The exact run's time per revolution at the scene's speed: one revolution of the free run released at phi = 0 with
+/// the scene's speed (free), 2 pi / omega (held, and loaded: the steady run's mean speed is the scene's) [s].
 double calcRunPeriod(const Mechanism& m, RunDrive drive);
 
 /// The step the grade asks when none is given: 1/720 of a revolution (half a degree) [s].
@@ -74,7 +77,8 @@ struct RunCase {
   Mechanism mechanism;       ///< parsed back from scene_toml (free: the scene without [gas])
   std::string scene_toml;
   double phi0 = 0.0;         ///< [rad] the crank angle at t = 0 (0: where the engines release their own runs)
-  double omega0 = 0.0;       ///< [rad/s] the scene's speed
+  double omega0 = 0.0;       ///< [rad/s] the scene's speed (loaded: the steady run's speed at phi = 0)
+  double load_torque = 0.0;  ///< [N m] loaded: the gas torque's cycle mean (GasWork::getMeanTorque); else 0
   std::optional<double> dt;  ///< [s] none: the program's own
   double t_end = 0.0;        ///< [s] revolutions x calcRunPeriod
   double output_interval = 0.0;  ///< [s]
@@ -82,8 +86,9 @@ struct RunCase {
 };
 
 /// The requests of one scene: one per step of the sweep (dt, dt / 2, ...).
-/// @throws UsageError naming the scene when it cannot be run: no speed; free without [flywheel].inertia; free when
-///         the exact run does not turn over (too slow against gravity).
+/// @throws UsageError naming the scene when it cannot be run: no speed; free or loaded without [flywheel].inertia;
+///         loaded without [gas]; free when the exact run does not turn over (too slow against gravity); loaded when the
+///         steady run would stop.
 std::vector<RunCase> buildRunCases(const Mechanism& scene, const RunSettings& settings);
 
 /// The request as one line of JSON (no newline inside; none at the end).
