@@ -15,9 +15,13 @@
 #include <stdexcept>
 #include <vector>
 
+#include "crankcheck/analytic/flywheel.h"
+#include "crankcheck/analytic/gas_work.h"
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/scene/scene_file.h"
+#include "crankcheck/validation/engine_runs.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/run_measures.h"
 
 namespace crankcheck::validation {
@@ -268,6 +272,70 @@ TEST(RunMeasuresTest, Refusals) {
   expectRefusal([&] { calcObservedOrder({1e-3, 2e-3}, {1.0, 0.0}); }, "error 1 is not finite or is 0");
   expectRefusal([&] { calcObservedOrder({1e-3, 2e-3}, {1.0, std::nan("")}); }, "error 1 is not finite or is 0");
   expectRefusal([&] { calcObservedOrder({1e-3, 1e-3}, {1.0, 2.0}); }, "all equal");
+}
+
+}  // namespace
+}  // namespace crankcheck::validation
+
+namespace crankcheck::validation {
+namespace {
+
+// A run under gas at the cycle-mean load (RunLoad::gas), held against two references the measures did not produce:
+// Simbody's own loaded free run (its multibody model, its integrator at 1e-10, the gas as forces on its pistons)
+// released from the steady run's speed, and the flywheel's steady run (analytic/flywheel.h: Simpson's rule on the
+// cycle's grid, extremes by a parabola through the best node). The inline four, four-stroke: the working cycle is 4 pi.
+TEST(RunMeasuresTest, LoadedRunAgainstSimbodyAndTheFlywheelsSteadyRun) {
+  const Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
+  ASSERT_TRUE(m.gas && m.flywheel_inertia);
+  const analytic::GasWork gas(m);
+  const analytic::SteadyRun steady = analytic::calcSteadyRun(m, *m.flywheel_inertia, gas.getMeanTorque());
+  FreeRunSettings settings;
+  settings.integrator = "RungeKuttaMerson";
+  settings.accuracy = 1e-10;
+  settings.revolutions = 4;  // two working cycles
+  settings.gas = true;
+  settings.load_torque = gas.getMeanTorque();
+  const SteppedRun run = toSteppedRun(findEngine("simbody").simulate(m, steady.omega0, settings));
+  const RunLoad load{true};
+  // Simbody at 1e-10 relative per step keeps the invariant E - W + T_L phi to about its steps times 1e-10 a cycle
+  // (about 3000 steps a cycle: 3e-7 at most; measured far below): 1e-6 per cycle bounds it.
+  EXPECT_LT(std::fabs(calcEnergyTrend(m, run, load)), 1e-6);
+  const SpeedFluctuationComparison f = calcSpeedFluctuation(m, run, load);
+  // The exact periodic run through Simbody's state at phi = 0 is the steady run: the same delta as the flywheel's to
+  // its parabola's accuracy (the extremes of a 0.1-degree grid refined by a parabola: 1e-6 of delta).
+  EXPECT_NEAR(f.exact.delta, steady.delta, 1e-6 * steady.delta);
+  EXPECT_NEAR(f.exact.phi_at_omega_max, steady.phi_at_omega_max, 1e-3);
+  EXPECT_NEAR(f.exact.phi_at_omega_min, steady.phi_at_omega_min, 1e-3);
+  // Simbody's run and the exact run agree on delta to its accuracy: 1e-6 relative as the flywheel part holds its runs.
+  EXPECT_LT(std::fabs(f.delta_error), 1e-6 * f.exact.delta);
+  EXPECT_LT(std::fabs(f.phi_max_error), 1e-3);
+  EXPECT_LT(std::fabs(f.phi_min_error), 1e-3);
+  // The phase after two cycles: each step's speed error at most 1e-10 relative, summed over the steps, times the
+  // angle run (as EngineRunsTest bounds Simbody's free run).
+  const double horizon = run.time.back();
+  EXPECT_LT(std::fabs(calcPhaseError(m, run, horizon, load)), 1e-10 * static_cast<double>(run.time.size()) * run.phi.back());
+  // A loaded run needs the scene's gas, and a free run refuses it.
+  Mechanism no_gas = m;
+  no_gas.gas.reset();
+  EXPECT_THROW(calcEnergyTrend(no_gas, run, load), std::invalid_argument);
+  EXPECT_THROW(calcEnergyTrend(m, run), std::invalid_argument);
+}
+
+// The gas work W(phi) (gas_work.h) against the gas torque it integrates: W' = T_gas by a central difference, and
+// W(phi + cycle) = W(phi) + W(cycle).
+TEST(RunMeasuresTest, GasWorkIntegratesTheGasTorque) {
+  const Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
+  const analytic::GasWork gas(m);
+  double peak = 0.0;
+  for (double p = 0.0; p < gas.getCycle(); p += 0.01) peak = std::max(peak, std::fabs(analytic::calcGasTorque(m, p)));
+  const double h = 1e-4;
+  for (double p : {0.3, 1.7, 3.3, 5.1, 7.9, 11.0}) {
+    const double derivative = (gas.calcWork(p + h) - gas.calcWork(p - h)) / (2.0 * h);
+    // Central difference: h^2 / 6 |T''| with |T''| at most about peak x 1e3 across the combustion peak, plus the
+    // rounding of W (cycle work x eps / h): 1e-5 of the peak holds both.
+    EXPECT_NEAR(derivative, analytic::calcGasTorque(m, p), 1e-5 * peak) << p;
+    EXPECT_NEAR(gas.calcWork(p + gas.getCycle()), gas.calcWork(p) + gas.getCycleWork(), 64.0 * kEps * peak * gas.getCycle());
+  }
 }
 
 }  // namespace
