@@ -112,6 +112,9 @@ TEST(FreeRunGradeTest, BadFlagsAndScenesAreRefusedBeforeAnyWork) {
           "--dt-sweep: needs a step");
   refused({"grade", "--free-run", kSingle, "--batch", "--", CRANKCHECK_FREE_RUN_FAKE}, "--batch: does not apply");
   refused({"grade", "--free-run", kSingle, "--dt", "1", "--", CRANKCHECK_FREE_RUN_FAKE}, "fewer than 8 steps");
+  // A loaded run is the scene's gas against its mean load: a scene without [gas] cannot run it.
+  refused({"grade", "--free-run", kSingle, "--drive", "loaded", "--", CRANKCHECK_FREE_RUN_FAKE},
+          "single_cylinder.toml: [gas]: a loaded run");
   // A scene without a flywheel cannot run free (the measures are per revolution of a crank that keeps turning).
   const fs::path bare = dir.path() / "bare.toml";
   std::string text = readFile(kSingle);

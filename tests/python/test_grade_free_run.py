@@ -102,7 +102,7 @@ def test_bad_arguments_are_refused(tmp_path):
     with pytest.raises(ValueError, match="dt_sweep needs a step"):
         crankcheck.grade_free_run(constant_speed, [SINGLE], dt="own", dt_sweep=3)
     with pytest.raises(ValueError, match="drive"):
-        crankcheck.grade_free_run(constant_speed, [SINGLE], drive="loaded")
+        crankcheck.grade_free_run(constant_speed, [SINGLE], drive="pedal")
     bare = tmp_path / "bare.toml"
     text = open(SINGLE).read()
     start = text.index("[flywheel]")
