@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "crankcheck/analytic/gas_work.h"
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/scene/engine.h"
@@ -93,21 +94,28 @@ SteppedRun toSteppedRun(const FreeRunResult& result) {
 }
 
 std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int revolutions,
-                                         const std::vector<EngineRunSpec>& specs) {
+                                         const std::vector<EngineRunSpec>& specs, const RunLoad& load) {
   if (!(std::isfinite(omega0) && omega0 > 0.0))
     throw std::invalid_argument("free run: the release speed " + shortText(omega0) + " rad/s is not finite and > 0");
   if (revolutions < 1)
     throw std::invalid_argument("free run: " + std::to_string(revolutions) + " revolutions (at least 1)");
-  if (m.gas)
+  if (m.gas && !load.gas)
     throw std::invalid_argument("free run: the scene has a [gas] table; the engines' free runs are judged under gravity "
                                 "alone (drop it: Mechanism::gas)");
+  if (load.gas && !m.gas) throw std::invalid_argument("loaded run: the scene has no [gas] table");
   if (!m.flywheel_inertia) throw std::invalid_argument("free run: the scene needs the flywheel inertia [flywheel].inertia");
   std::vector<const Engine*> engines;
-  for (const EngineRunSpec& spec : specs) engines.push_back(&checkSpec(spec));
+  for (const EngineRunSpec& spec : specs) {
+    engines.push_back(&checkSpec(spec));
+    if (load.gas && !engines.back()->simulates_loads)
+      throw std::invalid_argument("loaded run: the engine " + spec.engine + " does not run the gas and a load");
+  }
 
-  // The horizon of the phase error: `revolutions` turns of the exact free run released with omega0 at phi = 0.
-  const analytic::FreeRun exact = analytic::calcFreeRun(m, omega0);
-  const double exact_horizon = revolutions * 2.0 * M_PI / exact.omega_mean;
+  // The horizon of the phase error: `revolutions` turns of the exact free run released with omega0 at phi = 0 (loaded:
+  // the run's own end, `revolutions` turns of the engine's run).
+  const double exact_horizon = load.gas ? std::numeric_limits<double>::infinity()
+                                        : revolutions * 2.0 * M_PI / analytic::calcFreeRun(m, omega0).omega_mean;
+  const double load_torque = load.gas ? analytic::GasWork(m).getMeanTorque() : 0.0;
 
   std::vector<EngineRunRow> rows;
   for (size_t s = 0; s < specs.size(); ++s) {
@@ -118,6 +126,8 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
     settings.accuracy = spec.accuracy;
     settings.revolutions = revolutions;
     settings.gravity = true;
+    settings.gas = load.gas;
+    settings.load_torque = load_torque;
     const std::clock_t start = std::clock();
     const FreeRunResult result = engine.simulate(m, omega0, settings);
     const double cpu = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
@@ -129,8 +139,8 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
     row.integrator = spec.integrator;
     row.accuracy = spec.accuracy;
     row.accuracy_meaning_short = shortMeaning(engine.accuracy_meaning);
-    row.energy_trend_per_revolution = calcEnergyTrend(m, run);
-    const SpeedFluctuationComparison fluctuation = calcSpeedFluctuation(m, run);
+    row.energy_trend_per_revolution = calcEnergyTrend(m, run, load);
+    const SpeedFluctuationComparison fluctuation = calcSpeedFluctuation(m, run, load);
     row.delta = fluctuation.run.delta;
     row.delta_exact = fluctuation.exact.delta;
     row.delta_error_rel = fluctuation.exact.delta > 0.0 ? fluctuation.delta_error / fluctuation.exact.delta
@@ -138,7 +148,7 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
     row.phi_max_error = fluctuation.phi_max_error;
     row.phi_min_error = fluctuation.phi_min_error;
     row.horizon_s = std::min(exact_horizon, run.time.back());
-    row.phase_error_at_horizon = calcPhaseError(m, run, row.horizon_s);
+    row.phase_error_at_horizon = calcPhaseError(m, run, row.horizon_s, load);
     row.revolutions = revolutions;
     row.steps = result.steps;
     row.omega_reading = run.omega_half_step_behind ? "half a step behind" : "at the step";
@@ -148,10 +158,10 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
   return rows;
 }
 
-std::vector<EngineRunSpec> listDefaultEngineRuns(bool quick) {
+std::vector<EngineRunSpec> listDefaultEngineRuns(bool quick, const RunLoad& load) {
   std::vector<EngineRunSpec> specs;
   for (const Engine& e : listEngines()) {
-    if (!e.simulate || e.integrators.empty()) continue;
+    if (!e.simulate || e.integrators.empty() || (load.gas && !e.simulates_loads)) continue;
     const double a = e.default_accuracy;
     if (e.gated) {
       // A tolerance: the default integrator over four decades, the others each at one accuracy by their order.

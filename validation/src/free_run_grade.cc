@@ -455,8 +455,10 @@ void addEngineRuns(TableSet& tables, const std::vector<RunCase>& cases, bool qui
   std::vector<EngineRunRow> rows;
   std::set<std::string> done;
   for (const RunCase& c : cases) {
-    if (c.drive != RunDrive::kFree || !done.insert(c.family).second) continue;
-    for (EngineRunRow& row : calcEngineRuns(c.mechanism, c.omega0, c.revolutions, listDefaultEngineRuns(quick)))
+    if (c.drive == RunDrive::kHeld || !done.insert(c.family).second) continue;
+    const RunLoad load{c.drive == RunDrive::kLoaded};
+    for (EngineRunRow& row :
+         calcEngineRuns(c.mechanism, c.omega0, c.revolutions, listDefaultEngineRuns(quick, load), load))
       rows.push_back(std::move(row));
   }
   if (!rows.empty()) addRows(tables, getFreeRunEnginesSchema(), std::move(rows));

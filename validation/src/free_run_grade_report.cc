@@ -166,10 +166,11 @@ void renderRunGradeReport(const TableSet& tables, const std::vector<RunCase>& ca
   if (!engines.empty()) {
     doc.addHeading(2, "Beside the engines' own runs");
     doc.addParagraph(
-        "The same free run (each scene from phi = 0 at its speed, gravity alone, over the same revolutions) stepped by "
-        "every engine that simulates, through the same measures: Simbody's integrators at a relative accuracy, "
-        "MuJoCo's soft constraint solver (as its users run it) at a fixed step given as a fraction of a revolution. "
-        "Energy trend per revolution relative to E_0; delta's error relative to the exact delta; the phase error at the "
+        "The same run (each scene from phi = 0 at the run's speed, over the same revolutions: free under gravity "
+        "alone, or loaded under its gas and mean load by the engines that take them) stepped by every engine that "
+        "simulates, through the same measures: Simbody's integrators at a relative accuracy, MuJoCo's soft constraint "
+        "solver (as its users run it) at a fixed step given as a fraction of a revolution. Energy trend per period (a "
+        "revolution; a loaded four-stroke's working cycle) relative to E_0; delta's error relative to the exact delta; the phase error at the "
         "horizon; the processor time per simulated revolution. *omega read*: where the engine's recorded speed stands "
         "(a semi-implicit Euler's is a backward difference, half a step behind its angle; found by that identity at "
         "every step).");
@@ -178,7 +179,7 @@ void renderRunGradeReport(const TableSet& tables, const std::vector<RunCase>& ca
       table.push_back({r.scene, r.engine, r.integrator, shortNumber(r.accuracy), shortNumber(r.energy_trend_per_revolution),
                        shortNumber(r.delta_error_rel), shortNumber(r.phase_error_at_horizon),
                        shortNumber(r.cpu_seconds_per_revolution) + " s", r.omega_reading});
-    doc.addTable({"scene", "engine", "integrator", "accuracy or step", "energy trend / rev", "delta error",
+    doc.addTable({"scene", "engine", "integrator", "accuracy or step", "energy trend / period", "delta error",
                   "phase error [rad]", "cost / revolution", "omega read"},
                  table);
   }

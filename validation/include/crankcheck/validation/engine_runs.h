@@ -69,8 +69,11 @@ SteppedRun toSteppedRun(const FreeRunResult& result);
 ///         or a spec names an engine the registry does not have, an engine that does not simulate, an integrator the
 ///         engine does not have (the message lists the engine's), or an accuracy that is not finite and > 0;
 ///         std::runtime_error (from the engine) if a run fails; std::domain_error if the exact run does not turn over.
+/// With load.gas: the run under the scene's gas against its cycle-mean load (run_measures.h RunLoad; the engines that
+/// take the gas and a load, Engine::simulates_loads; energy_trend_per_revolution is then per working cycle and the
+/// phase error's horizon the run's end).
 std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int revolutions,
-                                         const std::vector<EngineRunSpec>& specs);
+                                         const std::vector<EngineRunSpec>& specs, const RunLoad& load = {});
 
 /// The runs the report shows, for every engine of the registry that simulates, read from the engine's description
 /// (no engine is named here):
@@ -85,7 +88,8 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
 /// quick: the runs at the default accuracy or step alone, and the gated engine's other integrators left out.
 /// The steps and accuracies are chosen by cost: the whole set runs in a few seconds of one core on the example scenes
 /// over 5 revolutions (calcEngineRuns' cpu_seconds_per_revolution says what each run cost).
-std::vector<EngineRunSpec> listDefaultEngineRuns(bool quick);
+/// With load.gas: only the engines that take the gas and a load (Engine::simulates_loads).
+std::vector<EngineRunSpec> listDefaultEngineRuns(bool quick, const RunLoad& load = {});
 
 /// The table `free_run_engines`: one row per run (EngineRunRow's members, in order).
 const Schema<EngineRunRow>& getFreeRunEnginesSchema();

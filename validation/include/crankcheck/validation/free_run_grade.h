@@ -155,9 +155,9 @@ const Schema<RunHistoryRow>& getRunHistorySchema();
 TableSet runRunGrade(const std::vector<RunCase>& cases, const GradeProgram& program, const RunTolerances& tolerances,
                      const std::function<void(size_t, size_t)>& progress = {});
 
-/// The engines' own free runs of each scene of `cases` that runs free (engine_runs.h: listDefaultEngineRuns(quick), over
-/// the cases' revolutions from the scene's speed), added to `tables` as free_run_engines: what the program's measures
-/// stand beside. Costs a few seconds of one core per scene (quick: under one).
+/// The engines' own runs of each scene of `cases` that runs free or loaded (engine_runs.h: listDefaultEngineRuns(quick),
+/// over the cases' revolutions from the cases' speed; loaded: the engines that take the gas and a load), added to
+/// `tables` as free_run_engines: what the program's measures stand beside. Costs a few seconds of one core per scene (quick: under one).
 /// @throws std::runtime_error if an engine's run fails.
 void addEngineRuns(TableSet& tables, const std::vector<RunCase>& cases, bool quick);
 
