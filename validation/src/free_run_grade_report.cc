@@ -74,6 +74,7 @@ std::string formatRunGradeSummary(const TableSet& tables, const std::vector<RunC
                     orDash(r->program, 5).c_str(), orDash(r->exact, 5).c_str(), orDash(r->error).c_str(),
                     shortNumber(r->tolerance).c_str(), r->verdict.c_str());
       out += line;
+      if (r->verdict == "FAIL") out += "      where: " + r->where + "\n";  // the failing error's place
     }
   }
   const std::vector<RunConvergenceRow>& convergence = getRows(tables, getRunConvergenceSchema());
