@@ -167,19 +167,8 @@ std::string makeRunRequest(const RunCase& c) {
 
 ProgramRun parseRunResponse(const RunCase& c, const std::string& response, const std::string& program) {
   const std::string where = program + ": case " + c.id + ": ";
-  auto fail = [&](const std::string& what, size_t at = 0) -> void {
-    throw EnvironmentError(where + what + "; " +
-                           (response.empty() ? std::string("no output at all") : quoteLine(response, at)));
-  };
-  if (response.find_first_not_of(" \t\r\n") == std::string::npos) fail("no response on stdout");
-  Json doc;
-  try {
-    doc = Json::parse(response);
-  } catch (const Json::parse_error& e) {
-    fail("the response is not JSON (" + escapeText(e.what()) + ")", e.byte > 0 ? e.byte - 1 : 0);
-  }
-  if (!doc.is_object() || !doc.contains("samples") || !doc["samples"].is_array())
-    fail("the response must be an object {\"samples\": [...]}");
+  auto fail = [&](const std::string& what, size_t at = 0) -> void { throwProtocolError(where, what, response, at); };
+  const Json doc = parseResponseObject(response, "samples", where);
   const Json& samples = doc["samples"];
   if (samples.size() < static_cast<size_t>(kMinRunSamples))
     fail("too few samples (" + std::to_string(samples.size()) + "; at least " + std::to_string(kMinRunSamples) + ")");

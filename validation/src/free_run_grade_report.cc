@@ -40,24 +40,6 @@ std::string describeCase(const RunCase& c) {
          std::to_string(c.revolutions) + " revolutions (" + shortNumber(c.t_end) + " s), step " + describeStep(c.dt);
 }
 
-std::string today() {
-  const std::time_t now = std::time(nullptr);
-  char buffer[32];
-  std::strftime(buffer, sizeof buffer, "%Y-%m-%d", std::gmtime(&now));
-  return buffer;
-}
-
-// An argument as a POSIX shell would need it quoted to be read back as the same word (for the command the report
-// prints; crankcheck never runs it through a shell).
-std::string shellWord(const std::string& word) {
-  if (!word.empty() && word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-./=:,+") ==
-                           std::string::npos)
-    return word;
-  std::string out = "'";
-  for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 }  // namespace
 
 std::string formatRunGradeSummary(const TableSet& tables, const std::vector<RunCase>& cases) {
@@ -98,11 +80,11 @@ void renderRunGradeReport(const TableSet& tables, const std::vector<RunCase>& ca
   const std::vector<RunConvergenceRow>& convergence = getRows(tables, getRunConvergenceSchema());
 
   std::string command;
-  for (const std::string& word : info.program) command += (command.empty() ? "" : " ") + shellWord(word);
+  for (const std::string& word : info.program) command += (command.empty() ? "" : " ") + quoteShellWord(word);
   ReportDocument doc("crankcheck grade --free-run report");
   char line[512];
   std::snprintf(line, sizeof line, "crankcheck %s, %s, %s; %zu runs, %.1f s, timeout %.3g s per run.",
-                getCrankcheckVersion(), joinEngineLibraries().c_str(), today().c_str(), cases.size(), info.seconds,
+                getCrankcheckVersion(), joinEngineLibraries().c_str(), formatToday().c_str(), cases.size(), info.seconds,
                 info.timeout_seconds);
   doc.addParagraph("Graded program: `" + command + "`\n\n" + line);
   const RunTolerances& t = info.tolerances;

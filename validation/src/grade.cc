@@ -116,18 +116,8 @@ std::string makeGradeRequest(const GradeCase& c) {
 
 std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string& response, const std::string& program) {
   const std::string where = program + ": case " + c.id + ": ";
-  auto fail = [&](const std::string& what, size_t at = 0) -> void {
-    throw EnvironmentError(where + what + "; " + (response.empty() ? std::string("no output at all") : quoteLine(response, at)));
-  };
-  if (response.find_first_not_of(" \t\r\n") == std::string::npos) fail("no response on stdout");
-  Json doc;
-  try {
-    doc = Json::parse(response);
-  } catch (const Json::parse_error& e) {
-    fail("the response is not JSON (" + escapeText(e.what()) + ")", e.byte > 0 ? e.byte - 1 : 0);
-  }
-  if (!doc.is_object() || !doc.contains("results") || !doc["results"].is_array())
-    fail("the response must be an object {\"results\": [...]}");
+  auto fail = [&](const std::string& what, size_t at = 0) -> void { throwProtocolError(where, what, response, at); };
+  const Json doc = parseResponseObject(response, "results", where);
   const Json& results = doc["results"];
   if (results.size() != c.phi_deg.size())
     fail("expected " + std::to_string(c.phi_deg.size()) + " results (one per angle of phi_deg), got " +

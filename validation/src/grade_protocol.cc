@@ -98,6 +98,25 @@ std::string runOnce(const GradeProgram& program, const std::string& input, size_
   return r.out;
 }
 
+void throwProtocolError(const std::string& where, const std::string& what, const std::string& response, size_t at) {
+  throw EnvironmentError(where + what + "; " + (response.empty() ? std::string("no output at all") : quoteLine(response, at)));
+}
+
+Json parseResponseObject(const std::string& response, const std::string& key, const std::string& where) {
+  if (response.find_first_not_of(" \t\r\n") == std::string::npos)
+    throwProtocolError(where, "no response on stdout", response);
+  Json doc;
+  try {
+    doc = Json::parse(response);
+  } catch (const Json::parse_error& e) {
+    throwProtocolError(where, "the response is not JSON (" + escapeText(e.what()) + ")", response,
+                       e.byte > 0 ? e.byte - 1 : 0);
+  }
+  if (!doc.is_object() || !doc.contains(key) || !doc[key].is_array())
+    throwProtocolError(where, "the response must be an object {\"" + key + "\": [...]}", response);
+  return doc;
+}
+
 Evaluation readProgramValues(const Json& r, const std::string& at, const Mechanism& m,
                              const std::function<void(const std::string&)>& fail) {
   const int k = m.machine.cylinders;

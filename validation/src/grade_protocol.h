@@ -31,6 +31,16 @@ bool isCompleteAnswer(const std::string& out, size_t requests, bool batch);
 /// a signal, a non-zero exit status (with the first line of its stderr, quoted).
 std::string runOnce(const GradeProgram& program, const std::string& input, size_t requests, const std::string& what);
 
+/// Throws EnvironmentError "WHERE WHAT; line N: "..."": a response that is not the protocol, `at` a byte of it on the
+/// offending line ("no output at all" when it is empty).
+[[noreturn]] void throwProtocolError(const std::string& where, const std::string& what, const std::string& response,
+                                     size_t at = 0);
+
+/// A response line as JSON: an object holding the array `key` ("results", "samples"). `where` begins every message
+/// ("PROGRAM: case ID: "). @throws EnvironmentError (throwProtocolError) when it is empty, not JSON, or not such an
+/// object.
+nlohmann::json parseResponseObject(const std::string& response, const std::string& key, const std::string& where);
+
 /// The values a program gave in one JSON object `r` (a result of protocol 1, a sample of protocol 2): every quantity of
 /// the catalogue at the top and per cylinder under "cylinders", NaN where not provided (left out or null) or not
 /// defined for m; engine "program". `at` names the object in messages ("results[3]").

@@ -20,36 +20,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A word as a POSIX shell reads it back: as it is when it holds only safe characters, else in single quotes.
-std::string quoteShellWord(const std::string& word) {
-  if (!word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-./+:=@%") ==
-                           std::string::npos)
-    return word;
-  std::string out = "'";
-  for (const char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
 // An optional number as the report's tables write it (shortNumber); empty when there is none.
 std::string shortOrEmpty(const std::optional<double>& x) { return x ? shortNumber(*x) : std::string(); }
-
-// An argument as a POSIX shell would need it quoted to be read back as the same word (for the commands the report
-// prints for the user to copy; crankcheck itself never runs them through a shell).
-std::string shellWord(const std::string& word) {
-  if (!word.empty() && word.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-./=:,+") ==
-                           std::string::npos)
-    return word;
-  std::string out = "'";
-  for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string today() {
-  const std::time_t now = std::time(nullptr);
-  char buffer[32];
-  std::strftime(buffer, sizeof buffer, "%Y-%m-%d", std::gmtime(&now));
-  return buffer;
-}
 
 }  // namespace
 
@@ -61,12 +33,12 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
   const std::vector<GradeLambdaRow>& by_lambda = getRows(tables, getGradeErrorVsLambdaSchema());
 
   std::string command;
-  for (const std::string& word : info.program) command += (command.empty() ? "" : " ") + shellWord(word);
+  for (const std::string& word : info.program) command += (command.empty() ? "" : " ") + quoteShellWord(word);
   ReportDocument doc("crankcheck grade report");
   char line[512];
   std::snprintf(line, sizeof line,
                 "crankcheck %s, %s, %s; %zu cases%s, %d job%s%s, %.1f s, timeout %.3g s per request.",
-                getCrankcheckVersion(), joinEngineLibraries().c_str(), today().c_str(), cases.size(),
+                getCrankcheckVersion(), joinEngineLibraries().c_str(), formatToday().c_str(), cases.size(),
                 info.quick ? " (--quick)" : "", info.jobs, info.jobs == 1 ? "" : "s", info.batch ? ", --batch" : "",
                 info.seconds, info.timeout_seconds);
   doc.addParagraph("Graded program: `" + command + "`\n\n" + line);
