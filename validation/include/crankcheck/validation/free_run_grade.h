@@ -1,14 +1,14 @@
 #pragma once
 /// @file
 /// `crankcheck grade --free-run`: a program that steps the crank train through time (an engine simulator, a game or
-/// robotics physics engine, a student's integrator) judged on its run. crankcheck sends it one request per time step
-/// (protocol 2, docs/grade.md "Time-stepped runs"), under the process rules of protocol 1 (grade.h: argument vector,
-/// time limit, killed process group, output limit), and measures the trajectory it answers against the exact run
-/// (run_measures.h) and the engines that simulate.
+/// robotics physics engine, a student's integrator) judged on its run. crankcheck sends it one request per time step of
+/// its sweep (protocol 2, docs/grade.md "Time-stepped runs"), under the process rules of protocol 1 (grade.h: argument
+/// vector, time limit, killed process group, output limit), and measures the trajectory it answers against the exact
+/// run (run_measures.h) and the engines that simulate (engine_runs.h).
 ///
 /// Protocol 2:
-///   request   {"protocol": 2, "case": ID, "scene": {...as eval's...}, "scene_toml": "...", "drive": "free"|"held",
-///             "gas": false, "load_torque": 0, "gravity": true, "phi0": RAD, "omega0": RAD/S, "dt": S|"own",
+///   request   {"protocol": 2, "case": ID, "scene": {...as eval's...}, "scene_toml": "...", "drive": "free"|"held"|"loaded",
+///             "gas": BOOL, "load_torque": N M, "gravity": true, "phi0": RAD, "omega0": RAD/S, "dt": S|"own",
 ///             "t_end": S, "output_interval": S, "quantities": [...]}
 ///   response  {"samples": [{"t": S, "phi": RAD, "omega": RAD/S, "omega_t": S?, "values_t": S?,
 ///               ...values as eval's names, "cylinders": [...]}, ...]}
