@@ -64,22 +64,22 @@ void addGradeOptions(CLI::App& command, GradeOptions& options) {
   command.add_option("--output-interval", options.output_interval,
                      "--free-run: seconds between the samples the program reports (default: every step; with --dt own, 1/720 of a revolution)")
       ->check(FiniteRange(1e-12, 1e6));
-  command.add_option("--energy-tolerance", options.energy_tolerance,
+  command.add_option("--energy-tolerance", options.tolerances.energy_trend,
                      "--free-run: the energy's trend per revolution, relative to its start")
       ->check(FiniteRange(0.0, 1e6))
       ->capture_default_str();
-  command.add_option("--delta-tolerance", options.delta_tolerance,
+  command.add_option("--delta-tolerance", options.tolerances.delta,
                      "--free-run: the speed fluctuation delta's error, relative to the exact delta")
       ->check(FiniteRange(0.0, 1e6))
       ->capture_default_str();
-  command.add_option("--extreme-phase-tolerance", options.extreme_phase_tolerance,
+  command.add_option("--extreme-phase-tolerance", options.tolerances.extreme_phase,
                      "--free-run: [deg] the crank angles of the largest and smallest speed against the exact run's")
       ->check(FiniteRange(0.0, 360.0))
       ->capture_default_str();
-  command.add_option("--phase-tolerance", options.phase_tolerance, "--free-run: [rad] the crank angle at the horizon")
+  command.add_option("--phase-tolerance", options.tolerances.phase, "--free-run: [rad] the crank angle at the horizon")
       ->check(FiniteRange(0.0, 1e6))
       ->capture_default_str();
-  command.add_option("--values-tolerance", options.values_tolerance,
+  command.add_option("--values-tolerance", options.tolerances.values,
                      "--free-run: a value's error at the program's own state, relative to the quantity's scale")
       ->check(FiniteRange(0.0, 1e6))
       ->capture_default_str();
@@ -148,11 +148,11 @@ int runGrade(const GradeOptions& options) {
            {"--dt", options.dt != d.dt},
            {"--dt-sweep", options.dt_sweep != d.dt_sweep},
            {"--output-interval", options.output_interval != d.output_interval},
-           {"--energy-tolerance", options.energy_tolerance != d.energy_tolerance},
-           {"--delta-tolerance", options.delta_tolerance != d.delta_tolerance},
-           {"--extreme-phase-tolerance", options.extreme_phase_tolerance != d.extreme_phase_tolerance},
-           {"--phase-tolerance", options.phase_tolerance != d.phase_tolerance},
-           {"--values-tolerance", options.values_tolerance != d.values_tolerance}})
+           {"--energy-tolerance", options.tolerances.energy_trend != d.tolerances.energy_trend},
+           {"--delta-tolerance", options.tolerances.delta != d.tolerances.delta},
+           {"--extreme-phase-tolerance", options.tolerances.extreme_phase != d.tolerances.extreme_phase},
+           {"--phase-tolerance", options.tolerances.phase != d.tolerances.phase},
+           {"--values-tolerance", options.tolerances.values != d.tolerances.values}})
     if (given) throw UsageError(std::string(flag) + ": applies to a time-stepped run only; add --free-run");
   // Everything that can be checked is checked before the first request: the program, the scenes, the output
   // folder, gnuplot.
@@ -251,8 +251,7 @@ int runFreeRunGrade(const GradeOptions& options) {
   if (options.dt == "own" && options.dt_sweep != 1)
     throw UsageError("--dt-sweep: needs a step to halve; give --dt S (the program's own step cannot be swept)");
   if (options.output_interval > 0.0) settings.output_interval = options.output_interval;
-  settings.tolerances = {options.energy_tolerance, options.delta_tolerance, options.extreme_phase_tolerance,
-                         options.phase_tolerance, options.values_tolerance};
+  settings.tolerances = options.tolerances;
   std::vector<validation::RunCase> cases;
   std::set<std::string> names;
   for (const std::string& path : options.scene_paths) {

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "crankcheck/validation/free_run_grade.h"
+
 namespace crankcheck::app {
 
 struct GradeOptions {
@@ -25,8 +27,7 @@ struct GradeOptions {
   std::string dt;                    ///< a step [s], "own", or empty: 1/720 of a revolution
   int dt_sweep = 1;                  ///< steps dt, dt/2, ...
   double output_interval = 0.0;      ///< [s] 0: every step
-  double energy_tolerance = 1e-6, delta_tolerance = 1e-3, extreme_phase_tolerance = 1.0, phase_tolerance = 1e-3,
-         values_tolerance = 1e-3;
+  validation::RunTolerances tolerances;  ///< --energy-tolerance ... --values-tolerance (defaults: RunTolerances's)
 };
 
 void addGradeOptions(CLI::App& command, GradeOptions& options);

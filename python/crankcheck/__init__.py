@@ -26,6 +26,7 @@ from ._crankcheck import (  # noqa: F401  (the public API)
     batch_target,
     engines,
     fourier_piston_kinematics,
+    free_run_tolerances,
     inverse_radical_fourier_coefficients,
     lambda_coefficients,
     lambda_coefficients_as_printed,
@@ -39,7 +40,8 @@ from ._crankcheck import (  # noqa: F401  (the public API)
 from . import _crankcheck
 
 __all__ = [
-    "Scene", "SceneError", "SceneTable", "GradeResult", "grade", "FreeRunGradeResult", "grade_free_run", "engines", "quantities", "batch_target",
+    "Scene", "SceneError", "SceneTable", "GradeResult", "grade", "FreeRunGradeResult", "grade_free_run",
+    "free_run_tolerances", "engines", "quantities", "batch_target",
     "radical_fourier_coefficients", "inverse_radical_fourier_coefficients", "lambda_coefficients",
     "lambda_coefficients_as_printed", "lambda_series_coefficient", "piston_kinematics", "norton_two_term",
     "fourier_piston_kinematics", "radians_from_degrees", "__version__",
@@ -443,8 +445,8 @@ def _as_run_response(answer):
 
 
 def grade_free_run(function, scenes, *, drive="free", revolutions=10, dt=None, dt_sweep=1, output_interval=None,
-                   energy_tolerance=1e-6, delta_tolerance=1e-3, extreme_phase_tolerance=1.0, phase_tolerance=1e-3,
-                   values_tolerance=1e-3, quick=False, timeout=60.0, out=None):
+                   energy_tolerance=None, delta_tolerance=None, extreme_phase_tolerance=None, phase_tolerance=None,
+                   values_tolerance=None, quick=False, timeout=60.0, out=None):
     """Grades `function`'s time-stepped runs by the measures, tolerances and rules of `crankcheck grade --free-run`
     (docs/grade.md, "Time-stepped runs").
 
@@ -457,7 +459,8 @@ def grade_free_run(function, scenes, *, drive="free", revolutions=10, dt=None, d
     t_end. An exception of the function is raised here (with a note naming the run).
 
     scenes: scene files or Scenes (at least one; with [flywheel] for a free run). drive, revolutions, dt (None: 1/720
-    of a revolution; "own": the function's own), dt_sweep, output_interval, the tolerances and quick: the CLI's flags.
+    of a revolution; "own": the function's own), dt_sweep, output_interval, the tolerances (None: the CLI's defaults,
+    crankcheck.free_run_tolerances()) and quick: the CLI's flags.
     timeout: seconds per run, as --timeout (the call is interrupted as crankcheck.grade's are). out: a folder for the
     report (the same folder rule as --out; needs gnuplot).
     """
@@ -499,8 +502,8 @@ def grade_free_run(function, scenes, *, drive="free", revolutions=10, dt=None, d
         r = _crankcheck._grade_free_run(
             list(scenes), str(drive), int(revolutions), None if (dt is None or own) else float(dt), own, int(dt_sweep),
             None if output_interval is None else float(output_interval),
-            [float(energy_tolerance), float(delta_tolerance), float(extreme_phase_tolerance), float(phase_tolerance),
-             float(values_tolerance)],
+            [None if x is None else float(x) for x in
+             (energy_tolerance, delta_tolerance, extreme_phase_tolerance, phase_tolerance, values_tolerance)],
             bool(quick), float(timeout), out, answer, program)
     finally:
         clock.close()

@@ -539,15 +539,16 @@ py::dict gradeResult(GradeRun& run) {
 // own code (validation::gradeRunAnswers), so the measures, tolerances, refusals and report are the CLI's.
 py::dict gradeFreeRun(const std::vector<py::object>& scenes, const std::string& drive, int revolutions,
                       const std::optional<double>& dt, bool own_step, int dt_sweep,
-                      const std::optional<double>& output_interval, const std::vector<double>& tolerances,
+                      const std::optional<double>& output_interval,
+                      const std::vector<std::optional<double>>& tolerances,
                       bool quick, double timeout_seconds, const std::optional<py::object>& out,
                       const py::function& answer, const std::string& program_name) {
   if (scenes.empty()) throw py::value_error("scenes: give at least one scene (a scene with [flywheel] for a free run)");
   if (drive != "free" && drive != "held" && drive != "loaded")
     throw py::value_error("drive: \"free\", \"held\" or \"loaded\", not \"" + drive + "\"");
   if (tolerances.size() != 5) throw std::logic_error("gradeFreeRun: five tolerances");
-  for (double t : tolerances)
-    if (!(t >= 0.0) || !std::isfinite(t)) throw py::value_error("tolerances: each a finite number >= 0");
+  for (const std::optional<double>& t : tolerances)
+    if (t && (!(*t >= 0.0) || !std::isfinite(*t))) throw py::value_error("tolerances: each a finite number >= 0");
   validation::RunSettings settings;
   settings.drive = drive == "held"     ? validation::RunDrive::kHeld
                    : drive == "loaded" ? validation::RunDrive::kLoaded
@@ -557,7 +558,11 @@ py::dict gradeFreeRun(const std::vector<py::object>& scenes, const std::string& 
   settings.own_step = own_step;
   settings.dt_sweep = dt_sweep;
   settings.output_interval = output_interval;
-  settings.tolerances = {tolerances[0], tolerances[1], tolerances[2], tolerances[3], tolerances[4]};
+  validation::RunTolerances& t = settings.tolerances;  // a tolerance not given: the CLI's default
+  for (auto [given, into] : {std::pair{tolerances[0], &t.energy_trend}, std::pair{tolerances[1], &t.delta},
+                             std::pair{tolerances[2], &t.extreme_phase}, std::pair{tolerances[3], &t.phase},
+                             std::pair{tolerances[4], &t.values}})
+    if (given) *into = *given;
   std::vector<validation::RunCase> cases;
   std::set<std::string> names;
   for (const py::object& item : scenes) {
@@ -784,6 +789,16 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
         for (const QuantityInfo& q : listQuantities()) list.append(q.name);
         return list;
       }, "The names Scene.evaluate returns, in eval's order.");
+  mod.def("free_run_tolerances", [] {
+        const validation::RunTolerances t;  // free_run_grade.h: the defaults of grade --free-run and grade_free_run
+        py::dict d;
+        d["energy_tolerance"] = t.energy_trend;
+        d["delta_tolerance"] = t.delta;
+        d["extreme_phase_tolerance"] = t.extreme_phase;
+        d["phase_tolerance"] = t.phase;
+        d["values_tolerance"] = t.values;
+        return d;
+      }, "The default tolerances of crankcheck.grade_free_run (and grade --free-run), by keyword.");
   mod.def("_per_cylinder_quantities", [] {
         py::list list;  // the catalogue's per-cylinder quantities (scene/quantities.h): grade_free_run's columns (n, k)
         for (const Quantity& q : getQuantityCatalogue())

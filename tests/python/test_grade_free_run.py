@@ -110,3 +110,12 @@ def test_bad_arguments_are_refused(tmp_path):
     bare.write_text(text[:start] + ("" if end < 0 else text[end + 1:]))
     with pytest.raises(crankcheck.SceneError, match=r"\[flywheel\]\.inertia"):
         crankcheck.grade_free_run(constant_speed, [str(bare)])
+
+
+def test_the_default_tolerances_are_the_cli_s():
+    defaults = crankcheck.free_run_tolerances()
+    r = crankcheck.grade_free_run(constant_speed, [SINGLE], revolutions=2, quick=True, delta_tolerance=2.0)
+    tolerance = {m["measure"]: m["tolerance"] for m in r.measures}
+    assert tolerance["delta"] == 2.0  # given
+    assert tolerance["energy_trend"] == defaults["energy_tolerance"]  # left at None: the CLI's default
+    assert tolerance["phase"] == defaults["phase_tolerance"]
