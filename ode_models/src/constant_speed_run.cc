@@ -3,6 +3,8 @@
 #include <ode/ode.h>
 
 #include <chrono>
+#include <cstdarg>
+#include <cstdio>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -15,11 +17,24 @@ namespace {
 
 static_assert(std::is_same_v<dReal, double>, "crankcheck's ODE models need ODE built in double precision (dDOUBLE)");
 
+/// ODE reports a failed internal check (a NaN in a singular solve, for instance) through its error and debug
+/// handlers, which abort the process by default; these throw instead, so a run that ODE cannot carry ends as an
+/// exception of the caller's.
+[[noreturn]] void throwOdeError(int errnum, const char* msg, va_list ap) {
+  char text[512];
+  std::vsnprintf(text, sizeof text, msg, ap);
+  throw std::runtime_error("ODE internal error " + std::to_string(errnum) + ": " + text);
+}
+
 /// ODE's global state (its thread-local data, the collision library) is set up once per process and never torn
 /// down: dInitODE2 may be called once per thread that uses ODE, dAllocateODEDataForThread per thread.
 void initOde() {
   static std::once_flag once;
-  std::call_once(once, [] { dInitODE2(0); });
+  std::call_once(once, [] {
+    dInitODE2(0);
+    dSetErrorHandler(throwOdeError);
+    dSetDebugHandler(throwOdeError);
+  });
   dAllocateODEDataForThread(dAllocateMaskAll);
 }
 

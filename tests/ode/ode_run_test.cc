@@ -38,6 +38,7 @@ struct TurnErrors {
   double wall_start = 0.0;
   double drive_torque_start = 0.0;
   double bearing_start = 0.0;
+  double action_reaction = 0.0;    ///< |on the first + on the second| of the two pins' feedback
 };
 
 /// ODE's start-up transient: the exact state at phi = 0 already satisfies the velocity constraints, so the first
@@ -68,6 +69,9 @@ TurnErrors measureTurn(const Mechanism& m, OdeRunOptions o) {
       e.crank_pin_end = std::max(e.crank_pin_end, planarDistance(c.crank_pin.on_first, at_end.cylinders[j].crank_pin_force) / sc.force);
       e.wrist_pin_start = std::max(e.wrist_pin_start, planarDistance(c.wrist_pin.on_first, at_start.cylinders[j].wrist_pin_force) / sc.force);
       e.wall_start = std::max(e.wall_start, std::abs(c.wall_force - at_start.cylinders[j].wall_force) / sc.force);
+      for (const OdeJointForce& f : {c.crank_pin, c.wrist_pin})
+        e.action_reaction = std::max(e.action_reaction, std::hypot(f.on_first[0] + f.on_second[0], f.on_first[1] + f.on_second[1],
+                                                                   f.on_first[2] + f.on_second[2]) / sc.force);
     }
   }
   return e;
@@ -157,6 +161,16 @@ TEST(OdeRunTest, DefaultRotationUpdateLagsTheCrank) {
   EXPECT_GT(4.0 * h - run.samples.back().phi, 0.5);  // half a radian behind after four steps at 3000 rpm
 }
 
+// Without constraint force mixing the redundant constraints of the planar loop make ODE's solve singular: its
+// internal check fails, and the run throws rather than abort the process.
+TEST(OdeRunTest, SingularSolveThrows) {
+  const Mechanism m = loadExample("single_cylinder.toml");
+  OdeRunOptions o = tightenedOptions(1e-7);
+  o.cfm = 0.0;
+  o.steps = 1;
+  EXPECT_THROW(runOdeAtConstantSpeed(m, o), std::runtime_error);
+}
+
 struct Setting {
   const char* name;
   OdeRunOptions (*options)(double);
@@ -177,6 +191,9 @@ TEST(OdeRunTest, ConvergesWithTheStepWhereOdeConverges) {
         // The loop: each step's explicit position update opens every joint by at most a dt^2 / 2 and ERP closes
         // that share of the error, so the joints settle at a dt^2 / (2 ERP) at most (measured: half of it).
         EXPECT_LE(errors.back().loop, sc.acceleration * dt * dt / (2.0 * o.erp));
+        // A pin's feedback on its two bodies is equal and opposite, to the rounding of the forces (1e-16 of their
+        // scale, times 1e4 for the sums of the solve's rows).
+        EXPECT_LE(errors.back().action_reaction, 1e-12);
       }
       SCOPED_TRACE(std::string(scene) + " " + setting.name);
       const TurnErrors& e3 = errors[1];

@@ -12,6 +12,16 @@
 /// and the piston of cylinder j lie in the plane z = z_j; the crank's point masses m_s, m_p of every throw are lumped
 /// into one body in the plane z = 0 (their axial spread only moves the bearing's moments, which are not recorded).
 ///
+/// The axial positions z_j place the rods and pistons along the shaft but change none of the planar forces recorded
+/// here (every hinge is about Z); the out-of-plane reactions of these redundant 3-D joints are not recorded.
+///
+/// The instants (tests/ode/ode_run_test.cc verifies them against the closed forms): positions (x_p, phi) belong to
+/// the step's end; the forces and the drive torque ODE solves during a step belong to its START (phi_start): ODE
+/// linearises the joints at the positions the step starts from, so its forces match the exact ones there to second
+/// order in dt, while read at the step's middle they carry a half step's lag (first order) and at its end twice that.
+/// The first steps are a start-up transient: the exact state at phi = 0 already satisfies the velocity constraints,
+/// so the first step applies almost none of the inertia load; the error shrinks by about (1 - ERP) per step after.
+///
 /// Why a motor rather than a velocity reset: the motor is a constraint row ODE solves with the joints, so its torque
 /// (the drive torque) comes from ODE's own feedback and every other reaction is consistent with it; a reset of the
 /// crank's speed between steps would leave the drive torque to be inferred from a momentum balance outside ODE.
@@ -40,7 +50,9 @@ struct OdeRunOptions {
   OdeSolver solver = OdeSolver::kStep;
   int quick_step_iterations = 20;  ///< dWorldSetQuickStepNumIterations (ODE's default 20), >= 1
   double erp = 0.2;              ///< dWorldSetERP, in (0, 1] (ODE's default 0.2): the share of a joint's error fixed per step
-  double cfm = 1e-10;            ///< dWorldSetCFM, >= 0 (ODE's default in double precision 1e-10)
+  /// dWorldSetCFM, >= 0 (ODE's default in double precision 1e-10). The hinges and sliders of a planar loop are
+  /// redundant in 3-D: with too little mixing (0, 1e-16) ODE's solve is singular and the run throws.
+  double cfm = 1e-10;
   /// dBodySetFiniteRotationMode for every body. ODE's default (false) turns a body by 2 atan(w dt / 2) per step
   /// instead of w dt (the first-order quaternion update, normalised); true turns it exactly by w dt.
   bool finite_rotation = false;
@@ -72,7 +84,8 @@ struct OdeSample {
   double t = 0.0;              ///< [s] the step's end
   /// [rad] the crank angle at the step's end: the crank body's rotation about Z, unwrapped (continuous over turns).
   double phi = 0.0;
-  /// [rad] the crank angle at the step's start (the previous sample's phi; 0 for the first step).
+  /// [rad] the crank angle at the step's start (the previous sample's phi; 0 for the first step): the instant the
+  /// step's forces and drive torque belong to.
   double phi_start = 0.0;
   double drive_torque = 0.0;   ///< [N m] about +Z at O, the motor and hinge's torque on the crank (feedback)
   Vec3 bearing_force{};        ///< [N] on the crank from the frame at O: the crank hinge's feedback force
@@ -93,6 +106,8 @@ struct OdeRun {
 ///   `[rod].mass` or `[piston].mass` of 0 (a body needs a mass), `[rod].inertia_about_wrist_pin` equal to m_k z_k^2 (a
 ///   rod without rotational inertia about its centre of mass), or a bad option (dt, steps, revolutions with speed 0,
 ///   quick_step_iterations, erp, cfm, motor_max_torque).
+/// @throws std::runtime_error when one of ODE's internal checks fails during the run (ODE would abort the process;
+///   here its error and debug handlers throw), e.g. a singular solve at too small a cfm.
 OdeRun runOdeAtConstantSpeed(const Mechanism& m, const OdeRunOptions& o);
 
 }  // namespace crankcheck::ode_models
