@@ -1,0 +1,114 @@
+#pragma once
+/// @file
+/// The k-crank mechanism in Bullet 3.24's btMultiBody (Featherstone's articulated-body algorithm in reduced
+/// coordinates; Debian libbullet-dev's double-precision build, bullet-float64), driven at the scene's constant crank
+/// speed from the exact state at phi = 0 and stepped by Bullet's own solver. Never links the analytic library: the
+/// few closed forms of the initial state are written again in the source. Bullet stays inside src/: this header
+/// includes no Bullet header.
+///
+/// The model (docs/CONVENTIONS.md for frames and symbols): one btMultiBody with a fixed base at O. Its links: the
+/// crankshaft (a revolute joint about Z at O, every throw's m_s and m_p lumped into one body in the plane z = 0); per
+/// cylinder j a piston (a prismatic joint from the base along e_j on the line A_j = x_p e_j + delta_j n_j, plane
+/// z = z_j; its joint coordinate is x_p) and a rod (a revolute joint about Z at the crank pin B_j, child of the crank).
+/// The tree is open at the wrist pins: each loop is closed by a btMultiBodyPoint2Point between the rod and the piston
+/// at A_j, a constraint Bullet's sequential-impulse (projected Gauss-Seidel) solver holds each step with the crank's
+/// btMultiBodyJointMotor (velocity target omega). The crank pin, the bearing and the slider are joints of the tree:
+/// their reactions are not constraint impulses, Bullet reports them through btMultiBodyJointFeedback (the articulated
+/// force across each joint, from the free pass plus a second pass with the constraint impulses). Measured against
+/// the closed forms: the pistons' feedback is the wall's force (second order at the step's start), the rods' and the
+/// crank's are NOT the crank-pin and bearing forces (off by 0.01-0.1 of the force scale at every step, not falling
+/// with it); Bullet's issues #4604 and #2966 report btMultiBody's feedback doubled in 3.24.
+///
+/// Bullet's step (stepSimulation(dt, 0): one step of exactly dt, no fixed-step substepping and no interpolation of
+/// the reported state): the free velocities from the articulated-body algorithm at the step's start, then the
+/// constraint impulses solved on the rows built at the step's start positions, then the positions integrated with
+/// the constrained velocities (semi-implicit Euler). The instants (tests/bullet/bullet_run_test.cc verifies them):
+/// positions (x_p, phi) belong to the step's end; the impulses (the drive torque, the wrist-pin force) and the joint
+/// feedback to its start: read at the step's middle or end they carry a half or a whole step's lag (first order).
+/// The first steps are a start-up transient: the exact state at phi = 0 already satisfies the velocity constraints,
+/// so the first step applies almost none of the inertia load; the error shrinks by about (1 - ERP) per step after.
+///
+/// Bullet's defaults that change the physics, each an option here with Bullet's default: btMultiBody's linear and
+/// angular damping 0.04 (each link gets a force -m v (0.04 + 0.04 |v|) and a torque likewise from its angular
+/// velocity, in every step; the motor pays for it), its cap of every joint speed at 100 (rad/s or m/s: every velocity
+/// update, the constraint impulses' included, is clamped to it, so a crank asked for 3000 rpm, 314 rad/s, turns at
+/// 100 rad/s and its loops stay open by centimetres), and a constraint's largest impulse per row, 100 N s (it binds
+/// only when force times dt exceeds it: not on the example scenes at 1/240 s).
+
+#include <array>
+#include <limits>
+#include <vector>
+
+#include "crankcheck/scene/mechanism.h"
+
+namespace crankcheck::bullet_models {
+
+using Vec3 = std::array<double, 3>;
+
+/// The settings of a constant-speed run. Defaults: Bullet 3.24's own defaults (btContactSolverInfo, btMultiBody,
+/// btMultiBodyConstraint) and the step of a typical user, 1/240 s.
+struct BulletRunOptions {
+  double dt = 1.0 / 240.0;          ///< [s] the step, > 0
+  /// Number of steps; 0: enough whole steps to cover `revolutions` turns of the crank (ceil).
+  long steps = 0;
+  double revolutions = 1.0;         ///< turns of the crank, > 0, when steps == 0 (needs omega != 0)
+  int solver_iterations = 10;       ///< btContactSolverInfo::m_numIterations (Bullet's default 10), >= 1
+  /// btContactSolverInfo::m_erp and m_erp2, in (0, 1] (Bullet's default 0.2 for both): the share of a loop's
+  /// position error a step corrects (for a row whose error Bullet's contact logic counts as a "penetration", > 0 along
+  /// the row's normal, the whole error is corrected whatever erp is).
+  double erp = 0.2;
+  double linear_damping = 0.04;     ///< btMultiBody::setLinearDamping, >= 0 (Bullet's default 0.04)
+  double angular_damping = 0.04;    ///< btMultiBody::setAngularDamping, >= 0 (Bullet's default 0.04)
+  double max_coordinate_velocity = 100.0;  ///< btMultiBody::setMaxCoordinateVelocity [rad/s or m/s], > 0 (default 100)
+  double loop_max_impulse = 100.0;  ///< [N s] the point-to-point rows' largest impulse, > 0 (Bullet's default 100)
+  /// [N m s] the crank motor's largest impulse per step; infinite: the speed is held whatever it costs.
+  double motor_max_impulse = std::numeric_limits<double>::infinity();
+};
+
+/// One cylinder at one step.
+struct BulletCylinderSample {
+  double x_p = 0.0;            ///< [m] the piston's joint coordinate along e_j at the step's end
+  /// [N] on the piston from the rod at A_j (global X, Y, Z): the point-to-point constraint's applied impulses / dt.
+  Vec3 wrist_pin{};
+  /// [N] the rod's joint feedback (btMultiBodyJointFeedback, its force part, global axes): what Bullet reports as the
+  /// force on the rod from the crank at B_j. NOT that force: see the file's comment.
+  Vec3 crank_pin_feedback{};
+  /// [N] the piston's joint feedback (global axes): the force on the piston from the wall (its component along e_j,
+  /// the free axis, is 0).
+  Vec3 slider_feedback{};
+  double wall_force = 0.0;    ///< [N] N_w = slider_feedback . n_j
+  /// [m] the wrist pin's separation at the step's end: the pivot as the rod and as the piston carry it.
+  double loop_error = 0.0;
+};
+
+/// One step: positions at its end (t), impulses those Bullet solved for during it.
+struct BulletSample {
+  double t = 0.0;              ///< [s] the step's end
+  double phi = 0.0;            ///< [rad] the crank joint's coordinate at the step's end (continuous over turns)
+  /// [rad] the crank angle at the step's start (the previous sample's phi; 0 for the first step): the instant the
+  /// step's impulses belong to.
+  double phi_start = 0.0;
+  double drive_torque = 0.0;   ///< [N m] about +Z on the crank: the motor's applied impulse / dt
+  /// [N] the crank's joint feedback (global axes): what Bullet reports as the force on the crankshaft from the frame
+  /// at O. NOT that force: see the file's comment.
+  Vec3 bearing_feedback{};
+  std::vector<BulletCylinderSample> cylinders;
+};
+
+/// A constant-speed run.
+struct BulletRun {
+  std::vector<BulletSample> samples;  ///< one per step, in order
+  double seconds_per_step = 0.0;      ///< [s] wall time of the stepping (reads included) divided by the steps
+};
+
+/// Builds m's mechanism as a btMultiBody, sets it at the exact state at phi = 0 and the scene's speed (every joint's
+/// coordinate and speed from the slider-crank's closed forms), drives the crank at omega with its joint motor and
+/// steps it `o.steps` times (or for `o.revolutions` turns), recording each step.
+/// @throws std::invalid_argument naming the key of what this model cannot build: `[gas]` (not modelled here),
+///   `[[balance_shaft]]`, `[rod].mass` or `[piston].mass` of 0 (a link needs a mass), `[rod].inertia_about_wrist_pin`
+///   equal to m_k z_k^2, `[crank].mass` (no crank mass), or a bad option (dt, steps, revolutions with speed 0,
+///   solver_iterations, erp, linear_damping, angular_damping, max_coordinate_velocity, loop_max_impulse,
+///   motor_max_impulse).
+BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o);
+
+}  // namespace crankcheck::bullet_models

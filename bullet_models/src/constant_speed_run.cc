@@ -1,0 +1,278 @@
+#include "crankcheck/bullet_models/constant_speed_run.h"
+
+#include <BulletCollision/BroadphaseCollision/btDbvtBroadphase.h>
+#include <BulletCollision/CollisionDispatch/btCollisionDispatcher.h>
+#include <BulletCollision/CollisionDispatch/btDefaultCollisionConfiguration.h>
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointFeedback.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <BulletCollision/CollisionShapes/btSphereShape.h>
+#include <BulletDynamics/Featherstone/btMultiBodyPoint2Point.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+namespace crankcheck::bullet_models {
+namespace {
+
+// Debian's libbullet-dev ships both builds; bullet-float64.pc gives -DBT_USE_DOUBLE_PRECISION and the -float64
+// libraries together. A mismatch between the define and the library would corrupt every btVector3 passed across.
+static_assert(std::is_same_v<btScalar, double>, "crankcheck's Bullet models need Bullet in double precision (bullet-float64)");
+
+/// The exact state of cylinder j at crank angle phi and speed omega (docs/CONVENTIONS.md "Frames and signs" and
+/// "Pin offset"): sin beta = lambda sin theta - delta / l, x_p = r cos theta + l cos beta, the rod's angular velocity
+/// about +Z is -beta_dot.
+struct CylinderState {
+  double delta = 0.0, z = 0.0;
+  std::array<double, 2> e{}, n{};
+  std::array<double, 2> a{}, b{};     // [m] wrist pin A, crank pin B (global X, Y)
+  double x_p = 0.0, v_p = 0.0;       // [m], [m/s] along e
+  double rod_angular_velocity = 0.0;  // [rad/s] about +Z
+};
+
+CylinderState calcCylinderState(const Mechanism& m, int j, double phi, double omega) {
+  const double r = m.crank.radius, l = m.rod.length;
+  CylinderState s;
+  const double gamma = getBankAngle(m, j);
+  s.delta = getPinOffset(m, j);
+  s.z = getAxialPosition(m, j);
+  s.e = {std::cos(gamma), std::sin(gamma)};
+  s.n = {-s.e[1], s.e[0]};
+  const double theta = phi + getThrowAngle(m, j) - gamma;
+  const double sin_beta = (r * std::sin(theta) - s.delta) / l;
+  const double cos_beta = std::sqrt(1.0 - sin_beta * sin_beta);
+  const double beta_dot = r * std::cos(theta) * omega / (l * cos_beta);
+  s.x_p = r * std::cos(theta) + l * cos_beta;
+  s.v_p = -r * std::sin(theta) * omega - l * sin_beta * beta_dot;
+  s.rod_angular_velocity = -beta_dot;
+  const double crank_angle = phi + getThrowAngle(m, j);
+  s.b = {r * std::cos(crank_angle), r * std::sin(crank_angle)};
+  s.a = {s.x_p * s.e[0] + s.delta * s.n[0], s.x_p * s.e[1] + s.delta * s.n[1]};
+  return s;
+}
+
+void requireOption(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("Bullet run: " + what);
+}
+
+void refuse(const std::string& key, const std::string& why) {
+  throw std::invalid_argument("Bullet cannot build this scene: " + key + " " + why);
+}
+
+struct CylinderLinks {
+  int piston = 0, rod = 0;            // link indices
+  btVector3 wrist_pin_in_rod{0, 0, 0};  // [m] A from the rod's centre of mass, in the rod's frame
+  std::unique_ptr<btMultiBodyPoint2Point> wrist_pin;
+  btMultiBodyJointFeedback piston_feedback{}, rod_feedback{};
+};
+
+/// A link's joint feedback's force (the linear part of btMultiBodyJointFeedback::m_reactionForces, m_topVec, which
+/// Bullet 3.24 gives in the link's frame) in global axes, turned by the link's orientation at the step's start (the
+/// positions Bullet computed it at). `columns`: the link's X, Y, Z axes in global axes.
+Vec3 toGlobal(const std::array<btVector3, 3>& columns, const btMultiBodyJointFeedback& feedback) {
+  const btVector3 f = columns[0] * feedback.m_reactionForces.m_topVec[0] + columns[1] * feedback.m_reactionForces.m_topVec[1] +
+                      columns[2] * feedback.m_reactionForces.m_topVec[2];
+  return {f[0], f[1], f[2]};
+}
+
+std::array<btVector3, 3> getOrientation(const btMultiBody& body, int link) {
+  return {body.localDirToWorld(link, btVector3(1.0, 0.0, 0.0)), body.localDirToWorld(link, btVector3(0.0, 1.0, 0.0)),
+          body.localDirToWorld(link, btVector3(0.0, 0.0, 1.0))};
+}
+
+}  // namespace
+
+BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o) {
+  const int k = m.machine.cylinders;
+  const double omega = m.machine.speed;
+  requireOption(std::isfinite(o.dt) && o.dt > 0.0, "dt must be a positive number of seconds");
+  requireOption(o.steps >= 0, "steps must be >= 0");
+  requireOption(o.steps > 0 || (std::isfinite(o.revolutions) && o.revolutions > 0.0 && omega != 0.0),
+                "revolutions must be > 0 with a crank speed != 0 when steps is 0");
+  requireOption(o.solver_iterations >= 1, "solver_iterations must be >= 1");
+  requireOption(o.erp > 0.0 && o.erp <= 1.0, "erp must be in (0, 1]");
+  requireOption(std::isfinite(o.linear_damping) && o.linear_damping >= 0.0, "linear_damping must be >= 0");
+  requireOption(std::isfinite(o.angular_damping) && o.angular_damping >= 0.0, "angular_damping must be >= 0");
+  requireOption(o.max_coordinate_velocity > 0.0, "max_coordinate_velocity must be > 0");
+  requireOption(o.loop_max_impulse > 0.0, "loop_max_impulse must be > 0");
+  requireOption(o.motor_max_impulse > 0.0, "motor_max_impulse must be > 0");
+  if (m.gas) refuse("[gas]", "is not modelled by the Bullet run yet (drop it: Mechanism::gas.reset())");
+  if (!m.balance_shafts.empty()) refuse("[[balance_shaft]]", "has no geared coupling in this Bullet model");
+  if (!(m.rod.mass > 0.0)) refuse("[rod].mass", "must be > 0 (a btMultiBody link needs a mass)");
+  if (!(m.piston.mass > 0.0)) refuse("[piston].mass", "must be > 0 (a btMultiBody link needs a mass)");
+  const double rod_inertia = m.rod.inertia_about_wrist_pin - m.rod.mass * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
+  if (!(rod_inertia > 0.0))
+    refuse("[rod].inertia_about_wrist_pin", "must exceed m_k z_k^2 (the rod's inertia about its centre of mass must be > 0)");
+
+  // The crank: every throw's m_s at r_s on its crank line and m_p at r_p opposite, one link in the plane z = 0.
+  double crank_mass = 0.0, first_x = 0.0, first_y = 0.0, inertia_o = 0.0;
+  for (int j = 0; j < k; ++j) {
+    const double beta = getThrowAngle(m, j);
+    crank_mass += m.crank.mass + m.crank.counterweight_mass;
+    first_x += (m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius) * std::cos(beta);
+    first_y += (m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius) * std::sin(beta);
+    inertia_o += m.crank.mass * m.crank.com_radius * m.crank.com_radius +
+                 m.crank.counterweight_mass * m.crank.counterweight_radius * m.crank.counterweight_radius;
+  }
+  if (!(crank_mass > 0.0)) refuse("[crank].mass", "and counterweight_mass are 0 (a btMultiBody link needs a mass)");
+  const double cx = first_x / crank_mass, cy = first_y / crank_mass;
+  const double crank_inertia = inertia_o - crank_mass * (cx * cx + cy * cy);  // about the centre of mass, along Z
+  if (!(crank_inertia > 0.0))
+    refuse("[crank].com_radius", "and counterweight_radius leave the crank no inertia about its centre of mass");
+
+  // Every link's frame is parallel to the world's at phi = 0 with every joint coordinate 0 except the pistons'
+  // (x_p), so the offsets below are global vectors at the initial state. Only the inertia about Z acts (every joint
+  // is about Z or along the plane; a diagonal tensor spinning about Z has no gyroscopic moment), so all three
+  // diagonal entries are that one.
+  const int crank_link = 0;
+  const int links = 1 + 2 * k;
+  auto body = std::make_unique<btMultiBody>(links, 1.0, btVector3(1.0, 1.0, 1.0), /*fixedBase=*/true, /*canSleep=*/false);
+  body->setBaseWorldTransform(btTransform::getIdentity());
+  const btQuaternion identity = btQuaternion::getIdentity();
+  const btVector3 z_axis(0.0, 0.0, 1.0);
+  body->setupRevolute(crank_link, crank_mass, btVector3(crank_inertia, crank_inertia, crank_inertia), -1, identity, z_axis,
+                      btVector3(0.0, 0.0, 0.0), btVector3(cx, cy, 0.0), true);
+  std::vector<CylinderLinks> cylinders(static_cast<std::size_t>(k));
+  std::vector<CylinderState> initial;
+  for (int j = 0; j < k; ++j) {
+    CylinderLinks& c = cylinders[static_cast<std::size_t>(j)];
+    const CylinderState s = calcCylinderState(m, j, 0.0, omega);
+    initial.push_back(s);
+    c.piston = 1 + 2 * j;
+    c.rod = 2 + 2 * j;
+    // The piston: a particle on its line; its prismatic joint holds every rotation, so its inertia never acts (any
+    // positive value will do, the rod's keeps the system's scale).
+    body->setupPrismatic(c.piston, m.piston.mass, btVector3(rod_inertia, rod_inertia, rod_inertia), -1, identity,
+                         btVector3(s.e[0], s.e[1], 0.0), btVector3(s.delta * s.n[0], s.delta * s.n[1], s.z),
+                         btVector3(0.0, 0.0, 0.0), true);
+    // The rod: its centre of mass G on A -> B at z_k / l from A; the joint at B on the crank.
+    const double f = m.rod.com_from_wrist_pin / m.rod.length;
+    const btVector3 g(s.a[0] + f * (s.b[0] - s.a[0]), s.a[1] + f * (s.b[1] - s.a[1]), s.z);
+    const btVector3 b(s.b[0], s.b[1], s.z);
+    body->setupRevolute(c.rod, m.rod.mass, btVector3(rod_inertia, rod_inertia, rod_inertia), crank_link, identity, z_axis,
+                        b - btVector3(cx, cy, 0.0), g - b, true);
+    c.wrist_pin_in_rod = btVector3(s.a[0], s.a[1], s.z) - g;
+  }
+  btMultiBodyJointFeedback crank_feedback{};
+  body->getLink(crank_link).m_jointFeedback = &crank_feedback;
+  for (CylinderLinks& c : cylinders) {
+    body->getLink(c.piston).m_jointFeedback = &c.piston_feedback;
+    body->getLink(c.rod).m_jointFeedback = &c.rod_feedback;
+  }
+  body->finalizeMultiDof();
+  body->setLinearDamping(o.linear_damping);
+  body->setAngularDamping(o.angular_damping);
+  body->setMaxCoordinateVelocity(o.max_coordinate_velocity);
+  body->setJointVel(crank_link, omega);
+  for (int j = 0; j < k; ++j) {
+    const CylinderLinks& c = cylinders[static_cast<std::size_t>(j)];
+    const CylinderState& s = initial[static_cast<std::size_t>(j)];
+    body->setJointPos(c.piston, s.x_p);
+    body->setJointVel(c.piston, s.v_p);
+    body->setJointVel(c.rod, s.rod_angular_velocity - omega);  // relative to the crank
+  }
+  btAlignedObjectArray<btQuaternion> world_to_local;
+  btAlignedObjectArray<btVector3> local_origin;
+  world_to_local.resize(links + 1);  // forwardKinematics fills the base's and every link's entry
+  local_origin.resize(links + 1);
+  body->forwardKinematics(world_to_local, local_origin);
+
+  auto motor = std::make_unique<btMultiBodyJointMotor>(body.get(), crank_link, omega, o.motor_max_impulse);
+  for (CylinderLinks& c : cylinders) {
+    c.wrist_pin = std::make_unique<btMultiBodyPoint2Point>(body.get(), c.rod, body.get(), c.piston, c.wrist_pin_in_rod,
+                                                           btVector3(0.0, 0.0, 0.0));
+    c.wrist_pin->setMaxAppliedImpulse(o.loop_max_impulse);
+  }
+  // A constraint sizes its Jacobians and its impulse records from the finalised body.
+  motor->finalizeMultiDof();
+  for (CylinderLinks& c : cylinders) c.wrist_pin->finalizeMultiDof();
+
+  // Every link carries a collider that collides with nothing (group and mask 0): Bullet's solver takes a multibody's
+  // constraints island by island, and an island is found through the links' colliders; without them the motor and
+  // the loops would never be solved. Declared before the world, so the world is destroyed first.
+  btSphereShape shape(0.01);
+  std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
+  for (int i = 0; i < links; ++i) {
+    colliders.push_back(std::make_unique<btMultiBodyLinkCollider>(body.get(), i));
+    btMultiBodyLinkCollider& collider = *colliders.back();
+    collider.setCollisionShape(&shape);
+    btTransform transform;
+    transform.setIdentity();
+    transform.setOrigin(body->localPosToWorld(i, btVector3(0.0, 0.0, 0.0)));
+    collider.setWorldTransform(transform);
+    collider.setActivationState(DISABLE_DEACTIVATION);
+    body->getLink(i).m_collider = &collider;
+  }
+  btDefaultCollisionConfiguration configuration;
+  btCollisionDispatcher dispatcher(&configuration);
+  btDbvtBroadphase broadphase;
+  btMultiBodyConstraintSolver solver;
+  btMultiBodyDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
+  world.setGravity(btVector3(0.0, -m.machine.gravity, 0.0));
+  btContactSolverInfo& info = world.getSolverInfo();
+  info.m_numIterations = o.solver_iterations;
+  info.m_erp = o.erp;
+  info.m_erp2 = o.erp;
+  world.addMultiBody(body.get());
+  for (auto& collider : colliders) world.addCollisionObject(collider.get(), 0, 0);
+  world.addMultiBodyConstraint(motor.get());
+  for (CylinderLinks& c : cylinders) world.addMultiBodyConstraint(c.wrist_pin.get());
+
+  const std::array<btVector3, 3> piston_orientation{btVector3(1.0, 0.0, 0.0), btVector3(0.0, 1.0, 0.0), btVector3(0.0, 0.0, 1.0)};
+  const long steps = o.steps > 0 ? o.steps
+                                 : static_cast<long>(std::ceil(o.revolutions * 2.0 * std::numbers::pi /
+                                                               (std::abs(omega) * o.dt) - 1e-9));
+  BulletRun run;
+  run.samples.reserve(static_cast<std::size_t>(steps));
+  double phi = 0.0;
+  const auto started = std::chrono::steady_clock::now();
+  for (long i = 0; i < steps; ++i) {
+    // maxSubSteps 0: one step of exactly dt. With substeps Bullet would step at its fixedTimeStep (1/60 s unless
+    // given) and report states interpolated between its steps, neither of which is the step under test.
+    // The pistons' frames never turn (identity); the crank's and the rods' are read before the step.
+    const std::array<btVector3, 3> crank_start = getOrientation(*body, crank_link);
+    std::vector<std::array<btVector3, 3>> rod_start;
+    for (const CylinderLinks& c : cylinders) rod_start.push_back(getOrientation(*body, c.rod));
+    world.stepSimulation(o.dt, 0);
+    BulletSample sample;
+    sample.t = static_cast<double>(i + 1) * o.dt;
+    sample.phi_start = phi;
+    phi = body->getJointPos(crank_link);
+    sample.phi = phi;
+    sample.drive_torque = motor->getAppliedImpulse(0) / o.dt;
+    sample.bearing_feedback = toGlobal(crank_start, crank_feedback);
+    sample.cylinders.reserve(static_cast<std::size_t>(k));
+    for (const CylinderLinks& c : cylinders) {
+      BulletCylinderSample cs;
+      cs.crank_pin_feedback = toGlobal(rod_start[sample.cylinders.size()], c.rod_feedback);
+      cs.slider_feedback = toGlobal(piston_orientation, c.piston_feedback);
+      const CylinderState& s = initial[sample.cylinders.size()];
+      cs.wall_force = cs.slider_feedback[0] * s.n[0] + cs.slider_feedback[1] * s.n[1];
+      cs.x_p = body->getJointPos(c.piston);
+      // The point-to-point rows are along -X, -Y, -Z on the rod (A) and +X, +Y, +Z on the piston (B).
+      for (int row = 0; row < 3; ++row) cs.wrist_pin[static_cast<std::size_t>(row)] = c.wrist_pin->getAppliedImpulse(row) / o.dt;
+      const btVector3 on_rod = body->localPosToWorld(c.rod, c.wrist_pin_in_rod);
+      const btVector3 on_piston = body->localPosToWorld(c.piston, btVector3(0.0, 0.0, 0.0));
+      cs.loop_error = (on_rod - on_piston).length();
+      sample.cylinders.push_back(cs);
+    }
+    run.samples.push_back(std::move(sample));
+  }
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - started;
+  run.seconds_per_step = steps > 0 ? elapsed.count() / static_cast<double>(steps) : 0.0;
+  world.removeMultiBodyConstraint(motor.get());
+  for (CylinderLinks& c : cylinders) world.removeMultiBodyConstraint(c.wrist_pin.get());
+  for (auto& collider : colliders) world.removeCollisionObject(collider.get());
+  world.removeMultiBody(body.get());
+  return run;
+}
+
+}  // namespace crankcheck::bullet_models
