@@ -12,6 +12,7 @@ packages=(g++ cmake make pkg-config libeigen3-dev libboost-dev libsimbody-dev li
           libmujoco-dev libqhull-dev  # libqhull-dev: the include folder Debian's mujoco::mujoco target names
           libode-dev  # ODE 0.16 (ode_models/)
           libbullet-dev  # Bullet 3.24, its double-precision build (bullet_models/)
+          libbox2d-dev  # Box2D 2.4, single precision (box2d_models/)
           python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module (python/) and its tests
           python3-mpmath)  # the high-precision reference of tests/python/test_angles.py
 missing=()
