@@ -15,7 +15,7 @@ std::string shortNumber(double x, int digits = 2);
 /// user to copy; crankcheck itself never runs a command through a shell.
 std::string quoteShellWord(const std::string& word);
 
-/// Today's date in UTC, "2026-11-27", for a report's first lines.
+/// Today's date in UTC as YYYY-MM-DD, for a report's first lines.
 std::string formatToday();
 
 /// A fraction as a percentage to 3 significant digits: 0.0123 -> "1.23 %", 0.5 -> "50 %".
