@@ -1,0 +1,109 @@
+#pragma once
+/// @file
+/// The seam of a stepped engine: a physics engine that advances the mechanism by fixed time steps with its own
+/// constraint solver (ODE, Bullet, Box2D), as robotics and games run it. Such an engine answers no "value at crank
+/// angle phi": it is driven at the scene's constant crank speed from the exact state at phi = 0, and each of its
+/// steps reports the quantities it can read from its own API, each belonging to a stated instant of the step (a
+/// position to the step's end, a solved force to its start, ...). validation/ measures those against the closed forms
+/// at that instant (validation/stepped_errors.h). Plain values, no engine behind them.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "crankcheck/scene/evaluation.h"
+#include "crankcheck/scene/mechanism.h"
+#include "crankcheck/scene/quantities.h"
+
+namespace crankcheck {
+
+/// One body's planar state in the global frame (docs/CONVENTIONS.md): its centre of mass, its angle about +Z, their
+/// rates.
+struct PlanarBodyState {
+  Vec2 p_WBcm_W{};      ///< [m] centre of mass
+  double angle = 0.0;   ///< [rad] the body's rotation about +Z from its pose at which the model is built
+  Vec2 v_WBcm_W{};      ///< [m/s]
+  double omega = 0.0;   ///< [rad/s] about +Z
+};
+
+/// Cylinder j's rod and piston and their pins at the start of a run.
+struct CylinderStartState {
+  Vec2 p_WB_W{};             ///< [m] the crank pin B_j
+  Vec2 p_WA_W{};             ///< [m] the wrist pin A_j
+  Vec2 e{}, n{};             ///< the cylinder's axis e_j and its normal n_j (CONVENTIONS)
+  double x_p = 0.0;          ///< [m] A_j along e_j
+  double v_p = 0.0;          ///< [m/s]
+  /// The rod: its angle is the direction of A_j -> B_j about +Z (atan2), not measured from a built pose.
+  PlanarBodyState rod;
+  PlanarBodyState piston;    ///< its angle 0, its omega 0: the piston slides
+};
+
+/// The state a stepped run starts from: every body's position and velocity at phi = 0 and the scene's speed.
+struct StartState {
+  double phi = 0.0;          ///< [rad]
+  double omega = 0.0;        ///< [rad/s] the crank's speed
+  std::vector<CylinderStartState> cylinders;
+};
+
+/// The start state from `exact`, an engine's Evaluation of m at phi = exact.phi and m's speed (validation/ hands in
+/// the analytic engine's: the start is the run's input, not what is measured). Rigid-body kinematics only: the crank
+/// pin from the crank's angle, the wrist pin x_p e + delta n, the rod from its angle beta (CylinderEvaluation::
+/// rod_angle, the rod body turning at -rod_omega about +Z), each centre of mass's velocity v_A + w x (cm - A).
+/// @throws std::invalid_argument if exact has not one cylinder per cylinder of m.
+StartState calcStartState(const Mechanism& m, const Evaluation& exact);
+
+/// Where within its step a stepped engine's value belongs: 0 the step's start, 1 its end, 0.5 its middle; outside
+/// [0, 1] where the engine's value is best read there (Box2D's impulses: -0.5, half a step before the start).
+struct QuantityInstant {
+  QuantityId quantity;
+  double step_fraction = 0.0;
+};
+
+/// One step of a run.
+struct SteppedSample {
+  double t = 0.0;            ///< [s] the step's end, from the run's start
+  double phi_start = 0.0;    ///< [rad] the crank's angle at the step's start, unwrapped (the run starts at 0)
+  double phi_end = 0.0;      ///< [rad] at its end (the engine's own crank angle, unwrapped)
+  /// The reported quantities (SteppedRun::reported) in eval's fields; every other field NaN. Each belongs to
+  /// phi_start + step_fraction (phi_end - phi_start).
+  Evaluation values;
+  /// [m] the largest separation, at the step's end, of a joint the engine holds by constraint (a pin's anchor as
+  /// each of its two bodies carries it, a piston off its line): how far the engine leaves the loops open. NaN: the
+  /// engine closes them by construction.
+  double loop_error = 0.0;
+};
+
+/// A constant-speed run.
+struct SteppedRun {
+  std::vector<SteppedSample> samples;  ///< one per step, in order
+  /// The quantities the engine reports and where each belongs (the same for every sample).
+  std::vector<QuantityInstant> reported;
+  double seconds_per_step = 0.0;       ///< [s] wall time of the stepping and the reads, divided by the steps
+};
+
+/// How to run.
+struct SteppedRunOptions {
+  double dt = 1.0 / 240.0;   ///< [s] the step, > 0
+  long steps = 0;            ///< steps to take, > 0
+  /// One of SteppedEngine::settings: "defaults" (the library's own), or the engine's other named settings.
+  std::string settings = "defaults";
+  StartState start;          ///< the exact state at phi = 0 (calcStartState)
+};
+
+/// A stepped engine of the registry (validation/engines.h listSteppedEngines): measured, never gated.
+struct SteppedEngine {
+  std::string name;       ///< as on the command line: "ode", "ode-quickstep", "bullet", "box2d"
+  std::string library;    ///< with its version: "ODE 0.16.2"
+  std::string method;     ///< one line: the model and the solver
+  /// The settings it runs at, "defaults" first; settings_meaning[i] says what settings[i] changes, in one line.
+  std::vector<std::string> settings, settings_meaning;
+  std::string instants;   ///< one line: where each reported quantity belongs within a step, and why
+  /// The layouts and keys it cannot build, in one line (each refused by name with std::invalid_argument).
+  std::string cannot_build;
+  /// Runs m at its constant speed (m.machine.speed != 0).
+  /// @throws std::invalid_argument naming the scene key the engine cannot build, or a bad option;
+  ///         std::runtime_error if the library fails during the run.
+  std::function<SteppedRun(const Mechanism& m, const SteppedRunOptions& options)> run;
+};
+
+}  // namespace crankcheck
