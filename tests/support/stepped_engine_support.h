@@ -1,0 +1,58 @@
+#pragma once
+/// @file
+/// What the stepped engines' tests (tests/ode, tests/bullet, tests/box2d) share: the example scenes without what the
+/// engines do not take, a registry engine's errors at a series of steps (validation/stepped_errors.h: each quantity
+/// against the closed forms at its instant), one quantity's error and the order observed between two steps.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "crankcheck/scene/scene_file.h"
+#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/validation/stepped_errors.h"
+
+namespace crankcheck::testing {
+
+/// scenes/NAME (CRANKCHECK_SCENES_DIR, the test target's definition) with its [gas] and [[balance_shaft]] left out
+/// when `drop_gas` (a model that refuses them).
+inline Mechanism loadSteppedExample(const std::string& name, bool drop_gas = false) {
+  Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / name);
+  if (drop_gas) m.gas.reset();
+  m.balance_shafts.clear();
+  return m;
+}
+
+/// The engine called `name` of `engines` (a folder's describeSteppedEngines()). Fails the test if there is none.
+inline const SteppedEngine& findStepped(const std::vector<SteppedEngine>& engines, const std::string& name) {
+  for (const SteppedEngine& e : engines)
+    if (e.name == name) return e;
+  throw std::invalid_argument("no stepped engine " + name);
+}
+
+/// The error of `quantity` (a catalogue name or validation::kLoopErrorName) in `measure`. Throws if it is not there.
+inline const validation::SteppedError& findSteppedError(const validation::SteppedMeasure& measure, const std::string& quantity) {
+  for (const validation::SteppedError& e : measure.errors)
+    if (e.quantity == quantity) return e;
+  throw std::invalid_argument("the run reports no " + quantity);
+}
+
+/// measureSteppedRun at each of `steps` [s].
+inline std::vector<validation::SteppedMeasure> measureAtSteps(const SteppedEngine& engine, const Mechanism& m,
+                                                              const std::string& settings, const std::vector<double>& steps) {
+  std::vector<validation::SteppedMeasure> out;
+  for (double dt : steps) out.push_back(validation::measureSteppedRun(engine, m, settings, dt));
+  return out;
+}
+
+/// The order of `quantity`'s error observed between the measures at steps dt1 and dt2.
+inline double observedOrder(const validation::SteppedMeasure& a, double dt1, const validation::SteppedMeasure& b, double dt2,
+                            const std::string& quantity) {
+  return validation::calcObservedStepOrder(findSteppedError(a, quantity).worst_rel_error, dt1,
+                                           findSteppedError(b, quantity).worst_rel_error, dt2);
+}
+
+}  // namespace crankcheck::testing
