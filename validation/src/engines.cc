@@ -129,4 +129,43 @@ std::unique_ptr<EngineModel> buildGravityModel(const Engine& engine, const Mecha
   return engine.build(withSpeed(m, 0.0));
 }
 
+namespace {
+std::vector<SteppedEngine>& extraSteppedEngines() {
+  static std::vector<SteppedEngine> extra;
+  return extra;
+}
+bool stepped_registry_built = false;
+}  // namespace
+
+void registerExtraSteppedEngine(SteppedEngine engine) {
+  if (stepped_registry_built) throw std::logic_error("registerExtraSteppedEngine: the stepped engines are already in use");
+  for (const SteppedEngine& e : extraSteppedEngines())
+    if (e.name == engine.name) throw std::logic_error("registerExtraSteppedEngine: engine \"" + engine.name + "\" twice");
+  extraSteppedEngines().push_back(std::move(engine));
+}
+
+const std::vector<SteppedEngine>& listSteppedEngines() {
+  static const std::vector<SteppedEngine> engines = [] {
+    stepped_registry_built = true;
+    std::vector<SteppedEngine> all;
+    // One line per stepped engine folder.
+    for (SteppedEngine& e : extraSteppedEngines()) {  // a test's (registerExtraSteppedEngine)
+      for (const SteppedEngine& known : all)
+        if (known.name == e.name) throw std::logic_error("registerExtraSteppedEngine: engine \"" + e.name + "\" twice");
+      all.push_back(e);
+    }
+    return all;
+  }();
+  return engines;
+}
+
+const SteppedEngine& findSteppedEngine(const std::string& name) {
+  std::string names;
+  for (const SteppedEngine& e : listSteppedEngines()) {
+    if (e.name == name) return e;
+    names += (names.empty() ? "" : ", ") + e.name;
+  }
+  throw std::invalid_argument("no stepped engine \"" + name + "\"; the stepped engines are " + names);
+}
+
 }  // namespace crankcheck::validation

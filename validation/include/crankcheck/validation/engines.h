@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "crankcheck/scene/engine.h"
+#include "crankcheck/scene/stepped_run.h"
 
 namespace crankcheck::validation {
 
@@ -55,5 +56,17 @@ std::string joinEngineLibraries();
 /// and the verdict take a new engine with no other change: tests/validation/extra_engine_test.cc). Call it before the
 /// first listEngines(). @throws std::logic_error once the registry is in use, or for a name it has already.
 void registerExtraEngine(Engine engine);
+
+/// The stepped engines (crankcheck/scene/stepped_run.h): the physics engines people ship, driven at the scene's speed
+/// by their own time-stepping solvers and measured at a series of steps (validation/stepped_errors.h), never gated:
+/// ode, ode-quickstep, bullet, box2d. One registration line per engine folder in engines.cc, like listEngines().
+const std::vector<SteppedEngine>& listSteppedEngines();
+
+/// The stepped engine called `name`. @throws std::invalid_argument naming the stepped engines if there is none.
+const SteppedEngine& findSteppedEngine(const std::string& name);
+
+/// Registers one more stepped engine after the engine folders' (a test's synthetic engine). Call it before the first
+/// listSteppedEngines(). @throws std::logic_error once that list is in use, or for a name it has already.
+void registerExtraSteppedEngine(SteppedEngine engine);
 
 }  // namespace crankcheck::validation
