@@ -99,4 +99,11 @@ inline std::string describeEngines() {
   return describeEngines([](const Engine&) { return true; });
 }
 
+/// The stepped engines of the registry (validation/engines.h listSteppedEngines): "ode, ode-quickstep, bullet and box2d".
+inline std::string describeSteppedEngines() {
+  std::vector<std::string> names;
+  for (const SteppedEngine& e : validation::listSteppedEngines()) names.push_back(e.name);
+  return joinNames(names);
+}
+
 }  // namespace crankcheck::app

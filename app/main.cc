@@ -15,6 +15,7 @@
 #include "flywheel_command.h"
 #include "torsion_command.h"
 #include "motion_command.h"
+#include "stepped_command.h"
 #include "grade_command.h"
 #include "help_format.h"
 #include "crankcheck/validation/interrupt.h"
@@ -112,6 +113,14 @@ int main(int argc, char** argv) {
                  "it (--engine)");
   crankcheck::app::addTorsionOptions(*torsion_cmd, torsion);
 
+  crankcheck::app::SteppedOptions stepped;
+  CLI::App* stepped_cmd = app.add_subcommand(
+      "stepped", "The physics engines people ship (" + crankcheck::app::describeSteppedEngines() +
+                     ", measured, never gated), each driven at the scene's speed by its own time-stepping solver: every "
+                     "quantity it reports against the closed forms at a series of time steps and at each of its "
+                     "settings, the observed order, the cost per step");
+  crankcheck::app::addSteppedOptions(*stepped_cmd, stepped);
+
   crankcheck::app::ValidateOptions validate;
   CLI::App* validate_cmd = app.add_subcommand(
       "validate", "The main job: cross-check the closed forms against every engine (" + engines +
@@ -161,6 +170,7 @@ int main(int argc, char** argv) {
     if (balance_cmd->parsed()) output = crankcheck::app::runBalance(balance);
     if (flywheel_cmd->parsed()) output = crankcheck::app::runFlywheel(flywheel);
     if (torsion_cmd->parsed()) output = crankcheck::app::runTorsion(torsion);
+    if (stepped_cmd->parsed()) output = crankcheck::app::runStepped(stepped);
     std::fwrite(output.data(), 1, output.size(), stdout);  // only complete results are ever printed
     return checkStdout(checks_hold ? 0 : 1);
   } catch (const crankcheck::UsageError& e) {

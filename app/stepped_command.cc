@@ -1,0 +1,174 @@
+#include "stepped_command.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <stdexcept>
+
+#include "crankcheck/validation/commands/stepped.h"
+#include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/report_format.h"
+#include "crankcheck/validation/stepped_errors.h"
+#include "flag_checks.h"
+#include "help_format.h"
+#include "json_output.h"
+#include "scene_input.h"
+
+namespace crankcheck::app {
+
+using validation::shortNumber;
+
+void addSteppedOptions(CLI::App& command, SteppedOptions& options) {
+  std::vector<std::string> engines = {"all"}, settings = {"all"};
+  for (const SteppedEngine& e : validation::listSteppedEngines()) {
+    engines.push_back(e.name);
+    for (const std::string& s : e.settings)
+      if (std::find(settings.begin(), settings.end(), s) == settings.end()) settings.push_back(s);
+  }
+  command.add_option("scene", options.scene_path, "Scene file (TOML); needs speed_rpm != 0")->required();
+  command.add_option("--engine", options.engine, "The stepped engine, or all")
+      ->check(CLI::IsMember(engines))
+      ->capture_default_str();
+  command.add_option("--settings", options.settings,
+                     "The engines' settings to run (each engine's own, listed below), or all")
+      ->check(CLI::IsMember(settings))
+      ->capture_default_str();
+  command.add_option("--dt", options.steps, "Time steps [s], comma-separated; default 1/240, 1e-3, 1e-4, 1e-5")
+      ->delimiter(',')
+      ->check(FiniteRange(1e-7, 0.1));
+  command.add_option("--format", options.format, "Output format")
+      ->check(CLI::IsMember({"table", "json"}))
+      ->capture_default_str();
+  std::string footer = "The stepped engines, each measured, never gated (docs/stepped-engines.md):\n";
+  for (const SteppedEngine& e : validation::listSteppedEngines()) {
+    footer += "- " + e.name + " (" + e.library + "): " + e.method + ". Instants: " + e.instants + ". Cannot build: " +
+              e.cannot_build + ".\n";
+    for (size_t i = 0; i < e.settings.size(); ++i)
+      footer += "    settings " + e.settings[i] + ": " + e.settings_meaning[i] + "\n";
+  }
+  footer +=
+      "Each run starts from the exact state at phi = 0, settles max(64 steps, one turn) and is measured over the next "
+      "turn: per quantity the worst |engine - exact| / scale (the scales of docs/CONVENTIONS-crankcheck.md), the "
+      "exact value taken at the instant the engine's value belongs to (step fraction: 0 the step's start, 1 its end); "
+      "loop_error is the largest joint separation / the position scale. order: log(e1 / e2) / log(dt1 / dt2) between "
+      "neighbouring steps. A scene or step an engine cannot take is a refusal line, not an error.";
+  command.footer(footer);
+}
+
+namespace {
+
+std::string formatStep(double dt) {
+  if (std::fabs(dt - 1.0 / 240.0) < 1e-15) return "1/240 s";
+  return shortNumber(dt, 3) + " s";
+}
+
+}  // namespace
+
+std::string runStepped(const SteppedOptions& options) {
+  const Mechanism m = loadScene(options.scene_path);
+  std::vector<const SteppedEngine*> engines;
+  for (const SteppedEngine& e : validation::listSteppedEngines())
+    if (options.engine == "all" || e.name == options.engine) engines.push_back(&e);
+  const std::vector<std::string> settings =
+      options.settings == "all" ? std::vector<std::string>{} : std::vector<std::string>{options.settings};
+  const std::vector<double> steps = options.steps.empty() ? validation::getDefaultSteppedSteps() : options.steps;
+  validation::SteppedSweep sweep;
+  try {
+    const double total = validation::countSteppedSteps(m, engines, settings, steps);
+    if (total > validation::kMaxSteppedSteps) {
+      char line[256];
+      std::snprintf(line, sizeof line, "--dt: the runs would take %.3g steps at %.6g rpm, more than %.3g: a larger step",
+                    total, m.speed_rpm, validation::kMaxSteppedSteps);
+      throw UsageError(line);
+    }
+    sweep = validation::calcSteppedSweep(m, options.scene_path, engines, settings, steps);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(options.scene_path + ": " + e.what());
+  }
+  // One engine named that cannot build the scene: the user's input (exit status 2), not a table.
+  if (options.engine != "all" && sweep.errors.empty() && !sweep.refusals.empty() && sweep.refusals.front().dt == 0.0)
+    throw UsageError(options.scene_path + ": --engine " + options.engine + ": " + sweep.refusals.front().reason);
+  if (options.format == "json") {
+    nlohmann::ordered_json doc;
+    doc["scene"] = options.scene_path;
+    doc["speed_rpm"] = m.speed_rpm;
+    doc["errors"] = nlohmann::ordered_json::array();
+    for (const validation::SteppedErrorRow& r : sweep.errors)
+      doc["errors"].push_back({{"engine", r.engine}, {"settings", r.settings}, {"dt", r.dt}, {"quantity", r.quantity},
+                               {"worst_rel_error", r.worst_rel_error}, {"where_phi_deg", r.where_phi_deg},
+                               {"step_fraction", r.step_fraction}, {"ns_per_step", r.ns_per_step}});
+    doc["orders"] = nlohmann::ordered_json::array();
+    for (const validation::SteppedOrderRow& r : sweep.orders)
+      doc["orders"].push_back({{"engine", r.engine}, {"settings", r.settings}, {"quantity", r.quantity},
+                               {"dt_coarse", r.dt_coarse}, {"dt_fine", r.dt_fine},
+                               {"order", std::isfinite(r.order) ? nlohmann::ordered_json(r.order) : nlohmann::ordered_json()}});
+    doc["refusals"] = nlohmann::ordered_json::array();
+    for (const validation::SteppedRefusalRow& r : sweep.refusals)
+      doc["refusals"].push_back({{"engine", r.engine}, {"settings", r.settings.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(r.settings)},
+                                 {"dt", r.dt > 0.0 ? nlohmann::ordered_json(r.dt) : nlohmann::ordered_json()},
+                                 {"reason", r.reason}});
+    return dumpJson(doc);
+  }
+  // The table: per engine and settings, a quantity per line, the worst error / scale at each step, the last order.
+  std::string out = "stepped engines on " + options.scene_path + " at " + shortNumber(m.speed_rpm, 6) +
+                    " rpm: worst |engine - exact| / scale over one turn after settling\n";
+  std::vector<double> sorted = steps;
+  std::sort(sorted.begin(), sorted.end(), std::greater<double>());
+  std::map<std::pair<std::string, std::string>, std::vector<const validation::SteppedErrorRow*>> blocks;
+  std::vector<std::pair<std::string, std::string>> order;
+  for (const validation::SteppedErrorRow& r : sweep.errors) {
+    const auto key = std::make_pair(r.engine, r.settings);
+    if (!blocks.count(key)) order.push_back(key);
+    blocks[key].push_back(&r);
+  }
+  char buffer[256];
+  for (const auto& key : order) {
+    out += "\n" + key.first + ", settings " + key.second + "\n";
+    std::snprintf(buffer, sizeof buffer, "  %-16s %5s", "quantity", "read");
+    out += buffer;
+    for (double dt : sorted) {
+      std::snprintf(buffer, sizeof buffer, " %10s", formatStep(dt).c_str());
+      out += buffer;
+    }
+    out += "  order\n";
+    std::vector<std::string> quantities;
+    std::map<std::string, std::map<double, const validation::SteppedErrorRow*>> cells;
+    std::map<double, double> ns;
+    for (const validation::SteppedErrorRow* r : blocks[key]) {
+      if (!cells.count(r->quantity)) quantities.push_back(r->quantity);
+      cells[r->quantity][r->dt] = r;
+      ns[r->dt] = r->ns_per_step;
+    }
+    for (const std::string& q : quantities) {
+      std::snprintf(buffer, sizeof buffer, "  %-16s %5.2g", q.c_str(), cells[q].begin()->second->step_fraction);
+      out += buffer;
+      for (double dt : sorted) {
+        const auto it = cells[q].find(dt);
+        std::snprintf(buffer, sizeof buffer, " %10s", it == cells[q].end() ? "refused" : shortNumber(it->second->worst_rel_error, 2).c_str());
+        out += buffer;
+      }
+      std::string last = "-";
+      for (const validation::SteppedOrderRow& o : sweep.orders)
+        if (o.engine == key.first && o.settings == key.second && o.quantity == q && std::isfinite(o.order))
+          last = shortNumber(o.order, 2);  // the finest pair's, the last in the series
+      out += "  " + last + "\n";
+    }
+    std::snprintf(buffer, sizeof buffer, "  %-16s %5s", "ns per step", "");
+    out += buffer;
+    for (double dt : sorted) {
+      std::snprintf(buffer, sizeof buffer, " %10s", ns.count(dt) ? shortNumber(ns[dt], 3).c_str() : "-");
+      out += buffer;
+    }
+    out += "\n";
+  }
+  for (const validation::SteppedRefusalRow& r : sweep.refusals)
+    out += "refused: " + r.engine + (r.settings.empty() ? "" : ", settings " + r.settings) +
+           (r.dt > 0.0 ? " at " + formatStep(r.dt) : "") + ": " + r.reason + "\n";
+  out += "(read: the step fraction each value belongs to, 0 the step's start, 1 its end; order: between the two "
+         "finest steps measured)\n";
+  return wrapText(out, kHelpWidth);
+}
+
+}  // namespace crankcheck::app

@@ -1,0 +1,29 @@
+#pragma once
+/// @file
+/// `crankcheck stepped SCENE [--engine NAME|all] [--settings NAME|all] [--dt S,S,...] [--format table|json]`: the
+/// physics engines people ship (validation/engines.h listSteppedEngines), each driven at the scene's constant speed
+/// from the exact state and stepped by its own solver at a series of time steps and at each of its settings; every
+/// quantity it reports against the closed forms at the instant it belongs to, the observed orders, the cost per step.
+/// docs/stepped-engines.md.
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace crankcheck::app {
+
+struct SteppedOptions {
+  std::string scene_path;
+  std::string engine = "all";
+  std::string settings = "all";
+  std::vector<double> steps;  ///< [s]; empty: validation::getDefaultSteppedSteps
+  std::string format = "table";
+};
+
+void addSteppedOptions(CLI::App& command, SteppedOptions& options);
+
+/// @throws UsageError for a bad scene or flag, a scene without speed, a scene the one named engine cannot build, or a
+/// sweep longer than validation::kMaxSteppedSteps steps.
+std::string runStepped(const SteppedOptions& options);
+
+}  // namespace crankcheck::app

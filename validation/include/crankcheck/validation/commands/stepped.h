@@ -1,0 +1,69 @@
+#pragma once
+/// @file
+/// The computation of `crankcheck stepped` and of the report's part `stepped_engines`: each stepped engine
+/// (validation/engines.h listSteppedEngines: the physics engines people ship) on one scene, at each of its settings
+/// and a series of time steps, every quantity it reports against the closed forms at the instant it belongs to
+/// (stepped_errors.h), the order observed between neighbouring steps and the cost per step. Typed rows, declared once.
+
+#include <string>
+#include <vector>
+
+#include "crankcheck/scene/mechanism.h"
+#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/validation/table.h"
+
+namespace crankcheck::validation {
+
+/// One quantity of one run (engine, settings, step).
+struct SteppedErrorRow {
+  std::string scene, engine, settings;
+  double dt = 0.0;               ///< [s]
+  std::string quantity;          ///< the catalogue's name or kLoopErrorName
+  double worst_rel_error = 0.0;  ///< [-] over the measured turn, relative to the quantity's scale
+  double where_phi_deg = 0.0;    ///< [deg]
+  double step_fraction = 0.0;    ///< [-] the instant it is read at: 0 the step's start, 1 its end
+  double ns_per_step = 0.0;      ///< [ns] the engine's stepping and reads
+};
+extern const Schema<SteppedErrorRow> kSteppedErrorsTable;  ///< data/stepped_errors.csv
+
+/// The order observed for one quantity between two neighbouring steps of the series (calcObservedStepOrder).
+struct SteppedOrderRow {
+  std::string scene, engine, settings, quantity;
+  double dt_coarse = 0.0, dt_fine = 0.0;  ///< [s]
+  double order = 0.0;                     ///< [-]; NaN where an error is 0
+};
+extern const Schema<SteppedOrderRow> kSteppedOrdersTable;  ///< data/stepped_orders.csv
+
+/// A run an engine refused: a scene it cannot build (settings and dt empty), or a step it cannot take.
+struct SteppedRefusalRow {
+  std::string scene, engine, settings;
+  double dt = 0.0;               ///< [s]; 0: every step (the scene)
+  std::string reason;            ///< the engine's one line
+};
+extern const Schema<SteppedRefusalRow> kSteppedRefusalsTable;  ///< data/stepped_refusals.csv
+
+struct SteppedSweep {
+  std::vector<SteppedErrorRow> errors;
+  std::vector<SteppedOrderRow> orders;
+  std::vector<SteppedRefusalRow> refusals;
+};
+
+/// The steps [s] of the series by default: 1/240 s (a typical robotics or game step) down to 1e-5 s.
+std::vector<double> getDefaultSteppedSteps();
+
+/// The steps all runs of the sweep take in all (settling included), to be checked before the work starts.
+/// @throws std::invalid_argument as calcStepsPerTurn (a scene without speed, a step <= 0).
+double countSteppedSteps(const Mechanism& m, const std::vector<const SteppedEngine*>& engines,
+                         const std::vector<std::string>& settings, const std::vector<double>& steps);
+
+/// The most steps countSteppedSteps may give a sweep (a few minutes at the costliest engine's ~20 us per step).
+inline constexpr double kMaxSteppedSteps = 2e7;
+
+/// Runs every engine of `engines` at each of `settings` (empty: each engine's every settings; a name an engine does
+/// not have is skipped for it) and each of `steps` (sorted here from the largest) on m, named `scene` in the rows.
+/// A scene an engine cannot build, or a step it refuses (std::invalid_argument, std::runtime_error), is a refusal row.
+/// @throws std::invalid_argument if m has no speed or a step is <= 0.
+SteppedSweep calcSteppedSweep(const Mechanism& m, const std::string& scene, const std::vector<const SteppedEngine*>& engines,
+                              const std::vector<std::string>& settings, std::vector<double> steps);
+
+}  // namespace crankcheck::validation
