@@ -29,7 +29,8 @@ namespace crankcheck::validation {
   PART(offset)               /* 14 */ \
   PART(flywheel)             /* 15 */ \
   PART(balanceShafts)        /* 16 */ \
-  PART(torsion)              /* 17 */
+  PART(torsion)              /* 17 */ \
+  PART(steppedEngines)       /* 18 */
 
 namespace parts {
 #define CRANKCHECK_DECLARE_PART(name) const Part& name();

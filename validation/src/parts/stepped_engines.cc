@@ -1,0 +1,231 @@
+// Report part `stepped_engines`: the physics engines people ship (ODE, Bullet, Box2D: validation/engines.h
+// listSteppedEngines), each driven at the scene's speed by its own time-stepping solver, measured at a series of steps
+// and at each of its settings against the closed forms (validation/commands/stepped.h, the same computation as
+// `crankcheck stepped`); the figure of each engine's error against its step; sentences read from the data.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "crankcheck/scene/quantities.h"
+#include "crankcheck/validation/commands/stepped.h"
+#include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/part.h"
+#include "crankcheck/validation/report_format.h"
+#include "crankcheck/validation/stepped_errors.h"
+
+namespace crankcheck::validation {
+namespace {
+
+// stepped_engines (derived, the figure's data): per engine, settings and step the worst error over the position-level
+// quantities (x_p, the loops' separation) and over the loads (the joint forces and the drive torque).
+struct SteppedSummaryRow {
+  int series = 0;             ///< 1..N: one per (engine, settings), the figure's line
+  std::string label;          ///< "ode defaults"
+  std::string engine, settings;
+  double dt = 0.0;            ///< [s]
+  double positions = 0.0;     ///< [-] worst over x_p and loop_error; NaN: none reported
+  double loads = 0.0;         ///< [-] worst over the forces and the drive torque; NaN: none reported
+};
+const Schema<SteppedSummaryRow> kSteppedSummaryTable{
+    "stepped_engines",
+    {countField("series", &SteppedSummaryRow::series), textField("label", &SteppedSummaryRow::label),
+     textField("engine", &SteppedSummaryRow::engine), textField("settings", &SteppedSummaryRow::settings),
+     numberField("dt", "s", &SteppedSummaryRow::dt), numberField("positions", "-", &SteppedSummaryRow::positions),
+     numberField("loads", "-", &SteppedSummaryRow::loads)}};
+
+// The steps the campaign runs: the default series; --quick without 1e-5 s.
+std::vector<double> chooseSteps(bool quick) {
+  std::vector<double> steps = getDefaultSteppedSteps();
+  if (quick) steps.pop_back();
+  return steps;
+}
+
+bool isPositionQuantity(const std::string& q) { return q == nameOf(QuantityId::kPistonPosition) || q == kLoopErrorName; }
+
+bool isLoadQuantity(const std::string& q) {
+  const Quantity* quantity = findQuantity(q);
+  if (!quantity) return false;
+  return quantity->scale == QuantityScale::kForce || quantity->scale == QuantityScale::kTorque;
+}
+
+void deriveSteppedSummary(TableSet& tables) {
+  if (!tables.count(kSteppedErrorsTable.name())) return;
+  std::map<std::pair<std::string, std::string>, int> series;
+  std::map<std::tuple<std::string, std::string, double>, SteppedSummaryRow> rows;
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  auto worse = [](double have, double e) { return std::isnan(have) || e > have ? e : have; };
+  for (const SteppedErrorRow& r : getRows(tables, kSteppedErrorsTable)) {
+    const auto key = std::make_pair(r.engine, r.settings);
+    if (!series.count(key)) series.emplace(key, 0);
+    SteppedSummaryRow& row = rows[{r.engine, r.settings, r.dt}];
+    if (row.label.empty()) row = {0, r.engine + " " + r.settings, r.engine, r.settings, r.dt, kNaN, kNaN};
+    if (isPositionQuantity(r.quantity)) row.positions = worse(row.positions, r.worst_rel_error);
+    if (isLoadQuantity(r.quantity)) row.loads = worse(row.loads, r.worst_rel_error);
+  }
+  // Series in the registry's order of engines, each engine's settings in its own order.
+  int n = 0;
+  for (const SteppedEngine& e : listSteppedEngines())
+    for (const std::string& s : e.settings)
+      if (series.count({e.name, s})) series[{e.name, s}] = ++n;
+  for (auto& [key, v] : series)
+    if (v == 0) v = ++n;  // an engine no longer registered (a merged older report): after the others
+  std::vector<SteppedSummaryRow> out;
+  for (auto& [key, row] : rows) {
+    row.series = series[{row.engine, row.settings}];
+    out.push_back(row);
+  }
+  std::sort(out.begin(), out.end(), [](const SteppedSummaryRow& a, const SteppedSummaryRow& b) {
+    return a.series != b.series ? a.series < b.series : a.dt > b.dt;
+  });
+  tables.insert_or_assign(kSteppedSummaryTable.name(), kSteppedSummaryTable.table(std::move(out)));
+}
+
+std::string formatStep(double dt) { return std::fabs(dt - 1.0 / 240.0) < 1e-15 ? "1/240 s" : shortNumber(dt, 3) + " s"; }
+
+ReportPart describeSteppedPart(const TableSet& tables, const std::string& heading) {
+  ReportPart part;
+  if (!tables.count(kSteppedSummaryTable.name())) return part;
+  const std::vector<SteppedSummaryRow>& summary = getRows(tables, kSteppedSummaryTable);
+  const std::vector<SteppedErrorRow>& errors = getRows(tables, kSteppedErrorsTable);
+  const std::vector<SteppedOrderRow>& orders = getRows(tables, kSteppedOrdersTable);
+  part.heading = heading;
+  const std::string scene = errors.empty() ? std::string() : errors.front().scene;
+  part.caption =
+      "Each stepped engine driven at the scene's speed by its own solver from the exact state, at each of its settings "
+      "(one line each): the worst error over one turn after settling, relative to the quantity's scale, against the "
+      "time step (log-log; the slope is the observed order). Left: positions (x_p, the loops' separation); right: "
+      "loads (the joint forces and the drive torque), each read at the instant the engine's value belongs to. Scene: " +
+      scene;
+  const std::string command = "crankcheck stepped SCENE";
+  // 1. Which engine, at its defaults, reaches 1e-3 of the scale on every load at which step.
+  for (double target : {1e-3}) {
+    std::string s = "At its defaults, within " + shortNumber(target) + " of the scale on every load: ";
+    std::vector<std::string> parts_of;
+    std::set<std::string> seen;
+    for (const SteppedSummaryRow& r : summary) {
+      if (r.settings != "defaults" || seen.count(r.engine)) continue;
+      seen.insert(r.engine);
+      double largest = 0.0;
+      for (const SteppedSummaryRow& q : summary)
+        if (q.engine == r.engine && q.settings == "defaults" && q.loads <= target) largest = std::max(largest, q.dt);
+      parts_of.push_back(r.engine + (largest > 0.0 ? " from " + formatStep(largest) + " down" : " at none of the steps"));
+    }
+    if (!parts_of.empty()) {
+      for (size_t i = 0; i < parts_of.size(); ++i) s += (i ? "; " : "") + parts_of[i];
+      part.paragraphs.push_back(s + ".");
+    }
+  }
+  // 2. Which quantities do not converge: between the two finest steps the error falls by less than the step does
+  // to the power 1/2 (observed order below 0.5) while still above 1e-6 of the scale.
+  {
+    std::map<std::tuple<std::string, std::string, std::string>, const SteppedOrderRow*> finest;
+    for (const SteppedOrderRow& o : orders) {
+      const SteppedOrderRow*& f = finest[{o.engine, o.settings, o.quantity}];
+      if (!f || o.dt_fine < f->dt_fine) f = &o;
+    }
+    std::vector<std::string> stuck;
+    for (const auto& [key, o] : finest) {
+      double error = 0.0;
+      for (const SteppedErrorRow& r : errors)
+        if (r.engine == o->engine && r.settings == o->settings && r.quantity == o->quantity && r.dt == o->dt_fine) error = r.worst_rel_error;
+      if (error > 1e-6 && !(o->order >= 0.5))
+        stuck.push_back(o->engine + " (" + o->settings + ") " + o->quantity + ": " + shortNumber(error) + " at " +
+                        formatStep(o->dt_fine) + ", order " + (std::isfinite(o->order) ? shortNumber(o->order) : "-") +
+                        " (`" + command + " --engine " + o->engine + " --settings " + o->settings + "`)");
+    }
+    if (stuck.empty()) {
+      part.paragraphs.push_back("Every quantity converges between the two finest steps (order >= 0.5) or is below 1e-6 of its scale.");
+    } else {
+      std::string s = "Not converging between the two finest steps (order < 0.5, error still above 1e-6 of the scale): ";
+      for (size_t i = 0; i < stuck.size(); ++i) s += (i ? "; " : "") + stuck[i];
+      part.paragraphs.push_back(s + ".");
+    }
+  }
+  // 3. What the defaults that change the physics do: each engine with a "neutralised" settings, at every step.
+  for (const SteppedEngine& e : listSteppedEngines()) {
+    if (std::find(e.settings.begin(), e.settings.end(), "neutralised") == e.settings.end()) continue;
+    std::string s;
+    for (const SteppedSummaryRow& d : summary) {
+      if (d.engine != e.name || d.settings != "defaults") continue;
+      for (const SteppedSummaryRow& n : summary)
+        if (n.engine == e.name && n.settings == "neutralised" && n.dt == d.dt)
+          s += (s.empty() ? "" : "; ") + formatStep(d.dt) + ": loads " + shortNumber(d.loads) + " against " +
+               shortNumber(n.loads) + ", positions " + shortNumber(d.positions) + " against " + shortNumber(n.positions);
+    }
+    if (!s.empty())
+      part.paragraphs.push_back(e.name + "'s defaults against its defaults neutralised (" +
+                                e.settings_meaning[std::find(e.settings.begin(), e.settings.end(), "neutralised") - e.settings.begin()] +
+                                "): " + s + " (`" + command + " --engine " + e.name + "`).");
+  }
+  // 4. Cost per step, at the finest step measured.
+  {
+    std::map<std::string, double> ns;
+    double finest = std::numeric_limits<double>::infinity();
+    for (const SteppedErrorRow& r : errors) finest = std::min(finest, r.dt);
+    for (const SteppedErrorRow& r : errors)
+      if (r.dt == finest && r.settings == "defaults") ns[r.engine] = r.ns_per_step;
+    std::string s;
+    for (const SteppedEngine& e : listSteppedEngines())
+      if (ns.count(e.name)) s += (s.empty() ? "" : ", ") + e.name + " " + shortNumber(ns[e.name], 3) + " ns";
+    if (!s.empty()) part.paragraphs.push_back("Cost per step at its defaults (stepping and reads, one run): " + s + ".");
+  }
+  // 5. The engines themselves: method, instants, what each cannot build, and the refusals of this campaign.
+  for (const SteppedEngine& e : listSteppedEngines())
+    part.paragraphs.push_back(e.name + " (" + e.library + ", measured, never gated): " + e.method + ". Instants: " +
+                              e.instants + ". Cannot build: " + e.cannot_build + ".");
+  for (const SteppedRefusalRow& r : getRows(tables, kSteppedRefusalsTable))
+    part.paragraphs.push_back("Refused: " + r.engine + (r.settings.empty() ? "" : " (" + r.settings + ")") +
+                              (r.dt > 0.0 ? " at " + formatStep(r.dt) : "") + ": " + r.reason + ".");
+  part.header = {"engine", "settings", "dt", "quantity", "worst error / scale [-]", "where [deg]", "read at [step]",
+                 "ns per step"};
+  for (const SteppedErrorRow& r : errors)
+    part.rows.push_back({r.engine, r.settings, formatStep(r.dt), r.quantity, shortNumber(r.worst_rel_error),
+                         shortNumber(r.where_phi_deg, 4), shortNumber(r.step_fraction), shortNumber(r.ns_per_step, 3)});
+  return part;
+}
+
+class SteppedEnginesPart final : public Part {
+ public:
+  std::string key() const override { return "stepped_engines"; }
+  std::string title() const override { return "The physics engines people ship: error against time step"; }
+  // One task per stepped engine on the first scene as given (its gas and layout), each timing its own steps: on a
+  // core of its own (Task::measures_time).
+  std::vector<Task> tasks(const PartContext& context) const override {
+    std::vector<Task> out;
+    if (!(std::fabs(context.first.machine.speed) > 0.0)) return out;
+    for (const SteppedEngine& e : listSteppedEngines())
+      out.push_back({"stepped " + e.name, true, [m = context.first, engine = &e, quick = context.quick] {
+                       const SteppedSweep sweep = calcSteppedSweep(m, m.name, {engine}, {}, chooseSteps(quick));
+                       TableSet tables = kSteppedErrorsTable.tableSet(sweep.errors);
+                       tables.merge(kSteppedOrdersTable.tableSet(sweep.orders));
+                       tables.merge(kSteppedRefusalsTable.tableSet(sweep.refusals));
+                       return tables;
+                     }});
+    return out;
+  }
+  void derive(TableSet& tables) const override { deriveSteppedSummary(tables); }
+  ReportPart describe(const TableSet& tables) const override { return describeSteppedPart(tables, heading()); }
+  std::vector<const TableSchema*> schemas() const override {
+    return {&kSteppedErrorsTable, &kSteppedOrdersTable, &kSteppedRefusalsTable, &kSteppedSummaryTable};
+  }
+  std::string findOmission(const PartContext& context) const override {
+    if (std::fabs(context.first.machine.speed) > 0.0) return {};
+    return "The stepped engines' part needs the first scene at a speed (speed_rpm != 0): they are driven at it.";
+  }
+};
+
+}  // namespace
+
+namespace parts {
+const Part& steppedEngines() {
+  static const SteppedEnginesPart part;
+  return part;
+}
+}  // namespace parts
+
+}  // namespace crankcheck::validation
