@@ -41,7 +41,8 @@
 /// Single precision: every position, velocity and impulse is a float (eps_f = 1.19e-7), so the loop cannot close
 /// below about eps_f times the position scale, and a step's impulse, the difference of two float velocities a dt
 /// apart, carries a rounding that grows like 1 / dt: the forces stop converging near dt = 1e-5 s at the scenes'
-/// speeds, the crank-pin force at 2e-5..7e-5 of the force scale (tests/box2d/box2d_run_test.cc, SinglePrecisionFloorsTheConvergence).
+/// speeds, the crank-pin force at 2e-5..7e-5 of the force scale (tests/box2d/box2d_run_test.cc,
+/// SinglePrecisionFloorsTheConvergence).
 
 #include <array>
 #include <string>
