@@ -1,0 +1,18 @@
+#pragma once
+/// @file
+/// The Box2D model as a stepped engine of the registry (crankcheck/scene/stepped_run.h): "box2d", Box2D 2.4 in single
+/// precision, planar, at its testbed's defaults and at tightened iterations. Its runs and their instants are those of
+/// runBox2dAtConstantSpeed (constant_speed_run.h).
+
+#include <vector>
+
+#include "crankcheck/scene/stepped_run.h"
+
+namespace crankcheck::box2d_models {
+
+/// The Box2D engines: one, "box2d", with settings "defaults" (8 velocity and 3 position iterations, warm starting)
+/// and "tightened" (50 and 20). Its run throws std::invalid_argument for an unknown settings name (naming the
+/// engine's settings), a scene speed of 0, a key Box2D cannot build or a step Box2D would cap (runBox2dAtConstantSpeed).
+std::vector<SteppedEngine> describeSteppedEngines();
+
+}  // namespace crankcheck::box2d_models

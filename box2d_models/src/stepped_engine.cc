@@ -1,0 +1,127 @@
+#include "crankcheck/box2d_models/stepped_engine.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "crankcheck/box2d_models/constant_speed_run.h"
+
+namespace crankcheck::box2d_models {
+namespace {
+
+constexpr const char* kName = "box2d";
+
+/// Box2D's testbed defaults: 8 velocity and 3 position iterations, warm starting on.
+constexpr int kDefaultVelocityIterations = 8, kDefaultPositionIterations = 3;
+/// Tightened: past where either sweep stops changing anything (measured on the single and the inline four at 1/240,
+/// 1e-3 and 1e-4 s): the velocity solve's errors are the same to 1% from 16 sweeps on (50 = 3 times that); the
+/// position pass closes the single's loop at 1/240 s 4.3 times better with 10 sweeps than 3, no better with 20 or 50
+/// (20 = 2 times that). Below 1/240 s one position sweep already leaves every joint under Box2D's 5 mm slop.
+constexpr int kTightVelocityIterations = 50, kTightPositionIterations = 20;
+
+/// Where each reported quantity belongs within a step (constant_speed_run.h explains each): the fraction at which
+/// its error against the closed forms is smallest (tests/box2d/box2d_run_test.cc, EachQuantityBelongsToItsInstant).
+std::vector<QuantityInstant> reportedQuantities() {
+  return {{QuantityId::kDriveTorque, -0.25},    {QuantityId::kBearingForce, -0.5},
+          {QuantityId::kPistonPosition, 1.0},  {QuantityId::kPistonVelocity, 0.0},
+          {QuantityId::kPistonAcceleration, -0.5}, {QuantityId::kCrankPinForce, -0.5},
+          {QuantityId::kWristPinForce, -0.5},  {QuantityId::kWallForce, -0.25}};
+}
+
+Box2dRunOptions toRunOptions(const SteppedRunOptions& options) {
+  Box2dRunOptions o;
+  o.dt = options.dt;
+  o.steps = options.steps;
+  o.start = options.start;
+  if (options.settings == "defaults") {
+    o.velocity_iterations = kDefaultVelocityIterations;
+    o.position_iterations = kDefaultPositionIterations;
+  } else if (options.settings == "tightened") {
+    o.velocity_iterations = kTightVelocityIterations;
+    o.position_iterations = kTightPositionIterations;
+  } else {
+    throw std::invalid_argument(std::string(kName) + " has no settings \"" + options.settings +
+                                "\"; its settings are defaults, tightened");
+  }
+  return o;
+}
+
+Evaluation emptyEvaluation(int k) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Evaluation e;
+  e.engine = kName;
+  e.U = e.Q = e.drive_torque = nan;
+  e.bearing_force = {nan, nan};
+  e.shaking_force = {nan, nan};
+  e.shaking_moment = {nan, nan, nan};
+  CylinderEvaluation c;
+  c.x_p = c.v_p = c.a_p = c.wall_force = c.gas_force = nan;
+  c.crank_pin_force = c.wrist_pin_force = {nan, nan};
+  c.rod_angle = c.rod_omega = c.rod_alpha = nan;
+  e.cylinders.assign(static_cast<std::size_t>(k), c);
+  return e;
+}
+
+SteppedRun runSteppedBox2d(const Mechanism& m, const SteppedRunOptions& options) {
+  if (!(m.machine.speed != 0.0))
+    throw std::invalid_argument("[engine].speed_rpm must be != 0: " + std::string(kName) + " is driven at the scene's speed");
+  const Box2dRun run = runBox2dAtConstantSpeed(m, toRunOptions(options));
+  const int k = m.machine.cylinders;
+  SteppedRun out;
+  out.reported = reportedQuantities();
+  out.seconds_per_step = run.seconds_per_step;
+  out.samples.reserve(run.samples.size());
+  for (std::size_t i = 0; i < run.samples.size(); ++i) {
+    const Box2dSample& s = run.samples[i];
+    SteppedSample sample;
+    sample.t = s.t;
+    sample.phi_start = s.phi_start;
+    sample.phi_end = s.phi;
+    sample.values = emptyEvaluation(k);
+    sample.values.phi = s.phi;
+    sample.values.drive_torque = s.drive_torque;
+    sample.values.bearing_force = s.bearing_force;
+    double loop = s.bearing_error;
+    for (int j = 0; j < k; ++j) {
+      const Box2dCylinderSample& c = run.cylinders[i][static_cast<std::size_t>(j)];
+      CylinderEvaluation& v = sample.values.cylinders[static_cast<std::size_t>(j)];
+      v.x_p = c.x_p;
+      v.v_p = c.v_p;
+      v.a_p = c.a_p;
+      v.crank_pin_force = c.crank_pin_force;
+      v.wrist_pin_force = c.wrist_pin_force;
+      v.wall_force = c.wall_force;
+      loop = std::max(loop, c.loop_error);
+    }
+    sample.loop_error = loop;
+    out.samples.push_back(std::move(sample));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<SteppedEngine> describeSteppedEngines() {
+  SteppedEngine e;
+  e.name = kName;
+  e.library = getBox2dVersion() + " (single precision)";
+  e.method = "planar rigid bodies on revolute and prismatic joints, the crank on a speed motor; sequential impulses "
+             "(velocity) then a nonlinear Gauss-Seidel position pass, symplectic Euler, float";
+  e.settings = {"defaults", "tightened"};
+  e.settings_meaning = {
+      "Box2D's testbed: 8 velocity and 3 position iterations, warm starting",
+      "50 velocity and 20 position iterations, warm starting: past where the sweeps stop changing the run (16 and "
+      "10); closes the loop 4 times better at 1/240 s, changes nothing below 1e-3 s"};
+  e.instants = "x_p at the step's end; v_p at its start (the velocity solve makes it tangent to the start's "
+               "configuration); the pin and bearing forces and a_p (the step's velocity change / dt) half a step before its "
+               "start: they carry the velocity from the previous configuration's tangent to this one's; the drive "
+               "torque and the wall force, whose first-order error is partly not a lag, a quarter step before it";
+  e.cannot_build = "[[balance_shaft]] (no geared coupling); the axial positions' shaking moment X, Y (planar); a step "
+                   "turning the crank or a rod more than b2_maxRotation (pi/2) or moving a body more than "
+                   "b2_maxTranslation (2 m); a body of zero mass or inertia";
+  e.run = runSteppedBox2d;
+  return {e};
+}
+
+}  // namespace crankcheck::box2d_models
