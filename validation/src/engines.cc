@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "crankcheck/analytic/engine.h"
+#include "crankcheck/box2d_models/stepped_engine.h"
 #include "crankcheck/mujoco_models/engine.h"
 #include "crankcheck/simbody_models/engine.h"
 #include "crankcheck/validation/errors.h"
@@ -149,6 +150,7 @@ const std::vector<SteppedEngine>& listSteppedEngines() {
     stepped_registry_built = true;
     std::vector<SteppedEngine> all;
     // One line per stepped engine folder.
+    for (SteppedEngine& e : box2d_models::describeSteppedEngines()) all.push_back(std::move(e));
     for (SteppedEngine& e : extraSteppedEngines()) {  // a test's (registerExtraSteppedEngine)
       for (const SteppedEngine& known : all)
         if (known.name == e.name) throw std::logic_error("registerExtraSteppedEngine: engine \"" + e.name + "\" twice");
