@@ -42,38 +42,6 @@ struct WorldDeleter {
   void operator()(dxWorld* w) const { dWorldDestroy(w); }  // destroys its bodies and joints
 };
 
-/// The exact state of cylinder j at crank angle phi and speed omega (docs/CONVENTIONS.md "Frames and signs" and
-/// "Pin offset"): sin beta = lambda sin theta - delta / l, x_p = r cos theta + l cos beta, the rod's angular velocity
-/// about +Z is -beta_dot.
-struct CylinderState {
-  double gamma = 0.0, delta = 0.0, z = 0.0;
-  std::array<double, 2> e{}, n{};
-  std::array<double, 2> a{}, b{};     // [m] wrist pin A, crank pin B (global X, Y)
-  double x_p = 0.0, v_p = 0.0;       // [m], [m/s] along e
-  double rod_angular_velocity = 0.0;  // [rad/s] about +Z
-};
-
-CylinderState calcCylinderState(const Mechanism& m, int j, double phi, double omega) {
-  const double r = m.crank.radius, l = m.rod.length;
-  CylinderState s;
-  s.gamma = getBankAngle(m, j);
-  s.delta = getPinOffset(m, j);
-  s.z = getAxialPosition(m, j);
-  s.e = {std::cos(s.gamma), std::sin(s.gamma)};
-  s.n = {-s.e[1], s.e[0]};
-  const double theta = phi + getThrowAngle(m, j) - s.gamma;
-  const double sin_beta = (r * std::sin(theta) - s.delta) / l;
-  const double cos_beta = std::sqrt(1.0 - sin_beta * sin_beta);
-  const double beta_dot = r * std::cos(theta) * omega / (l * cos_beta);
-  s.x_p = r * std::cos(theta) + l * cos_beta;
-  s.v_p = -r * std::sin(theta) * omega - l * sin_beta * beta_dot;
-  s.rod_angular_velocity = -beta_dot;
-  const double crank_angle = phi + getThrowAngle(m, j);
-  s.b = {r * std::cos(crank_angle), r * std::sin(crank_angle)};
-  s.a = {s.x_p * s.e[0] + s.delta * s.n[0], s.x_p * s.e[1] + s.delta * s.n[1]};
-  return s;
-}
-
 void requireOption(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("ODE run: " + what);
 }
@@ -88,11 +56,14 @@ double distance(const dVector3 p, const dVector3 q) {
   return std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
 }
 
-void setPlanarBody(dBodyID body, double x, double y, double z, double vx, double vy, double angular_velocity_z,
-                   bool finite_rotation) {
-  dBodySetPosition(body, x, y, z);
-  dBodySetLinearVel(body, vx, vy, 0.0);
-  dBodySetAngularVel(body, 0.0, 0.0, angular_velocity_z);
+/// Places `body` in the plane z at the planar state s: its centre of mass, its rotation s.angle about Z, their rates.
+void setPlanarBody(dBodyID body, const PlanarBodyState& s, double z, bool finite_rotation) {
+  dBodySetPosition(body, s.p_WBcm_W[0], s.p_WBcm_W[1], z);
+  dMatrix3 rotation;
+  dRFromAxisAndAngle(rotation, 0.0, 0.0, 1.0, s.angle);
+  dBodySetRotation(body, rotation);
+  dBodySetLinearVel(body, s.v_WBcm_W[0], s.v_WBcm_W[1], 0.0);
+  dBodySetAngularVel(body, 0.0, 0.0, s.omega);
   dBodySetFiniteRotationMode(body, finite_rotation ? 1 : 0);
 }
 
@@ -100,23 +71,27 @@ struct CylinderBodies {
   dBodyID rod = nullptr, piston = nullptr;
   dJointID crank_pin = nullptr, wrist_pin = nullptr, slider = nullptr;
   dJointFeedback crank_pin_feedback{}, wrist_pin_feedback{}, slider_feedback{};
-  CylinderState initial;
+  Vec2 e{}, n{};       // the cylinder's axis and its normal
+  double delta = 0.0;  // [m] the pin offset: the piston's line is x e + delta n
+  double z = 0.0;      // [m] the plane of the rod and the piston
+  double v_p = 0.0;    // [m/s] the piston's velocity along e before the step
 };
 
 }  // namespace
 
 OdeRun runOdeAtConstantSpeed(const Mechanism& m, const OdeRunOptions& o) {
   const int k = m.machine.cylinders;
-  const double omega = m.machine.speed;
+  const double omega = o.start.omega;
+  if (!(std::fabs(m.machine.speed) > 0.0))
+    refuse("[engine].speed_rpm", "must be != 0 (the ODE run is driven at the scene's constant speed)");
   requireOption(std::isfinite(o.dt) && o.dt > 0.0, "dt must be a positive number of seconds");
-  requireOption(o.steps >= 0, "steps must be >= 0");
-  requireOption(o.steps > 0 || (std::isfinite(o.revolutions) && o.revolutions > 0.0 && omega != 0.0),
-                "revolutions must be > 0 with a crank speed != 0 when steps is 0");
+  requireOption(o.steps > 0, "steps must be > 0");
+  requireOption(static_cast<int>(o.start.cylinders.size()) == k && std::isfinite(o.start.phi) && std::isfinite(omega),
+                "start must hold the state of each of the mechanism's " + std::to_string(k) + " cylinders");
   requireOption(o.quick_step_iterations >= 1, "quick_step_iterations must be >= 1");
   requireOption(o.erp > 0.0 && o.erp <= 1.0, "erp must be in (0, 1]");
   requireOption(std::isfinite(o.cfm) && o.cfm >= 0.0, "cfm must be >= 0");
   requireOption(o.motor_max_torque > 0.0, "motor_max_torque must be > 0");
-  if (m.gas) refuse("[gas]", "is not modelled by the ODE run yet (drop it: Mechanism::gas.reset())");
   if (!m.balance_shafts.empty()) refuse("[[balance_shaft]]", "has no geared coupling in this ODE model");
   if (!(m.rod.mass > 0.0)) refuse("[rod].mass", "must be > 0 (an ODE body needs a mass)");
   if (!(m.piston.mass > 0.0)) refuse("[piston].mass", "must be > 0 (an ODE body needs a mass)");
@@ -148,14 +123,21 @@ OdeRun runOdeAtConstantSpeed(const Mechanism& m, const OdeRunOptions& o) {
   dWorldSetCFM(w, o.cfm);
   dWorldSetQuickStepNumIterations(w, o.quick_step_iterations);
 
-  // The crankshaft at phi = 0: centre of mass c, velocity omega Z x c. Only its inertia about Z acts (the hinge holds
-  // the other two axes, and at a spin about Z a diagonal tensor has no gyroscopic moment), so all three are that.
+  // The crankshaft turned by start.phi from its pose at phi = 0: centre of mass c, velocity omega Z x c. Only its
+  // inertia about Z acts (the hinge holds the other two axes, and at a spin about Z a diagonal tensor has no
+  // gyroscopic moment), so all three are that.
   dBodyID crank = dBodyCreate(w);
   {
     dMass mass;
     dMassSetParameters(&mass, crank_mass, 0.0, 0.0, 0.0, crank_inertia, crank_inertia, crank_inertia, 0.0, 0.0, 0.0);
     dBodySetMass(crank, &mass);
-    setPlanarBody(crank, cx, cy, 0.0, -omega * cy, omega * cx, omega, o.finite_rotation);
+    const double c0 = std::cos(o.start.phi), s0 = std::sin(o.start.phi);
+    PlanarBodyState state;
+    state.p_WBcm_W = {c0 * cx - s0 * cy, s0 * cx + c0 * cy};
+    state.angle = o.start.phi;
+    state.omega = omega;
+    state.v_WBcm_W = {-omega * state.p_WBcm_W[1], omega * state.p_WBcm_W[0]};
+    setPlanarBody(crank, state, 0.0, o.finite_rotation);
   }
   dJointID crank_hinge = dJointCreateHinge(w, nullptr);
   dJointAttach(crank_hinge, crank, nullptr);
@@ -169,35 +151,34 @@ OdeRun runOdeAtConstantSpeed(const Mechanism& m, const OdeRunOptions& o) {
   std::vector<CylinderBodies> cylinders(static_cast<std::size_t>(k));
   for (int j = 0; j < k; ++j) {
     CylinderBodies& c = cylinders[static_cast<std::size_t>(j)];
-    const CylinderState s = calcCylinderState(m, j, 0.0, omega);
-    c.initial = s;
-    // The rod: its centre of mass G on A -> B at z_k / l; v_G = v_A + w_rod Z x (G - A). Inertia I_o - m_k z_k^2 about
-    // every axis (only Z acts, as for the crank).
-    const double f = m.rod.com_from_wrist_pin / m.rod.length;
-    const double gx = s.a[0] + f * (s.b[0] - s.a[0]), gy = s.a[1] + f * (s.b[1] - s.a[1]);
-    const double vax = s.v_p * s.e[0], vay = s.v_p * s.e[1];
+    const CylinderStartState& s = o.start.cylinders[static_cast<std::size_t>(j)];
+    c.e = s.e;
+    c.n = s.n;
+    c.delta = getPinOffset(m, j);
+    c.z = getAxialPosition(m, j);
+    c.v_p = s.v_p;
+    // The rod: inertia I_o - m_k z_k^2 about every axis (only Z acts, as for the crank).
     c.rod = dBodyCreate(w);
     dMass rod_mass;
     dMassSetParameters(&rod_mass, m.rod.mass, 0.0, 0.0, 0.0, rod_inertia, rod_inertia, rod_inertia, 0.0, 0.0, 0.0);
     dBodySetMass(c.rod, &rod_mass);
-    setPlanarBody(c.rod, gx, gy, s.z, vax - s.rod_angular_velocity * (gy - s.a[1]),
-                  vay + s.rod_angular_velocity * (gx - s.a[0]), s.rod_angular_velocity, o.finite_rotation);
+    setPlanarBody(c.rod, s.rod, c.z, o.finite_rotation);
     // The piston: a particle at A. Its slider holds every rotation, so its inertia never acts; any positive value
     // will do, the rod's keeps the system's scale.
     c.piston = dBodyCreate(w);
     dMass piston_mass;
     dMassSetParameters(&piston_mass, m.piston.mass, 0.0, 0.0, 0.0, rod_inertia, rod_inertia, rod_inertia, 0.0, 0.0, 0.0);
     dBodySetMass(c.piston, &piston_mass);
-    setPlanarBody(c.piston, s.a[0], s.a[1], s.z, vax, vay, 0.0, o.finite_rotation);
+    setPlanarBody(c.piston, s.piston, c.z, o.finite_rotation);
 
     c.crank_pin = dJointCreateHinge(w, nullptr);
     dJointAttach(c.crank_pin, c.rod, crank);
-    dJointSetHingeAnchor(c.crank_pin, s.b[0], s.b[1], s.z);
+    dJointSetHingeAnchor(c.crank_pin, s.p_WB_W[0], s.p_WB_W[1], c.z);
     dJointSetHingeAxis(c.crank_pin, 0.0, 0.0, 1.0);
     dJointSetFeedback(c.crank_pin, &c.crank_pin_feedback);
     c.wrist_pin = dJointCreateHinge(w, nullptr);
     dJointAttach(c.wrist_pin, c.piston, c.rod);
-    dJointSetHingeAnchor(c.wrist_pin, s.a[0], s.a[1], s.z);
+    dJointSetHingeAnchor(c.wrist_pin, s.p_WA_W[0], s.p_WA_W[1], c.z);
     dJointSetHingeAxis(c.wrist_pin, 0.0, 0.0, 1.0);
     dJointSetFeedback(c.wrist_pin, &c.wrist_pin_feedback);
     c.slider = dJointCreateSlider(w, nullptr);
@@ -206,18 +187,25 @@ OdeRun runOdeAtConstantSpeed(const Mechanism& m, const OdeRunOptions& o) {
     dJointSetFeedback(c.slider, &c.slider_feedback);
   }
 
-  const long steps = o.steps > 0 ? o.steps
-                                 : static_cast<long>(std::ceil(o.revolutions * 2.0 * std::numbers::pi /
-                                                               (std::abs(omega) * o.dt) - 1e-9));
+  const long steps = o.steps;
   OdeRun run;
+  run.world = {dWorldGetLinearDamping(w), dWorldGetAngularDamping(w), dWorldGetMaxAngularSpeed(w),
+               dWorldGetAutoDisableFlag(w) != 0};
   run.samples.reserve(static_cast<std::size_t>(steps));
-  double phi = 0.0;
+  double phi = o.start.phi;
   const auto started = std::chrono::steady_clock::now();
   for (long i = 0; i < steps; ++i) {
     // The step's forces belong to its start (the constraints are linearised at the positions it starts from), so
     // the drive torque's arm is the crank's centre of mass before the step.
     const dReal* c_start = dBodyGetPosition(crank);
     const double arm_x = c_start[0], arm_y = c_start[1];
+    // The gas at the step's start (CONVENTIONS: -p_j A e_j on piston j, p at the cycle angle phi - firing_j).
+    if (m.gas)
+      for (int j = 0; j < k; ++j) {
+        const CylinderBodies& c = cylinders[static_cast<std::size_t>(j)];
+        const double f = calcGasForce(m, j, phi);
+        dBodyAddForce(c.piston, -f * c.e[0], -f * c.e[1], 0.0);
+      }
     if (o.solver == OdeSolver::kStep) {
       dWorldStep(w, o.dt);
     } else {
@@ -238,15 +226,18 @@ OdeRun runOdeAtConstantSpeed(const Mechanism& m, const OdeRunOptions& o) {
     dJointGetHingeAnchor(crank_hinge, anchor);
     sample.bearing_error = std::hypot(anchor[0], anchor[1], anchor[2]);
     sample.cylinders.reserve(static_cast<std::size_t>(k));
-    for (const CylinderBodies& c : cylinders) {
+    for (CylinderBodies& c : cylinders) {
       OdeCylinderSample cs;
       const dReal* p = dBodyGetPosition(c.piston);
-      const CylinderState& s = c.initial;
-      cs.x_p = p[0] * s.e[0] + p[1] * s.e[1];
+      const dReal* v = dBodyGetLinearVel(c.piston);
+      cs.x_p = p[0] * c.e[0] + p[1] * c.e[1];
+      cs.v_p = v[0] * c.e[0] + v[1] * c.e[1];
+      cs.a_p = (cs.v_p - c.v_p) / o.dt;
+      c.v_p = cs.v_p;
       cs.crank_pin = {toVec3(c.crank_pin_feedback.f1), toVec3(c.crank_pin_feedback.f2)};
       cs.wrist_pin = {toVec3(c.wrist_pin_feedback.f1), toVec3(c.wrist_pin_feedback.f2)};
       cs.slider_force = toVec3(c.slider_feedback.f1);
-      cs.wall_force = cs.slider_force[0] * s.n[0] + cs.slider_force[1] * s.n[1];
+      cs.wall_force = cs.slider_force[0] * c.n[0] + cs.slider_force[1] * c.n[1];
       dVector3 a1, a2;
       dJointGetHingeAnchor(c.crank_pin, a1);
       dJointGetHingeAnchor2(c.crank_pin, a2);
@@ -254,8 +245,8 @@ OdeRun runOdeAtConstantSpeed(const Mechanism& m, const OdeRunOptions& o) {
       dJointGetHingeAnchor(c.wrist_pin, a1);
       dJointGetHingeAnchor2(c.wrist_pin, a2);
       error = std::max(error, distance(a1, a2));
-      const double off_line = p[0] * s.n[0] + p[1] * s.n[1] - s.delta;
-      error = std::max(error, std::hypot(off_line, p[2] - s.z));
+      const double off_line = p[0] * c.n[0] + p[1] * c.n[1] - c.delta;
+      error = std::max(error, std::hypot(off_line, p[2] - c.z));
       cs.loop_error = error;
       sample.cylinders.push_back(cs);
     }

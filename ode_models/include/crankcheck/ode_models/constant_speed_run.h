@@ -1,9 +1,11 @@
 #pragma once
 /// @file
 /// The k-crank mechanism in the Open Dynamics Engine (Debian libode-dev 0.16, built in double precision), driven at the
-/// scene's constant crank speed from the exact state at phi = 0 and stepped by ODE's own solver, with every joint's
-/// reaction read from ODE's joint feedback. Never links the analytic library: the few closed forms of the initial
-/// state are written again in the source. ODE stays inside src/: this header includes no ODE header.
+/// scene's constant crank speed from a start state handed in (crankcheck/scene/stepped_run.h: StartState, the exact
+/// state at phi = 0 that the caller computes) and stepped by ODE's own solver, with every joint's reaction read from
+/// ODE's joint feedback. Never links the analytic library and computes no closed form of the loop: every body's
+/// position and velocity at the start come from the StartState. ODE stays inside src/: this header includes no ODE
+/// header. stepped_engine.h describes the two engines of the registry built on this run.
 ///
 /// The model (docs/CONVENTIONS.md for frames and symbols): the crankshaft is one body on a hinge about Z at O, driven
 /// by the hinge's velocity motor (dParamVel = omega). Per cylinder j a rod (mass m_k at z_k from the wrist pin, inertia
@@ -15,10 +17,16 @@
 /// The axial positions z_j place the rods and pistons along the shaft but change none of the planar forces recorded
 /// here (every hinge is about Z); the out-of-plane reactions of these redundant 3-D joints are not recorded.
 ///
-/// The instants (tests/ode/ode_run_test.cc verifies them against the closed forms): positions (x_p, phi) belong to
-/// the step's end; the forces and the drive torque ODE solves during a step belong to its START (phi_start): ODE
-/// linearises the joints at the positions the step starts from, so its forces match the exact ones there to second
-/// order in dt, while read at the step's middle they carry a half step's lag (first order) and at its end twice that.
+/// Gas: with [gas], each step applies -p A e_j to piston j (dBodyAddForce, CONVENTIONS "Layouts, axial positions, gas
+/// and shaking"), p at the cylinder's cycle angle at the step's START (calcGasForce of the crank angle phi_start): the
+/// force ODE integrates through the step is the one of the instant its solved forces belong to.
+///
+/// The instants (tests/ode/ode_run_test.cc measures them against the closed forms): x_p and phi belong to the step's
+/// end; v_p, the piston body's velocity after the step, to its MIDDLE: it is the velocity that carries the positions
+/// from the step's start to its end (ODE's semi-implicit Euler), a secant; the forces and the drive torque ODE solves
+/// during a step, and a_p (the velocity change / dt: the force's effect), to its START: ODE solves them with the
+/// joints linearised at the positions the step starts from, so they match the exact ones there to second order in
+/// dt, while read at the step's middle they carry a half step's lag (first order) and at its end twice that.
 /// The first steps are a start-up transient: the exact state at phi = 0 already satisfies the velocity constraints,
 /// so the first step applies almost none of the inertia load; the error shrinks by about (1 - ERP) per step after.
 ///
@@ -31,6 +39,7 @@
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/scene/stepped_run.h"
 
 namespace crankcheck::ode_models {
 
@@ -44,9 +53,10 @@ enum class OdeSolver { kStep, kQuickStep };
 /// typical user, 1/240 s.
 struct OdeRunOptions {
   double dt = 1.0 / 240.0;       ///< [s] the step, > 0
-  /// Number of steps; 0: enough whole steps to cover `revolutions` turns of the crank (ceil).
-  long steps = 0;
-  double revolutions = 1.0;      ///< turns of the crank, > 0, when steps == 0 (needs omega != 0)
+  long steps = 1;                ///< number of steps, > 0
+  /// The state at the run's start: the crank at start.phi turning at start.omega (the scene's speed, != 0), each
+  /// cylinder's rod and piston (calcStartState). Must have one cylinder per cylinder of the mechanism.
+  StartState start;
   OdeSolver solver = OdeSolver::kStep;
   int quick_step_iterations = 20;  ///< dWorldSetQuickStepNumIterations (ODE's default 20), >= 1
   double erp = 0.2;              ///< dWorldSetERP, in (0, 1] (ODE's default 0.2): the share of a joint's error fixed per step
@@ -70,6 +80,8 @@ struct OdeJointForce {
 /// One cylinder at one step.
 struct OdeCylinderSample {
   double x_p = 0.0;            ///< [m] the piston's coordinate along e_j (its body's position . e_j) at the step's end
+  double v_p = 0.0;            ///< [m/s] the piston body's velocity . e_j after the step
+  double a_p = 0.0;            ///< [m/s^2] (v_p after the step - v_p before it) / dt
   OdeJointForce crank_pin{};   ///< on the rod (first) and on the crank (second), from the hinge at B_j
   OdeJointForce wrist_pin{};   ///< on the piston (first) and on the rod (second), from the hinge at A_j
   Vec3 slider_force{};         ///< [N] on the piston from the wall (the slider to the world)
@@ -84,8 +96,8 @@ struct OdeSample {
   double t = 0.0;              ///< [s] the step's end
   /// [rad] the crank angle at the step's end: the crank body's rotation about Z, unwrapped (continuous over turns).
   double phi = 0.0;
-  /// [rad] the crank angle at the step's start (the previous sample's phi; 0 for the first step): the instant the
-  /// step's forces and drive torque belong to.
+  /// [rad] the crank angle at the step's start (the previous sample's phi; start.phi for the first step): the
+  /// instant the step's forces and drive torque belong to.
   double phi_start = 0.0;
   double drive_torque = 0.0;   ///< [N m] about +Z at O, the motor and hinge's torque on the crank (feedback)
   Vec3 bearing_force{};        ///< [N] on the crank from the frame at O: the crank hinge's feedback force
@@ -93,19 +105,28 @@ struct OdeSample {
   std::vector<OdeCylinderSample> cylinders;
 };
 
+/// ODE's world defaults that would change the physics rather than the solver's accuracy, as the run's world reports
+/// them (dWorldGet...): the run sets none of them.
+struct OdeWorldDefaults {
+  double linear_damping = 0.0;      ///< [-] dWorldGetLinearDamping: the share of a body's velocity removed per step
+  double angular_damping = 0.0;     ///< [-] dWorldGetAngularDamping
+  double max_angular_speed = 0.0;   ///< [rad/s] dWorldGetMaxAngularSpeed: a cap on every body's spin (infinite: none)
+  bool auto_disable = false;        ///< dWorldGetAutoDisableFlag: bodies at rest are frozen
+};
+
 /// A constant-speed run.
 struct OdeRun {
   std::vector<OdeSample> samples;   ///< one per step, in order
+  OdeWorldDefaults world;           ///< the world's physics-changing defaults, read back from ODE
   double seconds_per_step = 0.0;    ///< [s] wall time of the stepping (feedback reads included) divided by the steps
 };
 
-/// Builds m's mechanism in ODE, sets it at the exact state at phi = 0 and the scene's speed (every body's position,
-/// orientation, linear and angular velocity from the slider-crank's closed forms), drives the crank at omega with its
-/// hinge's motor and steps it `o.steps` times (or for `o.revolutions` turns), recording each step.
-/// @throws std::invalid_argument naming the key of what ODE cannot build: `[gas]` (not modelled here), `[[balance_shaft]]`,
-///   `[rod].mass` or `[piston].mass` of 0 (a body needs a mass), `[rod].inertia_about_wrist_pin` equal to m_k z_k^2 (a
-///   rod without rotational inertia about its centre of mass), or a bad option (dt, steps, revolutions with speed 0,
-///   quick_step_iterations, erp, cfm, motor_max_torque).
+/// Builds m's mechanism in ODE, sets it at o.start (every body's position, orientation, linear and angular velocity),
+/// drives the crank at start.omega with its hinge's motor and steps it `o.steps` times, recording each step.
+/// @throws std::invalid_argument naming the key of what ODE cannot build: `[[balance_shaft]]`, `[rod].mass` or
+///   `[piston].mass` of 0 (a body needs a mass), `[rod].inertia_about_wrist_pin` equal to m_k z_k^2 (a rod without
+///   rotational inertia about its centre of mass), `[engine].speed_rpm` of 0 (the run is driven at the scene's
+///   speed), or a bad option (dt, steps, start, quick_step_iterations, erp, cfm, motor_max_torque).
 /// @throws std::runtime_error when one of ODE's internal checks fails during the run (ODE would abort the process;
 ///   here its error and debug handlers throw), e.g. a singular solve at too small a cfm.
 OdeRun runOdeAtConstantSpeed(const Mechanism& m, const OdeRunOptions& o);

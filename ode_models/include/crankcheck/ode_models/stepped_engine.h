@@ -1,0 +1,29 @@
+#pragma once
+/// @file
+/// ODE's two stepped engines for the registry (crankcheck/scene/stepped_run.h: SteppedEngine): "ode" (dWorldStep, the
+/// direct solve of the constraint forces) and "ode-quickstep" (dWorldQuickStep, projected Gauss-Seidel), each run by
+/// runOdeAtConstantSpeed (constant_speed_run.h) at one of three named settings:
+/// - "defaults": ODE's own (ERP 0.2, CFM 1e-10 in double precision, the default rotation update, QuickStep's 20
+///   iterations);
+/// - "neutralised": the defaults with the one that changes the physics turned off: the finite rotation mode, so a
+///   body turns by omega dt per step and not 2 atan(omega dt / 2) (the default update's crank falls behind its own
+///   speed: 12 % at 3000 rpm and 1/240 s). ODE's other defaults that could change the physics are off already
+///   (linear and angular damping 0, no angular speed cap, no auto-disable: tests/ode verifies them);
+/// - "tightened": neutralised plus what a careful user would tighten, each value chosen by measurement
+///   (tests/ode/ode_run_test.cc holds the numbers): ERP 1 (the smallest errors at every step from 1e-3 s down, up to
+///   6 times below ERP 0.2's at 1e-4 s; at 1/240 s, where every setting is tens of percent off, it is worse) and
+///   QuickStep's 100 iterations (dWorldStep's errors at every step; 20 at ERP 1 are off them at 1/240 s). ODE's CFM
+///   stays 1e-10: 1e-12 changes no error measurably, 0 makes the solve of these redundant 3-D joints singular.
+
+#include <vector>
+
+#include "crankcheck/scene/stepped_run.h"
+
+namespace crankcheck::ode_models {
+
+/// "ode" and "ode-quickstep", in that order. Their library reads ODE's version from its header (ode/version.h).
+/// Their run throws std::invalid_argument for an unknown settings name (naming it and the engine's settings) and for
+/// a scene of speed 0, and as runOdeAtConstantSpeed otherwise.
+std::vector<SteppedEngine> describeSteppedEngines();
+
+}  // namespace crankcheck::ode_models
