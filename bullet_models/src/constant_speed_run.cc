@@ -16,7 +16,6 @@
 #include <functional>
 #include <cmath>
 #include <memory>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <type_traits>

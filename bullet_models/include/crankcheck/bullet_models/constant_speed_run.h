@@ -14,10 +14,12 @@
 /// at A_j, a constraint Bullet's sequential-impulse (projected Gauss-Seidel) solver holds each step with the crank's
 /// btMultiBodyJointMotor (velocity target omega). The crank pin, the bearing and the slider are joints of the tree:
 /// their reactions are not constraint impulses, Bullet reports them through btMultiBodyJointFeedback (the articulated
-/// force across each joint, from the free pass plus a second pass with the constraint impulses). Measured against
-/// the closed forms: the pistons' feedback is the wall's force (second order at the step's start), the rods' and the
-/// crank's are NOT the crank-pin and bearing forces (off by 0.01-0.1 of the force scale at every step, not falling
-/// with it); Bullet's issues #4604 and #2966 report btMultiBody's feedback doubled in 3.24.
+/// force across each joint, set by the free pass and added to by a second pass with the constraint forces). Against
+/// the closed forms (tests/bullet/bullet_run_test.cc): the pistons' feedback is the wall's force (second order at the
+/// step's start); the rods' and the crank's are NOT the crank-pin and bearing forces, nor twice them (Bullet's issues
+/// #4604 and #2966): the second pass counts the links' velocity-dependent load again, so without gravity the
+/// feedback less its free pass's share (crank_pin_feedback_free, bearing_feedback_free) is the force to first order
+/// in dt; gravity leaves a remainder of the links' weights' size.
 ///
 /// Bullet's step (stepSimulation(dt, 0): one step of exactly dt, no fixed-step substepping and no interpolation of
 /// the reported state): the free velocities from the articulated-body algorithm at the step's start, then the
