@@ -13,12 +13,14 @@
 #include <BulletDynamics/Featherstone/btMultiBodyPoint2Point.h>
 
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <memory>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+
+#include "crankcheck/scene/gas.h"
 
 namespace crankcheck::bullet_models {
 namespace {
@@ -26,38 +28,6 @@ namespace {
 // Debian's libbullet-dev ships both builds; bullet-float64.pc gives -DBT_USE_DOUBLE_PRECISION and the -float64
 // libraries together. A mismatch between the define and the library would corrupt every btVector3 passed across.
 static_assert(std::is_same_v<btScalar, double>, "crankcheck's Bullet models need Bullet in double precision (bullet-float64)");
-
-/// The exact state of cylinder j at crank angle phi and speed omega (docs/CONVENTIONS.md "Frames and signs" and
-/// "Pin offset"): sin beta = lambda sin theta - delta / l, x_p = r cos theta + l cos beta, the rod's angular velocity
-/// about +Z is -beta_dot.
-struct CylinderState {
-  double delta = 0.0, z = 0.0;
-  std::array<double, 2> e{}, n{};
-  std::array<double, 2> a{}, b{};     // [m] wrist pin A, crank pin B (global X, Y)
-  double x_p = 0.0, v_p = 0.0;       // [m], [m/s] along e
-  double rod_angular_velocity = 0.0;  // [rad/s] about +Z
-};
-
-CylinderState calcCylinderState(const Mechanism& m, int j, double phi, double omega) {
-  const double r = m.crank.radius, l = m.rod.length;
-  CylinderState s;
-  const double gamma = getBankAngle(m, j);
-  s.delta = getPinOffset(m, j);
-  s.z = getAxialPosition(m, j);
-  s.e = {std::cos(gamma), std::sin(gamma)};
-  s.n = {-s.e[1], s.e[0]};
-  const double theta = phi + getThrowAngle(m, j) - gamma;
-  const double sin_beta = (r * std::sin(theta) - s.delta) / l;
-  const double cos_beta = std::sqrt(1.0 - sin_beta * sin_beta);
-  const double beta_dot = r * std::cos(theta) * omega / (l * cos_beta);
-  s.x_p = r * std::cos(theta) + l * cos_beta;
-  s.v_p = -r * std::sin(theta) * omega - l * sin_beta * beta_dot;
-  s.rod_angular_velocity = -beta_dot;
-  const double crank_angle = phi + getThrowAngle(m, j);
-  s.b = {r * std::cos(crank_angle), r * std::sin(crank_angle)};
-  s.a = {s.x_p * s.e[0] + s.delta * s.n[0], s.x_p * s.e[1] + s.delta * s.n[1]};
-  return s;
-}
 
 void requireOption(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("Bullet run: " + what);
@@ -67,9 +37,23 @@ void refuse(const std::string& key, const std::string& why) {
   throw std::invalid_argument("Bullet cannot build this scene: " + key + " " + why);
 }
 
+/// Bullet's world with a look between its two passes: the free pass (solveExternalForces: the articulated-body
+/// algorithm without the constraints, which sets every joint feedback) and the constraint pass that adds the
+/// constraints' share to the feedback.
+class FeedbackWorld : public btMultiBodyDynamicsWorld {
+ public:
+  using btMultiBodyDynamicsWorld::btMultiBodyDynamicsWorld;
+  std::function<void()> after_free_pass;
+  void solveExternalForces(btContactSolverInfo& info) override {
+    btMultiBodyDynamicsWorld::solveExternalForces(info);
+    if (after_free_pass) after_free_pass();
+  }
+};
+
 struct CylinderLinks {
   int piston = 0, rod = 0;            // link indices
   btVector3 wrist_pin_in_rod{0, 0, 0};  // [m] A from the rod's centre of mass, in the rod's frame
+  btVector3 e{0, 0, 0}, n{0, 0, 0};     // the cylinder's axis and its normal
   std::unique_ptr<btMultiBodyPoint2Point> wrist_pin;
   btMultiBodyJointFeedback piston_feedback{}, rod_feedback{};
 };
@@ -77,10 +61,13 @@ struct CylinderLinks {
 /// A link's joint feedback's force (the linear part of btMultiBodyJointFeedback::m_reactionForces, m_topVec, which
 /// Bullet 3.24 gives in the link's frame) in global axes, turned by the link's orientation at the step's start (the
 /// positions Bullet computed it at). `columns`: the link's X, Y, Z axes in global axes.
-Vec3 toGlobal(const std::array<btVector3, 3>& columns, const btMultiBodyJointFeedback& feedback) {
-  const btVector3 f = columns[0] * feedback.m_reactionForces.m_topVec[0] + columns[1] * feedback.m_reactionForces.m_topVec[1] +
-                      columns[2] * feedback.m_reactionForces.m_topVec[2];
+Vec3 toGlobal(const std::array<btVector3, 3>& columns, const btVector3& local) {
+  const btVector3 f = columns[0] * local[0] + columns[1] * local[1] + columns[2] * local[2];
   return {f[0], f[1], f[2]};
+}
+
+Vec3 toGlobal(const std::array<btVector3, 3>& columns, const btMultiBodyJointFeedback& feedback) {
+  return toGlobal(columns, feedback.m_reactionForces.m_topVec);
 }
 
 std::array<btVector3, 3> getOrientation(const btMultiBody& body, int link) {
@@ -92,11 +79,11 @@ std::array<btVector3, 3> getOrientation(const btMultiBody& body, int link) {
 
 BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o) {
   const int k = m.machine.cylinders;
-  const double omega = m.machine.speed;
+  const StartState& start = o.start;
   requireOption(std::isfinite(o.dt) && o.dt > 0.0, "dt must be a positive number of seconds");
-  requireOption(o.steps >= 0, "steps must be >= 0");
-  requireOption(o.steps > 0 || (std::isfinite(o.revolutions) && o.revolutions > 0.0 && omega != 0.0),
-                "revolutions must be > 0 with a crank speed != 0 when steps is 0");
+  requireOption(o.steps > 0, "steps must be > 0");
+  requireOption(static_cast<int>(start.cylinders.size()) == k,
+                "start has " + std::to_string(start.cylinders.size()) + " cylinders, the mechanism " + std::to_string(k));
   requireOption(o.solver_iterations >= 1, "solver_iterations must be >= 1");
   requireOption(o.erp > 0.0 && o.erp <= 1.0, "erp must be in (0, 1]");
   requireOption(std::isfinite(o.linear_damping) && o.linear_damping >= 0.0, "linear_damping must be >= 0");
@@ -104,13 +91,18 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
   requireOption(o.max_coordinate_velocity > 0.0, "max_coordinate_velocity must be > 0");
   requireOption(o.loop_max_impulse > 0.0, "loop_max_impulse must be > 0");
   requireOption(o.motor_max_impulse > 0.0, "motor_max_impulse must be > 0");
-  if (m.gas) refuse("[gas]", "is not modelled by the Bullet run yet (drop it: Mechanism::gas.reset())");
+  if (!(std::fabs(m.machine.speed) > 0.0))
+    refuse("[engine].speed_rpm", "must be != 0 (the run drives the crank at the scene's constant speed)");
   if (!m.balance_shafts.empty()) refuse("[[balance_shaft]]", "has no geared coupling in this Bullet model");
   if (!(m.rod.mass > 0.0)) refuse("[rod].mass", "must be > 0 (a btMultiBody link needs a mass)");
   if (!(m.piston.mass > 0.0)) refuse("[piston].mass", "must be > 0 (a btMultiBody link needs a mass)");
   const double rod_inertia = m.rod.inertia_about_wrist_pin - m.rod.mass * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
   if (!(rod_inertia > 0.0))
     refuse("[rod].inertia_about_wrist_pin", "must exceed m_k z_k^2 (the rod's inertia about its centre of mass must be > 0)");
+  const double omega = start.omega;
+  // Gas (docs/CONVENTIONS.md "Gas"): p_j at the cycle angle phi - firing_j, the force -p_j A e_j on piston j.
+  const double bore_area = m.gas ? calcBoreArea(*m.gas) : 0.0;
+  if (m.gas) requireOption(static_cast<int>(m.firing_angles.size()) == k, "[gas] needs one firing angle per cylinder");
 
   // The crank: every throw's m_s at r_s on its crank line and m_p at r_p opposite, one link in the plane z = 0.
   double crank_mass = 0.0, first_x = 0.0, first_y = 0.0, inertia_o = 0.0;
@@ -123,13 +115,15 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
                  m.crank.counterweight_mass * m.crank.counterweight_radius * m.crank.counterweight_radius;
   }
   if (!(crank_mass > 0.0)) refuse("[crank].mass", "and counterweight_mass are 0 (a btMultiBody link needs a mass)");
-  const double cx = first_x / crank_mass, cy = first_y / crank_mass;
+  // The crank's centre of mass at the start angle (the throws' angles above are at phi = 0).
+  const double cx0 = first_x / crank_mass, cy0 = first_y / crank_mass;
+  const double cx = cx0 * std::cos(start.phi) - cy0 * std::sin(start.phi), cy = cx0 * std::sin(start.phi) + cy0 * std::cos(start.phi);
   const double crank_inertia = inertia_o - crank_mass * (cx * cx + cy * cy);  // about the centre of mass, along Z
   if (!(crank_inertia > 0.0))
     refuse("[crank].com_radius", "and counterweight_radius leave the crank no inertia about its centre of mass");
 
-  // Every link's frame is parallel to the world's at phi = 0 with every joint coordinate 0 except the pistons'
-  // (x_p), so the offsets below are global vectors at the initial state. Only the inertia about Z acts (every joint
+  // Every link's frame is parallel to the world's in the start's pose with every joint coordinate 0 except the
+  // pistons' (x_p), so the offsets below are global vectors at the start. Only the inertia about Z acts (every joint
   // is about Z or along the plane; a diagonal tensor spinning about Z has no gyroscopic moment), so all three
   // diagonal entries are that one.
   const int crank_link = 0;
@@ -141,25 +135,25 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
   body->setupRevolute(crank_link, crank_mass, btVector3(crank_inertia, crank_inertia, crank_inertia), -1, identity, z_axis,
                       btVector3(0.0, 0.0, 0.0), btVector3(cx, cy, 0.0), true);
   std::vector<CylinderLinks> cylinders(static_cast<std::size_t>(k));
-  std::vector<CylinderState> initial;
   for (int j = 0; j < k; ++j) {
     CylinderLinks& c = cylinders[static_cast<std::size_t>(j)];
-    const CylinderState s = calcCylinderState(m, j, 0.0, omega);
-    initial.push_back(s);
+    const CylinderStartState& s = start.cylinders[static_cast<std::size_t>(j)];
+    const double z = getAxialPosition(m, j);
+    const double delta = s.p_WA_W[0] * s.n[0] + s.p_WA_W[1] * s.n[1];  // A = x_p e + delta n
     c.piston = 1 + 2 * j;
     c.rod = 2 + 2 * j;
+    c.e = btVector3(s.e[0], s.e[1], 0.0);
+    c.n = btVector3(s.n[0], s.n[1], 0.0);
     // The piston: a particle on its line; its prismatic joint holds every rotation, so its inertia never acts (any
     // positive value will do, the rod's keeps the system's scale).
-    body->setupPrismatic(c.piston, m.piston.mass, btVector3(rod_inertia, rod_inertia, rod_inertia), -1, identity,
-                         btVector3(s.e[0], s.e[1], 0.0), btVector3(s.delta * s.n[0], s.delta * s.n[1], s.z),
-                         btVector3(0.0, 0.0, 0.0), true);
-    // The rod: its centre of mass G on A -> B at z_k / l from A; the joint at B on the crank.
-    const double f = m.rod.com_from_wrist_pin / m.rod.length;
-    const btVector3 g(s.a[0] + f * (s.b[0] - s.a[0]), s.a[1] + f * (s.b[1] - s.a[1]), s.z);
-    const btVector3 b(s.b[0], s.b[1], s.z);
+    body->setupPrismatic(c.piston, m.piston.mass, btVector3(rod_inertia, rod_inertia, rod_inertia), -1, identity, c.e,
+                         delta * c.n + btVector3(0.0, 0.0, z), btVector3(0.0, 0.0, 0.0), true);
+    // The rod: its centre of mass G and its joint at B on the crank, as the start places them.
+    const btVector3 g(s.rod.p_WBcm_W[0], s.rod.p_WBcm_W[1], z);
+    const btVector3 b(s.p_WB_W[0], s.p_WB_W[1], z);
     body->setupRevolute(c.rod, m.rod.mass, btVector3(rod_inertia, rod_inertia, rod_inertia), crank_link, identity, z_axis,
                         b - btVector3(cx, cy, 0.0), g - b, true);
-    c.wrist_pin_in_rod = btVector3(s.a[0], s.a[1], s.z) - g;
+    c.wrist_pin_in_rod = btVector3(s.p_WA_W[0], s.p_WA_W[1], z) - g;
   }
   btMultiBodyJointFeedback crank_feedback{};
   body->getLink(crank_link).m_jointFeedback = &crank_feedback;
@@ -174,10 +168,10 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
   body->setJointVel(crank_link, omega);
   for (int j = 0; j < k; ++j) {
     const CylinderLinks& c = cylinders[static_cast<std::size_t>(j)];
-    const CylinderState& s = initial[static_cast<std::size_t>(j)];
+    const CylinderStartState& s = start.cylinders[static_cast<std::size_t>(j)];
     body->setJointPos(c.piston, s.x_p);
     body->setJointVel(c.piston, s.v_p);
-    body->setJointVel(c.rod, s.rod_angular_velocity - omega);  // relative to the crank
+    body->setJointVel(c.rod, s.rod.omega - omega);  // relative to the crank
   }
   btAlignedObjectArray<btQuaternion> world_to_local;
   btAlignedObjectArray<btVector3> local_origin;
@@ -215,7 +209,7 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
   btCollisionDispatcher dispatcher(&configuration);
   btDbvtBroadphase broadphase;
   btMultiBodyConstraintSolver solver;
-  btMultiBodyDynamicsWorld world(&dispatcher, &broadphase, &solver, &configuration);
+  FeedbackWorld world(&dispatcher, &broadphase, &solver, &configuration);
   world.setGravity(btVector3(0.0, -m.machine.gravity, 0.0));
   btContactSolverInfo& info = world.getSolverInfo();
   info.m_numIterations = o.solver_iterations;
@@ -227,12 +221,18 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
   for (CylinderLinks& c : cylinders) world.addMultiBodyConstraint(c.wrist_pin.get());
 
   const std::array<btVector3, 3> piston_orientation{btVector3(1.0, 0.0, 0.0), btVector3(0.0, 1.0, 0.0), btVector3(0.0, 0.0, 1.0)};
-  const long steps = o.steps > 0 ? o.steps
-                                 : static_cast<long>(std::ceil(o.revolutions * 2.0 * std::numbers::pi /
-                                                               (std::abs(omega) * o.dt) - 1e-9));
+  const long steps = o.steps;
   BulletRun run;
   run.samples.reserve(static_cast<std::size_t>(steps));
-  double phi = 0.0;
+  // The joint feedback after the free pass (the link frame's force, before the constraint pass adds to it).
+  btVector3 crank_free(0, 0, 0);
+  std::vector<btVector3> rod_free(static_cast<std::size_t>(k));
+  world.after_free_pass = [&] {
+    crank_free = crank_feedback.m_reactionForces.m_topVec;
+    for (int j = 0; j < k; ++j) rod_free[static_cast<std::size_t>(j)] = cylinders[static_cast<std::size_t>(j)].rod_feedback.m_reactionForces.m_topVec;
+  };
+  double phi = start.phi;
+  std::vector<double> v_start(static_cast<std::size_t>(k));
   const auto started = std::chrono::steady_clock::now();
   for (long i = 0; i < steps; ++i) {
     // maxSubSteps 0: one step of exactly dt. With substeps Bullet would step at its fixedTimeStep (1/60 s unless
@@ -241,22 +241,31 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
     const std::array<btVector3, 3> crank_start = getOrientation(*body, crank_link);
     std::vector<std::array<btVector3, 3>> rod_start;
     for (const CylinderLinks& c : cylinders) rod_start.push_back(getOrientation(*body, c.rod));
+    for (int j = 0; j < k; ++j) {
+      const CylinderLinks& c = cylinders[static_cast<std::size_t>(j)];
+      v_start[static_cast<std::size_t>(j)] = body->getJointVel(c.piston);
+      // Held through the step; stepSimulation clears every applied force at its end.
+      if (m.gas) body->addLinkForce(c.piston, -calcGasPressure(*m.gas, phi - m.firing_angles[static_cast<std::size_t>(j)]) * bore_area * c.e);
+    }
     world.stepSimulation(o.dt, 0);
     BulletSample sample;
     sample.t = static_cast<double>(i + 1) * o.dt;
     sample.phi_start = phi;
-    phi = body->getJointPos(crank_link);
+    phi = start.phi + body->getJointPos(crank_link);
     sample.phi = phi;
     sample.drive_torque = motor->getAppliedImpulse(0) / o.dt;
     sample.bearing_feedback = toGlobal(crank_start, crank_feedback);
+    sample.bearing_feedback_free = toGlobal(crank_start, crank_free);
     sample.cylinders.reserve(static_cast<std::size_t>(k));
     for (const CylinderLinks& c : cylinders) {
       BulletCylinderSample cs;
       cs.crank_pin_feedback = toGlobal(rod_start[sample.cylinders.size()], c.rod_feedback);
+      cs.crank_pin_feedback_free = toGlobal(rod_start[sample.cylinders.size()], rod_free[sample.cylinders.size()]);
       cs.slider_feedback = toGlobal(piston_orientation, c.piston_feedback);
-      const CylinderState& s = initial[sample.cylinders.size()];
-      cs.wall_force = cs.slider_feedback[0] * s.n[0] + cs.slider_feedback[1] * s.n[1];
+      cs.wall_force = cs.slider_feedback[0] * c.n[0] + cs.slider_feedback[1] * c.n[1];
       cs.x_p = body->getJointPos(c.piston);
+      cs.v_p = body->getJointVel(c.piston);
+      cs.a_p = (cs.v_p - v_start[sample.cylinders.size()]) / o.dt;
       // The point-to-point rows are along -X, -Y, -Z on the rod (A) and +X, +Y, +Z on the piston (B).
       for (int row = 0; row < 3; ++row) cs.wrist_pin[static_cast<std::size_t>(row)] = c.wrist_pin->getAppliedImpulse(row) / o.dt;
       const btVector3 on_rod = body->localPosToWorld(c.rod, c.wrist_pin_in_rod);

@@ -1,11 +1,12 @@
-// The Bullet model's constant-speed run against the closed forms (crankcheck::analytic, which the engine never links):
-// the loop held within the error correction's bound, x_p and the wrist-pin force converging as the step falls, the
-// instant a step's impulses belong to, and what Bullet's defaults (the joint speed cap, the damping) do.
+// The Bullet engine ("bullet": btMultiBody, double precision) as a stepped engine: its description, its refusals, its
+// samples, and its runs measured against the closed forms (crankcheck::analytic, which the engine never links) by
+// validation/stepped_errors.h: the loop held within the error correction's bound, each quantity's error falling with
+// the step at the order of Bullet's scheme, the instant each belongs to, what Bullet's defaults do, and what its
+// joint feedback (reported as the crank-pin and bearing forces) is.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -15,78 +16,43 @@
 
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/bullet_models/constant_speed_run.h"
-#include "crankcheck/scene/scene_file.h"
+#include "crankcheck/bullet_models/stepped_engine.h"
+#include "crankcheck/scene/quantities.h"
 #include "crankcheck/validation/scales.h"
+#include "stepped_engine_support.h"
 
 namespace crankcheck::bullet_models {
 namespace {
 
+using crankcheck::testing::findStepped;
+using crankcheck::testing::findSteppedError;
+using crankcheck::testing::loadSteppedExample;
+using crankcheck::testing::measureAtSteps;
+using crankcheck::testing::observedOrder;
+
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-Mechanism loadExample(const char* name) {
-  Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / name);
-  m.gas.reset();  // gas is not modelled by the Bullet run
-  return m;
+const SteppedEngine& getBullet() {
+  static const std::vector<SteppedEngine> engines = describeSteppedEngines();
+  return findStepped(engines, "bullet");
 }
 
-double planarDistance(const Vec3& bullet, const Vec2& exact) { return std::hypot(bullet[0] - exact[0], bullet[1] - exact[1]); }
+StartState calcExactStart(const Mechanism& m) { return calcStartState(m, analytic::calcEvaluation(m, 0.0)); }
 
-/// The largest errors over one turn, each relative to its scale (calcScales), the loop's in metres.
-struct TurnErrors {
-  double loop = 0.0;                ///< [m] the largest wrist-pin separation
-  double x_p = 0.0;                 ///< at the step's end angle
-  double wrist_pin_start = 0.0;     ///< the step's impulse / dt against the exact force at its start angle
-  double wrist_pin_middle = 0.0;    ///< ... at its middle angle
-  double wrist_pin_end = 0.0;       ///< ... at its end angle
-  double drive_torque_start = 0.0;
-  double drive_torque_middle = 0.0;
-  double wall_start = 0.0;          ///< the pistons' joint feedback
-  double crank_pin_start = 0.0;     ///< the rods' joint feedback
-  double bearing_start = 0.0;       ///< the crank's joint feedback
-};
-
-/// The start-up transient: the exact state at phi = 0 already satisfies the velocity constraints, so the first step
-/// applies almost none of the inertia load; the error left shrinks by (1 - ERP) per step (the loops' error
-/// correction). These many steps bring it below 1e-6 of itself before the measured turn begins.
-long calcSettlingSteps(double erp) { return erp >= 1.0 ? 2 : static_cast<long>(std::ceil(std::log(1e-6) / std::log(1.0 - erp))); }
-
-TurnErrors measureTurn(const Mechanism& m, BulletRunOptions o) {
-  const long turn = static_cast<long>(std::ceil(2.0 * std::numbers::pi / (m.machine.speed * o.dt)));
-  const long settle = calcSettlingSteps(o.erp);
-  o.steps = settle + turn;
-  const BulletRun run = runBulletAtConstantSpeed(m, o);
-  const validation::Scales sc = validation::calcScales(m);
-  TurnErrors e;
-  for (std::size_t i = static_cast<std::size_t>(settle); i < run.samples.size(); ++i) {
-    const BulletSample& s = run.samples[i];
-    const Evaluation at_start = analytic::calcEvaluation(m, s.phi_start);
-    const Evaluation at_middle = analytic::calcEvaluation(m, 0.5 * (s.phi_start + s.phi));
-    const Evaluation at_end = analytic::calcEvaluation(m, s.phi);
-    e.drive_torque_start = std::max(e.drive_torque_start, std::abs(s.drive_torque - at_start.drive_torque) / sc.torque);
-    e.drive_torque_middle = std::max(e.drive_torque_middle, std::abs(s.drive_torque - at_middle.drive_torque) / sc.torque);
-    e.bearing_start = std::max(e.bearing_start, planarDistance(s.bearing_feedback, at_start.bearing_force) / sc.force);
-    for (std::size_t j = 0; j < s.cylinders.size(); ++j) {
-      const BulletCylinderSample& c = s.cylinders[j];
-      e.loop = std::max(e.loop, c.loop_error);
-      e.x_p = std::max(e.x_p, std::abs(c.x_p - at_end.cylinders[j].x_p) / sc.position);
-      e.wrist_pin_start = std::max(e.wrist_pin_start, planarDistance(c.wrist_pin, at_start.cylinders[j].wrist_pin_force) / sc.force);
-      e.wrist_pin_middle = std::max(e.wrist_pin_middle, planarDistance(c.wrist_pin, at_middle.cylinders[j].wrist_pin_force) / sc.force);
-      e.wrist_pin_end = std::max(e.wrist_pin_end, planarDistance(c.wrist_pin, at_end.cylinders[j].wrist_pin_force) / sc.force);
-      e.wall_start = std::max(e.wall_start, std::abs(c.wall_force - at_start.cylinders[j].wall_force) / sc.force);
-      e.crank_pin_start = std::max(e.crank_pin_start, planarDistance(c.crank_pin_feedback, at_start.cylinders[j].crank_pin_force) / sc.force);
-    }
-  }
+/// The engine with the instant of `quantity` moved to `fraction` (the engine's values unchanged): its error read there.
+SteppedEngine readAt(QuantityId quantity, double fraction) {
+  SteppedEngine e = getBullet();
+  const auto inner = e.run;
+  e.run = [inner, quantity, fraction](const Mechanism& m, const SteppedRunOptions& o) {
+    SteppedRun run = inner(m, o);
+    for (QuantityInstant& r : run.reported)
+      if (r.quantity == quantity) r.step_fraction = fraction;
+    return run;
+  };
   return e;
 }
 
-BulletRunOptions defaultOptions(double dt) {
-  BulletRunOptions o;
-  o.dt = dt;
-  return o;
-}
-
-/// Bullet's defaults that change the physics neutralised (no speed cap, no damping, no cap on the loops' impulses);
-/// Bullet's solver settings (10 iterations, ERP 0.2) kept.
+/// Bullet's physics-changing defaults off (no speed cap, no damping, no cap on the loops' impulses), as "neutralised".
 BulletRunOptions neutralOptions(double dt) {
   BulletRunOptions o;
   o.dt = dt;
@@ -97,61 +63,153 @@ BulletRunOptions neutralOptions(double dt) {
   return o;
 }
 
-/// The neutral settings with the solver tightened: the whole loop error corrected each step, 100 iterations.
-BulletRunOptions tightenedOptions(double dt) {
-  BulletRunOptions o = neutralOptions(dt);
-  o.erp = 1.0;
-  o.solver_iterations = 100;
-  return o;
+/// The largest errors over one turn after the settling steps of a run at options the registry's settings do not
+/// name, each relative to its scale (calcScales): x_p at the step's end, the wrist-pin force and the drive torque at
+/// its start.
+struct TurnErrors {
+  double x_p = 0.0, wrist_pin = 0.0, drive_torque = 0.0;
+};
+
+TurnErrors measureTurn(const Mechanism& m, BulletRunOptions o) {
+  const long turn = validation::calcStepsPerTurn(m, o.dt);
+  const long settle = std::max(validation::kSettlingSteps, turn);
+  o.steps = settle + turn;
+  o.start = calcExactStart(m);
+  const BulletRun run = runBulletAtConstantSpeed(m, o);
+  const validation::Scales sc = validation::calcScales(m);
+  TurnErrors e;
+  for (std::size_t i = static_cast<std::size_t>(settle); i < run.samples.size(); ++i) {
+    const BulletSample& s = run.samples[i];
+    const Evaluation at_start = analytic::calcEvaluation(m, s.phi_start);
+    const Evaluation at_end = analytic::calcEvaluation(m, s.phi);
+    e.drive_torque = std::max(e.drive_torque, std::abs(s.drive_torque - at_start.drive_torque) / sc.torque);
+    for (std::size_t j = 0; j < s.cylinders.size(); ++j) {
+      const BulletCylinderSample& c = s.cylinders[j];
+      e.x_p = std::max(e.x_p, std::abs(c.x_p - at_end.cylinders[j].x_p) / sc.position);
+      for (int q = 0; q < 2; ++q)
+        e.wrist_pin = std::max(e.wrist_pin, std::abs(c.wrist_pin[q] - at_start.cylinders[j].wrist_pin_force[q]) / sc.force);
+    }
+  }
+  return e;
 }
 
-TEST(BulletRunTest, RefusesWhatItCannotBuildByName) {
-  const auto refusal = [](const Mechanism& m, const BulletRunOptions& o) {
+TEST(BulletSteppedTest, DescribesItselfWithTheLibrarysVersion) {
+  const SteppedEngine& e = getBullet();
+  EXPECT_EQ(e.library.rfind("Bullet 3.", 0), 0u) << e.library;  // btGetVersion(): Debian's 3.24
+  EXPECT_NE(e.library.find("double precision"), std::string::npos);
+  EXPECT_EQ(e.settings, (std::vector<std::string>{"defaults", "neutralised", "tightened"}));
+  EXPECT_EQ(e.settings_meaning.size(), e.settings.size());
+  for (const std::string* line : {&e.method, &e.instants, &e.cannot_build}) {
+    EXPECT_FALSE(line->empty());
+    EXPECT_EQ(line->find('\n'), std::string::npos);
+  }
+}
+
+TEST(BulletSteppedTest, RefusesWhatItCannotBuildByName) {
+  const SteppedEngine& engine = getBullet();
+  const auto refusal = [&](const Mechanism& m, const std::string& settings) {
+    SteppedRunOptions o;
+    o.dt = 1e-4;
+    o.steps = 1;
+    o.settings = settings;
+    o.start = calcExactStart(m);
     try {
-      runBulletAtConstantSpeed(m, o);
+      engine.run(m, o);
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }
     return std::string("(built)");
   };
-  const Mechanism base = loadExample("single_cylinder.toml");
-  BulletRunOptions o = defaultOptions(1e-4);
-  o.steps = 1;
-  EXPECT_EQ(refusal(base, o), "(built)");
-  Mechanism with_gas = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
-  EXPECT_NE(refusal(with_gas, o).find("[gas]"), std::string::npos);
+  const Mechanism base = loadSteppedExample("single_cylinder.toml");
+  EXPECT_EQ(refusal(base, "defaults"), "(built)");
+  EXPECT_EQ(refusal(loadSteppedExample("inline4_four_stroke.toml"), "defaults"), "(built)");  // with its [gas]
+  const std::string unknown = refusal(base, "fastest");
+  EXPECT_NE(unknown.find("\"fastest\""), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("defaults, neutralised, tightened"), std::string::npos) << unknown;
   Mechanism shaft = base;
   shaft.balance_shafts.push_back({2.0, 0.1, 0.02, 0.0, {0.0, 0.0, 0.0}});
-  EXPECT_NE(refusal(shaft, o).find("[[balance_shaft]]"), std::string::npos);
+  EXPECT_NE(refusal(shaft, "defaults").find("[[balance_shaft]]"), std::string::npos);
+  Mechanism still = base;
+  still.machine.speed = 0.0;
+  EXPECT_NE(refusal(still, "defaults").find("speed"), std::string::npos);
   Mechanism slender = base;
   slender.rod.inertia_about_wrist_pin = slender.rod.mass * slender.rod.com_from_wrist_pin * slender.rod.com_from_wrist_pin;
-  EXPECT_NE(refusal(slender, o).find("[rod].inertia_about_wrist_pin"), std::string::npos);
+  EXPECT_NE(refusal(slender, "defaults").find("[rod].inertia_about_wrist_pin"), std::string::npos);
   Mechanism no_crank = base;
   no_crank.crank.mass = 0.0;
   no_crank.crank.counterweight_mass = 0.0;
-  EXPECT_NE(refusal(no_crank, o).find("[crank].mass"), std::string::npos);
+  EXPECT_NE(refusal(no_crank, "defaults").find("[crank].mass"), std::string::npos);
+
+  const auto option_refusal = [&](const BulletRunOptions& o) {
+    try {
+      runBulletAtConstantSpeed(base, o);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("(built)");
+  };
+  BulletRunOptions o;
+  o.dt = 1e-4;
+  o.start = calcExactStart(base);
+  EXPECT_EQ(option_refusal(o), "(built)");
   for (auto [name, option] : {std::tuple{"dt", &BulletRunOptions::dt}, std::tuple{"erp", &BulletRunOptions::erp},
                               std::tuple{"linear_damping", &BulletRunOptions::linear_damping},
                               std::tuple{"max_coordinate_velocity", &BulletRunOptions::max_coordinate_velocity},
                               std::tuple{"loop_max_impulse", &BulletRunOptions::loop_max_impulse}}) {
     BulletRunOptions bad = o;
     bad.*option = -1.0;
-    EXPECT_NE(refusal(base, bad).find(name), std::string::npos) << name;
+    EXPECT_NE(option_refusal(bad).find(name), std::string::npos) << name;
   }
   BulletRunOptions bad = o;
   bad.solver_iterations = 0;
-  EXPECT_NE(refusal(base, bad).find("solver_iterations"), std::string::npos);
+  EXPECT_NE(option_refusal(bad).find("solver_iterations"), std::string::npos);
+  bad = o;
+  bad.steps = 0;
+  EXPECT_NE(option_refusal(bad).find("steps"), std::string::npos);
+  bad = o;
+  bad.start.cylinders.push_back(bad.start.cylinders[0]);
+  EXPECT_NE(option_refusal(bad).find("start"), std::string::npos);
+}
+
+// Each sample carries the reported quantities and NaN in every other field of the catalogue.
+TEST(BulletSteppedTest, SamplesCarryOnlyTheReportedQuantities) {
+  const Mechanism m = loadSteppedExample("inline4_four_stroke.toml");
+  const SteppedEngine& engine = getBullet();
+  SteppedRunOptions o;
+  o.dt = 1e-4;
+  o.steps = 3;
+  o.start = calcExactStart(m);
+  const SteppedRun run = engine.run(m, o);
+  ASSERT_EQ(run.samples.size(), 3u);
+  EXPECT_GT(run.seconds_per_step, 0.0);
+  for (const SteppedSample& s : run.samples) {
+    EXPECT_EQ(s.values.engine, "bullet");
+    EXPECT_EQ(s.values.phi, s.phi_end);
+    EXPECT_GT(s.phi_end, s.phi_start);
+    EXPECT_TRUE(std::isfinite(s.loop_error));
+    ASSERT_EQ(static_cast<int>(s.values.cylinders.size()), m.machine.cylinders);
+    for (const Quantity& q : getQuantityCatalogue()) {
+      const bool reported = std::any_of(run.reported.begin(), run.reported.end(),
+                                        [&](const QuantityInstant& r) { return r.quantity == q.id; });
+      for (int c = q.per_cylinder ? 0 : -1; c < (q.per_cylinder ? m.machine.cylinders : 0); ++c)
+        for (int k = 0; k < q.components; ++k)
+          EXPECT_EQ(std::isfinite(readQuantity(q, s.values, c)[k]), reported) << q.name;
+    }
+  }
 }
 
 // The exact start: after one tiny step the wrist pin is apart by at most the explicit update's a dt^2 / 2 (a: the
 // acceleration scale bounds every point's); initial joint speeds off by dv would add dv dt, 1e5 times that here.
-TEST(BulletRunTest, StartsFromTheExactStateAndTurnsAtTheScenesSpeed) {
-  for (const char* scene : {"single_cylinder.toml", "inline4_four_stroke.toml"}) {
+TEST(BulletSteppedTest, StartsFromTheExactStateAndTurnsAtTheScenesSpeed) {
+  for (const char* scene : {"single_cylinder.toml", "inline4_four_stroke.toml", "v8_cross_plane.toml"}) {
     SCOPED_TRACE(scene);
-    const Mechanism m = loadExample(scene);
+    const Mechanism m = loadSteppedExample(scene);
     const validation::Scales sc = validation::calcScales(m);
-    BulletRunOptions o = tightenedOptions(1e-7);
+    BulletRunOptions o = neutralOptions(1e-7);
+    o.erp = 1.0;
+    o.solver_iterations = 100;
     o.steps = 1;
+    o.start = calcExactStart(m);
     const BulletRun run = runBulletAtConstantSpeed(m, o);
     ASSERT_EQ(run.samples.size(), 1u);
     const BulletSample& s = run.samples[0];
@@ -164,93 +222,181 @@ TEST(BulletRunTest, StartsFromTheExactStateAndTurnsAtTheScenesSpeed) {
 
 // Bullet's default cap on every joint speed, 100 rad/s (btMultiBody::m_maxCoordinateVelocity), clamps the crank of a
 // 3000 rpm engine (314 rad/s) to 100 rad/s whatever the motor asks: the crank turns at exactly 100 rad/s, and the
-// impulses the clamp throws away leave the loop open by centimetres.
-TEST(BulletRunTest, DefaultSpeedCapHoldsTheCrankAt100RadPerSecond) {
-  const Mechanism m = loadExample("single_cylinder.toml");
+// impulses the clamp throws away leave the loop open by a fifth of the position scale (measured 0.21 at 1e-4 and
+// 1e-5 s, 0.49 at 1/240 s) and every force's error grows as the step falls (the wrist pin's 0.023 of the force scale
+// at 1/240 s, 2.6 at 1e-4 s, 254 at 1e-5 s: the clamped impulse is a fixed velocity change, its force 1 / dt).
+TEST(BulletSteppedTest, DefaultSpeedCapHoldsTheCrankAt100RadPerSecond) {
+  const Mechanism m = loadSteppedExample("single_cylinder.toml");
   ASSERT_GT(m.machine.speed, 100.0);
-  const BulletRunOptions o = defaultOptions(1e-4);
-  const TurnErrors e = measureTurn(m, o);
-  BulletRunOptions capped = o;
+  BulletRunOptions capped;
+  capped.dt = 1e-4;
   capped.steps = 1000;
+  capped.start = calcExactStart(m);
   const BulletRun run = runBulletAtConstantSpeed(m, capped);
   // phi = 100 t to the rounding of its sum over 1000 steps (1e-16 relative, times 1e3 steps, times 10)
   EXPECT_NEAR(run.samples.back().phi, 100.0 * run.samples.back().t, 1e-12 * 100.0 * run.samples.back().t);
-  EXPECT_GT(e.loop, 0.01);  // [m] measured 0.04 m (of a 0.188 m position scale)
+  const std::vector<double> steps{1e-4, 1e-5};
+  const auto measures = measureAtSteps(getBullet(), m, "defaults", steps);
+  EXPECT_GT(findSteppedError(measures[0], validation::kLoopErrorName).worst_rel_error, 0.1);
+  EXPECT_GT(findSteppedError(measures[0], "wrist_pin_force").worst_rel_error, 1.0);
+  // grows as 1 / dt: an order of -1 within 0.2 (measured -2.00)
+  EXPECT_LT(observedOrder(measures[0], steps[0], measures[1], steps[1], "wrist_pin_force"), -0.8);
 }
 
 // Bullet's default damping (0.04 linear and angular: each link loses m v (0.04 + 0.04 |v|) per second, its angular
 // momentum likewise) is paid by the motor: with the speed cap lifted, the drive torque stops converging at about
 // 5e-3 of its scale (measured 4.6-4.8e-3 at 1e-5 s), while without damping it is 1e-5 of it or less there.
-TEST(BulletRunTest, DefaultDampingLeavesTheDriveTorqueAFloor) {
+TEST(BulletSteppedTest, DefaultDampingLeavesTheDriveTorqueAFloor) {
   for (const char* scene : {"single_cylinder.toml", "inline4_four_stroke.toml"}) {
     SCOPED_TRACE(scene);
-    const Mechanism m = loadExample(scene);
+    const Mechanism m = loadSteppedExample(scene, /*drop_gas=*/true);
     BulletRunOptions damped = neutralOptions(1e-5);
     damped.linear_damping = 0.04;
     damped.angular_damping = 0.04;
-    const TurnErrors with_damping = measureTurn(m, damped);
-    const TurnErrors without = measureTurn(m, neutralOptions(1e-5));
-    EXPECT_GT(with_damping.drive_torque_start, 1e-3);
-    EXPECT_LT(without.drive_torque_start, 1e-4);
+    EXPECT_GT(measureTurn(m, damped).drive_torque, 1e-3);
+    EXPECT_LT(measureTurn(m, neutralOptions(1e-5)).drive_torque, 1e-4);
   }
 }
 
-struct Setting {
-  const char* name;
-  BulletRunOptions (*options)(double);
+// "tightened" = "neutralised" with ERP 1 and 100 iterations, each for a measured reason. ERP 1 corrects the whole
+// loop error each step, not a fifth: on the inline four x_p and the wrist-pin force are 4.8-5.5 times closer at 1e-4
+// s (measured x_p 5.6e-4 against 2.7e-3, the wrist pin 4.0e-5 against 2.2e-4); a factor 3 is asked. The iterations:
+// at ERP 1 and 1/240 s the wrist pin's error is 0.16 of the force scale after 10 iterations, 0.055 after 30, 0.053
+// after 100, and 1000 change no digit of 100's; at 1e-4 s 10 iterations already give 100's errors to 3 digits.
+TEST(BulletSteppedTest, TightenedSettingsEachEarnTheirPlace) {
+  const Mechanism m = loadSteppedExample("inline4_four_stroke.toml", /*drop_gas=*/true);
+  BulletRunOptions erp_default = neutralOptions(1e-4);
+  erp_default.solver_iterations = 100;
+  BulletRunOptions erp_one = erp_default;
+  erp_one.erp = 1.0;
+  const TurnErrors a = measureTurn(m, erp_default), b = measureTurn(m, erp_one);
+  EXPECT_GT(a.x_p / b.x_p, 3.0);
+  EXPECT_GT(a.wrist_pin / b.wrist_pin, 3.0);
+  const auto at_iterations = [&](int iterations) {
+    BulletRunOptions o = neutralOptions(1.0 / 240.0);
+    o.erp = 1.0;
+    o.solver_iterations = iterations;
+    return measureTurn(m, o).wrist_pin;
+  };
+  const double e10 = at_iterations(10), e100 = at_iterations(100), e1000 = at_iterations(1000);
+  EXPECT_GT(e10, 2.0 * e100);                 // measured 3.0
+  EXPECT_NEAR(e1000, e100, 1e-6 * e100);      // the projected Gauss-Seidel sweep has converged by 100
+}
+
+struct ConvergenceCase {
+  const char* scene;
+  bool gas;
 };
 
-// The convergence with Bullet's physics-changing defaults neutralised, at Bullet's solver settings and tightened.
-TEST(BulletRunTest, ConvergesWithTheStepOnceTheDefaultsAreNeutralised) {
-  const std::vector<double> steps{1.0 / 240.0, 1e-3, 1e-4, 1e-5};
-  for (const char* scene : {"single_cylinder.toml", "inline4_four_stroke.toml"}) {
-    const Mechanism m = loadExample(scene);
+// The registry's measure (settle, then one turn; each quantity at its instant) at 1e-3, 1e-4 and 1e-5 s with Bullet's
+// physics-changing defaults neutralised, at Bullet's solver settings and tightened, on three example scenes, the
+// inline four with its [gas] and without. Bullet's step is semi-implicit Euler with the constraint rows built at the
+// step's start: read at its instant, each quantity's error is a second-order term (x_p, v_p, a_p, the wrist-pin and
+// wall forces: measured 1.97-2.00 between 1e-4 and 1e-5 s on every scene and settings); the band [1.7, 2.3] holds
+// the next term's share at 1e-4 s. The drive torque falls at least at first order (measured 1.06-1.8: its
+// error at 1e-5 s nears 3e-6 of its scale). The rods' and the crank's joint feedback do not converge (the next test).
+TEST(BulletSteppedTest, ConvergesWithTheStepOnceTheDefaultsAreNeutralised) {
+  const std::vector<double> steps{1e-3, 1e-4, 1e-5};
+  for (const ConvergenceCase& c : {ConvergenceCase{"single_cylinder.toml", false}, ConvergenceCase{"inline4_four_stroke.toml", true},
+                                   ConvergenceCase{"inline4_four_stroke.toml", false}, ConvergenceCase{"v8_cross_plane.toml", false}}) {
+    const Mechanism m = loadSteppedExample(c.scene, !c.gas);
     const validation::Scales sc = validation::calcScales(m);
-    for (const Setting& setting : {Setting{"neutral", neutralOptions}, Setting{"tightened", tightenedOptions}}) {
-      std::vector<TurnErrors> errors;
-      for (double dt : steps) {
-        SCOPED_TRACE(std::string(scene) + " " + setting.name + " dt " + std::to_string(dt));
-        const BulletRunOptions o = setting.options(dt);
-        errors.push_back(measureTurn(m, o));
+    for (const auto& [settings, erp] : {std::pair{"neutralised", 0.2}, std::pair{"tightened", 1.0}}) {
+      SCOPED_TRACE(std::string(c.scene) + (c.gas ? " with gas " : " ") + settings);
+      const auto measures = measureAtSteps(getBullet(), m, settings, steps);
+      for (std::size_t i = 0; i < steps.size(); ++i) {
         // The loop: each step's position update opens the wrist pin by at most a dt^2 / 2 and ERP closes that share
-        // of the error, so it settles at a dt^2 / (2 ERP) at most (measured: 0.14-0.6 of it at ERP 0.2, 0.6-0.76 at 1).
-        EXPECT_LE(errors.back().loop, sc.acceleration * dt * dt / (2.0 * o.erp));
+        // of the error, so it settles at a dt^2 / (2 ERP) at most (measured 0.14-0.76 of it).
+        EXPECT_LE(findSteppedError(measures[i], validation::kLoopErrorName).worst_rel_error * sc.position,
+                  sc.acceleration * steps[i] * steps[i] / (2.0 * erp));
       }
-      SCOPED_TRACE(std::string(scene) + " " + setting.name);
-      const TurnErrors& e3 = errors[1];
-      const TurnErrors& e4 = errors[2];
-      const TurnErrors& e5 = errors[3];
-      // x_p at the recorded crank angle: second order (measured 96-100 times smaller from 1e-4 to 1e-5 s, 44-100
-      // from 1e-3); the bounds allow an order of 1.7 (50) and 1.3 (20).
-      EXPECT_GT(e4.x_p / e5.x_p, 50.0);
-      EXPECT_GT(e3.x_p / e4.x_p, 20.0);
-      // The wrist-pin force at the step's start angle: second order (measured 95-100 from 1e-4 to 1e-5 s, 30-100
-      // from 1e-3); the same bounds.
-      EXPECT_GT(e4.wrist_pin_start / e5.wrist_pin_start, 50.0);
-      EXPECT_GT(e3.wrist_pin_start / e4.wrist_pin_start, 20.0);
-      // Read at the step's middle or end: first order, the error of a half or a whole step's lag (measured 10.0-12.3
-      // from 1e-4 to 1e-5 s: an order of 1 within 0.1 allows 7.9 to 12.6) ...
-      EXPECT_GT(e4.wrist_pin_middle / e5.wrist_pin_middle, 7.9);
-      EXPECT_LT(e4.wrist_pin_middle / e5.wrist_pin_middle, 12.6);
-      // ... the end's error twice the middle's (the lag is linear in the offset from the start), up to the start's
-      // own error (at 1e-5 s at most 5 % of the middle's, measured): 2 within 0.1 ...
-      EXPECT_NEAR(e5.wrist_pin_end / e5.wrist_pin_middle, 2.0, 0.1);
-      // ... and the start is the impulses' instant: its error a tenth of the middle's or less (measured 0.4-4 %).
-      EXPECT_LT(e5.wrist_pin_start, 0.1 * e5.wrist_pin_middle);
-      // The drive torque (the motor's impulse / dt) belongs to the start too (measured 1.3-5 % of the middle's
-      // error at 1e-5 s) and converges at least at first order there (measured 11-64 from 1e-4 to 1e-5 s).
-      EXPECT_LT(e5.drive_torque_start, 0.1 * e5.drive_torque_middle);
-      EXPECT_GT(e4.drive_torque_start / e5.drive_torque_start, 7.9);
-      // The pistons' joint feedback is the wall's force: second order at the start (bounds as x_p's).
-      EXPECT_GT(e4.wall_start / e5.wall_start, 50.0);
-      // The rods' and the crank's joint feedback are not the crank-pin and bearing forces: their error does not fall
-      // with the step (measured 1.00-1.07 times smaller from 1e-4 to 1e-5 s; at 1e-5 s 0.021-0.085 of the force scale
-      // for the crank pin, 0.0087-0.072 for the bearing). Bounds: less than half as small, and half the smallest.
-      EXPECT_LT(e4.crank_pin_start / e5.crank_pin_start, 2.0);
-      EXPECT_LT(e4.bearing_start / e5.bearing_start, 2.0);
-      EXPECT_GT(e5.crank_pin_start, 0.01);
-      EXPECT_GT(e5.bearing_start, 0.004);
+      for (const char* q : {"x_p", "v_p", "a_p", "wrist_pin_force", "wall_force", validation::kLoopErrorName}) {
+        const double order = observedOrder(measures[1], steps[1], measures[2], steps[2], q);
+        EXPECT_GT(order, 1.7) << q;
+        EXPECT_LT(order, 2.3) << q;
+      }
+      EXPECT_GT(observedOrder(measures[1], steps[1], measures[2], steps[2], "drive_torque"), 0.9);
+      for (const char* q : {"crank_pin_force", "bearing_force"}) {
+        EXPECT_LT(observedOrder(measures[1], steps[1], measures[2], steps[2], q), 0.3) << q;
+        EXPECT_GT(findSteppedError(measures[2], q).worst_rel_error, 1e-3) << q;
+      }
     }
+  }
+}
+
+// The instants. The wrist-pin force (an impulse / dt) and a_p (the speed's change / dt) belong to the step's start:
+// read at its middle or end they carry the lag of half or a whole step, an error first order in dt and linear in the
+// offset, so the end's error is twice the middle's and the start's far below both. v_p (the speed after the step,
+// which semi-implicit Euler moves x_p by) belongs to its middle: read at its start or end it lags or leads by half a
+// step, the two errors alike.
+TEST(BulletSteppedTest, EachQuantityBelongsToItsInstant) {
+  const Mechanism m = loadSteppedExample("single_cylinder.toml");
+  const double dt = 1e-5;
+  const auto error_at = [&](QuantityId q, double fraction) {
+    const validation::SteppedMeasure measure = validation::measureSteppedRun(readAt(q, fraction), m, "tightened", dt);
+    return findSteppedError(measure, nameOf(q)).worst_rel_error;
+  };
+  for (QuantityId q : {QuantityId::kWristPinForce, QuantityId::kPistonAcceleration}) {
+    SCOPED_TRACE(nameOf(q));
+    const double start = error_at(q, 0.0), middle = error_at(q, 0.5), end = error_at(q, 1.0);
+    // 2 within 0.1: the start's own error (at most 5 % of the middle's, asked below) on top of the linear lag
+    EXPECT_NEAR(end / middle, 2.0, 0.1);
+    EXPECT_LT(start, 0.05 * middle);  // measured 0.4 % (both)
+  }
+  const double start = error_at(QuantityId::kPistonVelocity, 0.0), middle = error_at(QuantityId::kPistonVelocity, 0.5),
+               end = error_at(QuantityId::kPistonVelocity, 1.0);
+  EXPECT_NEAR(end / start, 1.0, 0.05);  // measured 1.000
+  EXPECT_LT(middle, 0.05 * start);      // measured 0.3 %
+}
+
+// What Bullet reports as the rods' and the crank's joint forces (btMultiBodyJointFeedback) is not the crank-pin or
+// bearing force: off by 0.02-0.085 of the force scale at every step. Neither twice the force (upstream #4604 and
+// #2966), nor any fixed combination of the pin forces and the links' weights fits (a least-squares fit leaves 5e-4
+// to 5e-3 of the force scale, not falling with the step), nor the feedback read in the link's frame. What it is:
+// Bullet 3.24 sets the feedback in its free pass (the articulated-body algorithm without the constraints) and its
+// constraint pass adds the constraint forces' share while counting the links' velocity-dependent load a second time.
+// Without gravity the feedback minus its free pass's share is the true force to first order in dt (measured 7.1e-5
+// and 2.9e-5 of the force scale at 1e-5 s for the crank pin, 6.4e-5 and 3.8e-5 for the bearing, on the single
+// cylinder and the inline four; 10-11 times more at 1e-4 s); with gravity a remainder of the links' weights' size
+// stays (the single cylinder's crank pin 1.8e-4 of the force scale, one m_rod g at the dead centres).
+TEST(BulletSteppedTest, JointFeedbackIsTheForcePlusTheFreePassAgain) {
+  for (const char* scene : {"single_cylinder.toml", "inline4_four_stroke.toml"}) {
+    SCOPED_TRACE(scene);
+    Mechanism m = loadSteppedExample(scene, /*drop_gas=*/true);
+    m.machine.gravity = 0.0;
+    const double force_scale = validation::calcScales(m).force;
+    std::vector<double> raw, corrected;
+    for (double dt : {1e-4, 1e-5}) {
+      BulletRunOptions o = neutralOptions(dt);
+      o.erp = 1.0;
+      o.solver_iterations = 100;
+      const long turn = validation::calcStepsPerTurn(m, dt);
+      const long settle = std::max(validation::kSettlingSteps, turn);
+      o.steps = settle + turn;
+      o.start = calcExactStart(m);
+      const BulletRun run = runBulletAtConstantSpeed(m, o);
+      double e_raw = 0.0, e_corrected = 0.0;
+      for (std::size_t i = static_cast<std::size_t>(settle); i < run.samples.size(); ++i) {
+        const BulletSample& s = run.samples[i];
+        const Evaluation exact = analytic::calcEvaluation(m, s.phi_start);
+        for (int q = 0; q < 2; ++q) {
+          e_raw = std::max(e_raw, std::abs(s.bearing_feedback[q] - exact.bearing_force[q]));
+          e_corrected = std::max(e_corrected, std::abs(s.bearing_feedback[q] - s.bearing_feedback_free[q] - exact.bearing_force[q]));
+          for (std::size_t j = 0; j < s.cylinders.size(); ++j) {
+            const BulletCylinderSample& c = s.cylinders[j];
+            const double want = exact.cylinders[j].crank_pin_force[q];
+            e_raw = std::max(e_raw, std::abs(c.crank_pin_feedback[q] - want));
+            e_corrected = std::max(e_corrected, std::abs(c.crank_pin_feedback[q] - c.crank_pin_feedback_free[q] - want));
+          }
+        }
+      }
+      raw.push_back(e_raw / force_scale);
+      corrected.push_back(e_corrected / force_scale);
+    }
+    EXPECT_GT(raw[1], 0.01);                   // the feedback as Bullet reports it: measured 0.021-0.085
+    EXPECT_LT(raw[0] / raw[1], 1.2);           // not falling (measured 1.00)
+    EXPECT_LT(corrected[1], 2e-4);             // less its free pass: measured 3.8e-5 to 7.1e-5
+    EXPECT_GT(corrected[0] / corrected[1], 7.9);  // first order: measured 10-11 (an order of 1 within 0.1 from 7.9)
   }
 }
 
