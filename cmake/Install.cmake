@@ -3,7 +3,9 @@
 #   crankcheck::scene, crankcheck::analytic                     (need toml++ and Eigen)
 #   crankcheck::simbody_models                                  (needs Simbody)
 #   crankcheck::mujoco_models                                   (needs MuJoCo, Debian libmujoco-dev)
-#   crankcheck::validation                                      (needs both engines, Google Benchmark, nlohmann-json)
+#   crankcheck::ode_models, bullet_models, box2d_models          (the stepped engines: ODE, Bullet, Box2D, Debian
+#                                                                libode-dev, libbullet-dev, libbox2d-dev)
+#   crankcheck::validation                                      (needs every engine, Google Benchmark, nlohmann-json)
 #   crankcheck::crankcheck (the CLI, an imported executable)    (needs nothing: a grade gate needs no compiler)
 # One export set per engine, one for the harness and one for the program, so that a consumer of the analytic library
 # needs neither Simbody nor MuJoCo installed, a consumer of one engine not the other, and a project that only runs
@@ -18,10 +20,12 @@ install(TARGETS crankcheck_simbody_models EXPORT crankcheckSimbodyTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS crankcheck_mujoco_models EXPORT crankcheckMujocoTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(TARGETS crankcheck_ode_models crankcheck_bullet_models crankcheck_box2d_models EXPORT crankcheckSteppedTargets
+        ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS crankcheck_validation EXPORT crankcheckHarnessTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS crankcheck EXPORT crankcheckProgramTargets RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-foreach(part scene analytic simbody_models mujoco_models validation)
+foreach(part scene analytic simbody_models mujoco_models ode_models bullet_models box2d_models validation)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${part}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/reports/ DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/reports
@@ -46,6 +50,7 @@ endforeach()
 install(EXPORT crankcheckCoreTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
 install(EXPORT crankcheckSimbodyTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
 install(EXPORT crankcheckMujocoTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
+install(EXPORT crankcheckSteppedTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
 install(EXPORT crankcheckHarnessTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
 install(EXPORT crankcheckProgramTargets NAMESPACE crankcheck:: DESTINATION ${CRANKCHECK_CMAKE_INSTALL_DIR})
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/crankcheckConfig.cmake.in

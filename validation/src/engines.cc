@@ -5,7 +5,9 @@
 
 #include "crankcheck/analytic/engine.h"
 #include "crankcheck/box2d_models/stepped_engine.h"
+#include "crankcheck/bullet_models/stepped_engine.h"
 #include "crankcheck/mujoco_models/engine.h"
+#include "crankcheck/ode_models/stepped_engine.h"
 #include "crankcheck/simbody_models/engine.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/profile.h"
@@ -150,6 +152,8 @@ const std::vector<SteppedEngine>& listSteppedEngines() {
     stepped_registry_built = true;
     std::vector<SteppedEngine> all;
     // One line per stepped engine folder.
+    for (SteppedEngine& e : ode_models::describeSteppedEngines()) all.push_back(std::move(e));
+    for (SteppedEngine& e : bullet_models::describeSteppedEngines()) all.push_back(std::move(e));
     for (SteppedEngine& e : box2d_models::describeSteppedEngines()) all.push_back(std::move(e));
     for (SteppedEngine& e : extraSteppedEngines()) {  // a test's (registerExtraSteppedEngine)
       for (const SteppedEngine& known : all)
