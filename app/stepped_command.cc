@@ -98,7 +98,10 @@ std::string runStepped(const SteppedOptions& options) {
     for (const validation::SteppedErrorRow& r : sweep.errors)
       doc["errors"].push_back({{"engine", r.engine}, {"settings", r.settings}, {"dt", r.dt}, {"quantity", r.quantity},
                                {"worst_rel_error", r.worst_rel_error}, {"where_phi_deg", r.where_phi_deg},
-                               {"step_fraction", r.step_fraction}, {"ns_per_step", r.ns_per_step}});
+                               {"step_fraction", r.step_fraction}});
+    doc["costs"] = nlohmann::ordered_json::array();
+    for (const validation::SteppedCostRow& r : sweep.costs)
+      doc["costs"].push_back({{"engine", r.engine}, {"settings", r.settings}, {"dt", r.dt}, {"ns_per_step", r.ns_per_step}});
     doc["orders"] = nlohmann::ordered_json::array();
     for (const validation::SteppedOrderRow& r : sweep.orders)
       doc["orders"].push_back({{"engine", r.engine}, {"settings", r.settings}, {"quantity", r.quantity},
@@ -139,8 +142,9 @@ std::string runStepped(const SteppedOptions& options) {
     for (const validation::SteppedErrorRow* r : blocks[key]) {
       if (!cells.count(r->quantity)) quantities.push_back(r->quantity);
       cells[r->quantity][r->dt] = r;
-      ns[r->dt] = r->ns_per_step;
     }
+    for (const validation::SteppedCostRow& c : sweep.costs)
+      if (c.engine == key.first && c.settings == key.second) ns[c.dt] = c.ns_per_step;
     for (const std::string& q : quantities) {
       std::snprintf(buffer, sizeof buffer, "  %-16s %5.2g", q.c_str(), cells[q].begin()->second->step_fraction);
       out += buffer;

@@ -21,6 +21,9 @@ set encoding utf8
 set datafile separator ","
 floor = 1e-17
 keep(v) = (v == v && v >= floor && v < 1e300) ? v : NaN
+# One colour per series, set here: no linetype another script may have changed in the same gnuplot.
+colours = "#1b9e77 #d95f02 #7570b3 #e7298a #66a61e #e6ab02 #a6761d #666666 #1f78b4 #e31a1c #33a02c #6a3d9a #b15928 #000000"
+colour(i) = word(colours, (i - 1) % words(colours) + 1)
 
 nlines = 0
 stats file using (nlines = nlines + 1, 1) nooutput
@@ -59,11 +62,11 @@ do for [fmt in "svg png"] {
     set ylabel "positions: worst error / scale [-]"
     unset key
     plot for [i = 1:N] file using (column("series [-]") == i ? column("dt [s]") : NaN):(keep(column("positions [-]"))) \
-        with linespoints lw 2 pt 7 lc i title L[i]
+        with linespoints lw 2 pt 7 lc rgb colour(i) title L[i]
     set key outside right top noenhanced
     set ylabel "loads: worst error / scale [-]"
     plot for [i = 1:N] file using (column("series [-]") == i ? column("dt [s]") : NaN):(keep(column("loads [-]"))) \
-        with linespoints lw 2 pt 7 lc i title L[i]
+        with linespoints lw 2 pt 7 lc rgb colour(i) title L[i]
     unset multiplot
     unset output
 }

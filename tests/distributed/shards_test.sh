@@ -78,7 +78,7 @@ fi
 
 # The timing tables: their ns_per_* and seconds columns are measurements (never identical from run to run); the merge keeps them
 # as the shards measured them. Everything else in them is computed and must match.
-timing_tables="speed_vs_error.csv integrator_pareto.csv engine_cost.csv engines.csv engines_league.csv torsion_cost.csv"
+timing_tables="speed_vs_error.csv integrator_pareto.csv engine_cost.csv engines.csv engines_league.csv torsion_cost.csv stepped_cost.csv"
 drop_timings() {
   awk -F, -v OFS=, 'NR == 1 { for (i = 1; i <= NF; ++i) t[i] = ($i ~ /^(ns_per_|seconds)/) }
                     { s = ""; n = 0; for (i = 1; i <= NF; ++i) if (!t[i]) s = s (n++ ? OFS : "") $i; print s }' "$1"

@@ -17,8 +17,13 @@ const Schema<SteppedErrorRow> kSteppedErrorsTable{
      textField("quantity", &SteppedErrorRow::quantity),
      numberField("worst_rel_error", "-", &SteppedErrorRow::worst_rel_error),
      numberField("where_phi_deg", "deg", &SteppedErrorRow::where_phi_deg),
-     numberField("step_fraction", "-", &SteppedErrorRow::step_fraction),
-     numberField("ns_per_step", "ns", &SteppedErrorRow::ns_per_step)}};
+     numberField("step_fraction", "-", &SteppedErrorRow::step_fraction)}};
+
+const Schema<SteppedCostRow> kSteppedCostTable{
+    "stepped_cost",
+    {textField("scene", &SteppedCostRow::scene), textField("engine", &SteppedCostRow::engine),
+     textField("settings", &SteppedCostRow::settings), numberField("dt", "s", &SteppedCostRow::dt),
+     numberField("ns_per_step", "ns", &SteppedCostRow::ns_per_step)}};
 
 const Schema<SteppedOrderRow> kSteppedOrdersTable{
     "stepped_orders",
@@ -87,10 +92,11 @@ SteppedSweep calcSteppedSweep(const Mechanism& m, const std::string& scene, cons
           sweep.refusals.push_back({scene, engine->name, s, dt, e.what()});
         }
       }
-      for (const auto& [dt, measure] : measured)
+      for (const auto& [dt, measure] : measured) {
         for (const SteppedError& e : measure.errors)
-          sweep.errors.push_back({scene, engine->name, s, dt, e.quantity, e.worst_rel_error, e.where_phi_deg,
-                                  e.step_fraction, measure.seconds_per_step * 1e9});
+          sweep.errors.push_back({scene, engine->name, s, dt, e.quantity, e.worst_rel_error, e.where_phi_deg, e.step_fraction});
+        sweep.costs.push_back({scene, engine->name, s, dt, measure.seconds_per_step * 1e9});
+      }
       for (size_t i = 1; i < measured.size(); ++i)
         for (size_t q = 0; q < measured[i].second.errors.size() && q < measured[i - 1].second.errors.size(); ++q) {
           const SteppedError& coarse = measured[i - 1].second.errors[q];

@@ -85,6 +85,15 @@ void deriveSteppedSummary(TableSet& tables) {
   tables.insert_or_assign(kSteppedSummaryTable.name(), kSteppedSummaryTable.table(std::move(out)));
 }
 
+// The example scene the default campaign measures the stepped engines on.
+constexpr const char* kDefaultScene = "inline4_four_stroke";
+
+// The command that reproduces a finding on `scene` (a scene's name: its file's stem; the example scenes are in
+// scenes/, installed in PREFIX/share/crankcheck/scenes).
+std::string reproduce(const std::string& scene, const std::string& flags) {
+  return "`crankcheck stepped " + (scene == kDefaultScene ? "scenes/" + scene : scene) + ".toml " + flags + "`";
+}
+
 std::string formatStep(double dt) { return std::fabs(dt - 1.0 / 240.0) < 1e-15 ? "1/240 s" : shortNumber(dt, 3) + " s"; }
 
 ReportPart describeSteppedPart(const TableSet& tables, const std::string& heading) {
@@ -101,7 +110,6 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
       "time step (log-log; the slope is the observed order). Left: positions (x_p, the loops' separation); right: "
       "loads (the joint forces and the drive torque), each read at the instant the engine's value belongs to. Scene: " +
       scene;
-  const std::string command = "crankcheck stepped SCENE";
   // 1. Which engine, at its defaults, reaches 1e-3 of the scale on every load at which step.
   for (double target : {1e-3}) {
     std::string s = "At its defaults, within " + shortNumber(target) + " of the scale on every load: ";
@@ -128,21 +136,32 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
       const SteppedOrderRow*& f = finest[{o.engine, o.settings, o.quantity}];
       if (!f || o.dt_fine < f->dt_fine) f = &o;
     }
-    std::vector<std::string> stuck;
+    // Grouped by engine and settings, in the registry's order.
+    std::map<std::pair<std::string, std::string>, std::string> stuck;
     for (const auto& [key, o] : finest) {
       double error = 0.0;
       for (const SteppedErrorRow& r : errors)
         if (r.engine == o->engine && r.settings == o->settings && r.quantity == o->quantity && r.dt == o->dt_fine) error = r.worst_rel_error;
-      if (error > 1e-6 && !(o->order >= 0.5))
-        stuck.push_back(o->engine + " (" + o->settings + ") " + o->quantity + ": " + shortNumber(error) + " at " +
-                        formatStep(o->dt_fine) + ", order " + (std::isfinite(o->order) ? shortNumber(o->order) : "-") +
-                        " (`" + command + " --engine " + o->engine + " --settings " + o->settings + "`)");
+      if (error > 1e-6 && !(o->order >= 0.5)) {
+        std::string& line = stuck[{o->engine, o->settings}];
+        line += (line.empty() ? "" : ", ") + o->quantity + " " + shortNumber(error) + " (order " +
+                (std::isfinite(o->order) ? shortNumber(o->order) : "-") + ")";
+      }
     }
     if (stuck.empty()) {
       part.paragraphs.push_back("Every quantity converges between the two finest steps (order >= 0.5) or is below 1e-6 of its scale.");
     } else {
-      std::string s = "Not converging between the two finest steps (order < 0.5, error still above 1e-6 of the scale): ";
-      for (size_t i = 0; i < stuck.size(); ++i) s += (i ? "; " : "") + stuck[i];
+      std::string s = "Not converging between the two finest steps (order below 0.5 with the error still above 1e-6 "
+                      "of the scale; the error at the finer step): ";
+      bool first = true;
+      for (const SteppedEngine& e : listSteppedEngines())
+        for (const std::string& settings : e.settings) {
+          const auto it = stuck.find({e.name, settings});
+          if (it == stuck.end()) continue;
+          s += std::string(first ? "" : "; ") + e.name + " (" + settings + "): " + it->second + ", " +
+               reproduce(scene, "--engine " + e.name + " --settings " + settings);
+          first = false;
+        }
       part.paragraphs.push_back(s + ".");
     }
   }
@@ -160,14 +179,14 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
     if (!s.empty())
       part.paragraphs.push_back(e.name + "'s defaults against its defaults neutralised (" +
                                 e.settings_meaning[std::find(e.settings.begin(), e.settings.end(), "neutralised") - e.settings.begin()] +
-                                "): " + s + " (`" + command + " --engine " + e.name + "`).");
+                                "): " + s + " (" + reproduce(scene, "--engine " + e.name) + ").");
   }
   // 4. Cost per step, at the finest step measured.
-  {
+  if (tables.count(kSteppedCostTable.name())) {
     std::map<std::string, double> ns;
     double finest = std::numeric_limits<double>::infinity();
-    for (const SteppedErrorRow& r : errors) finest = std::min(finest, r.dt);
-    for (const SteppedErrorRow& r : errors)
+    for (const SteppedCostRow& r : getRows(tables, kSteppedCostTable)) finest = std::min(finest, r.dt);
+    for (const SteppedCostRow& r : getRows(tables, kSteppedCostTable))
       if (r.dt == finest && r.settings == "defaults") ns[r.engine] = r.ns_per_step;
     std::string s;
     for (const SteppedEngine& e : listSteppedEngines())
@@ -181,11 +200,10 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
   for (const SteppedRefusalRow& r : getRows(tables, kSteppedRefusalsTable))
     part.paragraphs.push_back("Refused: " + r.engine + (r.settings.empty() ? "" : " (" + r.settings + ")") +
                               (r.dt > 0.0 ? " at " + formatStep(r.dt) : "") + ": " + r.reason + ".");
-  part.header = {"engine", "settings", "dt", "quantity", "worst error / scale [-]", "where [deg]", "read at [step]",
-                 "ns per step"};
+  part.header = {"engine", "settings", "dt", "quantity", "worst error / scale [-]", "where [deg]", "read at [step]"};
   for (const SteppedErrorRow& r : errors)
     part.rows.push_back({r.engine, r.settings, formatStep(r.dt), r.quantity, shortNumber(r.worst_rel_error),
-                         shortNumber(r.where_phi_deg, 4), shortNumber(r.step_fraction), shortNumber(r.ns_per_step, 3)});
+                         shortNumber(r.where_phi_deg, 4), shortNumber(r.step_fraction)});
   return part;
 }
 
@@ -193,15 +211,18 @@ class SteppedEnginesPart final : public Part {
  public:
   std::string key() const override { return "stepped_engines"; }
   std::string title() const override { return "The physics engines people ship: error against time step"; }
-  // One task per stepped engine on the first scene as given (its gas and layout), each timing its own steps: on a
-  // core of its own (Task::measures_time).
+  // One task per stepped engine on one scene as given (its gas and layout): the user's first scene, or in the
+  // default campaign the example inline four (scenes/inline4_four_stroke.toml: gas, four throws, 3000 rpm). Each task
+  // times its own steps: on a core of its own (Task::measures_time).
   std::vector<Task> tasks(const PartContext& context) const override {
     std::vector<Task> out;
-    if (!(std::fabs(context.first.machine.speed) > 0.0)) return out;
+    const Mechanism* m = chooseScene(context);
+    if (!m) return out;
     for (const SteppedEngine& e : listSteppedEngines())
-      out.push_back({"stepped " + e.name, true, [m = context.first, engine = &e, quick = context.quick] {
+      out.push_back({"stepped " + e.name, true, [m = *m, engine = &e, quick = context.quick] {
                        const SteppedSweep sweep = calcSteppedSweep(m, m.name, {engine}, {}, chooseSteps(quick));
                        TableSet tables = kSteppedErrorsTable.tableSet(sweep.errors);
+                       tables.merge(kSteppedCostTable.tableSet(sweep.costs));
                        tables.merge(kSteppedOrdersTable.tableSet(sweep.orders));
                        tables.merge(kSteppedRefusalsTable.tableSet(sweep.refusals));
                        return tables;
@@ -211,11 +232,25 @@ class SteppedEnginesPart final : public Part {
   void derive(TableSet& tables) const override { deriveSteppedSummary(tables); }
   ReportPart describe(const TableSet& tables) const override { return describeSteppedPart(tables, heading()); }
   std::vector<const TableSchema*> schemas() const override {
-    return {&kSteppedErrorsTable, &kSteppedOrdersTable, &kSteppedRefusalsTable, &kSteppedSummaryTable};
+    return {&kSteppedErrorsTable, &kSteppedCostTable, &kSteppedOrdersTable, &kSteppedRefusalsTable, &kSteppedSummaryTable};
   }
   std::string findOmission(const PartContext& context) const override {
-    if (std::fabs(context.first.machine.speed) > 0.0) return {};
+    if (chooseScene(context)) return {};
     return "The stepped engines' part needs the first scene at a speed (speed_rpm != 0): they are driven at it.";
+  }
+
+ private:
+  // The scene the part runs on (see tasks()); null when it has no speed.
+  static const Mechanism* chooseScene(const PartContext& context) {
+    const Mechanism* m = nullptr;
+    if (!context.user_scenes.empty()) {
+      m = &context.user_scenes.front();
+    } else {
+      for (const Mechanism& scene : context.scenes)
+        if (scene.name == kDefaultScene) m = &scene;
+      if (!m && !context.scenes.empty()) m = &context.scenes.front();
+    }
+    return m && std::fabs(m->machine.speed) > 0.0 ? m : nullptr;
   }
 };
 

@@ -22,9 +22,16 @@ struct SteppedErrorRow {
   double worst_rel_error = 0.0;  ///< [-] over the measured turn, relative to the quantity's scale
   double where_phi_deg = 0.0;    ///< [deg]
   double step_fraction = 0.0;    ///< [-] the instant it is read at: 0 the step's start, 1 its end
-  double ns_per_step = 0.0;      ///< [ns] the engine's stepping and reads
 };
 extern const Schema<SteppedErrorRow> kSteppedErrorsTable;  ///< data/stepped_errors.csv
+
+/// The cost of one run (engine, settings, step): a measurement, apart from the errors (which a rerun repeats exactly).
+struct SteppedCostRow {
+  std::string scene, engine, settings;
+  double dt = 0.0;               ///< [s]
+  double ns_per_step = 0.0;      ///< [ns] the engine's stepping and reads, wall time over the run's steps
+};
+extern const Schema<SteppedCostRow> kSteppedCostTable;  ///< data/stepped_cost.csv
 
 /// The order observed for one quantity between two neighbouring steps of the series (calcObservedStepOrder).
 struct SteppedOrderRow {
@@ -44,6 +51,7 @@ extern const Schema<SteppedRefusalRow> kSteppedRefusalsTable;  ///< data/stepped
 
 struct SteppedSweep {
   std::vector<SteppedErrorRow> errors;
+  std::vector<SteppedCostRow> costs;
   std::vector<SteppedOrderRow> orders;
   std::vector<SteppedRefusalRow> refusals;
 };
