@@ -29,7 +29,7 @@ std::vector<QuantityInstant> reportedQuantities() {
           {QuantityId::kWristPinForce, -0.5},  {QuantityId::kWallForce, -0.25}};
 }
 
-Box2dRunOptions toRunOptions(const SteppedRunOptions& options) {
+Box2dRunOptions toRunOptions(const ConstantSpeedRunOptions& options) {
   Box2dRunOptions o;
   o.dt = options.dt;
   o.steps = options.steps;
@@ -63,18 +63,18 @@ Evaluation emptyEvaluation(int k) {
   return e;
 }
 
-SteppedRun runSteppedBox2d(const Mechanism& m, const SteppedRunOptions& options) {
+ConstantSpeedRun runSteppedBox2d(const Mechanism& m, const ConstantSpeedRunOptions& options) {
   if (!(m.machine.speed != 0.0))
     throw std::invalid_argument("[engine].speed_rpm must be != 0: " + std::string(kName) + " is driven at the scene's speed");
   const Box2dRun run = runBox2dAtConstantSpeed(m, toRunOptions(options));
   const int k = m.machine.cylinders;
-  SteppedRun out;
+  ConstantSpeedRun out;
   out.reported = reportedQuantities();
   out.seconds_per_step = run.seconds_per_step;
   out.samples.reserve(run.samples.size());
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
     const Box2dSample& s = run.samples[i];
-    SteppedSample sample;
+    ConstantSpeedSample sample;
     sample.t = s.t;
     sample.phi_start = s.phi_start;
     sample.phi_end = s.phi;

@@ -58,7 +58,7 @@ Evaluation makeNaNEvaluation(int k) {
   return ev;
 }
 
-SteppedRun runStepped(const Mechanism& m, const SteppedRunOptions& options, const std::vector<std::string>& names) {
+ConstantSpeedRun runStepped(const Mechanism& m, const ConstantSpeedRunOptions& options, const std::vector<std::string>& names) {
   BulletRunOptions o = getSettings(options.settings, names);
   if (!(std::fabs(m.machine.speed) > 0.0))
     throw std::invalid_argument("[engine].speed_rpm must be != 0: bullet is driven at the scene's constant speed");
@@ -67,7 +67,7 @@ SteppedRun runStepped(const Mechanism& m, const SteppedRunOptions& options, cons
   o.start = options.start;
   const BulletRun run = runBulletAtConstantSpeed(m, o);
   const int k = m.machine.cylinders;
-  SteppedRun out;
+  ConstantSpeedRun out;
   out.seconds_per_step = run.seconds_per_step;
   out.reported = {{QuantityId::kPistonPosition, 1.0},  {QuantityId::kPistonVelocity, 0.5},
                   {QuantityId::kPistonAcceleration, 0.0}, {QuantityId::kDriveTorque, 0.0},
@@ -76,7 +76,7 @@ SteppedRun runStepped(const Mechanism& m, const SteppedRunOptions& options, cons
   const Evaluation blank = makeNaNEvaluation(k);
   out.samples.reserve(run.samples.size());
   for (const BulletSample& b : run.samples) {
-    SteppedSample s;
+    ConstantSpeedSample s;
     s.t = b.t;
     s.phi_start = b.phi_start;
     s.phi_end = b.phi;
@@ -122,7 +122,7 @@ std::vector<SteppedEngine> describeSteppedEngines() {
   e.cannot_build = "[[balance_shaft]]; a zero [rod].mass, [piston].mass or crank mass; a rod with no inertia about its "
                    "centre of mass";
   const std::vector<std::string> names = e.settings;
-  e.run = [names](const Mechanism& m, const SteppedRunOptions& options) { return runStepped(m, options, names); };
+  e.run = [names](const Mechanism& m, const ConstantSpeedRunOptions& options) { return runStepped(m, options, names); };
   return {e};
 }
 

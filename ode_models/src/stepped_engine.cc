@@ -44,7 +44,7 @@ std::string shortValue(double v) {
 
 /// The run options of `settings` for `solver` (stepped_engine.h says what each name means; the tightened values are
 /// justified by the measurements in tests/ode/ode_run_test.cc).
-OdeRunOptions makeOptions(const std::string& engine, OdeSolver solver, const SteppedRunOptions& s) {
+OdeRunOptions makeOptions(const std::string& engine, OdeSolver solver, const ConstantSpeedRunOptions& s) {
   OdeRunOptions o;
   o.solver = solver;
   o.dt = s.dt;
@@ -75,18 +75,18 @@ Evaluation makeNaNEvaluation(const std::string& engine, int k) {
   return ev;
 }
 
-SteppedRun runStepped(const std::string& engine, OdeSolver solver, const Mechanism& m, const SteppedRunOptions& options) {
+ConstantSpeedRun runStepped(const std::string& engine, OdeSolver solver, const Mechanism& m, const ConstantSpeedRunOptions& options) {
   if (!(std::fabs(m.machine.speed) > 0.0))
     throw std::invalid_argument(engine + ": [engine].speed_rpm must be != 0 (the run is driven at the scene's speed)");
   const OdeRun run = runOdeAtConstantSpeed(m, makeOptions(engine, solver, options));
   const int k = m.machine.cylinders;
-  SteppedRun out;
+  ConstantSpeedRun out;
   out.reported = kInstants;
   out.seconds_per_step = run.seconds_per_step;
   out.samples.reserve(run.samples.size());
   const Evaluation blank = makeNaNEvaluation(engine, k);
   for (const OdeSample& s : run.samples) {
-    SteppedSample sample;
+    ConstantSpeedSample sample;
     sample.t = s.t;
     sample.phi_start = s.phi_start;
     sample.phi_end = s.phi;
@@ -126,7 +126,7 @@ SteppedEngine describe(const std::string& name, OdeSolver solver, const std::str
   e.cannot_build =
       "[[balance_shaft]] (no geared coupling), a massless rod, piston or crank, a rod without inertia about its centre "
       "of mass, speed 0";
-  e.run = [name, solver](const Mechanism& m, const SteppedRunOptions& o) { return runStepped(name, solver, m, o); };
+  e.run = [name, solver](const Mechanism& m, const ConstantSpeedRunOptions& o) { return runStepped(name, solver, m, o); };
   return e;
 }
 

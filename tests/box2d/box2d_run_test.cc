@@ -38,7 +38,7 @@ StartState exactStart(const Mechanism& m) {
   return calcStartState(m, validation::getClosedFormEngine().build(m)->evaluate(0.0));
 }
 
-std::string refusal(const Mechanism& m, const SteppedRunOptions& o) {
+std::string refusal(const Mechanism& m, const ConstantSpeedRunOptions& o) {
   try {
     box2d().run(m, o);
   } catch (const std::invalid_argument& e) {
@@ -51,19 +51,19 @@ std::string refusal(const Mechanism& m, const SteppedRunOptions& o) {
 /// worst error of `quantity` over the measured turn.
 struct InstantProbe {
   const Mechanism& m;
-  SteppedRun run;
+  ConstantSpeedRun run;
   long settle = 0;
   InstantProbe(const Mechanism& mechanism, double dt) : m(mechanism) {
     const long turn = validation::calcStepsPerTurn(m, dt);
     settle = std::max(validation::kSettlingSteps, turn);
-    SteppedRunOptions o;
+    ConstantSpeedRunOptions o;
     o.dt = dt;
     o.steps = settle + turn;
     o.start = exactStart(m);
     run = box2d().run(m, o);
   }
   double errorAt(QuantityId quantity, double fraction) const {
-    SteppedRun copy = run;
+    ConstantSpeedRun copy = run;
     copy.reported = {{quantity, fraction}};
     return validation::calcSteppedErrors(m, copy, static_cast<size_t>(settle)).at(0).worst_rel_error;
   }
@@ -82,7 +82,7 @@ TEST(Box2dSteppedTest, DescribesItself) {
 
 TEST(Box2dSteppedTest, RefusesWhatItCannotRunByName) {
   const Mechanism base = loadSteppedExample("single_cylinder.toml");
-  SteppedRunOptions o;
+  ConstantSpeedRunOptions o;
   o.dt = 1e-4;
   o.steps = 1;
   o.start = exactStart(base);
@@ -93,7 +93,7 @@ TEST(Box2dSteppedTest, RefusesWhatItCannotRunByName) {
   Mechanism still = base;
   still.machine.speed = 0.0;
   EXPECT_NE(refusal(still, o).find("speed"), std::string::npos);
-  SteppedRunOptions unknown = o;
+  ConstantSpeedRunOptions unknown = o;
   unknown.settings = "neutralised";
   const std::string no_settings = refusal(base, unknown);
   EXPECT_NE(no_settings.find("neutralised"), std::string::npos);
@@ -105,7 +105,7 @@ TEST(Box2dSteppedTest, RefusesWhatItCannotRunByName) {
   no_crank.crank.mass = 0.0;
   no_crank.crank.counterweight_mass = 0.0;
   EXPECT_NE(refusal(no_crank, o).find("[crank].mass"), std::string::npos);
-  SteppedRunOptions bad = o;
+  ConstantSpeedRunOptions bad = o;
   bad.dt = 0.0;
   EXPECT_NE(refusal(base, bad).find("dt"), std::string::npos);
   bad = o;
@@ -118,7 +118,7 @@ TEST(Box2dSteppedTest, RefusesWhatItCannotRunByName) {
 // can take is (pi/2) / omega = 2.5 ms); the single at 3000 rpm asks 1.309 rad and runs.
 TEST(Box2dSteppedTest, RefusesAStepBox2dWouldCap) {
   const Mechanism four = loadSteppedExample("inline4_four_stroke.toml");
-  SteppedRunOptions o;
+  ConstantSpeedRunOptions o;
   o.dt = 1.0 / 240.0;
   o.steps = 1;
   o.start = exactStart(four);
@@ -149,12 +149,12 @@ TEST(Box2dSteppedTest, StartsFromTheExactStateAndTurnsAtTheScenesSpeed) {
     SCOPED_TRACE(scene);
     const Mechanism m = loadSteppedExample(scene);
     const validation::Scales sc = validation::calcScales(m);
-    SteppedRunOptions o;
+    ConstantSpeedRunOptions o;
     o.dt = 1e-6;
     o.steps = 1;
     o.settings = "tightened";
     o.start = exactStart(m);
-    const SteppedRun run = box2d().run(m, o);
+    const ConstantSpeedRun run = box2d().run(m, o);
     ASSERT_EQ(run.samples.size(), 1u);
     EXPECT_LE(run.samples[0].loop_error, sc.acceleration * o.dt * o.dt);
     const double h = m.machine.speed * o.dt;

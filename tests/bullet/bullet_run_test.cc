@@ -43,8 +43,8 @@ StartState calcExactStart(const Mechanism& m) { return calcStartState(m, analyti
 SteppedEngine readAt(QuantityId quantity, double fraction) {
   SteppedEngine e = getBullet();
   const auto inner = e.run;
-  e.run = [inner, quantity, fraction](const Mechanism& m, const SteppedRunOptions& o) {
-    SteppedRun run = inner(m, o);
+  e.run = [inner, quantity, fraction](const Mechanism& m, const ConstantSpeedRunOptions& o) {
+    ConstantSpeedRun run = inner(m, o);
     for (QuantityInstant& r : run.reported)
       if (r.quantity == quantity) r.step_fraction = fraction;
     return run;
@@ -108,7 +108,7 @@ TEST(BulletSteppedTest, DescribesItselfWithTheLibrarysVersion) {
 TEST(BulletSteppedTest, RefusesWhatItCannotBuildByName) {
   const SteppedEngine& engine = getBullet();
   const auto refusal = [&](const Mechanism& m, const std::string& settings) {
-    SteppedRunOptions o;
+    ConstantSpeedRunOptions o;
     o.dt = 1e-4;
     o.steps = 1;
     o.settings = settings;
@@ -175,14 +175,14 @@ TEST(BulletSteppedTest, RefusesWhatItCannotBuildByName) {
 TEST(BulletSteppedTest, SamplesCarryOnlyTheReportedQuantities) {
   const Mechanism m = loadSteppedExample("inline4_four_stroke.toml");
   const SteppedEngine& engine = getBullet();
-  SteppedRunOptions o;
+  ConstantSpeedRunOptions o;
   o.dt = 1e-4;
   o.steps = 3;
   o.start = calcExactStart(m);
-  const SteppedRun run = engine.run(m, o);
+  const ConstantSpeedRun run = engine.run(m, o);
   ASSERT_EQ(run.samples.size(), 3u);
   EXPECT_GT(run.seconds_per_step, 0.0);
-  for (const SteppedSample& s : run.samples) {
+  for (const ConstantSpeedSample& s : run.samples) {
     EXPECT_EQ(s.values.engine, "bullet");
     EXPECT_EQ(s.values.phi, s.phi_end);
     EXPECT_GT(s.phi_end, s.phi_start);

@@ -46,7 +46,7 @@ std::vector<std::string> reportedNames() {
   return names;
 }
 
-std::string refusal(const SteppedEngine& engine, const Mechanism& m, const SteppedRunOptions& o) {
+std::string refusal(const SteppedEngine& engine, const Mechanism& m, const ConstantSpeedRunOptions& o) {
   try {
     engine.run(m, o);
   } catch (const std::invalid_argument& e) {
@@ -73,11 +73,11 @@ TEST(OdeSteppedEngineTest, DescribesBothEnginesWithTheLibrarysVersion) {
 // One step's sample: the reported quantities filled, every other field NaN; the instants as stated.
 TEST(OdeSteppedEngineTest, ReportsOnlyItsQuantitiesAtTheirInstants) {
   const Mechanism m = loadSteppedExample("inline4_four_stroke.toml");
-  SteppedRunOptions o;
+  ConstantSpeedRunOptions o;
   o.dt = 1e-4;
   o.steps = 2;
   o.start = exactStart(m);
-  const SteppedRun run = findStepped(engines(), "ode").run(m, o);
+  const ConstantSpeedRun run = findStepped(engines(), "ode").run(m, o);
   ASSERT_EQ(run.samples.size(), 2u);
   EXPECT_GT(run.seconds_per_step, 0.0);
   std::vector<std::string> names;
@@ -89,7 +89,7 @@ TEST(OdeSteppedEngineTest, ReportsOnlyItsQuantitiesAtTheirInstants) {
     EXPECT_EQ(r.step_fraction, want) << nameOf(r.quantity);
   }
   EXPECT_EQ(names, reportedNames());
-  const SteppedSample& s = run.samples[1];
+  const ConstantSpeedSample& s = run.samples[1];
   EXPECT_EQ(s.values.engine, "ode");
   EXPECT_EQ(s.values.phi, s.phi_end);
   EXPECT_EQ(s.phi_start, run.samples[0].phi_end);
@@ -106,13 +106,13 @@ TEST(OdeSteppedEngineTest, ReportsOnlyItsQuantitiesAtTheirInstants) {
 
 TEST(OdeSteppedEngineTest, RefusesWhatItCannotBuildByName) {
   const Mechanism base = loadSteppedExample("single_cylinder.toml");
-  SteppedRunOptions o;
+  ConstantSpeedRunOptions o;
   o.dt = 1e-4;
   o.steps = 1;
   o.start = exactStart(base);
   for (const SteppedEngine& e : engines()) {
     SCOPED_TRACE(e.name);
-    SteppedRunOptions unknown = o;
+    ConstantSpeedRunOptions unknown = o;
     unknown.settings = "loose";
     const std::string what = refusal(e, base, unknown);
     EXPECT_NE(what.find("loose"), std::string::npos);
@@ -121,7 +121,7 @@ TEST(OdeSteppedEngineTest, RefusesWhatItCannotBuildByName) {
     still.machine.speed = 0.0;
     EXPECT_NE(refusal(e, still, o).find("speed"), std::string::npos);
     Mechanism shafts = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_pin_offset.toml");
-    SteppedRunOptions o4 = o;
+    ConstantSpeedRunOptions o4 = o;
     o4.start = exactStart(shafts);
     EXPECT_NE(refusal(e, shafts, o4).find("[[balance_shaft]]"), std::string::npos);
     Mechanism slender = base;
@@ -131,7 +131,7 @@ TEST(OdeSteppedEngineTest, RefusesWhatItCannotBuildByName) {
     no_crank.crank.mass = 0.0;
     no_crank.crank.counterweight_mass = 0.0;
     EXPECT_NE(refusal(e, no_crank, o).find("[crank].mass"), std::string::npos);
-    SteppedRunOptions bad = o;
+    ConstantSpeedRunOptions bad = o;
     bad.dt = 0.0;
     EXPECT_NE(refusal(e, base, bad).find("dt"), std::string::npos);
     bad = o;
@@ -172,7 +172,7 @@ TEST(OdeSteppedEngineTest, StartsFromTheStartStateHandedIn) {
 // (the finite rotation mode) turns it by omega dt.
 TEST(OdeSteppedEngineTest, DefaultRotationUpdateSlowsTheCrank) {
   const Mechanism m = loadSteppedExample("single_cylinder.toml");
-  SteppedRunOptions o;
+  ConstantSpeedRunOptions o;
   o.dt = 1.0 / 240.0;
   o.steps = 4;
   o.start = exactStart(m);
@@ -184,7 +184,7 @@ TEST(OdeSteppedEngineTest, DefaultRotationUpdateSlowsTheCrank) {
     // 20 iterations from a cold start: measured 3.6e-6 and 7.8e-6 rad off over the four steps, 2e-5 bounds it.
     const double motor = e.name == "ode" ? 1e-9 : 2e-5;
     o.settings = "defaults";
-    const SteppedRun defaults = e.run(m, o);
+    const ConstantSpeedRun defaults = e.run(m, o);
     EXPECT_NEAR(defaults.samples.back().phi_end, 4.0 * 2.0 * std::atan(h / 2.0), motor);
     EXPECT_GT(4.0 * h - defaults.samples.back().phi_end, 0.5);  // half a radian behind after four steps
     o.settings = "neutralised";
@@ -311,7 +311,7 @@ TEST(OdeSteppedEngineTest, QuickStepForcesStallOnTheV8) {
 }
 
 /// The errors of `run`'s samples from `first` on with quantity q read at step fraction f instead of its own.
-double errorAt(const Mechanism& m, SteppedRun run, size_t first, QuantityId q, double f) {
+double errorAt(const Mechanism& m, ConstantSpeedRun run, size_t first, QuantityId q, double f) {
   run.reported = {{q, f}};
   return validation::calcSteppedErrors(m, run, first)[0].worst_rel_error;
 }
@@ -327,13 +327,13 @@ TEST(OdeSteppedEngineTest, EachQuantityBelongsToItsStatedInstant) {
     SCOPED_TRACE(scene);
     const Mechanism m = loadSteppedExample(scene);
     const double dt = 1e-5;
-    SteppedRunOptions o;
+    ConstantSpeedRunOptions o;
     o.dt = dt;
     const long turn = validation::calcStepsPerTurn(m, dt);
     const long settle = std::max(validation::kSettlingSteps, turn);
     o.steps = settle + turn;
     o.start = exactStart(m);
-    const SteppedRun run = findStepped(engines(), "ode").run(m, o);
+    const ConstantSpeedRun run = findStepped(engines(), "ode").run(m, o);
     const size_t first = static_cast<size_t>(settle);
     for (QuantityId q : {QuantityId::kDriveTorque, QuantityId::kBearingForce, QuantityId::kCrankPinForce,
                          QuantityId::kWristPinForce, QuantityId::kWallForce, QuantityId::kPistonAcceleration}) {

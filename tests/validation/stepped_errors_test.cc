@@ -26,13 +26,13 @@ SteppedEngine makeSyntheticEngine(double shift, double loop_amplitude, long* ste
   e.library = "none";
   e.settings = {"defaults", "other"};
   e.settings_meaning = {"the only one", "the same"};
-  e.run = [shift, loop_amplitude, steps_asked](const Mechanism& m, const SteppedRunOptions& o) {
+  e.run = [shift, loop_amplitude, steps_asked](const Mechanism& m, const ConstantSpeedRunOptions& o) {
     *steps_asked = o.steps;
-    SteppedRun run;
+    ConstantSpeedRun run;
     run.reported = {{QuantityId::kPistonPosition, 0.0}, {QuantityId::kDriveTorque, 0.0}};
     const double step = m.machine.speed * o.dt;
     for (long i = 0; i < o.steps; ++i) {
-      SteppedSample s;
+      ConstantSpeedSample s;
       s.phi_start = o.start.phi + i * step;
       s.phi_end = s.phi_start + step;
       s.t = (i + 1) * o.dt;

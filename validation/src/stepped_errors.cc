@@ -20,7 +20,7 @@ long calcStepsPerTurn(const Mechanism& m, double dt) {
   return static_cast<long>(std::ceil(2.0 * std::numbers::pi / (std::fabs(m.machine.speed) * dt)));
 }
 
-std::vector<SteppedError> calcSteppedErrors(const Mechanism& m, const SteppedRun& run, size_t first) {
+std::vector<SteppedError> calcSteppedErrors(const Mechanism& m, const ConstantSpeedRun& run, size_t first) {
   if (first >= run.samples.size()) throw std::invalid_argument("calcSteppedErrors: the run has no sample to measure");
   const Scales scales = calcScales(m);
   const std::unique_ptr<EngineModel> exact = getClosedFormEngine().build(m);
@@ -43,7 +43,7 @@ std::vector<SteppedError> calcSteppedErrors(const Mechanism& m, const SteppedRun
   };
   const int k = m.machine.cylinders;
   for (size_t i = first; i < run.samples.size(); ++i) {
-    const SteppedSample& s = run.samples[i];
+    const ConstantSpeedSample& s = run.samples[i];
     std::map<double, Evaluation> at;  // the exact evaluation at each instant of this step
     for (size_t r = 0; r < quantities.size(); ++r) {
       const Quantity& q = *quantities[r];
@@ -74,13 +74,13 @@ SteppedMeasure measureSteppedRun(const SteppedEngine& engine, const Mechanism& m
     throw std::invalid_argument(engine.name + " has no settings \"" + settings + "\"; its settings are " + names);
   }
   const long turn = calcStepsPerTurn(m, dt);
-  SteppedRunOptions options;
+  ConstantSpeedRunOptions options;
   options.dt = dt;
   options.settings = settings;
   const long settle = std::max(kSettlingSteps, turn);
   options.steps = settle + turn;
   options.start = calcStartState(m, getClosedFormEngine().build(m)->evaluate(0.0));
-  const SteppedRun run = engine.run(m, options);
+  const ConstantSpeedRun run = engine.run(m, options);
   if (static_cast<long>(run.samples.size()) != options.steps)
     throw std::runtime_error(engine.name + " returned " + std::to_string(run.samples.size()) + " steps of " +
                              std::to_string(options.steps));

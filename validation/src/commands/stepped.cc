@@ -74,7 +74,7 @@ SteppedSweep calcSteppedSweep(const Mechanism& m, const std::string& scene, cons
       // A scene the engine cannot build is refused by a one-step run at the smallest step (the steps an engine
       // refuses, too long for its solver, are the large ones): one refusal row for the scene, not one per step.
       try {
-        SteppedRunOptions one;
+        ConstantSpeedRunOptions one;
         one.dt = steps.back();
         one.steps = 1;
         one.settings = s;

@@ -12,9 +12,12 @@
 #include <tuple>
 #include <stdexcept>
 
+#include "crankcheck/validation/commands/stepped.h"
 #include "crankcheck/validation/crosscheck.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/part.h"
+#include "crankcheck/validation/parts.h"
+#include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/timing.h"
 #include "crankcheck/validation/variants.h"
 
@@ -95,6 +98,27 @@ Task buildEngineCostTask(const Mechanism& base, bool quick) {
           }};
 }
 
+// The stepped engines' points of the league (from report part stepped_engines' tables, when it ran): each engine at its
+// defaults and the finest step measured, labelled "NAME (DT s)", its cost per step against its worst error over every
+// quantity it reports. A step is not an evaluation: a turn at that step costs the steps per turn times it.
+std::vector<LeagueRow> findSteppedLeague(const TableSet& tables) {
+  std::vector<LeagueRow> out;
+  if (!tables.count(kSteppedErrorsTable.name()) || !tables.count(kSteppedCostTable.name())) return out;
+  for (const SteppedEngine& e : listSteppedEngines()) {
+    double finest = 0.0, worst = -1.0, ns = 0.0;
+    for (const SteppedCostRow& c : getRows(tables, kSteppedCostTable))
+      if (c.engine == e.name && c.settings == "defaults" && (finest == 0.0 || c.dt < finest)) {
+        finest = c.dt;
+        ns = c.ns_per_step;
+      }
+    if (finest == 0.0) continue;
+    for (const SteppedErrorRow& r : getRows(tables, kSteppedErrorsTable))
+      if (r.engine == e.name && r.settings == "defaults" && r.dt == finest) worst = std::max(worst, r.worst_rel_error);
+    if (worst >= 0.0) out.push_back({e.name + " (" + shortNumber(finest, 3) + " s)", 1, ns, worst});
+  }
+  return out;
+}
+
 // Adds (replaces) the derived tables `engines` and `engines_league` from `crosscheck` and `engine_cost`; nothing when
 // either is missing.
 void deriveEngineTables(TableSet& tables) {
@@ -139,6 +163,7 @@ void deriveEngineTables(TableSet& tables) {
   std::vector<LeagueRow> league;
   for (const auto& [key, value] : ns)
     if (worst_of_engine.count(key.first)) league.push_back({key.first, key.second, value, worst_of_engine[key.first]});
+  for (LeagueRow& row : findSteppedLeague(tables)) league.push_back(std::move(row));
   tables.insert_or_assign(kEnginesTable.name(), kEnginesTable.table(std::move(engines)));
   tables.insert_or_assign(kLeagueTable.name(), kLeagueTable.table(std::move(league)));
 }
@@ -153,8 +178,9 @@ ReportPart describeEnginesPart(const TableSet& tables, const std::string& headin
   part.caption =
       "Cost per evaluation (every quantity at one crank angle; k = 1 filled, k = 12 open) against the worst error over "
       "every quantity and every cross-checked case of the campaign, relative to the quantity's scale: each engine "
-      "against the analytic engine, the analytic engine against the nearer of the other exact engines, case by case. "
-      "Down and left is better";
+      "against the analytic engine, the analytic engine against the nearer of the other exact engines, case by case; "
+      "the physics engines people ship, labelled with a step: the cost of one step at their defaults and the finest "
+      "step measured, against their worst error over a turn there. Down and left is better";
 
   // Per engine: the worst row over its quantities, and its costs.
   struct EngineSummary {
@@ -218,6 +244,19 @@ ReportPart describeEnginesPart(const TableSet& tables, const std::string& headin
     const EngineSummary& s = by_engine[e.name];
     part.paragraphs.push_back(e.name + (e.gated ? " (exact, gated)" : " (reported, not gated)") + ": worst error " +
                               shortNumber(s.worst) + " of the scale, at " + where(*s.row) + ". " + e.method + ".");
+  }
+  // The stepped engines' points (findSteppedLeague), in words.
+  {
+    std::string s;
+    for (const LeagueRow& row : getRows(tables, kLeagueTable))
+      if (row.engine.find(" (") != std::string::npos)
+        s += (s.empty() ? "" : "; ") + row.engine + " " + shortNumber(row.worst_rel_error) + " of the scale at " +
+             shortNumber(row.ns_per_eval, 3) + " ns a step";
+    if (!s.empty())
+      part.paragraphs.push_back("The physics engines people ship (part " + std::to_string(findPart("stepped_engines").number()) +
+                                ") step the mechanism instead of evaluating it at an angle; their points are each "
+                                "engine at its defaults and the finest step measured, the cost of one step (a turn at "
+                                "that step costs the steps per turn times it) against the worst error over a turn: " + s + ".");
   }
   part.paragraphs.push_back(
       "The exact engines' numbers are rounding: the gate holds them to 64 eps x scale x conditioning. The soft "

@@ -60,11 +60,11 @@ struct QuantityInstant {
 };
 
 /// One step of a run.
-struct SteppedSample {
+struct ConstantSpeedSample {
   double t = 0.0;            ///< [s] the step's end, from the run's start
   double phi_start = 0.0;    ///< [rad] the crank's angle at the step's start, unwrapped (the run starts at 0)
   double phi_end = 0.0;      ///< [rad] at its end (the engine's own crank angle, unwrapped)
-  /// The reported quantities (SteppedRun::reported) in eval's fields; every other field NaN. Each belongs to
+  /// The reported quantities (ConstantSpeedRun::reported) in eval's fields; every other field NaN. Each belongs to
   /// phi_start + step_fraction (phi_end - phi_start).
   Evaluation values;
   /// [m] the largest separation, at the step's end, of a joint the engine holds by constraint (a pin's anchor as
@@ -74,20 +74,41 @@ struct SteppedSample {
 };
 
 /// A constant-speed run.
-struct SteppedRun {
-  std::vector<SteppedSample> samples;  ///< one per step, in order
+struct ConstantSpeedRun {
+  std::vector<ConstantSpeedSample> samples;  ///< one per step, in order
   /// The quantities the engine reports and where each belongs (the same for every sample).
   std::vector<QuantityInstant> reported;
   double seconds_per_step = 0.0;       ///< [s] wall time of the stepping and the reads, divided by the steps
 };
 
 /// How to run.
-struct SteppedRunOptions {
+struct ConstantSpeedRunOptions {
   double dt = 1.0 / 240.0;   ///< [s] the step, > 0
   long steps = 0;            ///< steps to take, > 0
   /// One of SteppedEngine::settings: "defaults" (the library's own), or the engine's other named settings.
   std::string settings = "defaults";
   StartState start;          ///< the exact state at phi = 0 (calcStartState)
+};
+
+/// How to run free: no drive and no gas; the crank carries the scene's flywheel (Mechanism::flywheel_inertia about O,
+/// added to the crank body's inertia), released from `start` (the exact state at phi = 0 and the release speed
+/// start.omega) under the scene's gravity.
+struct SteppedFreeRunOptions {
+  double dt = 1.0 / 240.0;   ///< [s] the step, > 0
+  long steps = 0;            ///< steps to take, > 0
+  std::string settings = "defaults";  ///< one of SteppedEngine::settings
+  StartState start;          ///< the exact state at phi = 0 and the release speed
+};
+
+/// A free run: the crank's angle and speed after each step, as the engine's own API gives them.
+struct SteppedFreeRun {
+  std::vector<double> time;   ///< [s] each step's end (the release at 0 not included)
+  std::vector<double> phi;    ///< [rad] the crank's angle at each step's end, unwrapped
+  std::vector<double> omega;  ///< [rad/s] the crank's angular velocity after each step
+  /// Where within its step omega belongs (as QuantityInstant::step_fraction): 0.5 for a semi-implicit Euler step,
+  /// whose velocity after the step is the one that carried the position from its start to its end.
+  double omega_step_fraction = 1.0;
+  double seconds_per_step = 0.0;  ///< [s] wall time of the stepping and the reads, divided by the steps
 };
 
 /// A stepped engine of the registry (validation/engines.h listSteppedEngines): measured, never gated.
@@ -103,7 +124,11 @@ struct SteppedEngine {
   /// Runs m at its constant speed (m.machine.speed != 0).
   /// @throws std::invalid_argument naming the scene key the engine cannot build, or a bad option;
   ///         std::runtime_error if the library fails during the run.
-  std::function<SteppedRun(const Mechanism& m, const SteppedRunOptions& options)> run;
+  std::function<ConstantSpeedRun(const Mechanism& m, const ConstantSpeedRunOptions& options)> run;
+  /// Runs m free (SteppedFreeRunOptions). m needs a flywheel (Mechanism::flywheel_inertia).
+  /// @throws std::invalid_argument for a mechanism without flywheel, a scene key the engine cannot build or a bad
+  ///         option; std::runtime_error if the library fails during the run.
+  std::function<SteppedFreeRun(const Mechanism& m, const SteppedFreeRunOptions& options)> run_free;
 };
 
 }  // namespace crankcheck
