@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "crankcheck/validation/commands/stepped.h"
+#include "crankcheck/validation/engine_runs.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/report_format.h"
@@ -38,6 +39,13 @@ void addSteppedOptions(CLI::App& command, SteppedOptions& options) {
   command.add_option("--dt", options.steps, "Time steps [s], comma-separated; default 1/240, 1e-3, 1e-4, 1e-5")
       ->delimiter(',')
       ->check(FiniteRange(1e-7, 0.1));
+  command.add_flag("--free", options.free,
+                   "The free runs instead: no drive, the scene's [flywheel] on the crank, gravity alone (the scene's "
+                   "[gas] left out), released at phi = 0 with the scene's speed; each judged as grade --free-run judges "
+                   "a program's run (energy trend, delta, phase)");
+  command.add_option("--revolutions", options.revolutions, "Revolutions of a free run (--free)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   command.add_option("--format", options.format, "Output format")
       ->check(CLI::IsMember({"table", "json"}))
       ->capture_default_str();
@@ -66,6 +74,86 @@ std::string formatStep(double dt) {
 
 }  // namespace
 
+namespace {
+
+// --free: each engine's free run at each settings and step, as grade --free-run's engine rows.
+std::string runSteppedFree(const SteppedOptions& options, Mechanism m, const std::vector<const SteppedEngine*>& engines,
+                           const std::vector<std::string>& settings, std::vector<double> steps) {
+  if (!m.flywheel_inertia) throw UsageError(options.scene_path + ": [flywheel].inertia: the free run (--free) needs it");
+  if (!(m.machine.speed > 0.0))
+    throw UsageError(options.scene_path + ": [engine].speed_rpm: the free run (--free) is released at it; it must be > 0");
+  m.gas.reset();  // gravity alone
+  std::sort(steps.begin(), steps.end(), std::greater<double>());
+  std::vector<validation::SteppedFreeRunSpec> specs;
+  double total = 0.0;
+  for (const SteppedEngine* e : engines) {
+    if (!e->run_free) continue;
+    for (const std::string& s : settings.empty() ? e->settings : settings)
+      if (std::find(e->settings.begin(), e->settings.end(), s) != e->settings.end())
+        for (double dt : steps) {
+          specs.push_back({e->name, s, dt});
+          total += 1.1 * options.revolutions * 2.0 * M_PI / (m.machine.speed * dt);
+        }
+  }
+  if (total > validation::kMaxSteppedSteps) {
+    char line[256];
+    std::snprintf(line, sizeof line, "--dt: the free runs would take %.3g steps, more than %.3g: a larger step or fewer --revolutions",
+                  total, validation::kMaxSteppedSteps);
+    throw UsageError(line);
+  }
+  std::vector<std::string> refusals;
+  std::vector<validation::EngineRunRow> rows;
+  try {
+    rows = validation::calcSteppedFreeRuns(m, m.machine.speed, options.revolutions, specs, &refusals);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(options.scene_path + ": " + e.what());
+  }
+  if (options.engine != "all" && rows.empty() && !refusals.empty())
+    throw UsageError(options.scene_path + ": --engine " + options.engine + ": " + refusals.front());
+  if (options.format == "json") {
+    nlohmann::ordered_json doc;
+    doc["scene"] = options.scene_path;
+    doc["speed_rpm"] = m.speed_rpm;
+    doc["revolutions"] = options.revolutions;
+    doc["runs"] = nlohmann::ordered_json::array();
+    auto number = [](double x) { return std::isfinite(x) ? nlohmann::ordered_json(x) : nlohmann::ordered_json(); };
+    for (const validation::EngineRunRow& r : rows)
+      doc["runs"].push_back({{"engine", r.engine}, {"settings", r.integrator}, {"dt", r.accuracy},
+                             {"energy_trend_per_revolution", number(r.energy_trend_per_revolution)},
+                             {"delta", number(r.delta)}, {"delta_exact", number(r.delta_exact)},
+                             {"delta_error_rel", number(r.delta_error_rel)}, {"phi_max_error", number(r.phi_max_error)},
+                             {"phi_min_error", number(r.phi_min_error)},
+                             {"phase_error_at_horizon", number(r.phase_error_at_horizon)}, {"horizon_s", r.horizon_s},
+                             {"omega_reading", r.omega_reading},
+                             {"cpu_seconds_per_revolution", r.cpu_seconds_per_revolution}});
+    doc["refusals"] = refusals;
+    return dumpJson(doc);
+  }
+  std::string out = "free runs of the stepped engines on " + options.scene_path + ": released at phi = 0 with " +
+                    shortNumber(m.speed_rpm, 6) + " rpm, gravity alone, " + std::to_string(options.revolutions) +
+                    " revolutions (the exact delta " + (rows.empty() ? std::string("-") : shortNumber(rows.front().delta_exact, 4)) +
+                    ")\n";
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, "%-13s %-11s %8s %10s %10s %10s %-21s %8s\n", "engine", "settings", "dt [s]",
+                "energy/rev", "delta err", "phase [rad]", "omega read", "s/rev");
+  out += buffer;
+  for (const validation::EngineRunRow& r : rows) {
+    std::snprintf(buffer, sizeof buffer, "%-13s %-11s %8s %10s %10s %10s %-21s %8s\n", r.engine.c_str(),
+                  r.integrator.c_str(), formatStep(r.accuracy).c_str(), shortNumber(r.energy_trend_per_revolution, 2).c_str(),
+                  shortNumber(r.delta_error_rel, 2).c_str(), shortNumber(r.phase_error_at_horizon, 2).c_str(),
+                  r.omega_reading.c_str(), shortNumber(r.cpu_seconds_per_revolution, 2).c_str());
+    out += buffer;
+  }
+  for (const std::string& r : refusals) out += "refused: " + r + "\n";
+  out += "(energy/rev: the least-squares trend of the energy at each turn over E_0, per revolution; delta err: the "
+         "speed fluctuation over the first revolution against the exact run's from the run's own state, relative; "
+         "phase: the crank angle's error at the horizon; omega read: where the engine's speed stands; s/rev: wall time "
+         "per simulated revolution; docs/grade.md, Time-stepped runs)\n";
+  return wrapText(out, kHelpWidth);
+}
+
+}  // namespace
+
 std::string runStepped(const SteppedOptions& options) {
   const Mechanism m = loadScene(options.scene_path);
   std::vector<const SteppedEngine*> engines;
@@ -74,6 +162,7 @@ std::string runStepped(const SteppedOptions& options) {
   const std::vector<std::string> settings =
       options.settings == "all" ? std::vector<std::string>{} : std::vector<std::string>{options.settings};
   const std::vector<double> steps = options.steps.empty() ? validation::getDefaultSteppedSteps() : options.steps;
+  if (options.free) return runSteppedFree(options, m, engines, settings, steps);
   validation::SteppedSweep sweep;
   try {
     const double total = validation::countSteppedSteps(m, engines, settings, steps);

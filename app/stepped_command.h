@@ -1,9 +1,11 @@
 #pragma once
 /// @file
-/// `crankcheck stepped SCENE [--engine NAME|all] [--settings NAME|all] [--dt S,S,...] [--format table|json]`: the
+/// `crankcheck stepped SCENE [--engine NAME|all] [--settings NAME|all] [--dt S,S,...] [--free [--revolutions N]]
+/// [--format table|json]`: the
 /// physics engines people ship (validation/engines.h listSteppedEngines), each driven at the scene's constant speed
 /// from the exact state and stepped by its own solver at a series of time steps and at each of its settings; every
-/// quantity it reports against the closed forms at the instant it belongs to, the observed orders, the cost per step.
+/// quantity it reports against the closed forms at the instant it belongs to, the observed orders, the cost per step;
+/// --free: each engine's free run judged by the time-stepped grade's measures (validation/engine_runs.h).
 /// docs/stepped-engines.md.
 
 #include <CLI/CLI.hpp>
@@ -18,6 +20,8 @@ struct SteppedOptions {
   std::string settings = "all";
   std::vector<double> steps;  ///< [s]; empty: validation::getDefaultSteppedSteps
   std::string format = "table";
+  bool free = false;       ///< the free runs (no drive, the flywheel, gravity alone) instead of the driven ones
+  int revolutions = 5;     ///< of a free run
 };
 
 void addSteppedOptions(CLI::App& command, SteppedOptions& options);

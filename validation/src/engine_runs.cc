@@ -11,6 +11,7 @@
 #include "crankcheck/analytic/gas_work.h"
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/variants.h"
 #include "crankcheck/scene/engine.h"
 
 namespace crankcheck::validation {
@@ -62,7 +63,117 @@ std::string shortMeaning(const std::string& meaning) {
   return s;
 }
 
+// A run judged by the time-stepped grade's measures (run_measures.h): its row without the engine's own columns (engine,
+// integrator, accuracy, revolutions, steps, cost). exact_horizon [s]: the phase error's horizon, or the run's end if
+// it ends sooner.
+EngineRunRow measureRun(const Mechanism& m, const SteppedRun& run, const RunLoad& load, double exact_horizon) {
+  EngineRunRow row;
+  row.scene = m.name;
+  row.energy_trend_per_revolution = calcEnergyTrend(m, run, load);
+  const SpeedFluctuationComparison fluctuation = calcSpeedFluctuation(m, run, load);
+  row.delta = fluctuation.run.delta;
+  row.delta_exact = fluctuation.exact.delta;
+  row.delta_error_rel = fluctuation.exact.delta > 0.0 ? fluctuation.delta_error / fluctuation.exact.delta
+                                                      : std::numeric_limits<double>::quiet_NaN();
+  row.phi_max_error = fluctuation.phi_max_error;
+  row.phi_min_error = fluctuation.phi_min_error;
+  row.horizon_s = std::min(exact_horizon, run.time.back());
+  row.phase_error_at_horizon = calcPhaseError(m, run, row.horizon_s, load);
+  if (!run.omega_time.empty()) {
+    const double lag = run.time.back() - run.omega_time.back(), dt = run.time.back() - run.time[run.time.size() - 2];
+    row.omega_reading = std::fabs(lag) <= 1e-9 * dt ? "at the step" : shortText(lag / dt) + " of a step behind";
+  } else {
+    row.omega_reading = run.omega_half_step_behind ? "half a step behind" : "at the step";
+  }
+  return row;
+}
+
+// The checks every free run shares: a release speed, whole revolutions, the scene's gas and flywheel.
+void checkFreeRunScene(const Mechanism& m, double omega0, int revolutions, const RunLoad& load) {
+  if (!(std::isfinite(omega0) && omega0 > 0.0))
+    throw std::invalid_argument("free run: the release speed " + shortText(omega0) + " rad/s is not finite and > 0");
+  if (revolutions < 1)
+    throw std::invalid_argument("free run: " + std::to_string(revolutions) + " revolutions (at least 1)");
+  if (m.gas && !load.gas)
+    throw std::invalid_argument("free run: the scene has a [gas] table; the engines' free runs are judged under gravity "
+                                "alone (drop it: Mechanism::gas)");
+  if (load.gas && !m.gas) throw std::invalid_argument("loaded run: the scene has no [gas] table");
+  if (!m.flywheel_inertia) throw std::invalid_argument("free run: the scene needs the flywheel inertia [flywheel].inertia");
+}
+
 }  // namespace
+
+SteppedRun toSteppedRun(const SteppedFreeRun& run, double dt) {
+  const size_t n = run.time.size();
+  if (run.phi.size() != n || run.omega.size() != n)
+    throw std::invalid_argument("toSteppedRun: time, phi and omega must have as many samples (" + std::to_string(n) +
+                                ", " + std::to_string(run.phi.size()) + ", " + std::to_string(run.omega.size()) + ")");
+  if (n < 2) throw std::invalid_argument("toSteppedRun: fewer than 2 samples");
+  SteppedRun out;
+  out.time = run.time;
+  out.phi = run.phi;
+  out.omega = run.omega;
+  for (double t : run.time) out.omega_time.push_back(t - (1.0 - run.omega_step_fraction) * dt);
+  return out;
+}
+
+std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0, int revolutions,
+                                              const std::vector<SteppedFreeRunSpec>& specs,
+                                              std::vector<std::string>* refusals) {
+  checkFreeRunScene(m, omega0, revolutions, {});
+  std::vector<const SteppedEngine*> engines;
+  for (const SteppedFreeRunSpec& spec : specs) {
+    const SteppedEngine& e = findSteppedEngine(spec.engine);
+    if (!e.run_free) throw std::invalid_argument("free run: the stepped engine " + e.name + " has no free run");
+    if (std::find(e.settings.begin(), e.settings.end(), spec.settings) == e.settings.end())
+      throw std::invalid_argument("free run: " + e.name + " has no settings \"" + spec.settings + "\" (it has " +
+                                  joinNames(e.settings) + ")");
+    if (!(std::isfinite(spec.dt) && spec.dt > 0.0))
+      throw std::invalid_argument("free run: " + e.name + ": the step " + shortText(spec.dt) + " s is not finite and > 0");
+    engines.push_back(&e);
+  }
+  const double mean_omega = analytic::calcFreeRun(m, omega0).omega_mean;
+  const double exact_horizon = revolutions * 2.0 * M_PI / mean_omega;
+  // The start: the exact state at phi = 0 with the release speed (the run's input, not what is measured).
+  const Mechanism released = withSpeed(m, omega0 * 30.0 / M_PI);
+  const StartState start = calcStartState(released, getClosedFormEngine().build(released)->evaluate(0.0));
+  std::vector<EngineRunRow> rows;
+  for (size_t s = 0; s < specs.size(); ++s) {
+    const SteppedFreeRunSpec& spec = specs[s];
+    SteppedFreeRunOptions options;
+    options.dt = spec.dt;
+    // The exact run's horizon and a tenth of a turn more (a run that loses speed still reaches it), in whole steps.
+    options.steps = static_cast<long>(std::ceil(1.1 * exact_horizon / spec.dt));
+    options.settings = spec.settings;
+    options.start = start;
+    SteppedFreeRun result;
+    try {
+      result = engines[s]->run_free(m, options);
+    } catch (const std::exception& e) {  // a scene or step the engine refuses (Box2D's largest rotation a step)
+      if (refusals) refusals->push_back(spec.engine + " (" + spec.settings + ", " + shortText(spec.dt) + " s): " + e.what());
+      continue;
+    }
+    EngineRunRow row = measureRun(m, toSteppedRun(result, spec.dt), {}, exact_horizon);
+    row.engine = spec.engine;
+    row.integrator = spec.settings;
+    row.accuracy = spec.dt;
+    row.accuracy_meaning_short = "time step [s]";
+    row.revolutions = revolutions;
+    row.steps = static_cast<int>(options.steps);
+    row.cpu_seconds_per_revolution = result.seconds_per_step * static_cast<double>(options.steps) / revolutions;
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+std::vector<SteppedFreeRunSpec> listDefaultSteppedFreeRuns(bool quick) {
+  std::vector<SteppedFreeRunSpec> specs;
+  for (const SteppedEngine& e : listSteppedEngines()) {
+    if (!e.run_free) continue;
+    for (double dt : quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-4}) specs.push_back({e.name, "defaults", dt});
+  }
+  return specs;
+}
 
 SteppedRun toSteppedRun(const FreeRunResult& result) {
   const size_t n = result.time.size();
@@ -95,15 +206,7 @@ SteppedRun toSteppedRun(const FreeRunResult& result) {
 
 std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int revolutions,
                                          const std::vector<EngineRunSpec>& specs, const RunLoad& load) {
-  if (!(std::isfinite(omega0) && omega0 > 0.0))
-    throw std::invalid_argument("free run: the release speed " + shortText(omega0) + " rad/s is not finite and > 0");
-  if (revolutions < 1)
-    throw std::invalid_argument("free run: " + std::to_string(revolutions) + " revolutions (at least 1)");
-  if (m.gas && !load.gas)
-    throw std::invalid_argument("free run: the scene has a [gas] table; the engines' free runs are judged under gravity "
-                                "alone (drop it: Mechanism::gas)");
-  if (load.gas && !m.gas) throw std::invalid_argument("loaded run: the scene has no [gas] table");
-  if (!m.flywheel_inertia) throw std::invalid_argument("free run: the scene needs the flywheel inertia [flywheel].inertia");
+  checkFreeRunScene(m, omega0, revolutions, load);
   std::vector<const Engine*> engines;
   for (const EngineRunSpec& spec : specs) {
     engines.push_back(&checkSpec(spec));
@@ -133,25 +236,13 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
     const double cpu = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
     const SteppedRun run = toSteppedRun(result);
 
-    EngineRunRow row;
-    row.scene = m.name;
+    EngineRunRow row = measureRun(m, run, load, exact_horizon);
     row.engine = spec.engine;
     row.integrator = spec.integrator;
     row.accuracy = spec.accuracy;
     row.accuracy_meaning_short = shortMeaning(engine.accuracy_meaning);
-    row.energy_trend_per_revolution = calcEnergyTrend(m, run, load);
-    const SpeedFluctuationComparison fluctuation = calcSpeedFluctuation(m, run, load);
-    row.delta = fluctuation.run.delta;
-    row.delta_exact = fluctuation.exact.delta;
-    row.delta_error_rel = fluctuation.exact.delta > 0.0 ? fluctuation.delta_error / fluctuation.exact.delta
-                                                        : std::numeric_limits<double>::quiet_NaN();
-    row.phi_max_error = fluctuation.phi_max_error;
-    row.phi_min_error = fluctuation.phi_min_error;
-    row.horizon_s = std::min(exact_horizon, run.time.back());
-    row.phase_error_at_horizon = calcPhaseError(m, run, row.horizon_s, load);
     row.revolutions = revolutions;
     row.steps = result.steps;
-    row.omega_reading = run.omega_half_step_behind ? "half a step behind" : "at the step";
     row.cpu_seconds_per_revolution = cpu / revolutions;
     rows.push_back(std::move(row));
   }
@@ -185,11 +276,11 @@ std::vector<EngineRunSpec> listDefaultEngineRuns(bool quick, const RunLoad& load
   return specs;
 }
 
-const Schema<EngineRunRow>& getFreeRunEnginesSchema() {
+namespace {
+// The columns of a table of EngineRunRow: its members, in order.
+std::vector<Field<EngineRunRow>> listEngineRunFields() {
   using R = EngineRunRow;
-  static const Schema<R> schema(
-      "free_run_engines",
-      {textField("scene", &R::scene), textField("engine", &R::engine), textField("integrator", &R::integrator),
+  return {textField("scene", &R::scene), textField("engine", &R::engine), textField("integrator", &R::integrator),
        numberField("accuracy", "-", &R::accuracy), textField("accuracy_meaning", &R::accuracy_meaning_short),
        numberField("energy_trend_per_revolution", "-", &R::energy_trend_per_revolution),
        numberField("delta", "-", &R::delta), numberField("delta_exact", "-", &R::delta_exact),
@@ -198,7 +289,17 @@ const Schema<EngineRunRow>& getFreeRunEnginesSchema() {
        numberField("phase_error_at_horizon", "rad", &R::phase_error_at_horizon),
        numberField("horizon", "s", &R::horizon_s), countField("revolutions", &R::revolutions),
        countField("steps", &R::steps), textField("omega_reading", &R::omega_reading),
-       numberField("cpu_per_revolution", "s", &R::cpu_seconds_per_revolution)});
+       numberField("cpu_per_revolution", "s", &R::cpu_seconds_per_revolution)};
+}
+}  // namespace
+
+const Schema<EngineRunRow>& getFreeRunEnginesSchema() {
+  static const Schema<EngineRunRow> schema("free_run_engines", listEngineRunFields());
+  return schema;
+}
+
+const Schema<EngineRunRow>& getSteppedFreeRunsSchema() {
+  static const Schema<EngineRunRow> schema("stepped_free_runs", listEngineRunFields());
   return schema;
 }
 

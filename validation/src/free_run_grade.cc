@@ -449,6 +449,10 @@ void addEngineRuns(TableSet& tables, const std::vector<RunCase>& cases, bool qui
     for (EngineRunRow& row :
          calcEngineRuns(c.mechanism, c.omega0, c.revolutions, listDefaultEngineRuns(quick, load), load))
       rows.push_back(std::move(row));
+    // The physics engines people ship, free (they take no gas and no load here).
+    if (c.drive == RunDrive::kFree)
+      for (EngineRunRow& row : calcSteppedFreeRuns(c.mechanism, c.omega0, c.revolutions, listDefaultSteppedFreeRuns(quick)))
+        rows.push_back(std::move(row));
   }
   if (!rows.empty()) addRows(tables, getFreeRunEnginesSchema(), std::move(rows));
 }

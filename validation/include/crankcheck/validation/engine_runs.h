@@ -18,6 +18,7 @@
 
 #include "crankcheck/scene/free_run.h"
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/scene/stepped_run.h"
 #include "crankcheck/validation/run_measures.h"
 #include "crankcheck/validation/table.h"
 
@@ -91,7 +92,38 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
 /// With load.gas: only the engines that take the gas and a load (Engine::simulates_loads).
 std::vector<EngineRunSpec> listDefaultEngineRuns(bool quick, const RunLoad& load = {});
 
+/// One stepped engine's free run to make (validation/engines.h listSteppedEngines, SteppedEngine::run_free): the
+/// engine, one of its settings, the time step [s].
+struct SteppedFreeRunSpec {
+  std::string engine, settings;
+  double dt = 0.0;
+};
+
+/// A stepped engine's free run as a SteppedRun: omega at its instant, omega_time = time - (1 - f) dt with f the run's
+/// omega_step_fraction.
+/// @throws std::invalid_argument if time, phi and omega differ in size or have fewer than 2 samples.
+SteppedRun toSteppedRun(const SteppedFreeRun& run, double dt);
+
+/// Runs each spec free on m (under gravity alone, released at phi = 0 with omega0 from the exact state) for
+/// `revolutions` revolutions of the exact run and a tenth more, and measures it as calcEngineRuns does; in each row
+/// `integrator` is the settings' name and `accuracy` the step [s]. Every spec is checked before the first run.
+/// A run the engine refuses (a scene it cannot build, a step too long for it: SteppedEngine::run_free throws) has no
+/// row; its one line goes to `refusals` when given.
+/// @throws std::invalid_argument as calcEngineRuns (no [gas], a flywheel), or for a stepped engine, settings or step
+///         that does not exist.
+std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0, int revolutions,
+                                              const std::vector<SteppedFreeRunSpec>& specs,
+                                              std::vector<std::string>* refusals = nullptr);
+
+/// The stepped engines' free runs the grade's table and the report show: each engine that runs free at its defaults
+/// at 1e-3 and 1e-4 s (quick: 1e-4 s), steps at which every one of them runs the example scenes (Box2D refuses steps
+/// that turn the crank more than pi/2).
+std::vector<SteppedFreeRunSpec> listDefaultSteppedFreeRuns(bool quick);
+
 /// The table `free_run_engines`: one row per run (EngineRunRow's members, in order).
 const Schema<EngineRunRow>& getFreeRunEnginesSchema();
+
+/// The table `stepped_free_runs` of report part stepped_engines: the same columns, the stepped engines' free runs.
+const Schema<EngineRunRow>& getSteppedFreeRunsSchema();
 
 }  // namespace crankcheck::validation
