@@ -13,6 +13,7 @@
 
 #include "crankcheck/scene/quantities.h"
 #include "crankcheck/validation/commands/stepped.h"
+#include "crankcheck/validation/engine_runs.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/report_format.h"
@@ -84,6 +85,9 @@ void deriveSteppedSummary(TableSet& tables) {
   });
   tables.insert_or_assign(kSteppedSummaryTable.name(), kSteppedSummaryTable.table(std::move(out)));
 }
+
+// The revolutions of the part's free runs.
+constexpr int kFreeRevolutions = 5;
 
 // The example scene the default campaign measures the stepped engines on.
 constexpr const char* kDefaultScene = "inline4_four_stroke";
@@ -193,7 +197,21 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
       if (ns.count(e.name)) s += (s.empty() ? "" : ", ") + e.name + " " + shortNumber(ns[e.name], 3) + " ns";
     if (!s.empty()) part.paragraphs.push_back("Cost per step at its defaults (stepping and reads, one run): " + s + ".");
   }
-  // 5. The engines themselves: method, instants, what each cannot build, and the refusals of this campaign.
+  // 5. The free runs: each engine's energy trend, delta and phase at each settings and step.
+  {
+    std::string s;
+    for (const SteppedEngine& e : listSteppedEngines())
+      for (const EngineRunRow& r : getRows(tables, getSteppedFreeRunsSchema()))
+        if (r.engine == e.name && r.integrator == "defaults")
+          s += (s.empty() ? "" : "; ") + e.name + " at " + formatStep(r.accuracy) + ": energy " +
+               shortNumber(r.energy_trend_per_revolution) + " a revolution, delta " + shortNumber(r.delta_error_rel) +
+               " off, phase " + shortNumber(r.phase_error_at_horizon) + " rad after " + std::to_string(r.revolutions) + " turns";
+    if (!s.empty())
+      part.paragraphs.push_back("Free runs at the defaults (no drive, the scene's flywheel, gravity alone, released at "
+                                "the scene's speed; judged as grade --free-run judges a program's run; every settings in "
+                                "data/stepped_free_runs.csv; " + reproduce(scene, "--free") + "): " + s + ".");
+  }
+  // 6. The engines themselves: method, instants, what each cannot build, and the refusals of this campaign.
   for (const SteppedEngine& e : listSteppedEngines())
     part.paragraphs.push_back(e.name + " (" + e.library + ", measured, never gated): " + e.method + ". Instants: " +
                               e.instants + ". Cannot build: " + e.cannot_build + ".");
@@ -225,6 +243,22 @@ class SteppedEnginesPart final : public Part {
                        tables.merge(kSteppedCostTable.tableSet(sweep.costs));
                        tables.merge(kSteppedOrdersTable.tableSet(sweep.orders));
                        tables.merge(kSteppedRefusalsTable.tableSet(sweep.refusals));
+                       // The free run (a scene with a flywheel): gravity alone, released at the scene's speed, each
+                       // settings at 1e-3 and 1e-4 s (quick: 1e-4 s), judged as grade --free-run judges a program's.
+                       if (engine->run_free && m.flywheel_inertia) {
+                         Mechanism free = m;
+                         free.gas.reset();
+                         std::vector<SteppedFreeRunSpec> specs;
+                         for (const std::string& s : engine->settings)
+                           for (double dt : quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-4})
+                             specs.push_back({engine->name, s, dt});
+                         std::vector<std::string> refused;
+                         std::vector<EngineRunRow> runs = calcSteppedFreeRuns(free, free.machine.speed, kFreeRevolutions, specs, &refused);
+                         tables.merge(getSteppedFreeRunsSchema().tableSet(std::move(runs)));
+                         std::vector<SteppedRefusalRow> refusals;
+                         for (const std::string& r : refused) refusals.push_back({m.name, engine->name, "free run", 0.0, r});
+                         if (!refusals.empty()) addRows(tables, kSteppedRefusalsTable, std::move(refusals));
+                       }
                        return tables;
                      }});
     return out;
@@ -232,7 +266,8 @@ class SteppedEnginesPart final : public Part {
   void derive(TableSet& tables) const override { deriveSteppedSummary(tables); }
   ReportPart describe(const TableSet& tables) const override { return describeSteppedPart(tables, heading()); }
   std::vector<const TableSchema*> schemas() const override {
-    return {&kSteppedErrorsTable, &kSteppedCostTable, &kSteppedOrdersTable, &kSteppedRefusalsTable, &kSteppedSummaryTable};
+    return {&kSteppedErrorsTable, &kSteppedCostTable, &kSteppedOrdersTable, &kSteppedRefusalsTable, &kSteppedSummaryTable,
+            &getSteppedFreeRunsSchema()};
   }
   std::string findOmission(const PartContext& context) const override {
     if (chooseScene(context)) return {};
