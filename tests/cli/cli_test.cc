@@ -158,6 +158,8 @@ TEST(Cli, EveryCommandsOutputFitsATerminal) {
       {"motion", "inline4_four_stroke.toml"},
       {"flywheel", "inline4_four_stroke.toml", "--fluctuation", "0.02"},
       {"torsion", "inline4_four_stroke.toml", "--engine", "mujoco"},  // one engine's table (Simbody's is slow under ASan)
+      {"stepped", "inline4_four_stroke.toml", "--dt", "1e-3,1e-4"},
+      {"stepped", "single_cylinder.toml", "--free", "--dt", "1e-3", "--revolutions", "2"},
       {"validate", "--quick", "single_cylinder.toml", "--parts", "norton_fig13_8", "--out", out}};
   for (const auto& args : commands) {
     const RunResult r = testing::runCrankcheck(args, {}, CRANKCHECK_SCENES_DIR);

@@ -1,0 +1,112 @@
+// `crankcheck stepped` as a user runs it: what it refuses (status 2, one line naming the key or flag) and what it
+// reports when one engine cannot build a scene or take a step (a refusal, the others run); the JSON's orders are the
+// ratios of its own errors. The numbers themselves are held against the closed forms by each engine's tests
+// (tests/ode, tests/bullet, tests/box2d) and validation/stepped_errors' (tests/validation/stepped_errors_test.cc).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "crankcheck/scene/quantities.h"
+#include "fresh_folder.h"
+#include "run_cli.h"
+
+namespace crankcheck {
+namespace {
+
+using RunResult = validation::ProgramResult;
+
+std::string scene(const std::string& name) { return std::string(CRANKCHECK_SCENES_DIR) + "/" + name; }
+
+TEST(SteppedCli, RefusesASceneWithoutSpeedNamingTheKey) {
+  testing::FreshFolder folder;
+  std::ifstream in(scene("single_cylinder.toml"));
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string still = std::regex_replace(text.str(), std::regex("speed_rpm = [0-9.]+"), "speed_rpm = 0");
+  const std::string path = (folder.path() / "still.toml").string();
+  std::ofstream(path) << still;
+  const RunResult r = testing::runCrankcheck({"stepped", path});
+  EXPECT_EQ(r.exit_status, 2) << r.err;
+  EXPECT_NE(r.err.find("speed_rpm"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+// The example offset four carries [[balance_shaft]], which no stepped engine builds: named alone, the engine's refusal
+// is the user's error; with every engine, one refusal line each and nothing measured.
+TEST(SteppedCli, AnEngineThatCannotBuildTheSceneIsNamedOrListed) {
+  const RunResult one = testing::runCrankcheck({"stepped", scene("inline4_pin_offset.toml"), "--engine", "box2d"});
+  EXPECT_EQ(one.exit_status, 2) << one.err;
+  EXPECT_NE(one.err.find("--engine box2d"), std::string::npos) << one.err;
+  EXPECT_NE(one.err.find("[[balance_shaft]]"), std::string::npos) << one.err;
+  EXPECT_TRUE(one.out.empty());
+  const RunResult all = testing::runCrankcheck({"stepped", scene("inline4_pin_offset.toml"), "--dt", "1e-3", "--format", "json"});
+  ASSERT_EQ(all.exit_status, 0) << all.err;
+  const nlohmann::json doc = nlohmann::json::parse(all.out);
+  EXPECT_TRUE(doc["errors"].empty());
+  ASSERT_EQ(doc["refusals"].size(), 4u);  // ode, ode-quickstep, bullet, box2d: each once for the scene
+  for (const auto& refusal : doc["refusals"]) {
+    EXPECT_TRUE(refusal["dt"].is_null());
+    EXPECT_NE(refusal["reason"].get<std::string>().find("[[balance_shaft]]"), std::string::npos) << refusal;
+  }
+}
+
+// A sweep longer than the limit is refused before any work, naming --dt: the marine six at 105 rpm turns once in
+// 0.57 s, 5.7e6 steps at 1e-7 s, times two (settling) and eleven engine settings.
+TEST(SteppedCli, RefusesASweepTooLongBeforeWorking) {
+  const RunResult r = testing::runCrankcheck({"stepped", scene("inline6_two_stroke_marine.toml"), "--dt", "1e-7"});
+  EXPECT_EQ(r.exit_status, 2) << r.err;
+  EXPECT_NE(r.err.find("--dt"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+}
+
+// The inline four at 6000 rpm: Box2D refuses 1/240 s (2.6 rad a step, more than its b2_maxRotation), the others run;
+// every error row names a catalogue quantity or loop_error; every order is log(e1 / e2) / log(dt1 / dt2) of the rows'
+// own errors (to the rounding of the logarithms: 1e-12).
+TEST(SteppedCli, JsonCarriesErrorsOrdersCostsAndRefusals) {
+  const RunResult r = testing::runCrankcheck(
+      {"stepped", scene("inline4_four_stroke.toml"), "--dt", "0.004166666666666667,1e-3,1e-4", "--format", "json"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  std::map<std::tuple<std::string, std::string, double, std::string>, double> error;
+  for (const auto& e : doc["errors"]) {
+    const std::string q = e["quantity"];
+    EXPECT_TRUE(q == "loop_error" || findQuantity(q) != nullptr) << q;
+    EXPECT_GE(e["worst_rel_error"].get<double>(), 0.0);
+    error[{e["engine"], e["settings"], e["dt"], q}] = e["worst_rel_error"];
+  }
+  ASSERT_FALSE(error.empty());
+  for (const auto& o : doc["orders"]) {
+    if (o["order"].is_null()) continue;
+    const double e1 = error.at({o["engine"], o["settings"], o["dt_coarse"], o["quantity"]});
+    const double e2 = error.at({o["engine"], o["settings"], o["dt_fine"], o["quantity"]});
+    const double expected = std::log(e1 / e2) / std::log(o["dt_coarse"].get<double>() / o["dt_fine"].get<double>());
+    EXPECT_NEAR(o["order"].get<double>(), expected, 1e-12 * (1.0 + std::fabs(expected))) << o;
+  }
+  EXPECT_FALSE(doc["costs"].empty());
+  for (const auto& c : doc["costs"]) EXPECT_GT(c["ns_per_step"].get<double>(), 0.0);
+  bool box2d_refused = false;
+  for (const auto& refusal : doc["refusals"])
+    if (refusal["engine"] == "box2d" && refusal["dt"].is_number() &&
+        refusal["reason"].get<std::string>().find("b2_maxRotation") != std::string::npos)
+      box2d_refused = true;
+  EXPECT_TRUE(box2d_refused) << doc["refusals"];
+}
+
+// --help alone says what each engine is, its settings and instants.
+TEST(SteppedCli, HelpListsEveryEngineWithItsSettings) {
+  const RunResult r = testing::runCrankcheck({"stepped", "--help"});
+  ASSERT_EQ(r.exit_status, 0);
+  for (const char* expected : {"- ode (ODE", "- ode-quickstep", "- bullet (Bullet", "- box2d (Box2D", "settings neutralised",
+                               "settings tightened", "Instants:", "Cannot build:"})
+    EXPECT_NE(r.out.find(expected), std::string::npos) << expected;
+}
+
+}  // namespace
+}  // namespace crankcheck
