@@ -211,7 +211,21 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
                                 "the scene's speed; judged as grade --free-run judges a program's run; every settings in "
                                 "data/stepped_free_runs.csv; " + reproduce(scene, "--free") + "): " + s + ".");
   }
-  // 6. The engines themselves: method, instants, what each cannot build, and the refusals of this campaign.
+  // 6. What the engines' documentation or upstream reports say, beside the measurement (SteppedEngine::notes): the
+  // quantity's error at every step, at the settings that neutralise the defaults where the engine has them.
+  for (const SteppedEngine& e : listSteppedEngines())
+    for (const SteppedEngineNote& n : e.notes) {
+      const bool neutral = std::find(e.settings.begin(), e.settings.end(), "neutralised") != e.settings.end();
+      const std::string settings = neutral ? "neutralised" : "defaults";
+      std::string measured;
+      for (const SteppedErrorRow& r : errors)
+        if (r.engine == e.name && r.settings == settings && r.quantity == n.quantity)
+          measured += (measured.empty() ? "" : ", ") + shortNumber(r.worst_rel_error) + " at " + formatStep(r.dt);
+      if (measured.empty()) continue;
+      part.paragraphs.push_back(e.name + "'s " + n.quantity + " (" + settings + "): " + measured + " of its scale. " +
+                                n.note + " (" + reproduce(scene, "--engine " + e.name + " --settings " + settings) + ").");
+    }
+  // 7. The engines themselves: method, instants, what each cannot build, and the refusals of this campaign.
   for (const SteppedEngine& e : listSteppedEngines())
     part.paragraphs.push_back(e.name + " (" + e.library + ", measured, never gated): " + e.method + ". Instants: " +
                               e.instants + ". Cannot build: " + e.cannot_build + ".");

@@ -111,6 +111,13 @@ struct SteppedFreeRun {
   double seconds_per_step = 0.0;  ///< [s] wall time of the stepping and the reads, divided by the steps
 };
 
+/// What an engine's documentation or its upstream issues say about a quantity it reports, where the measurement bears
+/// on it: the report (part stepped_engines) states the note beside the measured errors and the command that shows them.
+struct SteppedEngineNote {
+  std::string quantity;  ///< the catalogue's name (quantities.h)
+  std::string note;      ///< the claim, its source, and what the measurement found, in one sentence
+};
+
 /// A stepped engine of the registry (validation/engines.h listSteppedEngines): measured, never gated.
 struct SteppedEngine {
   std::string name;       ///< as on the command line: "ode", "ode-quickstep", "bullet", "box2d"
@@ -125,6 +132,8 @@ struct SteppedEngine {
   /// @throws std::invalid_argument naming the scene key the engine cannot build, or a bad option;
   ///         std::runtime_error if the library fails during the run.
   std::function<ConstantSpeedRun(const Mechanism& m, const ConstantSpeedRunOptions& options)> run;
+  /// Notes on quantities whose measurement confirms or contradicts the engine's documentation or upstream reports.
+  std::vector<SteppedEngineNote> notes;
   /// Runs m free (SteppedFreeRunOptions). m needs a flywheel (Mechanism::flywheel_inertia).
   /// @throws std::invalid_argument for a mechanism without flywheel, a scene key the engine cannot build or a bad
   ///         option; std::runtime_error if the library fails during the run.
