@@ -75,9 +75,37 @@ std::array<btVector3, 3> getOrientation(const btMultiBody& body, int link) {
           body.localDirToWorld(link, btVector3(0.0, 0.0, 1.0))};
 }
 
-}  // namespace
+/// Bullet's model of m in the pose of o.start with every joint's speed set from it, in its world: the crank driven
+/// by its joint motor at o.start.omega (`driven`), or free with the scene's flywheel added to the crank (not driven).
+/// Its members are declared in the order their destruction needs: the world first, then what it refers to.
+struct Model {
+  Model() = default;
+  Model(const Model&) = delete;
+  Model& operator=(const Model&) = delete;
+  ~Model() {
+    if (!world) return;
+    if (motor) world->removeMultiBodyConstraint(motor.get());
+    for (CylinderLinks& c : cylinders)
+      if (c.wrist_pin) world->removeMultiBodyConstraint(c.wrist_pin.get());
+    for (auto& collider : colliders) world->removeCollisionObject(collider.get());
+    world->removeMultiBody(body.get());
+  }
+  int crank_link = 0;
+  std::unique_ptr<btMultiBody> body;
+  btMultiBodyJointFeedback crank_feedback{};
+  std::vector<CylinderLinks> cylinders;
+  std::unique_ptr<btMultiBodyJointMotor> motor;  // null in a free run
+  btSphereShape shape{0.01};
+  std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
+  btDefaultCollisionConfiguration configuration;
+  std::unique_ptr<btCollisionDispatcher> dispatcher;
+  btDbvtBroadphase broadphase;
+  btMultiBodyConstraintSolver solver;
+  std::unique_ptr<FeedbackWorld> world;
+};
 
-BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o) {
+/// The one construction of both runs: checks o and what the model cannot build, then builds it (Model).
+std::unique_ptr<Model> buildModel(const Mechanism& m, const BulletRunOptions& o, bool driven) {
   const int k = m.machine.cylinders;
   const StartState& start = o.start;
   requireOption(std::isfinite(o.dt) && o.dt > 0.0, "dt must be a positive number of seconds");
@@ -90,9 +118,16 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
   requireOption(std::isfinite(o.angular_damping) && o.angular_damping >= 0.0, "angular_damping must be >= 0");
   requireOption(o.max_coordinate_velocity > 0.0, "max_coordinate_velocity must be > 0");
   requireOption(o.loop_max_impulse > 0.0, "loop_max_impulse must be > 0");
-  requireOption(o.motor_max_impulse > 0.0, "motor_max_impulse must be > 0");
-  if (!(std::fabs(m.machine.speed) > 0.0))
-    refuse("[engine].speed_rpm", "must be != 0 (the run drives the crank at the scene's constant speed)");
+  if (driven) {
+    requireOption(o.motor_max_impulse > 0.0, "motor_max_impulse must be > 0");
+    if (!(std::fabs(m.machine.speed) > 0.0))
+      refuse("[engine].speed_rpm", "must be != 0 (the run drives the crank at the scene's constant speed)");
+  } else {
+    requireOption(std::isfinite(start.omega), "start.omega (the release speed) must be finite");
+    if (!m.flywheel_inertia) refuse("[flywheel].inertia", "is required: the free run's crank carries the flywheel");
+    if (!(std::isfinite(*m.flywheel_inertia) && *m.flywheel_inertia >= 0.0))
+      refuse("[flywheel].inertia", "must be a finite inertia >= 0");
+  }
   if (!m.balance_shafts.empty()) refuse("[[balance_shaft]]", "has no geared coupling in this Bullet model");
   if (!(m.rod.mass > 0.0)) refuse("[rod].mass", "must be > 0 (a btMultiBody link needs a mass)");
   if (!(m.piston.mass > 0.0)) refuse("[piston].mass", "must be > 0 (a btMultiBody link needs a mass)");
@@ -100,9 +135,6 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
   if (!(rod_inertia > 0.0))
     refuse("[rod].inertia_about_wrist_pin", "must exceed m_k z_k^2 (the rod's inertia about its centre of mass must be > 0)");
   const double omega = start.omega;
-  // Gas (docs/CONVENTIONS.md "Gas"): p_j at the cycle angle phi - firing_j, the force -p_j A e_j on piston j.
-  const double bore_area = m.gas ? calcBoreArea(*m.gas) : 0.0;
-  if (m.gas) requireOption(static_cast<int>(m.firing_angles.size()) == k, "[gas] needs one firing angle per cylinder");
 
   // The crank: every throw's m_s at r_s on its crank line and m_p at r_p opposite, one link in the plane z = 0.
   double crank_mass = 0.0, first_x = 0.0, first_y = 0.0, inertia_o = 0.0;
@@ -114,6 +146,9 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
     inertia_o += m.crank.mass * m.crank.com_radius * m.crank.com_radius +
                  m.crank.counterweight_mass * m.crank.counterweight_radius * m.crank.counterweight_radius;
   }
+  // The free run's flywheel turns with the crank about O: its inertia adds to the crank's about O (and about its
+  // centre of mass, which it does not move).
+  if (!driven) inertia_o += *m.flywheel_inertia;
   if (!(crank_mass > 0.0)) refuse("[crank].mass", "and counterweight_mass are 0 (a btMultiBody link needs a mass)");
   // The crank's centre of mass at the start angle (the throws' angles above are at phi = 0).
   const double cx0 = first_x / crank_mass, cy0 = first_y / crank_mass;
@@ -126,15 +161,18 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
   // pistons' (x_p), so the offsets below are global vectors at the start. Only the inertia about Z acts (every joint
   // is about Z or along the plane; a diagonal tensor spinning about Z has no gyroscopic moment), so all three
   // diagonal entries are that one.
-  const int crank_link = 0;
+  auto model = std::make_unique<Model>();
+  const int crank_link = model->crank_link;
   const int links = 1 + 2 * k;
-  auto body = std::make_unique<btMultiBody>(links, 1.0, btVector3(1.0, 1.0, 1.0), /*fixedBase=*/true, /*canSleep=*/false);
+  model->body = std::make_unique<btMultiBody>(links, 1.0, btVector3(1.0, 1.0, 1.0), /*fixedBase=*/true, /*canSleep=*/false);
+  btMultiBody* body = model->body.get();
   body->setBaseWorldTransform(btTransform::getIdentity());
   const btQuaternion identity = btQuaternion::getIdentity();
   const btVector3 z_axis(0.0, 0.0, 1.0);
   body->setupRevolute(crank_link, crank_mass, btVector3(crank_inertia, crank_inertia, crank_inertia), -1, identity, z_axis,
                       btVector3(0.0, 0.0, 0.0), btVector3(cx, cy, 0.0), true);
-  std::vector<CylinderLinks> cylinders(static_cast<std::size_t>(k));
+  std::vector<CylinderLinks>& cylinders = model->cylinders;
+  cylinders.resize(static_cast<std::size_t>(k));
   for (int j = 0; j < k; ++j) {
     CylinderLinks& c = cylinders[static_cast<std::size_t>(j)];
     const CylinderStartState& s = start.cylinders[static_cast<std::size_t>(j)];
@@ -155,8 +193,7 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
                         b - btVector3(cx, cy, 0.0), g - b, true);
     c.wrist_pin_in_rod = btVector3(s.p_WA_W[0], s.p_WA_W[1], z) - g;
   }
-  btMultiBodyJointFeedback crank_feedback{};
-  body->getLink(crank_link).m_jointFeedback = &crank_feedback;
+  body->getLink(crank_link).m_jointFeedback = &model->crank_feedback;
   for (CylinderLinks& c : cylinders) {
     body->getLink(c.piston).m_jointFeedback = &c.piston_feedback;
     body->getLink(c.rod).m_jointFeedback = &c.rod_feedback;
@@ -179,25 +216,23 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
   local_origin.resize(links + 1);
   body->forwardKinematics(world_to_local, local_origin);
 
-  auto motor = std::make_unique<btMultiBodyJointMotor>(body.get(), crank_link, omega, o.motor_max_impulse);
+  if (driven) model->motor = std::make_unique<btMultiBodyJointMotor>(body, crank_link, omega, o.motor_max_impulse);
   for (CylinderLinks& c : cylinders) {
-    c.wrist_pin = std::make_unique<btMultiBodyPoint2Point>(body.get(), c.rod, body.get(), c.piston, c.wrist_pin_in_rod,
+    c.wrist_pin = std::make_unique<btMultiBodyPoint2Point>(body, c.rod, body, c.piston, c.wrist_pin_in_rod,
                                                            btVector3(0.0, 0.0, 0.0));
     c.wrist_pin->setMaxAppliedImpulse(o.loop_max_impulse);
   }
   // A constraint sizes its Jacobians and its impulse records from the finalised body.
-  motor->finalizeMultiDof();
+  if (model->motor) model->motor->finalizeMultiDof();
   for (CylinderLinks& c : cylinders) c.wrist_pin->finalizeMultiDof();
 
   // Every link carries a collider that collides with nothing (group and mask 0): Bullet's solver takes a multibody's
   // constraints island by island, and an island is found through the links' colliders; without them the motor and
-  // the loops would never be solved. Declared before the world, so the world is destroyed first.
-  btSphereShape shape(0.01);
-  std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders;
+  // the loops would never be solved.
   for (int i = 0; i < links; ++i) {
-    colliders.push_back(std::make_unique<btMultiBodyLinkCollider>(body.get(), i));
-    btMultiBodyLinkCollider& collider = *colliders.back();
-    collider.setCollisionShape(&shape);
+    model->colliders.push_back(std::make_unique<btMultiBodyLinkCollider>(body, i));
+    btMultiBodyLinkCollider& collider = *model->colliders.back();
+    collider.setCollisionShape(&model->shape);
     btTransform transform;
     transform.setIdentity();
     transform.setOrigin(body->localPosToWorld(i, btVector3(0.0, 0.0, 0.0)));
@@ -205,20 +240,36 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
     collider.setActivationState(DISABLE_DEACTIVATION);
     body->getLink(i).m_collider = &collider;
   }
-  btDefaultCollisionConfiguration configuration;
-  btCollisionDispatcher dispatcher(&configuration);
-  btDbvtBroadphase broadphase;
-  btMultiBodyConstraintSolver solver;
-  FeedbackWorld world(&dispatcher, &broadphase, &solver, &configuration);
+  model->dispatcher = std::make_unique<btCollisionDispatcher>(&model->configuration);
+  model->world = std::make_unique<FeedbackWorld>(model->dispatcher.get(), &model->broadphase, &model->solver, &model->configuration);
+  FeedbackWorld& world = *model->world;
   world.setGravity(btVector3(0.0, -m.machine.gravity, 0.0));
   btContactSolverInfo& info = world.getSolverInfo();
   info.m_numIterations = o.solver_iterations;
   info.m_erp = o.erp;
   info.m_erp2 = o.erp;
-  world.addMultiBody(body.get());
-  for (auto& collider : colliders) world.addCollisionObject(collider.get(), 0, 0);
-  world.addMultiBodyConstraint(motor.get());
+  world.addMultiBody(body);
+  for (auto& collider : model->colliders) world.addCollisionObject(collider.get(), 0, 0);
+  if (model->motor) world.addMultiBodyConstraint(model->motor.get());
   for (CylinderLinks& c : cylinders) world.addMultiBodyConstraint(c.wrist_pin.get());
+  return model;
+}
+
+}  // namespace
+
+BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o) {
+  const std::unique_ptr<Model> model = buildModel(m, o, /*driven=*/true);
+  const int k = m.machine.cylinders;
+  const StartState& start = o.start;
+  // Gas (docs/CONVENTIONS.md "Gas"): p_j at the cycle angle phi - firing_j, the force -p_j A e_j on piston j.
+  const double bore_area = m.gas ? calcBoreArea(*m.gas) : 0.0;
+  if (m.gas) requireOption(static_cast<int>(m.firing_angles.size()) == k, "[gas] needs one firing angle per cylinder");
+  btMultiBody* body = model->body.get();
+  FeedbackWorld& world = *model->world;
+  const int crank_link = model->crank_link;
+  std::vector<CylinderLinks>& cylinders = model->cylinders;
+  const btMultiBodyJointFeedback& crank_feedback = model->crank_feedback;
+  btMultiBodyJointMotor* motor = model->motor.get();
 
   const std::array<btVector3, 3> piston_orientation{btVector3(1.0, 0.0, 0.0), btVector3(0.0, 1.0, 0.0), btVector3(0.0, 0.0, 1.0)};
   const long steps = o.steps;
@@ -277,10 +328,29 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
   }
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - started;
   run.seconds_per_step = steps > 0 ? elapsed.count() / static_cast<double>(steps) : 0.0;
-  world.removeMultiBodyConstraint(motor.get());
-  for (CylinderLinks& c : cylinders) world.removeMultiBodyConstraint(c.wrist_pin.get());
-  for (auto& collider : colliders) world.removeCollisionObject(collider.get());
-  world.removeMultiBody(body.get());
+  return run;
+}
+
+SteppedFreeRun runBulletFree(const Mechanism& m, const BulletRunOptions& o) {
+  const std::unique_ptr<Model> model = buildModel(m, o, /*driven=*/false);
+  btMultiBody& body = *model->body;
+  const long steps = o.steps;
+  SteppedFreeRun run;
+  run.time.reserve(static_cast<std::size_t>(steps));
+  run.phi.reserve(static_cast<std::size_t>(steps));
+  run.omega.reserve(static_cast<std::size_t>(steps));
+  // Semi-implicit Euler: the joint speed after the step is the one stepPositionsMultiDof moved the joint by,
+  // phi_i - phi_{i-1} = dt omega_i (tests/bullet/bullet_free_run_test.cc verifies it): the middle of the step.
+  run.omega_step_fraction = 0.5;
+  const auto started = std::chrono::steady_clock::now();
+  for (long i = 0; i < steps; ++i) {
+    model->world->stepSimulation(o.dt, 0);  // one step of exactly dt (runBulletAtConstantSpeed says why)
+    run.time.push_back(static_cast<double>(i + 1) * o.dt);
+    run.phi.push_back(o.start.phi + body.getJointPos(model->crank_link));
+    run.omega.push_back(body.getJointVel(model->crank_link));  // the crank's joint speed is its angular velocity about +Z
+  }
+  const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - started;
+  run.seconds_per_step = elapsed.count() / static_cast<double>(steps);
   return run;
 }
 

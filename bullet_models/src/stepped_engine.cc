@@ -101,6 +101,14 @@ ConstantSpeedRun runStepped(const Mechanism& m, const ConstantSpeedRunOptions& o
   return out;
 }
 
+SteppedFreeRun runSteppedFree(const Mechanism& m, const SteppedFreeRunOptions& options, const std::vector<std::string>& names) {
+  BulletRunOptions o = getSettings(options.settings, names);
+  o.dt = options.dt;
+  o.steps = options.steps;
+  o.start = options.start;
+  return runBulletFree(m, o);
+}
+
 }  // namespace
 
 std::vector<SteppedEngine> describeSteppedEngines() {
@@ -123,6 +131,7 @@ std::vector<SteppedEngine> describeSteppedEngines() {
                    "centre of mass";
   const std::vector<std::string> names = e.settings;
   e.run = [names](const Mechanism& m, const ConstantSpeedRunOptions& options) { return runStepped(m, options, names); };
+  e.run_free = [names](const Mechanism& m, const SteppedFreeRunOptions& options) { return runSteppedFree(m, options, names); };
   return {e};
 }
 

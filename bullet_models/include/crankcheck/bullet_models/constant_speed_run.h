@@ -40,6 +40,11 @@
 /// 100 rad/s and its loops stay open by centimetres), and a constraint's largest impulse per row, 100 N s (it binds
 /// only when force times dt exceeds it: not on the example scenes at 1/240 s).
 ///
+/// The free run (runBulletFree) is the same model without the motor, the crank carrying the scene's flywheel. Against
+/// the exact free run (tests/bullet/bullet_free_run_test.cc) its phase after two revolutions converges at orders 1.2
+/// to 2 with Bullet's speed cap and damping off; at Bullet's defaults the cap holds a crank released faster than
+/// 100 rad/s at 100 rad/s and the damping drains its energy every step.
+///
 /// Gas ([gas]): each piston link gets the external force -p A e_j every step, p = calcGasPressure at its cycle angle
 /// phi - firing_j (docs/CONVENTIONS.md "Gas") at the step's start, held through the step.
 
@@ -127,5 +132,17 @@ struct BulletRun {
 ///   number of cylinders, solver_iterations, erp, linear_damping, angular_damping, max_coordinate_velocity,
 ///   loop_max_impulse, motor_max_impulse).
 BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o);
+
+/// The same model run free (the one construction of runBulletAtConstantSpeed, without its motor): no drive, no gas
+/// (a scene's [gas] is left out), the crank's inertia about O increased by the scene's flywheel inertia, released
+/// from o.start (every joint's speed from it, the crank's at the release speed o.start.omega) under the scene's
+/// gravity and stepped `o.steps` times at o.dt with o's solver settings and Bullet's defaults as o sets them (the
+/// damping and the joint speed cap act on the free crank as on every link; motor_max_impulse does not apply).
+/// Records after each step its end's time, the crank's angle (o.start.phi plus its joint coordinate, continuous) and
+/// its joint speed (about +Z), which belongs to the step's middle (omega_step_fraction 0.5: semi-implicit Euler
+/// moves the angle by dt times the speed after the step).
+/// @throws std::invalid_argument naming `[flywheel].inertia` when the scene has none (or a negative one), what
+///   runBulletAtConstantSpeed refuses but the speed (the release speed may be any finite number), or a bad option.
+SteppedFreeRun runBulletFree(const Mechanism& m, const BulletRunOptions& o);
 
 }  // namespace crankcheck::bullet_models

@@ -12,6 +12,7 @@ namespace crankcheck::bullet_models {
 /// The Bullet engine "bullet" (btMultiBody, double precision) with its settings "defaults" (Bullet's own: the joint
 /// speed cap 100, the damping 0.04, the loops' impulse cap 100 N s, 10 solver iterations, ERP 0.2), "neutralised"
 /// (the cap, the damping and the impulse cap off) and "tightened" (neutralised, with the solver tightened).
+/// Its run_free (runBulletFree) takes the same settings; its speed belongs to the step's middle.
 /// Its run throws std::invalid_argument for an unknown settings name (naming it and the settings), a scene speed of
 /// 0, and what runBulletAtConstantSpeed refuses.
 std::vector<SteppedEngine> describeSteppedEngines();
