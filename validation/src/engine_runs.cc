@@ -103,16 +103,22 @@ void checkFreeRunScene(const Mechanism& m, double omega0, int revolutions, const
 
 }  // namespace
 
-SteppedRun toSteppedRun(const SteppedFreeRun& run, double dt) {
+SteppedRun toSteppedRun(const SteppedFreeRun& run, double dt, double phi0, double omega0) {
   const size_t n = run.time.size();
   if (run.phi.size() != n || run.omega.size() != n)
     throw std::invalid_argument("toSteppedRun: time, phi and omega must have as many samples (" + std::to_string(n) +
                                 ", " + std::to_string(run.phi.size()) + ", " + std::to_string(run.omega.size()) + ")");
   if (n < 2) throw std::invalid_argument("toSteppedRun: fewer than 2 samples");
+  // The release first: the run is judged from the state it was given, so that what the engine does to it in its
+  // first step (a speed cap, damping) is measured, not taken as the run's own start.
   SteppedRun out;
-  out.time = run.time;
-  out.phi = run.phi;
-  out.omega = run.omega;
+  out.time = {0.0};
+  out.phi = {phi0};
+  out.omega = {omega0};
+  out.omega_time = {0.0};
+  out.time.insert(out.time.end(), run.time.begin(), run.time.end());
+  out.phi.insert(out.phi.end(), run.phi.begin(), run.phi.end());
+  out.omega.insert(out.omega.end(), run.omega.begin(), run.omega.end());
   for (double t : run.time) out.omega_time.push_back(t - (1.0 - run.omega_step_fraction) * dt);
   return out;
 }
@@ -153,7 +159,7 @@ std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0,
       if (refusals) refusals->push_back(spec.engine + " (" + spec.settings + ", " + shortText(spec.dt) + " s): " + e.what());
       continue;
     }
-    EngineRunRow row = measureRun(m, toSteppedRun(result, spec.dt), {}, exact_horizon);
+    EngineRunRow row = measureRun(m, toSteppedRun(result, spec.dt, start.phi, omega0), {}, exact_horizon);
     row.engine = spec.engine;
     row.integrator = spec.settings;
     row.accuracy = spec.dt;

@@ -99,10 +99,11 @@ struct SteppedFreeRunSpec {
   double dt = 0.0;
 };
 
-/// A stepped engine's free run as a SteppedRun: omega at its instant, omega_time = time - (1 - f) dt with f the run's
-/// omega_step_fraction.
+/// A stepped engine's free run as a SteppedRun: the release (t = 0, phi0, omega0) first, then each step's sample with
+/// omega at its instant, omega_time = time - (1 - f) dt with f the run's omega_step_fraction. The release is the run's
+/// first state: what the engine does to it in its first step is measured.
 /// @throws std::invalid_argument if time, phi and omega differ in size or have fewer than 2 samples.
-SteppedRun toSteppedRun(const SteppedFreeRun& run, double dt);
+SteppedRun toSteppedRun(const SteppedFreeRun& run, double dt, double phi0, double omega0);
 
 /// Runs each spec free on m (under gravity alone, released at phi = 0 with omega0 from the exact state) for
 /// `revolutions` revolutions of the exact run and a tenth more, and measures it as calcEngineRuns does; in each row
