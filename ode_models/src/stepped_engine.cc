@@ -10,6 +10,7 @@
 #include <string>
 
 #include "crankcheck/ode_models/constant_speed_run.h"
+#include "crankcheck/ode_models/free_run.h"
 #include "crankcheck/scene/quantities.h"
 
 namespace crankcheck::ode_models {
@@ -44,7 +45,9 @@ std::string shortValue(double v) {
 
 /// The run options of `settings` for `solver` (stepped_engine.h says what each name means; the tightened values are
 /// justified by the measurements in tests/ode/ode_run_test.cc).
-OdeRunOptions makeOptions(const std::string& engine, OdeSolver solver, const ConstantSpeedRunOptions& s) {
+/// The driven and the free run share it: the motor's limit stays infinite (the free run has no motor).
+template <class SeamOptions>
+OdeRunOptions makeOptions(const std::string& engine, OdeSolver solver, const SeamOptions& s) {
   OdeRunOptions o;
   o.solver = solver;
   o.dt = s.dt;
@@ -127,6 +130,9 @@ SteppedEngine describe(const std::string& name, OdeSolver solver, const std::str
       "[[balance_shaft]] (no geared coupling), a massless rod, piston or crank, a rod without inertia about its centre "
       "of mass, speed 0";
   e.run = [name, solver](const Mechanism& m, const ConstantSpeedRunOptions& o) { return runStepped(name, solver, m, o); };
+  e.run_free = [name, solver](const Mechanism& m, const SteppedFreeRunOptions& o) {
+    return runOdeFree(m, makeOptions(name, solver, o));
+  };
   return e;
 }
 

@@ -2,7 +2,9 @@
 /// @file
 /// ODE's two stepped engines for the registry (crankcheck/scene/stepped_run.h: SteppedEngine): "ode" (dWorldStep, the
 /// direct solve of the constraint forces) and "ode-quickstep" (dWorldQuickStep, projected Gauss-Seidel), each run by
-/// runOdeAtConstantSpeed (constant_speed_run.h) at one of three named settings:
+/// runOdeAtConstantSpeed (constant_speed_run.h) and run free by runOdeFree (free_run.h: the same model without the
+/// motor, carrying the scene's flywheel; its speed belongs to the step's middle) at one of three named settings,
+/// the same for both runs (the motor's limit does not apply to the free run):
 /// - "defaults": ODE's own (ERP 0.2, CFM 1e-10 in double precision, the default rotation update, QuickStep's 20
 ///   iterations);
 /// - "neutralised": the defaults with the one that changes the physics turned off: the finite rotation mode, so a
@@ -23,7 +25,8 @@ namespace crankcheck::ode_models {
 
 /// "ode" and "ode-quickstep", in that order. Their library reads ODE's version from its header (ode/version.h).
 /// Their run throws std::invalid_argument for an unknown settings name (naming it and the engine's settings) and for
-/// a scene of speed 0, and as runOdeAtConstantSpeed otherwise.
+/// a scene of speed 0, and as runOdeAtConstantSpeed otherwise; their run_free for an unknown settings name, and as
+/// runOdeFree otherwise (a scene without [flywheel].inertia).
 std::vector<SteppedEngine> describeSteppedEngines();
 
 }  // namespace crankcheck::ode_models
