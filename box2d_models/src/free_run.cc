@@ -26,7 +26,7 @@ SteppedFreeRun runBox2dFree(const Mechanism& m, const Box2dRunOptions& o) {
 
   const float dt = static_cast<float>(o.dt);
   SteppedFreeRun run;
-  run.omega_step_fraction = 0.5;
+  run.omega_step_fraction = 0.0;
   run.time.reserve(static_cast<std::size_t>(o.steps));
   run.phi.reserve(static_cast<std::size_t>(o.steps));
   run.omega.reserve(static_cast<std::size_t>(o.steps));

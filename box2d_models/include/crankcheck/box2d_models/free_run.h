@@ -6,15 +6,16 @@
 /// Box2D's own solver. Box2D stays inside src/: this header includes no Box2D header.
 ///
 /// The instants: phi is the crank body's angle after the step (b2Body::GetAngle, continuous over turns, a float);
-/// omega its angular velocity after the step (GetAngularVelocity). Box2D's step is semi-implicit Euler: it updates
-/// the velocities (gravity, then the joints' velocity solve), moves every body by dt times its new velocity, then
-/// corrects positions only; so omega after the step is the speed that carried phi over it, phi_i - phi_{i-1} = dt
-/// omega_i up to the position pass's correction, and it belongs to the step's middle (omega_step_fraction 0.5;
-/// tests/box2d/box2d_free_run_test.cc measures it against the exact free run).
+/// omega its angular velocity after the step (GetAngularVelocity). Box2D's step updates the velocities (gravity, then
+/// the joints' velocity solve, which makes them tangent to the step's start configuration), moves every body by dt
+/// times its new velocity, then corrects positions only. The position pass, closing the loop that the straight move
+/// along the start's tangent opened, turns the crank too: measured, phi_i - phi_{i-1} = dt omega_i + (1/2) dt^2 alpha,
+/// so omega_i acts as the speed at the step's start (omega_step_fraction 0; tests/box2d/box2d_free_run_test.cc,
+/// OmegaBelongsToTheStepsStart, at 1e-4 s; at 1/240..1e-3 s Box2D's 5 mm slop shifts it toward 0.1 of the step).
 ///
-/// The release: Box2D takes the start's velocities as the velocities at the step's start, and its first step
-/// adds a whole step's acceleration before moving; so the run starts half a step's change of speed off the
-/// exact free run, and its phase error is first order in dt (measured in the test).
+/// The run loses energy at first order in dt: each step's velocity solve projects the velocities onto the joints'
+/// tangent (an inelastic projection), so the crank falls behind the exact free run, its phase error first order
+/// (measured in the test).
 ///
 /// Box2D's b2_maxRotation caps a body's turn per step (pi/2): the run refuses a step at which the release speed
 /// would reach it, and throws std::runtime_error if the crank's speed reaches the cap during the run.
