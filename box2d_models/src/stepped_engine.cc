@@ -6,6 +6,7 @@
 #include <string>
 
 #include "crankcheck/box2d_models/constant_speed_run.h"
+#include "crankcheck/box2d_models/free_run.h"
 
 namespace crankcheck::box2d_models {
 namespace {
@@ -29,19 +30,20 @@ std::vector<QuantityInstant> reportedQuantities() {
           {QuantityId::kWristPinForce, -0.5},  {QuantityId::kWallForce, -0.25}};
 }
 
-Box2dRunOptions toRunOptions(const ConstantSpeedRunOptions& options) {
+/// The run's options at the named settings (the driven and the free run share them).
+Box2dRunOptions toRunOptions(double dt, long steps, const std::string& settings, const StartState& start) {
   Box2dRunOptions o;
-  o.dt = options.dt;
-  o.steps = options.steps;
-  o.start = options.start;
-  if (options.settings == "defaults") {
+  o.dt = dt;
+  o.steps = steps;
+  o.start = start;
+  if (settings == "defaults") {
     o.velocity_iterations = kDefaultVelocityIterations;
     o.position_iterations = kDefaultPositionIterations;
-  } else if (options.settings == "tightened") {
+  } else if (settings == "tightened") {
     o.velocity_iterations = kTightVelocityIterations;
     o.position_iterations = kTightPositionIterations;
   } else {
-    throw std::invalid_argument(std::string(kName) + " has no settings \"" + options.settings +
+    throw std::invalid_argument(std::string(kName) + " has no settings \"" + settings +
                                 "\"; its settings are defaults, tightened");
   }
   return o;
@@ -66,7 +68,8 @@ Evaluation emptyEvaluation(int k) {
 ConstantSpeedRun runSteppedBox2d(const Mechanism& m, const ConstantSpeedRunOptions& options) {
   if (!(m.machine.speed != 0.0))
     throw std::invalid_argument("[engine].speed_rpm must be != 0: " + std::string(kName) + " is driven at the scene's speed");
-  const Box2dRun run = runBox2dAtConstantSpeed(m, toRunOptions(options));
+  const Box2dRun run =
+      runBox2dAtConstantSpeed(m, toRunOptions(options.dt, options.steps, options.settings, options.start));
   const int k = m.machine.cylinders;
   ConstantSpeedRun out;
   out.reported = reportedQuantities();
@@ -100,6 +103,10 @@ ConstantSpeedRun runSteppedBox2d(const Mechanism& m, const ConstantSpeedRunOptio
   return out;
 }
 
+SteppedFreeRun runFreeSteppedBox2d(const Mechanism& m, const SteppedFreeRunOptions& options) {
+  return runBox2dFree(m, toRunOptions(options.dt, options.steps, options.settings, options.start));
+}
+
 }  // namespace
 
 std::vector<SteppedEngine> describeSteppedEngines() {
@@ -121,6 +128,7 @@ std::vector<SteppedEngine> describeSteppedEngines() {
                    "turning the crank or a rod more than b2_maxRotation (pi/2) or moving a body more than "
                    "b2_maxTranslation (2 m); a body of zero mass or inertia";
   e.run = runSteppedBox2d;
+  e.run_free = runFreeSteppedBox2d;
   return {e};
 }
 

@@ -17,6 +17,8 @@
 /// the instant of the step's impulses (below), so that the gas share of each reaction belongs where its inertial share
 /// does.
 ///
+/// The free run (free_run.h) builds this same model with the motor off and the flywheel on the crank.
+///
 /// Units: Box2D works in "meters, kilograms, seconds" with b2_lengthUnitsPerMeter = 1 in Debian's build, so the scene's
 /// SI values go in unchanged. Its length tolerances are tuned for moving objects of 0.1-10 m: b2_linearSlop 5 mm (the
 /// joint position solver stops iterating once every joint's error, measured before its correction, is below it) and
