@@ -114,12 +114,22 @@ SteppedRun toSteppedRun(const SteppedFreeRun& run, double dt, double phi0, doubl
   SteppedRun out;
   out.time = {0.0};
   out.phi = {phi0};
-  out.omega = {omega0};
-  out.omega_time = {0.0};
-  out.time.insert(out.time.end(), run.time.begin(), run.time.end());
-  out.phi.insert(out.phi.end(), run.phi.begin(), run.phi.end());
-  out.omega.insert(out.omega.end(), run.omega.begin(), run.omega.end());
-  for (double t : run.time) out.omega_time.push_back(t - (1.0 - run.omega_step_fraction) * dt);
+  const double lag = (1.0 - run.omega_step_fraction) * dt;
+  if (run.time.front() - lag > 0.0) {
+    out.omega = {omega0};
+    out.omega_time = {0.0};
+    out.time.insert(out.time.end(), run.time.begin(), run.time.end());
+    out.phi.insert(out.phi.end(), run.phi.begin(), run.phi.end());
+    out.omega.insert(out.omega.end(), run.omega.begin(), run.omega.end());
+    for (double t : run.time) out.omega_time.push_back(t - lag);
+    return out;
+  }
+  // A speed that belongs to its step's start (or before it: Box2D's): the first step's speed is the engine's own
+  // reading of the release, standing at t = 0 in its place; the last step's angle has no speed of its own and is left.
+  out.time.insert(out.time.end(), run.time.begin(), run.time.end() - 1);
+  out.phi.insert(out.phi.end(), run.phi.begin(), run.phi.end() - 1);
+  out.omega = run.omega;
+  for (double t : run.time) out.omega_time.push_back(t - lag);
   return out;
 }
 
@@ -159,7 +169,16 @@ std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0,
       if (refusals) refusals->push_back(spec.engine + " (" + spec.settings + ", " + shortText(spec.dt) + " s): " + e.what());
       continue;
     }
-    EngineRunRow row = measureRun(m, toSteppedRun(result, spec.dt, start.phi, omega0), {}, exact_horizon);
+    // A run the measures cannot judge (it stops turning, or falls short of one revolution in the steps given: a speed
+    // cap, damping) is reported with the reason, not measured.
+    EngineRunRow row;
+    try {
+      row = measureRun(m, toSteppedRun(result, spec.dt, start.phi, omega0), {}, exact_horizon);
+    } catch (const std::exception& e) {
+      if (refusals)
+        refusals->push_back(spec.engine + " (" + spec.settings + ", " + shortText(spec.dt) + " s): not measured: " + e.what());
+      continue;
+    }
     row.engine = spec.engine;
     row.integrator = spec.settings;
     row.accuracy = spec.dt;

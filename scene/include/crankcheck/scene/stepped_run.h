@@ -105,8 +105,9 @@ struct SteppedFreeRun {
   std::vector<double> time;   ///< [s] each step's end (the release at 0 not included)
   std::vector<double> phi;    ///< [rad] the crank's angle at each step's end, unwrapped
   std::vector<double> omega;  ///< [rad/s] the crank's angular velocity after each step
-  /// Where within its step omega belongs (as QuantityInstant::step_fraction): 0.5 for a semi-implicit Euler step,
-  /// whose velocity after the step is the one that carried the position from its start to its end.
+  /// Where within its step omega belongs (as QuantityInstant::step_fraction), found by measurement: 0.5 for a
+  /// semi-implicit Euler step whose velocity after the step is the one that carried the position from its start to its
+  /// end (ODE, Bullet); 0 where a position pass moves the body again after the velocity solve (Box2D).
   double omega_step_fraction = 1.0;
   double seconds_per_step = 0.0;  ///< [s] wall time of the stepping and the reads, divided by the steps
 };

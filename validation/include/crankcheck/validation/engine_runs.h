@@ -101,15 +101,17 @@ struct SteppedFreeRunSpec {
 
 /// A stepped engine's free run as a SteppedRun: the release (t = 0, phi0, omega0) first, then each step's sample with
 /// omega at its instant, omega_time = time - (1 - f) dt with f the run's omega_step_fraction. The release is the run's
-/// first state: what the engine does to it in its first step is measured.
+/// first state: what the engine does to it in its first step is measured. Where omega belongs to its step's start (f
+/// <= 0: Box2D), the first step's omega is the engine's reading of the release and stands at t = 0 in its place.
 /// @throws std::invalid_argument if time, phi and omega differ in size or have fewer than 2 samples.
 SteppedRun toSteppedRun(const SteppedFreeRun& run, double dt, double phi0, double omega0);
 
 /// Runs each spec free on m (under gravity alone, released at phi = 0 with omega0 from the exact state) for
 /// `revolutions` revolutions of the exact run and a tenth more, and measures it as calcEngineRuns does; in each row
 /// `integrator` is the settings' name and `accuracy` the step [s]. Every spec is checked before the first run.
-/// A run the engine refuses (a scene it cannot build, a step too long for it: SteppedEngine::run_free throws) has no
-/// row; its one line goes to `refusals` when given.
+/// A run the engine refuses (a scene it cannot build, a step too long for it: SteppedEngine::run_free throws), or one
+/// the measures cannot judge (it stops turning or falls short of a revolution: a speed cap, damping), has no row; its
+/// one line goes to `refusals` when given.
 /// @throws std::invalid_argument as calcEngineRuns (no [gas], a flywheel), or for a stepped engine, settings or step
 ///         that does not exist.
 std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0, int revolutions,
