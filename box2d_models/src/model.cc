@@ -17,10 +17,6 @@ void requireOption(bool ok, const std::string& what) {
   if (!ok) throw std::invalid_argument("Box2D run: " + what);
 }
 
-void refuse(const std::string& key, const std::string& why) {
-  throw std::invalid_argument("Box2D cannot build this scene: " + key + " " + why);
-}
-
 std::string formatNumber(double x) {
   std::ostringstream out;
   out.precision(4);
@@ -94,32 +90,15 @@ Model buildModel(const Mechanism& m, const Box2dRunOptions& o, const ModelOption
   requireOption(static_cast<int>(o.start.cylinders.size()) == k,
                 "the start state has " + std::to_string(o.start.cylinders.size()) + " cylinders, the scene " +
                     std::to_string(k));
-  if (!m.balance_shafts.empty()) refuse("[[balance_shaft]]", "has no geared coupling in this Box2D model");
   requireOption(std::isfinite(omega), "the start state's crank speed must be a number");
   requireOption(std::isfinite(options.extra_crank_inertia) && options.extra_crank_inertia >= 0.0,
                 "the crank's added inertia must be >= 0");
-  if (!(m.rod.mass > 0.0)) refuse("[rod].mass", "must be > 0 (a Box2D body needs a mass)");
-  if (!(m.piston.mass > 0.0)) refuse("[piston].mass", "must be > 0 (a Box2D body needs a mass)");
-  const double rod_inertia = m.rod.inertia_about_wrist_pin - m.rod.mass * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
-  if (!(rod_inertia > 0.0))
-    refuse("[rod].inertia_about_wrist_pin", "must exceed m_k z_k^2 (Box2D needs the rod's inertia about its centre of mass > 0)");
-
-  // The crank: every throw's m_s at r_s on its crank line and m_p at r_p opposite, one body whose origin is O, its
-  // frame the crank's at phi = 0 (turned by start.phi).
-  double crank_mass = 0.0, first_x = 0.0, first_y = 0.0, inertia_o = 0.0;
-  for (int j = 0; j < k; ++j) {
-    const double beta = getThrowAngle(m, j);
-    crank_mass += m.crank.mass + m.crank.counterweight_mass;
-    first_x += (m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius) * std::cos(beta);
-    first_y += (m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius) * std::sin(beta);
-    inertia_o += m.crank.mass * m.crank.com_radius * m.crank.com_radius +
-                 m.crank.counterweight_mass * m.crank.counterweight_radius * m.crank.counterweight_radius;
-  }
-  if (!(crank_mass > 0.0)) refuse("[crank].mass", "and counterweight_mass are 0 (a Box2D body needs a mass)");
-  const double cx = first_x / crank_mass, cy = first_y / crank_mass;
-  if (!(inertia_o - crank_mass * (cx * cx + cy * cy) > 0.0))
-    refuse("[crank].com_radius", "and counterweight_radius leave the crank no inertia about its centre of mass");
-  inertia_o += options.extra_crank_inertia;
+  checkSteppedScene(m, "Box2D");
+  const double rod_inertia = calcRodCentroidalInertia(m);
+  // The crank: one body whose origin is O, its frame the crank's at phi = 0 (turned by start.phi).
+  const LumpedCrank lumped = calcLumpedCrank(m, "Box2D");
+  const double crank_mass = lumped.mass, cx = lumped.p_OBcm[0], cy = lumped.p_OBcm[1];
+  const double inertia_o = lumped.inertia_about_o + options.extra_crank_inertia;
   refuseCappedSteps(m, omega, o.dt, std::hypot(cx, cy));
 
   Model model;

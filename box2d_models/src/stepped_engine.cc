@@ -49,22 +49,6 @@ Box2dRunOptions toRunOptions(double dt, long steps, const std::string& settings,
   return o;
 }
 
-Evaluation emptyEvaluation(int k) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  Evaluation e;
-  e.engine = kName;
-  e.U = e.Q = e.drive_torque = nan;
-  e.bearing_force = {nan, nan};
-  e.shaking_force = {nan, nan};
-  e.shaking_moment = {nan, nan, nan};
-  CylinderEvaluation c;
-  c.x_p = c.v_p = c.a_p = c.wall_force = c.gas_force = nan;
-  c.crank_pin_force = c.wrist_pin_force = {nan, nan};
-  c.rod_angle = c.rod_omega = c.rod_alpha = nan;
-  e.cylinders.assign(static_cast<std::size_t>(k), c);
-  return e;
-}
-
 ConstantSpeedRun runSteppedBox2d(const Mechanism& m, const ConstantSpeedRunOptions& options) {
   if (!(m.machine.speed != 0.0))
     throw std::invalid_argument("[engine].speed_rpm must be != 0: " + std::string(kName) + " is driven at the scene's speed");
@@ -81,7 +65,7 @@ ConstantSpeedRun runSteppedBox2d(const Mechanism& m, const ConstantSpeedRunOptio
     sample.t = s.t;
     sample.phi_start = s.phi_start;
     sample.phi_end = s.phi;
-    sample.values = emptyEvaluation(k);
+    sample.values = makeUnreportedEvaluation(kName, k);
     sample.values.phi = s.phi;
     sample.values.drive_torque = s.drive_torque;
     sample.values.bearing_force = s.bearing_force;

@@ -128,34 +128,17 @@ std::unique_ptr<Model> buildModel(const Mechanism& m, const BulletRunOptions& o,
     if (!(std::isfinite(*m.flywheel_inertia) && *m.flywheel_inertia >= 0.0))
       refuse("[flywheel].inertia", "must be a finite inertia >= 0");
   }
-  if (!m.balance_shafts.empty()) refuse("[[balance_shaft]]", "has no geared coupling in this Bullet model");
-  if (!(m.rod.mass > 0.0)) refuse("[rod].mass", "must be > 0 (a btMultiBody link needs a mass)");
-  if (!(m.piston.mass > 0.0)) refuse("[piston].mass", "must be > 0 (a btMultiBody link needs a mass)");
-  const double rod_inertia = m.rod.inertia_about_wrist_pin - m.rod.mass * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
-  if (!(rod_inertia > 0.0))
-    refuse("[rod].inertia_about_wrist_pin", "must exceed m_k z_k^2 (the rod's inertia about its centre of mass must be > 0)");
+  checkSteppedScene(m, "Bullet");
+  const double rod_inertia = calcRodCentroidalInertia(m);
   const double omega = start.omega;
-
-  // The crank: every throw's m_s at r_s on its crank line and m_p at r_p opposite, one link in the plane z = 0.
-  double crank_mass = 0.0, first_x = 0.0, first_y = 0.0, inertia_o = 0.0;
-  for (int j = 0; j < k; ++j) {
-    const double beta = getThrowAngle(m, j);
-    crank_mass += m.crank.mass + m.crank.counterweight_mass;
-    first_x += (m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius) * std::cos(beta);
-    first_y += (m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius) * std::sin(beta);
-    inertia_o += m.crank.mass * m.crank.com_radius * m.crank.com_radius +
-                 m.crank.counterweight_mass * m.crank.counterweight_radius * m.crank.counterweight_radius;
-  }
-  // The free run's flywheel turns with the crank about O: its inertia adds to the crank's about O (and about its
-  // centre of mass, which it does not move).
-  if (!driven) inertia_o += *m.flywheel_inertia;
-  if (!(crank_mass > 0.0)) refuse("[crank].mass", "and counterweight_mass are 0 (a btMultiBody link needs a mass)");
-  // The crank's centre of mass at the start angle (the throws' angles above are at phi = 0).
-  const double cx0 = first_x / crank_mass, cy0 = first_y / crank_mass;
+  const LumpedCrank lumped = calcLumpedCrank(m, "Bullet");
+  const double crank_mass = lumped.mass;
+  // About the centre of mass, along Z. The free run's flywheel turns with the crank about O: its inertia adds (it does
+  // not move the centre of mass).
+  const double crank_inertia = lumped.inertia_about_cm + (driven ? 0.0 : *m.flywheel_inertia);
+  // The crank's centre of mass at the start angle (the lumped crank's is at phi = 0).
+  const double cx0 = lumped.p_OBcm[0], cy0 = lumped.p_OBcm[1];
   const double cx = cx0 * std::cos(start.phi) - cy0 * std::sin(start.phi), cy = cx0 * std::sin(start.phi) + cy0 * std::cos(start.phi);
-  const double crank_inertia = inertia_o - crank_mass * (cx * cx + cy * cy);  // about the centre of mass, along Z
-  if (!(crank_inertia > 0.0))
-    refuse("[crank].com_radius", "and counterweight_radius leave the crank no inertia about its centre of mass");
 
   // Every link's frame is parallel to the world's in the start's pose with every joint coordinate 0 except the
   // pistons' (x_p), so the offsets below are global vectors at the start. Only the inertia about Z acts (every joint

@@ -45,19 +45,6 @@ BulletRunOptions getSettings(const std::string& name, const std::vector<std::str
   return o;
 }
 
-/// An Evaluation of k cylinders with every field NaN.
-Evaluation makeNaNEvaluation(int k) {
-  Evaluation ev;
-  ev.engine = "bullet";
-  ev.cylinders.resize(static_cast<std::size_t>(k));
-  for (const Quantity& q : getQuantityCatalogue())
-    for (int c = q.per_cylinder ? 0 : -1; c < (q.per_cylinder ? k : 0); ++c) {
-      double* v = accessQuantity(q, ev, c);
-      std::fill(v, v + q.components, kNaN);
-    }
-  return ev;
-}
-
 ConstantSpeedRun runStepped(const Mechanism& m, const ConstantSpeedRunOptions& options, const std::vector<std::string>& names) {
   BulletRunOptions o = getSettings(options.settings, names);
   if (!(std::fabs(m.machine.speed) > 0.0))
@@ -73,7 +60,7 @@ ConstantSpeedRun runStepped(const Mechanism& m, const ConstantSpeedRunOptions& o
                   {QuantityId::kPistonAcceleration, 0.0}, {QuantityId::kDriveTorque, 0.0},
                   {QuantityId::kBearingForce, 0.0},    {QuantityId::kCrankPinForce, 0.0},
                   {QuantityId::kWristPinForce, 0.0},   {QuantityId::kWallForce, 0.0}};
-  const Evaluation blank = makeNaNEvaluation(k);
+  const Evaluation blank = makeUnreportedEvaluation("bullet", k);
   out.samples.reserve(run.samples.size());
   for (const BulletSample& b : run.samples) {
     ConstantSpeedSample s;

@@ -69,30 +69,13 @@ void buildOdeModel(OdeModel& model, const Mechanism& m, const OdeRunOptions& o, 
   if (drive == CrankDrive::kMotor) requireOdeOption(o.motor_max_torque > 0.0, "motor_max_torque must be > 0");
   if (drive == CrankDrive::kFreeWithFlywheel && !(m.flywheel_inertia && *m.flywheel_inertia >= 0.0))
     refuse("[flywheel].inertia", "is needed for a free run (the crank carries the scene's flywheel)");
-  if (!m.balance_shafts.empty()) refuse("[[balance_shaft]]", "has no geared coupling in this ODE model");
-  if (!(m.rod.mass > 0.0)) refuse("[rod].mass", "must be > 0 (an ODE body needs a mass)");
-  if (!(m.piston.mass > 0.0)) refuse("[piston].mass", "must be > 0 (an ODE body needs a mass)");
-  const double rod_inertia = m.rod.inertia_about_wrist_pin - m.rod.mass * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
-  if (!(rod_inertia > 0.0))
-    refuse("[rod].inertia_about_wrist_pin", "must exceed m_k z_k^2 (ODE needs the rod's inertia about its centre of mass > 0)");
-
-  // The crank: every throw's m_s at r_s on its crank line and m_p at r_p opposite, one body in the plane z = 0.
-  double crank_mass = 0.0, first_x = 0.0, first_y = 0.0, inertia_o = 0.0;
-  for (int j = 0; j < k; ++j) {
-    const double beta = getThrowAngle(m, j);
-    crank_mass += m.crank.mass + m.crank.counterweight_mass;
-    first_x += (m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius) * std::cos(beta);
-    first_y += (m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius) * std::sin(beta);
-    inertia_o += m.crank.mass * m.crank.com_radius * m.crank.com_radius +
-                 m.crank.counterweight_mass * m.crank.counterweight_radius * m.crank.counterweight_radius;
-  }
-  if (!(crank_mass > 0.0)) refuse("[crank].mass", "and counterweight_mass are 0 (an ODE body needs a mass)");
-  const double cx = first_x / crank_mass, cy = first_y / crank_mass;
+  checkSteppedScene(m, "ODE");
+  const double rod_inertia = calcRodCentroidalInertia(m);
+  const LumpedCrank lumped = calcLumpedCrank(m, "ODE");
+  const double crank_mass = lumped.mass, cx = lumped.p_OBcm[0], cy = lumped.p_OBcm[1];
   // About the centre of mass, along Z; the free run's flywheel turns with the crank about O, so its inertia adds.
-  const double crank_inertia = inertia_o - crank_mass * (cx * cx + cy * cy) +
-                               (drive == CrankDrive::kFreeWithFlywheel ? *m.flywheel_inertia : 0.0);
-  if (!(crank_inertia > 0.0))
-    refuse("[crank].com_radius", "and counterweight_radius leave the crank no inertia about its centre of mass");
+  const double crank_inertia =
+      lumped.inertia_about_cm + (drive == CrankDrive::kFreeWithFlywheel ? *m.flywheel_inertia : 0.0);
 
   initOde();
   model.world.reset(dWorldCreate());

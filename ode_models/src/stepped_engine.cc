@@ -65,19 +65,6 @@ OdeRunOptions makeOptions(const std::string& engine, OdeSolver solver, const Sea
 }
 
 /// An Evaluation of k cylinders with every field NaN.
-Evaluation makeNaNEvaluation(const std::string& engine, int k) {
-  Evaluation ev;
-  ev.engine = engine;
-  ev.phi = ev.U = ev.Q = ev.drive_torque = kNaN;
-  ev.bearing_force = ev.shaking_force = {kNaN, kNaN};
-  ev.shaking_moment = {kNaN, kNaN, kNaN};
-  CylinderEvaluation c;
-  c.x_p = c.v_p = c.a_p = c.wall_force = c.gas_force = c.rod_angle = c.rod_omega = c.rod_alpha = kNaN;
-  c.crank_pin_force = c.wrist_pin_force = {kNaN, kNaN};
-  ev.cylinders.assign(static_cast<size_t>(k), c);
-  return ev;
-}
-
 ConstantSpeedRun runStepped(const std::string& engine, OdeSolver solver, const Mechanism& m, const ConstantSpeedRunOptions& options) {
   if (!(std::fabs(m.machine.speed) > 0.0))
     throw std::invalid_argument(engine + ": [engine].speed_rpm must be != 0 (the run is driven at the scene's speed)");
@@ -87,7 +74,7 @@ ConstantSpeedRun runStepped(const std::string& engine, OdeSolver solver, const M
   out.reported = kInstants;
   out.seconds_per_step = run.seconds_per_step;
   out.samples.reserve(run.samples.size());
-  const Evaluation blank = makeNaNEvaluation(engine, k);
+  const Evaluation blank = makeUnreportedEvaluation(engine, k);
   for (const OdeSample& s : run.samples) {
     ConstantSpeedSample sample;
     sample.t = s.t;

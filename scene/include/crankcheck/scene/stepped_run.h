@@ -52,6 +52,34 @@ struct StartState {
 /// @throws std::invalid_argument if exact has not one cylinder per cylinder of m.
 StartState calcStartState(const Mechanism& m, const Evaluation& exact);
 
+/// The crankshaft as the stepped engines' models build it: one rigid body in the plane z = 0 lumping every throw's m_s
+/// at r_s on its crank line and m_p at r_p opposite, at phi = 0 (the throws' axial spread only moves the bearing's
+/// moments, which these models do not record). Scene data, not a closed form of the loop.
+struct LumpedCrank {
+  double mass = 0.0;              ///< [kg]
+  Vec2 p_OBcm{};                  ///< [m] its centre of mass at phi = 0
+  double inertia_about_o = 0.0;   ///< [kg m^2] about Z through O
+  double inertia_about_cm = 0.0;  ///< [kg m^2] about Z through its centre of mass
+};
+
+/// m's crankshaft lumped (LumpedCrank).
+/// @throws std::invalid_argument "LIBRARY cannot build this scene: [crank].mass ..." for a crank without mass, or
+///         "... [crank].com_radius ..." for one without inertia about its centre of mass.
+LumpedCrank calcLumpedCrank(const Mechanism& m, const std::string& library);
+
+/// The refusals every stepped model shares, each naming its key: `[[balance_shaft]]` (no geared coupling in these
+/// models), `[rod].mass` or `[piston].mass` of 0 (a body needs a mass), `[rod].inertia_about_wrist_pin` not above
+/// m_k z_k^2 (a rod without inertia about its centre of mass).
+/// @throws std::invalid_argument "LIBRARY cannot build this scene: KEY rule".
+void checkSteppedScene(const Mechanism& m, const std::string& library);
+
+/// [kg m^2] The rod's inertia about its centre of mass, I_o - m_k z_k^2 (Steiner).
+double calcRodCentroidalInertia(const Mechanism& m);
+
+/// An Evaluation of `cylinders` cylinders by `engine` with every quantity of the catalogue NaN (quantities.h): a stepped
+/// engine's sample before it fills what it reports (ConstantSpeedSample::values).
+Evaluation makeUnreportedEvaluation(const std::string& engine, int cylinders);
+
 /// Where within its step a stepped engine's value belongs: 0 the step's start, 1 its end, 0.5 its middle; outside
 /// [0, 1] where the engine's value is best read there (Box2D's impulses: -0.5, half a step before the start).
 struct QuantityInstant {

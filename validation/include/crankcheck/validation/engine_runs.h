@@ -126,7 +126,8 @@ std::vector<SteppedFreeRunSpec> listDefaultSteppedFreeRuns(bool quick);
 /// The table `free_run_engines`: one row per run (EngineRunRow's members, in order).
 const Schema<EngineRunRow>& getFreeRunEnginesSchema();
 
-/// The table `stepped_free_runs` of report part stepped_engines: the same columns, the stepped engines' free runs.
+/// The table `stepped_free_runs` of report part stepped_engines: the stepped engines' free runs, the same columns but
+/// the processor time (a measurement; every other column a rerun repeats exactly).
 const Schema<EngineRunRow>& getSteppedFreeRunsSchema();
 
 }  // namespace crankcheck::validation
