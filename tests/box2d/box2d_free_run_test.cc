@@ -17,6 +17,7 @@
 #include "crankcheck/box2d_models/stepped_engine.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/run_measures.h"
+#include "exact_free_run.h"
 #include "stepped_engine_support.h"
 
 namespace crankcheck::box2d_models {
@@ -32,64 +33,14 @@ const SteppedEngine& box2d() {
   return findStepped(engines, "box2d");
 }
 
-StartState exactStart(const Mechanism& m) {
-  return calcStartState(m, validation::getClosedFormEngine().build(m)->evaluate(0.0));
-}
-
-/// The exact free run released at phi = 0 with omega0: phi_dot(phi) (analytic::calcFreeRunSpeed), t(phi) by 8-point
-/// Gauss-Legendre on 256 panels a turn (the integrand smooth: its error far below the engine's float phase), phi(t)
-/// by Newton's method on t(phi) = t.
-class ExactFreeRun {
- public:
-  ExactFreeRun(const Mechanism& m, double omega0) : m_(m), omega0_(omega0) {
-    panel_times_.push_back(0.0);
-    for (int p = 0; p < kPanels * kTurns; ++p)
-      panel_times_.push_back(panel_times_.back() + integrate(p * kPanel, (p + 1) * kPanel));
-  }
-  double speed(double phi) const { return analytic::calcFreeRunSpeed(m_, omega0_, phi); }
-  /// [rad/s^2] d phi_dot / dt = phi_dot d phi_dot / d phi (a central difference, relative step 1e-5).
-  double acceleration(double phi) const {
-    const double h = 1e-5;
-    return speed(phi) * (speed(phi + h) - speed(phi - h)) / (2.0 * h);
-  }
-  double time(double phi) const {
-    const int p = std::clamp(static_cast<int>(std::floor(phi / kPanel)), 0, kPanels * kTurns - 1);
-    return panel_times_[static_cast<size_t>(p)] + integrate(p * kPanel, phi);
-  }
-  double phi(double t) const {
-    double phi = omega0_ * t;
-    for (int i = 0; i < 50; ++i) {
-      const double step = (t - time(phi)) * speed(phi);
-      phi += step;
-      if (std::fabs(step) < 1e-15 * (1.0 + std::fabs(phi))) break;
-    }
-    return phi;
-  }
-
- private:
-  static constexpr int kPanels = 256, kTurns = 4;
-  static constexpr double kPanel = kTwoPi / kPanels;
-  double integrate(double a, double b) const {
-    static constexpr std::array<double, 4> x{0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-                                             0.9602898564975363};
-    static constexpr std::array<double, 4> w{0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
-                                             0.1012285362903763};
-    const double c = 0.5 * (a + b), h = 0.5 * (b - a);
-    double sum = 0.0;
-    for (size_t i = 0; i < x.size(); ++i) sum += w[i] * (1.0 / speed(c - h * x[i]) + 1.0 / speed(c + h * x[i]));
-    return h * sum;
-  }
-  const Mechanism& m_;
-  double omega0_;
-  std::vector<double> panel_times_;
-};
+using crankcheck::testing::ExactFreeRun;
 
 SteppedFreeRun runFree(const Mechanism& m, double dt, double seconds, const std::string& settings = "defaults") {
   SteppedFreeRunOptions o;
   o.dt = dt;
   o.steps = static_cast<long>(std::ceil(seconds / dt)) + 1;
   o.settings = settings;
-  o.start = exactStart(m);
+  o.start = testing::calcExactStartState(m);
   return box2d().run_free(m, o);
 }
 
@@ -128,7 +79,7 @@ TEST(Box2dFreeRunTest, PhaseErrorFallsAtFirstOrder) {
     SCOPED_TRACE(scene);
     const Mechanism m = loadSteppedExample(scene, true);
     ASSERT_TRUE(m.flywheel_inertia.has_value());
-    const ExactFreeRun exact(m, m.machine.speed);
+    const ExactFreeRun exact(m, m.machine.speed, 4);
     const double two_turns = exact.time(2.0 * kTwoPi);
     std::vector<double> errors;
     for (double dt : kSteps) {
@@ -161,7 +112,7 @@ TEST(Box2dFreeRunTest, LosesEnergyAtFirstOrder) {
   for (const char* scene : {"single_cylinder.toml", "inline4_four_stroke.toml"}) {
     SCOPED_TRACE(scene);
     const Mechanism m = loadSteppedExample(scene, true);
-    const ExactFreeRun exact(m, m.machine.speed);
+    const ExactFreeRun exact(m, m.machine.speed, 4);
     std::vector<double> errors;
     for (double dt : {1e-3, 1e-4}) {
       const SteppedFreeRun run = runFree(m, dt, 1.01 * exact.time(2.0 * kTwoPi));
@@ -185,13 +136,13 @@ TEST(Box2dFreeRunTest, LosesEnergyAtFirstOrder) {
 TEST(Box2dFreeRunTest, OmegaBelongsToTheStepsStart) {
   EXPECT_EQ(box2d().run_free(loadSteppedExample("single_cylinder.toml", true),
                              {.dt = 1e-4, .steps = 8, .settings = "defaults",
-                              .start = exactStart(loadSteppedExample("single_cylinder.toml", true))})
+                              .start = testing::calcExactStartState(loadSteppedExample("single_cylinder.toml", true))})
                 .omega_step_fraction,
             0.0);
   for (const char* scene : {"single_cylinder.toml", "inline4_four_stroke.toml"}) {
     SCOPED_TRACE(scene);
     const Mechanism m = loadSteppedExample(scene, true);
-    const ExactFreeRun exact(m, m.machine.speed);
+    const ExactFreeRun exact(m, m.machine.speed, 4);
     const SteppedFreeRun run = runFree(m, 1e-4, exact.time(2.0 * kTwoPi));
     EXPECT_NEAR(fitOmegaFraction(exact, run, 1e-4), run.omega_step_fraction, 0.1);
   }
@@ -205,7 +156,7 @@ TEST(Box2dFreeRunTest, RefusesASceneWithoutFlywheelAndDropsTheGas) {
   SteppedFreeRunOptions o;
   o.dt = 1e-4;
   o.steps = 100;
-  o.start = exactStart(m);
+  o.start = testing::calcExactStartState(m);
   const SteppedFreeRun with_gas = box2d().run_free(m, o);
   m.gas.reset();
   const SteppedFreeRun without = box2d().run_free(m, o);

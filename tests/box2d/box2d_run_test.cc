@@ -34,10 +34,6 @@ const SteppedEngine& box2d() {
   return findStepped(engines, "box2d");
 }
 
-StartState exactStart(const Mechanism& m) {
-  return calcStartState(m, validation::getClosedFormEngine().build(m)->evaluate(0.0));
-}
-
 std::string refusal(const Mechanism& m, const ConstantSpeedRunOptions& o) {
   try {
     box2d().run(m, o);
@@ -59,7 +55,7 @@ struct InstantProbe {
     ConstantSpeedRunOptions o;
     o.dt = dt;
     o.steps = settle + turn;
-    o.start = exactStart(m);
+    o.start = testing::calcExactStartState(m);
     run = box2d().run(m, o);
   }
   double errorAt(QuantityId quantity, double fraction) const {
@@ -85,7 +81,7 @@ TEST(Box2dSteppedTest, RefusesWhatItCannotRunByName) {
   ConstantSpeedRunOptions o;
   o.dt = 1e-4;
   o.steps = 1;
-  o.start = exactStart(base);
+  o.start = testing::calcExactStartState(base);
   EXPECT_EQ(refusal(base, o), "(built)");
   Mechanism shaft = base;
   shaft.balance_shafts.push_back({2.0, 0.1, 0.02, 0.0, {0.0, 0.0, 0.0}});
@@ -121,13 +117,13 @@ TEST(Box2dSteppedTest, RefusesAStepBox2dWouldCap) {
   ConstantSpeedRunOptions o;
   o.dt = 1.0 / 240.0;
   o.steps = 1;
-  o.start = exactStart(four);
+  o.start = testing::calcExactStartState(four);
   EXPECT_NE(refusal(four, o).find("a step of 0.004167 s turns the crank by 2.618 rad, more than Box2D's "
                                   "b2_maxRotation (pi/2)"),
             std::string::npos)
       << refusal(four, o);
   const Mechanism single = loadSteppedExample("single_cylinder.toml");
-  o.start = exactStart(single);
+  o.start = testing::calcExactStartState(single);
   EXPECT_EQ(refusal(single, o), "(built)");
   // b2_maxTranslation (2 m per step): a crank of r = 2 m at 1 rad/s and a step of 1.5 s turns 1.5 rad (below pi/2)
   // but moves the wrist pin up to r omega dt / cos beta_max = 3.1 m.
@@ -136,7 +132,7 @@ TEST(Box2dSteppedTest, RefusesAStepBox2dWouldCap) {
   big.rod.length = 8.0;
   big.machine.speed = 1.0;
   o.dt = 1.5;
-  o.start = exactStart(big);
+  o.start = testing::calcExactStartState(big);
   EXPECT_NE(refusal(big, o).find("b2_maxTranslation (2 m)"), std::string::npos) << refusal(big, o);
 }
 
@@ -153,7 +149,7 @@ TEST(Box2dSteppedTest, StartsFromTheExactStateAndTurnsAtTheScenesSpeed) {
     o.dt = 1e-6;
     o.steps = 1;
     o.settings = "tightened";
-    o.start = exactStart(m);
+    o.start = testing::calcExactStartState(m);
     const ConstantSpeedRun run = box2d().run(m, o);
     ASSERT_EQ(run.samples.size(), 1u);
     EXPECT_LE(run.samples[0].loop_error, sc.acceleration * o.dt * o.dt);
@@ -221,7 +217,9 @@ TEST(Box2dSteppedTest, EachQuantityBelongsToItsInstant) {
       SCOPED_TRACE(nameOf(r.quantity));
       const double at = probe.errorAt(r.quantity, r.step_fraction);
       for (double other : {-1.0, -0.5, -0.25, 0.0, 0.5, 1.0})
-        if (other != r.step_fraction) EXPECT_LT(at, probe.errorAt(r.quantity, other)) << other;
+        if (other != r.step_fraction) {
+          EXPECT_LT(at, probe.errorAt(r.quantity, other)) << other;
+        }
     }
     for (QuantityId q : {QuantityId::kCrankPinForce, QuantityId::kBearingForce}) {
       SCOPED_TRACE(nameOf(q));

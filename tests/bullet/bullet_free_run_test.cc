@@ -17,6 +17,7 @@
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/bullet_models/constant_speed_run.h"
 #include "crankcheck/bullet_models/stepped_engine.h"
+#include "exact_free_run.h"
 #include "stepped_engine_support.h"
 
 namespace crankcheck::bullet_models {
@@ -32,48 +33,7 @@ const SteppedEngine& getBullet() {
   return findStepped(engines, "bullet");
 }
 
-StartState calcExactStart(const Mechanism& m) { return calcStartState(m, analytic::calcEvaluation(m, 0.0)); }
-
-/// The exact free run released at phi = 0 with omega0: phi_dot(phi) from analytic, t(phi) = integral of dphi / phi_dot
-/// by 5-point Gauss-Legendre on cells of a 256th of a turn (phi_dot is smooth: far below 1e-12 s on the example
-/// scenes, whose speed varies by under 1 % per cell), phi(t) by Newton on t(phi).
-class ExactFreeRun {
- public:
-  ExactFreeRun(const Mechanism& m, double omega0, int turns) : m_(m), omega0_(omega0) {
-    cell_ = kTwoPi / 256.0;
-    t_.push_back(0.0);
-    for (int i = 0; i < 256 * turns; ++i) t_.push_back(t_.back() + integrate(i * cell_, (i + 1) * cell_));
-  }
-  double speed(double phi) const { return analytic::calcFreeRunSpeed(m_, omega0_, phi); }
-  /// [s] the time the crank reaches phi (0 <= phi within the tabulated turns).
-  double time(double phi) const {
-    const auto i = static_cast<std::size_t>(std::clamp(std::floor(phi / cell_), 0.0, static_cast<double>(t_.size() - 2)));
-    return t_[i] + integrate(static_cast<double>(i) * cell_, phi);
-  }
-  /// [rad] the crank's angle at t.
-  double angle(double t) const {
-    double phi = omega0_ * t;
-    for (int it = 0; it < 20; ++it) {
-      const double step = (time(phi) - t) * speed(phi);
-      phi -= step;
-      if (std::abs(step) < 1e-15 * std::max(1.0, std::abs(phi))) break;
-    }
-    return phi;
-  }
-
- private:
-  double integrate(double a, double b) const {
-    static constexpr std::array<double, 5> x{0.0, -0.5384693101056831, 0.5384693101056831, -0.9061798459386640, 0.9061798459386640};
-    static constexpr std::array<double, 5> w{0.5688888888888889, 0.4786286704993665, 0.4786286704993665, 0.2369268850561891,
-                                             0.2369268850561891};
-    double sum = 0.0;
-    for (std::size_t q = 0; q < 5; ++q) sum += w[q] / speed(0.5 * (a + b) + 0.5 * (b - a) * x[q]);
-    return 0.5 * (b - a) * sum;
-  }
-  const Mechanism& m_;
-  double omega0_ = 0.0, cell_ = 0.0;
-  std::vector<double> t_;
-};
+using crankcheck::testing::ExactFreeRun;
 
 /// The free run of m at `settings` and dt over `revolutions` turns of the exact run (and a few steps more).
 SteppedFreeRun runFree(const Mechanism& m, const std::string& settings, double dt, double duration) {
@@ -81,7 +41,7 @@ SteppedFreeRun runFree(const Mechanism& m, const std::string& settings, double d
   o.dt = dt;
   o.steps = static_cast<long>(std::ceil(duration / dt)) + 2;
   o.settings = settings;
-  o.start = calcExactStart(m);
+  o.start = testing::calcExactStartState(m);
   return getBullet().run_free(m, o);
 }
 
@@ -92,7 +52,7 @@ double measurePhaseError(const Mechanism& m, const std::string& settings, double
   const double t_end = exact.time(kTwoPi * revolutions);
   const SteppedFreeRun run = runFree(m, settings, dt, t_end);
   const auto i = static_cast<std::size_t>(std::llround(t_end / dt)) - 1;
-  return run.phi[i] - exact.angle(run.time[i]);
+  return run.phi[i] - exact.phi(run.time[i]);
 }
 
 /// The largest differences over a run between its speed after each step and the exact speed at the crank's angle at
@@ -192,7 +152,7 @@ TEST(BulletFreeRunTest, DefaultsCapTheSpeedAndTheDampingDrainsIt) {
   BulletRunOptions o;  // Bullet's defaults but the cap
   o.dt = dt;
   o.steps = static_cast<long>(std::ceil(t2 / dt));
-  o.start = calcExactStart(m);
+  o.start = testing::calcExactStartState(m);
   o.max_coordinate_velocity = std::numeric_limits<double>::infinity();
   const SteppedFreeRun damped = runBulletFree(m, o);
   const SteppedFreeRun neutral = runFree(m, "neutralised", dt, t2);
@@ -222,7 +182,7 @@ TEST(BulletFreeRunTest, RefusesWhatItCannotRunByName) {
       o.dt = dt;
       o.steps = 2;
       o.settings = settings;
-      o.start = calcExactStart(m);
+      o.start = testing::calcExactStartState(m);
       getBullet().run_free(m, o);
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());

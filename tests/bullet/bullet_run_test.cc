@@ -37,8 +37,6 @@ const SteppedEngine& getBullet() {
   return findStepped(engines, "bullet");
 }
 
-StartState calcExactStart(const Mechanism& m) { return calcStartState(m, analytic::calcEvaluation(m, 0.0)); }
-
 /// The engine with the instant of `quantity` moved to `fraction` (the engine's values unchanged): its error read there.
 SteppedEngine readAt(QuantityId quantity, double fraction) {
   SteppedEngine e = getBullet();
@@ -74,7 +72,7 @@ TurnErrors measureTurn(const Mechanism& m, BulletRunOptions o) {
   const long turn = validation::calcStepsPerTurn(m, o.dt);
   const long settle = std::max(validation::kSettlingSteps, turn);
   o.steps = settle + turn;
-  o.start = calcExactStart(m);
+  o.start = testing::calcExactStartState(m);
   const BulletRun run = runBulletAtConstantSpeed(m, o);
   const validation::Scales sc = validation::calcScales(m);
   TurnErrors e;
@@ -112,7 +110,7 @@ TEST(BulletSteppedTest, RefusesWhatItCannotBuildByName) {
     o.dt = 1e-4;
     o.steps = 1;
     o.settings = settings;
-    o.start = calcExactStart(m);
+    o.start = testing::calcExactStartState(m);
     try {
       engine.run(m, o);
     } catch (const std::invalid_argument& e) {
@@ -150,7 +148,7 @@ TEST(BulletSteppedTest, RefusesWhatItCannotBuildByName) {
   };
   BulletRunOptions o;
   o.dt = 1e-4;
-  o.start = calcExactStart(base);
+  o.start = testing::calcExactStartState(base);
   EXPECT_EQ(option_refusal(o), "(built)");
   for (auto [name, option] : {std::tuple{"dt", &BulletRunOptions::dt}, std::tuple{"erp", &BulletRunOptions::erp},
                               std::tuple{"linear_damping", &BulletRunOptions::linear_damping},
@@ -178,7 +176,7 @@ TEST(BulletSteppedTest, SamplesCarryOnlyTheReportedQuantities) {
   ConstantSpeedRunOptions o;
   o.dt = 1e-4;
   o.steps = 3;
-  o.start = calcExactStart(m);
+  o.start = testing::calcExactStartState(m);
   const ConstantSpeedRun run = engine.run(m, o);
   ASSERT_EQ(run.samples.size(), 3u);
   EXPECT_GT(run.seconds_per_step, 0.0);
@@ -209,7 +207,7 @@ TEST(BulletSteppedTest, StartsFromTheExactStateAndTurnsAtTheScenesSpeed) {
     o.erp = 1.0;
     o.solver_iterations = 100;
     o.steps = 1;
-    o.start = calcExactStart(m);
+    o.start = testing::calcExactStartState(m);
     const BulletRun run = runBulletAtConstantSpeed(m, o);
     ASSERT_EQ(run.samples.size(), 1u);
     const BulletSample& s = run.samples[0];
@@ -231,7 +229,7 @@ TEST(BulletSteppedTest, DefaultSpeedCapHoldsTheCrankAt100RadPerSecond) {
   BulletRunOptions capped;
   capped.dt = 1e-4;
   capped.steps = 1000;
-  capped.start = calcExactStart(m);
+  capped.start = testing::calcExactStartState(m);
   const BulletRun run = runBulletAtConstantSpeed(m, capped);
   // phi = 100 t to the rounding of its sum over 1000 steps (1e-16 relative, times 1e3 steps, times 10)
   EXPECT_NEAR(run.samples.back().phi, 100.0 * run.samples.back().t, 1e-12 * 100.0 * run.samples.back().t);
@@ -373,7 +371,7 @@ TEST(BulletSteppedTest, JointFeedbackIsTheForcePlusTheFreePassAgain) {
       const long turn = validation::calcStepsPerTurn(m, dt);
       const long settle = std::max(validation::kSettlingSteps, turn);
       o.steps = settle + turn;
-      o.start = calcExactStart(m);
+      o.start = testing::calcExactStartState(m);
       const BulletRun run = runBulletAtConstantSpeed(m, o);
       double e_raw = 0.0, e_corrected = 0.0;
       for (std::size_t i = static_cast<std::size_t>(settle); i < run.samples.size(); ++i) {

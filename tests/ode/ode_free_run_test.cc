@@ -16,6 +16,7 @@
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/ode_models/free_run.h"
 #include "crankcheck/ode_models/stepped_engine.h"
+#include "exact_free_run.h"
 #include "stepped_engine_support.h"
 
 namespace crankcheck::ode_models {
@@ -31,63 +32,23 @@ const std::vector<SteppedEngine>& engines() {
   return all;
 }
 
-/// The exact free run's phi(t): t(phi) = integral of dphi / phi_dot(phi) (calcFreeRunSpeed) by 8-point Gauss-Legendre
-/// on 400 intervals a turn (the integrand is smooth and periodic: its rounding, 1e-16 of the time, is what remains),
-/// inverted by Newton's method (dt/dphi = 1 / phi_dot).
-class ExactFreeRun {
- public:
-  ExactFreeRun(const Mechanism& m, double omega0, int turns) : m_(m), omega0_(omega0) {
-    node_time_.push_back(0.0);
-    for (int i = 0; i < kIntervals * turns; ++i) node_time_.push_back(node_time_.back() + integrate(i * h_, (i + 1) * h_));
-  }
-  /// [s] the time the crank reaches phi (0 <= phi <= the turns' end).
-  double timeAt(double phi) const {
-    const int i = std::clamp(static_cast<int>(phi / h_), 0, static_cast<int>(node_time_.size()) - 2);
-    return node_time_[static_cast<size_t>(i)] + integrate(i * h_, phi);
-  }
-  /// [rad] the crank's angle at time t.
-  double phiAt(double t) const {
-    const auto it = std::upper_bound(node_time_.begin(), node_time_.end(), t);
-    const size_t i = static_cast<size_t>(std::max<std::ptrdiff_t>(it - node_time_.begin() - 1, 0));
-    double phi = static_cast<double>(i) * h_ + (t - node_time_[i]) * speedAt(static_cast<double>(i) * h_);
-    for (int k = 0; k < 4; ++k) phi -= (timeAt(phi) - t) * speedAt(phi);
-    return phi;
-  }
-  double speedAt(double phi) const { return analytic::calcFreeRunSpeed(m_, omega0_, phi); }
-
- private:
-  static constexpr int kIntervals = 400;
-  double integrate(double a, double b) const {
-    static constexpr std::array<double, 4> x{0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
-    static constexpr std::array<double, 4> w{0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
-    const double c = 0.5 * (a + b), r = 0.5 * (b - a);
-    double sum = 0.0;
-    for (size_t k = 0; k < x.size(); ++k) sum += w[k] * (1.0 / speedAt(c - r * x[k]) + 1.0 / speedAt(c + r * x[k]));
-    return r * sum;
-  }
-  Mechanism m_;
-  double omega0_;
-  double h_ = kTwoPi / kIntervals;
-  std::vector<double> node_time_;
-};
-
-StartState exactStart(const Mechanism& m) { return calcStartState(m, analytic::calcEvaluation(m, 0.0)); }
+using crankcheck::testing::ExactFreeRun;
 
 SteppedFreeRun runFree(const SteppedEngine& e, const Mechanism& m, const std::string& settings, double dt, long steps) {
   SteppedFreeRunOptions o;
   o.dt = dt;
   o.steps = steps;
   o.settings = settings;
-  o.start = exactStart(m);
+  o.start = testing::calcExactStartState(m);
   return e.run_free(m, o);
 }
 
 /// [rad] The largest |phi - phi_exact(t)| over the samples within the exact run's first `turns` turns.
 double phaseError(const SteppedFreeRun& run, const ExactFreeRun& exact, int turns) {
-  const double horizon = exact.timeAt(turns * kTwoPi);
+  const double horizon = exact.time(turns * kTwoPi);
   double worst = 0.0;
   for (size_t i = 0; i < run.time.size() && run.time[i] <= horizon; ++i)
-    worst = std::max(worst, std::abs(run.phi[i] - exact.phiAt(run.time[i])));
+    worst = std::max(worst, std::abs(run.phi[i] - exact.phi(run.time[i])));
   return worst;
 }
 
@@ -97,7 +58,7 @@ double speedError(const SteppedFreeRun& run, const ExactFreeRun& exact, double f
   double worst = 0.0;
   for (size_t i = 0; i < run.phi.size() && run.phi[i] <= turns * kTwoPi; ++i) {
     const double before = i == 0 ? 0.0 : run.phi[i - 1];
-    worst = std::max(worst, std::abs(run.omega[i] - exact.speedAt(before + f * (run.phi[i] - before))));
+    worst = std::max(worst, std::abs(run.omega[i] - exact.speed(before + f * (run.phi[i] - before))));
   }
   return worst;
 }
@@ -111,7 +72,7 @@ double halfStepLag(const SteppedFreeRun& run, const ExactFreeRun& exact, int tur
   double worst = 0.0;
   for (size_t i = 0; i < run.phi.size() && run.phi[i] <= turns * kTwoPi; ++i) {
     const double before = i == 0 ? 0.0 : run.phi[i - 1];
-    worst = std::max(worst, std::abs(exact.speedAt(run.phi[i]) - exact.speedAt(0.5 * (before + run.phi[i]))));
+    worst = std::max(worst, std::abs(exact.speed(run.phi[i]) - exact.speed(0.5 * (before + run.phi[i]))));
   }
   return worst;
 }

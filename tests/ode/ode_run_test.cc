@@ -34,8 +34,6 @@ const std::vector<SteppedEngine>& engines() {
   return all;
 }
 
-StartState exactStart(const Mechanism& m, double phi = 0.0) { return calcStartState(m, analytic::calcEvaluation(m, phi)); }
-
 /// The quantities every ODE engine reports, each by its catalogue name.
 std::vector<std::string> reportedNames() {
   std::vector<std::string> names;
@@ -76,7 +74,7 @@ TEST(OdeSteppedEngineTest, ReportsOnlyItsQuantitiesAtTheirInstants) {
   ConstantSpeedRunOptions o;
   o.dt = 1e-4;
   o.steps = 2;
-  o.start = exactStart(m);
+  o.start = testing::calcExactStartState(m);
   const ConstantSpeedRun run = findStepped(engines(), "ode").run(m, o);
   ASSERT_EQ(run.samples.size(), 2u);
   EXPECT_GT(run.seconds_per_step, 0.0);
@@ -109,7 +107,7 @@ TEST(OdeSteppedEngineTest, RefusesWhatItCannotBuildByName) {
   ConstantSpeedRunOptions o;
   o.dt = 1e-4;
   o.steps = 1;
-  o.start = exactStart(base);
+  o.start = testing::calcExactStartState(base);
   for (const SteppedEngine& e : engines()) {
     SCOPED_TRACE(e.name);
     ConstantSpeedRunOptions unknown = o;
@@ -122,7 +120,7 @@ TEST(OdeSteppedEngineTest, RefusesWhatItCannotBuildByName) {
     EXPECT_NE(refusal(e, still, o).find("speed"), std::string::npos);
     Mechanism shafts = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_pin_offset.toml");
     ConstantSpeedRunOptions o4 = o;
-    o4.start = exactStart(shafts);
+    o4.start = testing::calcExactStartState(shafts);
     EXPECT_NE(refusal(e, shafts, o4).find("[[balance_shaft]]"), std::string::npos);
     Mechanism slender = base;
     slender.rod.inertia_about_wrist_pin = slender.rod.mass * slender.rod.com_from_wrist_pin * slender.rod.com_from_wrist_pin;
@@ -155,7 +153,7 @@ TEST(OdeSteppedEngineTest, StartsFromTheStartStateHandedIn) {
       o.dt = 1e-7;
       o.steps = 1;
       o.finite_rotation = true;
-      o.start = exactStart(m, phi);
+      o.start = testing::calcExactStartState(m, phi);
       const OdeRun run = runOdeAtConstantSpeed(m, o);
       ASSERT_EQ(run.samples.size(), 1u);
       const OdeSample& s = run.samples[0];
@@ -175,7 +173,7 @@ TEST(OdeSteppedEngineTest, DefaultRotationUpdateSlowsTheCrank) {
   ConstantSpeedRunOptions o;
   o.dt = 1.0 / 240.0;
   o.steps = 4;
-  o.start = exactStart(m);
+  o.start = testing::calcExactStartState(m);
   const double h = m.machine.speed * o.dt;
   for (const SteppedEngine& e : engines()) {
     SCOPED_TRACE(e.name);
@@ -197,7 +195,7 @@ TEST(OdeSteppedEngineTest, DefaultRotationUpdateSlowsTheCrank) {
 TEST(OdeSteppedEngineTest, OtherPhysicsChangingDefaultsAreOff) {
   const Mechanism m = loadSteppedExample("single_cylinder.toml");
   OdeRunOptions o;
-  o.start = exactStart(m);
+  o.start = testing::calcExactStartState(m);
   const OdeRun run = runOdeAtConstantSpeed(m, o);
   EXPECT_EQ(run.world.linear_damping, 0.0);
   EXPECT_EQ(run.world.angular_damping, 0.0);
@@ -214,7 +212,7 @@ TEST(OdeSteppedEngineTest, SingularSolveThrows) {
   o.erp = 1.0;
   o.finite_rotation = true;
   o.cfm = 0.0;
-  o.start = exactStart(m);
+  o.start = testing::calcExactStartState(m);
   EXPECT_THROW(runOdeAtConstantSpeed(m, o), std::runtime_error);
 }
 
@@ -225,7 +223,7 @@ TEST(OdeSteppedEngineTest, FirstStepMissesTheInertiaLoad) {
   const Mechanism m = loadSteppedExample("single_cylinder.toml", true);
   OdeRunOptions o;
   o.dt = 1e-5;
-  o.start = exactStart(m);
+  o.start = testing::calcExactStartState(m);
   const OdeRun run = runOdeAtConstantSpeed(m, o);
   Mechanism at_rest = m;
   at_rest.machine.speed = 0.0;
@@ -244,7 +242,7 @@ TEST(OdeSteppedEngineTest, PinFeedbackIsActionAndReaction) {
   OdeRunOptions o;
   o.dt = 1e-4;
   o.steps = 200;
-  o.start = exactStart(m);
+  o.start = testing::calcExactStartState(m);
   for (const OdeSample& s : runOdeAtConstantSpeed(m, o).samples)
     for (const OdeCylinderSample& c : s.cylinders)
       for (const OdeJointForce& f : {c.crank_pin, c.wrist_pin})
@@ -332,7 +330,7 @@ TEST(OdeSteppedEngineTest, EachQuantityBelongsToItsStatedInstant) {
     const long turn = validation::calcStepsPerTurn(m, dt);
     const long settle = std::max(validation::kSettlingSteps, turn);
     o.steps = settle + turn;
-    o.start = exactStart(m);
+    o.start = testing::calcExactStartState(m);
     const ConstantSpeedRun run = findStepped(engines(), "ode").run(m, o);
     const size_t first = static_cast<size_t>(settle);
     for (QuantityId q : {QuantityId::kDriveTorque, QuantityId::kBearingForce, QuantityId::kCrankPinForce,
@@ -397,7 +395,7 @@ TEST(OdeSteppedEngineTest, TightenedQuickStepNeedsItsIterationsAtTheUsersStep) {
   o.erp = 1.0;
   o.finite_rotation = true;
   o.solver = OdeSolver::kQuickStep;
-  o.start = exactStart(m);
+  o.start = testing::calcExactStartState(m);
   const long turn = validation::calcStepsPerTurn(m, dt);
   const long settle = std::max(validation::kSettlingSteps, turn);
   o.steps = settle + turn;

@@ -13,6 +13,7 @@
 
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/stepped_errors.h"
 
 namespace crankcheck::testing {
@@ -24,6 +25,11 @@ inline Mechanism loadSteppedExample(const std::string& name, bool drop_gas = fal
   if (drop_gas) m.gas.reset();
   m.balance_shafts.clear();
   return m;
+}
+
+/// The exact state of m at crank angle phi and m's speed (the analytic engine's evaluation): where a stepped run starts.
+inline StartState calcExactStartState(const Mechanism& m, double phi = 0.0) {
+  return calcStartState(m, validation::getClosedFormEngine().build(m)->evaluate(phi));
 }
 
 /// The engine called `name` of `engines` (a folder's describeSteppedEngines()). Fails the test if there is none.
