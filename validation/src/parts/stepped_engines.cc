@@ -199,15 +199,24 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
   }
   // 5. The free runs: each engine's energy trend, delta and phase at each settings and step.
   {
+    // Each engine at its defaults; where no run at the defaults could be judged (Bullet's speed cap), its next settings.
     std::string s;
     for (const SteppedEngine& e : listSteppedEngines())
-      for (const EngineRunRow& r : getRows(tables, getSteppedFreeRunsSchema()))
-        if (r.engine == e.name && r.integrator == "defaults")
-          s += (s.empty() ? "" : "; ") + e.name + " at " + formatStep(r.accuracy) + ": energy " +
-               shortNumber(r.energy_trend_per_revolution) + " a revolution, delta " + shortNumber(r.delta_error_rel) +
-               " off, phase " + shortNumber(r.phase_error_at_horizon) + " rad after " + std::to_string(r.revolutions) + " turns";
+      for (const std::string& settings : e.settings) {
+        bool any = false;
+        for (const EngineRunRow& r : getRows(tables, getSteppedFreeRunsSchema()))
+          if (r.engine == e.name && r.integrator == settings) {
+            any = true;
+            s += (s.empty() ? "" : "; ") + e.name + (settings == "defaults" ? "" : " (" + settings + ")") + " at " +
+                 formatStep(r.accuracy) + ": energy " + shortNumber(r.energy_trend_per_revolution) +
+                 " a revolution, delta " + shortNumber(r.delta_error_rel) + " off, phase " +
+                 shortNumber(r.phase_error_at_horizon) + " rad after " + std::to_string(r.revolutions) + " turns";
+          }
+        if (any) break;
+      }
     if (!s.empty())
-      part.paragraphs.push_back("Free runs at the defaults (no drive, the scene's flywheel, gravity alone, released at "
+      part.paragraphs.push_back("Free runs at the defaults, or the first settings that could be judged (no drive, the "
+                                "scene's flywheel, gravity alone, released at "
                                 "the scene's speed; judged as grade --free-run judges a program's run; every settings in "
                                 "data/stepped_free_runs.csv; " + reproduce(scene, "--free") + "): " + s + ".");
   }
