@@ -122,9 +122,15 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
     for (const SteppedSummaryRow& r : summary) {
       if (r.settings != "defaults" || seen.count(r.engine)) continue;
       seen.insert(r.engine);
+      // The largest step that meets the target with every smaller step measured.
       double largest = 0.0;
-      for (const SteppedSummaryRow& q : summary)
-        if (q.engine == r.engine && q.settings == "defaults" && q.loads <= target) largest = std::max(largest, q.dt);
+      for (const SteppedSummaryRow& q : summary) {
+        if (q.engine != r.engine || q.settings != "defaults" || !(q.loads <= target)) continue;
+        bool below = true;
+        for (const SteppedSummaryRow& f : summary)
+          if (f.engine == r.engine && f.settings == "defaults" && f.dt < q.dt && !(f.loads <= target)) below = false;
+        if (below) largest = std::max(largest, q.dt);
+      }
       parts_of.push_back(r.engine + (largest > 0.0 ? " from " + formatStep(largest) + " down" : " at none of the steps"));
     }
     if (!parts_of.empty()) {
