@@ -64,8 +64,10 @@ std::vector<double> getDefaultSteppedSteps();
 double countSteppedSteps(const Mechanism& m, const std::vector<const SteppedEngine*>& engines,
                          const std::vector<std::string>& settings, const std::vector<double>& steps);
 
-/// The most steps countSteppedSteps may give a sweep (a few minutes at the costliest engine's ~20 us per step).
-inline constexpr double kMaxSteppedSteps = 2e7;
+/// The most steps countSteppedSteps may give a sweep: minutes at most at these engines' 2 to 200 us a step (ODE's
+/// direct solve on a V8 is the dearest), and ample for the default series on the slowest example scene (the marine
+/// six at 105 rpm: 1.3e6 steps at 1e-5 s).
+inline constexpr double kMaxSteppedSteps = 2e6;
 
 /// Runs every engine of `engines` at each of `settings` (empty: each engine's every settings; a name an engine does
 /// not have is skipped for it) and each of `steps` (sorted here from the largest) on m, named `scene` in the rows.
