@@ -278,7 +278,9 @@ TEST(BulletSteppedTest, TightenedSettingsEachEarnTheirPlace) {
   };
   const double e10 = at_iterations(10), e100 = at_iterations(100), e1000 = at_iterations(1000);
   EXPECT_GT(e10, 2.0 * e100);                 // measured 3.0
-  EXPECT_NEAR(e1000, e100, 1e-6 * e100);      // the projected Gauss-Seidel sweep has converged by 100
+  // The projected Gauss-Seidel sweep has converged by 100: 1000 sweeps change no printed digit of 100's (measured);
+  // 1e-6 of the error is far above the sweeps' rounding and far below the 3x a sweep count that matters changes.
+  EXPECT_NEAR(e1000, e100, 1e-6 * e100);
 }
 
 struct ConvergenceCase {
