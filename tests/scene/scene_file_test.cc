@@ -193,7 +193,8 @@ INSTANTIATE_TEST_SUITE_P(
     TopLevel, BadSceneTest,
     ::testing::Values(
         BadScene{"version_zero", "[engine]", "format_version = 0\n[engine]", "format_version", "must be 1 (got 0)"},
-        BadScene{"version_float", "[engine]", "format_version = 1.0\n[engine]", "format_version", "must be an integer"},
+        BadScene{"version_fraction", "[engine]", "format_version = 1.5\n[engine]", "format_version",
+                 "must be an integer (got 1.5)"},
         BadScene{"version_string", "[engine]", "format_version = \"1\"\n[engine]", "format_version", "must be an integer"},
         BadScene{"name_number", "[engine]", "name = 4\n[engine]", "name", "must be a string"},
         BadScene{"description_table", "[engine]", "[description]\ntext = \"x\"\n[engine]", "description",
