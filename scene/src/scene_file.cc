@@ -62,6 +62,19 @@ std::string formatNumber(double x) {
   throw SceneError(source + ": " + key + ": " + rule);
 }
 
+// A TOML integer given for a number key, as a double. Beyond 2^53 a double cannot hold every integer, and the nearest
+// one may lie on the other side of a limit: 1000000000000000001 rounds to 1e18, the limit of the inertias, stiffness
+// and damping. The double next to the integer away from zero is taken instead (|x| >= |i|, at most one ulp more), so
+// that every limit, itself a double, compares with the value as typed: 1000000000000000001 is above 1e18.
+double numberFromInteger(long long i) {
+  double x = static_cast<double>(i);
+  if (x >= 0x1p63) return x;  // i near 2^63 rounded up to 2^63, already away from zero (and beyond long long)
+  const long long back = static_cast<long long>(x);
+  if (i > 0 && back < i) x = std::nextafter(x, HUGE_VAL);
+  if (i < 0 && back > i) x = std::nextafter(x, -HUGE_VAL);
+  return x;
+}
+
 // The value of an integer key (format_version, [engine].cylinders, each index of [gas].firing_order): a TOML integer,
 // or a float whose value is an exact integer, 4.0 being 4 (the JSON Schema that editors check scenes with cannot tell
 // 4.0 from 4, so neither does crankcheck). Refused, naming the key: any other type ("must be an integer"); a float
@@ -167,7 +180,7 @@ class TableReader {
     if (node.is_floating_point()) {
       x = node.as_floating_point()->get();
     } else if (node.is_integer()) {
-      x = static_cast<double>(node.as_integer()->get());
+      x = numberFromInteger(node.as_integer()->get());
     } else {
       fail(source_, key_name, "must be a number");
     }
