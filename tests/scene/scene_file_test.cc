@@ -760,13 +760,15 @@ TEST(SceneIntegers, IntegralFloatIsTheInteger) {
   EXPECT_EQ(m.machine.cylinders, 2);
   EXPECT_EQ(m.machine.crank_angles, parseScene(kGoodScene, "scenes/int.toml").machine.crank_angles)
       << "the phase angles of 2 cylinders, as with cylinders = 2";
-  EXPECT_EQ(parseScene(replaced(kGoodScene, "[engine]", "format_version = 1.0\n[engine]"), "v.toml").machine.cylinders, 2);
+  const std::string version = replaced(kGoodScene, "[engine]", "format_version = 1.0\n[engine]");
+  EXPECT_EQ(parseScene(version, "scenes/version.toml").machine.cylinders, 2);
   // With [[cylinder]] tables the count equals their number, 2.0 as 2.
   EXPECT_EQ(parseScene(replaced(kLayoutScene, "speed_rpm = 3000", "speed_rpm = 3000\ncylinders = 2.0"), "v2.toml")
                 .machine.cylinders,
             2);
   // firing_order [1.0, 0.0] is [1, 0]: cylinder 1 fires at 0, cylinder 0 at 360 degrees.
-  EXPECT_EQ(parseScene(replaced(kGasScene, "firing_order = [1, 0]", "firing_order = [1.0, 0.0]"), "gas.toml").firing_angles,
+  const std::string order = replaced(kGasScene, "firing_order = [1, 0]", "firing_order = [1.0, 0.0]");
+  EXPECT_EQ(parseScene(order, "scenes/gas.toml").firing_angles,
             (std::vector<double>{radiansFromDegrees(360), 0.0}));
 }
 
@@ -785,7 +787,8 @@ INSTANTIATE_TEST_SUITE_P(
         // the next double after 2: not an integer
         BadScene{"cylinders_next_to_2", "cylinders = 2", "cylinders = 2.0000000000000004", "[engine].cylinders",
                  "must be an integer (got 2.0000000000000004)"},
-        BadScene{"cylinders_nan", "cylinders = 2", "cylinders = nan", "[engine].cylinders", "must be an integer (got nan)"},
+        BadScene{"cylinders_nan", "cylinders = 2", "cylinders = nan", "[engine].cylinders",
+                 "must be an integer (got nan)"},
         BadScene{"cylinders_inf", "cylinders = 2", "cylinders = -inf", "[engine].cylinders",
                  "must be an integer (got -inf)"},
         BadScene{"cylinders_65_as_float", "cylinders = 2", "cylinders = 65.0", "[engine].cylinders",
@@ -796,7 +799,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "must be between 1 and 64 (got 0)"},
         BadScene{"version_2_as_float", "[engine]", "format_version = 2.0\n[engine]", "format_version",
                  "scene format 2 is newer than this crankcheck reads (format 1): use a newer crankcheck"},
-        BadScene{"version_0_as_float", "[engine]", "format_version = 0.0\n[engine]", "format_version", "must be 1 (got 0)"},
+        BadScene{"version_0_as_float", "[engine]", "format_version = 0.0\n[engine]", "format_version",
+                 "must be 1 (got 0)"},
         BadScene{"firing_order_fraction", "firing_order = [1, 0]", "firing_order = [1, 0.5]", "[gas].firing_order[1]",
                  "must be an integer (got 0.5)", &kGasScene},
         BadScene{"firing_order_beyond_k_as_float", "firing_order = [1, 0]", "firing_order = [1, 2.0]",
