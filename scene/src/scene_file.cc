@@ -62,6 +62,43 @@ std::string formatNumber(double x) {
   throw SceneError(source + ": " + key + ": " + rule);
 }
 
+// A TOML integer given for a number key, as a double. Beyond 2^53 a double cannot hold every integer, and the nearest
+// one may lie on the other side of a limit: 1000000000000000001 rounds to 1e18, the limit of the inertias, stiffness
+// and damping. The double next to the integer away from zero is taken instead (|x| >= |i|, at most one ulp more), so
+// that every limit, itself a double, compares with the value as typed: 1000000000000000001 is above 1e18.
+double numberFromInteger(long long i) {
+  double x = static_cast<double>(i);
+  if (x >= 0x1p63) return x;  // i near 2^63 rounded up to 2^63, already away from zero (and beyond long long)
+  const long long back = static_cast<long long>(x);
+  if (i > 0 && back < i) x = std::nextafter(x, HUGE_VAL);
+  if (i < 0 && back > i) x = std::nextafter(x, -HUGE_VAL);
+  return x;
+}
+
+// The value of an integer key (format_version, [engine].cylinders, each index of [gas].firing_order): a TOML integer,
+// or a float whose value is an exact integer, 4.0 being 4 (the JSON Schema that editors check scenes with cannot tell
+// 4.0 from 4, so neither does crankcheck). Refused, naming the key: any other type ("must be an integer"); a float
+// with a fraction, NaN or infinity ("must be an integer (got 4.5)"); a value outside lo..hi, with the key's own rule
+// outside(above, got), `above` telling which side and `got` the value as typed (a float in its shortest form), so
+// that 65 and 65.0 (and 1e300, beyond every 64-bit integer) get the same message. Every integer key is read here.
+template <typename Outside>
+long long integerValue(const toml::node& node, const std::string& source, const std::string& key, int lo, int hi,
+                       const Outside& outside) {
+  if (const toml::value<int64_t>* integer = node.as_integer()) {
+    const long long v = integer->get();
+    if (v < lo || v > hi) fail(source, key, outside(v > hi, std::to_string(v)));
+    return v;
+  }
+  if (const toml::value<double>* floating = node.as_floating_point()) {
+    const double x = floating->get();
+    if (!std::isfinite(x) || x != std::trunc(x)) fail(source, key, "must be an integer (got " + formatNumber(x) + ")");
+    // lo and hi are ints, exact as doubles: x within them converts to long long exactly.
+    if (x < lo || x > hi) fail(source, key, outside(x > hi, formatNumber(x == 0.0 ? 0.0 : x)));  // -0 as 0
+    return static_cast<long long>(x);
+  }
+  fail(source, key, "must be an integer");
+}
+
 // Reads one table of the scene, keeping track of which keys were used so that unknown keys are refused.
 class TableReader {
  public:
@@ -108,11 +145,12 @@ class TableReader {
     return toNumber(*node, key(k));
   }
 
-  long long integer(const std::string& k) {
+  // An integer key within lo..hi (integerValue).
+  template <typename Outside>
+  long long integer(const std::string& k, int lo, int hi, const Outside& outside) {
     const toml::node* node = find(k);
     if (node == nullptr) fail(source_, key(k), "missing key");
-    if (!node->is_integer()) fail(source_, key(k), "must be an integer");
-    return node->as_integer()->get();
+    return integerValue(*node, source_, key(k), lo, hi, outside);
   }
 
   std::string string(const std::string& k, std::optional<std::string> fallback = std::nullopt) {
@@ -142,7 +180,7 @@ class TableReader {
     if (node.is_floating_point()) {
       x = node.as_floating_point()->get();
     } else if (node.is_integer()) {
-      x = static_cast<double>(node.as_integer()->get());
+      x = numberFromInteger(node.as_integer()->get());
     } else {
       fail(source_, key_name, "must be a number");
     }
@@ -388,17 +426,11 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
   }
   // format_version first: a scene written for a newer format is refused as such, not by the first key it added.
   if (const toml::node* version = root.get("format_version")) {
-    if (!version->is_integer())
-      fail(source, "format_version", "must be an integer (this crankcheck reads scene format " +
-                                         std::to_string(kSceneFormatVersion) + ")");
-    const long long v = version->as_integer()->get();
-    if (v > kSceneFormatVersion)
-      fail(source, "format_version",
-           "scene format " + std::to_string(v) + " is newer than this crankcheck reads (format " +
-               std::to_string(kSceneFormatVersion) + "): use a newer crankcheck");
-    if (v < 1)
-      fail(source, "format_version",
-           "must be " + std::to_string(kSceneFormatVersion) + " (got " + std::to_string(v) + ")");
+    integerValue(*version, source, "format_version", 1, kSceneFormatVersion, [](bool above, const std::string& got) {
+      return above ? "scene format " + got + " is newer than this crankcheck reads (format " +
+                         std::to_string(kSceneFormatVersion) + "): use a newer crankcheck"
+                   : "must be " + std::to_string(kSceneFormatVersion) + " (got " + got + ")";
+    });
   }
   for (const char* key : {"name", "description"})
     if (const toml::node* text = root.get(key); text != nullptr && !text->is_string())
@@ -431,10 +463,13 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
   TableReader engine(root, "engine", source, true,
                      {"cylinders", "cycle", "acting", "crank_angles_deg", "cylinder_angle_deg", "cylinder_spacing",
                       "speed_rpm", "gravity", "pin_offset"});
+  const auto cylinder_count = [](bool, const std::string& got) {
+    return "must be between 1 and " + std::to_string(kMaxCylinders) + " (got " + got + ")";
+  };
   long long cylinders = 0;
   if (layout != nullptr) {
     cylinders = static_cast<long long>(layout->size());
-    if (engine.find("cylinders") != nullptr && engine.integer("cylinders") != cylinders)
+    if (engine.find("cylinders") != nullptr && engine.integer("cylinders", 1, kMaxCylinders, cylinder_count) != cylinders)
       fail(source, engine.key("cylinders"),
            "must equal the number of [[cylinder]] tables (" + std::to_string(cylinders) + "), or be left out");
     for (const char* key : {"cylinder_angle_deg", "crank_angles_deg", "cylinder_spacing", "pin_offset"})
@@ -442,10 +477,8 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
         fail(source, engine.key(key), std::string("must be absent when [[cylinder]] tables place each cylinder") +
                                           (std::string(key) == "pin_offset" ? " (give pin_offset in each [[cylinder]])" : ""));
   } else {
-    cylinders = engine.integer("cylinders");
+    cylinders = engine.integer("cylinders", 1, kMaxCylinders, cylinder_count);
   }
-  if (cylinders < 1 || cylinders > kMaxCylinders)
-    fail(source, engine.key("cylinders"), "must be between 1 and 64 (got " + std::to_string(cylinders) + ")");
   m.machine.cylinders = static_cast<int>(cylinders);
   const std::string cycle = engine.string("cycle");
   if (cycle == "two-stroke") m.machine.cycle = Cycle::kTwoStroke;
@@ -620,12 +653,12 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
       if (list == nullptr || list->size() != static_cast<size_t>(cylinders))
         fail(source, gas.key("firing_order"), "must list each of the " + std::to_string(cylinders) + " cylinders once");
       m.firing_angles.assign(static_cast<size_t>(cylinders), -1.0);
+      const std::string index_rule = "must be a cylinder index 0.." + std::to_string(cylinders - 1) + ", each once";
       for (size_t i = 0; i < list->size(); ++i) {
-        const toml::node* item = list->get(i);
-        const long long j = item->is_integer() ? item->as_integer()->get() : -1;
-        if (j < 0 || j >= cylinders || m.firing_angles[static_cast<size_t>(j)] >= 0.0)
-          fail(source, gas.key("firing_order") + "[" + std::to_string(i) + "]",
-               "must be a cylinder index 0.." + std::to_string(cylinders - 1) + ", each once");
+        const std::string key = gas.key("firing_order") + "[" + std::to_string(i) + "]";
+        const long long j = integerValue(*list->get(i), source, key, 0, static_cast<int>(cylinders - 1),
+                                         [&](bool, const std::string& got) { return index_rule + " (got " + got + ")"; });
+        if (m.firing_angles[static_cast<size_t>(j)] >= 0.0) fail(source, key, index_rule + " (got " + std::to_string(j) + " again)");
         m.firing_angles[static_cast<size_t>(j)] = radiansFromDegrees(cycle_deg * static_cast<double>(i) / static_cast<double>(cylinders));
       }
     } else if (gas.find("firing_order") != nullptr) {

@@ -193,7 +193,8 @@ INSTANTIATE_TEST_SUITE_P(
     TopLevel, BadSceneTest,
     ::testing::Values(
         BadScene{"version_zero", "[engine]", "format_version = 0\n[engine]", "format_version", "must be 1 (got 0)"},
-        BadScene{"version_float", "[engine]", "format_version = 1.0\n[engine]", "format_version", "must be an integer"},
+        BadScene{"version_fraction", "[engine]", "format_version = 1.5\n[engine]", "format_version",
+                 "must be an integer (got 1.5)"},
         BadScene{"version_string", "[engine]", "format_version = \"1\"\n[engine]", "format_version", "must be an integer"},
         BadScene{"name_number", "[engine]", "name = 4\n[engine]", "name", "must be a string"},
         BadScene{"description_table", "[engine]", "[description]\ntext = \"x\"\n[engine]", "description",
@@ -531,6 +532,9 @@ INSTANTIATE_TEST_SUITE_P(
                     "[rod].inertia_about_wrist_pin: must be at most 1e18 kg m^2 (1e6 kg at 1e6 m) (got 1.000001e+18)"},
         BeyondLimit{"flywheel_inertia_above_1e18", "inertia = 0.1", "inertia = 2e18",
                     "[flywheel].inertia: must be at most 1e18 kg m^2 (1e6 kg at 1e6 m) (got 2e+18)"},
+        // an integer just above 1e18, whose nearest double is 1e18: refused (SCENE-FORMAT.md, "Limits")
+        BeyondLimit{"flywheel_inertia_integer_just_above_1e18", "inertia = 0.1", "inertia = 1000000000000000001",
+                    "[flywheel].inertia: must be at most 1e18 kg m^2 (1e6 kg at 1e6 m) (got 1000000000000000128)"},
         // speed, gravity, angles
         BeyondLimit{"speed_above_1e6_rpm", "speed_rpm = 3000", "speed_rpm = 1.000001e6",
                     "[engine].speed_rpm: must be at most 1e6 rpm (got 1000001)"},
@@ -738,6 +742,74 @@ TEST(Gas, FiringAngleBelongsWithAGasTable) {
   text.replace(text.find("axial_position = 0.0"), 20, "axial_position = 0.0\nfiring_angle_deg = 0");
   expectRefused(text, "scenes/v2.toml", BadScene{"", "", "", "cylinder[0].firing_angle_deg", "belongs with a [gas] table"});
 }
+
+// ---------------------------------------------------------------------------------------------------------------
+// Integer keys (docs/SCENE-FORMAT.md, "What is refused"): format_version, [engine].cylinders and the indices of
+// [gas].firing_order take a float whose value is an exact integer as that integer (the JSON Schema that editors check
+// scenes with cannot tell 2.0 from 2); a fraction, NaN, infinity or a value beyond the key's range is refused with
+// one line naming the file and the key.
+
+std::string replaced(std::string text, const std::string& find, const std::string& replace) {
+  const size_t at = text.find(find);
+  if (at == std::string::npos) throw std::logic_error("test setup: line not found: " + find);
+  return text.replace(at, find.size(), replace);
+}
+
+TEST(SceneIntegers, IntegralFloatIsTheInteger) {
+  const Mechanism m = parseScene(replaced(kGoodScene, "cylinders = 2", "cylinders = 2.0"), "scenes/float.toml");
+  EXPECT_EQ(m.machine.cylinders, 2);
+  EXPECT_EQ(m.machine.crank_angles, parseScene(kGoodScene, "scenes/int.toml").machine.crank_angles)
+      << "the phase angles of 2 cylinders, as with cylinders = 2";
+  const std::string version = replaced(kGoodScene, "[engine]", "format_version = 1.0\n[engine]");
+  EXPECT_EQ(parseScene(version, "scenes/version.toml").machine.cylinders, 2);
+  // With [[cylinder]] tables the count equals their number, 2.0 as 2.
+  EXPECT_EQ(parseScene(replaced(kLayoutScene, "speed_rpm = 3000", "speed_rpm = 3000\ncylinders = 2.0"), "v2.toml")
+                .machine.cylinders,
+            2);
+  // firing_order [1.0, 0.0] is [1, 0]: cylinder 1 fires at 0, cylinder 0 at 360 degrees.
+  const std::string order = replaced(kGasScene, "firing_order = [1, 0]", "firing_order = [1.0, 0.0]");
+  EXPECT_EQ(parseScene(order, "scenes/gas.toml").firing_angles,
+            (std::vector<double>{radiansFromDegrees(360), 0.0}));
+}
+
+TEST(SceneIntegers, FractionIsRefusedNamingTheKey) {
+  try {
+    parseScene(replaced(kGoodScene, "cylinders = 2", "cylinders = 2.5"), "scenes/float.toml");
+    FAIL() << "accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()), "scenes/float.toml: [engine].cylinders: must be an integer (got 2.5)");
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Integers, BadSceneTest,
+    ::testing::Values(
+        // the next double after 2: not an integer
+        BadScene{"cylinders_next_to_2", "cylinders = 2", "cylinders = 2.0000000000000004", "[engine].cylinders",
+                 "must be an integer (got 2.0000000000000004)"},
+        BadScene{"cylinders_nan", "cylinders = 2", "cylinders = nan", "[engine].cylinders",
+                 "must be an integer (got nan)"},
+        BadScene{"cylinders_inf", "cylinders = 2", "cylinders = -inf", "[engine].cylinders",
+                 "must be an integer (got -inf)"},
+        BadScene{"cylinders_65_as_float", "cylinders = 2", "cylinders = 65.0", "[engine].cylinders",
+                 "must be between 1 and 64 (got 65)"},
+        BadScene{"cylinders_beyond_64_bits", "cylinders = 2", "cylinders = 1e300", "[engine].cylinders",
+                 "must be between 1 and 64 (got 1e+300)"},
+        BadScene{"cylinders_negative_zero", "cylinders = 2", "cylinders = -0.0", "[engine].cylinders",
+                 "must be between 1 and 64 (got 0)"},
+        BadScene{"version_2_as_float", "[engine]", "format_version = 2.0\n[engine]", "format_version",
+                 "scene format 2 is newer than this crankcheck reads (format 1): use a newer crankcheck"},
+        BadScene{"version_0_as_float", "[engine]", "format_version = 0.0\n[engine]", "format_version",
+                 "must be 1 (got 0)"},
+        BadScene{"firing_order_fraction", "firing_order = [1, 0]", "firing_order = [1, 0.5]", "[gas].firing_order[1]",
+                 "must be an integer (got 0.5)", &kGasScene},
+        BadScene{"firing_order_beyond_k_as_float", "firing_order = [1, 0]", "firing_order = [1, 2.0]",
+                 "[gas].firing_order[1]", "must be a cylinder index 0..1, each once (got 2)", &kGasScene},
+        BadScene{"firing_order_repeats_as_float", "firing_order = [1, 0]", "firing_order = [1, 1.0]",
+                 "[gas].firing_order[1]", "must be a cylinder index 0..1, each once (got 1 again)", &kGasScene},
+        BadScene{"firing_order_string", "firing_order = [1, 0]", "firing_order = [1, \"0\"]", "[gas].firing_order[1]",
+                 "must be an integer", &kGasScene}),
+    [](const auto& info) { return info.param.name; });
 
 }  // namespace
 }  // namespace crankcheck

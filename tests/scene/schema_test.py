@@ -11,15 +11,22 @@ the two from drifting apart:
   changed on one side only fails here; every bounded key of the schema has such a probe;
 - a set of bad scenes: those the schema refuses are refused by the parser, and those the parser refuses are refused
   by the schema too, except for the rules the schema cannot express (cross-key rules), which must be listed in the
-  schema's description.
+  schema's description;
+- every key of every kind: each key of the schema (every table's properties, arrays of tables and array items
+  included, found by walking the schema), in the first base scene that has it (HOSTS; a key that none has fails),
+  set to integers (in, at and beyond its range, beyond 64 bits), the same as floats (2.0), floats with a fraction,
+  NaN and infinities, strings, booleans, arrays and inline tables: both accept or both refuse, or the parser refuses
+  by a cross-key rule that the schema's description lists (CROSS_KEY_RULES); and an integer and the float of the
+  same value get the same verdict from each (an integer key takes 4.0 as 4, docs/SCENE-FORMAT.md).
 
 Usage (ctest runs it, label unit): schema_test.py --schema docs/scene.schema.json --scenes scenes
 --parser build/bin/scene_check. The parser is tests/scene/scene_check.cc, started without a shell, once for all
 scenes (NUL-separated on stdin).
 
 TOML to JSON: tables become objects, arrays arrays, integers and floats numbers. NaN and infinity, which JSON lacks,
-become the strings "nan", "inf", "-inf" (so they are not numbers to the schema, as they are not to the parser);
-TOML dates and times become {"toml_datetime": ISO text}.
+become {"toml_float": "nan"} (or "inf", "-inf"): neither a number nor a string to the schema, as they are neither to
+the parser; TOML dates and times become {"toml_datetime": ISO text}. An integer beyond 64 bits, which Python's tomllib
+reads, is not TOML (TOML 1.0: "an error must be thrown"; toml++ refuses it), and so is refused by the schema's side.
 """
 
 import argparse
@@ -42,6 +49,10 @@ ARGS = None
 # TOML <-> JSON
 
 
+class NotToml(ValueError):
+    """What tomllib reads but TOML does not allow."""
+
+
 def to_json(value):
     """A TOML value (as tomllib reads it) as the JSON value the schema is checked on."""
     if isinstance(value, dict):
@@ -49,10 +60,16 @@ def to_json(value):
     if isinstance(value, list):
         return [to_json(v) for v in value]
     if isinstance(value, float) and not math.isfinite(value):
-        return "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
+        return {"toml_float": "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")}
+    if isinstance(value, int) and not isinstance(value, bool) and not -2**63 <= value < 2**63:
+        raise NotToml(f"integer {value} beyond 64 bits")
     if isinstance(value, (datetime.datetime, datetime.date, datetime.time)):
         return {"toml_datetime": value.isoformat()}
     return value
+
+
+def toml_key(key):
+    return key if key and all(c.isascii() and (c.isalnum() or c in "_-") for c in key) else json.dumps(key)
 
 
 def toml_value(value):
@@ -70,6 +87,8 @@ def toml_value(value):
         return json.dumps(value)  # JSON's escapes are TOML basic-string escapes
     if isinstance(value, list):
         return "[" + ", ".join(toml_value(v) for v in value) + "]"
+    if isinstance(value, dict):  # an inline table
+        return "{" + ", ".join(f"{toml_key(k)} = {toml_value(v)}" for k, v in value.items()) + "}"
     raise TypeError(f"no TOML form for {value!r}")
 
 
@@ -105,6 +124,8 @@ GAS = {**INLINE, "gas": {"bore": 0.08, "cycle_angle_deg": [0, 30, 360], "pressur
 # An inline scene with a Lanchester pair.
 SHAFTS = {**INLINE, "balance_shaft": [{"ratio": 2, "mass": 0.07, "radius": 0.04, "phase_deg": -90, "position": [0.04, -0.08, 0.0]},
                                       {"ratio": -2, "mass": 0.07, "radius": 0.04, "phase_deg": -90, "position": [-0.04, -0.08, 0.0]}]}
+# Explicit throw angles, without gas (whose firing order would tie them to it).
+INLINE_CRANK_ANGLES = {**INLINE, "engine": {**INLINE["engine"], "crank_angles_deg": [0, 360]}}
 # Every key of an inline scene written out.
 INLINE_FULL = {"format_version": 1, "name": "Twin, every key", "description": "Two cylinders,\n\"standing\".",
                "engine": {"cylinders": 2, "cycle": "four-stroke", "acting": "single", "crank_angles_deg": [0, 360],
@@ -126,6 +147,10 @@ CRANKSHAFT = {**INLINE, "crankshaft": {"throw_inertia": 2e-3, "front_inertia": 4
                                        "section_damping": 1.5, "throw_damping": 0.4}}
 # The V twin of LAYOUT: both cylinders on one pin, one throw; no front mass: one section.
 CRANKSHAFT_V = {**LAYOUT, "crankshaft": {"stiffness": [7e5]}}
+# CRANKSHAFT with one damping per section (three sections).
+CRANKSHAFT_DAMPING_LIST = {**INLINE, "crankshaft": {**CRANKSHAFT["crankshaft"], "section_damping": [1.5, 2.5, 0.0]}}
+# LAYOUT with a desaxe offset on its second cylinder.
+LAYOUT_PIN_OFFSET = {**LAYOUT, "cylinder": [LAYOUT["cylinder"][0], {**LAYOUT["cylinder"][1], "pin_offset": -0.0015}]}
 
 DELETE = object()
 
@@ -164,8 +189,7 @@ def cases():
     def add(name, scene, expect):
         out.append((name, scene if isinstance(scene, str) else dump_toml(scene), expect))
 
-    for name, scene in [("inline", INLINE), ("gas", GAS), ("inline_every_key", INLINE_FULL), ("layout", LAYOUT),
-                        ("layout_gas", LAYOUT_GAS)]:
+    for name, scene in HOSTS:  # the base scenes, each valid
         add(name, scene, VALID)
     # Massless parts are real modelling choices; one cylinder may have any spacing (there is no second one).
     for table in ("crank", "rod", "piston"):
@@ -179,6 +203,11 @@ def cases():
     add("two_stroke_gas", edit(GAS, (("engine", "cycle"), "two-stroke"), (("gas", "cycle_angle_deg"), [0, 30, 359.5])),
         VALID)
     add("double_acting", edit(INLINE, (("engine", "acting"), "double")), VALID)
+    # An integer key takes a float with an integral value (JSON Schema cannot tell 2.0 from 2; SCENE-FORMAT.md).
+    add("cylinders_as_float", edit(INLINE, (("engine", "cylinders"), 2.0)), VALID)
+    add("cylinders_as_float_in_layout", edit(LAYOUT_GAS, (("engine", "cylinders"), 2.0)), VALID)
+    add("format_version_as_float", edit(INLINE, (("format_version",), 1.0)), VALID)
+    add("firing_order_as_floats", edit(GAS, (("gas", "firing_order"), [0.0, 1.0])), VALID)
 
     # Refused by both: the shape of the file.
     add("unknown_top_level_key", edit(INLINE, (("title",), "x")), INVALID)
@@ -245,6 +274,11 @@ def cases():
     # Refused by both: types and enumerations.
     add("cylinders_string", edit(INLINE, (("engine", "cylinders"), "2")), INVALID)
     add("cylinders_fraction", edit(INLINE, (("engine", "cylinders"), 2.5)), INVALID)
+    add("cylinders_float_above_64", edit(INLINE, (("engine", "cylinders"), 65.0)), INVALID)
+    add("cylinders_float_beyond_any_integer", edit(INLINE, (("engine", "cylinders"), 1e300)), INVALID)
+    add("cylinders_nan", edit(INLINE, (("engine", "cylinders"), math.nan)), INVALID)
+    add("format_version_float_2", edit(INLINE, (("format_version",), 2.0)), INVALID)
+    add("format_version_fraction", edit(INLINE, (("format_version",), 1.5)), INVALID)
     add("radius_string", edit(INLINE, (("crank", "radius"), "5 cm")), INVALID)
     add("mass_boolean", edit(INLINE, (("piston", "mass"), True)), INVALID)
     add("mass_array", edit(INLINE, (("piston", "mass"), [0.4])), INVALID)
@@ -275,6 +309,7 @@ def cases():
     add("firing_order_repeats", edit(GAS, (("gas", "firing_order"), [0, 0])), INVALID)
     add("firing_order_negative", edit(GAS, (("gas", "firing_order"), [0, -1])), INVALID)
     add("firing_order_fraction", edit(GAS, (("gas", "firing_order"), [0, 1.5])), INVALID)
+    add("firing_order_float_repeats", edit(GAS, (("gas", "firing_order"), [1.0, 1])), INVALID)
     add("cycle_angles_start_late", edit(GAS, (("gas", "cycle_angle_deg"), [5, 30, 360])), INVALID)
     add("cycle_angles_empty", edit(GAS, (("gas", "cycle_angle_deg"), []), (("gas", "pressure_pa"), [])), INVALID)
     add("two_stroke_cycle_angle_360", edit(GAS, (("engine", "cycle"), "two-stroke"),
@@ -308,10 +343,6 @@ def cases():
         parser_only("each cylinder at its outer dead centre at its firing angle"))
     add("throw_far_from_bank", edit(LAYOUT, (("cylinder", 1, "bank_angle_deg"), -1e6)),
         parser_only("|throw_angle_deg - bank_angle_deg| <= 1e6 deg"))
-    add("cylinders_as_float", edit(INLINE, (("engine", "cylinders"), 2.0)),
-        parser_only("an integer key written as a float"))
-    add("format_version_as_float", edit(INLINE, (("format_version",), 1.0)),
-        parser_only("an integer key written as a float"))
     return out
 
 
@@ -430,6 +461,131 @@ def probe_values(keyword, bound, is_integer):
 
 
 # ----------------------------------------------------------------------------------------------------------------
+# Every key of the schema, with a value of every kind, against the parser
+
+# The base scenes a key's probes are placed in, in this order of preference: each key of the schema (and each array
+# item) is probed in the first scene that has it, where its own value is valid, so that the rest of the scene is
+# valid for it. A key of the schema that none of them has fails test_every_key_takes_every_kind_of_value: give it,
+# with a valid value, to one of them.
+HOSTS = [("inline", INLINE), ("inline_crank_angles", INLINE_CRANK_ANGLES), ("inline_every_key", INLINE_FULL),
+         ("gas", GAS), ("layout", LAYOUT), ("layout_gas", LAYOUT_GAS), ("layout_pin_offset", LAYOUT_PIN_OFFSET),
+         ("crankshaft", CRANKSHAFT), ("crankshaft_damping_list", CRANKSHAFT_DAMPING_LIST),
+         ("crankshaft_v", CRANKSHAFT_V), ("shafts", SHAFTS)]
+
+# The parser's refusals by the cross-key rules that the schema cannot express: a fragment of the parser's message
+# and the rule as the schema's description lists it. A probe that the schema accepts may be refused by the parser
+# only with one of these (a value of one key that breaks a rule with another, e.g. [crank].radius = 1 against the
+# base scene's 0.2 m rod).
+CROSS_KEY_RULES = {
+    "lambda = r / l must be < 1": "lambda = r / l < 1",
+    "must lie on the rod, 0 <= z_k <= l": "z_k <= l",
+    "must be >= m_k z_k^2": "I_o >= m_k z_k^2",
+    "must have one angle per cylinder": "crank_angles_deg has one angle per cylinder",
+    "must equal the number of [[cylinder]] tables": "[engine].cylinders equals the number of [[cylinder]] tables",
+    "throw_angle_deg - bank_angle_deg must be at most": "|throw_angle_deg - bank_angle_deg| <= 1e6 deg",
+    "must be a cylinder index 0..": "firing_order lists each cylinder 0..k-1 once",
+    "must list each of the": "firing_order lists each cylinder 0..k-1 once",
+    "must keep every cylinder within": "|cylinder_spacing| (k - 1) <= 1e6 m",
+    "|pin_offset| must be < l - r": "|pin_offset| < l - r",
+    "must be nonzero and at most 64 in magnitude": "a balance shaft's ratio is nonzero",
+    "one per section from front to flywheel": "[crankshaft].stiffness has one value per section",
+    "must be one value for all sections, or a list of": "[crankshaft].section_damping is one value or one per section",
+    "must be strictly increasing": "cycle_angle_deg strictly increasing",
+    "must have one pressure per cycle angle": "pressure_pa has one pressure per cycle angle",
+    "is not at its outer dead centre at its firing angle": "each cylinder at its outer dead centre at its firing angle",
+}
+
+
+def schema_keys(schema, node=None, path=()):
+    """{path: node} for every key of the schema at any depth (properties; "[]" for an array's items, arrays of
+    tables included), through $ref and anyOf (the conditionals of allOf add no keys)."""
+    node = resolve(schema, schema if node is None else node)
+    found = {path: node} if path else {}
+    for branch in node.get("anyOf", []):
+        for p, n in schema_keys(schema, branch, path).items():
+            if p != path:
+                found.setdefault(p, n)
+    for key, sub in node.get("properties", {}).items():
+        for p, n in schema_keys(schema, sub, path + (key,)).items():
+            found.setdefault(p, n)
+    if isinstance(node.get("items"), dict):
+        for p, n in schema_keys(schema, node["items"], path + ("[]",)).items():
+            found.setdefault(p, n)
+    return found
+
+
+def locate(scene, path):
+    """Where the schema path is in the scene, as keys and indices ("[]": the last item that has the rest), or None."""
+    if not path:
+        return ()
+    head, rest = path[0], path[1:]
+    if head == "[]":
+        for i in reversed(range(len(scene)) if isinstance(scene, list) else []):
+            if (sub := locate(scene[i], rest)) is not None:
+                return (i,) + sub
+        return None
+    if isinstance(scene, dict) and head in scene and (sub := locate(scene[head], rest)) is not None:
+        return (head,) + sub
+    return None
+
+
+def value_at(scene, where):
+    for key in where:
+        scene = scene[key]
+    return scene
+
+
+def integer_range(schema, node):
+    """(lo, hi): the smallest and the largest integer the node's numbers allow (None: unbounded on that side), or
+    None where it takes no number; through anyOf (a mass: 0, or 1e-9 .. 1e6)."""
+    ranges = []
+    for branch in [node] + [resolve(schema, b) for b in node.get("anyOf", [])]:
+        if isinstance(branch.get("const"), (int, float)) and not isinstance(branch["const"], bool):
+            ranges.append((math.ceil(branch["const"]), math.floor(branch["const"])))
+        elif branch.get("type") in ("number", "integer"):
+            lows = [math.ceil(branch["minimum"])] if "minimum" in branch else []
+            lows += [math.floor(branch["exclusiveMinimum"]) + 1] if "exclusiveMinimum" in branch else []
+            highs = [math.floor(branch["maximum"])] if "maximum" in branch else []
+            highs += [math.ceil(branch["exclusiveMaximum"]) - 1] if "exclusiveMaximum" in branch else []
+            ranges.append((max(lows, default=None), min(highs, default=None)))
+    if not ranges:
+        return None
+    lo = None if any(r[0] is None for r in ranges) else min(r[0] for r in ranges)
+    hi = None if any(r[1] is None for r in ranges) else max(r[1] for r in ranges)
+    return lo, hi
+
+
+def every_kind_of_value(schema, node, base):
+    """[(kind, value)] for one key whose value in its base scene is `base`: integers (the base value rounded into
+    the key's range, the ends of the range, 0, 1, 2, one beyond each end, beyond 64 bits) and each as a float; floats
+    with a fraction next to it, huge, NaN and infinities; strings, booleans, arrays, inline tables; the base value
+    itself."""
+    numeric = isinstance(base, (int, float)) and not isinstance(base, bool)
+    lo, hi = integer_range(schema, node) or (None, None)
+    n0 = round(base) if numeric else 2
+    n0 = max(n0, lo) if lo is not None else n0
+    n0 = min(n0, hi) if hi is not None else n0
+    integers = {n0, 0, 1, 2, 2**63, -2**63 - 1}
+    integers |= {lo, lo - 1} if lo is not None else set()
+    integers |= {hi, hi + 1} if hi is not None else set()
+    values = [("base", base)]
+    for n in sorted(integers):
+        values += [("integer", n), ("integral float", float(n))]
+    values += [("integral float", x) for x in (-0.0, 1e300, -1e300)]
+    values += [("fraction", x) for x in (n0 + 0.5, n0 - 0.5, math.nextafter(float(n0), math.inf),
+                                         math.nextafter(float(n0), -math.inf))]
+    values += [("non-finite", x) for x in (math.nan, math.inf, -math.inf)]
+    values += [("string", x) for x in ("x", "2", "")] + [("bool", True), ("bool", False)]
+    values += [("array", x) for x in ([], [base], ["x"])] + [("inline table", x) for x in ({}, {"a": 1})]
+    seen, unique = set(), []
+    for kind, value in values:
+        if (id_ := (type(value).__name__, repr(value))) not in seen:
+            seen.add(id_)
+            unique.append((kind, value))
+    return unique
+
+
+# ----------------------------------------------------------------------------------------------------------------
 
 
 def run_parser(texts):
@@ -452,8 +608,8 @@ class SchemaTest(unittest.TestCase):
     def schema_verdict(self, text):
         try:
             document = to_json(tomllib.loads(text))
-        except tomllib.TOMLDecodeError:
-            return INVALID, "not TOML"
+        except (tomllib.TOMLDecodeError, NotToml) as e:
+            return INVALID, f"not TOML ({e})"
         errors = sorted(self.validator.iter_errors(document), key=lambda e: list(e.absolute_path))
         if errors:
             return INVALID, "; ".join(f"{'/'.join(map(str, e.absolute_path))}: {e.message}"[:200] for e in errors)
@@ -500,6 +656,46 @@ class SchemaTest(unittest.TestCase):
                     named.append((f"{'.'.join(path)} {keyword} {value!r}", dump_toml(probes[path](value, side)), expect))
         self.assertGreater(len(named), 50)
         self.check(named)
+
+    def test_every_key_takes_every_kind_of_value(self):
+        """Every key of the schema (and every array item), in the first base scene that has it, set to a value of
+        every kind (every_kind_of_value): the schema and the parser agree, or the parser refuses by a cross-key rule
+        that the schema's description lists; an integer and the float of the same value get the same verdict from
+        each."""
+        keys = schema_keys(self.schema)
+        hosted = {path: next(((name, base, where) for name, base in HOSTS
+                              if (where := locate(base, path)) is not None), None) for path in keys}
+        self.assertEqual([".".join(path) for path, host in hosted.items() if host is None], [],
+                         "keys of the schema that no base scene (HOSTS) has: give each, with a valid value, to one")
+        for rule in set(CROSS_KEY_RULES.values()):
+            self.assertIn(rule, self.schema["description"], "a cross-key rule is listed in the schema's description")
+        probes = []  # (key, kind, value, host, text)
+        for path, (host, base, where) in sorted(hosted.items()):
+            for kind, value in every_kind_of_value(self.schema, keys[path], value_at(base, where)):
+                probes.append((".".join(path), kind, value, host, dump_toml(edit(base, (where, value)))))
+        self.assertGreater(len(probes), 20 * len(keys))
+        verdicts = run_parser([text for *_, text in probes])
+        seen = {}  # (key, host, an integral value) -> {"int" or "float": (schema's verdict, parser's, why)}
+        for (key, kind, value, host, text), (parser, message) in zip(probes, verdicts):
+            with self.subTest(f"{key} = {value!r} ({kind}) in {host}"):
+                schema, why = self.schema_verdict(text)
+                parser_says = VALID if parser == "ok" else INVALID
+                if (type(value) in (int, float) and math.isfinite(value) and value == int(value)
+                        and -2**63 <= value < 2**63 and float(value) == value):  # the base value too
+                    seen.setdefault((key, host, value), {})[type(value).__name__] = (schema, parser_says, message or why)
+                if schema == VALID and parser_says == INVALID:
+                    rules = [rule for fragment, rule in CROSS_KEY_RULES.items() if fragment in message]
+                    self.assertTrue(rules, f"the schema accepts, the parser refuses by no listed cross-key rule: "
+                                           f"{message}\n{text}")
+                else:
+                    self.assertEqual(parser_says, schema, f"schema: {why or 'accepts'}; parser: {message or 'accepts'}"
+                                                          f"\n{text}")
+        pairs = {k: v for k, v in seen.items() if len(v) == 2}
+        self.assertGreater(len(pairs), 4 * len(keys))
+        for (key, host, value), kinds in sorted(pairs.items(), key=repr):
+            with self.subTest(f"{key} = {value!r} and {float(value)!r} in {host}"):
+                self.assertEqual(kinds["int"][:2], kinds["float"][:2],
+                                 f"(schema, parser) for the integer and the float: {kinds}")
 
     def test_keys_are_those_the_parser_allows(self):
         """The parser lists the allowed keys when it refuses an unknown one: the schema's properties are the same."""

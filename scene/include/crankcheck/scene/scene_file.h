@@ -22,7 +22,7 @@ class SceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Reads and validates a scene file. Besides the tables, the top level may hold `format_version` (the integer 1),
+/// Reads and validates a scene file. Besides the tables, the top level may hold `format_version` (1, or 1.0),
 /// `name` and `description` (strings for people and editors; a scene is named by its file's stem everywhere in
 /// crankcheck's output, Mechanism::name). The JSON Schema docs/scene.schema.json describes the same format.
 /// @throws SceneError with "FILE: KEY: rule" if the file cannot be read, is not TOML, has an unknown or
