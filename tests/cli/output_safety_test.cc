@@ -154,6 +154,92 @@ TEST_F(OutputSafetyTest, AnEmptyFolderIsUsed) {
   EXPECT_TRUE(fs::exists(dir_ / "empty/crankcheck-manifest.json"));
 }
 
+// Issue 58: a folder can come from anyone (a copied report, a shard from another machine, a hand edit), so what its
+// manifest names is never trusted past the folder: a manifest listing a path outside it (`../victim.txt`, an absolute
+// path, a path through a link) made the next run into that folder delete that file, with status 0. Each such folder
+// is refused before any work (status 2, one line naming the entry) and every file, inside and outside, stays.
+class ForeignManifestTest : public OutputSafetyTest {
+ protected:
+  // A report folder `name` holding index.md (its record right) and a manifest that also lists `entry`.
+  fs::path writeReport(const std::string& name, const std::string& entry_json) {
+    const fs::path report = dir_ / name;
+    fs::create_directories(report);
+    writeFile(report / "index.md", "the previous report\n");
+    writeFile(report / "crankcheck-manifest.json",
+              R"({"tool": "crankcheck", "version": "0.2.0", "kind": "report", "files": [)"
+              R"({"path": "index.md", "size": 20, "crc32": "b1d3fb7f"}, )" + entry_json + "]}");
+    return report;
+  }
+  // Every way into a folder: validate, grade, a shard's run and report merge.
+  void expectEveryCommandRefuses(const fs::path& report, const std::string& expected) {
+    const std::string scene = (fs::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml").string();
+    expectRefused({"validate", "--quick", scene, "--parts", "norton_fig13_8", "--out", report.string()}, expected);
+    expectRefused({"validate", "--quick", scene, "--parts", "norton_fig13_8", "--shard", "0/2", "--out",
+                   report.string()}, expected);
+    expectRefused({"grade", "--quick", "--out", report.string(), "--", "/bin/false"}, expected);
+    ASSERT_EQ(writeShard(dir_ / "s0", "0/2").exit_status, 0);
+    ASSERT_EQ(writeShard(dir_ / "s1", "1/2").exit_status, 0);
+    expectRefused({"report", "merge", (dir_ / "s0").string(), (dir_ / "s1").string(), "--out", report.string()}, expected);
+    fs::remove_all(dir_ / "s0");
+    fs::remove_all(dir_ / "s1");
+  }
+};
+
+TEST_F(ForeignManifestTest, AManifestNamingAPathOutsideIsRefusedAndNothingIsTouched) {
+  writeFile(dir_ / "victim.txt", "a user's file\n");
+  const std::string victim = R"({"path": "../victim.txt", "size": 14, "crc32": "00000000"})";
+  expectEveryCommandRefuses(writeReport("dotdot", victim), "lists \"../victim.txt\", a path through \"..\"");
+  const std::string absolute = R"({"path": ")" + (dir_ / "victim.txt").string() + R"(", "size": 14, "crc32": "00000000"})";
+  expectEveryCommandRefuses(writeReport("absolute", absolute), "an absolute path");
+  EXPECT_EQ(readFile(dir_ / "victim.txt"), "a user's file\n");
+}
+
+// A listed path through a symbolic link inside the folder, or a listed file changed since (its size or checksum
+// not the one recorded), is not crankcheck's: refused, the link's target and the edited file kept.
+TEST_F(ForeignManifestTest, AListedFileThroughALinkOrChangedSinceIsRefused) {
+  fs::create_directories(dir_ / "elsewhere");
+  writeFile(dir_ / "elsewhere/victim.txt", "a user's file\n");
+  const fs::path linked = writeReport("linked", R"({"path": "data/victim.txt", "size": 14, "crc32": "00000000"})");
+  fs::create_directory_symlink(dir_ / "elsewhere", linked / "data");
+  expectEveryCommandRefuses(linked, "\"data\", which crankcheck did not write");
+  const fs::path edited = writeReport("edited", R"({"path": "notes.md", "size": 5, "crc32": "00000000"})");
+  writeFile(edited / "notes.md", "mine\n");  // 5 bytes, another checksum: a user's edit
+  expectEveryCommandRefuses(edited, "\"notes.md\", changed since crankcheck wrote it");
+  EXPECT_EQ(readFile(dir_ / "elsewhere/victim.txt"), "a user's file\n");
+}
+
+// An earlier crankcheck's manifest (a list of names, no sizes or checksums) cannot tell its files from a user's
+// edit: refused with that reason, the folder left as it is.
+TEST_F(ForeignManifestTest, AManifestWithoutChecksumsIsRefused) {
+  const fs::path report = dir_ / "old";
+  fs::create_directories(report);
+  writeFile(report / "index.md", "the previous report\n");
+  writeFile(report / "crankcheck-manifest.json",
+            R"({"tool": "crankcheck", "version": "0.1.0", "kind": "report", "files": ["index.md"]})");
+  expectRefused({"validate", "--quick", "--out", report.string()}, "without its size and checksum");
+}
+
+// crankcheck's own report is still replaced, and the manifest it writes records each file's size and CRC-32, as
+// computed here from the bytes on disk (zlib's CRC-32, by Python, outside crankcheck).
+TEST_F(ForeignManifestTest, ItsOwnReportIsReplacedAndItsRecordMatchesTheFiles) {
+  const fs::path shard = dir_ / "shard";
+  ASSERT_EQ(writeShard(shard).exit_status, 0);
+  validation::ProgramCall call{{"/usr/bin/python3", "-c",
+                                "import json, os, sys, zlib\n"
+                                "d = sys.argv[1]; m = json.load(open(os.path.join(d, 'crankcheck-manifest.json')))\n"
+                                "for f in m['files']:\n"
+                                "    b = open(os.path.join(d, f['path']), 'rb').read()\n"
+                                "    assert f['size'] == len(b) and f['crc32'] == '%08x' % zlib.crc32(b), f\n"
+                                "print(len(m['files']))\n",
+                                shard.string()}};
+  call.timeout_seconds = testing::kCliRunSeconds;
+  const ProgramResult check = validation::runProgram(call);
+  ASSERT_EQ(check.exit_status, 0) << check.err;
+  EXPECT_GE(std::stoi(check.out), 3) << check.out;
+  ASSERT_EQ(writeShard(shard).exit_status, 0);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
+}
+
 // A missing gnuplot is found before the campaign: the full campaign takes about 20 s, the refusal comes at once
 // (2 s is 100 x crankcheck's start-up, and a tenth of the campaign), with status 3 and nothing written.
 TEST_F(OutputSafetyTest, MissingGnuplotIsFoundBeforeAnyWork) {
@@ -329,8 +415,10 @@ TEST_P(InterruptTest, LeavesThePreviousReportAsItWas) {
   const fs::path report = dir_ / "report";
   fs::create_directories(report);
   writeFile(report / "index.md", "the previous report\n");
+  // Its size and CRC-32 (zlib's, computed outside crankcheck: python3 -c "zlib.crc32(b'the previous report\n')").
   writeFile(report / "crankcheck-manifest.json",
-            R"({"tool": "crankcheck", "version": "0.1.0", "kind": "report", "files": ["index.md"]})");
+            R"({"tool": "crankcheck", "version": "0.1.0", "kind": "report",
+                "files": [{"path": "index.md", "size": 20, "crc32": "b1d3fb7f"}]})");
   const auto before = snapshot(dir_);
   validation::RunningProgram run = testing::startCrankcheck({"validate", "--quick", "--out", report.string()});
   // Mid-run: the staging folder exists (the campaign has started); the quick campaign takes about 3 s more.

@@ -13,7 +13,10 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <boost/crc.hpp>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -27,6 +30,14 @@ namespace crankcheck::validation {
 namespace fs = std::filesystem;
 
 const char* getCrankcheckVersion() { return CRANKCHECK_VERSION; }
+
+std::string calcManifestChecksum(std::string_view content) {
+  boost::crc_32_type crc;
+  crc.process_bytes(content.data(), content.size());
+  char hex[9];
+  std::snprintf(hex, sizeof hex, "%08x", static_cast<unsigned>(crc.checksum()));
+  return hex;
+}
 
 namespace {
 
@@ -45,24 +56,75 @@ fs::path normalTarget(const fs::path& target) {
   throw UsageError(flag + ": " + quotePath(target) + ": " + why);
 }
 
-struct Manifest {
-  bool valid = false;
-  std::set<std::string> files;  // relative, generic form
-};
-
-Manifest readManifest(const fs::path& folder) {
-  Manifest m;
-  std::ifstream in(folder / kManifestName);
-  if (!in) return m;
-  try {
-    const nlohmann::json j = nlohmann::json::parse(in);
-    if (j.at("tool").get<std::string>() != "crankcheck") return m;
-    for (const auto& f : j.at("files")) m.files.insert(f.get<std::string>());
-    m.valid = true;
-  } catch (const nlohmann::json::exception&) {
-    m.valid = false;
+// Why `rel` (a manifest's path) is not the name of a file inside the folder; empty if it is.
+std::string whyNotInside(const std::string& rel) {
+  if (rel.empty()) return "an empty path";
+  if (rel.front() == '/') return "an absolute path";
+  if (rel.find('\0') != std::string::npos) return "a path with a NUL byte";
+  if (rel == kManifestName) return "the manifest itself";
+  for (size_t begin = 0;;) {
+    const size_t slash = rel.find('/', begin);
+    const std::string part = rel.substr(begin, slash == std::string::npos ? std::string::npos : slash - begin);
+    if (part.empty()) return "a path with an empty part";
+    if (part == "." || part == "..") return "a path through \"" + part + "\"";
+    if (slash == std::string::npos) return {};
+    begin = slash + 1;
   }
-  return m;
+}
+
+// Opens FOLDER/rel for reading without following a symbolic link on the way (every part a real folder, the last a
+// plain file, FOLDER itself not a link). Returns the file's descriptor and its folder's (for unlinkat); -1 and -1 if
+// any part is not so. O_NONBLOCK: a FIFO put there never blocks the open.
+std::pair<int, int> openInside(const fs::path& folder, const std::string& rel) {
+  int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (dir < 0) return {-1, -1};
+  size_t begin = 0;
+  for (size_t slash; (slash = rel.find('/', begin)) != std::string::npos; begin = slash + 1) {
+    const int next = ::openat(dir, rel.substr(begin, slash - begin).c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    ::close(dir);
+    if (next < 0) return {-1, -1};
+    dir = next;
+  }
+  const int fd = ::openat(dir, rel.substr(begin).c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  struct stat st {};
+  if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    if (fd >= 0) ::close(fd);
+    ::close(dir);
+    return {-1, -1};
+  }
+  return {fd, dir};
+}
+
+// Whether the open plain file `fd` holds exactly `file.size` bytes with the recorded checksum; no more is read.
+bool matchesRecord(int fd, const ManifestFile& file) {
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || static_cast<std::uintmax_t>(st.st_size) != file.size) return false;
+  boost::crc_32_type crc;
+  char buffer[1 << 16];
+  std::uintmax_t done = 0;
+  while (done < file.size) {
+    const ssize_t n = ::read(fd, buffer, static_cast<size_t>(std::min<std::uintmax_t>(sizeof buffer, file.size - done)));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    crc.process_bytes(buffer, static_cast<size_t>(n));
+    done += static_cast<std::uintmax_t>(n);
+  }
+  char hex[9];
+  std::snprintf(hex, sizeof hex, "%08x", static_cast<unsigned>(crc.checksum()));
+  return file.crc32 == hex;
+}
+
+// Removes FOLDER/file.path if it is a plain file as recorded (isAsRecorded), unlinked from the folder it was checked
+// in; true if removed.
+bool removeIfAsRecorded(const fs::path& folder, const ManifestFile& file) {
+  const auto [fd, dir] = openInside(folder, file.path);
+  if (fd < 0) return false;
+  const bool ours = matchesRecord(fd, file);
+  ::close(fd);
+  const std::string name = fs::path(file.path).filename().string();
+  const bool removed = ours && ::unlinkat(dir, name.c_str(), 0) == 0;
+  ::close(dir);
+  return removed;
 }
 
 // Every entry under `folder`, relative, generic form; no symbolic link followed.
@@ -73,9 +135,9 @@ std::vector<fs::directory_entry> entriesUnder(const fs::path& folder) {
   return entries;
 }
 
-bool parentsListed(const std::string& relative_dir, const std::set<std::string>& files) {
+bool parentsListed(const std::string& relative_dir, const std::map<std::string, ManifestFile>& files) {
   const std::string prefix = relative_dir + "/";
-  return std::any_of(files.begin(), files.end(), [&](const std::string& f) { return f.rfind(prefix, 0) == 0; });
+  return std::any_of(files.begin(), files.end(), [&](const auto& f) { return f.first.rfind(prefix, 0) == 0; });
 }
 
 // The staging folder's name beside a target NAME: ".NAME" + this + 6 random characters (createStaging).
@@ -124,6 +186,61 @@ void checkNotInsideReport(const std::string& flag, const fs::path& target, const
 
 }  // namespace
 
+FolderManifest readFolderManifest(const fs::path& folder) {
+  const fs::path file = folder / kManifestName;
+  const std::string where = quotePath(file);
+  struct stat st {};
+  if (::lstat(file.c_str(), &st) != 0) throw std::runtime_error(where + ": missing");
+  if (!S_ISREG(st.st_mode)) throw std::runtime_error(where + ": not a plain file");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error(where + ": cannot be read");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(where + ": not JSON (" + escapeText(e.what()) + ")");
+  }
+  FolderManifest m;
+  try {
+    if (!j.is_object() || !j.contains("tool") || j["tool"] != "crankcheck")
+      throw std::runtime_error(where + ": not crankcheck's (its \"tool\" is not \"crankcheck\")");
+    m.version = j.at("version").get<std::string>();
+    m.kind = j.at("kind").get<std::string>();
+    std::set<std::string> seen;
+    for (const nlohmann::json& f : j.at("files")) {
+      if (f.is_string())
+        throw std::runtime_error(where + ": lists " + quotePath(f.get<std::string>()) + " without its size and checksum "
+                                 "(an earlier crankcheck's record, which cannot tell a file it wrote from one changed "
+                                 "since; remove the folder yourself or write elsewhere)");
+      ManifestFile entry;
+      entry.path = f.at("path").get<std::string>();
+      const std::string why = whyNotInside(entry.path);
+      if (!why.empty())
+        throw std::runtime_error(where + ": lists " + quotePath(entry.path) + ", " + why + ", not a file inside the folder");
+      if (!seen.insert(entry.path).second) throw std::runtime_error(where + ": lists " + quotePath(entry.path) + " twice");
+      if (!f.at("size").is_number_unsigned())
+        throw std::runtime_error(where + ": " + quotePath(entry.path) + ": its size is not a count of bytes");
+      entry.size = f.at("size").get<std::uintmax_t>();
+      entry.crc32 = f.at("crc32").get<std::string>();
+      if (entry.crc32.size() != 8 || entry.crc32.find_first_not_of("0123456789abcdef") != std::string::npos)
+        throw std::runtime_error(where + ": " + quotePath(entry.path) + ": its crc32 is not 8 lower-case hex digits");
+      m.files.push_back(std::move(entry));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(where + ": malformed (" + escapeText(e.what()) + ")");
+  }
+  return m;
+}
+
+bool isAsRecorded(const fs::path& folder, const ManifestFile& file) {
+  const auto [fd, dir] = openInside(folder, file.path);
+  if (fd < 0) return false;
+  const bool ours = matchesRecord(fd, file);
+  ::close(fd);
+  ::close(dir);
+  return ours;
+}
+
 void checkOutputFolder(const fs::path& target, const std::string& flag) {
   if (target.empty()) throw UsageError(flag + ": must name a folder");
   const fs::path path = normalTarget(target);
@@ -141,7 +258,18 @@ void checkOutputFolder(const fs::path& target, const std::string& flag) {
     refuse(flag, target, std::string("is a file, not a folder; crankcheck never overwrites it (") + kRule + ")");
   std::error_code ec;
   if (fs::is_empty(path, ec) && !ec) return;
-  const Manifest manifest = readManifest(path);
+  // The manifest, if the folder has one: what it names is judged file by file below; a manifest that names anything
+  // but a file inside the folder, as crankcheck records them, makes the folder not crankcheck's.
+  std::map<std::string, ManifestFile> listed;
+  bool has_manifest = false;
+  if (::lstat((path / kManifestName).c_str(), &st) == 0 && S_ISREG(st.st_mode)) {
+    try {
+      for (ManifestFile& f : readFolderManifest(path).files) listed.emplace(f.path, std::move(f));
+      has_manifest = true;
+    } catch (const std::runtime_error& e) {
+      refuse(flag, target, std::string(e.what()) + "; nothing was changed, nothing it names was touched (" + kRule + ")");
+    }
+  }
   try {
     // Each entry is judged as the walk reaches it, before the walk descends into it: the first one crankcheck did
     // not write ends the check (`--out /` or `--out ~` is refused at its first entry, nothing below it is read).
@@ -150,9 +278,16 @@ void checkOutputFolder(const fs::path& target, const std::string& flag) {
       const std::string rel = entry.path().lexically_relative(path).generic_string();
       const fs::file_status status = entry.symlink_status();
       bool ours = false;
-      if (manifest.valid) {
-        if (fs::is_regular_file(status)) ours = rel == kManifestName || manifest.files.count(rel) > 0;
-        else if (fs::is_directory(status)) ours = parentsListed(rel, manifest.files);
+      if (has_manifest) {
+        if (fs::is_regular_file(status)) {
+          const auto file = listed.find(rel);
+          if (file != listed.end() && !isAsRecorded(path, file->second))
+            refuse(flag, target, "holds " + quotePath(rel) + ", changed since crankcheck wrote it (not the size and "
+                                 "checksum its manifest records); nothing was changed (" + kRule + ")");
+          ours = rel == kManifestName || file != listed.end();
+        } else if (fs::is_directory(status)) {
+          ours = parentsListed(rel, listed);
+        }
       }
       if (!ours)
         refuse(flag, target,
@@ -246,10 +381,20 @@ void OutputFolder::createStaging() {
 void OutputFolder::install(const std::string& kind) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (staging_.empty() || installed_) throw std::logic_error("OutputFolder::install: nothing staged");
-  std::vector<std::string> files;
+  std::vector<std::string> paths;
   for (const fs::directory_entry& entry : entriesUnder(staging_))
-    if (entry.is_regular_file()) files.push_back(entry.path().lexically_relative(staging_).generic_string());
-  std::sort(files.begin(), files.end());
+    if (entry.symlink_status().type() == fs::file_type::regular)
+      paths.push_back(entry.path().lexically_relative(staging_).generic_string());
+  std::sort(paths.begin(), paths.end());
+  nlohmann::json files = nlohmann::json::array();
+  for (const std::string& rel : paths) {
+    std::ifstream in(staging_ / rel, std::ios::binary);
+    std::ostringstream content;
+    content << in.rdbuf();
+    if (!in) throw EnvironmentError(quotePath(staging_ / rel) + ": cannot read back what was written");
+    const std::string bytes = content.str();
+    files.push_back({{"path", rel}, {"size", bytes.size()}, {"crc32", calcManifestChecksum(bytes)}});
+  }
   const nlohmann::json manifest = {{"tool", "crankcheck"}, {"version", getCrankcheckVersion()}, {"kind", kind}, {"files", files}};
   writeNewFile(staging_ / kManifestName, manifest.dump(2) + "\n");
 
@@ -274,23 +419,34 @@ void OutputFolder::install(const std::string& kind) {
 }
 
 void OutputFolder::removeOld(const fs::path& old_folder) {
-  // Only what the old manifest lists (or an empty folder) is removed; anything else stays, and is named.
-  const Manifest manifest = readManifest(old_folder);
-  std::error_code ec;
-  for (const std::string& rel : manifest.files) {
-    const fs::path file = old_folder / rel;
-    if (fs::is_regular_file(fs::symlink_status(file, ec))) ::unlink(file.c_str());
+  // Only a plain file the old manifest lists, as it records it, is removed (then the manifest and the emptied
+  // folders); anything else stays, and is named.
+  std::vector<std::string> kept;
+  try {
+    const FolderManifest manifest = readFolderManifest(old_folder);
+    struct stat st {};
+    for (const ManifestFile& f : manifest.files)
+      if (!removeIfAsRecorded(old_folder, f) && ::lstat((old_folder / f.path).c_str(), &st) == 0) kept.push_back(f.path);
+    if (::lstat((old_folder / kManifestName).c_str(), &st) == 0 && S_ISREG(st.st_mode))
+      ::unlink((old_folder / kManifestName).c_str());
+  } catch (const std::runtime_error& e) {
+    std::cerr << "crankcheck: warning: " << e.what() << ": nothing of the previous report was removed\n";
   }
-  if (manifest.valid) ::unlink((old_folder / kManifestName).c_str());
+  std::error_code ec;
   std::vector<fs::path> dirs;
   for (auto it = fs::recursive_directory_iterator(old_folder, ec); !ec && it != fs::recursive_directory_iterator();
        it.increment(ec))
-    if (it->is_directory() && !it->is_symlink()) dirs.push_back(it->path());
+    if (it->symlink_status(ec).type() == fs::file_type::directory) dirs.push_back(it->path());
   std::sort(dirs.begin(), dirs.end(), [](const fs::path& a, const fs::path& b) { return a.string() > b.string(); });
   for (const fs::path& d : dirs) ::rmdir(d.c_str());
-  if (::rmdir(old_folder.c_str()) != 0 && errno != ENOENT)
+  if (::rmdir(old_folder.c_str()) != 0 && errno != ENOENT) {
+    std::string named;
+    for (size_t i = 0; i < kept.size() && i < 3; ++i) named += (i ? ", " : " (") + quotePath(kept[i]);
+    if (!kept.empty()) named += kept.size() > 3 ? ", ...)" : ")";
     std::cerr << "crankcheck: warning: " << quotePath(old_folder)
-              << ": the previous report was kept there: it holds files crankcheck did not write\n";
+              << ": the previous report was kept there: it holds files crankcheck did not write or that changed since"
+              << named << "\n";
+  }
 }
 
 void OutputFolder::abandon() {

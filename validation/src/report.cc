@@ -245,24 +245,25 @@ ShardManifest readShardManifest(const fs::path& dir) {
 }
 
 TableSet readShardTables(const fs::path& dir, const ShardManifest& manifest) {
-  // Every file crankcheck-manifest.json lists (what the shard wrote, shard.json among them) must be there.
+  // Every file crankcheck-manifest.json lists (what the shard wrote, shard.json among them) must be there, each a plain
+  // file inside the shard as the shard wrote it (its size and checksum).
   const fs::path listing = dir / kManifestName;
   std::set<std::string> listed;
-  try {
-    std::ifstream in(listing);
-    if (!in) throw std::runtime_error(quotePath(listing) + ": missing: every shard crankcheck writes has it");
-    const nlohmann::json j = nlohmann::json::parse(in);
-    if (j.at("tool").get<std::string>() != "crankcheck" || j.at("kind").get<std::string>() != "shard")
-      throw std::runtime_error(quotePath(listing) + ": not a shard's manifest (tool " + j.at("tool").dump() + ", kind " +
-                               j.at("kind").dump() + ")");
-    for (const auto& f : j.at("files")) listed.insert(f.get<std::string>());
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(quotePath(listing) + ": malformed: " + e.what());
-  }
+  const FolderManifest folder = readFolderManifest(dir);
+  if (folder.kind != "shard")
+    throw std::runtime_error(quotePath(listing) + ": not a shard's manifest (kind " + quoteText(folder.kind) + ")");
   std::error_code ec;
-  for (const std::string& rel : listed)
-    if (!fs::is_regular_file(fs::symlink_status(dir / rel, ec)))
-      throw std::runtime_error(quotePath(dir / rel) + ": missing, though the shard's " + kManifestName + " lists it");
+  for (const ManifestFile& f : folder.files) {
+    listed.insert(f.path);
+    // A data file is checked below against shard.json's record, which says what differs (its header, its rows, its
+    // content); every other file against the manifest's record.
+    if (f.path.rfind("data/", 0) == 0 && fs::is_regular_file(fs::symlink_status(dir / f.path, ec)) &&
+        !fs::is_symlink(fs::symlink_status(dir / "data", ec)))
+      continue;
+    if (!isAsRecorded(dir, f))
+      throw std::runtime_error(quotePath(dir / f.path) + ": missing or changed, though the shard's " + kManifestName +
+                               " lists it (a plain file of " + std::to_string(f.size) + " bytes, CRC-32 " + f.crc32 + ")");
+  }
   // shard.json records exactly the data files listed, and data/ holds no other.
   std::set<std::string> recorded;
   for (const DataFileRecord& f : manifest.files) {

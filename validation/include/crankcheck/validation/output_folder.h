@@ -3,15 +3,21 @@
 /// The folders crankcheck writes (a report, a shard) and the rule that keeps a user's files safe:
 ///
 ///   `--out DIR` may be replaced only when DIR does not exist, is an empty folder, or is a folder that crankcheck
-///   itself wrote: it holds the marker crankcheck-manifest.json (tool name, version, kind) and nothing but the files
-///   that manifest lists. Anything else at DIR (a folder with a user's file in it, a plain file, a symbolic link)
-///   is refused before any work starts, and nothing on disk is changed.
+///   itself wrote: it holds the marker crankcheck-manifest.json (tool name, version, kind, and each file crankcheck
+///   wrote there with its size and CRC-32) and nothing but those files, each as recorded. Anything else at DIR (a
+///   folder with a user's file in it, a file edited since, a plain file, a symbolic link, a manifest that names a
+///   path outside the folder) is refused before any work starts, and nothing on disk is changed.
+///
+/// A folder can come from anyone (a copied report, a shard from another machine, a hand edit), so its manifest is
+/// never trusted further than this: what it names is only ever a plain file inside the folder, reached without
+/// following a link, with the size and checksum recorded; only such a file is ever removed.
 ///
 /// A run writes into a fresh staging folder beside DIR (same file system), then installs it in one step (a
 /// rename, or an exchange of the two folders); only then is the old report removed, file by file as its manifest
 /// lists them. A failed or interrupted run removes its staging folder and leaves DIR as it was. Every file is
 /// created with O_EXCL | O_NOFOLLOW inside the staging folder: no symbolic link is followed, no file overwritten.
 
+#include <cstdint>
 #include <filesystem>
 #include <mutex>
 #include <string>
@@ -25,6 +31,33 @@ inline constexpr const char* kManifestName = "crankcheck-manifest.json";
 
 /// crankcheck's version, from the project's `project(VERSION)` in CMake.
 const char* getCrankcheckVersion();
+
+/// One file a folder's manifest lists, as crankcheck wrote it.
+struct ManifestFile {
+  std::string path;         ///< relative to the folder, generic form, no empty, ".", ".." or absolute part
+  std::uintmax_t size = 0;  ///< [bytes]
+  std::string crc32;        ///< CRC-32 of the content (zlib's), 8 lower-case hex digits
+};
+
+/// A folder's crankcheck-manifest.json.
+struct FolderManifest {
+  std::string version;  ///< the crankcheck that wrote it
+  std::string kind;     ///< "report" or "shard"
+  std::vector<ManifestFile> files;
+};
+
+/// Reads FOLDER/crankcheck-manifest.json.
+/// @throws std::runtime_error "PATH: why" when it is missing, not JSON, not crankcheck's, lists a file without its
+///   size and checksum (an earlier crankcheck's), or names a path that is not a file inside the folder (absolute,
+///   with an empty, "." or ".." part, listed twice, or the manifest itself).
+FolderManifest readFolderManifest(const std::filesystem::path& folder);
+
+/// The CRC-32 of `content` as a manifest records it (8 lower-case hex digits).
+std::string calcManifestChecksum(std::string_view content);
+
+/// Whether FOLDER/file.path is a plain file, reached without following a symbolic link, with the size and the
+/// checksum recorded (nothing is read past the size: a grown file is not read to its end).
+bool isAsRecorded(const std::filesystem::path& folder, const ManifestFile& file);
 
 /// Checks `--out` against the rule above without touching the disk. Also refused: a target inside a folder crankcheck
 /// wrote (a report or shard: it would then hold a file crankcheck did not write and refuse every later run), and a
