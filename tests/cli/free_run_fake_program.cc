@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
     if (mode == "time-back" && i == n / 2) s["t"] = t - 2.0 * interval;
     if (mode == "phi-back" && i == n / 2) s["phi"] = omega0 * (t - 2.0 * interval);
     if (mode == "held-torque") s["drive_torque"] = 0.0;  // wrong wherever gravity or inertia load the crank
+    if (mode == "omega-t-far") s["omega_t"] = t + 1e6;    // every speed 1e6 s past its sample, in order
+    if (mode == "values-t-far") s["values_t"] = t + 1e6;  // every value's instant as far out
     if (mode == "short" && i > n / 2) break;
     if (mode == "few" && i >= 5) break;
     samples.push_back(s);
@@ -35,6 +37,10 @@ int main(int argc, char** argv) {
   if (mode == "nan") {  // a run that fell apart: nlohmann writes NaN as null, the grader must refuse it as not finite
     const size_t at = text.find("\"omega\":", text.size() / 2);
     text.replace(at, text.find_first_of(",}", at) - at, "\"omega\":NaN");
+  }
+  if (mode == "overflow") {  // a number past a double's range, on line 2 of the answer
+    const size_t at = text.find("\"omega\":", text.size() / 2);
+    text.replace(at, text.find_first_of(",}", at) - at, "\n\"omega\":1e400");
   }
   std::puts(text.c_str());
   return 0;

@@ -87,6 +87,11 @@ INSTANTIATE_TEST_SUITE_P(
                       Broken{"phi-back", "the crank angle must keep increasing"},
                       Broken{"few", "too few samples (5; at least 8)"},
                       Broken{"short", "the run stops at t = "},
+                      // Issue 58: an omega_t 1e6 s past the run was graded (an "exact" phase of 1.1e41 rad), while the
+                      // same fault in values_t was refused; a 1e400 gave nlohmann's bare message.
+                      Broken{"omega-t-far", "].omega_t is 1e+06 s, outside the samples either side of its t = 0 s"},
+                      Broken{"values-t-far", "].values_t is 1e+06 s, outside the run (0 to "},
+                      Broken{"overflow", ": case single_cylinder_free_dt"},  // and the line: the test below
                       // 1 s: the run's one request is a few kilobytes; the program never answers.
                       Broken{"hang", "no complete answer within 1 s", "1"}),
     [](const ::testing::TestParamInfo<Broken>& info) {
@@ -112,6 +117,14 @@ TEST(FreeRunGradeTest, BadFlagsAndScenesAreRefusedBeforeAnyWork) {
           "--dt-sweep: needs a step");
   refused({"grade", "--free-run", kSingle, "--batch", "--", CRANKCHECK_FREE_RUN_FAKE}, "--batch: does not apply");
   refused({"grade", "--free-run", kSingle, "--dt", "1", "--", CRANKCHECK_FREE_RUN_FAKE}, "fewer than 8 steps");
+  // Issue 58: --revolutions 100000 (the flag's maximum) kept crankcheck measuring for hours after the program answered.
+  // Estimated before the program starts (the fake would hang: were it started, the run would end by its timeout, 3).
+  refused({"grade", "--free-run", kSingle, "--revolutions", "100000", "--quick", "--out", out.string(), "--",
+           CRANKCHECK_FREE_RUN_FAKE, "hang"},
+          "--revolutions: crankcheck's own reference runs over 100000 revolutions would take about ");
+  refused({"grade", "--work-limit", "60", "--out", out.string(), "--", CRANKCHECK_FREE_RUN_FAKE},
+          "--work-limit: applies to a time-stepped run");
+  EXPECT_FALSE(fs::exists(out));
   // A loaded run is the scene's gas against its mean load: a scene without [gas] cannot run it.
   refused({"grade", "--free-run", kSingle, "--drive", "loaded", "--", CRANKCHECK_FREE_RUN_FAKE},
           "single_cylinder.toml: [gas]: a loaded run");

@@ -1,6 +1,7 @@
 #include "crankcheck/validation/free_run_grade.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -16,6 +17,7 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/scene/scene_writer.h"
 #include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/work_limit.h"
 #include "crankcheck/validation/evaluation_json.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
@@ -218,6 +220,22 @@ ProgramRun parseRunResponse(const RunCase& c, const std::string& response, const
     fail("the first sample is at t = " + formatNumber(out.run.time.front()) + " s; it must be at t = 0");
   if (out.run.time.back() < c.t_end - tolerance)
     fail("the run stops at t = " + formatNumber(out.run.time.back()) + " s, before t_end = " + formatNumber(c.t_end) + " s");
+  // Each value's instant within the run: omega's within the samples either side of its own (the first's and the
+  // last's within one interval past the run: a speed kept half a step behind its angle), every other value's
+  // within the run. One far outside is a broken run, not a slow one (an omega_t 1e6 s out once gave a phase of 1e41).
+  const std::vector<double>& t = out.run.time;
+  const size_t n = t.size();
+  for (size_t i = 0; i < n; ++i) {
+    const double before = i > 0 ? t[i - 1] : t[0] - (t[1] - t[0]);
+    const double after = i + 1 < n ? t[i + 1] : t[n - 1] + (t[n - 1] - t[n - 2]);
+    if (!(omega_time[i] >= before && omega_time[i] <= after))
+      fail("samples[" + std::to_string(i) + "].omega_t is " + formatNumber(omega_time[i]) +
+           " s, outside the samples either side of its t = " + formatNumber(t[i]) + " s (" + formatNumber(before) +
+           " to " + formatNumber(after) + " s): omega must stand within its step");
+    if (!(out.values_time[i] >= t.front() && out.values_time[i] <= t.back()))
+      fail("samples[" + std::to_string(i) + "].values_t is " + formatNumber(out.values_time[i]) +
+           " s, outside the run (" + formatNumber(t.front()) + " to " + formatNumber(t.back()) + " s)");
+  }
   out.run.omega_time = std::move(omega_time);
   return out;
 }
@@ -455,6 +473,27 @@ void addEngineRuns(TableSet& tables, const std::vector<RunCase>& cases, bool qui
         rows.push_back(std::move(row));
   }
   if (!rows.empty()) addRows(tables, getFreeRunEnginesSchema(), std::move(rows));
+}
+
+void checkRunGradeWork(const std::vector<RunCase>& cases, bool quick, double limit_seconds) {
+  double seconds = 0.0;
+  int revolutions = 0;
+  std::set<std::string> done;
+  for (const RunCase& c : cases) {
+    revolutions = std::max(revolutions, c.revolutions);
+    if (c.revolutions <= kUnprobedRevolutions || c.drive == RunDrive::kHeld || !done.insert(c.family).second) continue;
+    RunCase probe = c;  // one revolution of the same work
+    probe.revolutions = 1;
+    probe.t_end = c.t_end / c.revolutions;
+    const auto begin = std::chrono::steady_clock::now();
+    TableSet scratch;
+    addEngineRuns(scratch, {probe}, quick);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count() * c.revolutions;
+  }
+  checkWorkLimit("--revolutions: crankcheck's own reference runs over " + std::to_string(revolutions) + " revolutions",
+                 seconds, "the engines' runs of each scene timed over one revolution, times its revolutions: an upper "
+                 "bound, a run's start costs more than its later revolutions",
+                 "fewer --revolutions", limit_seconds);
 }
 
 int findRunGradeExitStatus(const TableSet& tables) {

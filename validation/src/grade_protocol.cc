@@ -111,6 +111,18 @@ Json parseResponseObject(const std::string& response, const std::string& key, co
   } catch (const Json::parse_error& e) {
     throwProtocolError(where, "the response is not JSON (" + escapeText(e.what()) + ")", response,
                        e.byte > 0 ? e.byte - 1 : 0);
+  } catch (const Json::out_of_range& e) {
+    // A number past a double's range (1e400): the reader names the number, not where it stands; it is found in the
+    // response to quote its line.
+    const std::string what = e.what();
+    const size_t open = what.find(" parsing '"), close = what.rfind('\'');
+    const std::string number = open != std::string::npos && close > open + 10 ? what.substr(open + 10, close - open - 10)
+                                                                                : std::string();
+    const size_t at = number.empty() ? std::string::npos : response.find(number);
+    throwProtocolError(where, "a number beyond the range of a double" + (number.empty() ? std::string() : " (" + escapeText(number) + ")"),
+                       response, at == std::string::npos ? 0 : at);
+  } catch (const Json::exception& e) {
+    throwProtocolError(where, "the response cannot be read (" + escapeText(e.what()) + ")", response);
   }
   if (!doc.is_object() || !doc.contains(key) || !doc[key].is_array())
     throwProtocolError(where, "the response must be an object {\"" + key + "\": [...]}", response);
