@@ -62,8 +62,17 @@ std::string reasonOf(const analytic::HarmonicSymmetry& s, bool axial) {
 
 std::string runBalance(const BalanceOptions& options) {
   Mechanism m = loadScene(options.scene_path);
-  // Every engine whose harmonics are shown must build the scene: refused now, naming the engine and the key.
-  validation::checkEveryEngineBuilds(m, options.scene_path);
+  // The closed forms must take the scene; a reference engine that cannot build it, or hold its accuracy on it, sits
+  // out, named with its reason, and the others answer (none left: refused, naming the first).
+  try {
+    validation::getClosedFormEngine().build(m);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(options.scene_path + ": " + e.what());
+  }
+  std::vector<validation::SatOut> sat_out;
+  const std::vector<const Engine*> engines = validation::findBuildingReferenceEngines(m, sat_out);
+  if (engines.empty())
+    throw UsageError(options.scene_path + ": --engine " + sat_out.front().engine + ": " + sat_out.front().reason);
   std::vector<BalanceShaftParams> designed;
   std::vector<validation::BalanceRow> rows;
   try {
@@ -71,7 +80,7 @@ std::string runBalance(const BalanceOptions& options) {
       designed = validation::designBalanceShafts(m, options.design);
       m.balance_shafts.insert(m.balance_shafts.end(), designed.begin(), designed.end());
     }
-    rows = validation::calcBalance(m, std::max(options.order, options.design));
+    rows = validation::calcBalance(m, std::max(options.order, options.design), 0, engines);
   } catch (const std::invalid_argument& e) {
     throw UsageError(options.scene_path + ": " + e.what());
   } catch (const std::runtime_error& e) {  // a harmonic analysis that does not reach rounding: refused
@@ -99,6 +108,8 @@ std::string runBalance(const BalanceOptions& options) {
     doc["samples"] = std::max(64, 4 * options.order);
     doc["harmonics"] = validation::balanceToJson(rows, axial);
     for (size_t i = 0; i < rows.size(); ++i) doc["harmonics"][i]["reason"] = reasonOf(rows[i].symmetry, axial);
+    doc["sat_out"] = nlohmann::ordered_json::array();
+    for (const validation::SatOut& s : sat_out) doc["sat_out"].push_back({{"engine", s.engine}, {"reason", s.reason}});
     return dumpJson(doc);
   }
   std::string out;
@@ -118,6 +129,7 @@ std::string runBalance(const BalanceOptions& options) {
       header += line;
     }
   out += header + "\n";
+  for (const validation::SatOut& s : sat_out) out += wrapText(s.engine + " sat out: " + s.reason, kHelpWidth) + "\n";
   for (const validation::BalanceRow& row : rows) {
     const analytic::ShakingHarmonic a = validation::withExactZeros(row.analytic, row.symmetry);
     auto print = [&](bool first, const char* name, double closed, const auto& amplitude) {

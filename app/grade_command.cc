@@ -16,6 +16,7 @@
 #include "flag_checks.h"
 #include "help_format.h"
 #include "crankcheck/validation/free_run_grade.h"
+#include "crankcheck/validation/work_limit.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/process.h"
@@ -82,6 +83,11 @@ void addGradeOptions(CLI::App& command, GradeOptions& options) {
   command.add_option("--values-tolerance", options.tolerances.values,
                      "--free-run: a value's error at the program's own state, relative to the quantity's scale")
       ->check(FiniteRange(0.0, 1e6))
+      ->capture_default_str();
+  command.add_option(validation::kWorkLimitFlag, options.work_limit,
+                     "--free-run: the longest work [s] of crankcheck's own runs (the engines' reference runs over the "
+                     "horizon), estimated before the program is started and refused past it")
+      ->check(FiniteRange(1.0, 1e7))
       ->capture_default_str();
   command.footer(
       "The program follows `--`: crankcheck grade [SCENE...] [options] -- PROGRAM [ARG...]. It is started without a "
@@ -153,7 +159,8 @@ int runGrade(const GradeOptions& options) {
            {"--delta-tolerance", options.tolerances.delta != d.tolerances.delta},
            {"--extreme-phase-tolerance", options.tolerances.extreme_phase != d.tolerances.extreme_phase},
            {"--phase-tolerance", options.tolerances.phase != d.tolerances.phase},
-           {"--values-tolerance", options.tolerances.values != d.tolerances.values}})
+           {"--values-tolerance", options.tolerances.values != d.tolerances.values},
+           {validation::kWorkLimitFlag, options.work_limit != d.work_limit}})
     if (given) throw UsageError(std::string(flag) + ": applies to a time-stepped run only; add --free-run");
   // Everything that can be checked is checked before the first request: the program, the scenes, the output
   // folder, gnuplot.
@@ -267,6 +274,7 @@ int runFreeRunGrade(const GradeOptions& options) {
   validation::OutputFolder out(options.out.empty() ? std::string("out/grade-free-run") : options.out, "--out");
   validation::RunGradeReportInfo info;
   info.gnuplot_version = validation::checkGnuplot();
+  validation::checkRunGradeWork(cases, options.quick, options.work_limit);  // before the program is started
   validation::InterruptGuard interrupt(out);
   out.createStaging();
 

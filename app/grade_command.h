@@ -28,6 +28,7 @@ struct GradeOptions {
   int dt_sweep = 1;                  ///< steps dt, dt/2, ...
   double output_interval = 0.0;      ///< [s] 0: every step
   validation::RunTolerances tolerances;  ///< --energy-tolerance ... --values-tolerance (defaults: RunTolerances's)
+  double work_limit = 600.0;         ///< [s] --work-limit: the longest estimated work of crankcheck's own runs
 };
 
 void addGradeOptions(CLI::App& command, GradeOptions& options);

@@ -12,6 +12,7 @@
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/stepped_errors.h"
+#include "crankcheck/validation/work_limit.h"
 #include "flag_checks.h"
 #include "help_format.h"
 #include "json_output.h"
@@ -43,8 +44,15 @@ void addSteppedOptions(CLI::App& command, SteppedOptions& options) {
                    "The free runs instead: no drive, the scene's [flywheel] on the crank, gravity alone (the scene's "
                    "[gas] left out), released at phi = 0 with the scene's speed; each judged as grade --free-run judges "
                    "a program's run (energy trend, delta, phase)");
-  command.add_option("--revolutions", options.revolutions, "Revolutions of a free run (--free)")
+  CLI::Option* free = command.get_option("--free");
+  command.add_option("--revolutions", options.revolutions, "Revolutions of a free run (only with --free)")
       ->check(CLI::Range(1, 1000))
+      ->needs(free)
+      ->capture_default_str();
+  command.add_option(validation::kWorkLimitFlag, options.work_limit,
+                     "The longest work to start [s]: the runs are estimated before they start (their steps at the "
+                     "measured cost of each engine's step) and refused past it")
+      ->check(FiniteRange(1.0, 1e7))
       ->capture_default_str();
   command.add_option("--format", options.format, "Output format")
       ->check(CLI::IsMember({"table", "json"}))
@@ -85,22 +93,21 @@ std::string runSteppedFree(const SteppedOptions& options, Mechanism m, const std
   m.gas.reset();  // gravity alone
   std::sort(steps.begin(), steps.end(), std::greater<double>());
   std::vector<validation::SteppedFreeRunSpec> specs;
-  double total = 0.0;
+  std::vector<validation::SteppedJob> jobs;
   for (const SteppedEngine* e : engines) {
     if (!e->run_free) continue;
     for (const std::string& s : settings.empty() ? e->settings : settings)
       if (std::find(e->settings.begin(), e->settings.end(), s) != e->settings.end())
         for (double dt : steps) {
           specs.push_back({e->name, s, dt});
-          total += 1.1 * options.revolutions * 2.0 * M_PI / (m.machine.speed * dt);
+          jobs.push_back({e, s, dt, 1.1 * options.revolutions * 2.0 * M_PI / (m.machine.speed * dt)});
         }
   }
-  if (total > validation::kMaxSteppedSteps) {
-    char line[256];
-    std::snprintf(line, sizeof line, "--dt: the free runs would take %.3g steps, more than %.3g: a larger step or fewer --revolutions",
-                  total, validation::kMaxSteppedSteps);
-    throw UsageError(line);
-  }
+  if (specs.empty())
+    throw UsageError("--free: " + options.engine + (options.engine == "all" ? " stepped engines" : "") +
+                     ": no free run to make (no engine chosen runs free at the settings asked)");
+  validation::checkSteppedWork(m, jobs, options.work_limit, "--free: the free runs on " + options.scene_path,
+                               "a larger --dt or fewer --revolutions");
   std::vector<std::string> refusals;
   std::vector<validation::EngineRunRow> rows;
   try {
@@ -110,6 +117,9 @@ std::string runSteppedFree(const SteppedOptions& options, Mechanism m, const std
   }
   if (options.engine != "all" && rows.empty() && !refusals.empty())
     throw UsageError(options.scene_path + ": --engine " + options.engine + ": " + refusals.front());
+  if (rows.empty())
+    throw UsageError(options.scene_path + ": nothing measured: every free run was refused (" +
+                     (refusals.empty() ? std::string("no reason given") : refusals.front()) + ")");
   if (options.format == "json") {
     nlohmann::ordered_json doc;
     doc["scene"] = options.scene_path;
@@ -161,17 +171,25 @@ std::string runStepped(const SteppedOptions& options) {
     if (options.engine == "all" || e.name == options.engine) engines.push_back(&e);
   const std::vector<std::string> settings =
       options.settings == "all" ? std::vector<std::string>{} : std::vector<std::string>{options.settings};
+  // Settings that none of the chosen engines has: nothing would run.
+  if (!settings.empty() &&
+      std::none_of(engines.begin(), engines.end(), [&](const SteppedEngine* e) {
+        return std::find(e->settings.begin(), e->settings.end(), settings.front()) != e->settings.end();
+      })) {
+    std::string theirs;
+    for (const SteppedEngine* e : engines)
+      for (const std::string& s : e->settings) theirs += (theirs.empty() ? "" : ", ") + s;
+    throw UsageError("--settings: " + options.settings + ": " +
+                     (options.engine == "all" ? std::string("no stepped engine has it")
+                                              : options.engine + " has no such settings") +
+                     " (" + (options.engine == "all" ? "theirs" : "its") + ": " + theirs + ")");
+  }
   const std::vector<double> steps = options.steps.empty() ? validation::getDefaultSteppedSteps() : options.steps;
   if (options.free) return runSteppedFree(options, m, engines, settings, steps);
   validation::SteppedSweep sweep;
   try {
-    const double total = validation::countSteppedSteps(m, engines, settings, steps);
-    if (total > validation::kMaxSteppedSteps) {
-      char line[256];
-      std::snprintf(line, sizeof line, "--dt: the runs would take %.3g steps at %.6g rpm, more than %.3g: a larger step",
-                    total, m.speed_rpm, validation::kMaxSteppedSteps);
-      throw UsageError(line);
-    }
+    validation::checkSteppedWork(m, validation::listSteppedJobs(m, engines, settings, steps), options.work_limit,
+                                 "--dt: the runs on " + options.scene_path, "a larger step");
     sweep = validation::calcSteppedSweep(m, options.scene_path, engines, settings, steps);
   } catch (const std::invalid_argument& e) {
     throw UsageError(options.scene_path + ": " + e.what());
@@ -179,6 +197,14 @@ std::string runStepped(const SteppedOptions& options) {
   // One engine named that cannot build the scene: the user's input (exit status 2), not a table.
   if (options.engine != "all" && sweep.errors.empty() && !sweep.refusals.empty() && sweep.refusals.front().dt == 0.0)
     throw UsageError(options.scene_path + ": --engine " + options.engine + ": " + sweep.refusals.front().reason);
+  // A request that measures nothing is not a result: every engine refused the scene (or every step).
+  if (sweep.errors.empty()) {
+    std::string why;
+    for (const validation::SteppedRefusalRow& r : sweep.refusals)
+      if (why.find(r.engine + ": ") == std::string::npos) why += (why.empty() ? "" : "; ") + r.engine + ": " + r.reason;
+    throw UsageError(options.scene_path + ": nothing measured: every stepped engine refused it (" +
+                     (why.empty() ? std::string("no reason given") : why) + ")");
+  }
   if (options.format == "json") {
     nlohmann::ordered_json doc;
     doc["scene"] = options.scene_path;

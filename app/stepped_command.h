@@ -22,12 +22,14 @@ struct SteppedOptions {
   std::string format = "table";
   bool free = false;       ///< the free runs (no drive, the flywheel, gravity alone) instead of the driven ones
   int revolutions = 5;     ///< of a free run
+  double work_limit = 600.0;  ///< [s] the longest estimated work started (validation/work_limit.h)
 };
 
 void addSteppedOptions(CLI::App& command, SteppedOptions& options);
 
-/// @throws UsageError for a bad scene or flag, a scene without speed, a scene the one named engine cannot build, or a
-/// sweep longer than validation::kMaxSteppedSteps steps.
+/// @throws UsageError for a bad scene or flag, a scene without speed, settings no chosen engine has, a scene the
+/// chosen engines all refuse (nothing measured), or a sweep past validation::kMaxSteppedSteps steps or estimated past
+/// --work-limit (validation::checkSteppedWork).
 std::string runStepped(const SteppedOptions& options);
 
 }  // namespace crankcheck::app

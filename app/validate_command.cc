@@ -21,6 +21,8 @@
 #include "crankcheck/validation/scene_sections.h"
 #include "crankcheck/validation/verdict.h"
 #include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/work_limit.h"
+#include "flag_checks.h"
 #include "help_format.h"
 #include "scene_input.h"
 
@@ -48,6 +50,11 @@ void addValidateOptions(CLI::App& command, ValidateOptions& options) {
       ->delimiter(',')
       ->allow_extra_args(false);  // one comma-separated value: the scene files after it stay scene files
   command.add_option("--jobs", options.jobs, "Worker threads (default: one per core)")->check(CLI::Range(1, 1024));
+  command.add_option(validation::kWorkLimitFlag, options.work_limit,
+                     "The longest work a part may start [s]: a part whose runs grow with the scene (the stepped "
+                     "engines' steps at a low speed) is estimated before the campaign and refused past it")
+      ->check(FiniteRange(1.0, 1e7))
+      ->capture_default_str();
   command.add_option("--shard", options.shard,
                      "Run only part I of N (0 <= I < N <= 100000) of the campaign and write its data for 'crankcheck "
                      "report merge' (docs: shards and clusters)");
@@ -114,6 +121,7 @@ int runValidate(const ValidateOptions& options) {
   // Everything that can be checked is checked before the campaign: scenes, flags, the output folder, gnuplot.
   validation::CampaignOptions campaign;
   campaign.quick = options.quick;
+  campaign.work_limit = options.work_limit;
   try {
     validation::checkPartKeys(options.parts);
   } catch (const std::invalid_argument& e) {
@@ -150,6 +158,8 @@ int runValidate(const ValidateOptions& options) {
   validation::OutputFolder out(options.out, "--out");
   validation::ReportInfo info;
   if (!shard) info.gnuplot_version = validation::checkGnuplot();  // a shard draws no figures
+  // Every part's work, estimated before any of it starts (Part::checkWork): refused with status 2, nothing written.
+  const std::vector<validation::Task> all = validation::buildCampaign(campaign);
   validation::InterruptGuard interrupt(out);
   out.createStaging();
 
@@ -158,7 +168,6 @@ int runValidate(const ValidateOptions& options) {
   run_options.profile = !options.profile.empty();
   const bool progress = ::isatty(STDERR_FILENO);
   if (progress) run_options.on_progress = printProgress;
-  const std::vector<validation::Task> all = validation::buildCampaign(campaign);
   // The shard's manifest before the work: a scene of the default campaign that does not load stops it now.
   const validation::ShardManifest manifest =
       shard ? validation::makeShardManifest(campaign, selection, all.size()) : validation::ShardManifest{};

@@ -18,6 +18,7 @@ struct ValidateOptions {
   bool verbose = false;    ///< the families' table in full on the terminal (else only the families that failed)
   std::string profile;     ///< --profile FILE: where each task's time goes, by engine (a new CSV file); empty: none
   std::vector<std::string> parts;  ///< --parts KEY,...: only these report parts (the cross-checks always); empty: all
+  double work_limit = 600.0;       ///< [s] --work-limit: the longest estimated work a part may start
 };
 
 struct MergeOptions {

@@ -446,7 +446,7 @@ def _as_run_response(answer):
 
 def grade_free_run(function, scenes, *, drive="free", revolutions=10, dt=None, dt_sweep=1, output_interval=None,
                    energy_tolerance=None, delta_tolerance=None, extreme_phase_tolerance=None, phase_tolerance=None,
-                   values_tolerance=None, quick=False, timeout=60.0, out=None):
+                   values_tolerance=None, quick=False, timeout=60.0, out=None, work_limit=600.0):
     """Grades `function`'s time-stepped runs by the measures, tolerances and rules of `crankcheck grade --free-run`
     (docs/grade.md, "Time-stepped runs").
 
@@ -462,7 +462,8 @@ def grade_free_run(function, scenes, *, drive="free", revolutions=10, dt=None, d
     of a revolution; "own": the function's own), dt_sweep, output_interval, the tolerances (None: the CLI's defaults,
     crankcheck.free_run_tolerances()) and quick: the CLI's flags.
     timeout: seconds per run, as --timeout (the call is interrupted as crankcheck.grade's are). out: a folder for the
-    report (the same folder rule as --out; needs gnuplot).
+    report (the same folder rule as --out; needs gnuplot). work_limit: the longest work [s] of crankcheck's own runs
+    over the horizon, estimated before the function is first called and refused past it (ValueError), as --work-limit.
     """
     import json as _json
     if not callable(function):
@@ -504,7 +505,7 @@ def grade_free_run(function, scenes, *, drive="free", revolutions=10, dt=None, d
             None if output_interval is None else float(output_interval),
             [None if x is None else float(x) for x in
              (energy_tolerance, delta_tolerance, extreme_phase_tolerance, phase_tolerance, values_tolerance)],
-            bool(quick), float(timeout), out, answer, program)
+            bool(quick), float(timeout), out, answer, program, float(work_limit))
     finally:
         clock.close()
         if reports is not None:

@@ -40,6 +40,7 @@
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/evaluation_json.h"
 #include "crankcheck/validation/free_run_grade.h"
+#include "crankcheck/validation/work_limit.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/report.h"
@@ -236,10 +237,14 @@ py::object balance(const ScenePtr& scene, int order) {
   if (order < 1 || order > 64) throw py::value_error("order: " + std::to_string(order) + " not in [1 - 64]");
   const Mechanism& m = scene->m;
   std::vector<validation::BalanceRow> rows;
+  std::vector<validation::SatOut> sat_out;  // as the CLI's: a reference engine that cannot build the scene sits out
   {
     py::gil_scoped_release release;
     try {
-      rows = validation::calcBalance(m, order);
+      const std::vector<const Engine*> engines = validation::findBuildingReferenceEngines(m, sat_out);
+      if (engines.empty())
+        throw std::invalid_argument("--engine " + sat_out.front().engine + ": " + sat_out.front().reason);
+      rows = validation::calcBalance(m, order, 0, engines);
     } catch (const std::invalid_argument& e) {
       throw SceneError(scene->source + ": " + e.what());
     }
@@ -249,6 +254,8 @@ py::object balance(const ScenePtr& scene, int order) {
   doc["order"] = order;
   doc["samples"] = std::max(64, 4 * order);
   doc["harmonics"] = validation::balanceToJson(rows, hasAxialPositions(m));
+  doc["sat_out"] = nlohmann::ordered_json::array();
+  for (const validation::SatOut& s : sat_out) doc["sat_out"].push_back({{"engine", s.engine}, {"reason", s.reason}});
   return toPython(doc);
 }
 
@@ -542,7 +549,7 @@ py::dict gradeFreeRun(const std::vector<py::object>& scenes, const std::string& 
                       const std::optional<double>& output_interval,
                       const std::vector<std::optional<double>>& tolerances,
                       bool quick, double timeout_seconds, const std::optional<py::object>& out,
-                      const py::function& answer, const std::string& program_name) {
+                      const py::function& answer, const std::string& program_name, double work_limit) {
   if (scenes.empty()) throw py::value_error("scenes: give at least one scene (a scene with [flywheel] for a free run)");
   if (drive != "free" && drive != "held" && drive != "loaded")
     throw py::value_error("drive: \"free\", \"held\" or \"loaded\", not \"" + drive + "\"");
@@ -583,6 +590,19 @@ py::dict gradeFreeRun(const std::vector<py::object>& scenes, const std::string& 
     if (hasNul(*out_dir)) throw py::value_error("out: " + quotePath(*out_dir) + ": a path with a NUL byte (no folder has that name)");
     folder = std::make_unique<validation::OutputFolder>(*out_dir, "out");
     info.gnuplot_version = validation::checkGnuplot();
+  }
+  if (!(work_limit >= 1.0) || !std::isfinite(work_limit))
+    throw py::value_error("work_limit: seconds, a finite number >= 1");
+  try {  // crankcheck's own work over the horizon, estimated before the function is called (as the CLI's --work-limit)
+    py::gil_scoped_release release;
+    validation::checkRunGradeWork(cases, quick, work_limit);
+  } catch (const UsageError& e) {
+    std::string message = e.what();
+    const std::string flag = validation::kWorkLimitFlag;
+    // The CLI's flags as this function's arguments.
+    for (size_t at; (at = message.find(flag)) != std::string::npos;) message.replace(at, flag.size(), "work_limit");
+    for (size_t at; (at = message.find("--revolutions")) != std::string::npos;) message.replace(at, 13, "revolutions");
+    throw py::value_error("crankcheck.grade_free_run: " + message);
   }
   const std::string name = escapeText(program_name);
   const auto start = std::chrono::steady_clock::now();
@@ -836,7 +856,7 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
           py::arg("out"), py::arg("relay"), py::arg("program_name"));
   mod.def("_grade_free_run", &gradeFreeRun, py::arg("scenes"), py::arg("drive"), py::arg("revolutions"), py::arg("dt"),
           py::arg("own_step"), py::arg("dt_sweep"), py::arg("output_interval"), py::arg("tolerances"), py::arg("quick"),
-          py::arg("timeout"), py::arg("out"), py::arg("answer"), py::arg("program_name"));
+          py::arg("timeout"), py::arg("out"), py::arg("answer"), py::arg("program_name"), py::arg("work_limit"));
   mod.def("_raise_in_thread", [](unsigned long thread_id, const py::object& exception) {
         // PyThreadState_SetAsyncExc: `exception` (a class) raised in that thread at its next Python bytecode; None
         // clears one not yet raised. The number of threads changed.

@@ -5,7 +5,9 @@
 
 #include <Simbody.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <memory>
@@ -59,6 +61,9 @@ class KCrankModel::Impl {
   /// Prescribes crank speed omega at the assembled positions, projects the velocities and realizes
   /// Stage::Acceleration.
   void solveMotion(double omega);
+  /// The loops' acceleration errors (udoterr) of the last solveMotion, relative to r omega^2 + g at its omega.
+  double calcLoopAccelerationResidual() const;
+  double last_residual_omega_ = 0.0;
   /// Drive torque [N m] about +Z at the current (Acceleration-realized) state.
   double driveTorque() const;
   /// With `motion_only`, no static pass (U and Q NaN): EngineModel::evaluateMotion.
@@ -342,6 +347,7 @@ void KCrankModel::Impl::solveMotion(double omega) {
     throw std::runtime_error("KCrankModel: Simbody failed to solve the motion at phi = " +
                              std::to_string(drive_->phi) + " rad: " + error.what());
   }
+  last_residual_omega_ = omega;
   if (omega != 0.0) {
     unit_power_ = {true, assembled_phi_, calcGravityPower(matter_, gravity_, state_) / omega};
     last_motion_.valid = true;  // fields assigned, so that u's storage is reused at every pass
@@ -351,6 +357,14 @@ void KCrankModel::Impl::solveMotion(double omega) {
     last_motion_.qdot = state_.getQDot();
     last_motion_.qdotdot = state_.getQDotDot();
   }
+}
+
+double KCrankModel::Impl::calcLoopAccelerationResidual() const {
+  const SimTK::Vector& error = state_.getUDotErr();
+  double worst = 0.0;
+  for (int i = 0; i < error.size(); ++i) worst = std::max(worst, std::abs(error[i]));
+  const double omega = last_residual_omega_;
+  return worst / (m_.crank.radius * omega * omega + std::abs(m_.machine.gravity));
 }
 
 double KCrankModel::Impl::driveTorque() const {
@@ -469,7 +483,12 @@ Evaluation KCrankModel::Impl::evaluateAt(double phi, Diagnostics* diagnostics, b
 
     // Static pass (omega = 0, gas off): the holding torque is Q, route 1.
     drive_->gas = false;
-    solveMotion(0.0);
+    try {
+      solveMotion(0.0);
+    } catch (...) {
+      drive_->gas = true;
+      throw;
+    }
     drive_->gas = true;
     ev.U = system_.calcPotentialEnergy(state_) - reference_potential_;
     ev.Q = driveTorque();
@@ -533,7 +552,12 @@ double KCrankModel::Impl::kineticEnergy(double phi) {
 double KCrankModel::Impl::holdingTorque(double phi) {
   assemble(phi);
   drive_->gas = false;  // Q is gravity's alone
-  solveMotion(0.0);
+  try {
+    solveMotion(0.0);
+  } catch (...) {
+    drive_->gas = true;
+    throw;
+  }
   drive_->gas = true;
   return driveTorque();
 }
@@ -562,6 +586,20 @@ Evaluation KCrankModel::evaluate(double phi) { return impl_->evaluateAt(phi, nul
 Evaluation KCrankModel::evaluateMotion(double phi) { return impl_->evaluateAt(phi, nullptr, true); }
 void KCrankModel::startAssemblyFrom(const KCrankModel& donor) { impl_->startAssemblyFrom(*donor.impl_); }
 void KCrankModel::setSpeed(double omega) { impl_->setSpeed(omega); }
+
+double KCrankModel::calcLoopAccelerationResidual(double phi, double omega) {
+  const double speed = impl_->mechanism().machine.speed;
+  impl_->setSpeed(omega);
+  try {
+    impl_->evaluateAt(phi, nullptr, true);
+  } catch (...) {
+    impl_->setSpeed(speed);
+    throw;
+  }
+  const double residual = impl_->calcLoopAccelerationResidual();
+  impl_->setSpeed(speed);
+  return residual;
+}
 
 Diagnostics KCrankModel::calcDiagnostics(double phi) {
   Diagnostics d;

@@ -18,6 +18,7 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/scales.h"
+#include "fresh_folder.h"
 #include "run_cli.h"
 
 namespace crankcheck {
@@ -319,12 +320,20 @@ std::filesystem::path editedScene(const std::filesystem::path& folder, const std
 TEST(Cli, ResultsThatCannotBeComputedAreRefusedWithOneLine) {
   testing::FreshFolder folder;
   const auto rotor = editedScene(folder.path(), "inline4_pin_offset.toml", "inertia = 0.12", "inertia = 1e-300");
-  for (const std::string& command : {"eval " + rotor.string() + " --engine mujoco", "balance " + rotor.string()}) {
+  {
+    const std::string command = "eval " + rotor.string() + " --engine mujoco";
     const RunResult r = run(command);
     EXPECT_EQ(r.exit_status, 2) << command;
     EXPECT_EQ(r.out, "");
     EXPECT_EQ(r.err.rfind("crankcheck: " + rotor.string() + ": --engine mujoco: flywheel.inertia: ", 0), 0u) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  {  // balance answers with the reference engine that builds the scene; MuJoCo sits out, named by its key (issue 58)
+    const RunResult r = run("balance " + rotor.string());
+    EXPECT_EQ(r.exit_status, 0) << r.err;
+    EXPECT_NE(r.out.find("\nmujoco sat out: flywheel.inertia: "), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("mujoco DFT"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("simbody DFT"), std::string::npos) << r.out;
   }
   // A 1e6 kg counterweight on a 0.04 kg m^2 flywheel's crank: the offset motion's harmonics sit below what the DFT
   // resolves.
@@ -746,6 +755,57 @@ TEST(Cli, BadSceneNamesFileAndKey) {
   EXPECT_EQ(r.out, "");
   EXPECT_NE(r.err.find(path.string() + ": rod2: unknown key"), std::string::npos) << r.err;
   std::filesystem::remove(path);
+}
+
+// Issue 58: the inline four with a rod of 1e-9 kg against its 0.32 kg piston (I_o scaled), a legal scene Simbody
+// cannot resolve. `balance` printed Simbody's primary couple as 77.5 N m against 1240.7 from the closed form and
+// MuJoCo, status 0; `validate` stopped with a misleading "needs a rod with mass > 0" and status 1. Now Simbody sits
+// out `balance`, named with its reason, and MuJoCo's harmonics are the closed form's; `validate`, which holds every gated engine to every scene,
+// refuses the scene with that reason, status 2, nothing written.
+TEST(CliTest, ASceneSimbodyCannotResolveSitsItOutOfBalanceAndIsRefusedByValidate) {
+  testing::FreshFolder folder;
+  std::ifstream in(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string scene = text.str();
+  const double light = 1e-9, rod = 0.52, inertia = 0.0064;  // [kg] the format's least non-zero mass
+  char mass[64], io[64];
+  std::snprintf(mass, sizeof mass, "mass = %.17g\n", light);
+  std::snprintf(io, sizeof io, "inertia_about_wrist_pin = %.17g\n", inertia * light / rod);
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"mass = 0.52\n", mass},
+                                 {"inertia_about_wrist_pin = 0.0064\n", io}}) {
+    const size_t at = scene.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    scene.replace(at, from.size(), to);
+  }
+  const std::string path = (folder.path() / "light.toml").string();
+  std::ofstream(path) << scene;
+  const auto r = testing::runCrankcheck({"balance", path, "--format", "json"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  ASSERT_EQ(doc["sat_out"].size(), 1u) << r.out;
+  EXPECT_EQ(doc["sat_out"][0]["engine"], "simbody");
+  EXPECT_NE(doc["sat_out"][0]["reason"].get<std::string>().find("cannot hold its accuracy"), std::string::npos);
+  // The inline four's second-order shaking force (its largest; the scene has no axial positions, so no couples):
+  // MuJoCo's DFT against the closed form, to 1e-9 of it (the DFT of 64 samples of an exact engine reaches 1e-12 on
+  // the example scenes; a thousand times that is still a thousandth of what Simbody's error was).
+  const nlohmann::json& second = doc["harmonics"][1];
+  ASSERT_EQ(second["n"], 2);
+  EXPECT_FALSE(second.contains("simbody")) << second;
+  const double closed = second["analytic"]["shaking_force"]["amplitude"].get<double>();
+  const double mujoco = second["mujoco"]["shaking_force"]["amplitude"].get<double>();
+  EXPECT_GT(closed, 100.0);
+  EXPECT_NEAR(mujoco, closed, 1e-9 * closed);
+  const auto text_out = testing::runCrankcheck({"balance", path});
+  EXPECT_EQ(text_out.exit_status, 0) << text_out.err;
+  EXPECT_NE(text_out.out.find("simbody sat out: cannot hold its accuracy"), std::string::npos) << text_out.out;
+  EXPECT_EQ(text_out.out.find("simbody DFT"), std::string::npos) << text_out.out;
+  const std::string out = (folder.path() / "report").string();
+  const auto v = testing::runCrankcheck({"validate", path, "--quick", "--out", out});
+  EXPECT_EQ(v.exit_status, 2) << v.err;
+  EXPECT_NE(v.err.find("--engine simbody: cannot hold its accuracy on this scene"), std::string::npos) << v.err;
+  EXPECT_EQ(std::count(v.err.begin(), v.err.end(), '\n'), 1) << v.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 }  // namespace

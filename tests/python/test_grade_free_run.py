@@ -76,6 +76,38 @@ def test_a_broken_run_is_refused():
         crankcheck.grade_free_run(too_few, [SINGLE], revolutions=2, quick=True)
 
 
+def test_omega_t_far_outside_the_run_is_refused_like_values_t():
+    # Issue 58: an omega_t 1e6 s past its sample was graded (an "exact" phase of 1.1e41 rad); the same fault in
+    # values_t was refused. Both are a broken run now.
+    def far(key):
+        def run(request):
+            r = constant_speed(request)
+            r[key] = [t + 1e6 for t in r["t"]]
+            return r
+        return run
+    with pytest.raises(RuntimeError, match=r"omega_t is 1e\+06 s, outside the samples either side"):
+        crankcheck.grade_free_run(far("omega_t"), [SINGLE], revolutions=2, quick=True)
+    with pytest.raises(RuntimeError, match=r"values_t is 1e\+06 s, outside the run"):
+        crankcheck.grade_free_run(far("values_t"), [SINGLE], revolutions=2, quick=True)
+
+
+def test_crankcheck_s_own_work_past_the_limit_is_refused_before_the_function_runs():
+    # Issue 58: revolutions=100000 kept crankcheck measuring for hours after the function answered.
+    calls = []
+
+    def counted(request):
+        calls.append(request["case"])
+        return constant_speed(request)
+    start = time.monotonic()
+    with pytest.raises(ValueError, match=r"revolutions: crankcheck's own reference runs over 100000 revolutions "
+                                         r"would take about .*more than work_limit 600 s"):
+        crankcheck.grade_free_run(counted, [SINGLE], revolutions=100000, quick=True)
+    assert calls == []
+    assert time.monotonic() - start < 60  # the probe is one revolution of the engines' runs: seconds
+    with pytest.raises(ValueError, match="work_limit"):
+        crankcheck.grade_free_run(counted, [SINGLE], work_limit=float("nan"))
+
+
 def test_a_function_that_never_answers_is_interrupted():
     def stuck(request):
         time.sleep(30)

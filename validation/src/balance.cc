@@ -15,7 +15,7 @@
 
 namespace crankcheck::validation {
 
-std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples) {
+std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples, const std::vector<const Engine*>& engines) {
   if (order < 1) throw std::invalid_argument("calcBalance: order must be >= 1");
   if (samples == 0) samples = std::max(64, 4 * order);
   if (samples < 2 * order + 1) throw std::invalid_argument("calcBalance: samples must be >= 2 order + 1");
@@ -23,7 +23,7 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples) 
 
   // Each reference engine's F_s and M_s over one revolution, at phi_i = 2 pi i / N, and its harmonics by a DFT.
   std::vector<std::pair<std::string, std::vector<analytic::ShakingHarmonic>>> spectra;
-  for (const Engine* engine : listReferenceEngines()) {
+  for (const Engine* engine : engines.empty() ? listReferenceEngines() : engines) {
     std::unique_ptr<EngineModel> model;
     try {
       model = engine->build(m);

@@ -163,12 +163,13 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
                           "verdict are whole."});
   }
   // Every registered part's tasks (parts.h), in report order; a part with nothing to show for these scenes says why.
-  const PartContext context{base, first, pin_scenes, options.scenes, families, quick};
+  const PartContext context{base, first, pin_scenes, options.scenes, families, quick, options.work_limit};
   std::vector<const Part*> selected;
   for (const Part* part : listParts())
     if (part->always() || options.parts.empty() ||
         std::find(options.parts.begin(), options.parts.end(), part->key()) != options.parts.end())
       selected.push_back(part);  // validate --parts: only those asked for, and the report's core
+  for (const Part* part : selected) part->checkWork(context);  // before any work: a refusal, not hours
   for (const Part* part : selected)
     if (const std::string why = part->findOmission(context); !why.empty())
       notes.push_back({"Part " + std::to_string(part->number()) + " (" + part->key() + ") is left out: " + why});

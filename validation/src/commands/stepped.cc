@@ -1,12 +1,17 @@
 #include "crankcheck/validation/commands/stepped.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <functional>
+#include <map>
 #include <stdexcept>
 
 #include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/stepped_errors.h"
+#include "crankcheck/validation/work_limit.h"
 
 namespace crankcheck::validation {
 
@@ -53,15 +58,77 @@ std::vector<std::string> chooseSettings(const SteppedEngine& engine, const std::
 
 }  // namespace
 
-double countSteppedSteps(const Mechanism& m, const std::vector<const SteppedEngine*>& engines,
-                         const std::vector<std::string>& settings, const std::vector<double>& steps) {
+std::vector<SteppedJob> listSteppedJobs(const Mechanism& m, const std::vector<const SteppedEngine*>& engines,
+                                        const std::vector<std::string>& settings, const std::vector<double>& steps) {
+  std::vector<SteppedJob> jobs;
+  for (const SteppedEngine* engine : engines)
+    for (const std::string& s : chooseSettings(*engine, settings))
+      for (double dt : steps) {
+        const long turn = calcStepsPerTurn(m, dt);
+        jobs.push_back({engine, s, dt, static_cast<double>(std::max(kSettlingSteps, turn) + turn)});
+      }
+  return jobs;
+}
+
+void checkSteppedWork(const Mechanism& m, const std::vector<SteppedJob>& jobs, double limit_seconds,
+                      const std::string& what, const std::string& smaller) {
   double total = 0.0;
-  for (double dt : steps) {
-    const long turn = calcStepsPerTurn(m, dt);
-    for (const SteppedEngine* engine : engines)
-      total += static_cast<double>(chooseSettings(*engine, settings).size()) * static_cast<double>(std::max(kSettlingSteps, turn) + turn);
+  for (const SteppedJob& job : jobs) total += job.steps;
+  if (total > kMaxSteppedSteps) {
+    char line[160];
+    std::snprintf(line, sizeof line, "%.3g steps at %.6g rpm, more than the %.3g a sweep may take", total,
+                  m.speed_rpm, kMaxSteppedSteps);
+    throw UsageError(what + ": " + line + "; nothing was run: " + smaller);
   }
-  return total;
+  // Within the limit even at a ceiling on a step's cost (kStepCostCeiling, growing as k^3: a direct solve of the
+  // loops' constraints), nothing needs measuring: the example scenes' default sweeps pass here without a probe.
+  const double k = m.machine.cylinders;
+  if (total * kStepCostCeiling * std::max(1.0, std::pow(k / 4.0, 3.0)) <= limit_seconds) return;
+  // The cost of a step of each engine and settings, measured at the smallest step its jobs take (the dearest: an
+  // iterative solver's work does not fall with the step).
+  std::map<std::pair<const SteppedEngine*, std::string>, double> smallest;
+  for (const SteppedJob& job : jobs) {
+    auto [it, inserted] = smallest.try_emplace({job.engine, job.settings}, job.dt);
+    if (!inserted) it->second = std::min(it->second, job.dt);
+  }
+  const StartState start = calcStartState(m, getClosedFormEngine().build(m)->evaluate(0.0));
+  std::map<std::pair<const SteppedEngine*, std::string>, double> cost;
+  for (const auto& [key, dt] : smallest) {
+    auto seconds = [&, engine = key.first, s = key.second](long n) {
+      ConstantSpeedRunOptions probe;
+      probe.dt = dt;
+      probe.steps = n;
+      probe.settings = s;
+      probe.start = start;
+      const auto begin = std::chrono::steady_clock::now();
+      engine->run(m, probe);
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    };
+    try {
+      // Longer probes while they stay short (50 ms): a run's first steps and its build cost more than its steady
+      // steps, so that a short probe of a cheap engine overstates its step tenfold.
+      const double one = seconds(1);
+      for (long n = kProbeSteps;; n *= 4) {
+        const double more = seconds(1 + n);
+        cost[key] = std::max(more - one, 0.0) / static_cast<double>(n);
+        if (more > 0.05 || n >= 64 * kProbeSteps) break;
+      }
+    } catch (const std::exception&) {
+      // The engine cannot build the scene or take the step: the sweep names it; nothing of its runs is counted.
+    }
+  }
+  double seconds = 0.0, dearest = 0.0;
+  std::string dearest_name;
+  for (const SteppedJob& job : jobs) {
+    const auto it = cost.find({job.engine, job.settings});
+    if (it == cost.end()) continue;
+    seconds += job.steps * it->second;
+    if (it->second > dearest) dearest = it->second, dearest_name = job.engine->name + " " + job.settings;
+  }
+  char how[200];
+  std::snprintf(how, sizeof how, "%.3g steps; the dearest step, %s's, measured at %s", total, dearest_name.c_str(),
+                formatDuration(dearest).c_str());
+  checkWorkLimit(what, seconds, how, smaller, limit_seconds);
 }
 
 SteppedSweep calcSteppedSweep(const Mechanism& m, const std::string& scene, const std::vector<const SteppedEngine*>& engines,

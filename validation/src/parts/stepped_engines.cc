@@ -15,6 +15,7 @@
 #include "crankcheck/validation/commands/stepped.h"
 #include "crankcheck/validation/engine_runs.h"
 #include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/stepped_errors.h"
@@ -291,6 +292,28 @@ class SteppedEnginesPart final : public Part {
                        return tables;
                      }});
     return out;
+  }
+  // The sweep's steps grow as the speed falls (a turn at 1e-6 rpm is years of steps) and its cost with the scene (an
+  // ODE step on 64 cylinders takes 50 ms): estimated as `crankcheck stepped` estimates it, before any work.
+  void checkWork(const PartContext& context) const override {
+    const Mechanism* m = chooseScene(context);
+    if (!m) return;
+    std::vector<const SteppedEngine*> engines;
+    for (const SteppedEngine& e : listSteppedEngines()) engines.push_back(&e);
+    std::vector<SteppedJob> jobs;
+    try {
+      jobs = listSteppedJobs(*m, engines, {}, chooseSteps(context.quick));
+    } catch (const std::invalid_argument& e) {
+      throw UsageError("part " + key() + ": scene " + m->name + ": " + e.what());
+    }
+    if (m->flywheel_inertia)  // the free runs, kFreeRevolutions each (as tasks() makes them)
+      for (const SteppedEngine* e : engines)
+        if (e->run_free)
+          for (const std::string& s : e->settings)
+            for (double dt : context.quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-4})
+              jobs.push_back({e, s, dt, 1.1 * kFreeRevolutions * 2.0 * M_PI / (std::fabs(m->machine.speed) * dt)});
+    checkSteppedWork(*m, jobs, context.work_limit, "part " + key() + " on scene " + m->name,
+                     "leave the part out (--parts without " + key() + ")");
   }
   void derive(TableSet& tables) const override { deriveSteppedSummary(tables); }
   ReportPart describe(const TableSet& tables) const override { return describeSteppedPart(tables, heading()); }

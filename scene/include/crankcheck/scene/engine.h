@@ -65,7 +65,9 @@ struct Engine {
   /// others, gated, are its references (validation/engines.h listReferenceEngines).
   bool closed_form = false;
   /// Builds the engine's model of m.
-  /// @throws std::invalid_argument if the engine cannot build m (the message names the scene key and the rule);
+  /// @throws std::invalid_argument if the engine cannot build m (the message names the scene key and the rule), or
+  ///         cannot hold its promised accuracy on it (found by its own check on a probe before any value is given:
+  ///         a residual of its equations; the message says what was measured);
   ///         std::runtime_error if the engine's library fails.
   using BuildFunction = std::function<std::unique_ptr<EngineModel>(const Mechanism& m)>;
   BuildFunction build;

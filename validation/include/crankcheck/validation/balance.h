@@ -12,6 +12,7 @@
 
 #include "crankcheck/analytic/shaking.h"
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/scene/engine.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::validation {
@@ -31,7 +32,9 @@ struct BalanceRow {
 /// crank ratios).
 /// @throws std::invalid_argument if order < 1 or samples is not 0 and below 2 order + 1, or an engine cannot build m
 ///         (the message names the engine); std::runtime_error if an engine fails.
-std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples = 0);
+/// `engines`: the reference engines to run (empty: every one, listReferenceEngines).
+std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples = 0,
+                                    const std::vector<const Engine*>& engines = {});
 
 /// The closed-form harmonic h with the parts that vanish exactly by the layout's symmetry s set to 0 (they are
 /// rounding otherwise); h itself where s is not decided.

@@ -56,6 +56,9 @@ struct CampaignOptions {
   /// The keys of the report parts to run (`validate --parts`), each once; empty = every part. The cross-checks (the
   /// verdict) always run. @see checkPartKeys
   std::vector<std::string> parts;
+  /// [s] the longest estimated work a part may start (`validate --work-limit`, work_limit.h): a part whose work on
+  /// these scenes is estimated past it refuses the campaign before any work (Part::checkWork).
+  double work_limit = 600.0;
 };
 
 /// One independent unit of work.
@@ -79,6 +82,7 @@ std::vector<Mechanism> loadExampleScenes();
 
 /// The campaign: cross-checks of every family over lambda (its own and 0.1 .. 0.9), and the data of every report
 /// figure. With options.scenes the first scene is the base of the lambda sweeps and figures.
+/// @throws UsageError when a part's work is estimated past options.work_limit (Part::checkWork).
 std::vector<Task> buildCampaign(const CampaignOptions& options);
 
 

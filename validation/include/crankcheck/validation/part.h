@@ -32,6 +32,7 @@ struct PartContext {
   /// (family of cases, scene) of every cross-checked scene: the built-in families, or one per user scene.
   std::vector<std::pair<std::string, Mechanism>> families;
   bool quick = false;  ///< fewer lambdas, angles and methods: a smoke test of the whole report
+  double work_limit = 600.0;  ///< [s] the longest estimated work a part may start (CampaignOptions::work_limit)
 };
 
 /// A task's estimated cost, relative: the campaign starts the larger first so that parallel jobs end together (the
@@ -111,6 +112,10 @@ class Part {
     return {};
   }
 
+  /// Checks before any work that the part's work on these scenes is estimated within context.work_limit (work_limit.h),
+  /// for a part whose work grows without a bound the scene sets (steps per turn at a low speed). Default: nothing.
+  /// @throws UsageError naming the part, the scene, the estimate and how to ask for less.
+  virtual void checkWork(const PartContext& context) const { (void)context; }
   /// Its number in the report: its place among the numbered parts of the registry (parts.h), 1..N; 0 for a part that
   /// is always() run. No part states its own number; prose names a part by its title or key, or asks the registry.
   /// @throws std::logic_error for a part that is not registered.

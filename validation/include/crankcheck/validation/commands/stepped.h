@@ -59,15 +59,44 @@ struct SteppedSweep {
 /// The steps [s] of the series by default: 1/240 s (a typical robotics or game step) down to 1e-5 s.
 std::vector<double> getDefaultSteppedSteps();
 
-/// The steps all runs of the sweep take in all (settling included), to be checked before the work starts.
-/// @throws std::invalid_argument as calcStepsPerTurn (a scene without speed, a step <= 0).
-double countSteppedSteps(const Mechanism& m, const std::vector<const SteppedEngine*>& engines,
-                         const std::vector<std::string>& settings, const std::vector<double>& steps);
-
-/// The most steps countSteppedSteps may give a sweep: minutes at most at these engines' 2 to 200 us a step (ODE's
-/// direct solve on a V8 is the dearest), and ample for the default series on the slowest example scene (the marine
-/// six at 105 rpm: 1.3e6 steps at 1e-5 s).
+/// The most steps a sweep may take (checkSteppedWork; its runs keep the measured turn's samples): ample for the
+/// default series on the slowest example scene (the marine six at 105 rpm: 1.3e6 steps at 1e-5 s). Their time is
+/// bounded apart from this, by their measured cost (--work-limit).
 inline constexpr double kMaxSteppedSteps = 2e6;
+
+/// One engine's runs at one settings and step, as the work before it starts counts them.
+struct SteppedJob {
+  const SteppedEngine* engine = nullptr;
+  std::string settings;
+  double dt = 0.0;     ///< [s]
+  double steps = 0.0;  ///< the steps the runs take in all (settling included)
+};
+
+/// The driven sweep's jobs (calcSteppedSweep's runs): each engine of `engines` at each of `settings` it has (empty:
+/// its every settings) and each of `steps`, its steps max(kSettlingSteps, a turn) + a turn.
+/// @throws std::invalid_argument as calcStepsPerTurn.
+std::vector<SteppedJob> listSteppedJobs(const Mechanism& m, const std::vector<const SteppedEngine*>& engines,
+                                        const std::vector<std::string>& settings, const std::vector<double>& steps);
+
+/// The steps of the first probe that measures the cost of an engine's step on a scene (checkSteppedWork): a run of
+/// 1 + n steps less a run of one, so that building the model is not counted; n = kProbeSteps, then 4 times as many
+/// while a probe stays under 50 ms, up to 64 kProbeSteps.
+inline constexpr long kProbeSteps = 16;
+
+/// A ceiling on the cost of one step of any stepped engine on a scene of up to four cylinders [s], times (k / 4)^3
+/// beyond: 200 us, ten times the dearest measured on four (ODE's direct solve: about 20 us; 85 us on the marine six,
+/// 200 us on the V8, 53 ms on k = 64, all within it). Work within the limit at this ceiling is not probed.
+inline constexpr double kStepCostCeiling = 2e-4;
+
+/// Checks the jobs' work before it starts (work_limit.h): their steps in all within kMaxSteppedSteps (the runs keep a
+/// turn's samples), then their time, each job's steps times the cost of a step of its engine and settings measured on m
+/// by a probe at the job's step, within `limit_seconds` (no probe where the jobs' steps at kStepCostCeiling are). A job
+/// whose engine cannot build m (its probe throws) is not counted: the sweep refuses it by name.
+/// @param what the work in the messages ("the stepped engines' runs on FILE")
+/// @param smaller how to ask for less ("a larger --dt")
+/// @throws UsageError past either limit, naming `what`, the estimate, `smaller` and --work-limit
+void checkSteppedWork(const Mechanism& m, const std::vector<SteppedJob>& jobs, double limit_seconds,
+                      const std::string& what, const std::string& smaller);
 
 /// Runs every engine of `engines` at each of `settings` (empty: each engine's every settings; a name an engine does
 /// not have is skipped for it) and each of `steps` (sorted here from the largest) on m, named `scene` in the rows.
