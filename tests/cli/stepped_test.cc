@@ -23,14 +23,19 @@ using RunResult = validation::ProgramResult;
 
 std::string scene(const std::string& name) { return std::string(CRANKCHECK_SCENES_DIR) + "/" + name; }
 
-TEST(SteppedCli, RefusesASceneWithoutSpeedNamingTheKey) {
-  testing::FreshFolder folder;
+// The example single cylinder at `speed_rpm` (as TOML text), written into `folder` as NAME.toml; its path.
+std::string writeSingleAt(const testing::FreshFolder& folder, const std::string& name, const std::string& speed_rpm) {
   std::ifstream in(scene("single_cylinder.toml"));
   std::stringstream text;
   text << in.rdbuf();
-  const std::string still = std::regex_replace(text.str(), std::regex("speed_rpm = [0-9.]+"), "speed_rpm = 0");
-  const std::string path = (folder.path() / "still.toml").string();
-  std::ofstream(path) << still;
+  const std::string path = (folder.path() / (name + ".toml")).string();
+  std::ofstream(path) << std::regex_replace(text.str(), std::regex("speed_rpm = [0-9.]+"), "speed_rpm = " + speed_rpm);
+  return path;
+}
+
+TEST(SteppedCli, RefusesASceneWithoutSpeedNamingTheKey) {
+  testing::FreshFolder folder;
+  const std::string path = writeSingleAt(folder, "still", "0");
   const RunResult r = testing::runCrankcheck({"stepped", path});
   EXPECT_EQ(r.exit_status, 2) << r.err;
   EXPECT_NE(r.err.find("speed_rpm"), std::string::npos) << r.err;
@@ -112,12 +117,7 @@ TEST(SteppedCli, RefusesASweepTooLongBeforeWorking) {
 // part and the scene, nothing written.
 TEST(SteppedCli, ValidatesStepsPartRefusesUnboundedWorkBeforeTheCampaign) {
   testing::FreshFolder folder;
-  std::ifstream in(scene("single_cylinder.toml"));
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string slow = std::regex_replace(text.str(), std::regex("speed_rpm = [0-9.]+"), "speed_rpm = 1e-6");
-  const std::string path = (folder.path() / "slow.toml").string();
-  std::ofstream(path) << slow;
+  const std::string path = writeSingleAt(folder, "slow", "1e-6");
   const std::string out = (folder.path() / "report").string();
   const RunResult r = testing::runCrankcheck({"validate", path, "--quick", "--parts", "stepped_engines", "--out", out});
   EXPECT_EQ(r.exit_status, 2) << r.err;
