@@ -99,8 +99,7 @@ def test_crankcheck_s_own_work_past_the_limit_is_refused_before_the_function_run
         calls.append(request["case"])
         return constant_speed(request)
     start = time.monotonic()
-    with pytest.raises(ValueError, match=r"revolutions: crankcheck's own reference runs over 100000 revolutions "
-                                         r"would take about .*more than work_limit 600 s"):
+    with pytest.raises(ValueError, match=r"revolutions: .* over 100000 revolutions.*fewer revolutions"):
         crankcheck.grade_free_run(counted, [SINGLE], revolutions=100000, quick=True)
     assert calls == []
     assert time.monotonic() - start < 60  # the probe is one revolution of the engines' runs: seconds

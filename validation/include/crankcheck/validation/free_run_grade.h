@@ -168,7 +168,9 @@ inline constexpr int kUnprobedRevolutions = 10;
 /// Checks before any run that crankcheck's own work on `cases` (the engines' reference runs of addEngineRuns over the
 /// horizon, the dearest part of a long grade) is estimated within `limit_seconds` (work_limit.h): each scene's engine
 /// runs timed over one revolution, times its revolutions (an upper bound: a run's start, the first revolution's
-/// delta among it, costs more than a later revolution). Cases of at most kUnprobedRevolutions are not probed.
+/// delta among it, costs more than a later revolution). Cases of at most kUnprobedRevolutions are not probed. The
+/// stepped engines' free runs are estimated at any horizon from each engine's measured cost of a step
+/// (commands/stepped.h checkSteppedWork).
 /// @throws UsageError "--revolutions: ... would take about ..., more than --work-limit ..."
 void checkRunGradeWork(const std::vector<RunCase>& cases, bool quick, double limit_seconds);
 
