@@ -70,9 +70,6 @@ std::string runBalance(const BalanceOptions& options) {
     throw UsageError(options.scene_path + ": " + e.what());
   }
   std::vector<validation::SatOut> sat_out;
-  const std::vector<const Engine*> engines = validation::findBuildingReferenceEngines(m, sat_out);
-  if (engines.empty())
-    throw UsageError(options.scene_path + ": --engine " + sat_out.front().engine + ": " + sat_out.front().reason);
   std::vector<BalanceShaftParams> designed;
   std::vector<validation::BalanceRow> rows;
   try {
@@ -80,7 +77,7 @@ std::string runBalance(const BalanceOptions& options) {
       designed = validation::designBalanceShafts(m, options.design);
       m.balance_shafts.insert(m.balance_shafts.end(), designed.begin(), designed.end());
     }
-    rows = validation::calcBalance(m, std::max(options.order, options.design), 0, engines);
+    rows = validation::calcBalance(m, std::max(options.order, options.design), 0, &sat_out);
   } catch (const std::invalid_argument& e) {
     throw UsageError(options.scene_path + ": " + e.what());
   } catch (const std::runtime_error& e) {  // a harmonic analysis that does not reach rounding: refused

@@ -241,10 +241,7 @@ py::object balance(const ScenePtr& scene, int order) {
   {
     py::gil_scoped_release release;
     try {
-      const std::vector<const Engine*> engines = validation::findBuildingReferenceEngines(m, sat_out);
-      if (engines.empty())
-        throw std::invalid_argument("--engine " + sat_out.front().engine + ": " + sat_out.front().reason);
-      rows = validation::calcBalance(m, order, 0, engines);
+      rows = validation::calcBalance(m, order, 0, &sat_out);
     } catch (const std::invalid_argument& e) {
       throw SceneError(scene->source + ": " + e.what());
     }

@@ -177,11 +177,11 @@ class ForeignManifestTest : public OutputSafetyTest {
     expectRefused({"validate", "--quick", scene, "--parts", "norton_fig13_8", "--shard", "0/2", "--out",
                    report.string()}, expected);
     expectRefused({"grade", "--quick", "--out", report.string(), "--", "/bin/false"}, expected);
-    ASSERT_EQ(writeShard(dir_ / "s0", "0/2").exit_status, 0);
-    ASSERT_EQ(writeShard(dir_ / "s1", "1/2").exit_status, 0);
-    expectRefused({"report", "merge", (dir_ / "s0").string(), (dir_ / "s1").string(), "--out", report.string()}, expected);
-    fs::remove_all(dir_ / "s0");
-    fs::remove_all(dir_ / "s1");
+    // Two shards of their own for each folder (the test's folder, removed with what the test wrote, holds them).
+    const fs::path s0 = dir_ / (report.filename().string() + "-s0"), s1 = dir_ / (report.filename().string() + "-s1");
+    ASSERT_EQ(writeShard(s0, "0/2").exit_status, 0);
+    ASSERT_EQ(writeShard(s1, "1/2").exit_status, 0);
+    expectRefused({"report", "merge", s0.string(), s1.string(), "--out", report.string()}, expected);
   }
 };
 

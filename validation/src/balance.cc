@@ -15,7 +15,7 @@
 
 namespace crankcheck::validation {
 
-std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples, const std::vector<const Engine*>& engines) {
+std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples, std::vector<SatOut>* sat_out) {
   if (order < 1) throw std::invalid_argument("calcBalance: order must be >= 1");
   if (samples == 0) samples = std::max(64, 4 * order);
   if (samples < 2 * order + 1) throw std::invalid_argument("calcBalance: samples must be >= 2 order + 1");
@@ -23,15 +23,19 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples, 
 
   // Each reference engine's F_s and M_s over one revolution, at phi_i = 2 pi i / N, and its harmonics by a DFT.
   std::vector<std::pair<std::string, std::vector<analytic::ShakingHarmonic>>> spectra;
-  for (const Engine* engine : engines.empty() ? listReferenceEngines() : engines) {
+  for (const Engine* engine : listReferenceEngines()) {
     std::unique_ptr<EngineModel> model;
     try {
       model = engine->build(m);
     } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument("--engine " + engine->name + ": " + e.what());
+      if (!sat_out) throw std::invalid_argument("--engine " + engine->name + ": " + e.what());
+      sat_out->push_back({engine->name, e.what()});
+      continue;
     }
     spectra.emplace_back(engine->name, calcShakingSpectrum(sampleShakingTurn(*model, samples), order));
   }
+  if (spectra.empty() && sat_out && !sat_out->empty())
+    throw std::invalid_argument("--engine " + sat_out->front().engine + ": " + sat_out->front().reason);
   std::vector<BalanceRow> rows;
   for (int n = 1; n <= order; ++n) {
     BalanceRow row;

@@ -81,19 +81,6 @@ void checkEveryEngineBuilds(const Mechanism& m, const std::string& path) {
   }
 }
 
-std::vector<const Engine*> findBuildingReferenceEngines(const Mechanism& m, std::vector<SatOut>& sat_out) {
-  std::vector<const Engine*> building;
-  for (const Engine* engine : listReferenceEngines()) {
-    try {
-      engine->build(m);
-      building.push_back(engine);
-    } catch (const std::invalid_argument& e) {
-      sat_out.push_back({engine->name, e.what()});
-    }
-  }
-  return building;
-}
-
 std::vector<const Engine*> listReferenceEngines() {
   std::vector<const Engine*> references;
   for (const Engine& e : listEngines())

@@ -12,7 +12,6 @@
 
 #include "crankcheck/analytic/shaking.h"
 #include "crankcheck/validation/campaign.h"
-#include "crankcheck/scene/engine.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::validation {
@@ -32,9 +31,16 @@ struct BalanceRow {
 /// crank ratios).
 /// @throws std::invalid_argument if order < 1 or samples is not 0 and below 2 order + 1, or an engine cannot build m
 ///         (the message names the engine); std::runtime_error if an engine fails.
-/// `engines`: the reference engines to run (empty: every one, listReferenceEngines).
-std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples = 0,
-                                    const std::vector<const Engine*>& engines = {});
+/// A reference engine that sits out the balance of a scene: it cannot build it, or cannot hold its promised accuracy
+/// on it (Engine::build's refusal), and its reason.
+struct SatOut {
+  std::string engine;
+  std::string reason;
+};
+
+/// `sat_out`: null, a reference engine that cannot build m is an error (std::invalid_argument naming it); given, it
+/// sits out and is added there with its reason, and the others answer (none left: std::invalid_argument).
+std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples = 0, std::vector<SatOut>* sat_out = nullptr);
 
 /// The closed-form harmonic h with the parts that vanish exactly by the layout's symmetry s set to 0 (they are
 /// rounding otherwise); h itself where s is not decided.

@@ -30,17 +30,6 @@ void checkEveryEngineBuilds(const Mechanism& m, const std::string& path);
 /// compared with (simbody, mujoco), in the registry's order.
 std::vector<const Engine*> listReferenceEngines();
 
-/// An engine that sits out a scene: it cannot build it, or cannot hold its promised accuracy on it (Engine::build's
-/// refusal), and its reason.
-struct SatOut {
-  std::string engine;
-  std::string reason;
-};
-
-/// The reference engines (listReferenceEngines) that build m, in the registry's order; each other one is added to
-/// `sat_out` with its reason. @throws std::runtime_error if an engine's library fails (not a refusal).
-std::vector<const Engine*> findBuildingReferenceEngines(const Mechanism& m, std::vector<SatOut>& sat_out);
-
 /// The engines a user's choice names (`eval --engine`), in the registry's order: an engine's name, "all" (every
 /// engine) or "both" (the closed forms and the first reference engine: listBothEngines); an unknown choice: none.
 std::vector<const Engine*> selectEngines(const std::string& choice);
