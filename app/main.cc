@@ -2,12 +2,15 @@
 // maps every failure to one message on stderr and its exit status (kExitStatus below, docs/safety.md "Exit status").
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <new>
+#include <string>
+#include <vector>
 
 #include "balance_command.h"
 #include "eval_command.h"
@@ -46,6 +49,44 @@ std::string parseErrorMessage(const CLI::ParseError& e) {
   for (char& c : message)
     if (c == '\n') c = ' ';
   return message;
+}
+
+// The edit distance (insertions, deletions, substitutions) between a and b.
+size_t calcEditDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// "--flag: unknown flag or argument (did you mean --flog?)" for the first argument like a flag that CLI11 did not take in `app` or
+// a subcommand it parsed; empty when there is none. CLI11 checks the required flags first: a mistyped required flag
+// was reported as missing, not as mistyped.
+std::string findUnknownFlag(const CLI::App& app) {
+  for (const std::string& arg : app.remaining(false)) {
+    if (arg.size() < 2 || arg[0] != '-') continue;
+    const std::string flag = arg.substr(0, arg.find('='));
+    std::string closest;
+    size_t best = 3;  // a suggestion within two edits
+    for (const CLI::Option* option : app.get_options())
+      for (const std::string& name : option->get_lnames())
+        if (const size_t d = calcEditDistance(flag, "--" + name); d < best) {
+          best = d;
+          closest = "--" + name;
+        }
+    return flag + ": unknown flag or argument" + (closest.empty() ? std::string() : " (did you mean " + closest + "?)");
+  }
+  for (const CLI::App* sub : app.get_subcommands())
+    if (std::string found = findUnknownFlag(*sub); !found.empty()) return found;
+  return {};
 }
 
 // `status`, once everything written to stdout has reached it; else EnvironmentError. A write that fails while stdio's
@@ -149,7 +190,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {  // --help, --version
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "crankcheck: " << parseErrorMessage(e) << " (see crankcheck --help)\n";
+    const std::string unknown = findUnknownFlag(app);  // named before what its absence made missing
+    std::cerr << "crankcheck: " << (unknown.empty() ? parseErrorMessage(e) : unknown) << " (see crankcheck --help)\n";
     return 2;
   }
 

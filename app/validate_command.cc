@@ -90,9 +90,18 @@ void printProgress(const validation::Progress& p) {
 
 bool allPass(const TableSet& tables) { return validation::allAgree(validation::calcVerdicts(tables)); }
 
+// "ENGINE sat out: it cannot build scene S (reason)", one line per engine that sat out of the campaign.
+std::string formatSatOut(const std::vector<validation::SatOut>& sat_out) {
+  std::string out;
+  for (const validation::SatOut& s : sat_out)
+    out += s.engine + " sat out: it cannot build scene " + s.scene + " (" + formatOneLine(s.reason) + ")\n";
+  return out;
+}
+
 // The terminal's end: the families' table (all of it with --verbose, else only the families that failed), the
-// verdict (one line per engine, the ctest-style closing line) and where the report is.
-int reportAndInstall(const TableSet& unsorted, validation::ReportInfo& info, validation::OutputFolder& out, bool verbose) {
+// verdict (one line per engine, the ctest-style closing line), the engines that sat out and where the report is.
+int reportAndInstall(const TableSet& unsorted, const std::vector<validation::SatOut>& sat_out,
+                     validation::ReportInfo& info, validation::OutputFolder& out, bool verbose) {
   // Sorted as the report writes them (the ties' rule itself is order-free: isWorseComparison, verdict.h).
   TableSet tables = unsorted;
   validation::sortTables(tables);
@@ -110,7 +119,7 @@ int reportAndInstall(const TableSet& unsorted, validation::ReportInfo& info, val
             << (info.shards > 1 ? ", merged from " + std::to_string(info.shards) + " shards"
                                 : ", in " + validation::shortNumber(info.seconds, 3) + " s")
             << "\n"
-            << validation::formatVerdict(verdicts) << validation::formatSceneHeadlines(tables)
+            << validation::formatVerdict(verdicts) << formatSatOut(sat_out) << validation::formatSceneHeadlines(tables)
             << "Report: " << (out.getTarget() / "index.md").string() << " (also index.html)\n";
   return pass ? 0 : 1;
 }
@@ -133,9 +142,6 @@ int runValidate(const ValidateOptions& options) {
     campaign.scenes.push_back(loadScene(path));
     if (!names.insert(campaign.scenes.back().name).second)
       throw UsageError(path + ": a scene named " + campaign.scenes.back().name + " is given twice");
-    // Every engine must be able to build the scene (a massless rod for Simbody, a massless piston for MuJoCo, ...):
-    // refused now, naming the engine and the key, not after minutes of work.
-    validation::checkEveryEngineBuilds(campaign.scenes.back(), path);
     if (campaign.scenes.back().crankshaft) {  // the torsion part's domain (analytic/torsion_domain.h), before any work
       try {
         analytic::checkTorsionDomain(campaign.scenes.back());
@@ -144,6 +150,11 @@ int runValidate(const ValidateOptions& options) {
       }
     }
   }
+  // Every engine builds every scene now, not after minutes of work: an engine that cannot (a rule of its own, an
+  // accuracy it cannot hold there) sits out of the campaign, and the others go on; the closed forms, or every exact
+  // engine, unable to: refused, naming the engine and the reason.
+  campaign.sat_out = validation::findSatOut(campaign.scenes, options.scene_paths);
+  const validation::SatOutScope sat_out_scope(campaign.sat_out);
   validation::ShardSelection selection;
   if (!options.shard.empty()) {
     try {
@@ -189,11 +200,11 @@ int runValidate(const ValidateOptions& options) {
     validation::writeShard(run.tables, manifest, out.getStaging());
     out.install("shard");
     const bool pass = allPass(run.tables);
-    std::cout << "Shard " << selection.index << "/" << selection.count << " (" << run.task_ids.size() << " of " << all.size() << " tasks) written to " << options.out << (pass ? "" : "; SOME COMPARISONS FAIL")
+    std::cout << formatSatOut(campaign.sat_out) << "Shard " << selection.index << "/" << selection.count << " (" << run.task_ids.size() << " of " << all.size() << " tasks) written to " << options.out << (pass ? "" : "; SOME COMPARISONS FAIL")
               << ". Merge the shards with: crankcheck report merge SHARD_DIR... --out DIR\n";
     return pass ? 0 : 1;
   }
-  return reportAndInstall(run.tables, info, out, options.verbose);
+  return reportAndInstall(run.tables, campaign.sat_out, info, out, options.verbose);
 }
 
 int runMerge(const MergeOptions& options) {
@@ -212,7 +223,7 @@ int runMerge(const MergeOptions& options) {
   info.shards = merged.first.count;
   validation::InterruptGuard interrupt(out);
   out.createStaging();
-  return reportAndInstall(merged.tables, info, out, options.verbose);
+  return reportAndInstall(merged.tables, merged.first.sat_out, info, out, options.verbose);
 }
 
 }  // namespace crankcheck::app

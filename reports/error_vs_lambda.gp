@@ -13,6 +13,11 @@
 # Any (quantity, method) pair absent from the CSV is left out of the plot and the legend.
 # Rows may come in any order. Errors of 0 (or below 1e-17) are drawn at 1e-17.
 
+# The reference engine drawn beside the closed forms: crankcheck passes the first one in play (an engine that sat out
+# is not drawn); alone, Simbody.
+if (!exists("reference")) reference = "simbody"
+if (!exists("reference_title")) reference_title = "Simbody"
+
 if (!exists("in_dir"))  in_dir  = "."
 if (!exists("out_dir")) out_dir = "."
 name = "error_vs_lambda"
@@ -73,8 +78,8 @@ do for [q in "x_p v_p a_p"] {
     i = i + 1
     SQ[i] = q; SM[i] = "norton_two_term"; SP[i] = 1
     ST[i] = q . " Norton two-term"
-    SQ[i+3] = q; SM[i+3] = "analytic_vs_simbody"; SP[i+3] = 1
-    ST[i+3] = q . " analytic vs Simbody"
+    SQ[i+3] = q; SM[i+3] = "analytic_vs_" . reference; SP[i+3] = 1
+    ST[i+3] = q . " analytic vs " . reference_title
 }
 # right panel (SP = 2)
 i = 6
@@ -85,8 +90,8 @@ do for [n = 2:12:2] {
 }
 SQ[13] = "Q"; SM[13] = "paper_eq15_printed";  ST[13] = "Q eq (15) as printed";  SP[13] = 2
 SQ[14] = "Q"; SM[14] = "paper_eq5_printed";   ST[14] = "Q eq (5) as printed";   SP[14] = 2
-SQ[15] = "Q"; SM[15] = "analytic_vs_simbody"; ST[15] = "Q analytic vs Simbody"; SP[15] = 2
-SQ[16] = "U"; SM[16] = "analytic_vs_simbody"; ST[16] = "U analytic vs Simbody"; SP[16] = 2
+SQ[15] = "Q"; SM[15] = "analytic_vs_" . reference; ST[15] = "Q analytic vs " . reference_title; SP[15] = 2
+SQ[16] = "U"; SM[16] = "analytic_vs_" . reference; ST[16] = "U analytic vs " . reference_title; SP[16] = 2
 SQ[17] = "U"; SM[17] = "paper_eq5_printed";   ST[17] = "U eq (5) as printed";   SP[17] = 2
 
 # styles: kinematics x_p blue, v_p orange, a_p red; Norton solid + filled, Simbody dashed + open

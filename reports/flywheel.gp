@@ -12,6 +12,10 @@
 # (norton / exact - 1, in %) against k, one line per speed. Each series' rows come together, in order (crankcheck sorts
 # the tables by their first columns).
 
+# The engine whose free run is drawn: crankcheck passes the first in play whose run takes the loads ("" when none is,
+# then no run is drawn); alone, Simbody.
+if (!exists("loaded_run")) loaded_run = "simbody"
+
 if (!exists("in_dir"))  in_dir  = "."
 if (!exists("out_dir")) out_dir = "."
 name = "flywheel"
@@ -29,7 +33,7 @@ stats sweep using (nsweep = nsweep + 1, 1) nooutput
 if (nsweep == 0) { print "error: " . sweep . " is missing or empty (not even a header line)"; exit status 1 }
 
 # the columns by their headers ("name [unit]"), the first line of each CSV
-c_scene = "scene"; c_inertia = "flywheel_inertia [kg m^2]"; c_exact = "exact_delta [-]"; c_run = "simbody_delta [-]"
+c_scene = "scene"; c_inertia = "flywheel_inertia [kg m^2]"; c_exact = "exact_delta [-]"; c_run = loaded_run . "_delta [-]"
 c_rpm = "speed_rpm [rpm]"; c_k = "k [-]"; c_error = "norton_error [-]"
 set datafile columnheaders
 
@@ -80,10 +84,15 @@ do for [fmt in "svg png"] {
         unset label 5
         set autoscale xy
     } else {
-        plot for [i = 1:nscenes] curve using (column(c_inertia)):(strcol(c_scene) eq S[i] ? column(c_exact) : NaN) with lines lw 2 lc rgb C[i] title S[i], \
-             for [i = 1:nscenes] curve using (column(c_inertia)):(strcol(c_scene) eq S[i] && strcol(c_run) ne "" ? column(c_run) : NaN) with points pt 7 ps 0.8 lc rgb C[i] notitle, \
-             0.01 with lines dt 2 lc rgb "#777777" title "C = 0.01", \
-             NaN with points pt 7 lc rgb "#444444" title "Simbody's run"
+        if (loaded_run ne "") {
+            plot for [i = 1:nscenes] curve using (column(c_inertia)):(strcol(c_scene) eq S[i] ? column(c_exact) : NaN) with lines lw 2 lc rgb C[i] title S[i], \
+                 for [i = 1:nscenes] curve using (column(c_inertia)):(strcol(c_scene) eq S[i] && strcol(c_run) ne "" ? column(c_run) : NaN) with points pt 7 ps 0.8 lc rgb C[i] notitle, \
+                 0.01 with lines dt 2 lc rgb "#777777" title "C = 0.01", \
+                 NaN with points pt 7 lc rgb "#444444" title "the free run (" . loaded_run . ")"
+        } else {
+            plot for [i = 1:nscenes] curve using (column(c_inertia)):(strcol(c_scene) eq S[i] ? column(c_exact) : NaN) with lines lw 2 lc rgb C[i] title S[i], \
+                 0.01 with lines dt 2 lc rgb "#777777" title "C = 0.01"
+        }
     }
     unset logscale xy
     set xlabel "cylinders k (inline four-stroke, the base scene's parts, example pressures)"

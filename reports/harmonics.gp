@@ -12,6 +12,11 @@
 # paper's table 1; 0 or empty draws nothing). A cell with no row in the CSV stays light grey.
 # Rows may come in any order; a missing cycle leaves its panel empty with a note.
 
+# The reference engine drawn beside the closed forms: crankcheck passes the first one in play (an engine that sat out
+# is not drawn); alone, Simbody.
+if (!exists("reference")) reference = "simbody"
+if (!exists("reference_title")) reference_title = "Simbody"
+
 if (!exists("in_dir"))  in_dir  = "."
 if (!exists("out_dir")) out_dir = "."
 name = "harmonics"
@@ -44,7 +49,7 @@ has(c) = strstrt(present, "|" . c . "|") > 0
 set palette defined (0 "#30123b", 1 "#3b528b", 2 "#21918c", 3 "#5ec962", 4 "#fde725")
 set cbrange [-17:0]
 set cbtics -16, 2, 0 font ",9"
-set cblabel "log_{10}(Simbody amplitude / energy scale)" font ",9" offset -0.5, 0
+set cblabel "log_{10}(" . reference_title . " amplitude / energy scale)" font ",9" offset -0.5, 0
 set colorbox user origin screen 0.885, screen 0.145 size screen 0.018, screen 0.715
 set xtics 1, 1, 24 scale 0 font ",9"
 set ytics 1, 1, 12 scale 0 font ",9"
@@ -57,7 +62,7 @@ set object 1 rectangle from graph 0, 0 to graph 1, 1 fillcolor rgb "#e6e6e6" fil
 # string (seen: "1"), so a string comparison would draw crosses the CSV does not ask for; column() of an empty field is
 # missing (the row is skipped).
 # cells, then each marker twice (a wide white stroke under a thin black one: visible on any colour)
-cells(c)   = sprintf("file using 'n [-]':(strcol('cycle') eq '%s' ? column('k [-]') : NaN):(0.5):(0.5):(lz(column('simbody_amplitude [N m]'))) with boxxyerror fillstyle solid 1.0 noborder lc palette notitle", c)
+cells(c)   = sprintf("file using 'n [-]':(strcol('cycle') eq '%s' ? column('k [-]') : NaN):(0.5):(0.5):(lz(column('%s_amplitude [N m]'))) with boxxyerror fillstyle solid 1.0 noborder lc palette notitle", c, reference)
 circles(c) = sprintf("file using 'n [-]':(strcol('cycle') eq '%s' && column('analytic_amplitude [N m]') > amp_threshold ? column('k [-]') : NaN) with points pt 6 ps 1.25 lw 3.5 lc rgb 'white' notitle, ", c) . \
              sprintf("file using 'n [-]':(strcol('cycle') eq '%s' && column('analytic_amplitude [N m]') > amp_threshold ? column('k [-]') : NaN) with points pt 6 ps 1.25 lw 1.3 lc rgb 'black' notitle", c)
 crosses(c) = sprintf("file using 'n [-]':(strcol('cycle') eq '%s' && column('paper_nonzero') == 1 ? column('k [-]') : NaN) with points pt 2 ps 0.7 lw 3.5 lc rgb 'white' notitle, ", c) . \
@@ -101,7 +106,7 @@ do for [fmt in "svg png"] {
         }
     }
     set output out_dir . "/" . name . "." . fmt
-    set multiplot title "Harmonics of Q from a DFT of Simbody's Q(φ): colour; analytic prediction: circles; paper's table 1: crosses" font ",12"
+    set multiplot title "Harmonics of Q from a DFT of " . reference_title . "'s Q(φ): colour; analytic prediction: circles; paper's table 1: crosses" font ",12"
 
     do for [p = 1:2] {
         c = CYC[p]

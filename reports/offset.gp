@@ -10,6 +10,11 @@
 # Right: the peak side thrust on the major (N_w > 0) and minor side against delta / r, analytic lines, Simbody dots.
 # Each series' rows come together, in order of delta / r (crankcheck sorts the tables by their first column).
 
+# The reference engine drawn beside the closed forms: crankcheck passes the first one in play (an engine that sat out
+# is not drawn); alone, Simbody.
+if (!exists("reference")) reference = "simbody"
+if (!exists("reference_title")) reference_title = "Simbody"
+
 if (!exists("in_dir"))  in_dir  = "."
 if (!exists("out_dir")) out_dir = "."
 name = "offset"
@@ -52,16 +57,16 @@ do for [fmt in "svg png"] {
     set ylabel "largest error over the cycle / scale"
     set yrange [floor / 3 : 10]
     plot for [i = 1:4] cost using "offset_over_r [-]":(strcol("quantity") eq Q[i] ? clamp(column("max_rel_error [-]")) : NaN) with linespoints lw 2 pt 7 ps 0.6 lc rgb C[i] title Q[i] . " (centric form)" noenhanced, \
-         for [i = 1:4] cost using "offset_over_r [-]":(strcol("quantity") eq Q[i] ? clamp(column("simbody_max_rel_error [-]")) : NaN) with points pt 6 ps 0.8 lc rgb C[i] notitle, \
-         NaN with points pt 6 lc rgb "#444444" title "analytic vs Simbody (offset engine)"
+         for [i = 1:4] cost using "offset_over_r [-]":(strcol("quantity") eq Q[i] ? clamp(column(reference . "_max_rel_error [-]")) : NaN) with points pt 6 ps 0.8 lc rgb C[i] notitle, \
+         NaN with points pt 6 lc rgb "#444444" title "analytic vs " . reference_title . " (offset engine)"
     unset logscale y
     set format y "%g"
     set yrange [*:*]
     set ylabel "peak side thrust [N]"
     plot thrust using "offset_over_r [-]":(strcol("engine") eq "analytic" ? column("peak_major_thrust [N]") : NaN) with lines lw 2 lc rgb "#d62728" title "major side (N_w > 0)" noenhanced, \
          thrust using "offset_over_r [-]":(strcol("engine") eq "analytic" ? column("peak_minor_thrust [N]") : NaN) with lines lw 2 lc rgb "#1f77b4" title "minor side", \
-         thrust using "offset_over_r [-]":(strcol("engine") eq "simbody" ? column("peak_major_thrust [N]") : NaN) with points pt 7 ps 0.6 lc rgb "#d62728" title "Simbody", \
-         thrust using "offset_over_r [-]":(strcol("engine") eq "simbody" ? column("peak_minor_thrust [N]") : NaN) with points pt 7 ps 0.6 lc rgb "#1f77b4" notitle
+         thrust using "offset_over_r [-]":(strcol("engine") eq reference ? column("peak_major_thrust [N]") : NaN) with points pt 7 ps 0.6 lc rgb "#d62728" title reference_title, \
+         thrust using "offset_over_r [-]":(strcol("engine") eq reference ? column("peak_minor_thrust [N]") : NaN) with points pt 7 ps 0.6 lc rgb "#1f77b4" notitle
     unset multiplot
     unset output
 }

@@ -12,6 +12,11 @@
 # axis; rows with resolved = 0, gravity torques below double precision, are left out). Rows may come in any order;
 # an engine or stroke without rows leaves its panel or line out.
 
+# The reference engine drawn beside the closed forms: crankcheck passes the first one in play (an engine that sat out
+# is not drawn); alone, Simbody.
+if (!exists("reference")) reference = "simbody"
+if (!exists("reference_title")) reference_title = "Simbody"
+
 if (!exists("in_dir"))  in_dir  = "."
 if (!exists("out_dir")) out_dir = "."
 name = "torque_split"
@@ -52,7 +57,7 @@ do for [fmt in "svg png"] {
         }
     }
     set output out_dir . "/" . name . "." . fmt
-    set multiplot title "The drive torque of a running engine: gas, inertia and gravity (Simbody's whole as dots)" font ",12"
+    set multiplot title "The drive torque of a running engine: gas, inertia and gravity (" . reference_title . "'s whole as dots)" font ",12"
     set tmargin at screen 0.86
     set bmargin at screen 0.22
     do for [e = 1:2] {
@@ -78,14 +83,14 @@ do for [fmt in "svg png"] {
                  file using PHI:(sel(e, "inertia_torque [N m]")) smooth unique with lines lw 1.5 lc rgb "#1f77b4" title "inertia", \
                  file using PHI:(sel(e, "gravity_torque [N m]")) smooth unique with lines lw 2 lc rgb "#2ca02c" title "gravity", \
                  file using PHI:(sel(e, "drive_torque [N m]")) smooth unique with lines lw 2 lc rgb "black" title "drive torque (analytic)", \
-                 file every 4 using PHI:(sel(e, "simbody_drive_torque [N m]")) with points pt 7 ps 0.35 lc rgb "#777777" title "Simbody"
+                 file every 4 using PHI:(sel(e, reference . "_drive_torque [N m]")) with points pt 7 ps 0.35 lc rgb "#777777" title reference_title
         } else {
             unset key
             plot file using PHI:(sel(e, "gas_torque [N m]")) smooth unique with lines lw 1.5 lc rgb "#d62728" notitle, \
                  file using PHI:(sel(e, "inertia_torque [N m]")) smooth unique with lines lw 1.5 lc rgb "#1f77b4" notitle, \
                  file using PHI:(sel(e, "gravity_torque [N m]")) smooth unique with lines lw 2 lc rgb "#2ca02c" notitle, \
                  file using PHI:(sel(e, "drive_torque [N m]")) smooth unique with lines lw 2 lc rgb "black" notitle, \
-                 file every 4 using PHI:(sel(e, "simbody_drive_torque [N m]")) with points pt 7 ps 0.35 lc rgb "#777777" notitle
+                 file every 4 using PHI:(sel(e, reference . "_drive_torque [N m]")) with points pt 7 ps 0.35 lc rgb "#777777" notitle
         } }
     }
     set lmargin at screen 0.72

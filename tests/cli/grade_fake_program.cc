@@ -52,6 +52,11 @@ int main(int argc, char** argv) {
     std::fputs("something went wrong in the model\n", stderr);
     return 7;
   }
+  if (mode == "traceback") {  // as Python dies: what failed is the last line, after the call stack
+    std::fputs("Traceback (most recent call last):\n  File \"sim.py\", line 12, in <module>\n    main()\n"
+               "  File \"sim.py\", line 9, in main\n    x = 1 / 0\nZeroDivisionError: division by zero\n", stderr);
+    return 1;
+  }
   if (mode == "hang") {
     for (;;) ::pause();
   }

@@ -192,6 +192,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Misbehaviour{"string", "must be a number or null"},
                       Misbehaviour{"crash", "ended by signal 6"},
                       Misbehaviour{"exit7", "exited with status 7; its stderr: \"something went wrong"},
+                      // The end of a long stderr, where a traceback says what failed (issue 59).
+                      Misbehaviour{"traceback", "exited with status 1; the end of its stderr: \"...\\n  File \\\"sim.py\\\", "
+                                                "line 9, in main\\n    x = 1 / 0\\nZeroDivisionError: division by zero\""},
                       Misbehaviour{"hang", "no complete answer within 1 s", "1"},
                       Misbehaviour{"answer-then-hang", "answered completely but did not exit within 1 s", "1"},
                       // The quote is closed, and ESC, NUL and tab are shown as escapes.

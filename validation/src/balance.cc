@@ -29,7 +29,7 @@ std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples, 
       model = engine->build(m);
     } catch (const std::invalid_argument& e) {
       if (!sat_out) throw std::invalid_argument("--engine " + engine->name + ": " + e.what());
-      sat_out->push_back({engine->name, e.what()});
+      sat_out->push_back({engine->name, m.name, e.what()});
       continue;
     }
     spectra.emplace_back(engine->name, calcShakingSpectrum(sampleShakingTurn(*model, samples), order));

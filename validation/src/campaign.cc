@@ -16,6 +16,7 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/crosscheck.h"
 #include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/install_paths.h"
 #include "crankcheck/validation/parts.h"
 #include "crankcheck/validation/extremum.h"
@@ -156,6 +157,9 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
                      std::to_string(findPart("integrator_pareto").number()) + " (the free run) are left out: the base "
                      "scene " + base.name + " has no [flywheel] inertia and crankcheck does not assume one. Give the "
                      "first scene a [flywheel] table to get them."});
+  for (const SatOut& s : options.sat_out)
+    notes.push_back({"Engine " + s.engine + " sat out of this campaign: it cannot build scene " + s.scene + " (" +
+                     formatOneLine(s.reason) + "). Every table, verdict and figure is of the other engines."});
   if (!options.parts.empty()) {
     std::string asked;
     for (const std::string& key : options.parts) asked += (asked.empty() ? "" : ", ") + key;

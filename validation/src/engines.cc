@@ -1,6 +1,7 @@
 #include "crankcheck/validation/engines.h"
 
 #include <algorithm>
+#include <memory>
 #include <stdexcept>
 
 #include "crankcheck/analytic/engine.h"
@@ -33,7 +34,10 @@ void registerExtraEngine(Engine engine) {
   extraEngines().push_back(std::move(engine));
 }
 
-const std::vector<Engine>& listEngines() {
+namespace {
+
+// Every registered engine, built on first use.
+const std::vector<Engine>& listRegisteredEngines() {
   static const std::vector<Engine> engines = [] {
     registry_built = true;
     std::vector<Engine> all;
@@ -59,6 +63,33 @@ const std::vector<Engine>& listEngines() {
   return engines;
 }
 
+// The registered engines less those a live SatOutScope leaves out; null when none is alive. Set and cleared only by
+// SatOutScope, before and after the work whose threads read it.
+std::unique_ptr<const std::vector<Engine>> engines_in_play;
+
+}  // namespace
+
+const std::vector<Engine>& listEngines() { return engines_in_play ? *engines_in_play : listRegisteredEngines(); }
+
+SatOutScope::SatOutScope(const std::vector<SatOut>& sat_out) {
+  if (engines_in_play) throw std::logic_error("SatOutScope: another one is alive");
+  for (const SatOut& s : sat_out)
+    if (std::none_of(listRegisteredEngines().begin(), listRegisteredEngines().end(),
+                     [&](const Engine& e) { return e.name == s.engine; }))
+      throw std::invalid_argument("no engine \"" + s.engine + "\"");
+  auto in_play = std::make_unique<std::vector<Engine>>();
+  for (const Engine& e : listRegisteredEngines())
+    if (std::none_of(sat_out.begin(), sat_out.end(), [&](const SatOut& s) { return s.engine == e.name; }))
+      in_play->push_back(e);
+  const bool closed_form = std::any_of(in_play->begin(), in_play->end(), [](const Engine& e) { return e.closed_form; });
+  const bool reference = std::any_of(in_play->begin(), in_play->end(), [](const Engine& e) { return e.gated && !e.closed_form; });
+  if (!closed_form || !reference)
+    throw std::invalid_argument("it leaves out " + std::string(closed_form ? "every reference engine" : "the closed forms"));
+  engines_in_play = std::move(in_play);
+}
+
+SatOutScope::~SatOutScope() { engines_in_play.reset(); }
+
 const Engine& findEngine(const std::string& name) {
   for (const Engine& e : listEngines())
     if (e.name == name) return e;
@@ -81,12 +112,40 @@ void checkEveryEngineBuilds(const Mechanism& m, const std::string& path) {
   }
 }
 
+std::vector<SatOut> findSatOut(const std::vector<Mechanism>& scenes, const std::vector<std::string>& paths) {
+  std::vector<SatOut> sat_out;
+  std::string references_refused;  // "PATH: --engine NAME: reason; ..." of every reference that sits out
+  bool reference_left = false;
+  for (const Engine& engine : listEngines()) {
+    for (size_t i = 0; i < scenes.size(); ++i) {
+      try {
+        engine.build(scenes[i]);
+        continue;
+      } catch (const std::exception& e) {
+        if (engine.closed_form) throw UsageError(paths.at(i) + ": --engine " + engine.name + ": " + e.what());
+        sat_out.push_back({engine.name, scenes[i].name, e.what()});
+        if (engine.gated)
+          references_refused += (references_refused.empty() ? "" : "; ") + paths.at(i) + ": --engine " + engine.name + ": " + e.what();
+      }
+      break;
+    }
+    const bool sits_out = !sat_out.empty() && sat_out.back().engine == engine.name;
+    if (engine.gated && !engine.closed_form && !sits_out) reference_left = true;
+  }
+  if (!reference_left) throw UsageError(references_refused + " (no exact engine is left to compare the formulas with)");
+  return sat_out;
+}
+
 std::vector<const Engine*> listReferenceEngines() {
   std::vector<const Engine*> references;
   for (const Engine& e : listEngines())
     if (e.gated && !e.closed_form) references.push_back(&e);
   return references;
 }
+
+std::string getLibraryName(const Engine& engine) { return engine.library.substr(0, engine.library.find(' ')); }
+
+std::string getReferenceName() { return getLibraryName(*listReferenceEngines().front()); }
 
 std::string joinEngineLibraries() {
   std::vector<std::string> seen;

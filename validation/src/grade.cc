@@ -26,6 +26,7 @@
 #include "crankcheck/validation/variants.h"
 #include "crankcheck/validation/worst_by_quantity.h"
 #include "grade_protocol.h"
+#include "parts/engine_fields.h"
 
 namespace crankcheck::validation {
 
@@ -182,27 +183,29 @@ constexpr const char* kSummaryName = "grade_summary";
 constexpr const char* kErrorVsLambdaName = "grade_error_vs_lambda";
 constexpr const char* kFailuresName = "grade_failures";
 
+std::vector<Field<GradeSummaryRow>> makeGradeSummaryFields() {
+  using R = GradeSummaryRow;
+  std::vector<Field<R>> fields = {textField("quantity", &R::quantity), textField("regime", &R::regime),
+                                  countField("asked", &R::asked), countField("provided", &R::provided),
+                                  optionalField("largest_rel_error", "-", &R::largest_rel_error)};
+  const std::vector<const Engine*> judges = listGradeJudges();
+  for (size_t j = 0; j < judges.size(); ++j)
+    fields.push_back(elementField("largest_rel_error_" + judges[j]->name, "-", &R::largest_rel_error_by, j));
+  for (Field<R>& f : std::vector<Field<R>>{
+           textField("largest_where_case", &R::largest_where_case),
+           optionalField("largest_where_phi_deg", "deg", &R::largest_where_phi_deg),
+           optionalField("largest_where_speed_rpm", "rpm", &R::largest_where_speed_rpm),
+           optionalField("rel_error_at_worst_ratio", "-", &R::rel_error_at_worst_ratio),
+           optionalField("worst_ratio", "-", &R::worst_ratio), optionalField("tolerance_rel", "-", &R::tolerance_rel),
+           textField("where_case", &R::where_case), optionalField("where_phi_deg", "deg", &R::where_phi_deg),
+           optionalField("where_speed_rpm", "rpm", &R::where_speed_rpm), textField("verdict", &R::verdict)})
+    fields.push_back(std::move(f));
+  return fields;
+}
+
+// The schemas with a column per judge follow the engines in play (engine_fields.h).
 const Schema<GradeSummaryRow>& getGradeSummarySchema() {
-  static const Schema<GradeSummaryRow> schema = [] {
-    using R = GradeSummaryRow;
-    std::vector<Field<R>> fields = {textField("quantity", &R::quantity), textField("regime", &R::regime),
-                                    countField("asked", &R::asked), countField("provided", &R::provided),
-                                    optionalField("largest_rel_error", "-", &R::largest_rel_error)};
-    const std::vector<const Engine*> judges = listGradeJudges();
-    for (size_t j = 0; j < judges.size(); ++j)
-      fields.push_back(elementField("largest_rel_error_" + judges[j]->name, "-", &R::largest_rel_error_by, j));
-    for (Field<R>& f : std::vector<Field<R>>{
-             textField("largest_where_case", &R::largest_where_case),
-             optionalField("largest_where_phi_deg", "deg", &R::largest_where_phi_deg),
-             optionalField("largest_where_speed_rpm", "rpm", &R::largest_where_speed_rpm),
-             optionalField("rel_error_at_worst_ratio", "-", &R::rel_error_at_worst_ratio),
-             optionalField("worst_ratio", "-", &R::worst_ratio), optionalField("tolerance_rel", "-", &R::tolerance_rel),
-             textField("where_case", &R::where_case), optionalField("where_phi_deg", "deg", &R::where_phi_deg),
-             optionalField("where_speed_rpm", "rpm", &R::where_speed_rpm), textField("verdict", &R::verdict)})
-      fields.push_back(std::move(f));
-    return Schema<R>(kSummaryName, std::move(fields));
-  }();
-  return schema;
+  return getEngineSchema<GradeSummaryRow, makeGradeSummaryFields>(kSummaryName);
 }
 
 const Schema<GradeLambdaRow>& getGradeErrorVsLambdaSchema() {
@@ -214,25 +217,26 @@ const Schema<GradeLambdaRow>& getGradeErrorVsLambdaSchema() {
   return schema;
 }
 
+std::vector<Field<GradeFailureRow>> makeGradeFailuresFields() {
+  using R = GradeFailureRow;
+  const std::vector<const Engine*> judges = listGradeJudges();
+  // The program's value, the first two judges' values, the error against the first and its tolerance, the other
+  // judges' values.
+  std::vector<Field<R>> fields = {
+      textField("case", &R::case_id), textField("family", &R::family), numberField("lambda", "-", &R::lambda),
+      textField("quantity", &R::quantity), optionalCountField("cylinder", &R::cylinder),
+      numberField("phi_deg", "deg", &R::phi_deg), numberField("speed_rpm", "rpm", &R::speed_rpm),
+      numberField("program_value", "SI", &R::program_value),
+      elementField(judges[0]->name + "_value", "SI", &R::judge_values, 0),
+      elementField(judges[1]->name + "_value", "SI", &R::judge_values, 1),
+      numberField("rel_error", "-", &R::rel_error), numberField("tolerance_rel", "-", &R::tolerance_rel)};
+  for (size_t j = 2; j < judges.size(); ++j)
+    fields.push_back(elementField(judges[j]->name + "_value", "SI", &R::judge_values, j));
+  return fields;
+}
+
 const Schema<GradeFailureRow>& getGradeFailuresSchema() {
-  static const Schema<GradeFailureRow> schema = [] {
-    using R = GradeFailureRow;
-    const std::vector<const Engine*> judges = listGradeJudges();
-    // The program's value, the first two judges' values, the error against the first and its tolerance, the other
-    // judges' values.
-    std::vector<Field<R>> fields = {
-        textField("case", &R::case_id), textField("family", &R::family), numberField("lambda", "-", &R::lambda),
-        textField("quantity", &R::quantity), optionalCountField("cylinder", &R::cylinder),
-        numberField("phi_deg", "deg", &R::phi_deg), numberField("speed_rpm", "rpm", &R::speed_rpm),
-        numberField("program_value", "SI", &R::program_value),
-        elementField(judges[0]->name + "_value", "SI", &R::judge_values, 0),
-        elementField(judges[1]->name + "_value", "SI", &R::judge_values, 1),
-        numberField("rel_error", "-", &R::rel_error), numberField("tolerance_rel", "-", &R::tolerance_rel)};
-    for (size_t j = 2; j < judges.size(); ++j)
-      fields.push_back(elementField(judges[j]->name + "_value", "SI", &R::judge_values, j));
-    return Schema<R>(kFailuresName, std::move(fields));
-  }();
-  return schema;
+  return getEngineSchema<GradeFailureRow, makeGradeFailuresFields>(kFailuresName);
 }
 
 const TableSchema* findGradeTableSchema(const std::string& name) {

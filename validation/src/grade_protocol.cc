@@ -79,9 +79,21 @@ std::string runOnce(const GradeProgram& program, const std::string& input, size_
   call.output_limit = program.output_limit * requests;
   const ProgramResult r = runProgram(call);
   const std::string name = program.argv.front();
-  auto stderrLine = [&] {  // its first line, quoted with its control bytes escaped
-    const std::string err = r.err.substr(0, r.err.find('\n')).substr(0, 200);
-    return err.empty() ? std::string() : "; its stderr: " + quoteText(err);
+  auto stderrLine = [&] {  // its last 3 lines (where a traceback says what failed), quoted with control bytes escaped
+    std::vector<std::string> lines;
+    for (size_t at = 0; at < r.err.size();) {
+      const size_t end = std::min(r.err.find('\n', at), r.err.size());
+      lines.push_back(r.err.substr(at, end - at));
+      at = end + 1;
+    }
+    while (!lines.empty() && (lines.back().empty() || lines.back() == "\r")) lines.pop_back();
+    if (lines.empty()) return std::string();
+    const size_t first = lines.size() > 3 ? lines.size() - 3 : 0;
+    std::string end;
+    for (size_t i = first; i < lines.size(); ++i) end += (i > first ? "\n" : "") + lines[i];
+    const bool cut = first > 0 || end.size() > 300;
+    if (end.size() > 300) end = end.substr(end.size() - 300);
+    return cut ? "; the end of its stderr: " + quoteText("...\n" + end) : "; its stderr: " + quoteText(end);
   };
   if (r.timed_out && isCompleteAnswer(r.out, requests, program.batch))
     throw EnvironmentError(name + ": " + what + ": answered completely but did not exit within " +

@@ -138,7 +138,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
   std::vector<std::string> to_draw;
   for (const Part* part : listParts())
     for (const std::string& figure : part->figures())
-      if (tables.count(figure)) to_draw.push_back(figure);
+      if (tables.count(figure) && tables.at(figure).size() > 0) to_draw.push_back(figure);  // a figure of no row: none
   const size_t drawer_count = std::min(static_cast<size_t>(std::max(info.jobs, 1)), to_draw.size());
   std::vector<std::vector<std::string>> shares(drawer_count);
   for (size_t i = 0; i < to_draw.size(); ++i) shares[i % drawer_count].push_back(to_draw[i]);
@@ -198,7 +198,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
 namespace {
 
 // shard.json's format: 2 added the campaign's identity (version, scenes' content) and the data files' records.
-constexpr int kShardFormat = 3;  // 3: the parts run (validate --parts)
+constexpr int kShardFormat = 4;  // 3: the parts run (validate --parts); 4: the engines that sat out
 
 }  // namespace
 
@@ -207,9 +207,12 @@ void writeShardManifest(const ShardManifest& manifest, const fs::path& dir) {
   for (const ShardScene& scene : manifest.scenes) scenes.push_back({{"name", scene.name}, {"fnv1a64", scene.checksum}});
   for (const DataFileRecord& f : manifest.files)
     files.push_back({{"path", f.path}, {"header", f.header}, {"rows", f.rows}, {"fnv1a64", f.checksum}});
+  nlohmann::json sat_out = nlohmann::json::array();
+  for (const SatOut& s : manifest.sat_out) sat_out.push_back({{"engine", s.engine}, {"scene", s.scene}, {"reason", s.reason}});
   nlohmann::json j = {{"crankcheck_shard", kShardFormat}, {"version", manifest.version}, {"index", manifest.index},
                       {"count", manifest.count},          {"quick", manifest.quick},     {"scenes", scenes},
-                      {"tasks", manifest.tasks},          {"files", files},              {"parts", manifest.parts}};
+                      {"tasks", manifest.tasks},          {"files", files},              {"parts", manifest.parts},
+                      {"sat_out", sat_out}};
   writeNewFile(dir / "shard.json", j.dump(2) + "\n");
 }
 
@@ -232,6 +235,8 @@ ShardManifest readShardManifest(const fs::path& dir) {
       m.scenes.push_back({scene.at("name").get<std::string>(), scene.at("fnv1a64").get<std::string>()});
     m.tasks = j.at("tasks").get<int>();
     m.parts = j.at("parts").get<std::vector<std::string>>();
+    for (const auto& s : j.at("sat_out"))
+      m.sat_out.push_back({s.at("engine").get<std::string>(), s.at("scene").get<std::string>(), s.at("reason").get<std::string>()});
     for (const auto& f : j.at("files"))
       m.files.push_back({f.at("path").get<std::string>(), f.at("header").get<std::string>(), f.at("rows").get<size_t>(),
                          f.at("fnv1a64").get<std::string>()});

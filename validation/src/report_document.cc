@@ -7,10 +7,14 @@
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/install_paths.h"
 #include "crankcheck/validation/process.h"
+#include "flywheel_run.h"
 
 namespace crankcheck::validation {
 namespace fs = std::filesystem;
@@ -149,8 +153,15 @@ std::string ReportDocument::toHtml() const {
 
 namespace {
 
-// Every figure script reads its data from data/ and writes into the report's folder (gnuplot runs there).
-constexpr const char* kFigureFolders = "in_dir='data'; out_dir='.'";
+// Every figure script reads its data from data/ and writes into the report's folder (gnuplot runs there); a script
+// that draws one engine's values beside the closed forms draws the first reference engine in play (`reference`, its
+// library's name `reference_title`) and the run of the first engine whose free run takes loads (`loaded_run`, empty
+// when none is in play): the engines a SatOutScope leaves (engines.h). Engine names are the registry's, never a user's.
+std::string formatFigureVariables() {
+  const std::vector<const Engine*> loaded = listLoadedRunEngines();
+  return "in_dir='data'; out_dir='.'; reference='" + listReferenceEngines().front()->name + "'; reference_title='" +
+         getReferenceName() + "'; loaded_run='" + (loaded.empty() ? "" : loaded.front()->name) + "'";
+}
 
 // reports/NAME.gp, absolute. @throws EnvironmentError if it is not there.
 fs::path findFigureScript(const std::string& name) {
@@ -168,7 +179,7 @@ bool isDrawn(const fs::path& dir, const std::string& name) {
 
 void drawFigure(const std::string& name, const fs::path& dir, const std::string& definitions) {
   const fs::path script = findFigureScript(name);
-  ProgramCall call{{"gnuplot", "-e", std::string(kFigureFolders) + "; " + definitions, script.string()}, dir};
+  ProgramCall call{{"gnuplot", "-e", formatFigureVariables() + "; " + definitions, script.string()}, dir};
   call.timeout_seconds = kGnuplotFigureSeconds;
   const ProgramResult r = runProgram(call);
   if (r.timed_out)
@@ -183,9 +194,10 @@ bool drawFigures(const std::vector<std::string>& names, const fs::path& dir) {
     ProgramCall call{{"gnuplot"}, dir};
     // "reset session" on its own: gnuplot 5.4 refuses more on its line. It keeps `set datafile columnheaders` (the
     // scripts read columns by header name), so each script also starts with the header mode off, as when alone.
+    const std::string variables = formatFigureVariables();
     for (const std::string& name : names)
       call.argv.insert(call.argv.end(), {"-e", "reset session", "-e", "unset datafile columnheaders", "-e",
-                                         kFigureFolders, findFigureScript(name).string()});
+                                         variables, findFigureScript(name).string()});
     call.timeout_seconds = kGnuplotFigureSeconds * static_cast<double>(names.size());
     const ProgramResult r = runProgram(call);
     if (r.timed_out) {  // not drawn again: a gnuplot that hangs would hang again, a figure at a time

@@ -4,6 +4,9 @@
 #include <atomic>
 #include <chrono>
 #include <exception>
+#include <filesystem>
+#include <functional>
+#include <memory>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -133,8 +136,8 @@ std::string formatProfile(const CampaignRun& run) {
 ShardManifest makeShardManifest(const CampaignOptions& campaign, const ShardSelection& shard, size_t campaign_tasks) {
   // A shard's campaign is its scenes' content (the default campaign's built-in and example scenes too), --quick, the
   // parts, N and crankcheck's version: the merge refuses shards of campaigns that differ in any.
-  ShardManifest manifest{shard.index, shard.count, campaign.quick, {}, campaign.parts, static_cast<int>(campaign_tasks),
-                         getCrankcheckVersion(), {}};
+  ShardManifest manifest{shard.index, shard.count, campaign.quick, {}, campaign.parts, campaign.sat_out,
+                         static_cast<int>(campaign_tasks), getCrankcheckVersion(), {}};
   std::vector<Mechanism> scenes = campaign.scenes;
   if (scenes.empty()) {
     scenes = buildDefaultScenes();
@@ -187,6 +190,16 @@ std::string findCampaignDifference(const ShardManifest& shard, const ShardManife
     };
     return list(shard.parts) + ", " + there + " " + list(first.parts);
   }
+  auto listSatOut = [](const std::vector<SatOut>& sat_out) {
+    std::string s;
+    for (const SatOut& e : sat_out) s += (s.empty() ? "" : ", ") + e.engine;
+    return sat_out.empty() ? std::string("no engine") : s;
+  };
+  const auto sameSatOut = [](const SatOut& a, const SatOut& b) {
+    return a.engine == b.engine && a.scene == b.scene && a.reason == b.reason;
+  };
+  if (!std::equal(shard.sat_out.begin(), shard.sat_out.end(), first.sat_out.begin(), first.sat_out.end(), sameSatOut))
+    return listSatOut(shard.sat_out) + " sat out, in " + there + " " + listSatOut(first.sat_out);
   if (shard.tasks != first.tasks)
     return std::to_string(shard.tasks) + " tasks, " + there + " " + std::to_string(first.tasks) +
            ": a shard of another campaign";
@@ -197,18 +210,9 @@ MergedShards mergeShards(const std::vector<std::string>& dirs) {
   // Every shard is checked before its tables are taken: one campaign, each shard once, all there, every data file as
   // its shard wrote it. A refusal is one line naming the shard or its file ("report merge: ...").
   auto refuse = [](const std::string& why) { return UsageError("report merge: " + why); };
-  MergedShards merged;
-  std::set<int> seen;
-  for (size_t i = 0; i < dirs.size(); ++i) {
-    const std::string& dir = dirs[i];
+  auto guarded = [&](const std::function<void()>& read) {
     try {
-      const ShardManifest manifest = readShardManifest(dir);
-      if (i == 0) merged.first = manifest;
-      const std::string difference = findCampaignDifference(manifest, merged.first, dirs[0]);
-      if (!difference.empty()) throw refuse(quotePath(dir) + ": " + difference);
-      if (!seen.insert(manifest.index).second)
-        throw refuse(quotePath(dir) + ": shard " + std::to_string(manifest.index) + " given twice");
-      appendTables(merged.tables, readShardTables(dir, manifest));
+      read();
     } catch (const UsageError&) {
       throw;
     } catch (const EnvironmentError&) {
@@ -216,7 +220,20 @@ MergedShards mergeShards(const std::vector<std::string>& dirs) {
     } catch (const std::runtime_error& e) {
       throw refuse(e.what());
     }
-  }
+  };
+  MergedShards merged;
+  std::set<int> seen;
+  std::vector<ShardManifest> manifests;
+  for (const std::string& dir : dirs)
+    guarded([&] {
+      ShardManifest manifest = readShardManifest(dir);
+      if (manifests.empty()) merged.first = manifest;
+      const std::string difference = findCampaignDifference(manifest, merged.first, dirs[0]);
+      if (!difference.empty()) throw refuse(quotePath(dir) + ": " + difference);
+      if (!seen.insert(manifest.index).second)
+        throw refuse(quotePath(dir) + ": shard " + std::to_string(manifest.index) + " given twice");
+      manifests.push_back(std::move(manifest));
+    });
   if (static_cast<int>(seen.size()) != merged.first.count) {
     std::string missing;
     for (int index = 0; index < merged.first.count; ++index)
@@ -224,6 +241,14 @@ MergedShards mergeShards(const std::vector<std::string>& dirs) {
     throw refuse("shards: " + std::to_string(seen.size()) + " of " + std::to_string(merged.first.count) +
                  " given (missing: " + missing + "); all are needed");
   }
+  // The tables are read with the engines the campaign ran: its schemas have a column per engine in play.
+  try {
+    merged.sat_out_scope = std::make_unique<SatOutScope>(merged.first.sat_out);
+  } catch (const std::invalid_argument& e) {
+    throw refuse(quotePath(std::filesystem::path(dirs[0]) / "shard.json") + ": sat_out: " + e.what());
+  }
+  for (size_t i = 0; i < dirs.size(); ++i)
+    guarded([&] { appendTables(merged.tables, readShardTables(dirs[i], manifests[i])); });
   return merged;
 }
 

@@ -43,8 +43,7 @@ std::vector<Field<BalanceSummaryRow>> makeBalanceSummaryFields() {
   return fields;
 }
 const Schema<BalanceSummaryRow>& balanceSummaryTable() {
-  static const Schema<BalanceSummaryRow> schema("balance", makeBalanceSummaryFields());
-  return schema;
+  return getEngineSchema<BalanceSummaryRow, makeBalanceSummaryFields>("balance");
 }
 
 // balance_harmonics: per layout (its index in the figure) and harmonic n = 1..8, the amplitudes relative to the force
@@ -200,8 +199,8 @@ class BalancePart final : public Part {
                    "The shaking force and the couple about X and Y of every layout of the balance table (at 6000 rpm, "
                    "not your scene's speed; and of the campaign's own scenes as given, below the layouts, when scene "
                    "files were given), harmonics 1-8, relative "
-                   "to the force and moment scales: closed form from the exact Fourier coefficients (Simbody's DFT "
-                   "agrees, see the summary); white with a dot where the harmonic vanishes exactly by the layout's "
+                   "to the force and moment scales: closed form from the exact Fourier coefficients (" +
+                       getReferenceName() + "'s DFT agrees, see the summary); white with a dot where the harmonic vanishes exactly by the layout's "
                    "symmetry");
     return part;
   }

@@ -110,10 +110,12 @@ TableSet calcErrorVsLambdaTables(const Mechanism& base, double lambda) {
 }
 
 // The figure's caption.
-constexpr const char* kCaption =
-    "Max error over the crank turn against lambda, relative to the quantity's scale (r, r w, r w^2 for x, v, a; "
-    "the energy scale for Q and U): Norton's two-term x, v, a; Q from Fourier series of order 2-12 with exact "
-    "coefficients, from the paper's printed coefficients (eq 15) and with eq (5) as printed; analytic against Simbody (every reference engine in the data)";
+std::string makeCaption() {
+  return "Max error over the crank turn against lambda, relative to the quantity's scale (r, r w, r w^2 for x, v, a; "
+         "the energy scale for Q and U): Norton's two-term x, v, a; Q from Fourier series of order 2-12 with exact "
+         "coefficients, from the paper's printed coefficients (eq 15) and with eq (5) as printed; analytic against " +
+         getReferenceName() + " (every reference engine in the data)";
+}
 
 class ErrorVsLambdaPart final : public Part {
  public:
@@ -134,7 +136,7 @@ class ErrorVsLambdaPart final : public Part {
   // The caption, and where the user's engines sit: the figure marks each one's lambda (reports/error_vs_lambda.gp
   // reads data/your_engine.csv), and the caption names them.
   ReportPart describe(const TableSet& tables) const override {
-    std::string caption = kCaption;
+    std::string caption = makeCaption();
     std::vector<std::string> marks;
     for (const your_engine::SceneFactsRow& f : survey::listUserScenes(tables))
       marks.push_back(f.scene + " at lambda = " + shortNumber(f.lambda, 4));

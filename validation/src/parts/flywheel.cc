@@ -19,6 +19,7 @@
 #include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/variants.h"
 #include "../flywheel_run.h"
+#include "engine_fields.h"
 #include "survey.h"
 
 namespace crankcheck::validation {
@@ -38,19 +39,19 @@ struct FlywheelCurveRow {
   std::vector<std::optional<double>> engine_delta;
 };
 
-// The schema of `flywheel`: one delta column per engine whose free run takes loads, so it is made on first use (the
-// engine registry is complete by then; a namespace-scope schema would be made before main()).
+std::vector<Field<FlywheelCurveRow>> makeFlywheelCurveFields() {
+  std::vector<Field<FlywheelCurveRow>> fields = {
+      textField("scene", &FlywheelCurveRow::scene),
+      numberField("flywheel_inertia", "kg m^2", &FlywheelCurveRow::flywheel_inertia),
+      numberField("exact_delta", "-", &FlywheelCurveRow::exact_delta)};
+  const std::vector<const Engine*> engines = listLoadedRunEngines();
+  for (size_t i = 0; i < engines.size(); ++i) fields.push_back(elementField(engines[i]->name + "_delta", "-", &FlywheelCurveRow::engine_delta, i));
+  return fields;
+}
+
+// The schema of `flywheel`: one delta column per engine in play whose free run takes loads (engine_fields.h).
 const Schema<FlywheelCurveRow>& getFlywheelCurveTable() {
-  static const Schema<FlywheelCurveRow> schema = [] {
-    std::vector<Field<FlywheelCurveRow>> fields = {
-        textField("scene", &FlywheelCurveRow::scene),
-        numberField("flywheel_inertia", "kg m^2", &FlywheelCurveRow::flywheel_inertia),
-        numberField("exact_delta", "-", &FlywheelCurveRow::exact_delta)};
-    const std::vector<const Engine*> engines = listLoadedRunEngines();
-    for (size_t i = 0; i < engines.size(); ++i) fields.push_back(elementField(engines[i]->name + "_delta", "-", &FlywheelCurveRow::engine_delta, i));
-    return Schema<FlywheelCurveRow>("flywheel", std::move(fields));
-  }();
-  return schema;
+  return getEngineSchema<FlywheelCurveRow, makeFlywheelCurveFields>("flywheel");
 }
 
 // flywheel_sizing: the exact and Norton's I_f for C = 0.01 of the campaign's gas scenes.
@@ -211,7 +212,10 @@ ReportPart describeFlywheelPart(const TableSet& tables, const std::string& headi
   for (const FlywheelNortonRow& row : getRows(tables, kFlywheelNortonTable)) speeds.push_back(row.speed_rpm);
   part.caption =
       "Left: the steady run's speed fluctuation delta against the flywheel inertia for each scene with gas, at its own "
-      "speed with its own [gas] (the exact energy integral as lines, Simbody's run over a working cycle as dots), the "
+      "speed with its own [gas] (the exact energy integral as lines" +
+      (listLoadedRunEngines().empty() ? std::string()
+                                      : ", " + getLibraryName(*listLoadedRunEngines().front()) + "'s run over a working cycle as dots") +
+      "), the "
       "exact inertia for delta = 0.01 marked by the dashed line. Right: the error of Norton's inertia (13.9) against "
       "the exact one, for C = 0.01, against the number of cylinders of an inline four-stroke on the base scene's parts "
       "with " + std::string(survey::kExampleGas) + ", one line per speed" +
@@ -258,7 +262,11 @@ ReportPart describeFlywheelPart(const TableSet& tables, const std::string& headi
 class FlywheelPart final : public Part {
  public:
   std::string key() const override { return "flywheel"; }
-  std::string title() const override { return "Flywheel sizing: the exact inertia, Norton's method, Simbody's run"; }
+  std::string title() const override {
+    const std::vector<const Engine*> runs = listLoadedRunEngines();  // none when Simbody sat out
+    return "Flywheel sizing: the exact inertia, Norton's method" +
+           (runs.empty() ? std::string() : ", " + getLibraryName(*runs.front()) + "'s run");
+  }
   // One task per Simbody run and one per gas scene for the rest of its curve (listed with its runs), one for the
   // sweep on the base's parts: the tables add up.
   std::vector<Task> tasks(const PartContext& context) const override {

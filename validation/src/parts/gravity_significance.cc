@@ -59,8 +59,7 @@ std::vector<Field<GravitySignificanceRow>> makeGravitySignificanceFields() {
   return fields;
 }
 const Schema<GravitySignificanceRow>& gravitySignificanceTable() {
-  static const Schema<GravitySignificanceRow> schema("gravity_significance", makeGravitySignificanceFields());
-  return schema;
+  return getEngineSchema<GravitySignificanceRow, makeGravitySignificanceFields>("gravity_significance");
 }
 
 TableSet calcGravitySignificanceTables(const Mechanism& base, Cycle cycle, bool quick) {

@@ -18,6 +18,7 @@
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
+#include "engine_fields.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -44,19 +45,16 @@ Field<HarmonicsRow> paperClaimField() {
           }};
 }
 
-// The table's schema: its columns depend on the engine registry, so it is built on first use (after main starts).
-const Schema<HarmonicsRow>& getHarmonicsTable() {
-  static const Schema<HarmonicsRow> schema = [] {
-    std::vector<Field<HarmonicsRow>> fields = {
-        textField("cycle", &HarmonicsRow::cycle), countField("k", &HarmonicsRow::k), countField("n", &HarmonicsRow::n),
-        numberField("analytic_amplitude", "N m", &HarmonicsRow::analytic_amplitude), paperClaimField()};
-    const std::vector<const Engine*> references = listReferenceEngines();
-    for (size_t i = 0; i < references.size(); ++i) fields.push_back(  // reference engine i's DFT
-          elementField(references[i]->name + "_amplitude", "N m", &HarmonicsRow::engine_amplitudes, i));
-    return Schema<HarmonicsRow>("harmonics", std::move(fields));
-  }();
-  return schema;
+std::vector<Field<HarmonicsRow>> makeHarmonicsFields() {
+  std::vector<Field<HarmonicsRow>> fields = {
+      textField("cycle", &HarmonicsRow::cycle), countField("k", &HarmonicsRow::k), countField("n", &HarmonicsRow::n),
+      numberField("analytic_amplitude", "N m", &HarmonicsRow::analytic_amplitude), paperClaimField()};
+  addEngineNumberFields(fields, "_amplitude", "N m", &HarmonicsRow::engine_amplitudes);  // each reference's DFT
+  return fields;
 }
+
+// The table's schema: its columns depend on the engines in play (engine_fields.h).
+const Schema<HarmonicsRow>& getHarmonicsTable() { return getEngineSchema<HarmonicsRow, makeHarmonicsFields>("harmonics"); }
 
 TableSet calcHarmonicsTables(const Mechanism& base, Cycle cycle) {
   const int M = 64, max_order = 24;

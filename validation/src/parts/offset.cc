@@ -51,8 +51,7 @@ std::vector<Field<OffsetCostRow>> makeOffsetCostFields() {
   return fields;
 }
 const Schema<OffsetCostRow>& offsetCostTable() {
-  static const Schema<OffsetCostRow> schema("offset", makeOffsetCostFields());
-  return schema;
+  return getEngineSchema<OffsetCostRow, makeOffsetCostFields>("offset");
 }
 
 // offset_thrust: the side thrust N_w over the working cycle, the closed forms' and each reference engine's: its largest
@@ -211,9 +210,9 @@ ReportPart describeOffsetPart(const TableSet& tables, const std::string& heading
   part.caption =
       "Left: the largest error over the working cycle of the centric form (the same engine with delta = 0) against the "
       "offset engine, relative to each quantity's scale (x_p: the stroke; a_p: r omega^2; wall force and drive "
-      "torque: the force and torque scales), against delta / r; dots: the analytic offset engine against Simbody on "
-      "the same samples. Right: the largest side thrust on the major side (N_w > 0) and on the minor side, analytic "
-      "lines and Simbody dots, against delta / r (negative: the pin toward the major-thrust side). The base scene's "
+      "torque: the force and torque scales), against delta / r; dots: the analytic offset engine against " +
+      getReferenceName() + " on the same samples. Right: the largest side thrust on the major side (N_w > 0) and on "
+      "the minor side, analytic lines and " + getReferenceName() + " dots, against delta / r (negative: the pin toward the major-thrust side). The base scene's "
       "parts, one standing four-stroke cylinder at 6000 rpm (" + std::string(survey::kNotSceneSpeed) + ") with " +
       survey::kExampleGas + ". Your engines' own offsets, at their speed with their [gas], are in their sections above";
   // What the centric formula costs at a production offset (|delta| / r = 0.04) and at a desaxe one (0.5).

@@ -139,11 +139,11 @@ class PinLoadPolarPart final : public Part {
         "The crank-pin force of cylinder 0 (crank on rod, in the crank's own frame: x radial outward along the throw, y "
         "tangential in the direction of rotation) and the main-bearing force (frame on the crankshaft at O, all throws, "
         "frame X, Y) over one working cycle at each scene's speed with its gas and gravity, as the tip of the force "
-        "vector (after Norton's Program ENGINE); analytic lines, Simbody dots";
+        "vector (after Norton's Program ENGINE); analytic lines, " + getReferenceName() + " dots";
     part.paragraphs.push_back(
         "The largest force over the cycle, each engine (the samples, the best two refined by Brent's method), and the "
         "largest difference of the two engines over the samples relative to the force scale:");
-    part.header = {"scene", "engine", "force", "max |F| [N]", "max |analytic - Simbody| / force scale [-]"};
+    part.header = {"scene", "engine", "force", "max |F| [N]", "max |analytic - engine| / force scale [-]"};
     for (const PinLoadSummaryRow& r : getRows(tables, kPinLoadSummaryTable))
       part.rows.push_back({r.scene, r.engine, r.force, shortNumber(r.max_magnitude, 4), shortNumber(r.max_difference_rel, 4)});
     return part;

@@ -106,8 +106,8 @@ TableSet calcRodModelTables(const Mechanism& car, const Mechanism& marine, bool 
 // The figure's caption.
 std::string makeCaption() {
   return std::string("The largest drive-torque error over the turn of the two-mass rod (m_k1 at the wrist pin, m_k3 at the "
-                "crank pin) against Simbody's rigid rod, relative to the torque scale, against lambda and against "
-                "Delta_I / I_G, for the car (a standing single cylinder on the base scene's parts at 6000 rpm, ") +
+                "crank pin) against ") + getReferenceName() + "'s rigid rod, relative to the torque scale, against "
+                "lambda and against Delta_I / I_G, for the car (a standing single cylinder on the base scene's parts at 6000 rpm, " +
     survey::kNotSceneSpeed + ", without gas) and the built-in marine engine (at its own speed); dashed: the paper's "
          "two-mass rod with Delta_I, exact to rounding";
 }

@@ -193,6 +193,18 @@ TableSet calcSpeedVsErrorTables(const Mechanism& base, bool quick) {
   return kSpeedVsErrorTable.tableSet(std::move(rows));
 }
 
+// Each reference engine's routes to Q, as calcSpeedVsErrorTables takes them: "Simbody at several projection
+// tolerances and by its reduced gravity model, MuJoCo by its model".
+std::string listReferenceRoutes() {
+  std::string out;
+  for (const Engine* e : listReferenceEngines()) {
+    std::string routes = e->build_at_accuracy ? "at several projection tolerances" : "by its model";
+    if (e->build_gravity) routes += " and by its reduced gravity model";
+    out += (out.empty() ? "" : ", ") + getLibraryName(*e) + " " + routes;
+  }
+  return out;
+}
+
 class SpeedVsErrorPart final : public Part {
  public:
   std::string key() const override { return "speed_vs_error"; }
@@ -207,8 +219,8 @@ class SpeedVsErrorPart final : public Part {
     part.heading = heading();
     part.blocks.push_back({ReportBlock::kFigure,
                            "Cost per evaluation of Q against its error, all measured in one run on this machine: the "
-                           "exact closed form, Fourier orders, the printed eq (15), each reference engine (Simbody at several "
-                           "projection tolerances and by its reduced gravity model); the Pareto front joined",
+                           "exact closed form, Fourier orders, the printed eq (15), each reference engine by each of its "
+                           "routes to Q (" + listReferenceRoutes() + "); the Pareto front joined",
                            {}, {}, key()});
     ReportBlock table{ReportBlock::kTable, "", {"method", "time per evaluation [ns]", "max error / energy scale [-]", "resolved"}};
     for (const SpeedVsErrorRow& row : getRows(tables, kSpeedVsErrorTable))

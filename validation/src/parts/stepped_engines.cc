@@ -108,6 +108,16 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
   const std::vector<SteppedErrorRow>& errors = getRows(tables, kSteppedErrorsTable);
   const std::vector<SteppedOrderRow>& orders = getRows(tables, kSteppedOrdersTable);
   part.heading = heading;
+  if (summary.empty()) {  // every engine refused the scene (a balance shaft, a massless body): no figure, the reasons
+    const std::vector<SteppedRefusalRow>& refusals = getRows(tables, kSteppedRefusalsTable);
+    part.blocks.push_back({ReportBlock::kParagraph, "No stepped engine measured scene " +
+                                                        (refusals.empty() ? std::string("-") : refusals.front().scene) +
+                                                        ": each refused it, for the reason below."});
+    for (const SteppedRefusalRow& r : refusals)
+      part.blocks.push_back({ReportBlock::kParagraph, "Refused: " + r.engine + (r.settings.empty() ? "" : " (" + r.settings + ")") +
+                                                          (r.dt > 0.0 ? " at " + formatStep(r.dt) : "") + ": " + r.reason + "."});
+    return part;
+  }
   const std::string scene = errors.empty() ? std::string() : errors.front().scene;
   part.caption =
       "Each stepped engine driven at the scene's speed by its own solver from the exact state, at each of its settings "

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "crankcheck/validation/crosscheck.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/parts.h"
 #include "crankcheck/validation/verdict.h"
@@ -11,6 +12,13 @@
 
 namespace crankcheck::validation {
 namespace {
+
+// The exact engines in play, by their libraries: "Simbody, MuJoCo".
+std::string listExactNames() {
+  std::string names;
+  for (const Engine* e : listReferenceEngines()) names += (names.empty() ? "" : ", ") + getLibraryName(*e);
+  return names;
+}
 
 class SummaryPart final : public Part {
  public:
@@ -32,7 +40,7 @@ class SummaryPart final : public Part {
     part.blocks.push_back({ReportBlock::kParagraph,
                            std::string(all_pass ? "Every comparison agrees" : "SOME COMPARISONS FAIL") +
                                " within the gate's rule: |analytic - engine| <= 64 eps x scale x conditioning "
-                               "(docs/CONVENTIONS-crankcheck.md), for each exact engine (Simbody, MuJoCo with exact multipliers). "
+                               "(docs/CONVENTIONS-crankcheck.md), for each exact engine (" + listExactNames() + "). "
                                "Errors are relative to the quantity's physical scale." + soft});
     ReportBlock table{ReportBlock::kTable, "", {"engine", "quantity", "family", "worst error / scale [-]", "where",
                                                 "tolerance / scale [-]", "result"}};

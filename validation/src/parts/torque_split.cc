@@ -43,8 +43,7 @@ std::vector<Field<TorqueSplitRow>> makeTorqueSplitFields() {
   return fields;
 }
 const Schema<TorqueSplitRow>& torqueSplitTable() {
-  static const Schema<TorqueSplitRow> schema("torque_split", makeTorqueSplitFields());
-  return schema;
+  return getEngineSchema<TorqueSplitRow, makeTorqueSplitFields>("torque_split");
 }
 
 // gravity_share: gravity's share of the mean absolute drive torque over the cycle, k = 1..12, both strokes, the car's
@@ -133,8 +132,8 @@ std::string makeCaption(const TableSet& tables) {
   return std::string("The drive torque over one working cycle of a car inline four (the base scene's parts, bore 2 r, "
                      "with ") + survey::kExampleGas + ", at 6000 rpm, " + survey::kNotSceneSpeed +
          ") and of the built-in marine two-stroke (bore 2 r / 3, an example diesel pressure table, at its own speed), "
-         "split into its gas, inertia and gravity parts (each the analytic drive torque with the other loads off; "
-         "Simbody's whole drive torque as dots); right: gravity's share of the mean absolute drive torque against k, "
+         "split into its gas, inertia and gravity parts (each the analytic drive torque with the other loads off; " +
+         getReferenceName() + "'s whole drive torque as dots); right: gravity's share of the mean absolute drive torque against k, "
          "inline engines on the base scene's parts with the example pressure table of each stroke " +
          (speeds.empty() ? std::string("at several speeds") : survey::atSurveySpeeds(speeds)) +
          " (the figure draws 600 and 6000 rpm), both strokes (gravity torques below double precision left out): the sources' question answered against the "

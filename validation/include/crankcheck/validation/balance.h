@@ -12,6 +12,7 @@
 
 #include "crankcheck/analytic/shaking.h"
 #include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::validation {
@@ -31,13 +32,6 @@ struct BalanceRow {
 /// crank ratios).
 /// @throws std::invalid_argument if order < 1 or samples is not 0 and below 2 order + 1, or an engine cannot build m
 ///         (the message names the engine); std::runtime_error if an engine fails.
-/// A reference engine that sits out the balance of a scene: it cannot build it, or cannot hold its promised accuracy
-/// on it (Engine::build's refusal), and its reason.
-struct SatOut {
-  std::string engine;
-  std::string reason;
-};
-
 /// `sat_out`: null, a reference engine that cannot build m is an error (std::invalid_argument naming it); given, it
 /// sits out and is added there with its reason, and the others answer (none left: std::invalid_argument).
 std::vector<BalanceRow> calcBalance(const Mechanism& m, int order, int samples = 0, std::vector<SatOut>* sat_out = nullptr);

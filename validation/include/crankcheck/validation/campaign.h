@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/table.h"
 
@@ -59,6 +60,9 @@ struct CampaignOptions {
   /// [s] the longest estimated work a part may start (`validate --work-limit`, work_limit.h): a part whose work on
   /// these scenes is estimated past it refuses the campaign before any work (Part::checkWork).
   double work_limit = 600.0;
+  /// The engines that cannot build one of the scenes (findSatOut, engines.h): the caller runs the campaign inside a
+  /// SatOutScope of them, and the report's notes name each one, its scene and its reason.
+  std::vector<SatOut> sat_out;
 };
 
 /// One independent unit of work.

@@ -13,7 +13,8 @@
 
 namespace crankcheck::validation {
 
-/// analytic, simbody, mujoco, mujoco-soft, mujoco-soft-stiff (the order of the report's tables).
+/// analytic, simbody, mujoco, mujoco-soft, mujoco-soft-stiff (the order of the report's tables), less the engines a
+/// live SatOutScope leaves out.
 const std::vector<Engine>& listEngines();
 
 /// The engine called `name`. @throws std::invalid_argument naming the known engines if there is none.
@@ -25,6 +26,34 @@ std::string joinEngineNames(const std::string& separator);
 /// Builds every engine's model of m once, before any long work: a scene some engine cannot build is refused now.
 /// @throws UsageError "PATH: --engine NAME: KEY: rule" (exit status 2) for the first engine that cannot.
 void checkEveryEngineBuilds(const Mechanism& m, const std::string& path);
+
+/// An engine that sits out of a piece of work on a scene: its build refuses the scene (a rule of its own, or an
+/// accuracy it cannot hold there: Engine::build), and the engine's reason. The other engines answer without it.
+struct SatOut {
+  std::string engine;  ///< Engine::name
+  std::string scene;   ///< Mechanism::name of the first scene it refuses
+  std::string reason;  ///< the engine's own message
+};
+
+/// Builds every engine's model of every scene once, before any long work, and returns the engines that cannot build
+/// one of them (each once, with the first scene it refuses), in the registry's order: they sit out of a campaign on
+/// these scenes (SatOutScope). `paths[i]` names scenes[i] in a refusal.
+/// @throws UsageError "PATH: --engine NAME: reason" (exit status 2) when the closed-form engine cannot build a scene
+///         (the formulas under test), or when no reference engine can build them all (every reference's reason).
+std::vector<SatOut> findSatOut(const std::vector<Mechanism>& scenes, const std::vector<std::string>& paths);
+
+/// While it lives, listEngines() and every list built on it (findEngine, listReferenceEngines, the report's tables
+/// with a column per engine) leave out the engines `sat_out` names: a campaign or a merge runs with the other engines.
+/// Build it before the work starts and keep it until the report is written; one at a time.
+/// @throws std::logic_error when another is alive; std::invalid_argument for a name that is no engine, or when it
+///         would leave out the closed forms or every reference engine.
+class SatOutScope {
+ public:
+  explicit SatOutScope(const std::vector<SatOut>& sat_out);
+  ~SatOutScope();
+  SatOutScope(const SatOutScope&) = delete;
+  SatOutScope& operator=(const SatOutScope&) = delete;
+};
 
 /// The gated (exact) engines other than the closed forms: the references the analytic engine and graded programs are
 /// compared with (simbody, mujoco), in the registry's order.
@@ -47,6 +76,13 @@ const Engine& getClosedFormEngine();
 /// A model for U and Q alone: the engine's reduced gravity model where it offers one (Engine::build_gravity), else its
 /// full model of m at rest. @throws as Engine::build.
 std::unique_ptr<EngineModel> buildGravityModel(const Engine& engine, const Mechanism& m);
+
+/// The name of `engine`'s library without its version ("Simbody" of "Simbody 3.7.0"): how prose names the engine.
+std::string getLibraryName(const Engine& engine);
+
+/// getLibraryName of the first reference engine in play (listReferenceEngines): the engine a report's prose and
+/// figures draw beside the closed forms.
+std::string getReferenceName();
 
 /// The libraries behind the engines other than the closed forms, each once, with their versions: "Simbody 3.7.0,
 /// MuJoCo 2.2.2" (Engine::library), for a report's header.

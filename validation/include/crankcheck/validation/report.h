@@ -70,6 +70,7 @@ struct ShardManifest {
   bool quick = false;
   std::vector<ShardScene> scenes;    ///< every scene the campaign uses (the default campaign's too), in order
   std::vector<std::string> parts;    ///< validate --parts; empty: every part
+  std::vector<SatOut> sat_out;       ///< the engines that sat out of the campaign (CampaignOptions::sat_out)
   int tasks = 0;
   std::string version;               ///< the crankcheck that wrote it (getCrankcheckVersion)
   std::vector<DataFileRecord> files;  ///< every data file, by path

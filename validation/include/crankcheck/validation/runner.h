@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
 #include <stop_token>
 #include <string>
 #include <vector>
@@ -115,7 +116,9 @@ std::string findCampaignDifference(const ShardManifest& shard, const ShardManife
 /// The shards merged (`crankcheck report merge`).
 struct MergedShards {
   TableSet tables;      ///< every shard's tables appended, in the order given (unsorted)
-  ShardManifest first;  ///< the first shard's manifest: the campaign (quick, count, parts, scenes)
+  ShardManifest first;  ///< the first shard's manifest: the campaign (quick, count, parts, scenes, sat_out)
+  /// The engines in play while the merged tables are read and reported: the campaign's, less first.sat_out.
+  std::unique_ptr<SatOutScope> sat_out_scope;
 };
 
 /// Reads and merges the shards in `dirs`: one campaign, each shard once, all there, every data file as its shard wrote
