@@ -53,7 +53,16 @@ show_progress() {
 # yet) takes minutes: its progress is shown. A rebuild stays quiet. Both go to build/build.log in full.
 status=0
 targets=()
-for target in "$@"; do targets+=(--target "$target"); done
+# A target the configure did not make is left out, with a word: the Python module's without pybind11, Python's headers
+# or NumPy, or with -DCRANKCHECK_PYTHON=OFF.
+known=$(cmake --build build --target help 2>/dev/null || true)
+for target in "$@"; do
+  if grep -qx "\.\.\. $target" <<<"$known"; then
+    targets+=(--target "$target")
+  else
+    echo "setup: no target $target in this configuration (see build/CMakeCache.txt); not built" >&2
+  fi
+done
 first=build/bin/gate_test
 ((${#targets[@]})) && first=build/bin/crankcheck
 if [ ! -x "$first" ]; then
