@@ -170,11 +170,14 @@ int runGrade(const GradeOptions& options) {
   for (const std::string& path : options.scene_paths) {
     scenes.push_back(loadScene(path));
     if (!names.insert(scenes.back().name).second) throw UsageError(path + ": a scene named " + scenes.back().name + " is given twice");
-    validation::checkEveryEngineBuilds(scenes.back(), path);  // the references grade against (and the rest)
   }
+  // Every engine builds every scene now: one that cannot sits out, and the program is judged by the others (refused,
+  // status 2, when no exact engine is left; docs/grade.md).
+  validation::GradeReportInfo info;
+  info.sat_out = validation::findSatOut(scenes, options.scene_paths);
+  const validation::SatOutScope sat_out_scope(info.sat_out);
   const int jobs = options.jobs > 0 ? options.jobs : validation::getDefaultJobs();
   validation::OutputFolder out(options.out.empty() ? std::string("out/grade") : options.out, "--out");
-  validation::GradeReportInfo info;
   info.gnuplot_version = validation::checkGnuplot();
   const std::vector<validation::GradeCase> cases = validation::buildGradeCases(scenes, options.quick);
   validation::InterruptGuard interrupt(out);
@@ -227,6 +230,9 @@ int runGrade(const GradeOptions& options) {
                                  "error / tolerance is worst (beside that tolerance).\n",
                              kHelpWidth)
                         .c_str());
+  for (const validation::SatOut& s : info.sat_out)
+    std::printf("%s", wrapText(s.engine + " sat out: it cannot build scene " + s.scene + " (" + formatOneLine(s.reason) + ")\n",
+                               kHelpWidth).c_str());
   std::printf("%s\nReport: %s (also index.html)\n",
               status == 0 ? ("Every provided value agrees with " + references + ".").c_str()
                           : "SOME VALUES DISAGREE, or none was provided (see the report's failing cases).",

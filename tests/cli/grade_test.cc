@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -141,6 +142,32 @@ TEST(GradeTest, NortonsTwoTermFailsOnPistonMotionAndTheReportShowsWhere) {
   EXPECT_EQ(eval.exit_status, 0) << eval.err;
   EXPECT_TRUE(fs::exists(out / "grade_error_vs_lambda.png"));
   EXPECT_NE(readFile(out / "index.html").find("<html lang=\"en\">"), std::string::npos);
+}
+
+// Issue 58: a scene Simbody cannot resolve (the inline four's rod at 1e-9 kg, I_o scaled with it) is graded against
+// the other exact engines; Simbody sits out, named on the terminal and in the report, and no table holds a column of
+// it. The analytic library's program agrees with MuJoCo there, as the gate's hard cases show.
+TEST(GradeTest, AnEngineThatCannotBuildTheSceneSitsOutAndTheOthersJudge) {
+  FreshFolder dir;
+  std::string scene = readFile(fs::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"mass = 0.52\n", "mass = 1e-9\n"},
+                                 {"inertia_about_wrist_pin = 0.0064\n", "inertia_about_wrist_pin = 1.2307692307692308e-11\n"}}) {
+    const size_t at = scene.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    scene.replace(at, from.size(), to);
+  }
+  const fs::path path = dir.path() / "light.toml";
+  std::ofstream(path) << scene;
+  const fs::path out = dir.path() / "report";
+  const auto r = runCrankcheck({"grade", path.string(), "--quick", "--batch", "--out", out.string(), "--",
+                                CRANKCHECK_ANALYTIC_PROGRAM});
+  ASSERT_EQ(r.exit_status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("\nsimbody sat out: it cannot build scene light (cannot hold its accuracy"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Every provided value agrees with the analytic engine and mujoco."), std::string::npos) << r.out;
+  EXPECT_NE(readFile(out / "index.md").find("Engine simbody sat out of this grade: it cannot build scene light"),
+            std::string::npos);
+  for (const auto& entry : fs::directory_iterator(out / "data"))
+    EXPECT_EQ(readFile(entry.path()).find("simbody"), std::string::npos) << entry.path();
 }
 
 TEST(GradeTest, TheAnalyticLibraryPassesWithEveryQuantityProvided) {

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/output_folder.h"
 #include "crankcheck/validation/report.h"
@@ -50,6 +51,9 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
       "|program - reference| <= 64 eps x scale x conditioning (docs/CONVENTIONS-crankcheck.md, \"Tolerances\"). A "
       "quantity passes when every provided value agrees with all " + std::to_string(judges.size()) + " engines. What the "
       "program left out (or sent as null) is *not provided*: never counted as wrong, never as right.");
+  for (const SatOut& s : info.sat_out)
+    doc.addParagraph("Engine " + s.engine + " sat out of this grade: it cannot build scene " + s.scene + " (" +
+                     formatOneLine(s.reason) + "). The program is judged by the other engines.");
 
   doc.addHeading(2, "Summary per quantity");
   auto where = [](const std::string& case_id, const std::optional<double>& phi_deg) {

@@ -160,6 +160,9 @@ struct GradeReportInfo {
   /// The crankcheck program the report's "reproduce" commands call: the one that graded (its absolute path: a build
   /// tree's build/bin/crankcheck is not on PATH); "crankcheck" where it is not known.
   std::string crankcheck_program = "crankcheck";
+  /// The engines that cannot build one of the scenes (findSatOut, engines.h): the grade ran in a SatOutScope of them,
+  /// against the other engines, and the report names each one with its reason.
+  std::vector<SatOut> sat_out;
 };
 
 /// Renders the grade's report into `dir` (which must exist and be empty): data/*.csv, the figure
