@@ -1,6 +1,7 @@
 #include "crankcheck/scene/scene_file.h"
 
 #include <charconv>
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -644,6 +645,20 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
       g.cycle_angles.push_back(radiansFromDegrees(a));
     }
     g.pressures = *pressures;
+    // Pressures typed in bar are 1e5 times too small and would pass every bound: a table whose largest |p| is below
+    // kMinPeakPressure [Pa] (0.1 bar), which no engine's or compressor's cylinder works at, is refused as one.
+    constexpr double kMinPeakPressure = 1e4;
+    double peak = 0.0;
+    bool finite = true;
+    for (double p : g.pressures) {
+      finite = finite && std::isfinite(p);
+      peak = std::max(peak, std::fabs(p));
+    }
+    if (finite && !g.pressures.empty() && peak < kMinPeakPressure)
+      fail(source, gas.key("pressure_pa"),
+           "its largest |pressure| is " + formatNumber(peak) + " Pa, below 1e4 Pa (0.1 bar), which no engine or "
+           "compressor cylinder works at: the table is in pascal (one typed in bar is 1e5 times too small: " +
+           formatNumber(peak) + " bar is " + formatNumber(peak * 1e5) + " Pa)");
     m.gas = g;
     if (layout == nullptr) {
       // An inline engine: firing_order lists the cylinders in firing order, evenly spaced over the cycle.

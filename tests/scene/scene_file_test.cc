@@ -726,6 +726,11 @@ INSTANTIATE_TEST_SUITE_P(
                  "[gas].cycle_angle_deg[2]", "below the cycle's 720", &kGasScene},
         BadScene{"lengths_differ", "pressure_pa = [4.0e6, 1.0e6, 0.0]", "pressure_pa = [4.0e6, 1.0e6]", "[gas].pressure_pa",
                  "one pressure per cycle angle", &kGasScene},
+        // Issue 59: a table typed in bar, not pascal (6.987 bar peak): 1e5 times too small, refused by its peak.
+        BadScene{"in_bar", "pressure_pa = [4.0e6, 1.0e6, 0.0]", "pressure_pa = [6.987, 1.2, 0.0]", "[gas].pressure_pa",
+                 "its largest |pressure| is 6.987 Pa, below 1e4 Pa (0.1 bar), which no engine or compressor cylinder "
+                 "works at: the table is in pascal (one typed in bar is 1e5 times too small: 6.987 bar is 698700 Pa)",
+                 &kGasScene},
         BadScene{"below_vacuum", "pressure_pa = [4.0e6, 1.0e6, 0.0]", "pressure_pa = [4.0e6, 1.0e6, -2e5]",
                  "[gas].pressure_pa[2]", "at least -101325 Pa", &kGasScene},
         BadScene{"no_firing_order", "firing_order = [1, 0]", "", "[gas].firing_order", "missing key", &kGasScene},

@@ -339,6 +339,8 @@ def cases():
         parser_only("cycle_angle_deg strictly increasing"))
     add("pressures_short", edit(GAS, (("gas", "pressure_pa"), [5e6, 1e6])),
         parser_only("pressure_pa has one pressure per cycle angle"))
+    add("pressures_in_bar", edit(GAS, (("gas", "pressure_pa"), [50.0, 10.0, 0.0])),
+        parser_only("the largest |pressure_pa| at least 1e4 Pa"))
     add("firing_away_from_dead_centre", edit(LAYOUT_GAS, (("cylinder", 1, "firing_angle_deg"), 50)),
         parser_only("each cylinder at its outer dead centre at its firing angle"))
     add("throw_far_from_bank", edit(LAYOUT, (("cylinder", 1, "bank_angle_deg"), -1e6)),
@@ -492,6 +494,7 @@ CROSS_KEY_RULES = {
     "must be one value for all sections, or a list of": "[crankshaft].section_damping is one value or one per section",
     "must be strictly increasing": "cycle_angle_deg strictly increasing",
     "must have one pressure per cycle angle": "pressure_pa has one pressure per cycle angle",
+    "below 1e4 Pa (0.1 bar)": "the largest |pressure_pa| at least 1e4 Pa",
     "is not at its outer dead centre at its firing angle": "each cylinder at its outer dead centre at its firing angle",
 }
 
