@@ -52,7 +52,8 @@ std::string runFlywheel(const FlywheelOptions& options) {
   char line[1400];
   std::snprintf(line, sizeof line,
                 "flywheel for %s\nat %.6g rpm (mean), speed fluctuation C = %.6g, load torque %.9g N m (the gas "
-                "torque's cycle mean)\n"
+                "torque's cycle mean: what the gas delivers to the shaft, the negative of the mean of the drive "
+                "torque's gas part; below 0 where the shaft drives the machine, a compressor)\n"
                 "%-10s %26s %16s\n"
                 "%-10s %26.12g %16.9e\n"
                 "%-10s %26.12g %16.9e\n",

@@ -307,7 +307,9 @@ std::vector<ReportBlock> describeFlywheel(const TableSet& tables, const SceneFac
   std::string text = "With its flywheel (I_w = " + shortNumber(exact->flywheel_inertia, 4) + " kg m^2) at its mean speed " +
                      shortNumber(facts.speed_rpm, 4) + " rpm, ";
   text += exact->gas ? "under its gas against a constant load equal to the cycle mean of the gas torque (" +
-                           shortNumber(exact->load_torque, 4) + " N m, as the flywheel part), over 720 deg"
+                           shortNumber(exact->load_torque, 4) + " N m, as the flywheel part: what the gas delivers to "
+                           "the shaft, the negative of the mean of the loads' gas part; below 0 where the shaft drives "
+                           "the machine), over 720 deg"
                      : "no [gas] table: gravity alone drives it (no load), over a turn";
   if (exact->gas && facts.cycle != "four-stroke") text.replace(text.rfind("720"), 3, "360");
   text += ": the exact energy integral gives delta = (omega_max - omega_min) / omega_mean = " + shortNumber(exact->delta, 4) +
