@@ -41,7 +41,7 @@ void addGradeOptions(CLI::App& command, GradeOptions& options) {
                    "JSON per line, in order");
   command.add_option("--jobs", options.jobs, "Programs run at once (default: one per core)")
       ->check(CLI::Range(1, 256));
-  command.add_option("--timeout", options.timeout_seconds, "Seconds the program may take per request")
+  command.add_option("--timeout", options.timeout_seconds, "Seconds the program may take per request (--free-run: per run at its scene's largest step, doubled at each halving of --dt-sweep)")
       ->check(FiniteRange(0.001, 1e6))
       ->capture_default_str();
   command.add_flag("--free-run", options.free_run,

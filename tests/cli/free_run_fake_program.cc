@@ -4,12 +4,14 @@
 // speed fluctuation), so it must be graded, not refused.
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
 
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
@@ -20,6 +22,10 @@ int main(int argc, char** argv) {
   const nlohmann::json request = nlohmann::json::parse(line);
   const double t_end = request.at("t_end"), interval = request.at("output_interval"), omega0 = request.at("omega0");
   const long n = std::lround(t_end / interval);
+  if (mode == "slow-by-steps" && request.at("dt").is_number()) {  // 0.3 s per run at 1/720 of a turn, more with the steps
+    const double default_dt = 2.0 * M_PI / omega0 / 720.0;
+    std::this_thread::sleep_for(std::chrono::duration<double>(0.3 * default_dt / request.at("dt").get<double>()));
+  }
   nlohmann::json samples = nlohmann::json::array();
   for (long i = 0; i <= n; ++i) {
     const double t = i == n ? t_end : i * interval;

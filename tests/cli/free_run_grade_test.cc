@@ -47,6 +47,19 @@ TEST(FreeRunGradeTest, AConstantSpeedRunIsGradedAndFailsOnDelta) {
   EXPECT_TRUE(fs::exists(out / "free_run_error_vs_time.svg"));
 }
 
+// Issue 59: a sweep's finer steps take longer, and the limit grows with them. The program sleeps 0.3 s at 1/720 of a
+// turn and twice as long at each halving: 0.3, 0.6 and 1.2 s for --dt-sweep 3 against --timeout 1, whose limits are
+// 1, 2 and 4 s (a margin of 3.3 each: the test holds on a loaded machine; a fixed 1 s would end the third run).
+TEST(FreeRunGradeTest, TheTimeLimitGrowsWithTheStepsOfASweep) {
+  FreshFolder dir;
+  const fs::path out = dir.path() / "report";
+  const auto r = runCrankcheck({"grade", "--free-run", kSingle, "--revolutions", "1", "--dt-sweep", "3", "--timeout", "1",
+                                "--out", out.string(), "--", CRANKCHECK_FREE_RUN_FAKE, "slow-by-steps"});
+  EXPECT_EQ(r.exit_status, 1) << r.out << r.err;  // graded (a constant speed fails delta), not timed out (3)
+  EXPECT_EQ(r.err.find("within"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(out / "index.html"));
+}
+
 // Held at constant speed, the same run is exact in phase; a drive torque of 0 is wrong wherever gravity and the
 // parts' inertia load the crank: the value is graded against the exact torque at the run's own state.
 TEST(FreeRunGradeTest, AHeldRunIsGradedOnItsPhaseAndItsTorque) {

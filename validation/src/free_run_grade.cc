@@ -403,8 +403,18 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
 TableSet runRunGrade(const std::vector<RunCase>& cases, const GradeProgram& program, const RunTolerances& tolerances,
                      const std::function<void(size_t, size_t)>& progress) {
   if (program.argv.empty()) throw UsageError("grade: no program given (crankcheck grade --free-run SCENE -- PROGRAM)");
+  // The limit is per run at its scene's largest step; a run of n times the steps (its step halved log2 n times in a
+  // sweep) has n times the limit: the sweep's finest step is no more likely to meet it than the first.
+  std::map<std::string, double> largest_step;
+  for (const RunCase& c : cases)
+    if (c.dt) largest_step[c.family] = std::max(largest_step[c.family], *c.dt);
   return gradeRunAnswers(
-      cases, [&](const RunCase& c) { return runOnce(program, makeRunRequest(c) + "\n", 1, "case " + c.id); },
+      cases,
+      [&](const RunCase& c) {
+        GradeProgram scaled = program;
+        if (c.dt) scaled.timeout_seconds *= largest_step.at(c.family) / *c.dt;
+        return runOnce(scaled, makeRunRequest(c) + "\n", 1, "case " + c.id);
+      },
       tolerances, program.argv.front(), progress);
 }
 
