@@ -112,6 +112,31 @@ TEST(YourEngineGravityTest, DescribeAnswersThePapersQuestion) {
   EXPECT_TRUE(gravityTopic().describe(tables, "another_scene").empty());
 }
 
+// Issue 59: with gas, gravity is judged against the working torque (the largest |drive torque| over the working cycle
+// with the gas, which the loads section states), and the sentence says so: the inline four's working torque against
+// the independent model's over 720 deg, to the acceptance above.
+TEST(YourEngineGravityTest, WithGasGravityIsJudgedAgainstTheWorkingTorque) {
+  const Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
+  ASSERT_TRUE(m.gas);
+  const Model<long double> coarse(m);
+  const Model<Hp> fine(m);
+  const double working = static_cast<double>(
+      testing::independent::findMax([&](long double p) { return coarse.driveTorque(p); }, [&](Hp p) { return fine.driveTorque(p); },
+                                    4.0 * M_PI, 1440)
+          .value);
+  const std::vector<ye::GravityRow> rows = run(m);
+  ASSERT_TRUE(rows.front().max_abs_working_torque);
+  EXPECT_LE(std::fabs(*rows.front().max_abs_working_torque - working), kAcceptance * working);
+  for (size_t i = 1; i < rows.size(); ++i) EXPECT_FALSE(rows[i].max_abs_working_torque) << rows[i].engine;
+  const std::vector<validation::ReportBlock> blocks =
+      gravityTopic().describe(validation::your_engine::kGravityTable.tableSet(rows), m.name);
+  ASSERT_EQ(blocks.size(), 1u);
+  EXPECT_NE(blocks[0].text.find("of the working torque (max |drive torque| over the cycle with its [gas]"), std::string::npos)
+      << blocks[0].text;
+  EXPECT_NE(blocks[0].text.find("against the working torque, gravity is negligible"), std::string::npos) << blocks[0].text;
+  EXPECT_FALSE(run(parseScene(kSlowSingle, "slow_single.toml"), true).front().max_abs_working_torque);  // no gas
+}
+
 // At speed 0 the ratio is not defined: NaN in the table, said so in words, never "inf".
 TEST(YourEngineGravityTest, AtRestTheRatioIsNotDefined) {
   std::string text = kSlowSingle;

@@ -75,6 +75,9 @@ struct GravityRow {
   double ratio = 0.0;                   ///< [-] max_abs_Q / max_abs_inertia_torque (NaN at speed 0: not defined)
   int gated = 1;                        ///< 0: a soft way, measured beside the exact engines
   int resolved = 1;                     ///< 0: max |Q| is at rounding level (gravity's torque cancels: a bound)
+  /// [N m] the closed forms' max |drive torque| over the working cycle with the scene's [gas] and gravity: what
+  /// gravity is judged against where the scene has gas (empty without gas or speed, and for the other engines)
+  std::optional<double> max_abs_working_torque;
 };
 extern const Schema<GravityRow> kGravityTable;
 

@@ -33,7 +33,8 @@ const Schema<GravityRow> kGravityTable{
      numberField("max_abs_Q", "N m", &GravityRow::max_abs_Q), numberField("phi_deg_at_max", "deg", &GravityRow::phi_deg_at_max),
      numberField("max_abs_inertia_torque", "N m", &GravityRow::max_abs_inertia_torque),
      numberField("ratio", "-", &GravityRow::ratio), countField("gated", &GravityRow::gated),
-     countField("resolved", &GravityRow::resolved)}};
+     countField("resolved", &GravityRow::resolved),
+     optionalField("max_abs_working_torque", "N m", &GravityRow::max_abs_working_torque)}};
 
 namespace {
 
