@@ -199,7 +199,10 @@ TableSet calcFitnessTables(const Mechanism& m, bool quick) {
       for (size_t i = 0; i < why_not.size(); ++i)
         list += (i == 0 ? "" : i + 1 == why_not.size() ? " and " : ", ") + why_not[i];
       leaveOut("Q's Fourier series (orders 2-12) and eq (15)",
-               "the paper's series are for one bank of centric cylinders without balance shafts; this scene has " + list);
+               "the paper's series are for one bank of centric cylinders without balance shafts; this scene has " + list +
+                   " (eq (5) is judged all the same: its U1 and U2 are one cylinder's masses split between its pins, "
+                   "and U and Q their sum over the cylinders at each one's own angles, which holds for every layout; "
+                   "what it gets wrong on any engine is the printed split)");
     }
     // Eq (5)'s coefficients are per cylinder: they apply to every layout.
     judged.push_back({17, kEq5, Q_name, Q_scale, "N m", Q_scale_value, 0,
