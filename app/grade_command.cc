@@ -54,7 +54,7 @@ void addGradeOptions(CLI::App& command, GradeOptions& options) {
       ->check(CLI::IsMember({"free", "held", "loaded"}))
       ->capture_default_str();
   command.add_option("--revolutions", options.revolutions, "--free-run: the horizon, in revolutions of the exact run")
-      ->check(CLI::Range(1, 100000))
+      ->check(CLI::Range(2, 100000))
       ->capture_default_str();
   command.add_option("--dt", options.dt, "--free-run: the step [s] the program must take, or `own` (its own choice); "
                      "default 1/720 of a revolution");

@@ -39,6 +39,8 @@ int main(int argc, char** argv) {
     if (mode == "few" && i >= 5) break;
     samples.push_back(s);
   }
+  if (mode == "past-end") samples.push_back({{"t", 1e9}, {"phi", 1e9}, {"omega", omega0}});  // one sample 1e9 s on
+  if (mode == "phi-far") samples.push_back({{"t", t_end + 0.5 * interval}, {"phi", 1e300}, {"omega", omega0}});
   std::string text = nlohmann::json{{"samples", samples}}.dump();
   if (mode == "nan") {  // a run that fell apart: nlohmann writes NaN as null, the grader must refuse it as not finite
     const size_t at = text.find("\"omega\":", text.size() / 2);

@@ -82,7 +82,9 @@ std::vector<RunCase> buildRunCases(const Mechanism& scene, const RunSettings& se
   const std::string& name = scene.name;
   if (!(scene.machine.speed > 0.0))
     throw UsageError("[engine].speed_rpm: a time-stepped run starts at the scene's speed; give one > 0");
-  if (settings.revolutions < 1) throw UsageError("--revolutions: at least 1");
+  // Two at least: the energy is read once a turn of the exact run, and a run that lands a rounding short of its one
+  // turn has a single reading and no trend (every program failed at 1).
+  if (settings.revolutions < 2) throw UsageError("--revolutions: at least 2 (the energy trend needs two turns)");
   if (settings.dt_sweep < 1) throw UsageError("--dt-sweep: at least 1");
   Mechanism m = scene;
   m.crankshaft.reset();  // the rigid shaft
@@ -194,6 +196,19 @@ ProgramRun parseRunResponse(const RunCase& c, const std::string& response, const
     };
     const double t = *number("t", true), phi = *number("phi", true), omega = *number("omega", true);
     const std::optional<double> omega_t = number("omega_t", false), values_t = number("values_t", false);
+    // A sample past the run's end (beyond one output interval and one step, which a program that does not land on
+    // t_end may take), or a crank angle more than kMaxTurnsFactor times the run's turns from phi0, is a broken run:
+    // measured, either would cost without a bound (a sample at t = 1e9 s ran crankcheck's measures for hours, one at
+    // phi = 1e300 rad crashed the turn count).
+    const double overshoot = c.output_interval + c.dt.value_or(c.output_interval);
+    if (t > c.t_end + overshoot + 1e-9 * c.t_end)
+      fail(at + ".t is " + formatNumber(t) + " s, past the run's end t_end = " + formatNumber(c.t_end) +
+           " s (by more than an output interval and a step)");
+    constexpr double kMaxTurnsFactor = 100.0;
+    const double max_angle = kMaxTurnsFactor * 2.0 * M_PI * (c.revolutions + 1);
+    if (!(std::fabs(phi - c.phi0) <= max_angle))
+      fail(at + ".phi is " + formatNumber(phi) + " rad, more than " + formatNumber(kMaxTurnsFactor) +
+           " times the run's " + std::to_string(c.revolutions) + " revolutions from phi0 = " + formatNumber(c.phi0) + " rad");
     if (i > 0 && !(t > out.run.time.back()))
       fail(at + ".t is " + formatNumber(t) + " s, not after the sample before (" + formatNumber(out.run.time.back()) +
            " s): time must increase");
