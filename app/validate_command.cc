@@ -94,7 +94,8 @@ bool allPass(const TableSet& tables) { return validation::allAgree(validation::c
 std::string formatSatOut(const std::vector<validation::SatOut>& sat_out) {
   std::string out;
   for (const validation::SatOut& s : sat_out)
-    out += s.engine + " sat out: it cannot build scene " + s.scene + " (" + formatOneLine(s.reason) + ")\n";
+    out += escapeText(s.engine) + " sat out: it cannot build scene " + escapeText(s.scene) + " (" +
+           escapeText(formatOneLine(s.reason)) + ")\n";  // a shard's record may come from anyone: never raw
   return out;
 }
 

@@ -164,6 +164,54 @@ TEST(RunnerTest, TheMergeOfTheShardsIsASingleRunsTables) {
   }
 }
 
+// shard.json's record of the engines that sat out is held to the campaign's scenes and to the data (a round of
+// attacks: a hand-edited record naming mujoco-soft merged, its rows and all, and was printed as having sat out).
+TEST(RunnerTest, AMergeRefusesARecordOfEnginesThatSatOutWhichItsDataContradict) {
+  FreshFolder dir;
+  auto writeShards = [&](const std::string& name, const std::vector<SatOut>& sat_out) {
+    std::vector<std::string> shard_dirs;
+    for (int index = 0; index < 2; ++index) {
+      TableSet tables;
+      Table rows("by_engine", {{"engine", kText}, {"value", "-"}});
+      rows.rows.push_back({"mujoco-soft", formatNumber(index)});
+      tables["by_engine"] = rows;
+      const std::string path = (dir.path() / (name + std::to_string(index))).string();
+      OutputFolder out(path, "--out");
+      out.createStaging();
+      ShardManifest manifest;
+      manifest.index = index;
+      manifest.count = 2;
+      manifest.tasks = 2;
+      manifest.version = getCrankcheckVersion();
+      manifest.scenes = {{"light", "0123456789abcdef"}};
+      manifest.sat_out = sat_out;
+      writeShard(tables, manifest, out.getStaging());
+      out.install("shard");
+      shard_dirs.push_back(path);
+    }
+    return shard_dirs;
+  };
+  auto refusal = [](const std::vector<std::string>& shard_dirs) {
+    try {
+      mergeShards(shard_dirs);
+    } catch (const UsageError& e) {
+      return std::string(e.what());
+    }
+    return std::string("merged");
+  };
+  EXPECT_EQ(refusal(writeShards("ok", {})), "merged");
+  EXPECT_NE(refusal(writeShards("rows", {{"mujoco-soft", "light", "-"}})).find(
+                "sat_out: names engine \"mujoco-soft\", but the shards' table by_engine holds its values"),
+            std::string::npos);
+  EXPECT_NE(refusal(writeShards("scene", {{"mujoco-soft-stiff", "heavy", "-"}})).find(
+                "sat_out: scene \"heavy\" is none of the campaign's scenes (light)"),
+            std::string::npos);
+  EXPECT_NE(refusal(writeShards("twice", {{"mujoco-soft-stiff", "light", "-"}, {"mujoco-soft-stiff", "light", "-"}}))
+                .find("sat_out: engine \"mujoco-soft-stiff\" twice"),
+            std::string::npos);
+  EXPECT_EQ(refusal(writeShards("other", {{"mujoco-soft-stiff", "light", "-"}})), "merged");  // no row of it
+}
+
 TEST(RunnerTest, AThrowingTaskReachesTheCallerAfterTheOthersRan) {
   std::atomic<int> runs{0};
   std::vector<Task> tasks = makeTasks(9, &runs);

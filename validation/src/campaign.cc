@@ -159,7 +159,7 @@ std::vector<Task> buildCampaign(const CampaignOptions& options) {
                      "first scene a [flywheel] table to get them."});
   for (const SatOut& s : options.sat_out)
     notes.push_back({"Engine " + s.engine + " sat out of this campaign: it cannot build scene " + s.scene + " (" +
-                     formatOneLine(s.reason) + "). Every table, verdict and figure is of the other engines."});
+                     escapeText(formatOneLine(s.reason)) + "). Every table, verdict and figure is of the other engines."});
   if (!options.parts.empty()) {
     std::string asked;
     for (const std::string& key : options.parts) asked += (asked.empty() ? "" : ", ") + key;

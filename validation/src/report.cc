@@ -235,6 +235,7 @@ ShardManifest readShardManifest(const fs::path& dir) {
       m.scenes.push_back({scene.at("name").get<std::string>(), scene.at("fnv1a64").get<std::string>()});
     m.tasks = j.at("tasks").get<int>();
     m.parts = j.at("parts").get<std::vector<std::string>>();
+    if (!j.at("sat_out").is_array()) throw std::runtime_error(quotePath(dir / "shard.json") + ": malformed: sat_out must be a list");
     for (const auto& s : j.at("sat_out"))
       m.sat_out.push_back({s.at("engine").get<std::string>(), s.at("scene").get<std::string>(), s.at("reason").get<std::string>()});
     for (const auto& f : j.at("files"))

@@ -241,14 +241,35 @@ MergedShards mergeShards(const std::vector<std::string>& dirs) {
     throw refuse("shards: " + std::to_string(seen.size()) + " of " + std::to_string(merged.first.count) +
                  " given (missing: " + missing + "); all are needed");
   }
-  // The tables are read with the engines the campaign ran: its schemas have a column per engine in play.
+  // The tables are read with the engines the campaign ran: its schemas have a column per engine in play. What
+  // shard.json says sat out must be one of the campaign's scenes, each engine once, and hold no row of the data.
+  const std::string record = quotePath(std::filesystem::path(dirs[0]) / "shard.json") + ": sat_out: ";
+  std::set<std::string> sat_engines;
+  for (const SatOut& s : merged.first.sat_out) {
+    if (!sat_engines.insert(s.engine).second) throw refuse(record + "engine " + quoteText(s.engine) + " twice");
+    if (std::none_of(merged.first.scenes.begin(), merged.first.scenes.end(), [&](const ShardScene& c) { return c.name == s.scene; }))
+      throw refuse(record + "scene " + quoteText(s.scene) + " is none of the campaign's scenes (" + listNames(merged.first.scenes) + ")");
+  }
   try {
     merged.sat_out_scope = std::make_unique<SatOutScope>(merged.first.sat_out);
   } catch (const std::invalid_argument& e) {
-    throw refuse(quotePath(std::filesystem::path(dirs[0]) / "shard.json") + ": sat_out: " + e.what());
+    throw refuse(record + e.what());
   }
   for (size_t i = 0; i < dirs.size(); ++i)
     guarded([&] { appendTables(merged.tables, readShardTables(dirs[i], manifests[i])); });
+  for (const auto& [name, table] : merged.tables) {
+    const std::vector<std::string> columns = table.names();
+    const auto engine = std::find(columns.begin(), columns.end(), "engine");
+    if (engine == columns.end()) continue;
+    const size_t column = static_cast<size_t>(engine - columns.begin());
+    for (size_t row = 0; row < table.size(); ++row) {
+      const Cell cell = table.cell(row, column);
+      const auto* value = std::get_if<std::string>(&cell);
+      if (value && sat_engines.count(*value))
+        throw refuse(record + "names engine " + quoteText(*value) + ", but the shards' table " + name +
+                     " holds its values: a record that does not match its data");
+    }
+  }
   return merged;
 }
 
