@@ -672,8 +672,15 @@ py::dict pistonKinematics(const py::handle& theta_in, const Mechanism& m, F f) {
   return d;
 }
 
+// The largest order the coefficient functions take: their cost grows with the square of the order (0.02 s at 1e4;
+// 1e7 would take hours), and no crank ratio below 0.999 has a coefficient above rounding past it.
+constexpr int kMaxCoefficientOrder = 10000;
+
 template <class F>
 py::array_t<double> coefficients(F f, double lambda, int order) {
+  if (order > kMaxCoefficientOrder)
+    throw py::value_error("order: at most " + std::to_string(kMaxCoefficientOrder) + " (got " + std::to_string(order) +
+                          "): the cost grows with its square");
   try {
     return toArray(f(lambda, order));
   } catch (const std::invalid_argument& e) {

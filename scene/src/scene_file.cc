@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <cstdint>
 #include <sstream>
 #include <utility>
 #include <toml++/toml.h>
@@ -290,6 +291,8 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
   require(m.crank.radius < m.rod.length, "[crank].radius",
           "lambda = r / l must be < 1 (rod length " + formatNumber(m.rod.length) + " m)",
           m.crank.radius / m.rod.length);
+  require(m.balance_shafts.size() <= static_cast<size_t>(kMaxCylinders), "[[balance_shaft]]", "must be at most 64 shafts",
+          static_cast<double>(m.balance_shafts.size()));
   for (size_t i = 0; i < m.balance_shafts.size(); ++i) {
     const BalanceShaftParams& b = m.balance_shafts[i];
     const std::string key = "balance_shaft[" + std::to_string(i) + "]";
@@ -602,6 +605,8 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
     const toml::array* shafts = node->as_array();
     if (shafts == nullptr || !shafts->is_array_of_tables())
       fail(source, "[[balance_shaft]]", "must be an array of tables, one [[balance_shaft]] per shaft");
+    if (static_cast<long long>(shafts->size()) > kMaxCylinders)  // as the cylinders: the work per shaft stays bounded
+      fail(source, "[[balance_shaft]]", "must have at most 64 tables (got " + std::to_string(shafts->size()) + ")");
     for (size_t i = 0; i < shafts->size(); ++i) {
       TableReader shaft(*shafts->get(i)->as_table(), "balance_shaft[" + std::to_string(i) + "]", source,
                         {"ratio", "mass", "radius", "phase_deg", "position"});
@@ -694,11 +699,20 @@ Mechanism loadSceneFile(const std::filesystem::path& path) {
   const std::string source = path.string();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) fail(source, "file", "cannot be read (no such regular file)");
+  // No scene needs more than a few hundred kilobytes (64 cylinders, a gas table of thousands of points): a larger file
+  // is refused before it is read, not read whole (a 2 GB file did not finish in 30 s).
+  constexpr std::uintmax_t kMaxSceneBytes = 16u << 20;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (!ec && bytes > kMaxSceneBytes)
+    fail(source, "file", "is " + std::to_string(bytes) + " bytes, more than 16 MiB: no scene needs as much");
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(source, "file", "cannot be opened");
-  std::ostringstream text;
-  text << in.rdbuf();
-  const std::string content = text.str();
+  std::string content;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {  // at most one buffer past the limit: a file still growing
+    content.append(buffer, static_cast<size_t>(in.gcount()));
+    if (content.size() > kMaxSceneBytes) fail(source, "file", "is more than 16 MiB: no scene needs as much");
+  }
   if (content.find('\0') != std::string::npos) fail(source, "file", "is binary, not a TOML text file");
   return parseScene(content, source);
 }

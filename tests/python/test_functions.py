@@ -145,6 +145,12 @@ def test_scalar_angles_and_bad_arguments():
         crankcheck.piston_kinematics([0.0, np.nan], 0.3)
     with pytest.raises(ValueError):
         crankcheck.radical_fourier_coefficients(1.0, 4)
+    # A round of attacks: order 1e7 ran for hours (the cost grows with the order's square); refused at once.
+    for function in (crankcheck.radical_fourier_coefficients, crankcheck.inverse_radical_fourier_coefficients,
+                     crankcheck.lambda_coefficients):
+        with pytest.raises(ValueError, match="order: at most 10000"):
+            function(0.3, 10**7)
+    assert len(crankcheck.radical_fourier_coefficients(0.3, 10000)) > 0
     with pytest.raises(ValueError):
         crankcheck.lambda_series_coefficient(3, 5)
     with pytest.raises(ValueError, match="order"):

@@ -818,3 +818,37 @@ INSTANTIATE_TEST_SUITE_P(
 
 }  // namespace
 }  // namespace crankcheck
+
+namespace crankcheck {
+namespace {
+
+// A round of attacks: 10 000 balance shafts ran eval past 300 s in 1.65 GB (the cylinders are capped at 64 for that
+// reason; now the shafts too), and a 2 GB scene file was read whole before being judged (now refused by its size).
+TEST(SceneLimits, BalanceShaftsAndTheFileAreBounded) {
+  std::string text = kGoodScene;
+  for (int i = 0; i < 65; ++i)
+    text += "[[balance_shaft]]\nratio = 1\nmass = 0.1\nradius = 0.02\nposition = [0.0, 0.0, 0.0]\n";
+  try {
+    parseScene(text, "shafts.toml");
+    ADD_FAILURE() << "65 balance shafts were accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("shafts.toml: [[balance_shaft]]: must have at most 64 tables (got 65)"),
+              std::string::npos) << e.what();
+  }
+  const std::filesystem::path big = std::filesystem::temp_directory_path() / "crankcheck_scene_17MiB.toml";
+  {
+    std::ofstream(big) << kGoodScene;
+  }
+  std::filesystem::resize_file(big, 17u << 20);  // sparse: no 17 MiB written
+  try {
+    loadSceneFile(big);
+    ADD_FAILURE() << "a 17 MiB scene file was read";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find(": file: is 17825792 bytes, more than 16 MiB: no scene needs as much"),
+              std::string::npos) << e.what();
+  }
+  std::filesystem::remove(big);
+}
+
+}  // namespace
+}  // namespace crankcheck
