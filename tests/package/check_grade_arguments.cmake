@@ -112,6 +112,9 @@ fake(grade 0)
 crankcheck_add_grade_test(NAME grade_path COMMAND [====[${program_file}]====] [====[a;b]====] \"\"
                           [====[\$<TARGET_FILE:my_program>]====] \"\")
 fake(grade_path 0)
+# TIMEOUT 0 and JOBS 0 (values CMake reads as false) reach crankcheck, which refuses them; they were dropped.
+crankcheck_add_grade_test(NAME grade_zero COMMAND my_program SCENES ${scenes} TIMEOUT 0 JOBS 0)
+fake(grade_zero 0)
 crankcheck_add_free_run_grade_test(NAME free_run COMMAND my_program ${program_arguments} SCENES ${scenes}
                                    DRIVE held DT [====[own]====] REVOLUTIONS 3 VALUES_TOLERANCE [====[0.01; x]====]
                                    QUICK)
@@ -138,7 +141,9 @@ string(APPEND expected_free_run "arg:[own]\narg:[--revolutions]\narg:[3]\narg:[-
 string(APPEND expected_free_run "arg:[--quick]\n${out}free_run${rest}")
 set(expected_will_fail "arg:[grade]\narg:[--free-run]\n${expected_scenes}arg:[--dt]\narg:[1.7e-3]\narg:[--timeout]\n")
 string(APPEND expected_will_fail "arg:[5]\n${out}will_fail${rest}")
-set(tests grade grade_path free_run will_fail)
+set(expected_grade_zero "arg:[grade]\n${expected_scenes}arg:[--timeout]\narg:[0]\narg:[--jobs]\narg:[0]\n")
+string(APPEND expected_grade_zero "${out}grade_zero-report]\narg:[--]\narg:[${program_file}]\n")
+set(tests grade grade_path grade_zero free_run will_fail)
 foreach(status 0 2 3)
   set(expected_will_fail_status_${status} "arg:[grade]\narg:[--free-run]\n${expected_scenes}")
   string(APPEND expected_will_fail_status_${status} "${out}will_fail_status_${status}${rest}")
@@ -217,3 +222,19 @@ if(rc EQUAL 0 OR NOT err MATCHES "carriage return before a line feed")
   message(FATAL_ERROR "a carriage return before a line feed was not refused (${rc}):\n${out}\n${err}")
 endif()
 message(STATUS "a carriage return before a line feed: refused")
+
+# A NAME with a path separator would put its report outside the build tree (NAME-report): refused when added.
+file(WRITE "${WORK_DIR}/refused_name/CMakeLists.txt" "cmake_minimum_required(VERSION 3.25)
+project(grade_arguments_refused_name LANGUAGES NONE)
+enable_testing()
+add_executable(crankcheck::crankcheck IMPORTED)
+set_target_properties(crankcheck::crankcheck PROPERTIES IMPORTED_LOCATION [====[${WORK_DIR}/fake_crankcheck.sh]====])
+include([====[${SOURCE_DIR}/cmake/crankcheckGrade.cmake]====])
+crankcheck_add_grade_test(NAME ../../x COMMAND my_program)
+")
+execute_process(COMMAND ${CMAKE_COMMAND} -S "${WORK_DIR}/refused_name" -B "${WORK_DIR}/refused_name-build"
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "NAME ../../x: a test name without /")
+  message(FATAL_ERROR "a NAME with a path separator was not refused (${rc}):\n${out}\n${err}")
+endif()
+message(STATUS "a NAME with a path separator: refused")

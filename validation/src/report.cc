@@ -217,6 +217,12 @@ void writeShardManifest(const ShardManifest& manifest, const fs::path& dir) {
 }
 
 ShardManifest readShardManifest(const fs::path& dir) {
+  // A plain file inside the shard, as the folder rule asks: a link is not followed, a FIFO never waited on.
+  std::error_code ec;
+  const fs::file_status status = fs::symlink_status(dir / "shard.json", ec);
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    throw std::runtime_error(quotePath(dir / "shard.json") + ": not a plain file (a link, a folder or a FIFO): not a "
+                             "shard written by crankcheck validate --shard");
   std::ifstream in(dir / "shard.json");
   if (!in) throw std::runtime_error(quotePath(dir) + ": no shard.json (not a shard written by crankcheck validate --shard)");
   try {
