@@ -117,6 +117,12 @@ int main(int argc, char** argv) {
     std::puts(repeat(result + "]}").c_str());
     return 0;
   }
+  if (mode == "duplicate-key") {  // one result gives U twice: which one counts is not defined
+    std::string out = "{\"results\": [";
+    for (size_t i = 0; i < n; ++i) out += std::string(i ? "," : "") + (i == 1 ? "{\"U\": 12345.0, \"U\": null}" : "null");
+    std::puts((out + "]}").c_str());
+    return 0;
+  }
   if (mode == "nothing-provided") {
     // As many results as angles, each empty or null: valid protocol, nothing to grade.
     std::string out = "{\"results\": [";

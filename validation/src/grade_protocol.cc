@@ -3,6 +3,7 @@
 #include "grade_protocol.h"
 
 #include <algorithm>
+#include <set>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -118,8 +119,20 @@ Json parseResponseObject(const std::string& response, const std::string& key, co
   if (response.find_first_not_of(" \t\r\n") == std::string::npos)
     throwProtocolError(where, "no response on stdout", response);
   Json doc;
+  // A key given twice in one object is not the protocol: JSON leaves which one counts to the reader (nlohmann keeps
+  // the last), and an answer "U": 12345, "U": <right value> passed. Found while parsing, each object's keys kept.
+  std::vector<std::set<std::string>> keys;
+  std::string twice;
+  const auto watch = [&](int, Json::parse_event_t event, Json& parsed) {
+    if (event == Json::parse_event_t::object_start) keys.emplace_back();
+    if (event == Json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+    if (event == Json::parse_event_t::key && !keys.empty() && !keys.back().insert(parsed.get<std::string>()).second &&
+        twice.empty())
+      twice = parsed.get<std::string>();
+    return true;
+  };
   try {
-    doc = Json::parse(response);
+    doc = Json::parse(response, watch);
   } catch (const Json::parse_error& e) {
     throwProtocolError(where, "the response is not JSON (" + escapeText(e.what()) + ")", response,
                        e.byte > 0 ? e.byte - 1 : 0);
@@ -135,6 +148,12 @@ Json parseResponseObject(const std::string& response, const std::string& key, co
                        response, at == std::string::npos ? 0 : at);
   } catch (const Json::exception& e) {
     throwProtocolError(where, "the response cannot be read (" + escapeText(e.what()) + ")", response);
+  }
+  if (!twice.empty()) {
+    const std::string quoted = "\"" + twice + "\"";
+    const size_t first = response.find(quoted), second = first == std::string::npos ? first : response.find(quoted, first + 1);
+    throwProtocolError(where, "the key " + quoteText(twice) + " is given twice in one object (which one counts is not "
+                              "defined)", response, second == std::string::npos ? 0 : second);
   }
   if (!doc.is_object() || !doc.contains(key) || !doc[key].is_array())
     throwProtocolError(where, "the response must be an object {\"" + key + "\": [...]}", response);
