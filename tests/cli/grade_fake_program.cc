@@ -123,6 +123,12 @@ int main(int argc, char** argv) {
     std::puts((out + "]}").c_str());
     return 0;
   }
+  if (mode == "misspelled-key") {  // "Uu" for U: not provided without a word, once
+    std::string out = "{\"results\": [";
+    for (size_t i = 0; i < n; ++i) out += std::string(i ? "," : "") + (i == 1 ? "{\"Uu\": 1.0}" : "null");
+    std::puts((out + "]}").c_str());
+    return 0;
+  }
   if (mode == "nothing-provided") {
     // As many results as angles, each empty or null: valid protocol, nothing to grade.
     std::string out = "{\"results\": [";

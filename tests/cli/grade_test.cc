@@ -218,6 +218,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Misbehaviour{"nan", "is not JSON"},
                       // A round of attacks: "U": 12345, "U": <right value> passed (nlohmann keeps the last).
                       Misbehaviour{"duplicate-key", "the key \"U\" is given twice in one object"},
+                      Misbehaviour{"misspelled-key", "results[1]: \"Uu\" is not a quantity of eval (one of U, Q"},
                       Misbehaviour{"string", "must be a number or null"},
                       Misbehaviour{"crash", "ended by signal 6"},
                       Misbehaviour{"exit7", "exited with status 7; its stderr: \"something went wrong"},

@@ -224,7 +224,8 @@ ProgramRun parseRunResponse(const RunCase& c, const std::string& response, const
     out.run.omega.push_back(omega);
     omega_time.push_back(t_omega);
     out.values_time.push_back(values_t ? *values_t : t);
-    Evaluation e = readProgramValues(s, at, c.mechanism, [&](const std::string& what) { fail(what); });
+    Evaluation e = readProgramValues(s, at, c.mechanism, [&](const std::string& what) { fail(what); },
+                                     {"t", "phi", "omega", "omega_t", "values_t"});
     for (const Quantity& q : getQuantityCatalogue())
       for (int j = 0; j < (q.per_cylinder ? c.mechanism.machine.cylinders : 1); ++j)
         for (int n = 0; n < q.components; ++n)

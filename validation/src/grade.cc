@@ -135,7 +135,7 @@ std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string
         fail(at + ".phi_deg is " + formatNumber(phi) + ", the request's angle " + std::to_string(i) + " is " +
              formatNumber(c.phi_deg[i]) + " (results must come in the request's order)");
     }
-    Evaluation e = readProgramValues(r, at, c.mechanism, [&](const std::string& what) { fail(what); });
+    Evaluation e = readProgramValues(r, at, c.mechanism, [&](const std::string& what) { fail(what); }, {"phi_deg"});
     e.phi = radiansFromDegrees(c.phi_deg[i]);
     out.push_back(std::move(e));
   }

@@ -161,10 +161,33 @@ Json parseResponseObject(const std::string& response, const std::string& key, co
 }
 
 Evaluation readProgramValues(const Json& r, const std::string& at, const Mechanism& m,
-                             const std::function<void(const std::string&)>& fail) {
+                             const std::function<void(const std::string&)>& fail,
+                             const std::vector<std::string>& protocol_keys) {
   const int k = m.machine.cylinders;
   const double kNotProvided = std::nan("");
   if (!r.is_object() && !r.is_null()) fail(at + " must be an object or null");
+  // Every key is one the protocol knows: a misspelled quantity (x_P, Uu) was not provided without a word, and the
+  // program passed with what it meant to send never looked at.
+  auto names = [](bool per_cylinder) {
+    std::string all;
+    for (const Quantity& q : getQuantityCatalogue())
+      if (q.per_cylinder == per_cylinder) all += (all.empty() ? "" : ", ") + std::string(q.name);
+    return all;
+  };
+  auto checkKeys = [&](const Json& object, const std::string& path, bool per_cylinder) {
+    for (const auto& item : object.items()) {
+      const std::string& name = item.key();
+      if (!per_cylinder && (name == "cylinders" ||
+                            std::find(protocol_keys.begin(), protocol_keys.end(), name) != protocol_keys.end()))
+        continue;
+      const Quantity* q = findQuantity(name);
+      if (q && q->per_cylinder == per_cylinder) continue;
+      fail(path + ": " + quoteText(name) + (q ? (per_cylinder ? " is not a cylinder's quantity (it goes at the top)"
+                                                               : " is a cylinder's quantity (it goes under \"cylinders\")")
+                                              : " is not a quantity of eval (one of " + names(per_cylinder) + ")"));
+    }
+  };
+  if (r.is_object()) checkKeys(r, at, false);
   // A number, or null / absent for "not provided"; anything else is not the protocol.
   auto number = [&](const Json& parent, const std::string& key, const std::string& path) -> double {
     if (!parent.is_object() || !parent.contains(key) || parent[key].is_null()) return kNotProvided;
@@ -219,6 +242,7 @@ Evaluation readProgramValues(const Json& r, const std::string& at, const Mechani
       if (cj.is_null()) continue;
       const std::string cat = at + ".cylinders[" + std::to_string(j) + "]";
       if (!cj.is_object()) fail(cat + " must be an object or null");
+      checkKeys(cj, cat, true);
       for (const Quantity& q : getQuantityCatalogue())
         if (q.per_cylinder) read(q, cj, cat, static_cast<int>(j));
     }

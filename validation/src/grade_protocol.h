@@ -6,6 +6,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
@@ -46,7 +47,10 @@ nlohmann::json parseResponseObject(const std::string& response, const std::strin
 /// defined for m; engine "program". `at` names the object in messages ("results[3]").
 /// `fail(what)` is called (and must throw) on anything that is not the protocol: a string where a number belongs, a
 /// number that is not finite, an array of the wrong size, more cylinders than m has.
+/// Every key must be one the protocol knows: a quantity (at its level), "cylinders", or one of `protocol_keys` at the
+/// top (a sample's "t", "phi", ...); another is not the protocol either.
 Evaluation readProgramValues(const nlohmann::json& r, const std::string& at, const Mechanism& m,
-                             const std::function<void(const std::string&)>& fail);
+                             const std::function<void(const std::string&)>& fail,
+                             const std::vector<std::string>& protocol_keys = {});
 
 }  // namespace crankcheck::validation
