@@ -206,35 +206,29 @@ endif()
 list(LENGTH tests count)
 message(STATUS "${count} tests: every argument reached the program exactly as written")
 
+# expect_refused(name call pattern what): a project whose one line `call` must be refused when configured, with an
+# error matching `pattern`.
+function(expect_refused name call pattern what)
+  file(WRITE "${WORK_DIR}/${name}/CMakeLists.txt" "cmake_minimum_required(VERSION 3.25)
+project(grade_arguments_${name} LANGUAGES NONE)
+enable_testing()
+add_executable(crankcheck::crankcheck IMPORTED)
+set_target_properties(crankcheck::crankcheck PROPERTIES IMPORTED_LOCATION [====[${WORK_DIR}/fake_crankcheck.sh]====])
+include([====[${SOURCE_DIR}/cmake/crankcheckGrade.cmake]====])
+${call}
+")
+  execute_process(COMMAND ${CMAKE_COMMAND} -S "${WORK_DIR}/${name}" -B "${WORK_DIR}/${name}-build"
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0 OR NOT err MATCHES "${pattern}")
+    message(FATAL_ERROR "${what} was not refused (${rc}):\n${out}\n${err}")
+  endif()
+  message(STATUS "${what}: refused")
+endfunction()
+
 # The one argument no test can pass on, a carriage return before a line feed (CTestTestfile.cmake holds it as it is and
 # ctest reads a line break), is refused when the test is added, not changed.
-file(WRITE "${WORK_DIR}/refused/CMakeLists.txt" "cmake_minimum_required(VERSION 3.25)
-project(grade_arguments_refused LANGUAGES NONE)
-enable_testing()
-add_executable(crankcheck::crankcheck IMPORTED)
-set_target_properties(crankcheck::crankcheck PROPERTIES IMPORTED_LOCATION [====[${WORK_DIR}/fake_crankcheck.sh]====])
-include([====[${SOURCE_DIR}/cmake/crankcheckGrade.cmake]====])
-crankcheck_add_free_run_grade_test(NAME refused COMMAND my_program \"line\\r\\nbreak\" SCENES a.toml WILL_FAIL)
-")
-execute_process(COMMAND ${CMAKE_COMMAND} -S "${WORK_DIR}/refused" -B "${WORK_DIR}/refused-build"
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(rc EQUAL 0 OR NOT err MATCHES "carriage return before a line feed")
-  message(FATAL_ERROR "a carriage return before a line feed was not refused (${rc}):\n${out}\n${err}")
-endif()
-message(STATUS "a carriage return before a line feed: refused")
-
+expect_refused(refused "crankcheck_add_free_run_grade_test(NAME refused COMMAND my_program \"line\\r\\nbreak\" SCENES a.toml WILL_FAIL)"
+               "carriage return before a line feed" "a carriage return before a line feed")
 # A NAME with a path separator would put its report outside the build tree (NAME-report): refused when added.
-file(WRITE "${WORK_DIR}/refused_name/CMakeLists.txt" "cmake_minimum_required(VERSION 3.25)
-project(grade_arguments_refused_name LANGUAGES NONE)
-enable_testing()
-add_executable(crankcheck::crankcheck IMPORTED)
-set_target_properties(crankcheck::crankcheck PROPERTIES IMPORTED_LOCATION [====[${WORK_DIR}/fake_crankcheck.sh]====])
-include([====[${SOURCE_DIR}/cmake/crankcheckGrade.cmake]====])
-crankcheck_add_grade_test(NAME ../../x COMMAND my_program)
-")
-execute_process(COMMAND ${CMAKE_COMMAND} -S "${WORK_DIR}/refused_name" -B "${WORK_DIR}/refused_name-build"
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(rc EQUAL 0 OR NOT err MATCHES "NAME ../../x: a test name without /")
-  message(FATAL_ERROR "a NAME with a path separator was not refused (${rc}):\n${out}\n${err}")
-endif()
-message(STATUS "a NAME with a path separator: refused")
+expect_refused(refused_name "crankcheck_add_grade_test(NAME ../../x COMMAND my_program)"
+               "NAME ../../x: a test name without /" "a NAME with a path separator")
