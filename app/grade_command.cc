@@ -230,9 +230,7 @@ int runGrade(const GradeOptions& options) {
                                  "error / tolerance is worst (beside that tolerance).\n",
                              kHelpWidth)
                         .c_str());
-  for (const validation::SatOut& s : info.sat_out)
-    std::printf("%s", wrapText(s.engine + " sat out: it cannot build scene " + s.scene + " (" + formatOneLine(s.reason) + ")\n",
-                               kHelpWidth).c_str());
+  for (const validation::SatOut& s : info.sat_out) std::printf("%s", wrapText(formatSatOut({s}), kHelpWidth).c_str());
   std::printf("%s\nReport: %s (also index.html)\n",
               status == 0 ? ("Every provided value agrees with " + references + ".").c_str()
                           : "SOME VALUES DISAGREE, or none was provided (see the report's failing cases).",

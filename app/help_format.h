@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/errors.h"
 
 namespace crankcheck::app {
 
@@ -76,6 +77,16 @@ class WrappingFormatter : public CLI::Formatter {
 };
 
 /// "a", "a and b", "a, b and c".
+/// "ENGINE sat out: it cannot build scene S (reason)\n", one line per engine that sat out (validate, grade), escaped:
+/// a shard's record may come from anyone.
+inline std::string formatSatOut(const std::vector<validation::SatOut>& sat_out) {
+  std::string out;
+  for (const validation::SatOut& s : sat_out)
+    out += escapeText(s.engine) + " sat out: it cannot build scene " + escapeText(s.scene) + " (" +
+           escapeText(formatOneLine(s.reason)) + ")\n";
+  return out;
+}
+
 inline std::string joinNames(const std::vector<std::string>& names) {
   std::string out;
   for (size_t i = 0; i < names.size(); ++i)

@@ -90,15 +90,6 @@ void printProgress(const validation::Progress& p) {
 
 bool allPass(const TableSet& tables) { return validation::allAgree(validation::calcVerdicts(tables)); }
 
-// "ENGINE sat out: it cannot build scene S (reason)", one line per engine that sat out of the campaign.
-std::string formatSatOut(const std::vector<validation::SatOut>& sat_out) {
-  std::string out;
-  for (const validation::SatOut& s : sat_out)
-    out += escapeText(s.engine) + " sat out: it cannot build scene " + escapeText(s.scene) + " (" +
-           escapeText(formatOneLine(s.reason)) + ")\n";  // a shard's record may come from anyone: never raw
-  return out;
-}
-
 // The terminal's end: the families' table (all of it with --verbose, else only the families that failed), the
 // verdict (one line per engine, the ctest-style closing line), the engines that sat out and where the report is.
 int reportAndInstall(const TableSet& unsorted, const std::vector<validation::SatOut>& sat_out,
