@@ -428,8 +428,10 @@ std::unique_ptr<GradeRun> startGrade(const std::optional<std::vector<py::object>
       const ScenePtr s = py::isinstance<Scene>(item) ? item.cast<ScenePtr>() : loadScene(item);
       mechanisms.push_back(s->m);
       if (!names.insert(s->m.name).second) throw SceneError(s->source + ": a scene named " + s->m.name + " is given twice");
-      try {
-        validation::checkEveryEngineBuilds(s->m, s->source);
+      try {  // Python's grade holds every engine to every scene: one that would sit out is a refusal here
+        const std::vector<validation::SatOut> sat_out = validation::findSatOut({s->m}, {s->source});
+        if (!sat_out.empty())
+          throw SceneError(s->source + ": --engine " + sat_out.front().engine + ": " + sat_out.front().reason);
       } catch (const UsageError& e) {
         throw SceneError(e.what());
       }

@@ -102,16 +102,6 @@ std::string joinEngineNames(const std::string& separator) {
   return names;
 }
 
-void checkEveryEngineBuilds(const Mechanism& m, const std::string& path) {
-  for (const Engine& engine : listEngines()) {
-    try {
-      engine.build(m);
-    } catch (const std::exception& e) {
-      throw UsageError(path + ": --engine " + engine.name + ": " + e.what());
-    }
-  }
-}
-
 std::vector<SatOut> findSatOut(const std::vector<Mechanism>& scenes, const std::vector<std::string>& paths) {
   std::vector<SatOut> sat_out;
   std::string references_refused;  // "PATH: --engine NAME: reason; ..." of every reference that sits out

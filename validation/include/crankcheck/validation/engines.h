@@ -23,10 +23,6 @@ const Engine& findEngine(const std::string& name);
 /// The names of listEngines(), joined by `separator`.
 std::string joinEngineNames(const std::string& separator);
 
-/// Builds every engine's model of m once, before any long work: a scene some engine cannot build is refused now.
-/// @throws UsageError "PATH: --engine NAME: KEY: rule" (exit status 2) for the first engine that cannot.
-void checkEveryEngineBuilds(const Mechanism& m, const std::string& path);
-
 /// An engine that sits out of a piece of work on a scene: its build refuses the scene (a rule of its own, or an
 /// accuracy it cannot hold there: Engine::build), and the engine's reason. The other engines answer without it.
 struct SatOut {
