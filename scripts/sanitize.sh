@@ -14,6 +14,8 @@ if ! cmake --build build-asan -j"$(nproc)" --target analytic_test scene_test muj
   exit 1
 fi
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
+# Leaks of third-party libraries on their error paths, each explained in the file.
+export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 build-asan/bin/analytic_test --gtest_brief=1
 build-asan/bin/scene_test --gtest_brief=1

@@ -307,6 +307,8 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
             b.ratio);
     requireFinite(b.mass, key + ".mass");
     require(b.mass > 0.0, key + ".mass", "must be > 0 (a shaft without a mass balances nothing)", b.mass);
+    require(b.mass >= kMinNonzeroMass.value, key + ".mass", std::string("must be at least ") + kMinNonzeroMass.text,
+            b.mass);
     require(b.mass <= kMaxMass.value, key + ".mass", atMost(kMaxMass), b.mass);
     requirePositiveLength(b.radius, key + ".radius");
     requireAngle(b.phase, key + ".phase_deg");

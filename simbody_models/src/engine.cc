@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "crankcheck/simbody_models/crank_train.h"
 #include "crankcheck/simbody_models/free_run.h"
@@ -38,18 +40,53 @@ class Model final : public EngineModel {
     const double omega = std::sqrt(9.80665 / m.crank.radius);
     const double residual = model_.calcLoopAccelerationResidual(1.0, omega);
     if (residual <= kResidualLimit) return;
-    char line[480];
+    char line[720];
     std::snprintf(line, sizeof line,
                   "cannot hold its accuracy on this scene: its constraint solve leaves the loops' accelerations off by "
-                  "%.2g of r omega^2 + g (more than %.0e eps), past what it resolves, as where one body's mass or "
-                  "inertia is a tiny fraction of another's: here the rod %.3g kg (I_o %.3g kg m^2) against the "
-                  "piston %.3g kg; the other engines take the scene",
-                  residual, kResidualLimit / std::numeric_limits<double>::epsilon(), m.rod.mass,
-                  m.rod.inertia_about_wrist_pin, m.piston.mass);
+                  "%.2g of r omega^2 + g (more than %.0e eps), past what it resolves, as where one body's mass is a "
+                  "tiny fraction of another's or a load dwarfs the masses it moves; here %s; the other engines take "
+                  "the scene",
+                  residual, kResidualLimit / std::numeric_limits<double>::epsilon(), describeSpreads(m, omega).c_str());
     throw std::invalid_argument(line);
   }
 
  private:
+  /// The scene's two spreads that a constraint solve cannot resolve past (measured, not blamed): its lightest body
+  /// against its heaviest (rods, pistons, the crank's point masses, the balance shafts' masses), and the gas's largest
+  /// force against the piston's mass times the probe's acceleration scale r omega^2 + g.
+  static std::string describeSpreads(const Mechanism& m, double omega) {
+    struct Body {
+      std::string name;
+      double mass;
+    };
+    std::vector<Body> bodies{{"the rod", m.rod.mass}, {"the piston", m.piston.mass}};
+    if (m.crank.mass > 0.0) bodies.push_back({"the crank's mass", m.crank.mass});
+    if (m.crank.counterweight_mass > 0.0) bodies.push_back({"the counterweight", m.crank.counterweight_mass});
+    for (std::size_t i = 0; i < m.balance_shafts.size(); ++i)
+      bodies.push_back({"balance_shaft[" + std::to_string(i) + "]", m.balance_shafts[i].mass});
+    const auto by_mass = [](const Body& a, const Body& b) { return a.mass < b.mass; };
+    const Body& lightest = *std::min_element(bodies.begin(), bodies.end(), by_mass);
+    const Body& heaviest = *std::max_element(bodies.begin(), bodies.end(), by_mass);
+    char text[400];
+    std::snprintf(text, sizeof text, "the lightest body, %s, %.3g kg against the heaviest, %s, %.3g kg (%.2g of it)",
+                  lightest.name.c_str(), lightest.mass, heaviest.name.c_str(), heaviest.mass,
+                  lightest.mass / heaviest.mass);
+    std::string out = text;
+    if (lightest.name == "the rod") {
+      std::snprintf(text, sizeof text, ", the rod's I_o %.3g kg m^2", m.rod.inertia_about_wrist_pin);
+      out += text;
+    }
+    if (m.gas) {
+      double largest = 0.0;  // [N] over the working cycle, 1/4 degree apart
+      for (int i = 0; i < 2880; ++i) largest = std::max(largest, std::abs(calcGasForce(m, 0, i * (4.0 * M_PI / 2880.0))));
+      const double inertia = m.piston.mass * (m.crank.radius * omega * omega + std::abs(m.machine.gravity));
+      std::snprintf(text, sizeof text, "; the gas's largest force %.3g N against the piston's mass times r omega^2 + g, "
+                    "%.3g N (%.2g times it)", largest, inertia, largest / inertia);
+      out += text;
+    }
+    return out;
+  }
+
   // 1e5 eps (2.2e-11): the largest residual at the probe on every example scene is 9.7e-13, on every gate case 4.3e-12
   // (1.9e4 eps); the inline four's rod at 1e-4 kg against its 0.32 kg piston gives 5.8e-10, at 1e-6 kg 6.2e-8, at
   // 1e-9 kg 2.0e-5 (its values off by as much: a primary couple of 77.5 N m for 1240.7).

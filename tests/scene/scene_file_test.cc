@@ -296,6 +296,9 @@ INSTANTIATE_TEST_SUITE_P(
                  "balance_shaft[0].mass", "missing key"},
         BadScene{"shaft_mass_zero", "[piston]", "[[balance_shaft]]\nratio = 2\nmass = 0\nradius = 0.04\nposition = [0, -0.1, 0]\n[piston]",
                  "balance_shaft[0].mass", "must be > 0"},
+        // The format's least non-zero mass, as for every other mass (1e-300 kg built a scene no engine resolves).
+        BadScene{"shaft_mass_tiny", "[piston]", "[[balance_shaft]]\nratio = 2\nmass = 1e-300\nradius = 0.04\nposition = [0, -0.1, 0]\n[piston]",
+                 "balance_shaft[0].mass", "must be at least 1e-9 kg (a microgram) (got 1e-300)"},
         BadScene{"shaft_ratio_zero", "[piston]", "[[balance_shaft]]\nratio = 0\nmass = 1\nradius = 0.04\nposition = [0, -0.1, 0]\n[piston]",
                  "balance_shaft[0].ratio", "must be nonzero"},
         // Not a whole number: the motion would not repeat every crank turn (validate failed after seconds of work,
