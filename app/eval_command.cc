@@ -1,6 +1,7 @@
 #include "eval_command.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <memory>
 
@@ -39,17 +40,20 @@ std::vector<double> parseAngleList(const std::string& text, const std::string& f
   size_t begin = 0;
   for (int item = 1;; ++item) {
     const size_t end = std::min(text.find(',', begin), text.size());
-    const std::string field = text.substr(begin, end - begin);
+    // The item without the spaces around it ("0, 90" is two angles), and without a leading '+'; then a decimal
+    // number as C++ reads it (std::from_chars: no hexadecimal, no locale), subnormal values as they are.
+    std::string field = text.substr(begin, end - begin);
+    const size_t first = field.find_first_not_of(' '), last = field.find_last_not_of(' ');
+    field = first == std::string::npos ? std::string() : field.substr(first, last - first + 1);
     const std::string where = flag + ": item " + std::to_string(item) + " of \"" + text + "\"";
     if (field.empty()) throw UsageError(where + ": empty (nothing is assumed in its place)");
-    size_t used = 0;
+    const char* digits = field.data() + (field[0] == '+' && field.size() > 1 && field[1] != '-' ? 1 : 0);
     double value = 0.0;
-    try {
-      value = std::stod(field, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != field.size()) throw UsageError(where + ": \"" + field + "\" is not a number");
+    const auto [stop, error] = std::from_chars(digits, field.data() + field.size(), value);
+    if (error == std::errc::result_out_of_range)
+      throw UsageError(where + ": \"" + field + "\" is past the range of a number (a finite number of degrees)");
+    if (error != std::errc() || stop != field.data() + field.size())
+      throw UsageError(where + ": \"" + field + "\" is not a number");
     if (!std::isfinite(value)) throw UsageError(where + ": must be a finite number of degrees");
     angles.push_back(value);
     if (end == text.size()) break;

@@ -588,8 +588,23 @@ INSTANTIATE_TEST_SUITE_P(
                              "crankcheck: --outt: unknown flag or argument (did you mean --out?)"},
                       BadRun{"no_verb", {}, "subcommand"},
                       BadRun{"no_scene", {"eval"}, "scene"},
-                      BadRun{"nan_angle", {"eval", kSingle, "--phi-deg", "nan"}, "--phi-deg: item 1 of \"nan\": must be a finite"}),
+                      BadRun{"nan_angle", {"eval", kSingle, "--phi-deg", "nan"}, "--phi-deg: item 1 of \"nan\": must be a finite"},
+                      // Decimal numbers only (0x10 was read as 16), and one past a double's range named as such.
+                      BadRun{"hex_angle", {"eval", kSingle, "--phi-deg", "0x10"}, "--phi-deg: item 1 of \"0x10\": \"0x10\" is not a number"},
+                      BadRun{"huge_angle", {"eval", kSingle, "--phi-deg", "30,1e400"}, "--phi-deg: item 2 of \"30,1e400\": \"1e400\" is past the range"}),
     [](const auto& info) { return info.param.name; });
+
+// An angle list as people type it: spaces around the items, a leading '+', a subnormal angle (it is an angle of
+// 1e-310 degrees, as typed, not an error); each result at the angle given, printed as given.
+TEST(Cli, AnglesAsTypedAreRead) {
+  const RunResult r = testing::runCrankcheck(
+      {"eval", std::string(CRANKCHECK_SCENES_DIR) + "/single_cylinder.toml", "--phi-deg", " 0, +90 ,1e-310", "--format", "json"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out);
+  std::vector<double> angles;
+  for (const auto& result : doc["results"]) angles.push_back(result["phi_deg"].get<double>());
+  EXPECT_EQ(angles, (std::vector<double>{0.0, 90.0, 1e-310}));
+}
 
 // `crankcheck balance`: both engines per harmonic; what vanishes by symmetry is 0 with its reason; without axial
 // positions the X and Y moments are null, never 0.

@@ -134,6 +134,12 @@ TEST(FreeRunGradeTest, BadFlagsAndScenesAreRefusedBeforeAnyWork) {
           "--dt-sweep: needs a step");
   refused({"grade", "--free-run", kSingle, "--batch", "--", CRANKCHECK_FREE_RUN_FAKE}, "--batch: does not apply");
   refused({"grade", "--free-run", kSingle, "--dt", "1", "--", CRANKCHECK_FREE_RUN_FAKE}, "fewer than 8 steps");
+  // A step no program can take over the run (1e-300 s: 2e299 steps; a sweep halving 1e-5 s 19 times: 1.1e10), refused
+  // before the program starts (the fake would hang).
+  refused({"grade", "--free-run", kSingle, "--dt", "1e-300", "--", CRANKCHECK_FREE_RUN_FAKE, "hang"},
+          "--dt: 1e-300 s asks for 2.003399287066042e+299 steps in the run's 0.20033992870660422 s; at most 1e+09");
+  refused({"grade", "--free-run", kSingle, "--dt", "1e-5", "--dt-sweep", "20", "--", CRANKCHECK_FREE_RUN_FAKE, "hang"},
+          "--dt: 1e-05 s halved 19 times (--dt-sweep) asks for ");
   // Issue 58: --revolutions 100000 (the flag's maximum) kept crankcheck measuring for hours after the program answered.
   // Estimated before the program starts (the fake would hang: were it started, the run would end by its timeout, 3).
   refused({"grade", "--free-run", kSingle, "--revolutions", "100000", "--quick", "--out", out.string(), "--",

@@ -122,6 +122,16 @@ std::vector<RunCase> buildRunCases(const Mechanism& scene, const RunSettings& se
   if (!settings.own_step && first > t_end / kMinRunSamples)
     throw UsageError("--dt: " + formatNumber(first) + " s leaves fewer than " + std::to_string(kMinRunSamples) +
                      " steps in the run's " + formatNumber(t_end) + " s");
+  // The sweep's smallest step asks the program for t_end / dt steps: past kMaxRunSteps a run of a real simulator
+  // (tens of nanoseconds a step at least) takes longer than any grade waits, and a step below rounding of t (1e-300)
+  // is no step at all, so it is refused before the program is started.
+  const double smallest = first / std::pow(2.0, settings.own_step ? 0 : settings.dt_sweep - 1);
+  if (!settings.own_step && t_end / smallest > kMaxRunSteps)
+    throw UsageError("--dt: " + formatNumber(first) + " s" +
+                     (settings.dt_sweep > 1 ? " halved " + std::to_string(settings.dt_sweep - 1) + " times (--dt-sweep)"
+                                            : std::string()) +
+                     " asks for " + formatNumber(t_end / smallest) + " steps in the run's " + formatNumber(t_end) +
+                     " s; at most " + formatNumber(kMaxRunSteps) + " (give a larger --dt or fewer --revolutions)");
   if (interval > t_end / kMinRunSamples)
     throw UsageError("--output-interval: " + formatNumber(interval) + " s leaves fewer than " +
                      std::to_string(kMinRunSamples) + " samples in the run's " + formatNumber(t_end) + " s");

@@ -57,6 +57,9 @@ struct RunLoad {
 
 /// The fewest samples a run may have (the interpolation's six, and one more for a half-step-behind omega).
 inline constexpr int kMinRunSamples = 8;
+/// The most steps a time-stepped run may be asked to take (its smallest --dt over the run): 1e9, a thousand times the
+/// default step of 100 revolutions (7.2e4), and seconds to minutes for a program at tens of nanoseconds a step.
+inline constexpr double kMaxRunSteps = 1e9;
 
 /// [1 / revolution] The energy's trend: E = (1/2) J(phi) omega^2 + U(phi) at each crossing of phi = phi(0) + 2 pi k
 /// (k = 0, 1, ..., the run read at that phase and omega at the same instant), the least-squares slope of E_k against k,
