@@ -7,15 +7,18 @@
 #include <cstring>
 #include <iostream>
 #include <string>
+#include <vector>
 
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   std::string line, first;
+  std::vector<std::string> lines;  // every request (--batch: several)
   size_t requests = 0;  // one per line (--batch: several)
   if (mode != "no-read")
     while (std::getline(std::cin, line)) {
       if (first.empty()) first = line;
       requests += !line.empty();
+      if (!line.empty()) lines.push_back(line);
     }
   if (mode == "silent" || mode == "no-read") return 0;
   // The number of angles of the request, to answer with the right number of results.
@@ -27,6 +30,18 @@ int main(int argc, char** argv) {
     for (size_t i = 0; i < n; ++i) out += (i ? "," : "") + result;
     return out + "]}";
   };
+  if (mode == "batch-bad-third") {  // --batch: a blank line, then every response valid but the third one's
+    std::puts("");
+    for (size_t i = 0; i < lines.size(); ++i) {
+      const size_t phi = lines[i].find("\"phi_deg\":[");
+      size_t angles = 1;
+      for (size_t c = phi; phi != std::string::npos && c < lines[i].size() && lines[i][c] != ']'; ++c) angles += lines[i][c] == ',';
+      std::string out = "{\"results\": [";
+      for (size_t a = 0; a < angles; ++a) out += (a ? "," : "") + std::string(i == 2 ? "{\"U\": \"12 J\"}" : "{}");
+      std::puts((out + "]}").c_str());
+    }
+    return 0;
+  }
   if (mode == "garbage") {
     std::puts("hello, this is not JSON {");
     return 0;

@@ -252,6 +252,19 @@ TEST(GradeTest, ABatchThatAnsweredCompletelyButDoesNotExitIsToldSo) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// --batch: a broken response is quoted at its own line of the program's stdout (here the fourth: a blank line, then
+// responses 1 and 2), where "line 1" of its own text sent the reader to the first response.
+TEST(GradeTest, ABatchsBrokenResponseIsQuotedAtItsLine) {
+  FreshFolder dir;
+  const fs::path out = dir.path() / "report";
+  const auto r = runCrankcheck({"grade", "--quick", "--batch", "--out", out.string(), "--", CRANKCHECK_FAKE_PROGRAM,
+                                "batch-bad-third"});
+  EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find(".U must be a number or null; line 4: \"{\\\"results\\\": [{\\\"U\\\": \\\"12 J\\\"}"),
+            std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(GradeTest, NothingProvidedIsNeitherRightNorWrong) {
   FreshFolder dir;
   const fs::path out = dir.path() / "report";

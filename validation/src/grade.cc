@@ -115,10 +115,13 @@ std::string makeGradeRequest(const GradeCase& c) {
   return request.dump();  // one line: strings escape their newlines
 }
 
-std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string& response, const std::string& program) {
+std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string& response, const std::string& program,
+                                           size_t first_line) {
   const std::string where = program + ": case " + c.id + ": ";
-  auto fail = [&](const std::string& what, size_t at = 0) -> void { throwProtocolError(where, what, response, at); };
-  const Json doc = parseResponseObject(response, "results", where);
+  auto fail = [&](const std::string& what, size_t at = 0) -> void {
+    throwProtocolError(where, what, response, at, first_line);
+  };
+  const Json doc = parseResponseObject(response, "results", where, first_line);
   const Json& results = doc["results"];
   if (results.size() != c.phi_deg.size())
     fail("expected " + std::to_string(c.phi_deg.size()) + " results (one per angle of phi_deg), got " +
@@ -407,18 +410,22 @@ TableSet runGrade(const std::vector<GradeCase>& cases, const GradeProgram& progr
         for (size_t i : mine) input += makeGradeRequest(cases[i]) + "\n";
         const std::string out = runOnce(program, input, mine.size(), "batch of " + std::to_string(mine.size()) + " requests");
         std::vector<std::string> lines;
+        std::vector<size_t> line_numbers;  // each response's line in the program's stdout, for its messages
         size_t begin = 0;
-        while (begin < out.size()) {
+        for (size_t number = 1; begin < out.size(); ++number) {
           size_t end = out.find('\n', begin);
           if (end == std::string::npos) end = out.size();
-          if (out.find_first_not_of(" \t\r", begin) < end) lines.push_back(out.substr(begin, end - begin));
+          if (out.find_first_not_of(" \t\r", begin) < end) {
+            lines.push_back(out.substr(begin, end - begin));
+            line_numbers.push_back(number);
+          }
           begin = end + 1;
         }
         if (lines.size() != mine.size())
           throw EnvironmentError(name + ": --batch: expected " + std::to_string(mine.size()) + " response lines (one per request), got " +
                                  std::to_string(lines.size()) + (lines.empty() ? std::string() : "; " + quoteLine(out)));
         for (size_t n = 0; n < mine.size() && !stop; ++n) {
-          gradeCase(cases[mine[n]], parseGradeResponse(cases[mine[n]], lines[n], name), state);
+          gradeCase(cases[mine[n]], parseGradeResponse(cases[mine[n]], lines[n], name, line_numbers[n]), state);
           report();
         }
         return;

@@ -38,7 +38,7 @@ std::string safeStem(const std::string& name) {
 
 // The first line of `text` that holds byte `at` (or the first line), at most 160 bytes, for a message: quoted, its
 // control bytes escaped (an ESC never reaches the terminal, a NUL never cuts the message), the quote closed.
-std::string quoteLine(const std::string& text, size_t at) {
+std::string quoteLine(const std::string& text, size_t at, size_t first_line) {
   at = std::min(at, text.empty() ? size_t{0} : text.size() - 1);
   size_t begin = text.rfind('\n', at == 0 ? 0 : at - (text[at] == '\n' ? 1 : 0));
   begin = begin == std::string::npos || begin > at ? 0 : begin + 1;
@@ -46,7 +46,8 @@ std::string quoteLine(const std::string& text, size_t at) {
   size_t end = text.find('\n', begin);
   if (end == std::string::npos) end = text.size();
   const std::string line = text.substr(begin, std::min<size_t>(end - begin, 160));
-  const size_t line_number = static_cast<size_t>(std::count(text.begin(), text.begin() + static_cast<long>(begin), '\n')) + 1;
+  const size_t line_number =
+      static_cast<size_t>(std::count(text.begin(), text.begin() + static_cast<long>(begin), '\n')) + first_line;
   return "line " + std::to_string(line_number) + ": " + quoteText(line) + (end - begin > 160 ? "..." : "");
 }
 
@@ -111,13 +112,16 @@ std::string runOnce(const GradeProgram& program, const std::string& input, size_
   return r.out;
 }
 
-void throwProtocolError(const std::string& where, const std::string& what, const std::string& response, size_t at) {
-  throw EnvironmentError(where + what + "; " + (response.empty() ? std::string("no output at all") : quoteLine(response, at)));
+void throwProtocolError(const std::string& where, const std::string& what, const std::string& response, size_t at,
+                        size_t first_line) {
+  throw EnvironmentError(where + what + "; " +
+                         (response.empty() ? std::string("no output at all") : quoteLine(response, at, first_line)));
 }
 
-Json parseResponseObject(const std::string& response, const std::string& key, const std::string& where) {
+Json parseResponseObject(const std::string& response, const std::string& key, const std::string& where,
+                         size_t first_line) {
   if (response.find_first_not_of(" \t\r\n") == std::string::npos)
-    throwProtocolError(where, "no response on stdout", response);
+    throwProtocolError(where, "no response on stdout", response, 0, first_line);
   Json doc;
   // A key given twice in one object is not the protocol: JSON leaves which one counts to the reader (nlohmann keeps
   // the last), and an answer "U": 12345, "U": <right value> passed. Found while parsing, each object's keys kept.
@@ -135,7 +139,7 @@ Json parseResponseObject(const std::string& response, const std::string& key, co
     doc = Json::parse(response, watch);
   } catch (const Json::parse_error& e) {
     throwProtocolError(where, "the response is not JSON (" + escapeText(e.what()) + ")", response,
-                       e.byte > 0 ? e.byte - 1 : 0);
+                       e.byte > 0 ? e.byte - 1 : 0, first_line);
   } catch (const Json::out_of_range& e) {
     // A number past a double's range (1e400): the reader names the number, not where it stands; it is found in the
     // response to quote its line.
@@ -145,18 +149,19 @@ Json parseResponseObject(const std::string& response, const std::string& key, co
                                                                                 : std::string();
     const size_t at = number.empty() ? std::string::npos : response.find(number);
     throwProtocolError(where, "a number beyond the range of a double" + (number.empty() ? std::string() : " (" + escapeText(number) + ")"),
-                       response, at == std::string::npos ? 0 : at);
+                       response, at == std::string::npos ? 0 : at, first_line);
   } catch (const Json::exception& e) {
-    throwProtocolError(where, "the response cannot be read (" + escapeText(e.what()) + ")", response);
+    throwProtocolError(where, "the response cannot be read (" + escapeText(e.what()) + ")", response, 0,
+                       first_line);
   }
   if (!twice.empty()) {
     const std::string quoted = "\"" + twice + "\"";
     const size_t first = response.find(quoted), second = first == std::string::npos ? first : response.find(quoted, first + 1);
     throwProtocolError(where, "the key " + quoteText(twice) + " is given twice in one object (which one counts is not "
-                              "defined)", response, second == std::string::npos ? 0 : second);
+                              "defined)", response, second == std::string::npos ? 0 : second, first_line);
   }
   if (!doc.is_object() || !doc.contains(key) || !doc[key].is_array())
-    throwProtocolError(where, "the response must be an object {\"" + key + "\": [...]}", response);
+    throwProtocolError(where, "the response must be an object {\"" + key + "\": [...]}", response, 0, first_line);
   return doc;
 }
 

@@ -19,8 +19,9 @@ std::string numberTag(double x);
 /// `name` with every character but [A-Za-z0-9_] replaced by '_' ("scene" when empty): a case id, a file stem.
 std::string safeStem(const std::string& name);
 /// The first line of `text` that holds byte `at` (or the first line), at most 160 bytes, for a message: quoted, its
-/// control bytes escaped (an ESC never reaches the terminal, a NUL never cuts the message), the quote closed.
-std::string quoteLine(const std::string& text, size_t at = 0);
+/// control bytes escaped (an ESC never reaches the terminal, a NUL never cuts the message), the quote closed. Lines
+/// are numbered from `first_line`: the line of the program's output where `text` begins (a batch's response line).
+std::string quoteLine(const std::string& text, size_t at = 0, size_t first_line = 1);
 /// "signal 9 (Killed)".
 std::string describeSignal(int signal);
 /// True when `out` holds `requests` complete JSON responses (one per line in batch; one document otherwise), whatever
@@ -35,12 +36,13 @@ std::string runOnce(const GradeProgram& program, const std::string& input, size_
 /// Throws EnvironmentError "WHERE WHAT; line N: "..."": a response that is not the protocol, `at` a byte of it on the
 /// offending line ("no output at all" when it is empty).
 [[noreturn]] void throwProtocolError(const std::string& where, const std::string& what, const std::string& response,
-                                     size_t at = 0);
+                                     size_t at = 0, size_t first_line = 1);
 
 /// A response line as JSON: an object holding the array `key` ("results", "samples"). `where` begins every message
 /// ("PROGRAM: case ID: "). @throws EnvironmentError (throwProtocolError) when it is empty, not JSON, or not such an
 /// object.
-nlohmann::json parseResponseObject(const std::string& response, const std::string& key, const std::string& where);
+nlohmann::json parseResponseObject(const std::string& response, const std::string& key, const std::string& where,
+                                   size_t first_line = 1);
 
 /// The values a program gave in one JSON object `r` (a result of protocol 1, a sample of protocol 2): every quantity of
 /// the catalogue at the top and per cylinder under "cylinders", NaN where not provided (left out or null) or not

@@ -69,8 +69,9 @@ struct GradeProgram {
 /// The program's answer for one case: its values as Evaluations (one per angle), NaN where not provided, and
 /// shaking_moment X, Y NaN when the scene has no axial positions (not defined, so never graded).
 /// @throws EnvironmentError "PROGRAM: case ID: what is wrong: first offending line" when the response is not the
-/// protocol.
-std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string& response, const std::string& program);
+/// protocol; its line numbered from `first_line`, the response's line in the program's stdout (a --batch's nth line).
+std::vector<Evaluation> parseGradeResponse(const GradeCase& c, const std::string& response, const std::string& program,
+                                           size_t first_line = 1);
 
 /// A part of the cases the summary shows on its own: a simulator's errors at rest and at speed, and at small and
 /// large lambda, differ by orders of magnitude.
