@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
     if (mode == "held-torque") s["drive_torque"] = 0.0;  // wrong wherever gravity or inertia load the crank
     if (mode == "omega-t-far") s["omega_t"] = t + 1e6;    // every speed 1e6 s past its sample, in order
     if (mode == "values-t-far") s["values_t"] = t + 1e6;  // every value's instant as far out
+    if (mode == "backwards") s["omega"] = -omega0;        // the right angles with the speed's sign lost
     if (mode == "short" && i > n / 2) break;
     if (mode == "few" && i >= 5) break;
     samples.push_back(s);

@@ -225,6 +225,11 @@ ProgramRun parseRunResponse(const RunCase& c, const std::string& response, const
     if (i > 0 && !(phi > out.run.phi.back()))
       fail(at + ".phi is " + formatNumber(phi) + " rad, not past the sample before (" + formatNumber(out.run.phi.back()) +
            " rad): the crank angle must keep increasing (unwrapped, the crank turning forward)");
+    // The crank turns forward (phi increasing, above): a speed <= 0 is a broken run, named here, not blamed on the
+    // scene's speed by the measures that take the run's first state.
+    if (!(omega > 0.0))
+      fail(at + ".omega is " + formatNumber(omega) + " rad/s; the run turns forward, released at the request's omega0 = " +
+           formatNumber(c.omega0) + " rad/s, so omega must stay > 0");
     const double t_omega = omega_t ? *omega_t : t;
     if (i > 0 && !(t_omega > omega_time.back()))
       fail(at + ": omega stands at " + formatNumber(t_omega) + " s, not after the sample before's (" +
