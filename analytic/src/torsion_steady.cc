@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -43,6 +44,26 @@ struct TrainEquations {
   struct Body {
     double M = 0.0, L = 0.0, dJ = 0.0;
   };
+
+  // Why the work ran out, from the train's two fastest rates per crank radian at phi = 0: its stiffness's
+  // (sqrt(K_bb / M_b) / omega, the highest frequency over the speed) and its damping's (C_bb / (M_b omega)). A damping
+  // rate past the stiffness's makes the equations stiff in the damping (1e18 N m s/rad once got "add damping").
+  std::string describeCause() const {
+    double stiffness = 0.0, damping = 0.0;
+    for (int b = 0; b < n; ++b) {
+      const double M = body(b, 0.0).M;
+      stiffness = std::max(stiffness, std::sqrt(K(b, b) / M) / t.omega);
+      damping = std::max(damping, C(b, b) / (M * t.omega));
+    }
+    char rates[160];
+    std::snprintf(rates, sizeof rates, " (per crank radian: the stiffness's fastest rate %.3g, the damping's %.3g)",
+                  stiffness, damping);
+    if (damping > stiffness)
+      return "a damping this heavy against the train's inertias makes its equations too stiff for the analytic "
+             "route" + std::string(rates) + "; reduce [crankshaft].section_damping or throw_damping";
+    return "a shaft this stiff, or a resonance this lightly damped, is beyond the analytic route's work limit" +
+           std::string(rates) + "; add damping, or change the speed or [crankshaft].stiffness";
+  }
   Body body(int b, double psi) const {
     const int j = throw_of_body[static_cast<size_t>(b)];
     if (j < 0) return {t.front_inertia, 0.0, 0.0};
@@ -55,9 +76,8 @@ struct TrainEquations {
   void accelerations(const double* y, double s, double* x_ss, std::vector<Body>* bodies = nullptr) const {
     if (++evaluations > max_evaluations)
       throw std::runtime_error("torsion: the steady state needed more than " + std::to_string(max_evaluations) +
-                               " evaluations of the train's equations (SteadyStateOptions::max_evaluations): a shaft "
-                               "this stiff, or a resonance this lightly damped, is beyond the analytic route's work "
-                               "limit; add damping, or change the speed or [crankshaft].stiffness");
+                               " evaluations of the train's equations (SteadyStateOptions::max_evaluations): " +
+                               describeCause());
     const double w = t.omega, w2 = w * w;
     for (int b = 0; b < n; ++b) {
       const Body B = body(b, s + y[b]);

@@ -36,6 +36,9 @@ constexpr Limit kMaxInertia{kMaxMass.value * kMaxLength.value * kMaxLength.value
 // Speed [rpm]: four orders above the fastest reciprocating machines; keeps omega^2 r and the inertia forces
 // m omega^2 r of the largest accepted machine far inside double's range: 1e6 kg x (1.05e5 rad/s)^2 x 1e6 m = 1e22 N.
 constexpr Limit kMaxSpeedRpm{1e6, "1e6 rpm"};
+// The least speed but 0: one turn in about two years. Below it omega^2 underflows in the loads (5e-324 rpm is an
+// omega of 0 in double), so a nonzero speed below it is no speed any command could compute at.
+constexpr Limit kMinNonzeroSpeedRpm{1e-6, "1e-6 rpm"};
 // Gravity [m/s^2]: 1e5 g, beyond any centrifuge test rig.
 constexpr Limit kMaxGravity{1e6, "1e6 m/s^2 (1e5 g)"};
 // Angles [deg], in magnitude: at 1e6 deg the spacing of doubles is 1.2e-10 deg, so the angle still means what was
@@ -276,6 +279,8 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
   const double rpm = m.speed_rpm * (M_PI / 30.0) == m.machine.speed ? m.speed_rpm : m.machine.speed * (30.0 / M_PI);
   require(finite(m.machine.speed), "[engine].speed_rpm", "must be finite", rpm);
   require(rpm >= 0, "[engine].speed_rpm", "must be >= 0", rpm);
+  require(rpm == 0 || rpm >= kMinNonzeroSpeedRpm.value, "[engine].speed_rpm",
+          std::string("must be 0 (static) or at least ") + kMinNonzeroSpeedRpm.text, rpm);
   require(rpm <= kMaxSpeedRpm.value, "[engine].speed_rpm", atMost(kMaxSpeedRpm), rpm);
   requireFinite(m.machine.gravity, "[engine].gravity");
   require(m.machine.gravity >= 0, "[engine].gravity", "must be >= 0", m.machine.gravity);

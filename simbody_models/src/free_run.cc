@@ -89,7 +89,7 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOp
   try {
     validateMechanism(m, m.name.empty() ? std::string("mechanism") : m.name);
   } catch (const SceneError& error) {
-    throw std::invalid_argument(std::string("simulateFreeRun: invalid mechanism: ") + error.what());
+    throw std::invalid_argument(std::string("the free run's mechanism is invalid: ") + error.what());
   }
   if (!(omega0 > 0.0)) throw std::invalid_argument("simulateFreeRun: the release speed must be > 0");
   if (!m.flywheel_inertia) throw std::invalid_argument("simulateFreeRun: the scene needs [flywheel].inertia");

@@ -212,6 +212,23 @@ TEST(ExactSteadyState, PastMaxEvaluationsIsRefused) {
     EXPECT_NE(std::string(e.what()).find("more than 1000 evaluations of the train's equations "
                                          "(SteadyStateOptions::max_evaluations)"),
               std::string::npos) << e.what();
+    // The example's sections are light on damping: its stiffness is the fastest rate, and the advice is the old one.
+    EXPECT_NE(std::string(e.what()).find("a shaft this stiff, or a resonance this lightly damped"), std::string::npos)
+        << e.what();
+  }
+  // Every section at 1e18 N m s/rad: the damping's rate (C / (J omega), about 1e17 per crank radian) far past the
+  // stiffness's (about 25): told so, with the keys to change ("add damping" was the advice once).
+  Mechanism heavy = m;
+  heavy.crankshaft->section_damping = {1e18};
+  try {
+    calcExactSteadyState(heavy, options);
+    ADD_FAILURE() << "not refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("a damping this heavy against the train's inertias makes its equations too "
+                                         "stiff for the analytic route (per crank radian: the stiffness's fastest rate "),
+              std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("; reduce [crankshaft].section_damping or throw_damping"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -157,6 +157,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadScene{"counterweight_without_radius", "com_radius = 0.02", "com_radius = 0.02\ncounterweight_mass = 1.0",
                  "[crank].counterweight_radius", "missing key"},
         BadScene{"negative_speed", "speed_rpm = 3000", "speed_rpm = -3000", "[engine].speed_rpm", "must be >= 0"},
+        // omega^2 underflows below it (5e-324 rpm was an omega of 0, told "must be > 0 (got 5e-324)").
+        BadScene{"speed_below_least", "speed_rpm = 3000", "speed_rpm = 5e-324", "[engine].speed_rpm",
+                 "must be 0 (static) or at least 1e-6 rpm (got 5e-324)"},
         BadScene{"flywheel_zero", "mass = 0.4", "mass = 0.4\n[flywheel]\ninertia = 0", "[flywheel].inertia", "must be > 0"},
         BadScene{"table_is_value", "", "engine = 3\n", "[engine]", "must be a table"},
         BadScene{"spacing_too_long", "cylinders = 2", "cylinders = 2\ncylinder_spacing = 2e6", "[engine].cylinder_spacing",

@@ -1,9 +1,12 @@
 #include "crankcheck/validation/commands/flywheel.h"
 
+#include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
+#include "crankcheck/scene/scene_file.h"
 
 namespace crankcheck::validation {
 
@@ -21,6 +24,16 @@ FlywheelResult calcFlywheel(const Mechanism& m, double fluctuation) {
   const analytic::FlywheelSizing& s = result.sizing;
   Mechanism with = m;
   with.flywheel_inertia = s.exact_inertia;
+  // The flywheel the sizing found is a scene crankcheck made, not the user's: one past the format's limits (at 1e-6
+  // rpm an inertia of 1.6e18 kg m^2) cannot be run by the engines, so the answer is refused, not blamed on a key.
+  try {
+    validateMechanism(with, m.name);
+  } catch (const SceneError& e) {
+    char inertia[32];
+    std::snprintf(inertia, sizeof inertia, "%.3g", s.exact_inertia);
+    throw UncomputableError("flywheel sizing: the exact flywheel, " + std::string(inertia) + " kg m^2, is outside what a scene holds (" + e.what() +
+                            "), so the engines cannot run it to check the sizing; refused");
+  }
   for (const Engine& engine : listEngines()) {
     if (!engine.simulate || !engine.simulates_loads) continue;
     FreeRunSettings run;
