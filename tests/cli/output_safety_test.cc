@@ -463,6 +463,10 @@ TEST_P(OddPathTest, WorksAsOutputFolderAndScenePath) {
   EXPECT_GT(fs::file_size(out / "index.html"), 1000u);
   EXPECT_GT(fs::file_size(out / "pin_load_polar.png"), 1000u);
   EXPECT_NE(readFile(out / "index.md").find("Scenes"), std::string::npos);
+  // The scene's own section is headed by its name on one line (a newline in it shown as a space).
+  std::string heading = name;
+  std::replace(heading.begin(), heading.end(), '\n', ' ');
+  EXPECT_NE(readFile(out / "index.md").find("\n### " + heading + ": your engine\n"), std::string::npos);
   // The scene's name (its file name) is in the data, quoted as CSV requires where it holds a comma, quote or newline.
   const std::string scenes_csv = readFile(out / "data/scenes.csv");
   const bool quoted = std::string(name).find_first_of(",\"\n") != std::string::npos;

@@ -68,7 +68,10 @@ std::string renderMarkdown(const std::string& markdown) {
 ReportDocument::ReportDocument(std::string title) : title_(std::move(title)) { body_ = "# " + title_ + "\n\n"; }
 
 void ReportDocument::addHeading(int level, const std::string& text, const std::string& id) {
-  body_ += std::string(static_cast<size_t>(level), '#') + " " + text + "\n\n";
+  // One line, as a heading must be: a scene named "two\nlines" split into a heading "two" and a paragraph "lines".
+  std::string line = text;
+  std::replace_if(line.begin(), line.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  body_ += std::string(static_cast<size_t>(level), '#') + " " + line + "\n\n";
   std::string anchor = id;
   if (anchor.empty())
     for (const char c : text) {
