@@ -12,6 +12,7 @@ Names, units (SI: m, kg, s, N, N m, J; angles in radians) and signs are those of
 CLI's message: "FILE: KEY: rule".
 """
 
+import numbers as _numbers
 import os as _os
 import signal as _signal
 import textwrap as _textwrap
@@ -310,6 +311,10 @@ def grade(function, scenes=None, quick=True, *, jobs=None, timeout=60.0, out=Non
     if isinstance(scenes, (str, bytes, _os.PathLike, Scene)):
         raise TypeError("grade: scenes must be a list of scene files or Scenes, not one (scenes=[...])")
     scene_list = None if scenes is None else list(scenes)
+    if scene_list is not None and not scene_list:
+        raise ValueError("grade: scenes is empty; give at least one scene (None: the built-in campaign)")
+    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, _numbers.Integral) or not 1 <= jobs <= 256):
+        raise ValueError("grade: jobs: value not in range 1 to 256 (None: one per core), got %r" % (jobs,))
     name = getattr(function, "__qualname__", None) or repr(function)
     module = getattr(function, "__module__", None)
     program = "python: %s.%s" % (module, name) if module else "python: %s" % name

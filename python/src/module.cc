@@ -74,8 +74,17 @@ py::array_t<double> toArray(const std::vector<double>& v) {
 // ---- Angles: the buffer of a C-contiguous float64 array is used as it is (no copy); anything else (a float, a list,
 // another dtype, a strided view) is converted once by NumPy.
 Angles asAngles(const py::handle& phi) {
-  // numpy.asarray returns a C-contiguous float64 array itself, and raises NumPy's own error for what is not numbers.
-  const py::object a = py::module_::import("numpy").attr("asarray")(phi, py::arg("dtype") = "float64", py::arg("order") = "C");
+  // Real numbers only: NumPy would read None as NaN, drop a complex value's imaginary part with a warning, and read
+  // the string "30" as 30 rad. numpy.asarray returns a C-contiguous float64 array itself, and raises NumPy's own error
+  // for what is not numbers.
+  if (phi.is_none()) throw py::type_error("phi: a crank angle [rad] or an array of them, not None");
+  const py::module_ numpy = py::module_::import("numpy");
+  const py::object given = numpy.attr("asarray")(phi);
+  const std::string kind = py::str(given.attr("dtype").attr("kind"));
+  if (kind != "f" && kind != "i" && kind != "u")
+    throw py::type_error("phi: real numbers [rad] (got an array of dtype " + std::string(py::str(given.attr("dtype"))) +
+                         (kind == "c" ? ": a complex angle has no crank position)" : ")"));
+  const py::object a = numpy.attr("asarray")(given, py::arg("dtype") = "float64", py::arg("order") = "C");
   return Angles::ensure(a);
 }
 

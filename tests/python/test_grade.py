@@ -193,6 +193,12 @@ def test_what_the_function_gets_and_its_errors():
         crankcheck.grade(lambda s, phi: {"\x1b[31m\x00": phi}, [SCENE_FILES[0]], quick=True)
     with pytest.raises(TypeError, match="callable"):
         crankcheck.grade(42)
+    # An empty list is not "the built-in campaign" (None is), and jobs is None or 1..256 (0 ran with one per core).
+    with pytest.raises(ValueError, match="grade: scenes is empty"):
+        crankcheck.grade(lambda s, phi: {}, [], quick=True)
+    for jobs in (0, -1, 257, 2.5, True):
+        with pytest.raises(ValueError, match=r"grade: jobs: value not in range 1 to 256 \(None: one per core\)"):
+            crankcheck.grade(lambda s, phi: {}, [SCENE_FILES[0]], quick=True, jobs=jobs)
 
 
 def test_the_timeout_ends_the_grade():

@@ -96,8 +96,20 @@ def test_bad_arguments_are_value_errors():
         scene.evaluate(0.0, quantities=["gas_force"])
     with pytest.raises(ValueError, match="given twice"):
         scene.evaluate(0.0, quantities=["Q", "Q"])
-    with pytest.raises(ValueError):
-        scene.evaluate("ninety")
+
+
+def test_angles_that_are_not_real_numbers_are_type_errors():
+    # NumPy alone read None as NaN, "30" as 30 rad and 1+2j as 1 rad (with a warning): none is an angle.
+    scene = crankcheck.Scene.load(SCENES["single_cylinder"])
+    with pytest.raises(TypeError, match=r"phi: a crank angle \[rad\] or an array of them, not None"):
+        scene.evaluate(None)
+    with pytest.raises(TypeError, match=r"phi: real numbers \[rad\] \(got an array of dtype complex128: a complex angle"):
+        scene.evaluate(np.array([1 + 2j, 0.5]))
+    for text in ("ninety", "30", ["0", "90"]):
+        with pytest.raises(TypeError, match=r"phi: real numbers \[rad\] \(got an array of dtype <U"):
+            scene.evaluate(text)
+    # Integers are numbers of radians as they are.
+    np.testing.assert_array_equal(scene.evaluate(np.array([0, 1]))["U"], scene.evaluate(np.array([0.0, 1.0]))["U"])
 
 
 SINGLE = open(SCENES["single_cylinder"]).read()
