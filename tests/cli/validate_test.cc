@@ -315,6 +315,34 @@ TEST_F(ValidateTest, BadInputIsRefusedWithStatus2) {
   EXPECT_NE(not_a_shard.err.find("shard.json"), std::string::npos) << not_a_shard.err;
 }
 
+// A damaged or hand-edited shard.json says where it is wrong, by the key's path, not by the JSON library's message
+// ("[json.exception.type_error.304] cannot use at() with array"); status 2, nothing written.
+TEST_F(ValidateTest, AMalformedShardRecordIsNamedByItsKey) {
+  const std::string good = R"({"crankcheck_shard": 4, "version": "0", "index": 0, "count": 2, "quick": true,
+      "scenes": [{"name": "a", "fnv1a64": "0"}], "tasks": 1, "parts": [], "sat_out": [], "files": []})";
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"[1, 2]", "malformed: the record: must be an object (got array)"},
+      {"{\"crankcheck_shard\": 4,", "malformed: not JSON (parse error at line 1, column"},
+      {std::string(good).replace(good.find("\"index\": 0"), 10, "\"index\": \"0\""),
+       "malformed: index: must be a whole number from 0 to 2^40 (got string)"},
+      {std::string(good).replace(good.find("\"name\": \"a\", "), 13, ""), "malformed: scenes[0].name: missing"},
+      {std::string(good).replace(good.find("\"sat_out\": []"), 13, "\"sat_out\": {}"),
+       "malformed: sat_out: must be a list (got object)"},
+      {std::string(good).replace(good.find("\"quick\": true"), 13, "\"quick\": 1"),
+       "malformed: quick: must be true or false (got number)"}};
+  for (const auto& [text, expected] : cases) {
+    const fs::path shard = dir_ / "shard";
+    fs::remove_all(shard);
+    fs::create_directories(shard);
+    std::ofstream(shard / "shard.json") << text;
+    const RunResult r = run("report merge " + shard.string() + " --out " + (dir_ / "x").string());
+    EXPECT_EQ(r.exit_status, 2) << text << ": " << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << text << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "x"));
+  }
+}
+
 // --parts runs those parts alone, with every cross-check: their tables, figures and headings and no other part's; the
 // report says so. An unknown or repeated key is refused before any work.
 // Three scenes of a user (issue 49): the verdict with one line per scene under it, still within 15 lines; each scene's

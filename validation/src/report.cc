@@ -216,6 +216,49 @@ void writeShardManifest(const ShardManifest& manifest, const fs::path& dir) {
   writeNewFile(dir / "shard.json", j.dump(2) + "\n");
 }
 
+namespace {
+
+// A library's message without its tag: "[json.exception.parse_error.101] parse error at ..." -> "parse error at ...".
+std::string withoutJsonTag(const std::string& what) {
+  return what.rfind("[json.exception.", 0) == 0 && what.find("] ") != std::string::npos ? what.substr(what.find("] ") + 2)
+                                                                                         : what;
+}
+
+// The values of shard.json, each named by its path in a message ("files[3].rows: must be a whole number >= 0 (got a
+// string)"): a hand-edited or damaged record says where it is wrong, not what the JSON library tripped on.
+struct ShardJsonReader {
+  std::string file;  // quoted path of shard.json
+
+  [[noreturn]] void fail(const std::string& path, const std::string& rule) const {
+    throw std::runtime_error(file + ": malformed: " + path + ": " + rule);
+  }
+  const nlohmann::json& at(const nlohmann::json& object, const std::string& key, const std::string& path) const {
+    if (!object.is_object()) fail(path.empty() ? "the record" : path, std::string("must be an object (got ") + object.type_name() + ")");
+    const auto it = object.find(key);
+    if (it == object.end()) fail(path.empty() ? key : path + "." + key, "missing");
+    return *it;
+  }
+  std::string text(const nlohmann::json& object, const std::string& key, const std::string& path = "") const {
+    const nlohmann::json& v = at(object, key, path);
+    if (!v.is_string()) fail(path.empty() ? key : path + "." + key, std::string("must be a string (got ") + v.type_name() + ")");
+    return v.get<std::string>();
+  }
+  long long whole(const nlohmann::json& object, const std::string& key, const std::string& path = "") const {
+    const nlohmann::json& v = at(object, key, path);
+    if (!v.is_number_integer() || v.get<long long>() < 0 || v.get<long long>() > (1LL << 40))
+      fail(path.empty() ? key : path + "." + key, std::string("must be a whole number from 0 to 2^40 (got ") +
+                                                      (v.is_number() ? escapeText(v.dump()) : v.type_name()) + ")");
+    return v.get<long long>();
+  }
+  const nlohmann::json& list(const nlohmann::json& object, const std::string& key, const std::string& path = "") const {
+    const nlohmann::json& v = at(object, key, path);
+    if (!v.is_array()) fail(path.empty() ? key : path + "." + key, std::string("must be a list (got ") + v.type_name() + ")");
+    return v;
+  }
+};
+
+}  // namespace
+
 ShardManifest readShardManifest(const fs::path& dir) {
   // A plain file inside the shard, as the folder rule asks: a link is not followed, a FIFO never waited on.
   std::error_code ec;
@@ -225,35 +268,51 @@ ShardManifest readShardManifest(const fs::path& dir) {
                              "shard written by crankcheck validate --shard");
   std::ifstream in(dir / "shard.json");
   if (!in) throw std::runtime_error(quotePath(dir) + ": no shard.json (not a shard written by crankcheck validate --shard)");
+  const ShardJsonReader r{quotePath(dir / "shard.json")};
+  nlohmann::json j;
   try {
-    const nlohmann::json j = nlohmann::json::parse(in);
-    const int format = j.at("crankcheck_shard").get<int>();
-    if (format != kShardFormat)
-      throw std::runtime_error(quotePath(dir / "shard.json") + ": a shard of format " + std::to_string(format) +
-                               ", written by another crankcheck; this one (" + getCrankcheckVersion() +
-                               ") merges format " + std::to_string(kShardFormat) + ": run the shard again");
-    ShardManifest m;
-    m.version = j.at("version").get<std::string>();
-    m.index = j.at("index").get<int>();
-    m.count = j.at("count").get<int>();
-    m.quick = j.at("quick").get<bool>();
-    for (const auto& scene : j.at("scenes"))
-      m.scenes.push_back({scene.at("name").get<std::string>(), scene.at("fnv1a64").get<std::string>()});
-    m.tasks = j.at("tasks").get<int>();
-    m.parts = j.at("parts").get<std::vector<std::string>>();
-    if (!j.at("sat_out").is_array()) throw std::runtime_error(quotePath(dir / "shard.json") + ": malformed: sat_out must be a list");
-    for (const auto& s : j.at("sat_out"))
-      m.sat_out.push_back({s.at("engine").get<std::string>(), s.at("scene").get<std::string>(), s.at("reason").get<std::string>()});
-    for (const auto& f : j.at("files"))
-      m.files.push_back({f.at("path").get<std::string>(), f.at("header").get<std::string>(), f.at("rows").get<size_t>(),
-                         f.at("fnv1a64").get<std::string>()});
-    if (m.count < 2 || m.index < 0 || m.index >= m.count)
-      throw std::runtime_error(quotePath(dir / "shard.json") + ": malformed: shard " + std::to_string(m.index) +
-                               " of " + std::to_string(m.count));
-    return m;
+    j = nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(quotePath(dir / "shard.json") + ": malformed: " + e.what());
+    throw std::runtime_error(r.file + ": malformed: not JSON (" + escapeText(withoutJsonTag(e.what())) + ")");
   }
+  const long long format = r.whole(j, "crankcheck_shard");
+  if (format != kShardFormat)
+    throw std::runtime_error(r.file + ": a shard of format " + std::to_string(format) + ", written by another crankcheck; "
+                             "this one (" + getCrankcheckVersion() + ") merges format " + std::to_string(kShardFormat) +
+                             ": run the shard again");
+  ShardManifest m;
+  m.version = r.text(j, "version");
+  m.index = static_cast<int>(std::min(r.whole(j, "index"), 1LL << 30));
+  m.count = static_cast<int>(std::min(r.whole(j, "count"), 1LL << 30));
+  const nlohmann::json& quick = r.at(j, "quick", "");
+  if (!quick.is_boolean()) r.fail("quick", std::string("must be true or false (got ") + quick.type_name() + ")");
+  m.quick = quick.get<bool>();
+  const nlohmann::json& scenes = r.list(j, "scenes");
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    const std::string path = "scenes[" + std::to_string(i) + "]";
+    m.scenes.push_back({r.text(scenes[i], "name", path), r.text(scenes[i], "fnv1a64", path)});
+  }
+  m.tasks = static_cast<int>(std::min(r.whole(j, "tasks"), 1LL << 30));
+  const nlohmann::json& parts = r.list(j, "parts");
+  for (size_t i = 0; i < parts.size(); ++i) {
+    if (!parts[i].is_string()) r.fail("parts[" + std::to_string(i) + "]", "must be a string");
+    m.parts.push_back(parts[i].get<std::string>());
+  }
+  const nlohmann::json& sat_out = r.list(j, "sat_out");
+  for (size_t i = 0; i < sat_out.size(); ++i) {
+    const std::string path = "sat_out[" + std::to_string(i) + "]";
+    m.sat_out.push_back({r.text(sat_out[i], "engine", path), r.text(sat_out[i], "scene", path),
+                         r.text(sat_out[i], "reason", path)});
+  }
+  const nlohmann::json& files = r.list(j, "files");
+  for (size_t i = 0; i < files.size(); ++i) {
+    const std::string path = "files[" + std::to_string(i) + "]";
+    m.files.push_back({r.text(files[i], "path", path), r.text(files[i], "header", path),
+                       static_cast<size_t>(r.whole(files[i], "rows", path)), r.text(files[i], "fnv1a64", path)});
+  }
+  if (m.count < 2 || m.index >= m.count)
+    throw std::runtime_error(r.file + ": malformed: shard " + std::to_string(m.index) + " of " + std::to_string(m.count));
+  return m;
 }
 
 TableSet readShardTables(const fs::path& dir, const ShardManifest& manifest) {
