@@ -117,9 +117,14 @@ std::string runTorsion(const TorsionOptions& options) {
   }
   // The engines' own trains (every named engine but the closed forms, whose exact steady state is always shown).
   std::vector<const Engine*> trains;
-  for (const std::string& name : options.engines) {
+  for (size_t i = 0; i < options.engines.size(); ++i) {
+    const std::string& name = options.engines[i];
+    // A name given twice is refused, as validate --parts refuses a key given twice: which was meant is not known.
+    if (std::find(options.engines.begin(), options.engines.begin() + static_cast<long>(i), name) !=
+        options.engines.begin() + static_cast<long>(i))
+      throw UsageError("--engine: " + name + " is given twice");
     const Engine& e = validation::findEngine(name);
-    if (!e.closed_form && std::find(trains.begin(), trains.end(), &e) == trains.end()) trains.push_back(&e);
+    if (!e.closed_form) trains.push_back(&e);
   }
   const bool progress = (speeds.size() > 1 || !trains.empty()) && ::isatty(STDERR_FILENO);
   validation::TorsionResult torsion;

@@ -155,7 +155,9 @@ int runValidate(const ValidateOptions& options) {
       throw UsageError(std::string("--shard: ") + e.what());
     }
   }
-  const bool shard = selection.count > 1;
+  // Any --shard writes a shard, --shard 0/1 too (a job array of one): it merges as any other (it wrote a report,
+  // which report merge then called "not a shard").
+  const bool shard = !options.shard.empty();
   // A new file, in a folder that exists, outside the report: checked before the campaign.
   if (!options.profile.empty()) validation::checkNewFile(options.profile, "--profile", {options.out});
   validation::OutputFolder out(options.out, "--out");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -201,8 +202,12 @@ FlywheelSizing calcFlywheelSizing(const Mechanism& m, double fluctuation) {
   if (!(x1 > 0.0)) throw std::domain_error("no flywheel >= 0 gives this fluctuation: the mechanism alone runs steadier");
   s.exact_inertia = x1;
   s.exact = steady(d, x1, omega);
-  if (!(std::fabs(s.exact.delta - C) <= 1e-9 * C))
-    throw std::runtime_error("flywheel sizing: the root in I_f did not converge (delta " + std::to_string(s.exact.delta) + ")");
+  if (!(std::fabs(s.exact.delta - C) <= 1e-9 * C)) {
+    char text[200];
+    std::snprintf(text, sizeof text, "the fluctuation reached %.3g for the %.3g asked, at I_f = %.3g kg m^2",
+                  s.exact.delta, C, x1);
+    throw std::runtime_error(std::string("flywheel sizing: the root in I_f did not converge (") + text + ")");
+  }
   return s;
 }
 

@@ -88,6 +88,15 @@ TEST(ProfileTest, NeverOverwritesAFile) {
   std::ifstream in(profile);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(text, "my data\n");
+  // A link, dangling or not, is named as a link (a dangling one was said to "exist"): nothing is written through it.
+  const fs::path dangling = folder.path() / "dangling.csv";
+  fs::create_symlink(folder.path() / "nowhere" / "x.csv", dangling);
+  const validation::ProgramResult link = testing::runCrankcheck(
+      {"validate", "--quick", "--profile", dangling.string(), "--out", (folder.path() / "report").string()});
+  EXPECT_EQ(link.exit_status, 2);
+  EXPECT_EQ(link.err, "crankcheck: --profile: \"" + dangling.string() +
+                          "\": is a symbolic link (to a file or not); crankcheck never writes through a link\n");
+  EXPECT_FALSE(fs::exists(folder.path() / "nowhere"));
 }
 
 }  // namespace

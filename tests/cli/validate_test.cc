@@ -315,6 +315,20 @@ TEST_F(ValidateTest, BadInputIsRefusedWithStatus2) {
   EXPECT_NE(not_a_shard.err.find("shard.json"), std::string::npos) << not_a_shard.err;
 }
 
+// --shard 0/1 (a job array of one) writes a shard, which merges as any other: it wrote a report, which report merge
+// then called "not a shard".
+TEST_F(ValidateTest, AShardOfOneMerges) {
+  const std::string scene = std::string(CRANKCHECK_SCENES_DIR) + "/single_cylinder.toml";
+  const fs::path shard = dir_ / "shard", merged = dir_ / "merged";
+  const RunResult r = run("validate " + scene + " --quick --parts pin_load_polar --shard 0/1 --out " + shard.string());
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_TRUE(fs::is_regular_file(shard / "shard.json"));
+  EXPECT_FALSE(fs::exists(shard / "index.md"));
+  const RunResult m = run("report merge " + shard.string() + " --out " + merged.string());
+  EXPECT_EQ(m.exit_status, 0) << m.err;
+  EXPECT_TRUE(fs::is_regular_file(merged / "index.md"));
+}
+
 // A damaged or hand-edited shard.json says where it is wrong, by the key's path, not by the JSON library's message
 // ("[json.exception.type_error.304] cannot use at() with array"); status 2, nothing written.
 TEST_F(ValidateTest, AMalformedShardRecordIsNamedByItsKey) {

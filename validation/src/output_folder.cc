@@ -304,7 +304,8 @@ void checkNewFile(const fs::path& file, const std::string& flag, const std::vect
   checkNameLengths(flag, file, path, 0);
   struct stat st {};
   if (::lstat(path.c_str(), &st) == 0)
-    refuse(flag, file, "exists; crankcheck never overwrites a file");
+    refuse(flag, file, S_ISLNK(st.st_mode) ? "is a symbolic link (to a file or not); crankcheck never writes through a link"
+                                          : "exists; crankcheck never overwrites a file");
   if (errno == ENOTDIR) refuse(flag, file, "a part of the path is a file, not a folder");
   if (!fs::is_directory(path.parent_path())) refuse(flag, file, "its folder does not exist");
   checkNotInsideReport(flag, file, path);

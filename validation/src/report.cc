@@ -310,7 +310,7 @@ ShardManifest readShardManifest(const fs::path& dir) {
     m.files.push_back({r.text(files[i], "path", path), r.text(files[i], "header", path),
                        static_cast<size_t>(r.whole(files[i], "rows", path)), r.text(files[i], "fnv1a64", path)});
   }
-  if (m.count < 2 || m.index >= m.count)
+  if (m.count < 1 || m.index >= m.count)
     throw std::runtime_error(r.file + ": malformed: shard " + std::to_string(m.index) + " of " + std::to_string(m.count));
   return m;
 }
