@@ -72,6 +72,16 @@ int main(int argc, char** argv) {
                "  File \"sim.py\", line 9, in main\n    x = 1 / 0\nZeroDivisionError: division by zero\n", stderr);
     return 1;
   }
+  if (mode == "setsid-child") {  // answers, leaves a child in a session of its own holding stdout, exits 0
+    std::puts(repeat("{}").c_str());
+    std::fflush(stdout);
+    if (::fork() == 0) {
+      ::setsid();
+      ::sleep(5);
+      ::_exit(0);
+    }
+    return 0;
+  }
   if (mode == "hang") {
     for (;;) ::pause();
   }

@@ -265,6 +265,19 @@ TEST(GradeTest, ABatchsBrokenResponseIsQuotedAtItsLine) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+// A program that exits but leaves a process behind in a session of its own (setsid), holding its stdout: told as it
+// is, not as "did not exit" (it had exited; crankcheck cannot end that process, outside the program's group).
+TEST(GradeTest, AProgramThatLeavesAProcessHoldingItsOutputIsToldSo) {
+  FreshFolder dir;
+  const fs::path out = dir.path() / "report";
+  const auto r = runCrankcheck({"grade", "--quick", "--jobs", "1", "--timeout", "0.3", "--out", out.string(), "--",
+                                CRANKCHECK_FAKE_PROGRAM, "setsid-child"});
+  EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
+  EXPECT_NE(r.err.find(": exited with status 0, but its output was still open 0.3 s after it started: held by a "
+                       "process it left behind outside its process group"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(GradeTest, NothingProvidedIsNeitherRightNorWrong) {
   FreshFolder dir;
   const fs::path out = dir.path() / "report";

@@ -97,6 +97,12 @@ std::string runOnce(const GradeProgram& program, const std::string& input, size_
     if (end.size() > 300) end = end.substr(end.size() - 300);
     return cut ? "; the end of its stderr: " + quoteText("...\n" + end) : "; its stderr: " + quoteText(end);
   };
+  if (r.left_output_open)
+    throw EnvironmentError(name + ": " + what + ": exited" +
+                           (r.exit_status >= 0 ? " with status " + std::to_string(r.exit_status) : std::string()) +
+                           ", but its output was still open " + formatNumber(call.timeout_seconds) +
+                           " s after it started: held by a process it left behind outside its process group (a setsid "
+                           "child, which crankcheck cannot end); a program must end every process it starts");
   if (r.timed_out && isCompleteAnswer(r.out, requests, program.batch))
     throw EnvironmentError(name + ": " + what + ": answered completely but did not exit within " +
                            formatNumber(call.timeout_seconds) + " s (killed; the program must exit when its stdin ends)");

@@ -150,7 +150,8 @@ ProgramResult RunningProgram::wait() {
     ::close(in_fd_);
     in_fd_ = -1;
   }
-  bool killed = false;
+  bool killed = false, reaped = false;
+  int status = 0;
   auto killGroup = [&] {
     if (!killed) ::kill(-pid_, SIGKILL);
     killed = true;
@@ -167,6 +168,8 @@ ProgramResult RunningProgram::wait() {
       const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
       if (left <= 0) {
         result.timed_out = true;
+        // Ended already (reaped here, its status kept) while its output stays open: a process it left behind holds it.
+        if (::waitpid(pid_, &status, WNOHANG) == pid_) reaped = result.left_output_open = true;
         killGroup();
         // The pipes may stay open in a grandchild that escaped the group: stop reading them.
         break;
@@ -214,7 +217,6 @@ ProgramResult RunningProgram::wait() {
       ::close(*fd);
       *fd = -1;
     }
-  int status = 0;
   // A program that closed its output but does not end is still held to the timeout.
   while (timeout_seconds_ > 0.0 && !killed) {
     const pid_t done = ::waitpid(pid_, &status, WNOHANG);
@@ -226,7 +228,7 @@ ProgramResult RunningProgram::wait() {
     }
     ::usleep(2000);
   }
-  if (killed || timeout_seconds_ <= 0.0)
+  if ((killed || timeout_seconds_ <= 0.0) && !reaped)
     while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
     }
   {

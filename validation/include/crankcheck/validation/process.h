@@ -36,6 +36,9 @@ struct ProgramResult {
   bool timed_out = false;              ///< killed at the call's timeout_seconds
   bool output_limit_exceeded = false;  ///< killed because stdout passed the call's output_limit
   bool input_refused = false;          ///< it closed its stdin (or ended) before reading all of the input
+  /// It had exited by the timeout, but its stdout or stderr was still open: held by a process it left behind outside
+  /// its process group (a setsid child), which crankcheck cannot end. timed_out is set too.
+  bool left_output_open = false;
 };
 
 /// The full path of the executable file `name` on PATH (or `name` itself when it contains a '/' and is
