@@ -260,11 +260,13 @@ def test_a_sleeping_function_is_interrupted_at_its_timeout():
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
         signal.signal(signal.SIGALRM, signal.SIG_DFL)
-    # One call, interrupted at 1 s. 1 s of slack on top: the grade's threads joined on a loaded machine (2 cores).
-    assert len(started) == 1 and 1 <= ended - started[0] < 2
+    # One call, interrupted at 1 s, not at the end of its 30 s sleep: the bound is half the sleep, so that a loaded
+    # machine (2 cores under ctest -j2, the grade's threads joined) cannot fail it, and a sleep run out always does.
+    assert len(started) == 1 and 1 <= ended - started[0] < 15
     assert "interrupted here" in str(e.value.__cause__)  # the traceback shows where the function was
     assert relays() == []
-    assert crankcheck.grade(evaluate, [SCENE_FILES[0]], quick=True, timeout=1).passed
+    # The next grade works, with the default time per call: 1 s once ran out on a loaded machine (a flake, not a fault).
+    assert crankcheck.grade(evaluate, [SCENE_FILES[0]], quick=True).passed
 
 
 def test_the_timeout_from_another_thread():
