@@ -377,9 +377,9 @@ TEST_F(ValidateTest, AMalformedShardRecordIsNamedByItsKey) {
        "malformed: sat_out: must be a list (got object)"},
       {std::string(good).replace(good.find("\"quick\": true"), 13, "\"quick\": 1"),
        "malformed: quick: must be true or false (got number)"}};
-  for (const auto& [text, expected] : cases) {
-    const fs::path shard = dir_ / "shard";
-    fs::remove_all(shard);
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const auto& [text, expected] = cases[i];
+    const fs::path shard = dir_ / ("shard_" + std::to_string(i));  // a folder of its own: nothing is deleted
     fs::create_directories(shard);
     std::ofstream(shard / "shard.json") << text;
     const RunResult r = run("report merge " + shard.string() + " --out " + (dir_ / "x").string());
