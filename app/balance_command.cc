@@ -91,6 +91,7 @@ std::string runBalance(const BalanceOptions& options) {
               formatShortest(degreesFromRadians(b.phase)) + "\nposition = [" + formatShortest(b.position[0]) + ", " +
               formatShortest(b.position[1]) + ", " + formatShortest(b.position[2]) + "]   # [m]\n";
   const bool axial = hasAxialPositions(m);
+  const validation::BalanceResolution resolution = validation::calcBalanceResolution(m);
   if (options.format == "json") {
     nlohmann::ordered_json doc;
     doc["scene"] = sceneToJson(m);
@@ -103,6 +104,7 @@ std::string runBalance(const BalanceOptions& options) {
     }
     doc["order"] = options.order;
     doc["samples"] = std::max(64, 4 * options.order);
+    doc["resolution"] = validation::balanceResolutionToJson(resolution);
     doc["harmonics"] = validation::balanceToJson(rows, axial);
     for (size_t i = 0; i < rows.size(); ++i) doc["harmonics"][i]["reason"] = reasonOf(rows[i].symmetry, axial);
     doc["sat_out"] = nlohmann::ordered_json::array();
@@ -113,12 +115,17 @@ std::string runBalance(const BalanceOptions& options) {
   if (options.design > 0)
     out += "balance shafts that cancel harmonic " + std::to_string(options.design) + " of the shaking force; paste into\n" +
            options.scene_path + ":\n\n" + tables + "\nwith them, every harmonic (the residual):\n";
+  char line[640];
   // One block per harmonic, a row per amplitude (within 100 columns for any number of engines up to four).
   out += "balance of " + options.scene_path + " at " + formatShortest(m.speed_rpm) + " rpm\n";
   out += "amplitude of each harmonic n (n times the crank speed) by the closed form and each engine's DFT;\n"
          "F [N], M [N m] about O" +
          std::string(axial ? "" : "; no moments X, Y: the scene gives no axial positions") + "\n";
-  char line[640];
+  std::snprintf(line, sizeof line,
+                "each DFT resolves %.2g N, %.2g N m (2 x 64 eps x scale x conditioning);\n"
+                "an engine's amplitude below that is its rounding, shown as <\n",
+                resolution.force, resolution.moment);
+  out += line;
   std::string header = "  n  amplitude     closed form";
   if (!rows.empty())
     for (const auto& [engine, harmonic] : rows.front().engines) {
@@ -129,18 +136,26 @@ std::string runBalance(const BalanceOptions& options) {
   for (const validation::SatOut& s : sat_out) out += wrapText(s.engine + " sat out: " + s.reason, kHelpWidth) + "\n";
   for (const validation::BalanceRow& row : rows) {
     const analytic::ShakingHarmonic a = validation::withExactZeros(row.analytic, row.symmetry);
-    auto print = [&](bool first, const char* name, double closed, const auto& amplitude) {
+    auto print = [&](bool first, const char* name, double closed, double floor, const auto& amplitude) {
       std::snprintf(line, sizeof line, "%3s  %-9s %15.4e", first ? std::to_string(row.n).c_str() : "", name, closed);
       out += line;
       for (const auto& [engine, harmonic] : row.engines) {
-        std::snprintf(line, sizeof line, " %15.4e", amplitude(harmonic));
+        const double value = amplitude(harmonic);
+        if (value < floor) {
+          char below[40];
+          std::snprintf(below, sizeof below, "<%.2g", floor);
+          std::snprintf(line, sizeof line, " %15s", below);
+        } else {
+          std::snprintf(line, sizeof line, " %15.4e", value);
+        }
         out += line;
       }
       out += "\n";
     };
-    print(true, "|F_s|", a.calcForceAmplitude(), [](const analytic::ShakingHarmonic& h) { return h.calcForceAmplitude(); });
+    print(true, "|F_s|", a.calcForceAmplitude(), resolution.force,
+          [](const analytic::ShakingHarmonic& h) { return h.calcForceAmplitude(); });
     for (int axis = axial ? 0 : 2; axis < 3; ++axis)
-      print(false, axis == 0 ? "|M_X|" : axis == 1 ? "|M_Y|" : "|M_Z|", a.calcMomentAmplitude(axis),
+      print(false, axis == 0 ? "|M_X|" : axis == 1 ? "|M_Y|" : "|M_Z|", a.calcMomentAmplitude(axis), resolution.moment,
             [axis](const analytic::ShakingHarmonic& h) { return h.calcMomentAmplitude(axis); });
     const std::string reason = reasonOf(row.symmetry, axial);
     if (!reason.empty()) {  // its continuation lines under the reason's first word

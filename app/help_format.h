@@ -76,7 +76,6 @@ class WrappingFormatter : public CLI::Formatter {
   }
 };
 
-/// "a", "a and b", "a, b and c".
 /// "ENGINE sat out: it cannot build scene S (reason)\n", one line per engine that sat out (validate, grade), escaped:
 /// a shard's record may come from anyone.
 inline std::string formatSatOut(const std::vector<validation::SatOut>& sat_out) {
@@ -87,6 +86,7 @@ inline std::string formatSatOut(const std::vector<validation::SatOut>& sat_out) 
   return out;
 }
 
+/// "a", "a and b", "a, b and c".
 inline std::string joinNames(const std::vector<std::string>& names) {
   std::string out;
   for (size_t i = 0; i < names.size(); ++i)

@@ -22,6 +22,7 @@
 #include "grade_command.h"
 #include "help_format.h"
 #include "crankcheck/validation/interrupt.h"
+#include "crankcheck/validation/process.h"
 #include "validate_command.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/output_folder.h"
@@ -106,6 +107,8 @@ int checkStdout(int status) {
 
 int main(int argc, char** argv) {
   crankcheck::validation::watchInterrupts();  // from here on, a signal ends every child with crankcheck
+  // and whatever a program leaves behind (a setsid child, a daemon) comes back to crankcheck to be ended: none outlives it
+  (void)crankcheck::validation::reapLeftBehindProcesses();
   using crankcheck::app::describeEngines;
   const std::string engines = describeEngines();
   CLI::App app{"crankcheck checks the closed-form formulas of piston engines and compressors (slider-crank kinematics, "

@@ -42,8 +42,9 @@ std::string runMotion(const MotionOptions& options) {
   validation::chooseIntegrator(choices, options.integrator, options.accuracy);
   validation::chooseIntegrator(choices, options.mujoco_integrator, options.mujoco_step);
   std::vector<validation::MotionRun> results;
+  std::vector<validation::SatOut> sat_out;  // an engine that cannot build the scene sits out, named with its reason
   try {
-    results = validation::calcMotion(m, choices);
+    results = validation::calcMotion(m, choices, &sat_out);
   } catch (const std::invalid_argument& e) {
     throw UsageError(options.scene_path + ": " + e.what());
   } catch (const std::runtime_error& e) {
@@ -52,6 +53,8 @@ std::string runMotion(const MotionOptions& options) {
   if (options.format == "json") {
     nlohmann::ordered_json doc;
     for (const validation::MotionRun& r : results) doc[r.engine] = validation::motionRunToJson(r);
+    doc["sat_out"] = nlohmann::ordered_json::array();
+    for (const validation::SatOut& s : sat_out) doc["sat_out"].push_back({{"engine", s.engine}, {"reason", s.reason}});
     return dumpJson(doc);
   }
   char buffer[512];
@@ -70,7 +73,7 @@ std::string runMotion(const MotionOptions& options) {
                   r.delta_gravity, r.delta_no_gravity, r.omega_min, r.omega_max, r.omega_mean, drift);
     out += buffer;
   }
-  return wrapText(out, kHelpWidth) +
+  return wrapText(out, kHelpWidth) + wrapText(formatSatOut(sat_out), kHelpWidth) +
          "(omega [rad/s]; drift: the energy's, max |E(t) - E(0)| / E(0) per revolution, gravity on)\n" +
          describeRigidShaft(m);
 }

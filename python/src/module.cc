@@ -259,6 +259,7 @@ py::object balance(const ScenePtr& scene, int order) {
   doc["scene"] = validation::sceneToJson(m);
   doc["order"] = order;
   doc["samples"] = std::max(64, 4 * order);
+  doc["resolution"] = validation::balanceResolutionToJson(validation::calcBalanceResolution(m));
   doc["harmonics"] = validation::balanceToJson(rows, hasAxialPositions(m));
   doc["sat_out"] = nlohmann::ordered_json::array();
   for (const validation::SatOut& s : sat_out) doc["sat_out"].push_back({{"engine", s.engine}, {"reason", s.reason}});
@@ -287,10 +288,11 @@ py::object motion(const ScenePtr& scene, const std::string& integrator, double a
   validation::chooseIntegrator(choices, integrator, accuracy);
   validation::chooseIntegrator(choices, mujoco_integrator, mujoco_step);
   std::vector<validation::MotionRun> runs;
+  std::vector<validation::SatOut> sat_out;  // as the CLI's: an engine that cannot build the scene sits out
   {
     py::gil_scoped_release release;
     try {
-      runs = validation::calcMotion(m, choices);
+      runs = validation::calcMotion(m, choices, &sat_out);
     } catch (const std::invalid_argument& e) {
       throw SceneError(source + ": " + e.what());
     } catch (const std::runtime_error& e) {
@@ -301,6 +303,8 @@ py::object motion(const ScenePtr& scene, const std::string& integrator, double a
   for (const validation::MotionRun& r : runs) {
     doc[r.engine] = validation::motionRunToJson(r);
   }
+  doc["sat_out"] = nlohmann::ordered_json::array();
+  for (const validation::SatOut& s : sat_out) doc["sat_out"].push_back({{"engine", s.engine}, {"reason", s.reason}});
   py::object result = toPython(doc);
   if (series)
     for (const validation::MotionRun& r : runs) {

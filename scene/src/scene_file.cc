@@ -11,6 +11,8 @@
 #include <utility>
 #include <toml++/toml.h>
 
+#include "crankcheck/scene/text.h"
+
 namespace crankcheck {
 namespace {
 
@@ -63,8 +65,10 @@ std::string formatNumber(double x) {
   return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, x).ptr);
 }
 
+// The source and the key are the user's text (a quoted TOML key may hold a NUL or an escape sequence): shown with
+// their control characters escaped, so that the message is one line that cannot act on a terminal.
 [[noreturn]] void fail(const std::string& source, const std::string& key, const std::string& rule) {
-  throw SceneError(source + ": " + key + ": " + rule);
+  throw SceneError(escapeControls(source) + ": " + escapeControls(key) + ": " + rule);
 }
 
 // A TOML integer given for a number key, as a double. Beyond 2^53 a double cannot hold every integer, and the nearest
@@ -459,7 +463,10 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
   const bool has_gas = root.get("gas") != nullptr;
 
   Mechanism m;
-  m.name = std::filesystem::path(source).stem().string();
+  // The scene's name, its file's stem, heads its sections and fills the tables' scene column: one line of UTF-8 that
+  // prints as itself, whatever the file is called (a newline, an escape sequence, a bidirectional control or bytes
+  // that are not UTF-8 shown escaped: "two\nlines.toml" is the scene "two\\nlines"). The path itself opens the file.
+  m.name = escapeControls(std::filesystem::path(source).stem().string());
 
   // [[cylinder]]: one table per cylinder (a layout); without it, one bank of engine.cylinders.
   const toml::array* layout = nullptr;
@@ -494,11 +501,11 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
   const std::string cycle = engine.string("cycle");
   if (cycle == "two-stroke") m.machine.cycle = Cycle::kTwoStroke;
   else if (cycle == "four-stroke") m.machine.cycle = Cycle::kFourStroke;
-  else fail(source, engine.key("cycle"), "must be \"two-stroke\" or \"four-stroke\" (got \"" + cycle + "\")");
+  else fail(source, engine.key("cycle"), "must be \"two-stroke\" or \"four-stroke\" (got " + quoteText(cycle) + ")");
   const std::string acting = engine.string("acting", "single");
   if (acting == "single") m.machine.acting = Acting::kSingle;
   else if (acting == "double") m.machine.acting = Acting::kDouble;
-  else fail(source, engine.key("acting"), "must be \"single\" or \"double\" (got \"" + acting + "\")");
+  else fail(source, engine.key("acting"), "must be \"single\" or \"double\" (got " + quoteText(acting) + ")");
 
   if (layout != nullptr) {
     // theta_j = phi + beta_j - gamma_j: alpha_j is the throw angle minus the bank angle (CONVENTIONS, "Layouts").

@@ -149,6 +149,7 @@ std::vector<Engine> describeEngines() {
   e.accuracy_meaning = "the integrator's relative accuracy (Integrator::setAccuracy), default 1e-10";
   e.default_accuracy = 1e-10;
   e.simulate = [](const Mechanism& m, double omega0, const FreeRunSettings& settings) {
+    Model(m).checkResolves(m);  // the same probe as build's: a free run on a scene it cannot resolve is refused too
     FreeRunOptions options;
     options.integrator = settings.integrator == "CPodes"               ? IntegratorKind::kCPodes
                          : settings.integrator == "SemiExplicitEuler2" ? IntegratorKind::kSemiExplicitEuler2

@@ -790,7 +790,7 @@ TEST(Cli, BadSceneNamesFileAndKey) {
 // MuJoCo, status 0; `validate` stopped with a misleading "needs a rod with mass > 0" and status 1. Now Simbody sits
 // out `balance` and `validate`, named with its reason: MuJoCo's harmonics are the closed form's, and validate's
 // campaign runs without Simbody (no table holds a value of it), its verdict that of the other engines.
-TEST(CliTest, ASceneSimbodyCannotResolveSitsItOutOfBalanceAndValidate) {
+TEST(CliTest, ASceneSimbodyCannotResolveSitsItOutOfBalanceMotionAndValidate) {
   testing::FreshFolder folder;
   std::ifstream in(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
   std::stringstream text;
@@ -828,6 +828,18 @@ TEST(CliTest, ASceneSimbodyCannotResolveSitsItOutOfBalanceAndValidate) {
   EXPECT_EQ(text_out.exit_status, 0) << text_out.err;
   EXPECT_NE(text_out.out.find("simbody sat out: cannot hold its accuracy"), std::string::npos) << text_out.out;
   EXPECT_EQ(text_out.out.find("simbody DFT"), std::string::npos) << text_out.out;
+  // The free run: Simbody sits out, named, and the energy integral and MuJoCo's runs answer.
+  const auto motion = testing::runCrankcheck({"motion", path, "--format", "json"});
+  ASSERT_EQ(motion.exit_status, 0) << motion.err;
+  const nlohmann::json runs = nlohmann::json::parse(motion.out);
+  EXPECT_FALSE(runs.contains("simbody")) << motion.out;
+  EXPECT_TRUE(runs.contains("analytic")) << motion.out;
+  ASSERT_EQ(runs["sat_out"].size(), 1u) << motion.out;
+  EXPECT_EQ(runs["sat_out"][0]["engine"], "simbody");
+  const auto motion_text = testing::runCrankcheck({"motion", path});
+  EXPECT_EQ(motion_text.exit_status, 0) << motion_text.err;
+  EXPECT_NE(motion_text.out.find("simbody sat out: it cannot build scene light (cannot hold its accuracy"),
+            std::string::npos) << motion_text.out;
   const std::string out = (folder.path() / "report").string();
   const auto v = testing::runCrankcheck({"validate", path, "--quick", "--out", out});
   EXPECT_EQ(v.exit_status, 0) << v.err;
@@ -847,6 +859,41 @@ TEST(CliTest, ASceneSimbodyCannotResolveSitsItOutOfBalanceAndValidate) {
   }
   EXPECT_GT(tables, 10u);
   EXPECT_NE(readFile(std::filesystem::path(out) / "data" / "crosscheck.csv").find("mujoco"), std::string::npos);
+}
+
+// At 1e-6 rpm the orders above the second are each engine's rounding (the closed form's order 8 is about 1e-21 N):
+// `balance` states what a DFT resolves and prints an engine's amplitude below it as "<R", never as a number that
+// looks like a finding (it printed Simbody's 1.9e-12 N beside the closed form's 2.7e-21 N, unflagged).
+TEST(CliTest, BalanceShowsAnAmplitudeBelowTheResolutionAsRounding) {
+  testing::FreshFolder folder;
+  std::string scene = readFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "inline4_four_stroke.toml");
+  const size_t at = scene.find("speed_rpm = 6000\n");
+  ASSERT_NE(at, std::string::npos);
+  scene.replace(at, 17, "speed_rpm = 1e-6\n");
+  const std::string path = (folder.path() / "slow.toml").string();
+  std::ofstream(path) << scene;
+  const auto json = testing::runCrankcheck({"balance", path, "--format", "json"});
+  ASSERT_EQ(json.exit_status, 0) << json.err;
+  const nlohmann::json doc = nlohmann::json::parse(json.out);
+  const double resolution = doc["resolution"]["force"].get<double>();
+  EXPECT_GT(resolution, 0.0);
+  EXPECT_GT(doc["resolution"]["moment"].get<double>(), 0.0);
+  EXPECT_TRUE(doc["sat_out"].empty()) << json.out;
+  const nlohmann::json& eighth = doc["harmonics"][7];
+  ASSERT_EQ(eighth["n"], 8);
+  for (const char* engine : {"simbody", "mujoco"})
+    EXPECT_LT(eighth[engine]["shaking_force"]["amplitude"].get<double>(), resolution) << engine;
+  const auto text = testing::runCrankcheck({"balance", path});
+  ASSERT_EQ(text.exit_status, 0) << text.err;
+  EXPECT_NE(text.out.find("each DFT resolves "), std::string::npos) << text.out;
+  char below[40];
+  std::snprintf(below, sizeof below, "<%.2g", resolution);
+  const size_t row = text.out.find("\n  8  |F_s|");
+  ASSERT_NE(row, std::string::npos) << text.out;
+  const std::string line = text.out.substr(row + 1, text.out.find('\n', row + 1) - row - 1);
+  size_t count = 0;
+  for (size_t p = line.find(below); p != std::string::npos; p = line.find(below, p + 1)) ++count;
+  EXPECT_EQ(count, 2u) << line;  // both engines' columns
 }
 
 }  // namespace

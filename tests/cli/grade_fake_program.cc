@@ -1,10 +1,12 @@
 // Programs that misbehave, for tests/cli/grade_test.cc: `grade_fake_program MODE` reads its request(s) from stdin
 // and then does what MODE says.
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -72,14 +74,23 @@ int main(int argc, char** argv) {
                "  File \"sim.py\", line 9, in main\n    x = 1 / 0\nZeroDivisionError: division by zero\n", stderr);
     return 1;
   }
-  if (mode == "setsid-child") {  // answers, leaves a child in a session of its own holding stdout, exits 0
+  // Answers, leaves a child in a session of its own (holding stdout; or, as a daemon, with stdout and stderr on
+  // /dev/null), writes the child's pid to argv[2] and exits 0. The child would sleep 60 s.
+  if (mode == "setsid-child" || mode == "daemon-child") {
     std::puts(repeat("{}").c_str());
     std::fflush(stdout);
-    if (::fork() == 0) {
+    const pid_t child = ::fork();
+    if (child == 0) {
       ::setsid();
-      ::sleep(5);
+      if (mode == "daemon-child") {
+        const int null = ::open("/dev/null", O_WRONLY);
+        ::dup2(null, STDOUT_FILENO);
+        ::dup2(null, STDERR_FILENO);
+      }
+      ::sleep(60);
       ::_exit(0);
     }
+    if (argc > 2) std::ofstream(argv[2]) << child << "\n";
     return 0;
   }
   if (mode == "hang") {

@@ -1,6 +1,10 @@
 // `crankcheck grade` as a user runs it: the two example programs (one must pass, one must fail where the report
 // says), and programs that misbehave (exit status 3, one clear line, never a hang).
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/types.h>
+
+#include <cerrno>
 
 #include <algorithm>
 #include <cctype>
@@ -265,17 +269,41 @@ TEST(GradeTest, ABatchsBrokenResponseIsQuotedAtItsLine) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-// A program that exits but leaves a process behind in a session of its own (setsid), holding its stdout: told as it
-// is, not as "did not exit" (it had exited; crankcheck cannot end that process, outside the program's group).
-TEST(GradeTest, AProgramThatLeavesAProcessHoldingItsOutputIsToldSo) {
+// Whether process `pid` still exists (kill with signal 0 reaches it). A zombie would count: crankcheck reaps what it
+// ends, and the test process is not the left-behind one's parent.
+bool processExists(pid_t pid) { return ::kill(pid, 0) == 0 || errno == EPERM; }
+
+pid_t readPid(const fs::path& file) {
+  std::ifstream in(file);
+  long pid = 0;
+  in >> pid;
+  return static_cast<pid_t>(pid);
+}
+
+// A program that exits but leaves a process behind in a session of its own (setsid), out of its process group: told
+// as it is (not as "did not exit": it had exited), and that process does not outlive crankcheck, which is its reaper
+// (it would sleep 60 s). Holding the program's stdout, it is found at the timeout; as a daemon, with its output on
+// /dev/null, when the program ends.
+TEST(GradeTest, AProcessAProgramLeavesBehindIsEndedAndTheProgramToldSo) {
   FreshFolder dir;
-  const fs::path out = dir.path() / "report";
-  const auto r = runCrankcheck({"grade", "--quick", "--jobs", "1", "--timeout", "0.3", "--out", out.string(), "--",
-                                CRANKCHECK_FAKE_PROGRAM, "setsid-child"});
-  EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
-  EXPECT_NE(r.err.find(": exited with status 0, but its output was still open 0.3 s after it started: held by a "
-                       "process it left behind outside its process group"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(out));
+  for (const char* mode : {"setsid-child", "daemon-child"}) {
+    const fs::path out = dir.path() / (std::string("report-") + mode), pid_file = dir.path() / (std::string(mode) + ".pid");
+    const auto r = runCrankcheck({"grade", "--quick", "--jobs", "1", "--timeout", "0.3", "--out", out.string(), "--",
+                                  CRANKCHECK_FAKE_PROGRAM, mode, pid_file.string()});
+    EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
+    if (std::string(mode) == "setsid-child")
+      EXPECT_NE(r.err.find(": exited with status 0, but its output was still open 0.3 s after it started: held by a "
+                           "process it left behind outside its process group (a setsid child, which crankcheck ended)"),
+                std::string::npos) << r.err;
+    else
+      EXPECT_NE(r.err.find(": exited with status 0 but left 1 process running outside its process group (a setsid "
+                           "child or a daemon; crankcheck ended it)"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+    const pid_t left = readPid(pid_file);
+    ASSERT_GT(left, 0) << mode;
+    EXPECT_FALSE(processExists(left)) << mode << ": pid " << left << " outlived crankcheck";
+    if (processExists(left)) ::kill(left, SIGKILL);
+  }
 }
 
 TEST(GradeTest, NothingProvidedIsNeitherRightNorWrong) {

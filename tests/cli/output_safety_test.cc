@@ -18,6 +18,7 @@
 #include <string>
 #include <thread>
 
+#include "crankcheck/validation/output_folder.h"
 #include "run_cli.h"
 
 namespace crankcheck {
@@ -463,17 +464,18 @@ TEST_P(OddPathTest, WorksAsOutputFolderAndScenePath) {
   EXPECT_GT(fs::file_size(out / "index.html"), 1000u);
   EXPECT_GT(fs::file_size(out / "pin_load_polar.png"), 1000u);
   EXPECT_NE(readFile(out / "index.md").find("Scenes"), std::string::npos);
-  // The scene's own section is headed by its name on one line (a newline in it shown as a space).
-  std::string heading = name;
-  std::replace(heading.begin(), heading.end(), '\n', ' ');
-  EXPECT_NE(readFile(out / "index.md").find("\n### " + heading + ": your engine\n"), std::string::npos);
-  // The scene's name (its file name) is in the data, quoted as CSV requires where it holds a comma, quote or newline.
+  // The scene is named by its file's stem on one line: a newline in it shown as \n (a backslash and an n), in its
+  // section's heading and in every table.
+  std::string shown;
+  for (char c : std::string(name)) shown += c == '\n' ? std::string("\\n") : std::string(1, c);
+  EXPECT_NE(readFile(out / "index.md").find("\n### " + shown + ": your engine\n"), std::string::npos);
+  // The scene's name is in the data, quoted as CSV requires where it holds a comma or a quote.
   const std::string scenes_csv = readFile(out / "data/scenes.csv");
-  const bool quoted = std::string(name).find_first_of(",\"\n") != std::string::npos;
-  std::string expected = name;
+  const bool quoted = shown.find_first_of(",\"") != std::string::npos;
+  std::string expected = shown;
   if (quoted) {
     expected.clear();
-    for (char c : std::string(name)) expected += c == '"' ? std::string("\"\"") : std::string(1, c);
+    for (char c : shown) expected += c == '"' ? std::string("\"\"") : std::string(1, c);
     expected = "\"" + expected + "\"";
   }
   EXPECT_NE(scenes_csv.find("," + expected + ","), std::string::npos) << scenes_csv;
@@ -492,6 +494,36 @@ INSTANTIATE_TEST_SUITE_P(
                       OddName{"newline", "two\nlines"}, OddName{"comma", "a,b"},
                       OddName{"non_ascii", "Zylinderkopf_\xC3\xA4\xC3\xB6\xC3\xBC_\xE6\x9B\xB2\xE8\xBD\xB4"}),
     [](const auto& info) { return std::string(info.param.test_name); });
+
+// What remains of a previous report after an install (a file of the user's that appeared in it during the run, after
+// the last check) is never removed, and never left under the hidden staging name: it is renamed to R.previous
+// (R.previous-2 when that is taken, nothing replaced), and the warning names that folder and the file kept. The
+// install's exchange is done here by a rename, as renameat2 would leave the folders.
+TEST_F(OutputSafetyTest, WhatRemainsOfAPreviousReportIsKeptUnderAVisibleName) {
+  const fs::path report = dir_ / "R";
+  for (int round = 1; round <= 2; ++round) {
+    {
+      validation::OutputFolder out(report, "--out");
+      out.createStaging();
+      validation::writeNewFile(out.getStaging() / "index.md", "the previous report\n");
+      out.install("report");
+    }
+    const fs::path moved = dir_ / ".R.crankcheck-partial-test";
+    fs::rename(report, moved);
+    writeFile(moved / "mine.txt", "a user's file\n");
+    ::testing::internal::CaptureStderr();
+    const fs::path kept = validation::removePreviousReport(moved, report);
+    const std::string warning = ::testing::internal::GetCapturedStderr();
+    const fs::path expected = dir_ / (round == 1 ? "R.previous" : "R.previous-2");
+    EXPECT_EQ(kept, expected);
+    EXPECT_EQ(snapshot(kept), (std::map<std::string, std::string>{{"mine.txt", "a user's file\n"}}));
+    EXPECT_FALSE(fs::exists(moved));
+    EXPECT_EQ(warning, "crankcheck: warning: \"" + expected.string() + "\": the previous report of \"" +
+                           report.string() + "\" was kept there: it holds files crankcheck did not write or that "
+                           "changed since (\"mine.txt\")\n");
+  }
+  EXPECT_EQ(readFile(dir_ / "R.previous" / "mine.txt"), "a user's file\n");  // the first round's, not replaced
+}
 
 }  // namespace
 }  // namespace crankcheck

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <utility>
+#include <vector>
 
 #include "crankcheck/scene/scene_file.h"
 
@@ -854,6 +856,45 @@ TEST(SceneLimits, BalanceShaftsAndTheFileAreBounded) {
               std::string::npos) << e.what();
   }
   std::filesystem::remove(big);
+}
+
+}  // namespace
+}  // namespace crankcheck
+
+namespace crankcheck {
+namespace {
+
+// A scene is named by its file's stem in every heading and table: a stem that would not print as itself on one line
+// names the scene with those characters escaped (a newline as \n, U+202E as \u202e); the file is read all the same.
+TEST(SceneFile, AFileNameThatIsNotOneLineOfTextNamesTheSceneEscaped) {
+  for (const auto& [path, name] : std::vector<std::pair<std::string, std::string>>{
+           {"dir/two\nlines.toml", "two\\nlines"},
+           {"txt\xe2\x80\xae" "lmot.toml", "txt\\u202elmot"},
+           {"esc\x1b[2J.toml", "esc\\x1b[2J"},
+           {"latin1\xe9.toml", "latin1\\xe9"},
+           {"scenes/my engine \"\xc3\xa9t\xc3\xa9\".toml", "my engine \"\xc3\xa9t\xc3\xa9\""}})  // UTF-8, quotes: text
+    EXPECT_EQ(parseScene(kGoodScene, path).name, name);
+}
+
+// What a refusal echoes of the scene (a quoted key, a string value) is shown escaped: a NUL in a key no longer cuts the
+// message, an escape sequence in a value does not reach the terminal.
+TEST(SceneFile, AValueOrKeyItEchoesIsShownEscaped) {
+  std::string text = kGoodScene;
+  text.insert(text.find("[engine]\n") + 9, "\"bad\\u0000key\\u001b\" = 1\n");
+  try {
+    parseScene(text, "s.toml");
+    ADD_FAILURE() << "an unknown key was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("s.toml: [engine].bad\\x00key\\x1b: unknown key", 0), 0u) << e.what();
+  }
+  text = kGoodScene;
+  text.replace(text.find("\"four-stroke\""), 13, "\"four\\u202e\\n\"");
+  try {
+    parseScene(text, "s.toml");
+    ADD_FAILURE() << "a bad cycle was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("(got \"four\\u202e\\n\")"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -61,6 +61,26 @@ TEST(TableTest, UnitsRoundTripThroughTheCsvHeaders) {
   EXPECT_EQ(merged.at("example").rows.size(), 2u);
 }
 
+// A text cell that a spreadsheet would run as a formula (= + - @, a tab or a carriage return first: OWASP's CSV
+// injection) is written with a leading ', and so is one that begins with ' itself; number columns and a lone "-" are
+// as they were. Reading the file back gives exactly the cells written (the expected lines are written out by hand).
+TEST(TableTest, TextThatASpreadsheetWouldRunIsWrittenQuotedAndReadBackAsItWas) {
+  Table t("example", {{"scene", kText}, {"value", "m"}});
+  for (const char* name : {"=HYPERLINK(\"x\")", "+1", "-2", "@SUM(A1)", "'quoted", "\tlead", "-", "plain"})
+    t.rows.push_back({name, "-1.5"});
+  const FreshFolder dir;
+  writeTables({{"example", t}}, dir.path());
+  std::ifstream in(dir.path() / "data" / "example.csv");
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str(),
+            "scene,value [m]\n\"'=HYPERLINK(\"\"x\"\")\",-1.5\n'+1,-1.5\n'-2,-1.5\n'@SUM(A1),-1.5\n''quoted,-1.5\n"
+            "'\tlead,-1.5\n-,-1.5\nplain,-1.5\n");
+  const TableSet read = readTables(dir.path());
+  ASSERT_EQ(read.count("example"), 1u);
+  EXPECT_EQ(read.at("example").rows, t.rows);
+}
+
 TEST(TableTest, AppendRefusesTheSameColumnInAnotherUnit) {
   TableSet into = {{"offset", Table("offset", {{"offset_over_r", "-"}})}};
   const TableSet from = {{"offset", Table("offset", {{"offset_over_r", "m"}})}};

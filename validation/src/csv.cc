@@ -1,6 +1,7 @@
 #include "crankcheck/validation/csv.h"
 
 #include <charconv>
+#include <string_view>
 #include <stdexcept>
 
 #include "crankcheck/validation/campaign.h"
@@ -18,6 +19,22 @@ std::string csvField(const std::string& field) {
   std::string out = "\"";
   for (char c : field) out += c == '"' ? std::string("\"\"") : std::string(1, c);
   return out + "\"";
+}
+
+// A text cell as a spreadsheet will not run it: a cell that begins with = + - @ (a formula), a tab or a carriage return
+// gets a leading ' (OWASP's "CSV injection"), and so does one that begins with ' itself, so that parseCell's removal
+// of one leading ' gives back exactly what was written. A lone "-" or "+" (an empty value's mark) is no formula and
+// stays as it is. Number columns are never touched: a number's "-1.5" is a number to every reader.
+std::string protectText(std::string text) {
+  if (text.empty() || text == "-" || text == "+") return text;
+  if (std::string_view("=+-@'\t\r").find(text.front()) != std::string_view::npos) text.insert(text.begin(), '\'');
+  return text;
+}
+
+// What protectText wrote, read back: one leading ' removed.
+std::string unprotectText(std::string text) {
+  if (!text.empty() && text.front() == '\'') text.erase(text.begin());
+  return text;
 }
 
 }  // namespace
@@ -85,7 +102,7 @@ std::string joinHeaders(const std::vector<Column>& columns) {
 // A CSV field as a cell of `column`: text as it is; a number read back exactly (std::from_chars reads what
 // formatNumber wrote, nan and inf too); an empty number field an empty cell.
 Cell parseCell(const Column& column, std::string field, const std::string& source) {
-  if (column.text) return field;
+  if (column.text) return unprotectText(std::move(field));
   if (field.empty()) return {};
   double x = 0.0;
   const char* first = field.data();
@@ -104,7 +121,8 @@ std::string formatCsv(const Table& table) {
   text += "\n";
   for (size_t r = 0; r < table.size(); ++r) {
     const std::vector<std::string> row = table.formatRow(r);
-    for (size_t i = 0; i < row.size(); ++i) text += (i ? "," : "") + csvField(row[i]);
+    for (size_t i = 0; i < row.size(); ++i)
+      text += (i ? "," : "") + csvField(table.columns()[i].text ? protectText(row[i]) : row[i]);
     text += "\n";
   }
   return text;
@@ -136,6 +154,8 @@ Table parseTable(const std::string& name, std::vector<std::vector<std::string>> 
     if (records[i].size() != table.columns().size())
       throw std::runtime_error(source + ": a row has " + std::to_string(records[i].size()) + " fields, the header " +
                                std::to_string(table.columns().size()));
+    for (size_t c = 0; c < records[i].size(); ++c)
+      if (table.columns()[c].text) records[i][c] = unprotectText(std::move(records[i][c]));
     table.rows.push_back(std::move(records[i]));
   }
   return table;

@@ -131,6 +131,10 @@ nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, co
   return j;
 }
 
+nlohmann::ordered_json balanceResolutionToJson(const BalanceResolution& resolution) {
+  return {{"force", resolution.force}, {"moment", resolution.moment}};
+}
+
 nlohmann::ordered_json balanceToJson(const std::vector<BalanceRow>& rows, bool axial) {
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const BalanceRow& row : rows) {

@@ -102,7 +102,14 @@ std::string runOnce(const GradeProgram& program, const std::string& input, size_
                            (r.exit_status >= 0 ? " with status " + std::to_string(r.exit_status) : std::string()) +
                            ", but its output was still open " + formatNumber(call.timeout_seconds) +
                            " s after it started: held by a process it left behind outside its process group (a setsid "
-                           "child, which crankcheck cannot end); a program must end every process it starts");
+                           "child" + (r.left_behind > 0 ? ", which crankcheck ended" : ", out of crankcheck's reach here") +
+                           "); a program must end every process it starts");
+  if (r.left_behind > 0)
+    throw EnvironmentError(name + ": " + what + ": exited" +
+                           (r.exit_status >= 0 ? " with status " + std::to_string(r.exit_status) : std::string()) +
+                           " but left " + std::to_string(r.left_behind) + (r.left_behind == 1 ? " process" : " processes") +
+                           " running outside its process group (a setsid child or a daemon; crankcheck ended " +
+                           (r.left_behind == 1 ? "it" : "them") + "); a program must end every process it starts");
   if (r.timed_out && isCompleteAnswer(r.out, requests, program.batch))
     throw EnvironmentError(name + ": " + what + ": answered completely but did not exit within " +
                            formatNumber(call.timeout_seconds) + " s (killed; the program must exit when its stdin ends)");

@@ -415,23 +415,22 @@ void OutputFolder::install(const std::string& kind) {
   installed_ = true;
   staging_.clear();
   created_parents_.clear();
-  if (!old_.empty()) removeOld(old_);
+  if (!old_.empty()) removePreviousReport(old_, target_);
   old_.clear();
 }
 
-void OutputFolder::removeOld(const fs::path& old_folder) {
+fs::path removePreviousReport(const fs::path& old_folder, const fs::path& target) {
   // Only a plain file the old manifest lists, as it records it, is removed (then the manifest and the emptied
   // folders); anything else stays, and is named.
-  std::vector<std::string> kept;
+  std::string unread;  // why the manifest could not be read: then nothing is removed
   try {
     const FolderManifest manifest = readFolderManifest(old_folder);
     struct stat st {};
-    for (const ManifestFile& f : manifest.files)
-      if (!removeIfAsRecorded(old_folder, f) && ::lstat((old_folder / f.path).c_str(), &st) == 0) kept.push_back(f.path);
+    for (const ManifestFile& f : manifest.files) removeIfAsRecorded(old_folder, f);
     if (::lstat((old_folder / kManifestName).c_str(), &st) == 0 && S_ISREG(st.st_mode))
       ::unlink((old_folder / kManifestName).c_str());
   } catch (const std::runtime_error& e) {
-    std::cerr << "crankcheck: warning: " << e.what() << ": nothing of the previous report was removed\n";
+    unread = e.what();
   }
   std::error_code ec;
   std::vector<fs::path> dirs;
@@ -440,14 +439,35 @@ void OutputFolder::removeOld(const fs::path& old_folder) {
     if (it->symlink_status(ec).type() == fs::file_type::directory) dirs.push_back(it->path());
   std::sort(dirs.begin(), dirs.end(), [](const fs::path& a, const fs::path& b) { return a.string() > b.string(); });
   for (const fs::path& d : dirs) ::rmdir(d.c_str());
-  if (::rmdir(old_folder.c_str()) != 0 && errno != ENOENT) {
-    std::string named;
-    for (size_t i = 0; i < kept.size() && i < 3; ++i) named += (i ? ", " : " (") + quotePath(kept[i]);
-    if (!kept.empty()) named += kept.size() > 3 ? ", ...)" : ")";
-    std::cerr << "crankcheck: warning: " << quotePath(old_folder)
-              << ": the previous report was kept there: it holds files crankcheck did not write or that changed since"
-              << named << "\n";
+  if (::rmdir(old_folder.c_str()) == 0 || errno == ENOENT) return {};
+  std::vector<std::string> kept;  // what remains but folders, in order
+  for (auto it = fs::recursive_directory_iterator(old_folder, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec))
+    if (it->symlink_status(ec).type() != fs::file_type::directory)
+      kept.push_back(it->path().lexically_relative(old_folder).generic_string());
+  std::sort(kept.begin(), kept.end());
+  // What remains is the user's: moved from the hidden staging name to one that says what it is, never over a path.
+  fs::path kept_at = old_folder;
+  const fs::path normal = normalTarget(target);
+  for (int i = 1; i <= 99; ++i) {
+    const fs::path visible = normal.string() + ".previous" + (i == 1 ? "" : "-" + std::to_string(i));
+    if (::renameat2(AT_FDCWD, old_folder.c_str(), AT_FDCWD, visible.c_str(), RENAME_NOREPLACE) == 0) {
+      kept_at = visible;
+      break;
+    }
+    if (errno != EEXIST) break;
   }
+  std::string named;
+  for (size_t i = 0; i < kept.size() && i < 3; ++i) named += (i ? ", " : " (") + quotePath(kept[i]);
+  if (!kept.empty()) named += kept.size() > 3 ? ", ...)" : ")";
+  std::cerr << "crankcheck: warning: " << quotePath(kept_at) << ": the previous report of " << quotePath(target)
+            << " was kept there"
+            << (kept_at == old_folder ? " (no free name " + quotePath(normal.string() + ".previous") + " beside it)" : "")
+            << ": "
+            << (unread.empty() ? "it holds files crankcheck did not write or that changed since" + named
+                               : "its manifest cannot be read (" + escapeText(unread) + "), so nothing of it was removed")
+            << "\n";
+  return kept_at;
 }
 
 void OutputFolder::abandon() {
@@ -459,7 +479,7 @@ void OutputFolder::abandon() {
     for (auto it = created_parents_.rbegin(); it != created_parents_.rend(); ++it) ::rmdir(it->c_str());
     created_parents_.clear();
   } else if (installed_ && !old_.empty()) {
-    removeOld(old_);
+    removePreviousReport(old_, target_);
     old_.clear();
   }
 }

@@ -4,6 +4,8 @@
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
+#include <dirent.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -11,10 +13,12 @@
 #include <pthread.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <map>
 #include <mutex>
 #include <set>
@@ -35,6 +39,62 @@ std::mutex& runningMutex() {
 std::set<pid_t>& runningPids() {
   static std::set<pid_t> pids;
   return pids;
+}
+
+std::atomic<bool>& reaping() {
+  static std::atomic<bool> on{false};
+  return on;
+}
+
+// This process's children that no call started (their pids not in runningPids): what programs left behind, handed
+// to this process as their reaper. Read from /proc/PID/stat (the parent's pid is the field after the name, which is
+// in parentheses and may hold anything: read after the last ')'). Under runningMutex, so that a child being
+// spawned is already listed.
+std::vector<pid_t> findLeftBehind() {
+  std::vector<pid_t> found;
+  const pid_t self = ::getpid();
+  DIR* proc = ::opendir("/proc");
+  if (proc == nullptr) return found;
+  while (const dirent* entry = ::readdir(proc)) {
+    char* end = nullptr;
+    const long pid = std::strtol(entry->d_name, &end, 10);
+    if (pid <= 0 || *end != '\0' || runningPids().count(static_cast<pid_t>(pid))) continue;
+    std::ifstream in(std::string("/proc/") + entry->d_name + "/stat");
+    std::string stat;
+    std::getline(in, stat);
+    const size_t close = stat.rfind(')');
+    if (close == std::string::npos) continue;
+    char state = 0;
+    long parent = 0;
+    if (std::sscanf(stat.c_str() + close + 1, " %c %ld", &state, &parent) == 2 && parent == self)
+      found.push_back(static_cast<pid_t>(pid));
+  }
+  ::closedir(proc);
+  return found;
+}
+
+// Ends (SIGKILL to the process and to its group: a setsid child leads one) and reaps every process left behind;
+// what they started in turn comes to this process as they end, so the scan repeats until it finds none (at most 64
+// rounds: a fork bomb is not waited on without a limit). Returns how many were ended.
+int endLeftBehind() {
+  int ended = 0;
+  for (int round = 0; round < 64; ++round) {
+    std::vector<pid_t> found;
+    {
+      std::lock_guard<std::mutex> lock(runningMutex());
+      found = findLeftBehind();
+      for (pid_t pid : found) {
+        ::kill(pid, SIGKILL);
+        ::kill(-pid, SIGKILL);
+      }
+    }
+    if (found.empty()) break;
+    for (pid_t pid : found)
+      while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
+      }
+    ended += static_cast<int>(found.size());
+  }
+  return ended;
 }
 
 bool isExecutableFile(const fs::path& path) {
@@ -236,6 +296,7 @@ ProgramResult RunningProgram::wait() {
     runningPids().erase(pid_);
   }
   pid_ = -1;
+  if (reaping()) result.left_behind = endLeftBehind();
   if (WIFEXITED(status)) result.exit_status = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
   return result;
@@ -306,8 +367,17 @@ RunningProgram startProgram(const ProgramCall& call) {
 ProgramResult runProgram(const ProgramCall& call) { return startProgram(call).wait(); }
 
 void killRunningPrograms() {
-  std::lock_guard<std::mutex> lock(runningMutex());
-  for (pid_t pid : runningPids()) ::kill(-pid, SIGKILL);  // each runs in a process group of its own
+  {
+    std::lock_guard<std::mutex> lock(runningMutex());
+    for (pid_t pid : runningPids()) ::kill(-pid, SIGKILL);  // each runs in a process group of its own
+  }
+  if (reaping()) endLeftBehind();
+}
+
+bool reapLeftBehindProcesses() {
+  if (::prctl(PR_SET_CHILD_SUBREAPER, 1) != 0) return false;
+  reaping() = true;
+  return true;
 }
 
 }  // namespace crankcheck::validation

@@ -33,7 +33,7 @@ int chooseIntegrator(FreeRunChoices& choices, const std::string& integrator, dou
   return taken;
 }
 
-std::vector<MotionRun> calcMotion(const Mechanism& m, const FreeRunChoices& choices) {
+std::vector<MotionRun> calcMotion(const Mechanism& m, const FreeRunChoices& choices, std::vector<SatOut>* sat_out) {
   if (!m.flywheel_inertia)
     throw std::invalid_argument("[flywheel].inertia: missing key (the free run needs the flywheel inertia)");
   if (!(m.machine.speed > 0.0)) throw std::invalid_argument("[engine].speed_rpm: must be > 0 for the free run (the release speed)");
@@ -57,6 +57,13 @@ std::vector<MotionRun> calcMotion(const Mechanism& m, const FreeRunChoices& choi
     if (!engine.simulate) continue;
     const auto chosen = choices.find(engine.name);
     FreeRunSettings run = chosen != choices.end() ? chosen->second : defaults.at(engine.name);
+    try {
+      (void)engine.build(m);  // an engine that cannot hold its accuracy on m is found out before it runs
+    } catch (const std::invalid_argument& e) {
+      if (!sat_out) throw std::invalid_argument(engine.name + ": " + e.what());
+      sat_out->push_back({engine.name, m.name, e.what()});
+      continue;
+    }
     try {
       run.gravity = true;
       FreeRunResult with = engine.simulate(m, w0, run);

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "crankcheck/scene/text.h"  // escapeText, quoteText, formatOneLine: text from outside in messages
+
 namespace crankcheck {
 
 /// Bad input or usage: a bad scene, flag or output folder. The message is "FILE: KEY: rule" or "--flag: rule";
@@ -33,20 +35,8 @@ class UncomputableError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// A path as it appears in messages: in double quotes, with backslash, quote and control characters (a newline
-/// in a folder name) escaped, so that every message stays one line and shows exactly which path is meant.
+/// A path as it appears in messages: quoteText of it (in double quotes, backslash, quote, control and bidirectional
+/// characters escaped), so that every message stays one line and shows exactly which path is meant.
 std::string quotePath(const std::filesystem::path& path);
-
-/// Text from outside (a program's output or stderr) as it appears in messages: escapeText in double quotes.
-std::string quoteText(const std::string& text);
-
-/// Every byte that could act on a terminal or cut a message shown as an escape: backslash and double quote as \\ and
-/// \", newline, carriage return and tab as \n, \r, \t, every other control byte (C0, DEL, a NUL) and every byte that is
-/// not part of valid UTF-8 or encodes a C1 control (U+0080..U+009F) as \xHH. UTF-8 letters stay as they are.
-std::string escapeText(const std::string& text);
-
-/// A message as one line, as every refusal is printed: an engine's exception (Simbody's spans several lines) with
-/// its line breaks and the indentation after them as "; " (as " " after a colon).
-std::string formatOneLine(const std::string& message);
 
 }  // namespace crankcheck

@@ -34,4 +34,8 @@ nlohmann::ordered_json motionRunToJson(const MotionRun& run);
 
 nlohmann::ordered_json balanceToJson(const std::vector<BalanceRow>& rows, bool axial);
 
+/// What each engine's DFT resolves (calcBalanceResolution), as `balance --format json` prints it: {"force" [N],
+/// "moment" [N m]}.
+nlohmann::ordered_json balanceResolutionToJson(const BalanceResolution& resolution);
+
 }  // namespace crankcheck::validation

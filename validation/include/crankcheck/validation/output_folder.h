@@ -77,6 +77,15 @@ void checkNewFile(const std::filesystem::path& file, const std::string& flag,
 /// @throws EnvironmentError "PATH: cannot write: reason" (disk full, write refused, ...).
 void writeNewFile(const std::filesystem::path& path, std::string_view content);
 
+/// The previous report, moved aside to `old_folder` by an install into `target`, removed as its manifest lists it:
+/// only a plain file as recorded, then the manifest and the emptied folders. What remains (a file added or changed
+/// since the folder was checked, or everything when its manifest cannot be read) is never removed: the folder is
+/// renamed to TARGET.previous (TARGET.previous-2, ... up to -99; no existing path is replaced) beside the target,
+/// where it can be found, and a warning on stderr names that path and up to three of the files kept. It stays at
+/// `old_folder` (a hidden name) only when no such name is free, and the warning then says so.
+/// @return where the remains are (empty when everything was removed).
+std::filesystem::path removePreviousReport(const std::filesystem::path& old_folder, const std::filesystem::path& target);
+
 /// An output folder being written: checked on construction, staged, installed or abandoned.
 class OutputFolder {
  public:
@@ -107,8 +116,6 @@ class OutputFolder {
   void abandon();
 
  private:
-  void removeOld(const std::filesystem::path& old_folder);
-
   std::mutex mutex_;
   std::filesystem::path target_;
   std::string flag_;

@@ -37,9 +37,21 @@ struct ProgramResult {
   bool output_limit_exceeded = false;  ///< killed because stdout passed the call's output_limit
   bool input_refused = false;          ///< it closed its stdin (or ended) before reading all of the input
   /// It had exited by the timeout, but its stdout or stderr was still open: held by a process it left behind outside
-  /// its process group (a setsid child), which crankcheck cannot end. timed_out is set too.
+  /// its process group (a setsid child). timed_out is set too.
   bool left_output_open = false;
+  /// Processes still running when the call returned that crankcheck ended (SIGKILL) as left behind by a program:
+  /// a setsid child or a daemon, out of reach of its process group. Counted only where reapLeftBehindProcesses
+  /// was called (the CLI); a call that runs beside others may count what another call's program left.
+  int left_behind = 0;
 };
+
+/// Makes this process the reaper of whatever its programs leave behind (Linux PR_SET_CHILD_SUBREAPER): a process a
+/// program started and did not end (a setsid child, a daemon) becomes this process's child when the program ends, and
+/// every wait() ends such processes (SIGKILL, then reaped) before it returns, counting them in
+/// ProgramResult::left_behind; killRunningPrograms ends them too. The CLI calls it once at start. A library user (the
+/// Python module, in the user's interpreter) does not: there such a process outlives the call, out of reach.
+/// @return false when the kernel refuses (before Linux 3.4): then nothing is reaped, as in a library.
+bool reapLeftBehindProcesses();
 
 /// The full path of the executable file `name` on PATH (or `name` itself when it contains a '/' and is
 /// executable); empty when there is none. Reads only the file system: takes microseconds.

@@ -10,6 +10,7 @@
 
 #include "crankcheck/scene/free_run.h"
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/engines.h"
 
 namespace crankcheck::validation {
 
@@ -41,10 +42,13 @@ struct MotionRun {
 };
 
 /// The free run of m at its speed: the energy integral first, then every engine that simulates in the registry's
-/// order, each with its choice from `choices` (or its defaults).
+/// order, each with its choice from `choices` (or its defaults). `sat_out`: null, an engine whose build refuses m
+/// (Engine::build: a rule of its own, or an accuracy it cannot hold there) is an error "ENGINE: reason"; given, it
+/// sits out, added there with its reason, and the others run (the energy integral always does).
 /// @throws std::invalid_argument "KEY: rule" for a scene the free run cannot use (no [flywheel].inertia, no speed,
 ///         a speed the energy integral cannot reach round) or "ENGINE: what" where an engine refuses it;
 ///         std::runtime_error "ENGINE: LIBRARY could not run: what" when an engine's run fails.
-std::vector<MotionRun> calcMotion(const Mechanism& m, const FreeRunChoices& choices);
+std::vector<MotionRun> calcMotion(const Mechanism& m, const FreeRunChoices& choices,
+                                  std::vector<SatOut>* sat_out = nullptr);
 
 }  // namespace crankcheck::validation
