@@ -20,7 +20,7 @@
 namespace crankcheck {
 namespace {
 
-using validation::kEps;
+using testing::kEps;
 
 // sqrt(1 - lambda^2 sin^2) x (1 / sqrt(1 - lambda^2 sin^2)) = 1: the product of the two cosine series (a
 // convolution of their coefficients) has constant term 1 and no harmonics. Tolerance: each coefficient is summed to

@@ -21,11 +21,12 @@
 #include "crankcheck/analytic/torsion.h"
 #include "crankcheck/scene/scene_file.h"
 #include "../support/crankshaft_scene.h"
+#include "../support/test_numbers.h"
 
 namespace crankcheck::analytic {
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+using testing::kEps;
 
 Mechanism loadWithCrankshaft(const std::string& scene, const std::string& crankshaft_table) {
   return testing::loadSceneWithCrankshaft(std::filesystem::path(CRANKCHECK_SCENES_DIR) / scene, crankshaft_table);

@@ -20,18 +20,14 @@
 #include "crankcheck/validation/scales.h"
 #include "fresh_folder.h"
 #include "run_cli.h"
+#include "../support/read_file.h"
 
 namespace crankcheck {
 namespace {
 
 using RunResult = validation::ProgramResult;
 
-std::string readFile(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using testing::readFile;
 
 // Runs the CLI with the arguments of `args` (split at spaces; no argument here holds one), without a shell.
 RunResult run(const std::string& args) {

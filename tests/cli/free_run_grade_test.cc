@@ -8,6 +8,7 @@
 #include <string>
 
 #include "run_cli.h"
+#include "../support/read_file.h"
 
 #if !defined(CRANKCHECK_FREE_RUN_FAKE) || !defined(CRANKCHECK_SCENES_DIR)
 #error "the build defines CRANKCHECK_FREE_RUN_FAKE and CRANKCHECK_SCENES_DIR"
@@ -21,12 +22,7 @@ using testing::runCrankcheck;
 
 const std::string kSingle = std::string(CRANKCHECK_SCENES_DIR) + "/single_cylinder.toml";
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::readFile;
 
 // A run at constant speed keeps the protocol but not the physics: the energy read at phi = 2 pi k does not change
 // (E(2 pi k) is the same state each turn), so its trend passes; its delta is 0 against the exact free run's, so delta

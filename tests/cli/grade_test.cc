@@ -19,6 +19,7 @@
 #include "run_cli.h"
 #include "crankcheck/validation/grade.h"
 #include "crankcheck/validation/report.h"
+#include "../support/read_file.h"
 
 #if !defined(CRANKCHECK_FAKE_PROGRAM) || !defined(CRANKCHECK_GRADE_EXAMPLES_DIR) || !defined(CRANKCHECK_ANALYTIC_PROGRAM)
 #error "the build defines CRANKCHECK_FAKE_PROGRAM, CRANKCHECK_GRADE_EXAMPLES_DIR and CRANKCHECK_ANALYTIC_PROGRAM"
@@ -30,12 +31,7 @@ namespace fs = std::filesystem;
 using testing::FreshFolder;
 using testing::runCrankcheck;
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::readFile;
 
 using validation::GradeFailureRow;
 using validation::GradeLambdaRow;

@@ -20,18 +20,14 @@
 
 #include "crankcheck/validation/output_folder.h"
 #include "run_cli.h"
+#include "../support/read_file.h"
 
 namespace crankcheck {
 namespace {
 namespace fs = std::filesystem;
 using validation::ProgramResult;
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using testing::readFile;
 
 void writeFile(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 

@@ -28,6 +28,7 @@
 #include "campaign_fixture.h"
 #include "run_cli.h"
 #include "train_report.h"
+#include "../support/read_file.h"
 
 namespace crankcheck {
 namespace {
@@ -35,12 +36,7 @@ namespace fs = std::filesystem;
 using validation::Table;
 using validation::TableSet;
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using testing::readFile;
 
 // The rows of `table` as the CSV file has them (typed or not: Table::formatRow).
 std::vector<std::vector<std::string>> listCsvRows(const Table& table) {

@@ -19,17 +19,13 @@
 #include "campaign_fixture.h"
 #include "run_cli.h"
 #include "train_report.h"
+#include "../support/read_file.h"
 
 namespace crankcheck {
 namespace {
 namespace fs = std::filesystem;
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using testing::readFile;
 
 using RunResult = validation::ProgramResult;
 

@@ -36,7 +36,7 @@ namespace crankcheck {
 namespace {
 
 using testing::CaseSpec;
-using validation::kEps;
+using testing::kEps;
 
 
 // Worst agreement seen per quantity, printed at exit with CRANKCHECK_PRINT_RATIOS=1 (docs/contributing.md's table):

@@ -20,11 +20,12 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
 #include "crankcheck/validation/engines.h"
+#include "../support/test_numbers.h"
 
 namespace crankcheck {
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+using testing::kEps;
 
 // The mean of Simbody's J over a turn by the trapezoidal sum (exact for a smooth periodic function up to its Fourier
 // terms of order N: geometric convergence), N doubled from 16 until two sums agree to 4 eps.

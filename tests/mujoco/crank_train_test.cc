@@ -16,13 +16,14 @@
 #include "crankcheck/mujoco_models/crank_train.h"
 #include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
 #include "crankcheck/scene/scene_file.h"
+#include "../support/test_numbers.h"
 
 namespace crankcheck {
 namespace {
 
 using mujoco_models::KCrankMujocoModel;
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+using testing::kEps;
 
 Mechanism loadExample(const char* name) { return loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / name); }
 

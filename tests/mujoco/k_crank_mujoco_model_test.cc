@@ -10,6 +10,7 @@
 
 #include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
 #include "crankcheck/scene/mechanism.h"
+#include "../support/test_numbers.h"
 
 namespace crankcheck {
 namespace {
@@ -17,7 +18,7 @@ namespace {
 using mujoco_models::KCrankMujocoModel;
 using mujoco_models::Variant;
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+using testing::kEps;
 
 // A standing single cylinder of car size at lambda (crank 50 mm).
 Mechanism single(double lambda, double rpm, double gamma_deg = 90.0) {

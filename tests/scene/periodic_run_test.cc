@@ -11,11 +11,12 @@
 #include <cstdlib>
 #include <limits>
 #include <vector>
+#include "../support/test_numbers.h"
 
 namespace crankcheck {
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+using testing::kEps;
 
 // y -> M y + b on (x_0, x_1, x_0', x_1'): two modes, rotations by 0.7 and 2.1 rad a cycle contracted to 0.97 and 0.5
 // (a lightly damped train's slow mode and a well damped one), mixed by a fixed invertible matrix.

@@ -28,11 +28,12 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/simbody_models/k_crank_gravity_model.h"
 #include "crankcheck/simbody_models/k_crank_model.h"
+#include "../support/test_numbers.h"
 
 namespace crankcheck::simbody_models {
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+using testing::kEps;
 constexpr double kPi = std::numbers::pi;
 
 // ---------------------------------------------------------------------------------------------------------------

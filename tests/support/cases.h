@@ -12,10 +12,9 @@
 
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/validation/scales.h"
+#include "test_numbers.h"  // testing::kEps
 
 namespace crankcheck::testing {
-
-using validation::kEps;
 
 /// The sweep values of the issues: lambda 0.05 .. 0.4 plus the hard values, the cylinder angles.
 const std::vector<double>& sweepLambdas();      // 1e-6, 0.05, 0.1, ..., 0.4, 0.9, 0.999

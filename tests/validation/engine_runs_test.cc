@@ -16,11 +16,12 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/engine_runs.h"
 #include "crankcheck/validation/engines.h"
+#include "../support/test_numbers.h"
 
 namespace crankcheck::validation {
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+using testing::kEps;
 
 Mechanism loadWithoutGas(const char* stem) {
   Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / (std::string(stem) + ".toml"));

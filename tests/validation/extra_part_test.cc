@@ -20,6 +20,7 @@
 #include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/runner.h"
 #include "fresh_folder.h"
+#include "../support/read_file.h"
 
 namespace crankcheck::validation {
 namespace {
@@ -64,12 +65,7 @@ class ExtraPart final : public Part {
 
 const ExtraPart kPart;
 
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::readFile;
 
 TEST(ExtraPartTest, IsNumberedAfterTheOthersAndChosenByItsKey) {
   const std::vector<std::string> keys = listPartKeys();

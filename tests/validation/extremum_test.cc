@@ -7,11 +7,12 @@
 
 #include <cmath>
 #include <limits>
+#include "../support/test_numbers.h"
 
 namespace crankcheck::validation {
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+using testing::kEps;
 
 // a sin(n phi + c) + b: max |f| = |a| + |b| (b same sign side), at phi = (pi/2 - c)/n + 2 pi j / n.
 TEST(ExtremumTest, SingleHarmonicMaximumIsExactOnEveryGrid) {

@@ -23,11 +23,12 @@
 #include "crankcheck/validation/engine_runs.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/run_measures.h"
+#include "../support/test_numbers.h"
 
 namespace crankcheck::validation {
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
+using testing::kEps;
 
 Mechanism loadSingle() {
   const Mechanism m = loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml");

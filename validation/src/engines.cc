@@ -23,12 +23,12 @@ std::vector<Engine>& extraEngines() {
   static std::vector<Engine> extra;
   return extra;
 }
-bool registry_built = false;
+bool engine_registry_built = false;
 
 }  // namespace
 
 void registerExtraEngine(Engine engine) {
-  if (registry_built) throw std::logic_error("registerExtraEngine: the engine registry is already in use");
+  if (engine_registry_built) throw std::logic_error("registerExtraEngine: the engine registry is already in use");
   for (const Engine& e : extraEngines())
     if (e.name == engine.name) throw std::logic_error("registerExtraEngine: engine \"" + engine.name + "\" twice");
   extraEngines().push_back(std::move(engine));
@@ -39,7 +39,7 @@ namespace {
 // Every registered engine, built on first use.
 const std::vector<Engine>& listRegisteredEngines() {
   static const std::vector<Engine> engines = [] {
-    registry_built = true;
+    engine_registry_built = true;
     std::vector<Engine> all;
     // One line per engine folder. A fourth engine (e.g. dart_models/) adds its line here.
     for (Engine& e : analytic::describeEngines()) all.push_back(std::move(e));

@@ -45,19 +45,19 @@ std::vector<const Part*>& extraParts() {
   static std::vector<const Part*> extra;
   return extra;
 }
-bool registry_built = false;
+bool part_registry_built = false;
 
 }  // namespace
 
 void registerExtraPart(const Part& part) {
-  if (registry_built) throw std::logic_error("registerExtraPart: the part registry is already in use");
+  if (part_registry_built) throw std::logic_error("registerExtraPart: the part registry is already in use");
   extraParts().push_back(&part);
 }
 
 const std::vector<const Part*>& listParts() {
 #define CRANKCHECK_LIST_PART(name) &parts::name(),
   static const std::vector<const Part*> all = [] {
-    registry_built = true;
+    part_registry_built = true;
     std::vector<const Part*> out = {CRANKCHECK_REPORT_PARTS(CRANKCHECK_LIST_PART)};
     for (const Part* extra : extraParts()) {  // a test build's (registerExtraPart), after the others
       for (const Part* known : out)

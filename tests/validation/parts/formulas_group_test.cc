@@ -29,7 +29,7 @@ std::vector<std::string> listParagraphs(const ReportPart& part) {
 }
 
 // The paragraph that starts with `start`, or "" (the expectations on it then fail).
-std::string findParagraph(const ReportPart& part, const std::string& start) {
+std::string findParagraphStartingWith(const ReportPart& part, const std::string& start) {
   for (const std::string& p : listParagraphs(part))
     if (p.rfind(start, 0) == 0) return p;
   return "";
@@ -92,7 +92,7 @@ TEST(FormulasGroupTest, SpeedVsErrorListsEveryMethod) {
             (std::vector<std::string>{"method", "time per evaluation [ns]", "max error / energy scale [-]", "resolved"}));
   EXPECT_EQ(table->rows, (std::vector<std::vector<std::string>>{{"exact_closed_form", "45.1", "6.865e-16", "0"},
                                                                  {"fourier_order_4", "135.2", "7.283e-06", "1"}}));
-  EXPECT_NE(findParagraph(d, "Each error is the maximum over the turn").size(), 0u);
+  EXPECT_NE(findParagraphStartingWith(d, "Each error is the maximum over the turn").size(), 0u);
   EXPECT_TRUE(part.describe({}).heading.empty());
 }
 
@@ -205,7 +205,7 @@ TEST(FormulasGroupTest, ErrataReadsEachEntryByItsItemAndMeasure) {
                                                       "printed / exact - 1", "-0.375", "truncation"}));
   // U1 1.5, U2 0.2; standing single cylinder 5 %; the standing multi-cylinder worst (k = 3 four-stroke) 1.25 - 1 =
   // 25 %; lying 1 - 0.8 = 20 %.
-  EXPECT_EQ(findParagraph(d, "Eq (5) as printed"),
+  EXPECT_EQ(findParagraphStartingWith(d, "Eq (5) as printed"),
             "Eq (5) as printed: for the base rod the printed U1 is 1.5 x and U2 0.2 x the true values. A standing single "
             "cylinder hides it (Q is off by 5 % of its maximum, U1 + U2 barely changes); a standing engine whose first "
             "surviving harmonic is even (two-stroke k >= 2, four-stroke k >= 3: Q carries U1 alone) gets max |Q| 25 % "
@@ -213,7 +213,7 @@ TEST(FormulasGroupTest, ErrataReadsEachEntryByItsItemAndMeasure) {
             "layout.");
   // At lambda = 0.4: Lambda_12 37.5 %, Lambda_10 7 %, Lambda_8 1 %; at the base's 0.45 Lambda_12 50 %. The engines
   // over 1 % at 0.4, largest first (a tie by name): not k = 12 at 0.45 (50 %), not k = 3 (no row).
-  EXPECT_EQ(findParagraph(d, "Eq (15) is a power series"),
+  EXPECT_EQ(findParagraphStartingWith(d, "Eq (15) is a power series"),
             "Eq (15) is a power series truncated at lambda^11, so each printed Lambda_n falls short of the exact one: at "
             "lambda = 0.4, the paper's largest crank ratio, Lambda_12 by 37.5 % (still 50 % at the base's lambda = "
             "0.45), Lambda_10 by 7 %, Lambda_8 by 1 % (data/eq15_coefficients.csv). 'A close approximation' holds for "
@@ -221,11 +221,11 @@ TEST(FormulasGroupTest, ErrataReadsEachEntryByItsItemAndMeasure) {
             "/ max |Q| at lambda = 0.4 is k = 12 two-stroke 37.5 %, k = 5 four-stroke 7 %, k = 5 two-stroke 7 %; for "
             "k = 7, 9, 11 the table holds no surviving harmonic and gives Q = 0 (data/eq15_engines.csv, every engine).");
   // 21 printed, 20 rounded: 1 misprint.
-  EXPECT_EQ(findParagraph(d, "Eq (15) prints"),
+  EXPECT_EQ(findParagraphStartingWith(d, "Eq (15) prints"),
             "Eq (15) prints 21 coefficients; 20 of them are the exact rationals rounded to six decimals, the other 1 is "
             "a misprint (Lambda_2, lambda^9).");
   // Two of the six engines have rows: two-stroke first.
-  EXPECT_EQ(findParagraph(d, "Section 7 says"),
+  EXPECT_EQ(findParagraphStartingWith(d, "Section 7 says"),
             "Section 7 says that 'for example' k = 7 first gives a non-zero value at Lambda_14. The first surviving "
             "harmonic order, from the exact integer analysis: k = 7 two-stroke: 14, k = 7 four-stroke: 14.");
 }
@@ -238,13 +238,13 @@ TEST(FormulasGroupTest, ErrataLeavesOutWhatItsTablesDoNotHold) {
   tables.erase("eq5_layouts");
   ReportPart d = part.describe(tables);
   EXPECT_EQ(d.heading, part.heading());
-  EXPECT_EQ(findParagraph(d, "Eq (5) as printed"), "");
-  EXPECT_NE(findParagraph(d, "Eq (15) prints").size(), 0u);
+  EXPECT_EQ(findParagraphStartingWith(d, "Eq (5) as printed"), "");
+  EXPECT_NE(findParagraphStartingWith(d, "Eq (15) prints").size(), 0u);
   // Without eq15_coefficients no base lambda: the sentence keeps the paper's lambda alone.
   tables = makeErrataTables();
   tables.erase("eq15_coefficients");
   d = part.describe(tables);
-  const std::string eq15 = findParagraph(d, "Eq (15) is a power series");
+  const std::string eq15 = findParagraphStartingWith(d, "Eq (15) is a power series");
   EXPECT_NE(eq15.find("Lambda_12 by 37.5 %, Lambda_10 by 7 %"), std::string::npos) << eq15;
   // An empty errata table: the part is shown, its table empty, only the sentences that need no row.
   tables = makeErrataTables();
@@ -253,10 +253,10 @@ TEST(FormulasGroupTest, ErrataLeavesOutWhatItsTablesDoNotHold) {
   EXPECT_EQ(d.heading, part.heading());
   ASSERT_NE(findTableBlock(d), nullptr);
   EXPECT_TRUE(findTableBlock(d)->rows.empty());
-  EXPECT_EQ(findParagraph(d, "Eq (5) as printed"), "");
-  EXPECT_EQ(findParagraph(d, "Eq (15)"), "");
-  EXPECT_EQ(findParagraph(d, "Section 7"), "");
-  EXPECT_NE(findParagraph(d, "Eq (12) refers").size(), 0u);
+  EXPECT_EQ(findParagraphStartingWith(d, "Eq (5) as printed"), "");
+  EXPECT_EQ(findParagraphStartingWith(d, "Eq (15)"), "");
+  EXPECT_EQ(findParagraphStartingWith(d, "Section 7"), "");
+  EXPECT_NE(findParagraphStartingWith(d, "Eq (12) refers").size(), 0u);
 }
 
 // ---- flywheel: Norton's error, Simbody's agreement -------------------------------------------------------------
@@ -286,15 +286,15 @@ TEST(FormulasGroupTest, FlywheelReadsNortonsErrorAndSimbodysAgreement) {
   const ReportPart d = part.describe(makeFlywheelTables());
   EXPECT_EQ(d.heading, part.heading());
   EXPECT_EQ(part.title(), "Flywheel sizing: the exact inertia, Norton's method, Simbody's run");
-  EXPECT_EQ(findParagraph(d, "car at C = 0.01"),
+  EXPECT_EQ(findParagraphStartingWith(d, "car at C = 0.01"),
             "car at C = 0.01: the exact flywheel is 0.2 kg m^2, Norton's 0.18 kg m^2 (-10 %), which really gives delta = "
             "0.011.");
   // |error| 5 % at k = 1 (best), 20 % at k = 4 (worst).
-  EXPECT_NE(findParagraph(d, "On the base scene's parts")
+  EXPECT_NE(findParagraphStartingWith(d, "On the base scene's parts")
                 .find("Norton's inertia is off by 5 % at best (k = 1, 3000 rpm) and 20 % at worst (k = 4, 3000 rpm)"),
             std::string::npos);
   // 0.0101 / 0.01 - 1 = 0.01 at the one point Simbody ran (the empty cell is no point).
-  EXPECT_EQ(findParagraph(d, "Simbody's run"),
+  EXPECT_EQ(findParagraphStartingWith(d, "Simbody's run"),
             "Simbody's run agrees with the exact energy integral's delta to 0.01 (relative) at every point it was run.");
 }
 
@@ -314,7 +314,7 @@ TEST(FormulasGroupTest, FlywheelNeedsItsThreeTables) {
   const ReportPart d = part.describe(tables);
   EXPECT_EQ(d.heading, part.heading());
   EXPECT_EQ(d.paragraphs.size(), 1u);
-  EXPECT_NE(findParagraph(d, "car at C = 0.01").size(), 0u);
+  EXPECT_NE(findParagraphStartingWith(d, "car at C = 0.01").size(), 0u);
 }
 
 }  // namespace

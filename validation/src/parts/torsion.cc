@@ -22,6 +22,7 @@
 #include "crankcheck/analytic/torsion.h"
 #include "crankcheck/analytic/torsion_forced.h"
 #include "crankcheck/analytic/torsion_steady.h"
+#include "crankcheck/validation/commands/torsion.h"  // kTextbookOrder
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/extremum.h"
@@ -34,7 +35,6 @@
 namespace crankcheck::validation {
 namespace {
 
-constexpr double kTextbookOrder = 24.0;
 // The engines' trains in the report: a check of the figure's exact curve on the first scene at its own speed, not the
 // gate (tests/gate/torsion_test.cc holds them to 2e-6 of the twist scale at their defaults on both example scenes and
 // three speeds). At a cycle-to-cycle change of `periodicity` what is left of the transient is at most about that much

@@ -133,7 +133,7 @@ bool momentVanishes(const analytic::HarmonicSymmetry& s, bool couple) {
 // The DFT's samples per turn: harmonic N - n folds onto n; the shaking's harmonics fall geometrically with the order
 // (as the radical's series, lambda^n at most), so at 48 what folds onto orders up to 8 is below lambda^40 of the
 // primary. The full campaign's 96 halves the sampling step of the maxima's grid; both refine them (extremum.h).
-int samplesPerTurn(bool quick) { return quick ? 48 : 96; }
+int dftSamplesPerTurn(bool quick) { return quick ? 48 : 96; }
 
 // Every row of one variant of the scene (`m`, its shafts as given or cleared), judged against `sc` (the scene as
 // given).
@@ -141,7 +141,7 @@ void addVariantRows(const Mechanism& m, const std::string& scene, const Scales& 
                     std::vector<BalanceMaxRow>& maxima, std::vector<BalanceHarmonicRow>& harmonics) {
   const bool couple = hasAxialPositions(m);
   const int shafts = static_cast<int>(m.balance_shafts.size());
-  const int samples = samplesPerTurn(quick);
+  const int samples = dftSamplesPerTurn(quick);
   const double tolerance = getAngleTolerance(quick);
   std::vector<analytic::ShakingHarmonic> closed = analytic::calcShakingHarmonics(m, kOrder);
   for (int n = 1; n <= kOrder; ++n) {

@@ -94,7 +94,7 @@ constexpr double kCriticalLow = 0.25, kCriticalHigh = 1.25;
 
 // The fitness table's rows of this topic: Norton's method from 100, Holzer's from 110.
 constexpr int kNortonOrder = 100, kHolzerOrder = 110;
-const std::string kNorton = "Norton's flywheel method (13.9)";
+const std::string kNortonFlywheel = "Norton's flywheel method (13.9)";
 
 // Every table a task of this topic writes, empty (a task gives them all, so that the section has each table).
 TableSet makeTables() {
@@ -200,7 +200,7 @@ TableSet calcEngineRun(const Mechanism& m, const Engine& engine, SharedResult<Ex
     if (m.gas)
       tables.at(kFitnessTable.name())
           .getRows(kFitnessTable)
-          .push_back({m.name, kNortonOrder + 1 + static_cast<int>(&engine - listEngines().data()), kNorton, "delta",
+          .push_back({m.name, kNortonOrder + 1 + static_cast<int>(&engine - listEngines().data()), kNortonFlywheel, "delta",
                       engine.name, std::fabs(exact.norton_delta - run.delta) / run.delta,
                       "delta (" + engine.name + ")", run.delta, "-", std::nullopt, 1});
   } catch (const std::exception& e) {
@@ -217,7 +217,7 @@ TableSet calcExactTables(const Mechanism& m, SharedResult<ExactRun>& shared) {
   if (m.gas && exact.row.note.empty())
     tables.at(kFitnessTable.name())
         .getRows(kFitnessTable)
-        .push_back({m.name, kNortonOrder, kNorton, "delta", exact.row.engine,
+        .push_back({m.name, kNortonOrder, kNortonFlywheel, "delta", exact.row.engine,
                     std::fabs(exact.norton_delta - exact.row.delta) / exact.row.delta, "delta (exact)", exact.row.delta,
                     "-", std::nullopt, 1});
   return tables;
@@ -329,7 +329,7 @@ std::vector<ReportBlock> describeFlywheel(const TableSet& tables, const SceneFac
     for (const FitnessRow& f : rowsOfScene(tables, kFitnessTable, facts.scene))
       if (f.order == kNortonOrder)
         out.push_back({ReportBlock::kParagraph,
-                       kNorton + " predicts delta = E / (I_w omega^2) for this flywheel: " +
+                       kNortonFlywheel + " predicts delta = E / (I_w omega^2) for this flywheel: " +
                            formatFitness(f.max_error_rel, f.resolved) + " of the exact " + shortNumber(exact->delta, 4) +
                            " (the energy swing of the constant-speed torque; it leaves out that the speed and the "
                            "mechanism's own inertia vary)."});

@@ -47,7 +47,7 @@ const Schema<FitnessScopeRow> kFitnessScopeTable{
      textField("reason", &FitnessScopeRow::reason)}};
 
 // The formulas' names as the table prints them.
-const char* const kNorton = "Norton's two-term series (eq 13.3)";
+const char* const kNortonSeries = "Norton's two-term series (eq 13.3)";
 const char* const kEq15 = "Stanczak eq (15) as printed (Lambda_2..Lambda_12)";
 const char* const kEq5 = "Stanczak eq (5) as printed (U1, U2)";
 const char* const kTwoMass = "two-mass rod without Delta_I";
@@ -140,21 +140,21 @@ TableSet calcFitnessTables(const Mechanism& m, bool quick) {
     return analytic::calcPistonKinematics(m, analytic::calcThrowSinCos(phi, m.machine.crank_angles[j]), getPinOffset(m, j));
   };
   auto norton = [&m](double phi, int j) { return analytic::calcPistonKinematicsNorton(m, phi + m.machine.crank_angles[j]); };
-  judged.push_back({0, kNorton, nameOf(QuantityId::kPistonPosition), "r", "m", r, k,
+  judged.push_back({0, kNortonSeries, nameOf(QuantityId::kPistonPosition), "r", "m", r, k,
                     [=](double phi, int j) { return norton(phi, j).x_p; },
                     [=](double phi, int j) { return kinematics(phi, j).x_p; },
                     [](const Evaluation& e, int j) { return e.cylinders[j].x_p; }, {}, rounding(r, 1.0)});
   if (w > 0.0) {
-    judged.push_back({1, kNorton, nameOf(QuantityId::kPistonVelocity), "r omega", "m/s", r * w, k,
+    judged.push_back({1, kNortonSeries, nameOf(QuantityId::kPistonVelocity), "r omega", "m/s", r * w, k,
                       [=](double phi, int j) { return norton(phi, j).v_p; },
                       [=](double phi, int j) { return kinematics(phi, j).v_p; },
                       [](const Evaluation& e, int j) { return e.cylinders[j].v_p; }, {}, rounding(r * w, 1.0)});
-    judged.push_back({2, kNorton, nameOf(QuantityId::kPistonAcceleration), "r omega^2", "m/s^2", r * w * w, k,
+    judged.push_back({2, kNortonSeries, nameOf(QuantityId::kPistonAcceleration), "r omega^2", "m/s^2", r * w * w, k,
                       [=](double phi, int j) { return norton(phi, j).a_p; },
                       [=](double phi, int j) { return kinematics(phi, j).a_p; },
                       [](const Evaluation& e, int j) { return e.cylinders[j].a_p; }, {}, rounding(r * w * w, 1.0)});
   } else {
-    leaveOut(std::string(kNorton) + " for v_p and a_p", "the scene's speed is 0: v_p and a_p vanish ([engine].speed_rpm)");
+    leaveOut(std::string(kNortonSeries) + " for v_p and a_p", "the scene's speed is 0: v_p and a_p vanish ([engine].speed_rpm)");
   }
 
   // 2. Q's series and the paper's printed coefficients. Q's scale is its own maximum over a turn, or the energy scale
