@@ -114,10 +114,10 @@ std::string runBalance(const BalanceOptions& options) {
   std::string out;
   if (options.design > 0)
     out += "balance shafts that cancel harmonic " + std::to_string(options.design) + " of the shaking force; paste into\n" +
-           options.scene_path + ":\n\n" + tables + "\nwith them, every harmonic (the residual):\n";
+           showPath(options.scene_path) + ":\n\n" + tables + "\nwith them, every harmonic (the residual):\n";
   char line[640];
   // One block per harmonic, a row per amplitude (within 100 columns for any number of engines up to four).
-  out += "balance of " + options.scene_path + " at " + formatShortest(m.speed_rpm) + " rpm\n";
+  out += "balance of " + showPath(options.scene_path) + " at " + formatShortest(m.speed_rpm) + " rpm\n";
   out += "amplitude of each harmonic n (n times the crank speed) by the closed form and each engine's DFT;\n"
          "F [N], M [N m] about O" +
          std::string(axial ? "" : "; no moments X, Y: the scene gives no axial positions") + "\n";

@@ -7,6 +7,7 @@
 
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/scales.h"
+#include "help_format.h"
 #include "json_output.h"
 #include "scene_input.h"
 #include "crankcheck/validation/errors.h"
@@ -126,7 +127,7 @@ EvalOutput runEval(const EvalOptions& options) {
   const bool holds = std::all_of(splits.begin(), splits.end(), [](const TorqueSplit& t) { return t.holds(); });
 
   if (options.format == "table") {
-    std::string text = formatTable(m, options.scene_path, results, results_phi_deg);
+    std::string text = formatTable(m, showPath(options.scene_path), results, results_phi_deg);
     if (options.split) {
       char line[320];
       // Within 100 columns: the parts on one line, whether they add up on the next.

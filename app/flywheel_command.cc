@@ -51,16 +51,16 @@ std::string runFlywheel(const FlywheelOptions& options) {
   // One row per method: the exact sizing, Norton's, each engine's run with the exact inertia.
   char line[1400];
   std::snprintf(line, sizeof line,
-                "flywheel for %s\nat %.6g rpm (mean), speed fluctuation C = %.6g, load torque %.9g N m (the gas "
+                "at %.6g rpm (mean), speed fluctuation C = %.6g, load torque %.9g N m (the gas "
                 "torque's cycle mean: what the gas delivers to the shaft, the negative of the mean of the drive "
                 "torque's gas part; below 0 where the shaft drives the machine, a compressor)\n"
                 "%-10s %26s %16s\n"
                 "%-10s %26.12g %16.9e\n"
                 "%-10s %26.12g %16.9e\n",
-                options.scene_path.c_str(), m.speed_rpm, options.fluctuation, s.load_torque, "method",
+                m.speed_rpm, options.fluctuation, s.load_torque, "method",
                 "flywheel inertia [kg m^2]", "fluctuation", "exact", s.exact_inertia, s.exact.delta, "norton",
                 s.norton_inertia, s.norton.delta);
-  std::string text = line;
+  std::string text = "flywheel for " + showPath(options.scene_path) + "\n" + line;
   for (const validation::FlywheelEngineRun& r : result.runs) {
     std::snprintf(line, sizeof line, "%-10s %26.12g %16.9e\n", r.engine.c_str(), s.exact_inertia, r.fluctuation);
     text += line;

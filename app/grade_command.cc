@@ -234,7 +234,7 @@ int runGrade(const GradeOptions& options) {
   std::printf("%s\nReport: %s (also index.html)\n",
               status == 0 ? ("Every provided value agrees with " + references + ".").c_str()
                           : "SOME VALUES DISAGREE, or none was provided (see the report's failing cases).",
-              (out.getTarget() / "index.md").string().c_str());
+              showPath(out.getTarget() / "index.md").c_str());
   return status;
 }
 
@@ -306,7 +306,7 @@ int runFreeRunGrade(const GradeOptions& options) {
   std::printf("%s\nReport: %s (also index.html)\n",
               status == 0 ? "Every measure of the asked step is within its tolerance."
                           : "SOME MEASURES ARE OUT OF TOLERANCE at the asked step (or none was graded).",
-              (out.getTarget() / "index.md").string().c_str());
+              showPath(out.getTarget() / "index.md").c_str());
   return status;
 }
 

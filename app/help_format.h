@@ -4,6 +4,7 @@
 /// description on one line however long), and the engines named from the registry, never written in prose.
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -75,6 +76,12 @@ class WrappingFormatter : public CLI::Formatter {
     return wrapText(CLI::Formatter::make_footer(app), kHelpWidth);
   }
 };
+
+/// A path from the user (a scene, an output folder) as a line of output shows it: its control, line-break and
+/// bidirectional characters escaped (scene/text.h: escapeControls), so that a file called "two\nlines.toml" cannot
+/// split a heading or act on the terminal. Built into strings, never into a fixed buffer (no path is cut).
+inline std::string showPath(const std::string& path) { return escapeControls(path); }
+inline std::string showPath(const std::filesystem::path& path) { return escapeControls(path.string()); }
 
 /// "ENGINE sat out: it cannot build scene S (reason)\n", one line per engine that sat out (validate, grade), escaped:
 /// a shard's record may come from anyone.

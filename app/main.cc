@@ -1,6 +1,7 @@
 // crankcheck: the command-line front end. Verbs live in their own files; this one parses flags (CLI11) and
 // maps every failure to one message on stderr and its exit status (kExitStatus below, docs/safety.md "Exit status").
 
+#include <csignal>
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cerrno>
@@ -90,6 +91,27 @@ std::string findUnknownFlag(const CLI::App& app) {
   return {};
 }
 
+// "valdate: unknown command (did you mean validate?)" when `app` (or the subcommand it parsed: `report`) needs a
+// subcommand and was given a word that names none; empty otherwise. CLI11 said only "A subcommand is required".
+std::string findUnknownCommand(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands())
+    if (std::string found = findUnknownCommand(*sub); !found.empty()) return found;
+  if (!app.get_subcommands().empty() || app.get_subcommands({}).empty()) return {};
+  for (const std::string& arg : app.remaining(false)) {
+    if (arg.empty() || arg[0] == '-') continue;
+    std::string closest;
+    size_t best = 3;  // a suggestion within two edits
+    for (const CLI::App* command : app.get_subcommands({}))
+      if (const size_t d = calcEditDistance(arg, command->get_name()); d < best) {
+        best = d;
+        closest = command->get_name();
+      }
+    return crankcheck::escapeControls(arg) + ": unknown command" +
+           (closest.empty() ? std::string() : " (did you mean " + closest + "?)");
+  }
+  return {};
+}
+
 // `status`, once everything written to stdout has reached it; else EnvironmentError. A write that fails while stdio's
 // buffer fills (output over 4 KiB to a full disk) is seen only in the stream's error flag: fflush alone then succeeds
 // on an empty buffer and the lost results went unnoticed with status 0.
@@ -109,6 +131,9 @@ int main(int argc, char** argv) {
   crankcheck::validation::watchInterrupts();  // from here on, a signal ends every child with crankcheck
   // and whatever a program leaves behind (a setsid child, a daemon) comes back to crankcheck to be ended: none outlives it
   (void)crankcheck::validation::reapLeftBehindProcesses();
+  // A file-size limit (ulimit -f) is a full disk to crankcheck: the write fails (EFBIG), the output is refused with
+  // status 3 and its partial folder removed, instead of SIGXFSZ killing the process with its partial output left.
+  std::signal(SIGXFSZ, SIG_IGN);
   using crankcheck::app::describeEngines;
   const std::string engines = describeEngines();
   CLI::App app{"crankcheck checks the closed-form formulas of piston engines and compressors (slider-crank kinematics, "
@@ -193,7 +218,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {  // --help, --version
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    const std::string unknown = findUnknownFlag(app);  // named before what its absence made missing
+    std::string unknown = findUnknownCommand(app);  // a mistyped command, then a mistyped flag, before what is missing
+    if (unknown.empty()) unknown = findUnknownFlag(app);
     std::cerr << "crankcheck: " << (unknown.empty() ? parseErrorMessage(e) : unknown) << " (see crankcheck --help)\n";
     return 2;
   }

@@ -60,12 +60,12 @@ std::string runMotion(const MotionOptions& options) {
   char buffer[512];
   // Within 100 columns: the scene's path and the settings on lines of their own.
   std::snprintf(buffer, sizeof buffer,
-                "free run of %s\nreleased at phi = 0 with %.6g rpm (Simbody: %s, accuracy %.0e; MuJoCo: %s, step %.0e "
+                "released at phi = 0 with %.6g rpm (Simbody: %s, accuracy %.0e; MuJoCo: %s, step %.0e "
                 "of a revolution)\n%-17s %15s %16s %12s %12s %12s %10s\n",
-                options.scene_path.c_str(), m.speed_rpm, options.integrator.c_str(), options.accuracy,
+                m.speed_rpm, options.integrator.c_str(), options.accuracy,
                 options.mujoco_integrator.c_str(), options.mujoco_step, "engine", "delta_gravity", "delta_no_gravity",
                 "omega_min", "omega_max", "omega_mean", "drift");
-  std::string out = buffer;
+  std::string out = "free run of " + showPath(options.scene_path) + "\n" + buffer;
   for (const validation::MotionRun& r : results) {
     char drift[32] = "-";
     if (!r.integrator.empty()) std::snprintf(drift, sizeof drift, "%.3e", r.energy_drift);

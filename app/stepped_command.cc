@@ -139,7 +139,7 @@ std::string runSteppedFree(const SteppedOptions& options, Mechanism m, const std
     doc["refusals"] = refusals;
     return dumpJson(doc);
   }
-  std::string out = "free runs of the stepped engines on " + options.scene_path + ": released at phi = 0 with " +
+  std::string out = "free runs of the stepped engines on " + showPath(options.scene_path) + ": released at phi = 0 with " +
                     shortNumber(m.speed_rpm, 6) + " rpm, gravity alone, " + std::to_string(options.revolutions) +
                     " revolutions (the exact delta " + (rows.empty() ? std::string("-") : shortNumber(rows.front().delta_exact, 4)) +
                     ")\n";
@@ -185,6 +185,10 @@ std::string runStepped(const SteppedOptions& options) {
                      " (" + (options.engine == "all" ? "theirs" : "its") + ": " + theirs + ")");
   }
   const std::vector<double> steps = options.steps.empty() ? validation::getDefaultSteppedSteps() : options.steps;
+  for (size_t i = 0; i < steps.size(); ++i)  // a step twice: its runs twice, and an order fitted to no change (null)
+    for (size_t j = 0; j < i; ++j)
+      if (steps[j] == steps[i])
+        throw UsageError("--dt: " + validation::formatNumber(steps[i]) + " is given twice");
   if (options.free) return runSteppedFree(options, m, engines, settings, steps);
   validation::SteppedSweep sweep;
   try {
@@ -230,7 +234,7 @@ std::string runStepped(const SteppedOptions& options) {
     return dumpJson(doc);
   }
   // The table: per engine and settings, a quantity per line, the worst error / scale at each step, the last order.
-  std::string out = "stepped engines on " + options.scene_path + " at " + shortNumber(m.speed_rpm, 6) +
+  std::string out = "stepped engines on " + showPath(options.scene_path) + " at " + shortNumber(m.speed_rpm, 6) +
                     " rpm: worst |engine - exact| / scale over one turn after settling\n";
   std::vector<double> sorted = steps;
   std::sort(sorted.begin(), sorted.end(), std::greater<double>());

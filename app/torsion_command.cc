@@ -203,9 +203,8 @@ std::string runTorsion(const TorsionOptions& options) {
 
   std::string out;
   char line[512];
-  std::snprintf(line, sizeof line, "torsion of %s: %d bodies clamped at the flywheel (driven at the speed)\n",
-                options.scene_path.c_str(), bodies);
-  out += line;
+  out += "torsion of " + showPath(options.scene_path) + ": " + std::to_string(bodies) +
+         " bodies clamped at the flywheel (driven at the speed)\n";
   out += "\nthrow inertia for Holzer [kg m^2]: exact (J_t + mean of J over a turn), the textbook's shortcuts\n";
   std::snprintf(line, sizeof line, "%-8s %18s %22s %22s\n", "throw", "exact", "half reciprocating", "second order");
   out += line;

@@ -55,6 +55,10 @@ void addValidateOptions(CLI::App& command, ValidateOptions& options) {
                      "engines' steps at a low speed) is estimated before the campaign and refused past it")
       ->check(FiniteRange(1.0, 1e7))
       ->capture_default_str();
+  command.add_flag("--check", options.check,
+                   "Check everything that is checked before the work (the scenes, the flags, the output folder, "
+                   "gnuplot unless --shard, each part's estimated work), print one line and stop: nothing is created "
+                   "or run (the shard scripts check OUT so before any shard runs)");
   command.add_option("--shard", options.shard,
                      "Run only part I of N (0 <= I < N <= 100000) of the campaign and write its data for 'crankcheck "
                      "report merge' (docs: shards and clusters)");
@@ -112,7 +116,7 @@ int reportAndInstall(const TableSet& unsorted, const std::vector<validation::Sat
                                 : ", in " + validation::shortNumber(info.seconds, 3) + " s")
             << "\n"
             << validation::formatVerdict(verdicts) << formatSatOut(sat_out) << validation::formatSceneHeadlines(tables)
-            << "Report: " << (out.getTarget() / "index.md").string() << " (also index.html)\n";
+            << "Report: " << showPath(out.getTarget() / "index.md") << " (also index.html)\n";
   return pass ? 0 : 1;
 }
 
@@ -165,6 +169,11 @@ int runValidate(const ValidateOptions& options) {
   if (!shard) info.gnuplot_version = validation::checkGnuplot();  // a shard draws no figures
   // Every part's work, estimated before any of it starts (Part::checkWork): refused with status 2, nothing written.
   const std::vector<validation::Task> all = validation::buildCampaign(campaign);
+  if (options.check) {
+    std::cout << "validate --check: " << all.size() << " tasks" << (shard ? " (shard " + options.shard + ")" : "")
+              << " would be run and written to " << showPath(options.out) << "; every check before the work holds\n";
+    return 0;
+  }
   validation::InterruptGuard interrupt(out);
   out.createStaging();
 
@@ -194,7 +203,7 @@ int runValidate(const ValidateOptions& options) {
     validation::writeShard(run.tables, manifest, out.getStaging());
     out.install("shard");
     const bool pass = allPass(run.tables);
-    std::cout << formatSatOut(campaign.sat_out) << "Shard " << selection.index << "/" << selection.count << " (" << run.task_ids.size() << " of " << all.size() << " tasks) written to " << options.out << (pass ? "" : "; SOME COMPARISONS FAIL")
+    std::cout << formatSatOut(campaign.sat_out) << "Shard " << selection.index << "/" << selection.count << " (" << run.task_ids.size() << " of " << all.size() << " tasks) written to " << showPath(options.out) << (pass ? "" : "; SOME COMPARISONS FAIL")
               << ". Merge the shards with: crankcheck report merge SHARD_DIR... --out DIR\n";
     return pass ? 0 : 1;
   }

@@ -19,6 +19,7 @@ struct ValidateOptions {
   std::string profile;     ///< --profile FILE: where each task's time goes, by engine (a new CSV file); empty: none
   std::vector<std::string> parts;  ///< --parts KEY,...: only these report parts (the cross-checks always); empty: all
   double work_limit = 600.0;       ///< [s] --work-limit: the longest estimated work a part may start
+  bool check = false;              ///< --check: every check before the work, then stop (nothing created, nothing run)
 };
 
 struct MergeOptions {

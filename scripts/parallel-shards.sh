@@ -26,7 +26,9 @@
 #     inside the other; a --shards folder that holds anything this script did not write;
 #   - in VALIDATE-ARGS (before a `--` of their own): --out and --shard (the script sets them for each shard),
 #     --profile (one file that every shard would write: profile one shard with `crankcheck validate --shard I/N
-#     --profile FILE` instead), and -h/--help (ask `crankcheck validate --help`).
+#     --profile FILE` instead), and -h/--help (ask `crankcheck validate --help`);
+#   - then, by crankcheck itself (`crankcheck validate --check`: its own line and status), OUT a folder its rule
+#     does not let it replace (one of yours), a scene or a flag of VALIDATE-ARGS that it refuses.
 # No path, scene name or flag given here is ever read by GNU parallel, nor by any shell, as a command or as a
 # template: GNU parallel runs only a fixed command (bash reading SHARDS/validate-args, where this script writes the
 # program, the working folder and VALIDATE-ARGS as NUL-separated words, then running crankcheck with them as they
@@ -99,6 +101,10 @@ out=$(realpath -m -- "$out") || fail "OUT: $out: no absolute path"
 shards=$(realpath -m -- "${shards:-$out.shards}") || fail "--shards: $shards: no absolute path"
 [[ $shards != "$out" && $shards/ != "$out"/* && $out/ != "$shards"/* ]] ||
   fail "--shards: \"$shards\": the same folder as OUT \"$out\", or one inside the other"
+
+# OUT, the scenes and the flags are checked by crankcheck's own rules before any shard runs (a folder of the user's
+# as OUT once let every shard run, then the merge refused it): `validate --check` runs and creates nothing.
+"$crankcheck" validate --check --out "$out" "${validate_args[@]}" >/dev/null || exit $?
 
 # The shards folder holds only what this script and crankcheck put there.
 if [[ -e $shards || -L $shards ]]; then

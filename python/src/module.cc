@@ -931,6 +931,9 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
       "v = -r omega (sin + (r/2l) sin 2theta), a = -r omega^2 (cos + (r/l) cos 2theta).");
   mod.def("fourier_piston_kinematics", [](const py::handle& theta, double lam, int order, double r, double omega) {
         if (order < 1) throw py::value_error("order: must be >= 1");
+        if (order > kMaxCoefficientOrder)  // the coefficients' cost, per angle (order 1e6 took 144 s for one angle)
+          throw py::value_error("order: at most " + std::to_string(kMaxCoefficientOrder) + " (got " +
+                                std::to_string(order) + "): the cost grows with its square");
         return pistonKinematics(theta, unitSliderCrank(lam, r, omega), [order](const Mechanism& m, double t) {
           return analytic::calcPistonKinematicsFourier(m, t, order);
         });

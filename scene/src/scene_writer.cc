@@ -77,7 +77,9 @@ std::string formatSceneToml(const Mechanism& m) {
   out << "acting = \"" << toString(m.machine.acting) << "\"\n";
   if (inline_form) {
     out << "cylinder_angle_deg = " << formatShortest(degreesFromRadians(m.machine.cylinder_angle)) << "\n";
-    if (m.machine.crank_angles != calcPhaseAngles(k, m.machine.cycle, m.machine.acting))
+    // Explicit angles are written even where they equal eqs (8)-(11)'s: the scene read back must be the same scene
+    // (which harmonics the closed forms list depends on whether the angles are the formulas' or the scene's own).
+    if (m.machine.explicit_crank_angles || m.machine.crank_angles != calcPhaseAngles(k, m.machine.cycle, m.machine.acting))
       out << "crank_angles_deg = " << list(m.machine.crank_angles, degreesFromRadians) << "\n";
     if (hasAxialPositions(m)) out << "cylinder_spacing = " << formatShortest(spacing) << "\n";
     if (!m.machine.pin_offsets.empty()) out << "pin_offset = " << formatShortest(getPinOffset(m, 0)) << "\n";

@@ -29,6 +29,8 @@
 #   - in VALIDATE-ARGS (before a `--` of their own): --out and --shard (submit.sh sets them for each task),
 #     --profile (one file that every task would write: profile one shard with `crankcheck validate --shard I/N
 #     --profile FILE` instead), and -h/--help (ask `crankcheck validate --help`);
+#   - by crankcheck itself (`crankcheck validate --check`: its own line and status), OUT a folder its rule does not
+#     let it replace (one of yours), a scene or a flag of VALIDATE-ARGS that it refuses;
 #   - an --sbatch value that is not an option (a word not starting with -, which sbatch would take for the script),
 #     and the options submit.sh sets itself: --array/-a, --dependency/-d, --output/-o, --error/-e, --wrap.
 # No path or flag given here is read by sbatch or Slurm as a pattern or a command: every % in the log paths given
@@ -113,6 +115,14 @@ shards=$(realpath -m -- "${shards:-$out.shards}") || fail "--shards: $shards: no
 [[ $shards != *\\* ]] ||
   fail "--shards: \"$shards\" (--shards, by default OUT.shards): has a backslash, which turns off the %a of each" \
     "task's log path in Slurm; choose another folder"
+# OUT, the scenes and the flags are checked by crankcheck's own rules before anything is submitted (a folder of the
+# user's as OUT let every task run, then the merge refused it); as a shard, so that this node needs no gnuplot (the
+# merge job draws the figures), from the folder the jobs start in (an --sbatch --chdir=DIR of the user's: DIR, where
+# relative scenes then are). `validate --check` runs and creates nothing.
+checkdir=$workdir
+for option in "${sbatch_options[@]}"; do [[ $option == --chdir=* ]] && checkdir=${option#--chdir=}; done
+(cd -- "$checkdir" && exec "$crankcheck" validate --check --shard "0/$n" --out "$out" "${validate_args[@]}") >/dev/null ||
+  exit $?
 # The shards folder holds only what submit.sh and crankcheck put there (Slurm truncates the logs it is given).
 if [[ -e $shards || -L $shards ]]; then
   [[ -d $shards && ! -L $shards ]] || fail "--shards: \"$shards\": exists and is not a folder"

@@ -591,6 +591,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BadRun{"mistyped_flag_in_a_subcommand", {"report", "merge", "a", "--outt", "b"},
                              "crankcheck: --outt: unknown flag or argument (did you mean --out?)"},
                       BadRun{"no_verb", {}, "subcommand"},
+                      // A mistyped command is named with the command meant (a hostile round: "A subcommand is required").
+                      BadRun{"mistyped_command", {"valdate"}, "crankcheck: valdate: unknown command (did you mean validate?)"},
+                      BadRun{"mistyped_report_command", {"report", "mrege", "a"},
+                             "crankcheck: mrege: unknown command (did you mean merge?)"},
                       BadRun{"no_scene", {"eval"}, "scene"},
                       BadRun{"nan_angle", {"eval", kSingle, "--phi-deg", "nan"}, "--phi-deg: item 1 of \"nan\": must be a finite"},
                       // Decimal numbers only (0x10 was read as 16), and one past a double's range named as such.

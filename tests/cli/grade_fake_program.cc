@@ -1,6 +1,7 @@
 // Programs that misbehave, for tests/cli/grade_test.cc: `grade_fake_program MODE` reads its request(s) from stdin
 // and then does what MODE says.
 #include <fcntl.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -93,6 +94,16 @@ int main(int argc, char** argv) {
     if (argc > 2) std::ofstream(argv[2]) << child << "\n";
     return 0;
   }
+  if (mode == "pipeline-flood") {  // a child in its own process group writes 70 MB (past the 64 MiB limit), as `... | cat`
+    if (::fork() == 0) {
+      const std::string block(1 << 20, 'a');
+      for (int i = 0; i < 70; ++i) std::fwrite(block.data(), 1, block.size(), stdout);
+      std::fflush(stdout);
+      ::_exit(0);
+    }
+    ::wait(nullptr);
+    return 0;
+  }
   if (mode == "hang") {
     for (;;) ::pause();
   }
@@ -163,6 +174,12 @@ int main(int argc, char** argv) {
     std::string out = "{\"results\": [";
     for (size_t i = 0; i < n; ++i) out += std::string(i ? "," : "") + (i == 1 ? "{\"Uu\": 1.0}" : "null");
     std::puts((out + "]}").c_str());
+    return 0;
+  }
+  if (mode == "extra-top-key") {  // a key beside "results" (with an ESC in its name): not the protocol
+    std::string out = "{\"results\": [";
+    for (size_t i = 0; i < n; ++i) out += std::string(i ? "," : "") + "null";
+    std::puts((out + "], \"extra\\u001b\": 1}").c_str());
     return 0;
   }
   if (mode == "nothing-provided") {

@@ -219,6 +219,8 @@ INSTANTIATE_TEST_SUITE_P(
                       // A round of attacks: "U": 12345, "U": <right value> passed (nlohmann keeps the last).
                       Misbehaviour{"duplicate-key", "the key \"U\" is given twice in one object"},
                       Misbehaviour{"misspelled-key", "results[1]: \"Uu\" is not a quantity of eval (one of U, Q"},
+                      // A hostile round: a key beside "results" was passed over.
+                      Misbehaviour{"extra-top-key", "the key \"extra\\x1b\" is not the protocol (a response is {\"results\""},
                       Misbehaviour{"string", "must be a number or null"},
                       Misbehaviour{"crash", "ended by signal 6"},
                       Misbehaviour{"exit7", "exited with status 7; its stderr: \"something went wrong"},
@@ -289,7 +291,7 @@ TEST(GradeTest, AProcessAProgramLeavesBehindIsEndedAndTheProgramToldSo) {
     EXPECT_EQ(r.exit_status, 3) << r.out << r.err;
     if (std::string(mode) == "setsid-child")
       EXPECT_NE(r.err.find(": exited with status 0, but its output was still open 0.3 s after it started: held by a "
-                           "process it left behind outside its process group (a setsid child, which crankcheck ended)"),
+                           "process it left running outside its process group (a setsid child), which crankcheck ended"),
                 std::string::npos) << r.err;
     else
       EXPECT_NE(r.err.find(": exited with status 0 but left 1 process running outside its process group (a setsid "
@@ -300,6 +302,17 @@ TEST(GradeTest, AProcessAProgramLeavesBehindIsEndedAndTheProgramToldSo) {
     EXPECT_FALSE(processExists(left)) << mode << ": pid " << left << " outlived crankcheck";
     if (processExists(left)) ::kill(left, SIGKILL);
   }
+}
+
+// A program whose child in its own process group (a pipeline's `| cat`) writes past the output limit is told that, not
+// that it left processes behind: what crankcheck kills in the program's group is not counted against it.
+TEST(GradeTest, OutputPastTheLimitFromAChildInItsGroupIsToldAsSuch) {
+  FreshFolder dir;
+  const auto r = runCrankcheck({"grade", "--quick", "--jobs", "1", "--out", (dir.path() / "report").string(), "--",
+                                CRANKCHECK_FAKE_PROGRAM, "pipeline-flood"});
+  EXPECT_EQ(r.exit_status, 3) << r.err;
+  EXPECT_NE(r.err.find("wrote more than 67108864 bytes to stdout (killed)"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("left"), std::string::npos) << r.err;
 }
 
 TEST(GradeTest, NothingProvidedIsNeitherRightNorWrong) {

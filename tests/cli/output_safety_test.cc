@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -18,6 +19,7 @@
 #include <string>
 #include <thread>
 
+#include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/output_folder.h"
 #include "run_cli.h"
 #include "../support/read_file.h"
@@ -45,8 +47,10 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
 
 size_t lines(const std::string& s) { return static_cast<size_t>(std::count(s.begin(), s.end(), '\n')); }
 
-// `run`'s result with the file size limit at `bytes` (as a full disk: a write past it fails with EFBIG, SIGXFSZ
-// ignored instead of killing), the limit and the handler restored after.
+// `run`'s result with the file size limit at `bytes` (as a full disk: a write past it fails with EFBIG), the limit and
+// the handler restored after. SIGXFSZ is ignored in the test's own process only: crankcheck starts with its default
+// disposition (startProgram resets it), which kills a process at the limit unless it ignores SIGXFSZ itself, as
+// crankcheck does (a cut file and a partial folder were left, status 153, no message).
 template <class Run>
 ProgramResult runWithFileSizeLimit(rlim_t bytes, Run run) {
   rlimit old_limit{};
@@ -311,7 +315,9 @@ TEST_P(SignalWhileWaitingTest, EndsTheChildWithCrankcheck) {
   ASSERT_EQ(::kill(run.pid(), GetParam()), 0);
   const ProgramResult r = run.wait();
   EXPECT_EQ(r.exit_status, 128 + GetParam()) << r.err;
-  EXPECT_NE(r.err.find("interrupted by"), std::string::npos) << r.err;
+  // One line, from its first byte: stderr is a pipe here, not a terminal that echoed ^C (a blank line came first).
+  EXPECT_EQ(r.err.rfind("crankcheck: interrupted by ", 0), 0u) << r.err;
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
   EXPECT_FALSE(stillRuns(gnuplot)) << "gnuplot (pid " << gnuplot << ") outlived crankcheck";
   EXPECT_FALSE(fs::exists(dir_ / "report"));
 }
@@ -461,10 +467,11 @@ TEST_P(OddPathTest, WorksAsOutputFolderAndScenePath) {
   EXPECT_GT(fs::file_size(out / "pin_load_polar.png"), 1000u);
   EXPECT_NE(readFile(out / "index.md").find("Scenes"), std::string::npos);
   // The scene is named by its file's stem on one line: a newline in it shown as \n (a backslash and an n), in its
-  // section's heading and in every table.
-  std::string shown;
+  // section's heading (where a backquote is escaped for Markdown: a heading is text) and in every table.
+  std::string shown, heading;
   for (char c : std::string(name)) shown += c == '\n' ? std::string("\\n") : std::string(1, c);
-  EXPECT_NE(readFile(out / "index.md").find("\n### " + shown + ": your engine\n"), std::string::npos);
+  for (char c : shown) heading += std::string(std::string_view("\\`*[]<>").find(c) != std::string_view::npos ? "\\" : "") + c;
+  EXPECT_NE(readFile(out / "index.md").find("\n### " + heading + ": your engine\n"), std::string::npos);
   // The scene's name is in the data, quoted as CSV requires where it holds a comma or a quote.
   const std::string scenes_csv = readFile(out / "data/scenes.csv");
   const bool quoted = shown.find_first_of(",\"") != std::string::npos;
@@ -487,6 +494,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(OddName{"space", "my scene"}, OddName{"single_quote", "it's"},
                       OddName{"double_quote", "say \"hi\""}, OddName{"command_substitution", "x'$(touch owned)'"},
                       OddName{"backticks", "a`touch owned`b"}, OddName{"semicolon", "a; touch owned"},
+                      OddName{"markdown_link", "[link](javascript:alert(1))"},
                       OddName{"newline", "two\nlines"}, OddName{"comma", "a,b"},
                       OddName{"non_ascii", "Zylinderkopf_\xC3\xA4\xC3\xB6\xC3\xBC_\xE6\x9B\xB2\xE8\xBD\xB4"}),
     [](const auto& info) { return std::string(info.param.test_name); });
@@ -519,6 +527,45 @@ TEST_F(OutputSafetyTest, WhatRemainsOfAPreviousReportIsKeptUnderAVisibleName) {
                            "changed since (\"mine.txt\")\n");
   }
   EXPECT_EQ(readFile(dir_ / "R.previous" / "mine.txt"), "a user's file\n");  // the first round's, not replaced
+}
+
+// A file of the user's put into the output folder while the run works (after the check before the work) does not
+// throw the run away: the new report is installed, and the previous one's remains (the user's file; crankcheck's own
+// files, as recorded, are removed) are kept as R.previous, named in a warning, status 0. The test waits for what it
+// controls: the staging folder's existence (the quick campaign then takes about 3 s more).
+TEST_F(OutputSafetyTest, AFileThatAppearsDuringTheRunIsKeptAndTheNewReportInstalled) {
+  const fs::path report = dir_ / "R";
+  ASSERT_EQ(writeShard(report).exit_status, 0);
+  validation::RunningProgram run = testing::startCrankcheck({"validate", "--quick", "--out", report.string()});
+  bool staged = false;
+  for (int i = 0; i < 500 && !staged; ++i) {
+    for (const auto& entry : fs::directory_iterator(dir_))
+      staged = staged || entry.path().filename().string().find(".crankcheck-partial-") != std::string::npos;
+    if (!staged) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(staged) << "the run never started";
+  writeFile(report / "mine.txt", "a user's file\n");
+  const ProgramResult r = run.wait();
+  EXPECT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_NE(r.err.find("crankcheck: warning: " + quotePath(dir_ / "R.previous") +
+                       ": the previous report of " + quotePath(report) +
+                       " was kept there: it holds files crankcheck did not write or that changed since (\"mine.txt\")"),
+            std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(report / "index.md"));
+  EXPECT_FALSE(fs::exists(report / "mine.txt"));
+  EXPECT_EQ(snapshot(dir_ / "R.previous"), (std::map<std::string, std::string>{{"mine.txt", "a user's file\n"}}));
+}
+
+// The report's folder has the mode of any folder the user makes (0777 less the umask): mkdtemp's 0700 staging folder
+// made every report unreadable to the user's group and others (a report served by a web server, a CI artifact).
+TEST_F(OutputSafetyTest, TheReportFolderHasTheModeOfAnyFolderTheUserMakes) {
+  const mode_t old = ::umask(027);
+  const ProgramResult r = writeShard(dir_ / "S");
+  ::umask(old);
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  struct stat st {};
+  ASSERT_EQ(::stat((dir_ / "S").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0750u);
 }
 
 }  // namespace

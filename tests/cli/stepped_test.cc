@@ -74,7 +74,9 @@ TEST(SteppedCli, RequestsThatMeasureNothingOrIgnoreAFlagAreRefused) {
   for (const Case& c : std::vector<Case>{
            {{"--engine", "box2d", "--settings", "neutralised"}, "--settings: neutralised: box2d has no such settings"},
            {{"--revolutions", "3"}, "--revolutions"},
-           {{"--free", "--engine", "box2d", "--settings", "neutralised"}, "--settings: neutralised"}}) {
+           {{"--free", "--engine", "box2d", "--settings", "neutralised"}, "--settings: neutralised"},
+           // A hostile round: a step given twice ran twice and fitted an order to no change (printed as null).
+           {{"--dt", "1e-3,1e-4,1e-3"}, "--dt: 0.001 is given twice"}}) {
     std::vector<std::string> args = {"stepped", scene("single_cylinder.toml")};
     args.insert(args.end(), c.args.begin(), c.args.end());
     const RunResult r = testing::runCrankcheck(args);

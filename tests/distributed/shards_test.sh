@@ -143,8 +143,17 @@ status=0
 status=0
 "$src/scripts/parallel-shards.sh" --crankcheck "$crankcheck" 2 "$tmp/bad" -- --quick --no-such-flag >"$tmp/bad.log" 2>&1 ||
   status=$?
-[[ $status == 2 && ! -e $tmp/bad ]] || { cat "$tmp/bad.log"; fail "a bad flag: exit status $status"; }
-grep -q "shard 0/2 failed with exit status 2" "$tmp/bad.log" || { cat "$tmp/bad.log"; fail "a bad flag: no message"; }
+# Found by `validate --check` before any shard runs: crankcheck's own line, no shards folder made.
+[[ $status == 2 && ! -e $tmp/bad && ! -e $tmp/bad.shards ]] || { cat "$tmp/bad.log"; fail "a bad flag: exit status $status"; }
+grep -q "crankcheck: --no-such-flag: unknown flag" "$tmp/bad.log" || { cat "$tmp/bad.log"; fail "a bad flag: no message"; }
+# OUT a folder of the user's: refused by crankcheck's rule before any shard runs (every shard once ran, then the
+# merge refused it), the folder as it was, no shards folder made.
+mkdir "$tmp/myout" && echo mine >"$tmp/myout/notes.txt"
+status=0
+"$src/scripts/parallel-shards.sh" --crankcheck "$crankcheck" 2 "$tmp/myout" -- --quick >"$tmp/bad.log" 2>&1 || status=$?
+[[ $status == 2 && $(cat "$tmp/myout/notes.txt") == mine && ! -e $tmp/myout.shards ]] &&
+  grep -q 'holds "notes.txt", which crankcheck did not write' "$tmp/bad.log" ||
+  { cat "$tmp/bad.log"; fail "OUT a folder of mine: status $status"; }
 status=0
 "$src/scripts/parallel-shards.sh" --crankcheck "$crankcheck" 1 "$tmp/bad" >"$tmp/bad.log" 2>&1 || status=$?
 [[ $status == 2 ]] && grep -q "N: 1: expected a number of shards from 2" "$tmp/bad.log" || fail "N = 1: exit status $status"
@@ -411,7 +420,7 @@ fi
 held=$tmp/held-crankcheck
 cat >"$held" <<EOF
 #!/usr/bin/env bash
-if [[ \$1 == validate ]]; then
+if [[ \$1 == validate && \$2 != --check ]]; then  # submit.sh's own check before it submits goes through
   touch "$tmp/held.started"
   sleep 120
   echo "held-crankcheck: not cancelled within 120 s" >&2

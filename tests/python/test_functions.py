@@ -150,6 +150,8 @@ def test_scalar_angles_and_bad_arguments():
                      crankcheck.lambda_coefficients):
         with pytest.raises(ValueError, match="order: at most 10000"):
             function(0.3, 10**7)
+    with pytest.raises(ValueError, match="order: at most 10000"):  # the same coefficients, per angle (a hostile round)
+        crankcheck.fourier_piston_kinematics(THETA, 0.3, 10**6)
     assert len(crankcheck.radical_fourier_coefficients(0.3, 10000)) > 0
     with pytest.raises(ValueError):
         crankcheck.lambda_series_coefficient(3, 5)

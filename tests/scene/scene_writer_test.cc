@@ -30,6 +30,7 @@ void expectSameMechanism(const Mechanism& a, const Mechanism& b) {
   ASSERT_EQ(b.machine.cylinders, k);
   EXPECT_EQ(a.machine.cycle, b.machine.cycle);
   EXPECT_EQ(a.machine.acting, b.machine.acting);
+  EXPECT_EQ(a.machine.explicit_crank_angles, b.machine.explicit_crank_angles);  // the compressor's [0, 90] was lost
   for (int j = 0; j < k; ++j) {
     expectSameAngle(getBankAngle(a, j), getBankAngle(b, j), "bank " + std::to_string(j));
     expectSameAngle(getThrowAngle(a, j), getThrowAngle(b, j), "throw " + std::to_string(j));

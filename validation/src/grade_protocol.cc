@@ -101,9 +101,12 @@ std::string runOnce(const GradeProgram& program, const std::string& input, size_
     throw EnvironmentError(name + ": " + what + ": exited" +
                            (r.exit_status >= 0 ? " with status " + std::to_string(r.exit_status) : std::string()) +
                            ", but its output was still open " + formatNumber(call.timeout_seconds) +
-                           " s after it started: held by a process it left behind outside its process group (a setsid "
-                           "child" + (r.left_behind > 0 ? ", which crankcheck ended" : ", out of crankcheck's reach here") +
-                           "); a program must end every process it starts");
+                           " s after it started: held by a process it left running" +
+                           (r.left_behind > 0 ? std::string(" outside its process group (a setsid child), which crankcheck ended")
+                            : isReapingLeftBehindProcesses() ? std::string(", which crankcheck ended")
+                                                             : std::string(" (ended if in its process group; a setsid child is "
+                                                                           "out of reach from Python)")) +
+                           "; a program must end every process it starts");
   if (r.left_behind > 0)
     throw EnvironmentError(name + ": " + what + ": exited" +
                            (r.exit_status >= 0 ? " with status " + std::to_string(r.exit_status) : std::string()) +
@@ -175,6 +178,14 @@ Json parseResponseObject(const std::string& response, const std::string& key, co
   }
   if (!doc.is_object() || !doc.contains(key) || !doc[key].is_array())
     throwProtocolError(where, "the response must be an object {\"" + key + "\": [...]}", response, 0, first_line);
+  // Beside it, nothing: a key the protocol does not know (a misspelled "result", a quantity put at the top) is named,
+  // as inside the results, not passed over.
+  for (const auto& item : doc.items())
+    if (item.key() != key) {
+      const size_t at = response.find("\"" + item.key() + "\"");
+      throwProtocolError(where, "the key " + quoteText(item.key()) + " is not the protocol (a response is {\"" + key +
+                                "\": [...]} and nothing beside it)", response, at == std::string::npos ? 0 : at, first_line);
+    }
   return doc;
 }
 

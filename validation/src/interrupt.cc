@@ -3,6 +3,7 @@
 #include <pthread.h>
 #include <signal.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -35,12 +36,15 @@ void watch() {
   {
     std::lock_guard<std::mutex> lock(g_mutex);
     const char* name = signal_number == SIGINT ? "SIGINT" : signal_number == SIGTERM ? "SIGTERM" : "SIGHUP";
+    // On a terminal the message starts on a line of its own (after the ^C the terminal echoed); in a file or a pipe,
+    // where nothing else was written, it is the one line.
+    const char* start = ::isatty(STDERR_FILENO) ? "\n" : "";
     if (g_folder != nullptr) {
       g_folder->abandon();
-      std::fprintf(stderr, "\ncrankcheck: interrupted by %s; the partial output was removed, the previous report is as it was\n",
-                   name);
+      std::fprintf(stderr, "%scrankcheck: interrupted by %s; the partial output was removed, the previous report is as it was\n",
+                   start, name);
     } else {
-      std::fprintf(stderr, "\ncrankcheck: interrupted by %s; nothing was written\n", name);
+      std::fprintf(stderr, "%scrankcheck: interrupted by %s; nothing was written\n", start, name);
     }
     std::fflush(stderr);
     std::_Exit(128 + signal_number);  // with the lock held: no install starts after this point

@@ -144,6 +144,14 @@ bool parentsListed(const std::string& relative_dir, const std::map<std::string, 
 constexpr const char* kStagingSuffix = ".crankcheck-partial-";
 constexpr size_t kStagingExtra = 1 + std::char_traits<char>::length(kStagingSuffix) + 6;
 
+// The process's umask (Linux 4.7's "Umask:" line of /proc/self/status), 022 where it cannot be read.
+mode_t readUmask() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("Umask:", 0) == 0) return static_cast<mode_t>(std::strtoul(line.c_str() + 6, nullptr, 8));
+  return 022;
+}
+
 // A path the file system cannot hold is the user's input, not the environment's failure: refused before any work.
 // `extra`: bytes crankcheck adds to the last name (the staging folder's).
 void checkNameLengths(const std::string& flag, const fs::path& target, const fs::path& path, size_t extra) {
@@ -376,6 +384,9 @@ void OutputFolder::createStaging() {
     created_parents_.clear();
     throw EnvironmentError(flag_ + ": " + quotePath(target_) + ": cannot write beside it: " + std::strerror(error));
   }
+  // mkdtemp makes the folder 0700; the report is the user's, readable as any folder they make (mode 0777 less the
+  // process's umask, read from /proc without changing it: another thread may be creating files meanwhile).
+  ::chmod(name.c_str(), 0777 & ~readUmask());
   staging_ = name;
 }
 
@@ -399,7 +410,14 @@ void OutputFolder::install(const std::string& kind) {
   const nlohmann::json manifest = {{"tool", "crankcheck"}, {"version", getCrankcheckVersion()}, {"kind", kind}, {"files", files}};
   writeNewFile(staging_ / kManifestName, manifest.dump(2) + "\n");
 
-  checkOutputFolder(target_, flag_);  // once more: the folder may have changed while the campaign ran
+  // Once more: the folder may have changed while the campaign ran (a file of the user's put in it, a listed file
+  // edited). The run's work is not thrown away for that: the new report is installed all the same, and what was
+  // there is moved aside whole (removePreviousReport removes only the files crankcheck wrote, as it wrote them, and
+  // keeps the rest as TARGET.previous, named in a warning). Nothing of the user's is removed either way.
+  try {
+    checkOutputFolder(target_, flag_);
+  } catch (const UsageError&) {
+  }
   const fs::path path = normalTarget(target_);
   struct stat st {};
   if (::lstat(path.c_str(), &st) != 0) {
@@ -422,11 +440,13 @@ void OutputFolder::install(const std::string& kind) {
 fs::path removePreviousReport(const fs::path& old_folder, const fs::path& target) {
   // Only a plain file the old manifest lists, as it records it, is removed (then the manifest and the emptied
   // folders); anything else stays, and is named.
-  std::string unread;  // why the manifest could not be read: then nothing is removed
+  std::string unread;                // why the manifest could not be read: then nothing is removed
+  std::set<std::string> unremovable;  // files as crankcheck wrote them that could not be removed (permissions)
   try {
     const FolderManifest manifest = readFolderManifest(old_folder);
     struct stat st {};
-    for (const ManifestFile& f : manifest.files) removeIfAsRecorded(old_folder, f);
+    for (const ManifestFile& f : manifest.files)
+      if (!removeIfAsRecorded(old_folder, f) && isAsRecorded(old_folder, f)) unremovable.insert(f.path);
     if (::lstat((old_folder / kManifestName).c_str(), &st) == 0 && S_ISREG(st.st_mode))
       ::unlink((old_folder / kManifestName).c_str());
   } catch (const std::runtime_error& e) {
@@ -440,12 +460,16 @@ fs::path removePreviousReport(const fs::path& old_folder, const fs::path& target
   std::sort(dirs.begin(), dirs.end(), [](const fs::path& a, const fs::path& b) { return a.string() > b.string(); });
   for (const fs::path& d : dirs) ::rmdir(d.c_str());
   if (::rmdir(old_folder.c_str()) == 0 || errno == ENOENT) return {};
-  std::vector<std::string> kept;  // what remains but folders, in order
+  std::vector<std::string> kept, stuck;  // what remains but folders, in order: not crankcheck's; crankcheck's as written
   for (auto it = fs::recursive_directory_iterator(old_folder, ec); !ec && it != fs::recursive_directory_iterator();
        it.increment(ec))
-    if (it->symlink_status(ec).type() != fs::file_type::directory)
-      kept.push_back(it->path().lexically_relative(old_folder).generic_string());
+    if (it->symlink_status(ec).type() != fs::file_type::directory) {
+      const std::string rel = it->path().lexically_relative(old_folder).generic_string();
+      if (rel == kManifestName) continue;
+      (unremovable.count(rel) ? stuck : kept).push_back(rel);
+    }
   std::sort(kept.begin(), kept.end());
+  std::sort(stuck.begin(), stuck.end());
   // What remains is the user's: moved from the hidden staging name to one that says what it is, never over a path.
   fs::path kept_at = old_folder;
   const fs::path normal = normalTarget(target);
@@ -457,16 +481,22 @@ fs::path removePreviousReport(const fs::path& old_folder, const fs::path& target
     }
     if (errno != EEXIST) break;
   }
-  std::string named;
-  for (size_t i = 0; i < kept.size() && i < 3; ++i) named += (i ? ", " : " (") + quotePath(kept[i]);
-  if (!kept.empty()) named += kept.size() > 3 ? ", ...)" : ")";
+  auto name = [](const std::vector<std::string>& files) {
+    std::string named;
+    for (size_t i = 0; i < files.size() && i < 3; ++i) named += (i ? ", " : " (") + quotePath(files[i]);
+    return files.empty() ? named : named + (files.size() > 3 ? ", ...)" : ")");
+  };
+  std::string why;
+  if (!unread.empty()) why = "its manifest cannot be read (" + escapeText(unread) + "), so nothing of it was removed";
+  if (unread.empty() && !kept.empty()) why = "it holds files crankcheck did not write or that changed since" + name(kept);
+  if (unread.empty() && !stuck.empty())
+    why += (why.empty() ? "" : "; and ") + std::string("files crankcheck wrote, unchanged, could not be removed") +
+           name(stuck) + " (the file system refused)";
+  if (why.empty()) why = "it holds folders crankcheck could not remove";
   std::cerr << "crankcheck: warning: " << quotePath(kept_at) << ": the previous report of " << quotePath(target)
             << " was kept there"
             << (kept_at == old_folder ? " (no free name " + quotePath(normal.string() + ".previous") + " beside it)" : "")
-            << ": "
-            << (unread.empty() ? "it holds files crankcheck did not write or that changed since" + named
-                               : "its manifest cannot be read (" + escapeText(unread) + "), so nothing of it was removed")
-            << "\n";
+            << ": " << why << "\n";
   return kept_at;
 }
 

@@ -46,12 +46,19 @@ std::atomic<bool>& reaping() {
   return on;
 }
 
+// A process left behind: its pid, and whether it counts against the program (alive, and outside `group`, the
+// program's own process group, which crankcheck ends itself: its members killed there come here only to be reaped).
+struct LeftBehind {
+  pid_t pid;
+  bool counts;
+};
+
 // This process's children that no call started (their pids not in runningPids): what programs left behind, handed
-// to this process as their reaper. Read from /proc/PID/stat (the parent's pid is the field after the name, which is
-// in parentheses and may hold anything: read after the last ')'). Under runningMutex, so that a child being
-// spawned is already listed.
-std::vector<pid_t> findLeftBehind() {
-  std::vector<pid_t> found;
+// to this process as their reaper. Read from /proc/PID/stat (after the name, which is in parentheses and may hold
+// anything, so read after the last ')': the state, the parent's pid, the process group). Under runningMutex, so that
+// a child being spawned is already listed.
+std::vector<LeftBehind> findLeftBehind(pid_t group) {
+  std::vector<LeftBehind> found;
   const pid_t self = ::getpid();
   DIR* proc = ::opendir("/proc");
   if (proc == nullptr) return found;
@@ -65,9 +72,9 @@ std::vector<pid_t> findLeftBehind() {
     const size_t close = stat.rfind(')');
     if (close == std::string::npos) continue;
     char state = 0;
-    long parent = 0;
-    if (std::sscanf(stat.c_str() + close + 1, " %c %ld", &state, &parent) == 2 && parent == self)
-      found.push_back(static_cast<pid_t>(pid));
+    long parent = 0, process_group = 0;
+    if (std::sscanf(stat.c_str() + close + 1, " %c %ld %ld", &state, &parent, &process_group) == 3 && parent == self)
+      found.push_back({static_cast<pid_t>(pid), state != 'Z' && state != 'X' && process_group != group});
   }
   ::closedir(proc);
   return found;
@@ -75,24 +82,26 @@ std::vector<pid_t> findLeftBehind() {
 
 // Ends (SIGKILL to the process and to its group: a setsid child leads one) and reaps every process left behind;
 // what they started in turn comes to this process as they end, so the scan repeats until it finds none (at most 64
-// rounds: a fork bomb is not waited on without a limit). Returns how many were ended.
-int endLeftBehind() {
+// rounds: a fork bomb is not waited on without a limit). Returns how many counted (findLeftBehind) against the
+// program whose process group is `group`.
+int endLeftBehind(pid_t group) {
   int ended = 0;
   for (int round = 0; round < 64; ++round) {
-    std::vector<pid_t> found;
+    std::vector<LeftBehind> found;
     {
       std::lock_guard<std::mutex> lock(runningMutex());
-      found = findLeftBehind();
-      for (pid_t pid : found) {
-        ::kill(pid, SIGKILL);
-        ::kill(-pid, SIGKILL);
+      found = findLeftBehind(group);
+      for (const LeftBehind& p : found) {
+        ::kill(p.pid, SIGKILL);
+        ::kill(-p.pid, SIGKILL);
       }
     }
     if (found.empty()) break;
-    for (pid_t pid : found)
-      while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
+    for (const LeftBehind& p : found) {
+      while (::waitpid(p.pid, nullptr, 0) < 0 && errno == EINTR) {
       }
-    ended += static_cast<int>(found.size());
+      ended += p.counts ? 1 : 0;
+    }
   }
   return ended;
 }
@@ -295,8 +304,8 @@ ProgramResult RunningProgram::wait() {
     std::lock_guard<std::mutex> lock(runningMutex());
     runningPids().erase(pid_);
   }
+  if (reaping()) result.left_behind = endLeftBehind(pid_);  // its own group is pid_ (posix_spawnattr_setpgroup 0)
   pid_ = -1;
-  if (reaping()) result.left_behind = endLeftBehind();
   if (WIFEXITED(status)) result.exit_status = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) result.signal = WTERMSIG(status);
   return result;
@@ -327,7 +336,7 @@ RunningProgram startProgram(const ProgramCall& call) {
   sigset_t none, defaults;
   sigemptyset(&none);
   sigemptyset(&defaults);
-  for (int s : {SIGINT, SIGTERM, SIGPIPE}) sigaddset(&defaults, s);
+  for (int s : {SIGINT, SIGTERM, SIGPIPE, SIGXFSZ}) sigaddset(&defaults, s);
   posix_spawnattr_setsigmask(&attributes, &none);
   posix_spawnattr_setsigdefault(&attributes, &defaults);
   posix_spawnattr_setpgroup(&attributes, 0);  // a group of its own: a timeout kills whatever it started too
@@ -371,8 +380,10 @@ void killRunningPrograms() {
     std::lock_guard<std::mutex> lock(runningMutex());
     for (pid_t pid : runningPids()) ::kill(-pid, SIGKILL);  // each runs in a process group of its own
   }
-  if (reaping()) endLeftBehind();
+  if (reaping()) endLeftBehind(0);
 }
+
+bool isReapingLeftBehindProcesses() { return reaping(); }
 
 bool reapLeftBehindProcesses() {
   if (::prctl(PR_SET_CHILD_SUBREAPER, 1) != 0) return false;

@@ -4,6 +4,7 @@
 #include <cmark-gfm.h>
 
 #include <algorithm>
+#include <string_view>
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
@@ -68,9 +69,19 @@ std::string renderMarkdown(const std::string& markdown) {
 ReportDocument::ReportDocument(std::string title) : title_(std::move(title)) { body_ = "# " + title_ + "\n\n"; }
 
 void ReportDocument::addHeading(int level, const std::string& text, const std::string& id) {
-  // One line, as a heading must be: a scene named "two\nlines" split into a heading "two" and a paragraph "lines".
-  std::string line = text;
-  std::replace_if(line.begin(), line.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  // One line, as a heading must be (a scene named "two\nlines" split into a heading "two" and a paragraph "lines"),
+  // and plain text: a heading is words, never Markdown, so the characters that open a link, an image, HTML or code
+  // are backslash-escaped (a scene named "[link](javascript:...)" made a live link of its own section's heading);
+  // an underscore inside a word (v8_cross_plane) is text to GitHub's Markdown and stays as it is.
+  std::string line;
+  for (const char c : text) {
+    if (c == '\n' || c == '\r') {
+      line += ' ';
+      continue;
+    }
+    if (std::string_view("\\`*[]<>").find(c) != std::string_view::npos) line += '\\';
+    line += c;
+  }
   body_ += std::string(static_cast<size_t>(level), '#') + " " + line + "\n\n";
   std::string anchor = id;
   if (anchor.empty())

@@ -39,8 +39,8 @@ struct ProgramResult {
   /// It had exited by the timeout, but its stdout or stderr was still open: held by a process it left behind outside
   /// its process group (a setsid child). timed_out is set too.
   bool left_output_open = false;
-  /// Processes still running when the call returned that crankcheck ended (SIGKILL) as left behind by a program:
-  /// a setsid child or a daemon, out of reach of its process group. Counted only where reapLeftBehindProcesses
+  /// Processes still running when the call returned, outside the program's process group, that crankcheck ended
+  /// (SIGKILL) as left behind by it: a setsid child or a daemon. (What crankcheck killed in the group does not count.) Counted only where reapLeftBehindProcesses
   /// was called (the CLI); a call that runs beside others may count what another call's program left.
   int left_behind = 0;
 };
@@ -52,6 +52,9 @@ struct ProgramResult {
 /// Python module, in the user's interpreter) does not: there such a process outlives the call, out of reach.
 /// @return false when the kernel refuses (before Linux 3.4): then nothing is reaped, as in a library.
 bool reapLeftBehindProcesses();
+
+/// Whether reapLeftBehindProcesses was called (and took effect): a process a program leaves behind is then ended.
+bool isReapingLeftBehindProcesses();
 
 /// The full path of the executable file `name` on PATH (or `name` itself when it contains a '/' and is
 /// executable); empty when there is none. Reads only the file system: takes microseconds.
@@ -82,8 +85,8 @@ class RunningProgram {
 };
 
 /// Starts a program with posix_spawn in a process group of its own: stdin is the call's input or /dev/null, stdout
-/// and stderr are captured, the signal mask and the dispositions of SIGINT, SIGTERM and SIGPIPE are reset to the
-/// defaults whatever the caller's are. Writing the input never raises SIGPIPE in the caller.
+/// and stderr are captured, the signal mask and the dispositions of SIGINT, SIGTERM, SIGPIPE and SIGXFSZ are reset to
+/// the defaults whatever the caller's are. Writing the input never raises SIGPIPE in the caller.
 /// @throws EnvironmentError naming the program when it is not found or cannot be started.
 /// @throws std::logic_error when the call has no time limit (timeout_seconds <= 0): a caller's mistake.
 RunningProgram startProgram(const ProgramCall& call);
