@@ -245,21 +245,26 @@ int main(int argc, char** argv) {
     std::fwrite(output.data(), 1, output.size(), stdout);  // only complete results are ever printed
     return checkStdout(checks_hold ? 0 : 1);
   } catch (const crankcheck::UsageError& e) {
+    crankcheck::validation::yieldToInterrupt();  // each error below: unless an interrupt caused it
     std::cerr << "crankcheck: " << crankcheck::formatOneLine(e.what()) << "\n";
     return 2;
   } catch (const crankcheck::UncomputableError& e) {
+    crankcheck::validation::yieldToInterrupt();
     std::cerr << "crankcheck: " << crankcheck::formatOneLine(e.what()) << "\n";
     return 1;
   } catch (const crankcheck::EnvironmentError& e) {
+    crankcheck::validation::yieldToInterrupt();
     std::cerr << "crankcheck: " << crankcheck::formatOneLine(e.what()) << "\n";
     return 3;
   } catch (const std::filesystem::filesystem_error& e) {
+    crankcheck::validation::yieldToInterrupt();
     std::cerr << "crankcheck: " << crankcheck::formatOneLine(e.what()) << "\n";
     return 3;
   } catch (const std::bad_alloc&) {
     std::cerr << "crankcheck: out of memory\n";
     return 3;
   } catch (const std::exception& e) {  // not the user's input: the harness itself could not complete
+    crankcheck::validation::yieldToInterrupt();
     std::cerr << "crankcheck: could not complete: " << crankcheck::formatOneLine(e.what()) << "\n";
     return 3;
   }

@@ -189,6 +189,7 @@ int runValidate(const ValidateOptions& options) {
   try {
     run = validation::runTasks(validation::selectShard(all, selection), run_options);
   } catch (const std::runtime_error& e) {
+    validation::yieldToInterrupt();  // a task that failed because an interrupt killed its child: the interrupt's
     if (progress) std::fprintf(stderr, "\r\033[K");
     std::cerr << "crankcheck: " << formatOneLine(e.what()) << "\n";
     return 1;

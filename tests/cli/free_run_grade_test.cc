@@ -148,6 +148,22 @@ TEST(FreeRunGradeTest, BadFlagsAndScenesAreRefusedBeforeAnyWork) {
           "fewer --revolutions");
   refused({"grade", "--work-limit", "60", "--out", out.string(), "--", CRANKCHECK_FREE_RUN_FAKE},
           "--work-limit: applies to a time-stepped run");
+  // A hostile round: at the default horizon the engines' reference runs were not estimated (on a k = 64 scene they ran
+  // for over 10 minutes past --work-limit, after the program answered). The single cylinder made k = 16: its runs
+  // are estimated at 10 s or more (measured here), refused at --work-limit 1 with a tenfold margin, before the
+  // program starts (the fake would hang).
+  std::string k16 = readFile(kSingle);
+  const size_t one = k16.find("cylinders = 1\n");
+  ASSERT_NE(one, std::string::npos);
+  k16.replace(one, 14, "cylinders = 16\n");
+  const fs::path sixteen = dir.path() / "k16.toml";
+  std::ofstream(sixteen) << k16;
+  refused({"grade", "--free-run", sixteen.string(), "--work-limit", "1", "--out", out.string(), "--",
+           CRANKCHECK_FREE_RUN_FAKE, "hang"},
+          "crankcheck's own runs over 10 revolutions would take about ");
+  refused({"grade", "--free-run", sixteen.string(), "--work-limit", "1", "--out", out.string(), "--",
+           CRANKCHECK_FREE_RUN_FAKE, "hang"},
+          "the engines' reference runs of each scene timed over one revolution");
   EXPECT_FALSE(fs::exists(out));
   // A loaded run is the scene's gas against its mean load: a scene without [gas] cannot run it.
   refused({"grade", "--free-run", kSingle, "--drive", "loaded", "--", CRANKCHECK_FREE_RUN_FAKE},

@@ -519,39 +519,54 @@ void addEngineRuns(TableSet& tables, const std::vector<RunCase>& cases, bool qui
 }
 
 void checkRunGradeWork(const std::vector<RunCase>& cases, bool quick, double limit_seconds) {
-  // The stepped engines' free runs of each scene, at any horizon: their steps at each engine's measured cost of a
-  // step (checkSteppedWork; no probe where a ceiling on that cost keeps them within the limit). On a k = 64 scene one
-  // ODE step takes 50 ms: the default 10 revolutions would be minutes of it.
-  std::set<std::string> stepped;
+  // crankcheck's own work after the program answers, in all: the engines' reference runs of each scene (every
+  // horizon: on a k = 64 scene the default 10 revolutions of Simbody's and MuJoCo's runs took over 10 minutes, and
+  // were not estimated), timed over one revolution and counted for the horizon (an upper bound: a run's start costs
+  // more than its later revolutions; a tenth more work on the default horizon), plus the stepped engines' free runs, their steps at each engine's
+  // measured cost of a step (estimateSteppedWork: no probe where a ceiling on that cost keeps the sum in the limit).
+  // Each engine's run is probed on its own, and the probing stops once what it measured already passes the limit:
+  // the check costs at most about the limit over the revolutions (a minute of the default), not the whole work.
+  double reference = 0.0;
+  int revolutions = 0;
+  std::set<std::string> done;
   for (const RunCase& c : cases) {
-    if (c.drive != RunDrive::kFree || !stepped.insert(c.family).second) continue;
+    revolutions = std::max(revolutions, c.revolutions);
+    if (c.drive == RunDrive::kHeld || !done.insert(c.family).second || reference > limit_seconds) continue;
+    const RunLoad load{c.drive == RunDrive::kLoaded};
+    // One revolution of each; a loaded run's working cycle, two of a four-stroke (its measures need a whole cycle).
+    const int probed = std::min(c.revolutions, load.gas && c.mechanism.machine.cycle == Cycle::kFourStroke ? 2 : 1);
+    for (const EngineRunSpec& spec : listDefaultEngineRuns(quick, load)) {
+      const auto begin = std::chrono::steady_clock::now();
+      (void)calcEngineRuns(c.mechanism, c.omega0, probed, {spec}, load);
+      reference += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count() * c.revolutions /
+                   probed;
+      if (reference > limit_seconds) break;
+    }
+  }
+  double stepped = 0.0;
+  std::string stepped_how;
+  std::set<std::string> families;
+  for (const RunCase& c : cases) {
+    if (c.drive != RunDrive::kFree || !families.insert(c.family).second || reference > limit_seconds) continue;
     std::vector<SteppedJob> jobs;
     for (const SteppedFreeRunSpec& spec : listDefaultSteppedFreeRuns(quick))
       for (const SteppedEngine& e : listSteppedEngines())
         if (e.name == spec.engine && e.run_free)
           jobs.push_back({&e, spec.settings, spec.dt, 1.1 * c.t_end / spec.dt});
-    checkSteppedWork(c.mechanism, jobs, limit_seconds,
-                     "--revolutions: the stepped engines' free runs of " + c.family + " over " +
-                         std::to_string(c.revolutions) + " revolutions",
-                     "fewer --revolutions");
+    const SteppedWorkEstimate e =
+        estimateSteppedWork(c.mechanism, jobs, std::max(limit_seconds - reference - stepped, 0.0),
+                            "--revolutions: the stepped engines' free runs of " + c.family + " over " +
+                                std::to_string(c.revolutions) + " revolutions",
+                            "fewer --revolutions");
+    stepped += e.seconds;
+    if (stepped_how.empty()) stepped_how = e.how;
   }
-  double seconds = 0.0;
-  int revolutions = 0;
-  std::set<std::string> done;
-  for (const RunCase& c : cases) {
-    revolutions = std::max(revolutions, c.revolutions);
-    if (c.revolutions <= kUnprobedRevolutions || c.drive == RunDrive::kHeld || !done.insert(c.family).second) continue;
-    RunCase probe = c;  // one revolution of the same work
-    probe.revolutions = 1;
-    probe.t_end = c.t_end / c.revolutions;
-    const auto begin = std::chrono::steady_clock::now();
-    TableSet scratch;
-    addEngineRuns(scratch, {probe}, quick);
-    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count() * c.revolutions;
-  }
-  checkWorkLimit("--revolutions: crankcheck's own reference runs over " + std::to_string(revolutions) + " revolutions",
-                 seconds, "the engines' runs of each scene timed over one revolution, times its revolutions: an upper "
-                 "bound, a run's start costs more than its later revolutions",
+  checkWorkLimit("--revolutions: crankcheck's own runs over " + std::to_string(revolutions) + " revolutions",
+                 reference + stepped,
+                 "the engines' reference runs of each scene timed over one revolution and counted for the horizon, " +
+                     std::string(reference > limit_seconds ? "at least " : "") + formatDuration(reference) +
+                     (reference > limit_seconds ? " (probing stopped past the limit)" : "") + "; the stepped engines' free runs " +
+                     formatDuration(stepped) + (stepped_how.empty() ? std::string() : " (" + stepped_how + ")"),
                  "fewer --revolutions", limit_seconds);
 }
 

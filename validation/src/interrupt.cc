@@ -5,6 +5,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
@@ -17,6 +18,7 @@ namespace {
 
 std::mutex g_mutex;
 OutputFolder* g_folder = nullptr;  // guarded by g_mutex
+std::atomic<bool> g_interrupting{false};  // set by the watcher, holding g_mutex, before it kills anything
 
 sigset_t interruptSignals() {
   sigset_t set;
@@ -32,9 +34,12 @@ void watch() {
   int signal_number = 0;
   while (sigwait(&set, &signal_number) != 0) {
   }
-  killRunningPrograms();
   {
+    // The lock first, then the mark, then the kill: whatever fails because of the kill (a wait on gnuplot) finds the
+    // mark set in yieldToInterrupt and waits on this lock, which is never released (the process ends holding it).
     std::lock_guard<std::mutex> lock(g_mutex);
+    g_interrupting = true;
+    killRunningPrograms();
     const char* name = signal_number == SIGINT ? "SIGINT" : signal_number == SIGTERM ? "SIGTERM" : "SIGHUP";
     // On a terminal the message starts on a line of its own (after the ^C the terminal echoed); in a file or a pipe,
     // where nothing else was written, it is the one line.
@@ -47,11 +52,16 @@ void watch() {
       std::fprintf(stderr, "%scrankcheck: interrupted by %s; nothing was written\n", start, name);
     }
     std::fflush(stderr);
+    endLeftBehindProcesses();  // after the message: a program's setsid child does not outlive crankcheck either
     std::_Exit(128 + signal_number);  // with the lock held: no install starts after this point
   }
 }
 
 }  // namespace
+
+void yieldToInterrupt() {
+  if (g_interrupting) std::lock_guard<std::mutex> wait(g_mutex);  // never taken: the watcher exits holding it
+}
 
 void watchInterrupts() {
   static const bool started = [] {

@@ -376,10 +376,11 @@ RunningProgram startProgram(const ProgramCall& call) {
 ProgramResult runProgram(const ProgramCall& call) { return startProgram(call).wait(); }
 
 void killRunningPrograms() {
-  {
-    std::lock_guard<std::mutex> lock(runningMutex());
-    for (pid_t pid : runningPids()) ::kill(-pid, SIGKILL);  // each runs in a process group of its own
-  }
+  std::lock_guard<std::mutex> lock(runningMutex());
+  for (pid_t pid : runningPids()) ::kill(-pid, SIGKILL);  // each runs in a process group of its own
+}
+
+void endLeftBehindProcesses() {
   if (reaping()) endLeftBehind(0);
 }
 

@@ -70,8 +70,8 @@ std::vector<SteppedJob> listSteppedJobs(const Mechanism& m, const std::vector<co
   return jobs;
 }
 
-void checkSteppedWork(const Mechanism& m, const std::vector<SteppedJob>& jobs, double limit_seconds,
-                      const std::string& what, const std::string& smaller) {
+SteppedWorkEstimate estimateSteppedWork(const Mechanism& m, const std::vector<SteppedJob>& jobs, double budget_seconds,
+                                        const std::string& what, const std::string& smaller) {
   double total = 0.0;
   for (const SteppedJob& job : jobs) total += job.steps;
   if (total > kMaxSteppedSteps) {
@@ -83,7 +83,13 @@ void checkSteppedWork(const Mechanism& m, const std::vector<SteppedJob>& jobs, d
   // Within the limit even at a ceiling on a step's cost (kStepCostCeiling, growing as k^3: a direct solve of the
   // loops' constraints), nothing needs measuring: the example scenes' default sweeps pass here without a probe.
   const double k = m.machine.cylinders;
-  if (total * kStepCostCeiling * std::max(1.0, std::pow(k / 4.0, 3.0)) <= limit_seconds) return;
+  const double ceiling = total * kStepCostCeiling * std::max(1.0, std::pow(k / 4.0, 3.0));
+  char how[200];
+  if (ceiling <= budget_seconds) {
+    std::snprintf(how, sizeof how, "%.3g steps at a ceiling of %s a step", total,
+                  formatDuration(kStepCostCeiling * std::max(1.0, std::pow(k / 4.0, 3.0))).c_str());
+    return {ceiling, how};
+  }
   // The cost of a step of each engine and settings, measured at the smallest step its jobs take (the dearest: an
   // iterative solver's work does not fall with the step).
   std::map<std::pair<const SteppedEngine*, std::string>, double> smallest;
@@ -125,10 +131,15 @@ void checkSteppedWork(const Mechanism& m, const std::vector<SteppedJob>& jobs, d
     seconds += job.steps * it->second;
     if (it->second > dearest) dearest = it->second, dearest_name = job.engine->name + " " + job.settings;
   }
-  char how[200];
   std::snprintf(how, sizeof how, "%.3g steps; the dearest step, %s's, measured at %s", total, dearest_name.c_str(),
                 formatDuration(dearest).c_str());
-  checkWorkLimit(what, seconds, how, smaller, limit_seconds);
+  return {seconds, how};
+}
+
+void checkSteppedWork(const Mechanism& m, const std::vector<SteppedJob>& jobs, double limit_seconds,
+                      const std::string& what, const std::string& smaller) {
+  const SteppedWorkEstimate estimate = estimateSteppedWork(m, jobs, limit_seconds, what, smaller);
+  checkWorkLimit(what, estimate.seconds, estimate.how, smaller, limit_seconds);
 }
 
 SteppedSweep calcSteppedSweep(const Mechanism& m, const std::string& scene, const std::vector<const SteppedEngine*>& engines,

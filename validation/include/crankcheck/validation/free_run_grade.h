@@ -161,16 +161,11 @@ TableSet runRunGrade(const std::vector<RunCase>& cases, const GradeProgram& prog
 /// @throws std::runtime_error if an engine's run fails.
 void addEngineRuns(TableSet& tables, const std::vector<RunCase>& cases, bool quick);
 
-/// The most revolutions a case may ask without the estimate of checkRunGradeWork: the default horizon (10), whose work
-/// is the default grade's (seconds a scene), not worth a probe of a tenth of it.
-inline constexpr int kUnprobedRevolutions = 10;
-
-/// Checks before any run that crankcheck's own work on `cases` (the engines' reference runs of addEngineRuns over the
-/// horizon, the dearest part of a long grade) is estimated within `limit_seconds` (work_limit.h): each scene's engine
-/// runs timed over one revolution, times its revolutions (an upper bound: a run's start, the first revolution's
-/// delta among it, costs more than a later revolution). Cases of at most kUnprobedRevolutions are not probed. The
-/// stepped engines' free runs are estimated at any horizon from each engine's measured cost of a step
-/// (commands/stepped.h checkSteppedWork).
+/// Checks before any run that crankcheck's own work on `cases`, in all, is estimated within `limit_seconds`
+/// (work_limit.h): the engines' reference runs of addEngineRuns over the horizon, each scene's timed over one revolution
+/// and counted for its revolutions (an upper bound: a run's start costs more than its later revolutions), at every
+/// horizon; plus the stepped engines' free runs, from each engine's measured cost of a step
+/// (commands/stepped.h estimateSteppedWork).
 /// @throws UsageError "--revolutions: ... would take about ..., more than --work-limit ..."
 void checkRunGradeWork(const std::vector<RunCase>& cases, bool quick, double limit_seconds);
 

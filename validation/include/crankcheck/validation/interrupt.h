@@ -15,6 +15,11 @@ namespace crankcheck::validation {
 /// first thing in main, before any other thread and any child. Idempotent.
 void watchInterrupts();
 
+/// Returns at once, unless an interrupt is being handled: then it waits for the watcher to end the process (128 + the
+/// signal), so that what failed because the interrupt killed a child (a wait on gnuplot) is not reported as a
+/// failure of its own with another status. The CLI calls it before it reports an error.
+void yieldToInterrupt();
+
 /// While a guard lives, SIGINT or SIGTERM kills the external programs crankcheck is running (gnuplot), abandons
 /// `folder` (OutputFolder::abandon) and exits with 128 + the signal number. The signals are blocked in every thread
 /// and received by one watcher thread, so construct the first guard before any other thread starts. After the

@@ -48,7 +48,7 @@ struct ProgramResult {
 /// Makes this process the reaper of whatever its programs leave behind (Linux PR_SET_CHILD_SUBREAPER): a process a
 /// program started and did not end (a setsid child, a daemon) becomes this process's child when the program ends, and
 /// every wait() ends such processes (SIGKILL, then reaped) before it returns, counting them in
-/// ProgramResult::left_behind; killRunningPrograms ends them too. The CLI calls it once at start. A library user (the
+/// ProgramResult::left_behind; an interrupt ends them too (endLeftBehindProcesses). The CLI calls it once at start. A library user (the
 /// Python module, in the user's interpreter) does not: there such a process outlives the call, out of reach.
 /// @return false when the kernel refuses (before Linux 3.4): then nothing is reaped, as in a library.
 bool reapLeftBehindProcesses();
@@ -96,5 +96,9 @@ ProgramResult runProgram(const ProgramCall& call);
 
 /// Sends SIGKILL to every program that runProgram is waiting for (used when crankcheck is interrupted).
 void killRunningPrograms();
+
+/// Ends (SIGKILL) and reaps every process the programs left behind that came to this process as their reaper
+/// (reapLeftBehindProcesses); nothing where it was not called. An interrupted crankcheck calls it as it exits.
+void endLeftBehindProcesses();
 
 }  // namespace crankcheck::validation

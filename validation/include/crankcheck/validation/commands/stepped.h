@@ -88,6 +88,17 @@ inline constexpr long kProbeSteps = 16;
 /// 200 us on the V8, 53 ms on k = 64, all within it). Work within the limit at this ceiling is not probed.
 inline constexpr double kStepCostCeiling = 2e-4;
 
+/// The time the jobs' work would take [s], and how it was estimated ("1.3e6 steps; the dearest step, ode
+/// tightened's, measured at 53 ms"): their steps at kStepCostCeiling where that stays within `budget_seconds` (no probe),
+/// else at each engine's and settings' cost of a step measured on m (as checkSteppedWork says).
+/// @throws UsageError past kMaxSteppedSteps, naming `what` and `smaller`
+struct SteppedWorkEstimate {
+  double seconds = 0.0;
+  std::string how;
+};
+SteppedWorkEstimate estimateSteppedWork(const Mechanism& m, const std::vector<SteppedJob>& jobs, double budget_seconds,
+                                        const std::string& what, const std::string& smaller);
+
 /// Checks the jobs' work before it starts (work_limit.h): their steps in all within kMaxSteppedSteps (the runs keep a
 /// turn's samples), then their time, each job's steps times the cost of a step of its engine and settings measured on m
 /// by a probe at the job's step, within `limit_seconds` (no probe where the jobs' steps at kStepCostCeiling are). A job
