@@ -78,14 +78,16 @@ size_t appendEscaped(std::string& out, const std::string& text, size_t i, Quotes
   return c.length;
 }
 
-}  // namespace
-
-std::string escapeText(const std::string& text) {
+std::string escapeEvery(const std::string& text, Quotes quotes) {
   std::string out;
   out.reserve(text.size());
-  for (size_t i = 0; i < text.size();) i += appendEscaped(out, text, i, Quotes::kEscaped, true);
+  for (size_t i = 0; i < text.size();) i += appendEscaped(out, text, i, quotes, true);
   return out;
 }
+
+}  // namespace
+
+std::string escapeText(const std::string& text) { return escapeEvery(text, Quotes::kEscaped); }
 
 std::string quoteText(const std::string& text) {
   // Written by appends: `"\"" + escapeText(text) + "\""` draws GCC 12's false -Wrestrict at -O3.
@@ -96,12 +98,7 @@ std::string quoteText(const std::string& text) {
   return out;
 }
 
-std::string escapeControls(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (size_t i = 0; i < text.size();) i += appendEscaped(out, text, i, Quotes::kKept, true);
-  return out;
-}
+std::string escapeControls(const std::string& text) { return escapeEvery(text, Quotes::kKept); }
 
 std::string formatOneLine(const std::string& message) {
   std::string out;

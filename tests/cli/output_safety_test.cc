@@ -86,6 +86,17 @@ class OutputSafetyTest : public ::testing::Test {
                                    "--parts", "norton_fig13_8", "--shard", which, "--out", out.string()});
   }
 
+  // Whether a run's staging folder appears in the test's folder within 5 s (the campaign has started): what a test
+  // that acts mid-run waits for, not a time.
+  bool waitForStaging() const {
+    for (int i = 0; i < 500; ++i) {
+      for (const auto& entry : fs::directory_iterator(dir_))
+        if (entry.path().filename().string().find(".crankcheck-partial-") != std::string::npos) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+  }
+
   testing::FreshFolder folder_;  // made for this test alone, removed with what the test wrote
   const fs::path dir_ = folder_.path();
 };
@@ -425,13 +436,7 @@ TEST_P(InterruptTest, LeavesThePreviousReportAsItWas) {
   const auto before = snapshot(dir_);
   validation::RunningProgram run = testing::startCrankcheck({"validate", "--quick", "--out", report.string()});
   // Mid-run: the staging folder exists (the campaign has started); the quick campaign takes about 3 s more.
-  bool staged = false;
-  for (int i = 0; i < 500 && !staged; ++i) {
-    for (const auto& entry : fs::directory_iterator(dir_))
-      staged = staged || entry.path().filename().string().find(".crankcheck-partial-") != std::string::npos;
-    if (!staged) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  ASSERT_TRUE(staged) << "the run never started";
+  ASSERT_TRUE(waitForStaging()) << "the run never started";
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   ASSERT_EQ(::kill(run.pid(), GetParam()), 0);
   const ProgramResult r = run.wait();
@@ -537,13 +542,7 @@ TEST_F(OutputSafetyTest, AFileThatAppearsDuringTheRunIsKeptAndTheNewReportInstal
   const fs::path report = dir_ / "R";
   ASSERT_EQ(writeShard(report).exit_status, 0);
   validation::RunningProgram run = testing::startCrankcheck({"validate", "--quick", "--out", report.string()});
-  bool staged = false;
-  for (int i = 0; i < 500 && !staged; ++i) {
-    for (const auto& entry : fs::directory_iterator(dir_))
-      staged = staged || entry.path().filename().string().find(".crankcheck-partial-") != std::string::npos;
-    if (!staged) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  ASSERT_TRUE(staged) << "the run never started";
+  ASSERT_TRUE(waitForStaging()) << "the run never started";
   writeFile(report / "mine.txt", "a user's file\n");
   const ProgramResult r = run.wait();
   EXPECT_EQ(r.exit_status, 0) << r.err;
