@@ -107,8 +107,7 @@ std::string runBalance(const BalanceOptions& options) {
     doc["resolution"] = validation::balanceResolutionToJson(resolution);
     doc["harmonics"] = validation::balanceToJson(rows, axial);
     for (size_t i = 0; i < rows.size(); ++i) doc["harmonics"][i]["reason"] = reasonOf(rows[i].symmetry, axial);
-    doc["sat_out"] = nlohmann::ordered_json::array();
-    for (const validation::SatOut& s : sat_out) doc["sat_out"].push_back({{"engine", s.engine}, {"reason", s.reason}});
+    doc["sat_out"] = validation::satOutToJson(sat_out);
     return dumpJson(doc);
   }
   std::string out;

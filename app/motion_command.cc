@@ -53,8 +53,7 @@ std::string runMotion(const MotionOptions& options) {
   if (options.format == "json") {
     nlohmann::ordered_json doc;
     for (const validation::MotionRun& r : results) doc[r.engine] = validation::motionRunToJson(r);
-    doc["sat_out"] = nlohmann::ordered_json::array();
-    for (const validation::SatOut& s : sat_out) doc["sat_out"].push_back({{"engine", s.engine}, {"reason", s.reason}});
+    doc["sat_out"] = validation::satOutToJson(sat_out);
     return dumpJson(doc);
   }
   char buffer[512];

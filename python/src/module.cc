@@ -261,8 +261,7 @@ py::object balance(const ScenePtr& scene, int order) {
   doc["samples"] = std::max(64, 4 * order);
   doc["resolution"] = validation::balanceResolutionToJson(validation::calcBalanceResolution(m));
   doc["harmonics"] = validation::balanceToJson(rows, hasAxialPositions(m));
-  doc["sat_out"] = nlohmann::ordered_json::array();
-  for (const validation::SatOut& s : sat_out) doc["sat_out"].push_back({{"engine", s.engine}, {"reason", s.reason}});
+  doc["sat_out"] = validation::satOutToJson(sat_out);
   return toPython(doc);
 }
 
@@ -303,8 +302,7 @@ py::object motion(const ScenePtr& scene, const std::string& integrator, double a
   for (const validation::MotionRun& r : runs) {
     doc[r.engine] = validation::motionRunToJson(r);
   }
-  doc["sat_out"] = nlohmann::ordered_json::array();
-  for (const validation::SatOut& s : sat_out) doc["sat_out"].push_back({{"engine", s.engine}, {"reason", s.reason}});
+  doc["sat_out"] = validation::satOutToJson(sat_out);
   py::object result = toPython(doc);
   if (series)
     for (const validation::MotionRun& r : runs) {

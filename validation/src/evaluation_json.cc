@@ -131,6 +131,12 @@ nlohmann::ordered_json evaluationToJson(const Evaluation& ev, double phi_deg, co
   return j;
 }
 
+nlohmann::ordered_json satOutToJson(const std::vector<SatOut>& sat_out) {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const SatOut& s : sat_out) list.push_back({{"engine", s.engine}, {"reason", s.reason}});
+  return list;
+}
+
 nlohmann::ordered_json balanceResolutionToJson(const BalanceResolution& resolution) {
   return {{"force", resolution.force}, {"moment", resolution.moment}};
 }

@@ -413,13 +413,15 @@ void OutputFolder::install(const std::string& kind) {
   // Once more: the folder may have changed while the campaign ran (a file of the user's put in it, a listed file
   // edited). The run's work is not thrown away for that: the new report is installed all the same, and what was
   // there is moved aside whole (removePreviousReport removes only the files crankcheck wrote, as it wrote them, and
-  // keeps the rest as TARGET.previous, named in a warning). Nothing of the user's is removed either way.
+  // keeps the rest as TARGET.previous, named in a warning). Nothing of the user's is removed either way. A target
+  // that is no longer a folder (a link, a file put in its place) is refused as before: nothing is swapped with it.
+  const fs::path path = normalTarget(target_);
+  struct stat st {};
   try {
     checkOutputFolder(target_, flag_);
   } catch (const UsageError&) {
+    if (::lstat(path.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) throw;
   }
-  const fs::path path = normalTarget(target_);
-  struct stat st {};
   if (::lstat(path.c_str(), &st) != 0) {
     if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, path.c_str(), RENAME_NOREPLACE) != 0)
       throw EnvironmentError(flag_ + ": " + quotePath(target_) + ": cannot install the report: " + std::strerror(errno));
@@ -442,7 +444,11 @@ fs::path removePreviousReport(const fs::path& old_folder, const fs::path& target
   // folders); anything else stays, and is named.
   std::string unread;                // why the manifest could not be read: then nothing is removed
   std::set<std::string> unremovable;  // files as crankcheck wrote them that could not be removed (permissions)
-  try {
+  struct stat folder {};
+  if (::lstat(old_folder.c_str(), &folder) != 0) return {};
+  const bool real_folder = S_ISDIR(folder.st_mode);  // a link is never walked: only moved aside below
+  if (!real_folder) unread = "not a folder";
+  if (real_folder) try {
     const FolderManifest manifest = readFolderManifest(old_folder);
     struct stat st {};
     for (const ManifestFile& f : manifest.files)
@@ -454,14 +460,14 @@ fs::path removePreviousReport(const fs::path& old_folder, const fs::path& target
   }
   std::error_code ec;
   std::vector<fs::path> dirs;
-  for (auto it = fs::recursive_directory_iterator(old_folder, ec); !ec && it != fs::recursive_directory_iterator();
+  for (auto it = fs::recursive_directory_iterator(old_folder, ec); real_folder && !ec && it != fs::recursive_directory_iterator();
        it.increment(ec))
     if (it->symlink_status(ec).type() == fs::file_type::directory) dirs.push_back(it->path());
   std::sort(dirs.begin(), dirs.end(), [](const fs::path& a, const fs::path& b) { return a.string() > b.string(); });
   for (const fs::path& d : dirs) ::rmdir(d.c_str());
-  if (::rmdir(old_folder.c_str()) == 0 || errno == ENOENT) return {};
+  if (real_folder && (::rmdir(old_folder.c_str()) == 0 || errno == ENOENT)) return {};
   std::vector<std::string> kept, stuck;  // what remains but folders, in order: not crankcheck's; crankcheck's as written
-  for (auto it = fs::recursive_directory_iterator(old_folder, ec); !ec && it != fs::recursive_directory_iterator();
+  for (auto it = fs::recursive_directory_iterator(old_folder, ec); real_folder && !ec && it != fs::recursive_directory_iterator();
        it.increment(ec))
     if (it->symlink_status(ec).type() != fs::file_type::directory) {
       const std::string rel = it->path().lexically_relative(old_folder).generic_string();

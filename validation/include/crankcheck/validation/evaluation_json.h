@@ -34,6 +34,10 @@ nlohmann::ordered_json motionRunToJson(const MotionRun& run);
 
 nlohmann::ordered_json balanceToJson(const std::vector<BalanceRow>& rows, bool axial);
 
+/// The engines that sat out of a command's work, as its JSON prints them: [{"engine", "reason"}], empty when every
+/// engine answered (balance, motion; CLI and Python).
+nlohmann::ordered_json satOutToJson(const std::vector<SatOut>& sat_out);
+
 /// What each engine's DFT resolves (calcBalanceResolution), as `balance --format json` prints it: {"force" [N],
 /// "moment" [N m]}.
 nlohmann::ordered_json balanceResolutionToJson(const BalanceResolution& resolution);
