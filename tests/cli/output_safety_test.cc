@@ -555,6 +555,25 @@ TEST_F(OutputSafetyTest, AFileThatAppearsDuringTheRunIsKeptAndTheNewReportInstal
   EXPECT_EQ(snapshot(dir_ / "R.previous"), (std::map<std::string, std::string>{{"mine.txt", "a user's file\n"}}));
 }
 
+// A target replaced during the run by a link (to a folder of the user's, holding an empty folder and a file) is
+// refused at the install as before the run: nothing is swapped with the link, nothing behind it is touched.
+TEST_F(OutputSafetyTest, ATargetThatBecomesALinkDuringTheRunIsRefusedAndLeftAlone) {
+  const fs::path report = dir_ / "R", mine = dir_ / "mine";
+  ASSERT_EQ(writeShard(report).exit_status, 0);
+  fs::create_directories(mine / "empty");
+  writeFile(mine / "notes.txt", "a user's file\n");
+  validation::RunningProgram run = testing::startCrankcheck({"validate", "--quick", "--out", report.string()});
+  ASSERT_TRUE(waitForStaging()) << "the run never started";
+  fs::rename(report, dir_ / "R.moved-by-the-user");
+  fs::create_directory_symlink(mine, report);
+  const auto before = snapshot(mine);
+  const ProgramResult r = run.wait();
+  EXPECT_EQ(r.exit_status, 2) << r.err;
+  EXPECT_TRUE(fs::is_symlink(report));
+  EXPECT_EQ(snapshot(mine), before);
+  EXPECT_FALSE(fs::exists(dir_ / "R.previous"));
+}
+
 // The report's folder has the mode of any folder the user makes (0777 less the umask): mkdtemp's 0700 staging folder
 // made every report unreadable to the user's group and others (a report served by a web server, a CI artifact).
 TEST_F(OutputSafetyTest, TheReportFolderHasTheModeOfAnyFolderTheUserMakes) {
