@@ -21,6 +21,7 @@
 
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/output_folder.h"
+#include "crankcheck/validation/report_document.h"
 #include "run_cli.h"
 #include "../support/read_file.h"
 
@@ -473,10 +474,15 @@ TEST_P(OddPathTest, WorksAsOutputFolderAndScenePath) {
   EXPECT_NE(readFile(out / "index.md").find("Scenes"), std::string::npos);
   // The scene is named by its file's stem on one line: a newline in it shown as \n (a backslash and an n), in its
   // section's heading (where a backquote is escaped for Markdown: a heading is text) and in every table.
-  std::string shown, heading;
+  std::string shown;
   for (char c : std::string(name)) shown += c == '\n' ? std::string("\\n") : std::string(1, c);
-  for (char c : shown) heading += std::string(std::string_view("\\`*[]<>").find(c) != std::string_view::npos ? "\\" : "") + c;
+  const std::string heading = validation::escapeMarkdownText(shown);
   EXPECT_NE(readFile(out / "index.md").find("\n### " + heading + ": your engine\n"), std::string::npos);
+  // Nowhere on the page is the name Markdown: no link but the page's own (a name "[link](javascript:...)" made one in
+  // every table and sentence that named it), the name's text shown as written.
+  const std::string html = readFile(out / "index.html");
+  EXPECT_EQ(html.find("<a href=\"\""), std::string::npos);
+  EXPECT_EQ(html.find("<a href=\"javascript"), std::string::npos);
   // The scene's name is in the data, quoted as CSV requires where it holds a comma or a quote.
   const std::string scenes_csv = readFile(out / "data/scenes.csv");
   const bool quoted = shown.find_first_of(",\"") != std::string::npos;

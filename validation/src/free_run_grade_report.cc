@@ -82,11 +82,12 @@ void renderRunGradeReport(const TableSet& tables, const std::vector<RunCase>& ca
   std::string command;
   for (const std::string& word : info.program) command += (command.empty() ? "" : " ") + quoteShellWord(word);
   ReportDocument doc("crankcheck grade --free-run report");
+  doc.showAsWritten(listSceneNames(tables));
   char line[512];
   std::snprintf(line, sizeof line, "crankcheck %s, %s, %s; %zu runs, %.1f s, timeout %.3g s per run.",
                 getCrankcheckVersion(), joinEngineLibraries().c_str(), formatToday().c_str(), cases.size(), info.seconds,
                 info.timeout_seconds);
-  doc.addParagraph("Graded program: `" + command + "`\n\n" + line);
+  doc.addParagraph("Graded program: " + formatCodeSpan(command) + "\n\n" + line);
   const RunTolerances& t = info.tolerances;
   doc.addParagraph(
       "Each run starts at phi = 0 with the scene's speed. A *free* run (no drive, no load, no gas; gravity on) is "

@@ -36,13 +36,14 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
   std::string command;
   for (const std::string& word : info.program) command += (command.empty() ? "" : " ") + quoteShellWord(word);
   ReportDocument doc("crankcheck grade report");
+  doc.showAsWritten(listSceneNames(tables));
   char line[512];
   std::snprintf(line, sizeof line,
                 "crankcheck %s, %s, %s; %zu cases%s, %d job%s%s, %.1f s, timeout %.3g s per request.",
                 getCrankcheckVersion(), joinEngineLibraries().c_str(), formatToday().c_str(), cases.size(),
                 info.quick ? " (--quick)" : "", info.jobs, info.jobs == 1 ? "" : "s", info.batch ? ", --batch" : "",
                 info.seconds, info.timeout_seconds);
-  doc.addParagraph("Graded program: `" + command + "`\n\n" + line);
+  doc.addParagraph("Graded program: " + formatCodeSpan(command) + "\n\n" + line);
   const std::vector<const Engine*> judges = listGradeJudges();
   std::string names;  // "simbody / analytic / mujoco"
   for (const Engine* judge : judges) names += (names.empty() ? "" : " / ") + judge->name;
@@ -127,8 +128,8 @@ void renderGradeReport(const TableSet& tables, const std::vector<GradeCase>& cas
       const std::string phi = formatNumber(r.phi_deg);
       table.push_back({r.case_id, r.quantity + (r.cylinder ? " [" + std::to_string(*r.cylinder) + "]" : ""), phi,
                        formatNumber(r.program_value), formatNumber(r.judge_values.at(0)), shortNumber(r.rel_error),
-                       "`" + quoteShellWord(info.crankcheck_program) + " eval cases/" + r.case_id + ".toml --phi-deg " +
-                           phi + " --engine all`"});
+                       formatCodeSpan(quoteShellWord(info.crankcheck_program) + " eval cases/" + r.case_id +
+                                      ".toml --phi-deg " + phi + " --engine all")});
     }
     doc.addTable({"case", "quantity [cylinder]", "phi [deg]", "program", judges[0]->name, "error [scale]", "reproduce"}, table);
   }

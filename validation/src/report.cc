@@ -100,9 +100,11 @@ struct Block {
   std::string id = {};                         // a heading's anchor (a part's key); empty: made of its text
 };
 
-// The blocks as a ReportDocument: index.md as written, index.html rendered from it by cmark-gfm.
-ReportDocument toDocument(const std::vector<Block>& blocks, const std::string& title) {
+// The blocks as a ReportDocument: index.md as written, index.html rendered from it by cmark-gfm; the texts of
+// `as_written` (the scenes' names) shown as written.
+ReportDocument toDocument(const std::vector<Block>& blocks, const std::string& title, std::vector<std::string> as_written) {
   ReportDocument doc(title);
+  doc.showAsWritten(std::move(as_written));
   for (const Block& b : blocks) {
     switch (b.kind) {
       case Block::kHeading:
@@ -190,7 +192,7 @@ void renderReport(const TableSet& input, const ReportInfo& info, const fs::path&
     }
   }
 
-  const ReportDocument page = toDocument(doc, info.title);
+  const ReportDocument page = toDocument(doc, info.title, listSceneNames(tables));
   writeNewFile(dir / "index.md", page.toMarkdown());
   writeNewFile(dir / "index.html", page.toHtml());
 }

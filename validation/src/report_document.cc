@@ -4,9 +4,11 @@
 #include <cmark-gfm.h>
 
 #include <algorithm>
+#include <cctype>
 #include <string_view>
 #include <cstdlib>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,6 +17,7 @@
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/install_paths.h"
 #include "crankcheck/validation/process.h"
+#include "crankcheck/validation/table.h"
 #include "flywheel_run.h"
 
 namespace crankcheck::validation {
@@ -47,12 +50,13 @@ std::string escapeHtml(const std::string& s) {
 }
 
 // cmark-gfm with GitHub's table extension: Markdown to an HTML fragment. Raw HTML in the Markdown is not passed
-// through (CMARK_OPT_DEFAULT is safe): the report's text comes from data, some of it the user's.
+// through (CMARK_OPT_DEFAULT is safe): the report's text comes from data, some of it the user's. No autolink extension:
+// the report writes its links as links, and a scene named "www.example.com" or "a@example.com" is text.
 std::string renderMarkdown(const std::string& markdown) {
   cmark_gfm_core_extensions_ensure_registered();
   std::unique_ptr<cmark_parser, void (*)(cmark_parser*)> parser(cmark_parser_new(CMARK_OPT_DEFAULT), cmark_parser_free);
   if (!parser) throw std::runtime_error("cmark-gfm: cannot create a parser");
-  for (const char* name : {"table", "autolink"})
+  for (const char* name : {"table"})
     if (cmark_syntax_extension* extension = cmark_find_syntax_extension(name))
       cmark_parser_attach_syntax_extension(parser.get(), extension);
   cmark_parser_feed(parser.get(), markdown.data(), markdown.size());
@@ -64,24 +68,63 @@ std::string renderMarkdown(const std::string& markdown) {
   return out;
 }
 
+bool isWordCharacter(char c) { return std::isalnum(static_cast<unsigned char>(c)) || static_cast<unsigned char>(c) >= 0x80; }
+
 }  // namespace
+
+std::string escapeMarkdownText(const std::string& text) {
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n' || c == '\r') {
+      out += ' ';
+      continue;
+    }
+    // '_' opens emphasis only beside a non-word character (GitHub's rule for intraword underscores).
+    const bool opens = c == '_' ? !(i > 0 && isWordCharacter(text[i - 1]) && i + 1 < text.size() && isWordCharacter(text[i + 1]))
+                                : std::string_view("\\`*[]<>&!#~").find(c) != std::string_view::npos;
+    if (opens) out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+std::string formatCodeSpan(const std::string& text) {
+  size_t longest = 0;
+  for (size_t i = 0; i < text.size();) {
+    size_t run = 0;
+    while (i + run < text.size() && text[i + run] == '`') ++run;
+    longest = std::max(longest, run);
+    i += std::max<size_t>(run, 1);
+  }
+  const std::string fence(longest + 1, '`');
+  std::string body;
+  for (const char c : text) body += (c == '\n' || c == '\r') ? ' ' : c;
+  const bool pad = !body.empty() && (body.front() == '`' || body.back() == '`');
+  return fence + (pad ? " " : "") + body + (pad ? " " : "") + fence;
+}
+
+std::vector<std::string> listSceneNames(const TableSet& tables) {
+  std::set<std::string> names;
+  for (const auto& [name, table] : tables)
+    for (size_t c = 0; c < table.columns().size(); ++c) {
+      const Column& column = table.columns()[c];
+      if (!column.text || (column.name != "scene" && column.name != "family")) continue;
+      for (size_t r = 0; r < table.size(); ++r) {
+        const Cell cell = table.cell(r, c);
+        if (const std::string* text = std::get_if<std::string>(&cell)) names.insert(*text);
+      }
+    }
+  return {names.begin(), names.end()};
+}
 
 ReportDocument::ReportDocument(std::string title) : title_(std::move(title)) { body_ = "# " + title_ + "\n\n"; }
 
 void ReportDocument::addHeading(int level, const std::string& text, const std::string& id) {
   // One line, as a heading must be (a scene named "two\nlines" split into a heading "two" and a paragraph "lines"),
-  // and plain text: a heading is words, never Markdown, so the characters that open a link, an image, HTML or code
-  // are backslash-escaped (a scene named "[link](javascript:...)" made a live link of its own section's heading);
-  // an underscore inside a word (v8_cross_plane) is text to GitHub's Markdown and stays as it is.
-  std::string line;
-  for (const char c : text) {
-    if (c == '\n' || c == '\r') {
-      line += ' ';
-      continue;
-    }
-    if (std::string_view("\\`*[]<>").find(c) != std::string_view::npos) line += '\\';
-    line += c;
-  }
+  // and plain text: a heading is words, never Markdown (a scene named "[link](javascript:...)" made a live link of its
+  // own section's heading).
+  const std::string line = escapeMarkdownText(text);
   body_ += std::string(static_cast<size_t>(level), '#') + " " + line + "\n\n";
   std::string anchor = id;
   if (anchor.empty())
@@ -97,24 +140,83 @@ void ReportDocument::addHeading(int level, const std::string& text, const std::s
   headings_.push_back({level, text, anchor});
 }
 
-void ReportDocument::addParagraph(const std::string& markdown) { body_ += markdown + "\n\n"; }
+void ReportDocument::showAsWritten(std::vector<std::string> texts) {
+  as_written_.clear();
+  for (std::string& t : texts) {
+    std::string escaped = escapeMarkdownText(t);
+    if (!t.empty() && escaped != t) as_written_.emplace_back(std::move(t), std::move(escaped));
+  }
+  // The longest first: a scene "a*b*c" is escaped whole, not as "a*b" and the rest.
+  std::sort(as_written_.begin(), as_written_.end(), [](const auto& a, const auto& b) {
+    return a.first.size() != b.first.size() ? a.first.size() > b.first.size() : a.first < b.first;
+  });
+  as_written_.erase(std::unique(as_written_.begin(), as_written_.end()), as_written_.end());
+}
+
+std::string ReportDocument::escapeOutsideTexts(const std::string& markdown) const {
+  if (as_written_.empty()) return markdown;
+  std::string out;
+  for (size_t i = 0; i < markdown.size();) {
+    const char c = markdown[i];
+    const auto match = std::find_if(as_written_.begin(), as_written_.end(),
+                                    [&](const auto& t) { return markdown.compare(i, t.first.size(), t.first) == 0; });
+    if (match != as_written_.end()) {
+      out += match->second;
+      i += match->first.size();
+      continue;
+    }
+    if (c == '\\' && i + 1 < markdown.size()) {  // an escape already made: as it is
+      out.append(markdown, i, 2);
+      i += 2;
+      continue;
+    }
+    if (c == '`') {  // a code span (a run of n backticks to the next run of exactly n) as it is; a lone run is text
+      size_t run = 0;
+      while (i + run < markdown.size() && markdown[i + run] == '`') ++run;
+      size_t end = std::string::npos;
+      for (size_t j = i + run; j < markdown.size();) {
+        if (markdown[j] != '`') {
+          ++j;
+          continue;
+        }
+        size_t other = 0;
+        while (j + other < markdown.size() && markdown[j + other] == '`') ++other;
+        if (other == run) {
+          end = j + other;
+          break;
+        }
+        j += other;
+      }
+      const size_t stop = end == std::string::npos ? i + run : end;
+      out.append(markdown, i, stop - i);
+      i = stop;
+      continue;
+    }
+    out += c;
+    ++i;
+  }
+  return out;
+}
+
+void ReportDocument::addParagraph(const std::string& markdown) { body_ += escapeOutsideTexts(markdown) + "\n\n"; }
 
 void ReportDocument::addTable(const std::vector<std::string>& columns, const std::vector<std::vector<std::string>>& rows) {
   std::string line = "|", rule = "|";
   for (const std::string& c : columns) {
-    line += " " + escapeCell(c) + " |";
+    line += " " + escapeCell(escapeOutsideTexts(c)) + " |";
     rule += "---|";
   }
   body_ += line + "\n" + rule + "\n";
   for (const auto& row : rows) {
     line = "|";
-    for (size_t i = 0; i < columns.size(); ++i) line += " " + escapeCell(i < row.size() ? row[i] : std::string()) + " |";
+    for (size_t i = 0; i < columns.size(); ++i) line += " " + escapeCell(i < row.size() ? escapeOutsideTexts(row[i]) : std::string()) + " |";
     body_ += line + "\n";
   }
   body_ += "\n";
 }
 
-void ReportDocument::addFigure(const std::string& name, const std::string& caption) {
+void ReportDocument::addFigure(const std::string& name, const std::string& written_caption) {
+  const std::string caption = escapeOutsideTexts(written_caption);
   body_ += "[![" + escapeCell(caption) + "](" + name + ".png)](" + name + ".svg)\n\n*" + caption + "* ([SVG](" + name +
            ".svg), [CSV](data/" + name + ".csv))\n\n";
 }

@@ -6,7 +6,10 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "crankcheck/validation/table.h"
 
 namespace crankcheck::validation {
 
@@ -15,9 +18,28 @@ namespace crankcheck::validation {
 /// is needed).
 inline constexpr const char* kCellMarks[4] = {"\U0001F7E9", "\U0001F7E8", "\U0001F7E7", "\U0001F7E5"};
 
+/// `text` (a scene's name: text from outside) as Markdown that shows it as written: the characters that would open a
+/// link, an image, HTML, an entity, code or emphasis are backslash-escaped (an underscore only where it could open
+/// emphasis: v8_cross_plane stays as it is). A newline or a carriage return becomes a space (one line).
+std::string escapeMarkdownText(const std::string& text);
+
+/// `text` as one Markdown code span that shows it as written: delimited by a run of backticks longer than any inside it
+/// (a scene named "a`b" in a command to copy), padded with a space where it starts or ends with a backtick.
+std::string formatCodeSpan(const std::string& text);
+
+/// The scenes' names in `tables`: every text cell of a column named "scene" or "family" (a scene's name is its file's
+/// stem, the user's), for ReportDocument::showAsWritten.
+std::vector<std::string> listSceneNames(const TableSet& tables);
+
 class ReportDocument {
  public:
   explicit ReportDocument(std::string title);
+
+  /// Texts from outside the report (the scenes' names) to show as written wherever they appear in a paragraph, a cell
+  /// or a caption added after this call: each occurrence outside a code span is written by escapeMarkdownText (a scene
+  /// named "[x](javascript:...)" was a live link in index.md's tables and sentences). Inside a code span the text is
+  /// shown as written already: the parts put names there with formatCodeSpan.
+  void showAsWritten(std::vector<std::string> texts);
 
   /// A heading (level 2 or 3 go into the table of contents; the title is level 1). `id`: its anchor in the HTML page
   /// (a part's key: `#torsion` names the torsion part in every report); empty: one made of the text (lower case, letters,
@@ -35,8 +57,12 @@ class ReportDocument {
   std::string toHtml() const;
 
  private:
+  /// `markdown` with every text of showAsWritten escaped outside code spans.
+  std::string escapeOutsideTexts(const std::string& markdown) const;
+
   std::string title_;
   std::string body_;
+  std::vector<std::pair<std::string, std::string>> as_written_;  ///< (text, escaped), the longest text first
   struct Heading {
     int level;
     std::string text, id;
