@@ -199,13 +199,16 @@ std::string runStepped(const SteppedOptions& options) {
     throw UsageError(options.scene_path + ": " + e.what());
   }
   // One engine named that cannot build the scene: the user's input (exit status 2), not a table.
-  if (options.engine != "all" && sweep.errors.empty() && !sweep.refusals.empty() && sweep.refusals.front().dt == 0.0)
-    throw UsageError(options.scene_path + ": --engine " + options.engine + ": " + sweep.refusals.front().reason);
+  if (options.engine != "all" && sweep.errors.empty())
+    for (const validation::SteppedRefusalRow& r : sweep.refusals)
+      if (r.dt == 0.0 && r.engine == options.engine)
+        throw UsageError(options.scene_path + ": --engine " + options.engine + ": " + r.reason);
   // A request that measures nothing is not a result: every engine refused the scene (or every step).
   if (sweep.errors.empty()) {
     std::string why;
     for (const validation::SteppedRefusalRow& r : sweep.refusals)
-      if (why.find(r.engine + ": ") == std::string::npos) why += (why.empty() ? "" : "; ") + r.engine + ": " + r.reason;
+      if (const std::string who = r.engine == "all" ? "every engine" : r.engine; why.find(who + ": ") == std::string::npos)
+        why += (why.empty() ? "" : "; ") + who + ": " + r.reason;
     throw UsageError(options.scene_path + ": nothing measured: every stepped engine refused it (" +
                      (why.empty() ? std::string("no reason given") : why) + ")");
   }
@@ -287,7 +290,8 @@ std::string runStepped(const SteppedOptions& options) {
     out += "\n";
   }
   for (const validation::SteppedRefusalRow& r : sweep.refusals)
-    out += "refused: " + r.engine + (r.settings.empty() ? "" : ", settings " + r.settings) +
+    out += "refused: " + (r.engine == "all" ? std::string("every engine") : r.engine) +
+           (r.settings.empty() ? "" : ", settings " + r.settings) +
            (r.dt > 0.0 ? " at " + formatStep(r.dt) : "") + ": " + r.reason + "\n";
   out += "(read: the step fraction each value belongs to, 0 the step's start, 1 its end; order: between the two "
          "finest steps measured)\n";

@@ -132,6 +132,12 @@ TEST(FreeRunGradeTest, BadFlagsAndScenesAreRefusedBeforeAnyWork) {
           "--dt-sweep: needs a step");
   refused({"grade", "--free-run", kSingle, "--batch", "--", CRANKCHECK_FREE_RUN_FAKE}, "--batch: does not apply");
   refused({"grade", "--free-run", kSingle, "--dt", "1", "--", CRANKCHECK_FREE_RUN_FAKE}, "fewer than 8 steps");
+  // A sample every 6 ms at 3000 rpm turns the crank by about 108 deg, more than a quarter turn: a turn is not sampled
+  // (the run would be refused as too coarse after the program ran), so refused before it starts, naming the flag.
+  refused({"grade", "--free-run", kSingle, "--dt", "0.006", "--", CRANKCHECK_FREE_RUN_FAKE, "hang"},
+          "deg at the run's mean speed, more than a quarter turn");
+  refused({"grade", "--free-run", kSingle, "--output-interval", "0.006", "--", CRANKCHECK_FREE_RUN_FAKE, "hang"},
+          "--output-interval: 0.006 s between samples turns the crank by ");
   // A step no program can take over the run (1e-300 s: 2e299 steps; a sweep halving 1e-5 s 19 times: 1.1e10), refused
   // before the program starts (the fake would hang).
   refused({"grade", "--free-run", kSingle, "--dt", "1e-300", "--", CRANKCHECK_FREE_RUN_FAKE, "hang"},

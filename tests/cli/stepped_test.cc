@@ -129,7 +129,8 @@ TEST(SteppedCli, ValidatesStepsPartRefusesUnboundedWorkBeforeTheCampaign) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
-// The inline four at 6000 rpm: Box2D refuses 1/240 s (2.6 rad a step, more than its b2_maxRotation), the others run;
+// The inline four at 6000 rpm: 1/240 s turns the crank by 150 deg a step, more than a quarter turn (kMaxStepAngle), and
+// is refused for every engine at once (one refusal, engine "all", no error row at that step); the other steps run;
 // every error row names a catalogue quantity or loop_error; every order is log(e1 / e2) / log(dt1 / dt2) of the rows'
 // own errors (to the rounding of the logarithms: 1e-12).
 TEST(SteppedCli, JsonCarriesErrorsOrdersCostsAndRefusals) {
@@ -154,12 +155,27 @@ TEST(SteppedCli, JsonCarriesErrorsOrdersCostsAndRefusals) {
   }
   EXPECT_FALSE(doc["costs"].empty());
   for (const auto& c : doc["costs"]) EXPECT_GT(c["ns_per_step"].get<double>(), 0.0);
-  bool box2d_refused = false;
-  for (const auto& refusal : doc["refusals"])
-    if (refusal["engine"] == "box2d" && refusal["dt"].is_number() &&
-        refusal["reason"].get<std::string>().find("b2_maxRotation") != std::string::npos)
-      box2d_refused = true;
-  EXPECT_TRUE(box2d_refused) << doc["refusals"];
+  const double coarse = 0.004166666666666667;
+  ASSERT_EQ(doc["refusals"].size(), 1u) << doc["refusals"];
+  const auto& refusal = doc["refusals"][0];
+  EXPECT_EQ(refusal["engine"], "all");
+  EXPECT_EQ(refusal["dt"].get<double>(), coarse);
+  EXPECT_NE(refusal["reason"].get<std::string>().find("150 deg at 6000 rpm, more than a quarter turn"), std::string::npos)
+      << refusal;
+  for (const auto& [key, value] : error) EXPECT_NE(std::get<2>(key), coarse) << std::get<0>(key);
+}
+
+// The same refusal in the table: one line for every engine, and the status of a run that measured the other steps.
+TEST(SteppedCli, StepPastAQuarterTurnIsRefusedForEveryEngine) {
+  const RunResult r = testing::runCrankcheck(
+      {"stepped", scene("inline4_four_stroke.toml"), "--engine", "box2d", "--dt", "0.004166666666666667,1e-3"});
+  ASSERT_EQ(r.exit_status, 0) << r.err;
+  EXPECT_NE(r.out.find("refused: every engine at 1/240 s: a step of 0.00416667 s turns the crank by 150 deg"), std::string::npos) << r.out;
+  const RunResult only = testing::runCrankcheck(
+      {"stepped", scene("inline4_four_stroke.toml"), "--engine", "box2d", "--dt", "0.004166666666666667"});
+  EXPECT_EQ(only.exit_status, 2) << only.err;
+  EXPECT_NE(only.err.find("more than a quarter turn"), std::string::npos) << only.err;
+  EXPECT_TRUE(only.out.empty()) << only.out;
 }
 
 // --help alone says what each engine is, its settings and instants.

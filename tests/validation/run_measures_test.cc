@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <stdexcept>
 #include <vector>
@@ -252,6 +253,9 @@ TEST(RunMeasuresTest, Refusals) {
   r = good;
   r.phi[5] = r.phi[4] - 1e-3;
   all(r, "phi is not strictly increasing");
+  r = good;  // 16 samples a turn (22.5 deg apart), then a jump of a quarter turn more: 112.5 deg between two samples
+  for (size_t i = 5; i < r.phi.size(); ++i) r.phi[i] += std::numbers::pi / 2;
+  all(r, "phi turns by 112.5 deg from sample 4 to 5, more than a quarter turn");
   Mechanism no_flywheel = m;
   no_flywheel.flywheel_inertia.reset();
   expectRefusal([&] { calcEnergyTrend(no_flywheel, good); }, "flywheel");

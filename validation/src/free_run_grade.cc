@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <stdexcept>
@@ -16,6 +17,7 @@
 #include "crankcheck/scene/quantities.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/scene/scene_writer.h"
+#include "crankcheck/scene/stepped_run.h"
 #include "crankcheck/validation/commands/stepped.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
@@ -135,6 +137,13 @@ std::vector<RunCase> buildRunCases(const Mechanism& scene, const RunSettings& se
   if (interval > t_end / kMinRunSamples)
     throw UsageError("--output-interval: " + formatNumber(interval) + " s leaves fewer than " +
                      std::to_string(kMinRunSamples) + " samples in the run's " + formatNumber(t_end) + " s");
+  // A sample more than a quarter turn after the last (at the run's mean speed) leaves a turn unsampled: its run would
+  // be refused as too coarse (checkRun) after the program ran, so the request is refused before it starts.
+  if (const double angle = 2.0 * std::numbers::pi * interval / period; angle > kMaxStepAngle)
+    throw UsageError(std::string(settings.output_interval ? "--output-interval: " : "--dt: ") + formatNumber(interval) +
+                     " s between samples turns the crank by " + formatNumber(degreesFromRadians(angle)) +
+                     " deg at the run's mean speed, more than a quarter turn: a turn is not sampled (at most " +
+                     formatNumber(kMaxStepAngle / (2.0 * std::numbers::pi) * period) + " s)");
   std::vector<RunCase> cases;
   for (int i = 0; i < (settings.own_step ? 1 : settings.dt_sweep); ++i) {
     RunCase c;

@@ -5,6 +5,7 @@
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <tuple>
 #include <optional>
 #include <memory>
@@ -16,6 +17,7 @@
 #include "crankcheck/analytic/gas_work.h"
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/potential_energy.h"
+#include "crankcheck/scene/stepped_run.h"
 #include "crankcheck/validation/extremum.h"
 
 namespace crankcheck::validation {
@@ -46,6 +48,14 @@ void checkRun(const Mechanism& m, const SteppedRun& run, const RunLoad& load, co
                                 "; at least " + std::to_string(kMinRunSamples) + ")");
   checkStrictlyIncreasing(run.time, "time", who);
   checkStrictlyIncreasing(run.phi, "phi", who);
+  for (size_t i = 1; i < run.phi.size(); ++i)
+    if (run.phi[i] - run.phi[i - 1] > kMaxStepAngle) {
+      char line[96];
+      std::snprintf(line, sizeof line, "%.4g deg", degreesFromRadians(run.phi[i] - run.phi[i - 1]));
+      throw std::invalid_argument(std::string(who) + ": phi turns by " + line + " from sample " + std::to_string(i - 1) +
+                                  " to " + std::to_string(i) + ", more than a quarter turn: the run is too coarse to be "
+                                  "measured (its extremes and crossings are read by interpolation through six samples)");
+    }
   for (size_t i = 0; i < run.omega.size(); ++i)
     if (!std::isfinite(run.omega[i]))
       throw std::invalid_argument(std::string(who) + ": omega[" + std::to_string(i) + "] is not finite");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -18,6 +19,18 @@ long calcStepsPerTurn(const Mechanism& m, double dt) {
   if (!(std::fabs(m.machine.speed) > 0.0))
     throw std::invalid_argument("[engine].speed_rpm must be != 0: a stepped engine is driven at the scene's speed");
   return static_cast<long>(std::ceil(2.0 * std::numbers::pi / (std::fabs(m.machine.speed) * dt)));
+}
+
+void checkStepAngle(const Mechanism& m, double dt) {
+  calcStepsPerTurn(m, dt);  // a step <= 0, a scene without speed
+  const double angle = std::fabs(m.machine.speed) * dt;
+  if (angle <= kMaxStepAngle) return;
+  char line[240];
+  std::snprintf(line, sizeof line,
+                "a step of %.6g s turns the crank by %.4g deg at %.6g rpm, more than a quarter turn: a turn is not "
+                "sampled (steps up to %.4g s are measured)",
+                dt, degreesFromRadians(angle), m.speed_rpm, kMaxStepAngle / std::fabs(m.machine.speed));
+  throw std::invalid_argument(line);
 }
 
 std::vector<SteppedError> calcSteppedErrors(const Mechanism& m, const ConstantSpeedRun& run, size_t first) {
@@ -73,6 +86,7 @@ SteppedMeasure measureSteppedRun(const SteppedEngine& engine, const Mechanism& m
     for (const std::string& s : engine.settings) names += (names.empty() ? "" : ", ") + s;
     throw std::invalid_argument(engine.name + " has no settings \"" + settings + "\"; its settings are " + names);
   }
+  checkStepAngle(m, dt);
   const long turn = calcStepsPerTurn(m, dt);
   ConstantSpeedRunOptions options;
   options.dt = dt;

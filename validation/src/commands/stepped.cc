@@ -64,6 +64,7 @@ std::vector<SteppedJob> listSteppedJobs(const Mechanism& m, const std::vector<co
   for (const SteppedEngine* engine : engines)
     for (const std::string& s : chooseSettings(*engine, settings))
       for (double dt : steps) {
+        if (std::fabs(m.machine.speed) * dt > kMaxStepAngle) continue;  // refused before it runs (checkStepAngle)
         const long turn = calcStepsPerTurn(m, dt);
         jobs.push_back({engine, s, dt, static_cast<double>(std::max(kSettlingSteps, turn) + turn)});
       }
@@ -147,6 +148,19 @@ SteppedSweep calcSteppedSweep(const Mechanism& m, const std::string& scene, cons
   for (double dt : steps) calcStepsPerTurn(m, dt);  // a scene without speed, a step <= 0: before any work
   std::sort(steps.begin(), steps.end(), std::greater<double>());
   SteppedSweep sweep;
+  // A step longer than a quarter turn is refused for every engine at once (one row, engine "all"): a turn of it is
+  // not sampled, whatever the solver.
+  std::vector<double> sampled;
+  for (double dt : steps) {
+    try {
+      checkStepAngle(m, dt);
+      sampled.push_back(dt);
+    } catch (const std::invalid_argument& e) {
+      sweep.refusals.push_back({scene, "all", "", dt, e.what()});
+    }
+  }
+  steps = std::move(sampled);
+  if (steps.empty()) return sweep;
   for (const SteppedEngine* engine : engines) {
     for (const std::string& s : chooseSettings(*engine, settings)) {
       // A scene the engine cannot build is refused by a one-step run at the smallest step (the steps an engine

@@ -17,6 +17,7 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/part.h"
+#include "crankcheck/validation/report_document.h"
 #include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/stepped_errors.h"
 
@@ -96,10 +97,18 @@ constexpr const char* kDefaultScene = "inline4_four_stroke";
 // The command that reproduces a finding on `scene` (a scene's name: its file's stem; the example scenes are in
 // scenes/, installed in PREFIX/share/crankcheck/scenes).
 std::string reproduce(const std::string& scene, const std::string& flags) {
-  return "`crankcheck stepped " + (scene == kDefaultScene ? "scenes/" + scene : scene) + ".toml " + flags + "`";
+  return formatCodeSpan("crankcheck stepped " + quoteShellWord((scene == kDefaultScene ? "scenes/" + scene : scene) + ".toml") +
+                        " " + flags);
 }
 
 std::string formatStep(double dt) { return std::fabs(dt - 1.0 / 240.0) < 1e-15 ? "1/240 s" : shortNumber(dt, 3) + " s"; }
+
+// A refusal as the report's sentence ("every engine" for a step refused before any engine ran).
+std::string formatRefusal(const SteppedRefusalRow& r) {
+  return "Refused: " + (r.engine == "all" ? std::string("every engine") : r.engine) +
+         (r.settings.empty() ? "" : " (" + r.settings + ")") + (r.dt > 0.0 ? " at " + formatStep(r.dt) : "") + ": " +
+         r.reason + ".";
+}
 
 ReportPart describeSteppedPart(const TableSet& tables, const std::string& heading) {
   ReportPart part;
@@ -113,9 +122,11 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
     part.blocks.push_back({ReportBlock::kParagraph, "No stepped engine measured scene " +
                                                         (refusals.empty() ? std::string("-") : refusals.front().scene) +
                                                         ": each refused it, for the reason below."});
-    for (const SteppedRefusalRow& r : refusals)
-      part.blocks.push_back({ReportBlock::kParagraph, "Refused: " + r.engine + (r.settings.empty() ? "" : " (" + r.settings + ")") +
-                                                          (r.dt > 0.0 ? " at " + formatStep(r.dt) : "") + ": " + r.reason + "."});
+    std::set<std::string> told;
+    for (const SteppedRefusalRow& r : refusals) {
+      const std::string line = formatRefusal(r);
+      if (told.insert(line).second) part.blocks.push_back({ReportBlock::kParagraph, line});
+    }
     return part;
   }
   const std::string scene = errors.empty() ? std::string() : errors.front().scene;
@@ -255,9 +266,11 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
   for (const SteppedEngine& e : listSteppedEngines())
     part.paragraphs.push_back(e.name + " (" + e.library + ", measured, never gated): " + e.method + ". Instants: " +
                               e.instants + ". Cannot build: " + e.cannot_build + ".");
-  for (const SteppedRefusalRow& r : getRows(tables, kSteppedRefusalsTable))
-    part.paragraphs.push_back("Refused: " + r.engine + (r.settings.empty() ? "" : " (" + r.settings + ")") +
-                              (r.dt > 0.0 ? " at " + formatStep(r.dt) : "") + ": " + r.reason + ".");
+  std::set<std::string> told;  // a step refused for every engine ("all") is a row of each engine's task: told once
+  for (const SteppedRefusalRow& r : getRows(tables, kSteppedRefusalsTable)) {
+    const std::string line = formatRefusal(r);
+    if (told.insert(line).second) part.paragraphs.push_back(line);
+  }
   part.header = {"engine", "settings", "dt", "quantity", "worst error / scale [-]", "where [deg]", "read at [step]"};
   for (const SteppedErrorRow& r : errors)
     part.rows.push_back({r.engine, r.settings, formatStep(r.dt), r.quantity, shortNumber(r.worst_rel_error),

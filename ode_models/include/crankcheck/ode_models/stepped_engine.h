@@ -14,7 +14,8 @@
 /// - "tightened": neutralised plus what a careful user would tighten, each value chosen by measurement
 ///   (tests/ode/ode_run_test.cc holds the numbers): ERP 1 (the smallest errors at every step from 1e-3 s down, up to
 ///   6 times below ERP 0.2's at 1e-4 s; at 1/240 s, where every setting is tens of percent off, it is worse) and
-///   QuickStep's 100 iterations (dWorldStep's errors at every step; 20 at ERP 1 are off them at 1/240 s). ODE's CFM
+///   QuickStep's 100 iterations (dWorldStep's errors on the V8 at 1e-3 s, where 20 at ERP 1 leave twice its
+///   crank-pin error). ODE's CFM
 ///   stays 1e-10: 1e-12 changes no error measurably, 0 makes the solve of these redundant 3-D joints singular.
 
 #include <vector>

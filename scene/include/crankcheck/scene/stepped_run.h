@@ -17,6 +17,12 @@
 
 namespace crankcheck {
 
+/// [rad] The largest crank angle one step of a run may turn for the run to be measured: a quarter turn. Over a turn
+/// of fewer than four steps the worst error is read at three instants or fewer (at 1 s and 3000 rpm every step lands
+/// on the same angle, 50 turns on), the orders between such steps are of aliases, and a free run's extremes and
+/// crossings, read by interpolation through six samples, would span more than a turn.
+inline constexpr double kMaxStepAngle = 0.5 * 3.14159265358979323846;
+
 /// One body's planar state in the global frame (docs/CONVENTIONS.md): its centre of mass, its angle about +Z, their
 /// rates.
 struct PlanarBodyState {

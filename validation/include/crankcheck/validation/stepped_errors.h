@@ -41,6 +41,10 @@ inline constexpr long kSettlingSteps = 64;
 /// @throws std::invalid_argument if omega is 0 or dt <= 0, naming them.
 long calcStepsPerTurn(const Mechanism& m, double dt);
 
+/// Checks that a step of dt turns the crank of m by at most kMaxStepAngle (stepped_run.h) at m's speed.
+/// @throws std::invalid_argument naming the step, its angle and the largest step that is measured, otherwise
+void checkStepAngle(const Mechanism& m, double dt);
+
 /// The errors of `run` (a run of m), its samples from `first` on, against the closed forms (the analytic engine) at
 /// each quantity's instant. Components the mechanism does not define (isComponentDefined) are skipped.
 /// @throws std::invalid_argument if the run reports a quantity m does not define or has no sample from `first` on.
