@@ -11,6 +11,7 @@
 #include <iostream>
 #include <new>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "balance_command.h"
@@ -41,9 +42,43 @@ constexpr const char* kExitStatus =
     "Output folders (--out): crankcheck creates a folder, or replaces one that is empty or holds a report it wrote "
     "itself (crankcheck-manifest.json); any other folder, a file or a symbolic link is refused with status 2.";
 
+// `COMMAND ... -- WORD...`: every word after `--` is an argument as written, even one that starts with '-' (a scene
+// file called -lead.toml), as POSIX has it. CLI11 2.1 does not keep that promise inside a subcommand: with its
+// positionals filled it hands the words to the main command, which refuses them ("-lead.toml: unknown flag"), and
+// with them empty it refuses `--` itself. So each word after `--` goes to CLI11 behind a mark that makes it no flag,
+// `--` itself is dropped, and every positional argument takes the mark off again (unmarkPositionals). `grade`'s `--`
+// comes before its program's words, which never reach CLI11 (splitGradeProgram).
+constexpr std::string_view kAfterDashDash = "\x01crankcheck: after --:";
+
+std::vector<std::string> markWordsAfterDashDash(std::vector<std::string> args) {
+  const auto dashes = std::find(args.begin() + 1, args.end(), "--");
+  if (dashes == args.end()) return args;
+  std::vector<std::string> marked(args.begin(), dashes);
+  for (auto word = dashes + 1; word != args.end(); ++word) marked.push_back(std::string(kAfterDashDash) + *word);
+  return marked;
+}
+
+/// `text` without the marks of markWordsAfterDashDash (a parse error's line quotes the words as given).
+std::string unmark(std::string text) {
+  for (size_t at = text.find(kAfterDashDash); at != std::string::npos; at = text.find(kAfterDashDash, at))
+    text.erase(at, kAfterDashDash.size());
+  return text;
+}
+
+void unmarkPositionals(CLI::App& app) {
+  for (CLI::App* command : app.get_subcommands({})) {
+    for (CLI::Option* option : command->get_options())
+      if (option->get_positional())
+        option->transform([](std::string word) {
+          return word.rfind(kAfterDashDash, 0) == 0 ? word.substr(kAfterDashDash.size()) : word;
+        });
+    unmarkPositionals(*command);
+  }
+}
+
 // One line for a CLI11 parse error, in the form "crankcheck: --flag: rule" where CLI11 names the flag.
 std::string parseErrorMessage(const CLI::ParseError& e) {
-  std::string message = e.what();
+  std::string message = unmark(e.what());
   const std::string extras = "The following argument was not expected: ";
   const std::string extras_plural = "The following arguments were not expected: ";
   for (const std::string& prefix : {extras, extras_plural})
@@ -106,7 +141,7 @@ std::string findUnknownCommand(const CLI::App& app) {
         best = d;
         closest = command->get_name();
       }
-    return crankcheck::escapeControls(arg) + ": unknown command" +
+    return crankcheck::escapeControls(unmark(arg)) + ": unknown command" +
            (closest.empty() ? std::string() : " (did you mean " + closest + "?)");
   }
   return {};
@@ -211,7 +246,8 @@ int main(int argc, char** argv) {
   crankcheck::app::addMergeOptions(*merge_cmd, merge);
 
   // `grade ... -- PROGRAM ARG...`: the program's words never reach CLI11 (they are not crankcheck's).
-  std::vector<std::string> args = crankcheck::app::splitGradeProgram(argc, argv, grade.program);
+  std::vector<std::string> args = markWordsAfterDashDash(crankcheck::app::splitGradeProgram(argc, argv, grade.program));
+  unmarkPositionals(app);
   try {
     std::vector<std::string> reversed(args.rbegin(), args.rend() - 1);  // CLI11 takes them in reverse, without argv[0]
     app.parse(reversed);

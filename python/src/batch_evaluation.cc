@@ -60,7 +60,7 @@ double*& BatchOutput::at(const std::string& name) {
   return q->star ? stars[id] : values[id];
 }
 
-void checkAngles(std::span<const double> phi) {
+void checkAngles(std::span<const double> phi, const char* name) {
   // One pass without a branch per angle in the common case (all finite), then the first offender for the message.
   bool finite = true;
   for (double x : phi) finite &= std::isfinite(x);
@@ -68,7 +68,7 @@ void checkAngles(std::span<const double> phi) {
   for (size_t i = 0; i < phi.size(); ++i)
     if (!std::isfinite(phi[i])) {
       char text[96];
-      std::snprintf(text, sizeof text, "phi[%zu] = %g: must be a finite number of radians", i, phi[i]);
+      std::snprintf(text, sizeof text, "%s[%zu] = %g: must be a finite number of radians", name, i, phi[i]);
       throw std::invalid_argument(text);
     }
 }

@@ -59,7 +59,7 @@ struct BatchOutput {
 
 /// Checks that every angle is finite. @throws std::invalid_argument "phi[i] = VALUE: must be a finite number of
 /// radians" for the first that is not.
-void checkAngles(std::span<const double> phi);
+void checkAngles(std::span<const double> phi, const char* name = "phi");
 
 /// Whether the batch kernels cover m (batch.h: centric cylinders without balance shafts).
 bool batchKernelsAccept(const Mechanism& m);

@@ -73,17 +73,24 @@ py::array_t<double> toArray(const std::vector<double>& v) {
 
 // ---- Angles: the buffer of a C-contiguous float64 array is used as it is (no copy); anything else (a float, a list,
 // another dtype, a strided view) is converted once by NumPy.
-Angles asAngles(const py::handle& phi) {
+/// `x` as a C-contiguous float64 array: `name` is the argument in messages ("phi", "degrees", a result's key) and
+/// `unit` its unit. Throws TypeError for None and for what is not real numbers.
+Angles asAngles(const py::handle& x, const std::string& name = "phi", const std::string& unit = "rad") {
   // Real numbers only: NumPy would read None as NaN, drop a complex value's imaginary part with a warning, and read
   // the string "30" as 30 rad. numpy.asarray returns a C-contiguous float64 array itself, and raises NumPy's own error
   // for what is not numbers.
-  if (phi.is_none()) throw py::type_error("phi: a crank angle [rad] or an array of them, not None");
+  const bool angle = unit == "rad" || unit == "deg";
+  if (x.is_none())
+    throw py::type_error(name + ": " + (angle ? "a crank angle [" + unit + "]" : "a number [" + unit + "]") +
+                         " or an array of them, not None");
   const py::module_ numpy = py::module_::import("numpy");
-  const py::object given = numpy.attr("asarray")(phi);
+  const py::object given = numpy.attr("asarray")(x);
   const std::string kind = py::str(given.attr("dtype").attr("kind"));
   if (kind != "f" && kind != "i" && kind != "u")
-    throw py::type_error("phi: real numbers [rad] (got an array of dtype " + std::string(py::str(given.attr("dtype"))) +
-                         (kind == "c" ? ": a complex angle has no crank position)" : ")"));
+    throw py::type_error(name + ": real numbers [" + unit + "] (got an array of dtype " +
+                         std::string(py::str(given.attr("dtype"))) +
+                         (kind == "c" ? (angle ? ": a complex angle has no crank position)" : ": not a real value)")
+                                      : ")"));
   const py::object a = numpy.attr("asarray")(given, py::arg("dtype") = "float64", py::arg("order") = "C");
   return Angles::ensure(a);
 }
@@ -342,7 +349,7 @@ std::string toResponse(const validation::GradeCase& c, const py::handle& answer)
     const QuantityInfo* q = findQuantity(key);
     if (!q) throw py::value_error(where + quoteText(key) + " is not a quantity of eval (one of " + joinQuantityNames() + ")");
     if (value.is_none() || q->star) continue;  // not provided; the dimensionless NAME_star are not graded
-    const Angles a = asAngles(value);
+    const Angles a = asAngles(value, where + "result[\"" + key + "\"]", q->quantity->unit);
     std::vector<py::ssize_t> expected = {static_cast<py::ssize_t>(n)};
     if (q->per_cylinder) expected.push_back(k);
     if (q->components > 1) expected.push_back(q->components);
@@ -657,8 +664,8 @@ Mechanism unitSliderCrank(double lambda, double r, double omega) {
 // x_p, v_p, a_p, j_p at each theta, by `f(m, theta)`.
 template <class F>
 py::dict pistonKinematics(const py::handle& theta_in, const Mechanism& m, F f) {
-  const Angles theta = asAngles(theta_in);
-  checkAngles(spanOf(theta));
+  const Angles theta = asAngles(theta_in, "theta");
+  checkAngles(spanOf(theta), "theta");
   std::vector<py::ssize_t> shape(theta.shape(), theta.shape() + theta.ndim());
   py::array_t<double> x(shape), v(shape), a(shape), j(shape);
   {
@@ -847,7 +854,11 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
   mod.attr("__version__") = validation::getCrankcheckVersion();
 
   mod.def("radians_from_degrees", [](const py::handle& degrees_in) {
-        const Angles degrees = asAngles(degrees_in);
+        const Angles degrees = asAngles(degrees_in, "degrees", "deg");
+        for (py::ssize_t i = 0; i < degrees.size(); ++i)
+          if (!std::isfinite(degrees.data()[i]))
+            throw py::value_error("degrees[" + std::to_string(i) + "] = " + validation::formatNumber(degrees.data()[i]) +
+                                  ": must be a finite number of degrees (as --phi-deg)");
         py::array_t<double> radians(std::vector<py::ssize_t>(degrees.shape(), degrees.shape() + degrees.ndim()));
         for (py::ssize_t i = 0; i < degrees.size(); ++i) radians.mutable_data()[i] = crankAngleFromDegrees(degrees.data()[i]);
         return radians.ndim() == 0 ? py::object(radians[py::tuple()]) : py::object(radians);

@@ -84,6 +84,21 @@ double numberFromInteger(long long i) {
   return x;
 }
 
+// What a value of the wrong type is, for a refusal's "(got ...)": a string as typed (quoted, its control characters
+// escaped, cut at 40 characters), a boolean, or the kind of value ("an array", "a table", "a date").
+std::string describeNode(const toml::node& node) {
+  if (const toml::value<std::string>* text = node.as_string()) {
+    const std::string& value = text->get();
+    return value.size() <= 40 ? quoteText(value) : quoteText(value.substr(0, 40)) + "...";
+  }
+  if (const toml::value<bool>* flag = node.as_boolean()) return flag->get() ? "true" : "false";
+  if (node.is_array()) return "an array";
+  if (node.is_table()) return "a table";
+  if (node.is_integer()) return "an integer";
+  if (node.is_floating_point()) return "a number";
+  return "a date or time";
+}
+
 // The value of an integer key (format_version, [engine].cylinders, each index of [gas].firing_order): a TOML integer,
 // or a float whose value is an exact integer, 4.0 being 4 (the JSON Schema that editors check scenes with cannot tell
 // 4.0 from 4, so neither does crankcheck). Refused, naming the key: any other type ("must be an integer"); a float
@@ -105,7 +120,7 @@ long long integerValue(const toml::node& node, const std::string& source, const 
     if (x < lo || x > hi) fail(source, key, outside(x > hi, formatNumber(x == 0.0 ? 0.0 : x)));  // -0 as 0
     return static_cast<long long>(x);
   }
-  fail(source, key, "must be an integer");
+  fail(source, key, "must be an integer (got " + describeNode(node) + ")");
 }
 
 // Reads one table of the scene, keeping track of which keys were used so that unknown keys are refused.
@@ -121,7 +136,7 @@ class TableReader {
       return;
     }
     table_ = node->as_table();
-    if (table_ == nullptr) fail(source_, prefix_, "must be a table");
+    if (table_ == nullptr) fail(source_, prefix_, "must be a table (got " + describeNode(*node) + ")");
     refuseUnknownKeys();
   }
 
@@ -168,7 +183,7 @@ class TableReader {
       if (fallback) return *fallback;
       fail(source_, key(k), "missing key");
     }
-    if (!node->is_string()) fail(source_, key(k), "must be a string");
+    if (!node->is_string()) fail(source_, key(k), "must be a string (got " + describeNode(*node) + ")");
     return node->as_string()->get();
   }
 
@@ -176,7 +191,7 @@ class TableReader {
     const toml::node* node = find(k);
     if (node == nullptr) return std::nullopt;
     const toml::array* array = node->as_array();
-    if (array == nullptr) fail(source_, key(k), "must be an array of numbers");
+    if (array == nullptr) fail(source_, key(k), "must be an array of numbers (got " + describeNode(*node) + ")");
     std::vector<double> values;
     for (size_t i = 0; i < array->size(); ++i)
       values.push_back(toNumber(*array->get(i), key(k) + "[" + std::to_string(i) + "]"));
@@ -191,7 +206,7 @@ class TableReader {
     } else if (node.is_integer()) {
       x = numberFromInteger(node.as_integer()->get());
     } else {
-      fail(source_, key_name, "must be a number");
+      fail(source_, key_name, "must be a number (got " + describeNode(node) + ")");
     }
     if (!std::isfinite(x)) fail(source_, key_name, "must be finite (got " + formatNumber(x) + ")");
     return x;  // each unit's limits: validateMechanism (angles in degrees also: requireAngleDegrees)

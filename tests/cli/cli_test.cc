@@ -772,6 +772,32 @@ TEST(Cli, MotionNeedsFlywheelAndSpeed) {
   std::filesystem::remove(path);
 }
 
+// After `--` every word is an argument as written, even one that starts with '-' (POSIX): a scene file called
+// -lead.toml. CLI11 2.1 refused it ("-lead.toml: unknown flag") or `--` itself (a hostile round, issue 58). The words
+// after `--` are positionals only: a flag there is a file name, and one word too many is named as given.
+TEST(Cli, WordsAfterDoubleDashArePositionalsAsWritten) {
+  testing::FreshFolder folder;
+  std::ofstream(folder.path() / "-lead.toml") << readFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml");
+  const std::string single = (std::filesystem::path(CRANKCHECK_SCENES_DIR) / "single_cylinder.toml").string();
+  const RunResult alone = testing::runCrankcheck({"eval", "--phi-deg", "30", "--", "-lead.toml"}, {}, folder.path());
+  EXPECT_EQ(alone.exit_status, 0) << alone.err;
+  const RunResult expected = testing::runCrankcheck({"eval", "--phi-deg", "30", single});
+  ASSERT_NE(alone.out.find('\n'), std::string::npos);
+  EXPECT_EQ(alone.out.substr(0, alone.out.find('\n')), "scene -lead.toml");
+  EXPECT_EQ(alone.out.substr(alone.out.find('\n')), expected.out.substr(expected.out.find('\n')));
+  const RunResult both = testing::runCrankcheck({"balance", "--", "-lead.toml"}, {}, folder.path());
+  EXPECT_EQ(both.exit_status, 0) << both.err;
+  const RunResult flag = testing::runCrankcheck({"eval", "--", "--phi-deg"}, {}, folder.path());
+  EXPECT_EQ(flag.exit_status, 2);
+  EXPECT_NE(flag.err.find("--phi-deg"), std::string::npos) << flag.err;
+  EXPECT_EQ(flag.err.find("after --:"), std::string::npos) << flag.err;  // the mark is never shown
+  const RunResult extra = testing::runCrankcheck({"eval", "--phi-deg", "30", "--", "-lead.toml", "-x.toml"}, {}, folder.path());
+  EXPECT_EQ(extra.exit_status, 2);
+  EXPECT_NE(extra.err.find("-x.toml"), std::string::npos) << extra.err;
+  EXPECT_EQ(extra.err.find("after --:"), std::string::npos) << extra.err;
+  EXPECT_EQ(std::count(extra.err.begin(), extra.err.end(), '\n'), 1) << extra.err;
+}
+
 TEST(Cli, BadSceneNamesFileAndKey) {
   const auto path = std::filesystem::temp_directory_path() / "crankcheck_cli_bad_scene.toml";
   {

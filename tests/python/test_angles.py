@@ -39,6 +39,15 @@ def test_radians_from_degrees_reduces_exactly():
     np.testing.assert_array_equal(crankcheck.radians_from_degrees(deg), expected)
 
 
+def test_radians_from_degrees_refuses_what_is_not_an_angle():
+    # --phi-deg nan is refused by the CLI; the function gave nan (a hostile round, issue 58).
+    for bad in (float("nan"), [0.0, float("inf")]):
+        with pytest.raises(ValueError, match=r"degrees\[\d\] = (nan|inf): must be a finite number of degrees"):
+            crankcheck.radians_from_degrees(bad)
+    with pytest.raises(TypeError, match=r"degrees: real numbers \[deg\] \(got an array of dtype <U"):
+        crankcheck.radians_from_degrees("90")
+
+
 @pytest.mark.parametrize("path", [p for p in SCENE_FILES if "four_stroke" in p or "single" in p], ids=scene_id)
 def test_eval_at_a_huge_angle_is_eval_at_its_residue(path):
     """Every engine, every quantity: the same doubles as at the residue (a four-stroke scene with gas: 720 matters)."""

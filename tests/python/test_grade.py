@@ -187,6 +187,9 @@ def test_what_the_function_gets_and_its_errors():
                                                         [p for p in SCENE_FILES if "single" in p][0]], quick=True)
     with pytest.raises(ValueError, match="not a finite number"):
         crankcheck.grade(lambda s, phi: {"Q": phi * np.nan}, [SCENE_FILES[0]], quick=True)
+    # A result that is not numbers is named as the result, in its unit (it was blamed on "phi [rad]").
+    with pytest.raises(TypeError, match=r'case .*: result\["Q"\]: real numbers \[N m\] \(got an array of dtype <U'):
+        crankcheck.grade(lambda s, phi: {"Q": ["a"] * len(phi)}, [SCENE_FILES[0]], quick=True)
     with pytest.raises(ValueError, match='"torque" is not a quantity'):
         crankcheck.grade(lambda s, phi: {"torque": phi}, [SCENE_FILES[0]], quick=True)
     with pytest.raises(ValueError, match=r'"\\x1b\[31m\\x00" is not a quantity'):  # quoted with its control bytes escaped
