@@ -207,7 +207,7 @@ std::string runStepped(const SteppedOptions& options) {
   if (sweep.errors.empty()) {
     std::string why;
     for (const validation::SteppedRefusalRow& r : sweep.refusals)
-      if (const std::string who = r.engine == "all" ? "every engine" : r.engine; why.find(who + ": ") == std::string::npos)
+      if (const std::string who = validation::nameRefuser(r); why.find(who + ": ") == std::string::npos)
         why += (why.empty() ? "" : "; ") + who + ": " + r.reason;
     throw UsageError(options.scene_path + ": nothing measured: every stepped engine refused it (" +
                      (why.empty() ? std::string("no reason given") : why) + ")");
@@ -290,7 +290,7 @@ std::string runStepped(const SteppedOptions& options) {
     out += "\n";
   }
   for (const validation::SteppedRefusalRow& r : sweep.refusals)
-    out += "refused: " + (r.engine == "all" ? std::string("every engine") : r.engine) +
+    out += "refused: " + validation::nameRefuser(r) +
            (r.settings.empty() ? "" : ", settings " + r.settings) +
            (r.dt > 0.0 ? " at " + formatStep(r.dt) : "") + ": " + r.reason + "\n";
   out += "(read: the step fraction each value belongs to, 0 the step's start, 1 its end; order: between the two "

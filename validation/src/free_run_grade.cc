@@ -23,6 +23,7 @@
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/work_limit.h"
 #include "crankcheck/validation/evaluation_json.h"
+#include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
 #include "grade_protocol.h"
@@ -141,7 +142,7 @@ std::vector<RunCase> buildRunCases(const Mechanism& scene, const RunSettings& se
   // be refused as too coarse (checkRun) after the program ran, so the request is refused before it starts.
   if (const double angle = 2.0 * std::numbers::pi * interval / period; angle > kMaxStepAngle)
     throw UsageError(std::string(settings.output_interval ? "--output-interval: " : "--dt: ") + formatNumber(interval) +
-                     " s between samples turns the crank by " + formatNumber(degreesFromRadians(angle)) +
+                     " s between samples turns the crank by " + shortNumber(degreesFromRadians(angle), 4) +
                      " deg at the run's mean speed, more than a quarter turn: a turn is not sampled (at most " +
                      formatNumber(kMaxStepAngle / (2.0 * std::numbers::pi) * period) + " s)");
   std::vector<RunCase> cases;

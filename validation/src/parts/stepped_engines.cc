@@ -103,11 +103,18 @@ std::string reproduce(const std::string& scene, const std::string& flags) {
 
 std::string formatStep(double dt) { return std::fabs(dt - 1.0 / 240.0) < 1e-15 ? "1/240 s" : shortNumber(dt, 3) + " s"; }
 
-// A refusal as the report's sentence ("every engine" for a step refused before any engine ran).
-std::string formatRefusal(const SteppedRefusalRow& r) {
-  return "Refused: " + (r.engine == "all" ? std::string("every engine") : r.engine) +
-         (r.settings.empty() ? "" : " (" + r.settings + ")") + (r.dt > 0.0 ? " at " + formatStep(r.dt) : "") + ": " +
-         r.reason + ".";
+// The refusals as the report's sentences, each once: a step refused for every engine (engine "all", before any engine
+// ran) is a row of each engine's task.
+std::vector<std::string> formatRefusals(const std::vector<SteppedRefusalRow>& refusals) {
+  std::vector<std::string> lines;
+  std::set<std::string> told;
+  for (const SteppedRefusalRow& r : refusals) {
+    std::string line = "Refused: " + nameRefuser(r) +
+                       (r.settings.empty() ? "" : " (" + r.settings + ")") + (r.dt > 0.0 ? " at " + formatStep(r.dt) : "") +
+                       ": " + r.reason + ".";
+    if (told.insert(line).second) lines.push_back(std::move(line));
+  }
+  return lines;
 }
 
 ReportPart describeSteppedPart(const TableSet& tables, const std::string& heading) {
@@ -122,11 +129,7 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
     part.blocks.push_back({ReportBlock::kParagraph, "No stepped engine measured scene " +
                                                         (refusals.empty() ? std::string("-") : refusals.front().scene) +
                                                         ": each refused it, for the reason below."});
-    std::set<std::string> told;
-    for (const SteppedRefusalRow& r : refusals) {
-      const std::string line = formatRefusal(r);
-      if (told.insert(line).second) part.blocks.push_back({ReportBlock::kParagraph, line});
-    }
+    for (const std::string& line : formatRefusals(refusals)) part.blocks.push_back({ReportBlock::kParagraph, line});
     return part;
   }
   const std::string scene = errors.empty() ? std::string() : errors.front().scene;
@@ -266,11 +269,7 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
   for (const SteppedEngine& e : listSteppedEngines())
     part.paragraphs.push_back(e.name + " (" + e.library + ", measured, never gated): " + e.method + ". Instants: " +
                               e.instants + ". Cannot build: " + e.cannot_build + ".");
-  std::set<std::string> told;  // a step refused for every engine ("all") is a row of each engine's task: told once
-  for (const SteppedRefusalRow& r : getRows(tables, kSteppedRefusalsTable)) {
-    const std::string line = formatRefusal(r);
-    if (told.insert(line).second) part.paragraphs.push_back(line);
-  }
+  for (const std::string& line : formatRefusals(getRows(tables, kSteppedRefusalsTable))) part.paragraphs.push_back(line);
   part.header = {"engine", "settings", "dt", "quantity", "worst error / scale [-]", "where [deg]", "read at [step]"};
   for (const SteppedErrorRow& r : errors)
     part.rows.push_back({r.engine, r.settings, formatStep(r.dt), r.quantity, shortNumber(r.worst_rel_error),

@@ -8,6 +8,7 @@
 /// at that instant (validation/stepped_errors.h). Plain values, no engine behind them.
 
 #include <functional>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -21,7 +22,7 @@ namespace crankcheck {
 /// of fewer than four steps the worst error is read at three instants or fewer (at 1 s and 3000 rpm every step lands
 /// on the same angle, 50 turns on), the orders between such steps are of aliases, and a free run's extremes and
 /// crossings, read by interpolation through six samples, would span more than a turn.
-inline constexpr double kMaxStepAngle = 0.5 * 3.14159265358979323846;
+inline constexpr double kMaxStepAngle = std::numbers::pi / 2;
 
 /// One body's planar state in the global frame (docs/CONVENTIONS.md): its centre of mass, its angle about +Z, their
 /// rates.

@@ -41,13 +41,17 @@ struct SteppedOrderRow {
 };
 extern const Schema<SteppedOrderRow> kSteppedOrdersTable;  ///< data/stepped_orders.csv
 
-/// A run an engine refused: a scene it cannot build (settings and dt empty), or a step it cannot take.
+/// A run an engine refused: a scene it cannot build (settings and dt empty), or a step it cannot take; engine "all":
+/// a step past a quarter turn, refused for every engine before any ran (checkStepAngle).
 struct SteppedRefusalRow {
   std::string scene, engine, settings;
   double dt = 0.0;               ///< [s]; 0: every step (the scene)
   std::string reason;            ///< the engine's one line
 };
 extern const Schema<SteppedRefusalRow> kSteppedRefusalsTable;  ///< data/stepped_refusals.csv
+
+/// Who refused, in words: "every engine" for engine "all", else the engine's name.
+inline std::string nameRefuser(const SteppedRefusalRow& r) { return r.engine == "all" ? "every engine" : r.engine; }
 
 struct SteppedSweep {
   std::vector<SteppedErrorRow> errors;
