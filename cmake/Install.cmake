@@ -1,6 +1,6 @@
 # `cmake --install build --prefix P`: the libraries and their headers, the crankcheck CLI and its man pages, the
 # gnuplot scripts of the report, the example scenes, the docs, and the CMake package (P/lib/cmake/crankcheck/crankcheckConfig.cmake) with its targets:
-#   crankcheck::scene, crankcheck::analytic                     (need toml++ and Eigen)
+#   crankcheck::scene, crankcheck::solver, crankcheck::analytic (need toml++ and Eigen)
 #   crankcheck::simbody_models                                  (needs Simbody)
 #   crankcheck::mujoco_models                                   (needs MuJoCo, Debian libmujoco-dev)
 #   crankcheck::ode_models, bullet_models, box2d_models          (the stepped engines: ODE, Bullet, Box2D, Debian
@@ -14,7 +14,7 @@ include(CMakePackageConfigHelpers)
 
 set(CRANKCHECK_CMAKE_INSTALL_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/crankcheck)
 
-install(TARGETS crankcheck_scene crankcheck_analytic EXPORT crankcheckCoreTargets
+install(TARGETS crankcheck_scene crankcheck_solver crankcheck_analytic EXPORT crankcheckCoreTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS crankcheck_simbody_models EXPORT crankcheckSimbodyTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
@@ -25,7 +25,7 @@ install(TARGETS crankcheck_ode_models crankcheck_bullet_models crankcheck_box2d_
 install(TARGETS crankcheck_validation EXPORT crankcheckHarnessTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS crankcheck EXPORT crankcheckProgramTargets RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-foreach(part scene analytic simbody_models mujoco_models ode_models bullet_models box2d_models validation)
+foreach(part scene solver analytic simbody_models mujoco_models ode_models bullet_models box2d_models validation)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${part}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/reports/ DESTINATION ${CRANKCHECK_DATA_INSTALL_DIR}/reports

@@ -12,7 +12,7 @@
 
 #include "crankcheck/box2d_models/constant_speed_run.h"
 #include "crankcheck/scene/mechanism.h"
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 
 namespace crankcheck::box2d_models::detail {
 

@@ -1,12 +1,12 @@
 #pragma once
 // What MuJoCo's two crank-train routes share (its exact one, crank_train.cc; its soft one, crank_train_soft.cc):
-// their options and refusals. Both run to periodic by every engine's one policy (crankcheck/scene/periodic_run.h).
+// their options and refusals. Both run to periodic by every engine's one policy (crankcheck/solver/periodic_run.h).
 // Private to the library.
 
 #include <vector>
 
-#include "crankcheck/scene/crank_train_run.h"
-#include "crankcheck/scene/periodic_run.h"
+#include "crankcheck/solver/crank_train_run.h"
+#include "crankcheck/solver/periodic_run.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::mujoco_models {

@@ -11,7 +11,7 @@
 
 #include "crankcheck/mujoco_models/crank_train.h"
 #include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
-#include "crankcheck/scene/periodic_run.h"
+#include "crankcheck/solver/periodic_run.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crank_train_run.h"
 #include "mjcf_writer.h"

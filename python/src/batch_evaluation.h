@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "crankcheck/scene/engine.h"
+#include "crankcheck/solver/engine.h"
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/scene/quantities.h"
 

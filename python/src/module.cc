@@ -5,7 +5,7 @@
 // Names, units (SI, radians) and conventions are the CLI's (docs/eval.md, docs/CONVENTIONS.md); a
 // scene that the CLI refuses is refused here as crankcheck.SceneError with the CLI's message (without the CLI's
 // "crankcheck: " prefix). The engines run with the GIL released; each call builds its own engine model, so calls from
-// several Python threads run in parallel (an EngineModel is used by one thread only: scene/engine.h).
+// several Python threads run in parallel (an EngineModel is used by one thread only: solver/engine.h).
 
 #include <pybind11/functional.h>
 #include <pybind11/numpy.h>

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "crankcheck/scene/periodic_run.h"
+#include "crankcheck/solver/periodic_run.h"
 #include "crankcheck/scene/scene_file.h"
 #include "model_support.h"
 
@@ -86,7 +86,7 @@ bool assembleTrain(const SimTK::MultibodySystem& system, const std::vector<SimTK
 }
 
 // Simbody's integration of the train (RungeKuttaMerson, every probe and sample an integrated state), cycle by cycle:
-// crankcheck/scene/periodic_run.h's CycleRun. Time runs on (t = t0 + s / omega, t0 the cycle's start).
+// crankcheck/solver/periodic_run.h's CycleRun. Time runs on (t = t0 + s / omega, t0 the cycle's start).
 class TrainRun final : public CycleRun {
  public:
   TrainRun(SimTK::MultibodySystem& system, const std::vector<SimTK::MobilizedBody::Pin>& shaft,

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "crankcheck/scene/scene_file.h"
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/stepped_errors.h"
 

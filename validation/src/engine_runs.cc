@@ -12,7 +12,7 @@
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/variants.h"
-#include "crankcheck/scene/engine.h"
+#include "crankcheck/solver/engine.h"
 
 namespace crankcheck::validation {
 

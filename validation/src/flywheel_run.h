@@ -5,8 +5,8 @@
 
 #include <vector>
 
-#include "crankcheck/scene/engine.h"
-#include "crankcheck/scene/free_run.h"
+#include "crankcheck/solver/engine.h"
+#include "crankcheck/solver/free_run.h"
 
 namespace crankcheck::validation {
 

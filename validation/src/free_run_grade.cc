@@ -17,7 +17,7 @@
 #include "crankcheck/scene/quantities.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/scene/scene_writer.h"
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 #include "crankcheck/validation/commands/stepped.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"

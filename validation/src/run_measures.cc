@@ -17,7 +17,7 @@
 #include "crankcheck/analytic/gas_work.h"
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/potential_energy.h"
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 #include "crankcheck/validation/extremum.h"
 
 namespace crankcheck::validation {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "crankcheck/analytic/shaking.h"
-#include "crankcheck/scene/engine.h"
+#include "crankcheck/solver/engine.h"
 #include "crankcheck/scene/evaluation.h"
 
 namespace crankcheck::validation {

@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "crankcheck/scene/engine.h"
+#include "crankcheck/solver/engine.h"
 
 namespace crankcheck::validation::your_engine {
 

@@ -1,11 +1,11 @@
 #pragma once
 /// @file
-/// The analytic engine for the harness (crankcheck/scene/engine.h): "analytic", the closed forms of this library
+/// The analytic engine for the harness (crankcheck/solver/engine.h): "analytic", the closed forms of this library
 /// (calcEvaluation, reactions.h). Gated: it must agree with every other exact engine.
 
 #include <vector>
 
-#include "crankcheck/scene/engine.h"
+#include "crankcheck/solver/engine.h"
 
 namespace crankcheck::analytic {
 

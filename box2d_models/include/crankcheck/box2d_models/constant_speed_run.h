@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The k-crank mechanism in Box2D 2.4 (Debian libbox2d-dev 2.4.1: single precision float, planar), driven at the
-/// scene's constant crank speed from a given start state (crankcheck/scene/stepped_run.h: StartState, built by the
+/// scene's constant crank speed from a given start state (crankcheck/solver/stepped_run.h: StartState, built by the
 /// caller from an exact evaluation) and stepped by Box2D's own solver, with every joint's reaction read from Box2D's
 /// joints. Never links the analytic library and computes no closed form: the start comes in. Box2D stays inside src/:
 /// this header includes no Box2D header.
@@ -51,7 +51,7 @@
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 
 namespace crankcheck::box2d_models {
 

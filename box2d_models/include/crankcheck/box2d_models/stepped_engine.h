@@ -1,12 +1,12 @@
 #pragma once
 /// @file
-/// The Box2D model as a stepped engine of the registry (crankcheck/scene/stepped_run.h): "box2d", Box2D 2.4 in single
+/// The Box2D model as a stepped engine of the registry (crankcheck/solver/stepped_run.h): "box2d", Box2D 2.4 in single
 /// precision, planar, at its testbed's defaults and at tightened iterations. Its runs and their instants are those of
 /// runBox2dAtConstantSpeed (constant_speed_run.h), its free runs runBox2dFree's (free_run.h).
 
 #include <vector>
 
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 
 namespace crankcheck::box2d_models {
 

@@ -2,7 +2,7 @@
 /// @file
 /// The k-crank mechanism in Bullet 3.24's btMultiBody (Featherstone's articulated-body algorithm in reduced
 /// coordinates; Debian libbullet-dev's double-precision build, bullet-float64), driven at the scene's constant crank
-/// speed from a StartState handed in (crankcheck/scene/stepped_run.h: built by the caller from an exact evaluation)
+/// speed from a StartState handed in (crankcheck/solver/stepped_run.h: built by the caller from an exact evaluation)
 /// and stepped by Bullet's own solver. Never links the analytic library and computes no closed form of the loop.
 /// Bullet stays inside src/: this header includes no Bullet header.
 ///
@@ -53,7 +53,7 @@
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 
 namespace crankcheck::bullet_models {
 

@@ -1,11 +1,11 @@
 #pragma once
 /// @file
-/// Bullet's btMultiBody (constant_speed_run.h) as a stepped engine of the registry (crankcheck/scene/stepped_run.h):
+/// Bullet's btMultiBody (constant_speed_run.h) as a stepped engine of the registry (crankcheck/solver/stepped_run.h):
 /// its settings by name, each step's quantities read from Bullet's own API with the instant each belongs to.
 
 #include <vector>
 
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 
 namespace crankcheck::bullet_models {
 

@@ -4,7 +4,7 @@
 /// the analytic formulas nor Simbody. Bodies along the shaft, front first: the front mass F (when front_inertia > 0),
 /// the throws 0 .. n-1 (findThrows), the flywheel W driven at psi_W = omega t (the scene's speed). Deviations
 /// x_i = psi_i - omega t, t = 0 at the rigid reference; section i's twist x_{i+1} - x_i, the last one -x_{n-1}
-/// (CrankTrainRun, scene/crank_train_run.h). No MuJoCo header here: MuJoCo stays in src/.
+/// (CrankTrainRun, solver/crank_train_run.h). No MuJoCo header here: MuJoCo stays in src/.
 ///
 /// Exact route (simulateCrankTrainSteadyState, engine "mujoco", gated): each throw j is a KCrankMujocoModel (kExact)
 /// of selectThrow(m, j); at the throw's state (psi_j, psi_j') MuJoCo gives its reduced inertia J_j(psi_j) and the rest
@@ -16,7 +16,7 @@
 ///   on a, the opposite on b (x_W = 0), integrated by Boost.Odeint's Dormand-Prince 5(4) (error per step below
 /// `accuracy` relative and `accuracy` x the deviation scale absolute: the largest |x| of the cycle before, the first
 /// cycle's from the rigid motion's torques over the softest section), every probe and sample an integrated state.
-/// Run to periodic by every engine's one policy (crankcheck/scene/periodic_run.h, as Simbody's): from the rigid motion
+/// Run to periodic by every engine's one policy (crankcheck/solver/periodic_run.h, as Simbody's): from the rigid motion
 /// (x = 0, x' = 0 at t = 0), cycle by cycle, at 1000 x `accuracy` until the deviations and their rates (x' = dx/ds) at
 /// the start of a cycle change by less than 1000 x `periodicity` of the largest deviation over that cycle (64 probes),
 /// then at `accuracy` until they change by less than `periodicity`, the run moved to the extrapolated fixed point of
@@ -29,7 +29,7 @@
 /// sample of every twist within 2e-8 of the twist scale of the analytic engine's exact steady state.
 
 #include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
-#include "crankcheck/scene/crank_train_run.h"
+#include "crankcheck/solver/crank_train_run.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::mujoco_models {

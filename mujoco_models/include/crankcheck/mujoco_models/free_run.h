@@ -1,10 +1,10 @@
 #pragma once
 /// @file
-/// The free run of the k-crank mechanism in MuJoCo (crankcheck/scene/free_run.h's result and settings). No MuJoCo
+/// The free run of the k-crank mechanism in MuJoCo (crankcheck/solver/free_run.h's result and settings). No MuJoCo
 /// header here: MuJoCo stays in src/.
 
 #include "crankcheck/mujoco_models/k_crank_mujoco_model.h"
-#include "crankcheck/scene/free_run.h"
+#include "crankcheck/solver/free_run.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::mujoco_models {

@@ -38,7 +38,7 @@
 #include <vector>
 
 #include "crankcheck/scene/evaluation.h"
-#include "crankcheck/scene/free_run.h"
+#include "crankcheck/solver/free_run.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::mujoco_models {

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The k-crank mechanism in the Open Dynamics Engine (Debian libode-dev 0.16, built in double precision), driven at the
-/// scene's constant crank speed from a start state handed in (crankcheck/scene/stepped_run.h: StartState, the exact
+/// scene's constant crank speed from a start state handed in (crankcheck/solver/stepped_run.h: StartState, the exact
 /// state at phi = 0 that the caller computes) and stepped by ODE's own solver, with every joint's reaction read from
 /// ODE's joint feedback. Never links the analytic library and computes no closed form of the loop: every body's
 /// position and velocity at the start come from the StartState. ODE stays inside src/: this header includes no ODE
@@ -39,7 +39,7 @@
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 
 namespace crankcheck::ode_models {
 

@@ -15,7 +15,7 @@
 
 #include "crankcheck/ode_models/constant_speed_run.h"
 #include "crankcheck/scene/mechanism.h"
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 
 namespace crankcheck::ode_models {
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// ODE's two stepped engines for the registry (crankcheck/scene/stepped_run.h: SteppedEngine): "ode" (dWorldStep, the
+/// ODE's two stepped engines for the registry (crankcheck/solver/stepped_run.h: SteppedEngine): "ode" (dWorldStep, the
 /// direct solve of the constraint forces) and "ode-quickstep" (dWorldQuickStep, projected Gauss-Seidel), each run by
 /// runOdeAtConstantSpeed (constant_speed_run.h) and run free by runOdeFree (free_run.h: the same model without the
 /// motor, carrying the scene's flywheel; its speed belongs to the step's middle) at one of three named settings,
@@ -20,7 +20,7 @@
 
 #include <vector>
 
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 
 namespace crankcheck::ode_models {
 

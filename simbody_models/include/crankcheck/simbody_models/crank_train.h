@@ -9,7 +9,7 @@
 ///
 /// The periodic steady state: started from the rigid motion at t = 0 (every pin at 0 turning at omega, the rods and
 /// pistons assembled), integrated (RungeKuttaMerson, every probe and sample an integrated state) cycle by cycle by every
-/// engine's one policy (crankcheck/scene/periodic_run.h): at 1000 x `accuracy` until the deviations psi_i - omega t and
+/// engine's one policy (crankcheck/solver/periodic_run.h): at 1000 x `accuracy` until the deviations psi_i - omega t and
 /// their rates at a cycle's start change by less than 1000 x periodicity of the largest deviation over the cycle, then at
 /// `accuracy` until they change by less than `periodicity`; from the 4th cycle at one accuracy on, the run is moved to
 /// the extrapolated fixed point of its last cycle starts (the pins locked at the extrapolated angles and rates, the
@@ -23,7 +23,7 @@
 
 #include <vector>
 
-#include "crankcheck/scene/crank_train_run.h"
+#include "crankcheck/solver/crank_train_run.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::simbody_models {

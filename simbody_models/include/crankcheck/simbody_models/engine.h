@@ -1,11 +1,11 @@
 #pragma once
 /// @file
-/// Simbody's engine for the harness (crankcheck/scene/engine.h): "simbody", the full KCrankModel (k_crank_model.h).
+/// Simbody's engine for the harness (crankcheck/solver/engine.h): "simbody", the full KCrankModel (k_crank_model.h).
 /// Gated: it must agree with every other exact engine.
 
 #include <vector>
 
-#include "crankcheck/scene/engine.h"
+#include "crankcheck/solver/engine.h"
 
 namespace crankcheck::simbody_models {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "crankcheck/scene/free_run.h"
+#include "crankcheck/solver/free_run.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck::simbody_models {
@@ -36,7 +36,7 @@ struct FreeRunOptions {
   int max_steps_per_revolution = 20000;
 };
 
-/// What the run found (crankcheck/scene/free_run.h: the same for every engine's free run).
+/// What the run found (crankcheck/solver/free_run.h: the same for every engine's free run).
 using FreeRunResult = ::crankcheck::FreeRunResult;
 
 /// @throws std::invalid_argument if omega0 <= 0, the scene has no flywheel inertia, or the rod is massless;

@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "crankcheck/scene/free_run.h"
+#include "crankcheck/solver/free_run.h"
 #include "crankcheck/scene/mechanism.h"
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 #include "crankcheck/validation/run_measures.h"
 #include "crankcheck/validation/table.h"
 

@@ -1,15 +1,15 @@
 #pragma once
 /// @file
 /// Every engine the harness knows, in one list (validation/src/engines.cc): the CLI's --engine, the gate, the
-/// campaign and the report loop over it. An engine is an Engine (crankcheck/scene/engine.h) described by its own
+/// campaign and the report loop over it. An engine is an Engine (crankcheck/solver/engine.h) described by its own
 /// folder; adding one is that folder plus one registration line in engines.cc (docs/engines.md).
 
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "crankcheck/scene/engine.h"
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/engine.h"
+#include "crankcheck/solver/stepped_run.h"
 
 namespace crankcheck::validation {
 
@@ -89,7 +89,7 @@ std::string joinEngineLibraries();
 /// first listEngines(). @throws std::logic_error once the registry is in use, or for a name it has already.
 void registerExtraEngine(Engine engine);
 
-/// The stepped engines (crankcheck/scene/stepped_run.h): the physics engines people ship, driven at the scene's speed
+/// The stepped engines (crankcheck/solver/stepped_run.h): the physics engines people ship, driven at the scene's speed
 /// by their own time-stepping solvers and measured at a series of steps (validation/stepped_errors.h), never gated:
 /// ode, ode-quickstep, bullet, box2d. One registration line per engine folder in engines.cc, like listEngines().
 const std::vector<SteppedEngine>& listSteppedEngines();

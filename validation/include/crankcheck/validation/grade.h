@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "crankcheck/scene/engine.h"
+#include "crankcheck/solver/engine.h"
 
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"

@@ -13,7 +13,7 @@
 #include <memory>
 #include <string>
 
-#include "crankcheck/scene/engine.h"
+#include "crankcheck/solver/engine.h"
 
 namespace crankcheck::validation {
 

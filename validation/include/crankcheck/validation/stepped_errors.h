@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// A stepped engine's run (crankcheck/scene/stepped_run.h) measured against the closed forms: every quantity it reports
+/// A stepped engine's run (crankcheck/solver/stepped_run.h) measured against the closed forms: every quantity it reports
 /// at the instant it belongs to, over one turn after the start-up transient, relative to the quantity's scale; the
 /// observed order of convergence between two steps. The engines are listed by validation/engines.h
 /// listSteppedEngines; `crankcheck stepped` and the report's part `stepped_engines` print these.
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 
 namespace crankcheck::validation {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "crankcheck/scene/free_run.h"
+#include "crankcheck/solver/free_run.h"
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/validation/engines.h"
 

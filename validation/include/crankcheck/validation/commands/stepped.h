@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 #include "crankcheck/validation/table.h"
 
 namespace crankcheck::validation {

@@ -14,7 +14,7 @@
 #include "crankcheck/analytic/torsion.h"
 #include "crankcheck/analytic/torsion_forced.h"
 #include "crankcheck/analytic/torsion_steady.h"
-#include "crankcheck/scene/engine.h"
+#include "crankcheck/solver/engine.h"
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/validation/errors.h"
 

@@ -1,5 +1,5 @@
 // The crank trains' run to periodic (periodic_run.h).
-#include "crankcheck/scene/periodic_run.h"
+#include "crankcheck/solver/periodic_run.h"
 
 #include <Eigen/Dense>
 

@@ -1,6 +1,6 @@
-// The crank trains' run to periodic (crankcheck/scene/periodic_run.h): the extrapolation against the fixed point of a
+// The crank trains' run to periodic (crankcheck/solver/periodic_run.h): the extrapolation against the fixed point of a
 // linear cycle map solved by LU, and the policy on a cycle map whose slowest mode contracts 3 % a cycle.
-#include "crankcheck/scene/periodic_run.h"
+#include "crankcheck/solver/periodic_run.h"
 
 #include <gtest/gtest.h>
 

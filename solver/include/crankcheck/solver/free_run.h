@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// What an engine's free run reports (Engine::simulate, crankcheck/scene/engine.h): the mechanism with its crankshaft
+/// What an engine's free run reports (Engine::simulate, crankcheck/solver/engine.h): the mechanism with its crankshaft
 /// free (carrying the flywheel I_w), released at phi = 0 with speed omega0, no drive, no load, integrated by one of
 /// the engine's integrators. Plain values, no engine behind them.
 

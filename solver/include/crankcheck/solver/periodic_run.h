@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "crankcheck/scene/crank_train_run.h"
+#include "crankcheck/solver/crank_train_run.h"
 
 namespace crankcheck {
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// What an engine's elastic crank train reports (Engine::simulate_crank_train, crankcheck/scene/engine.h): the periodic
+/// What an engine's elastic crank train reports (Engine::simulate_crank_train, crankcheck/solver/engine.h): the periodic
 /// steady state of a scene's `[crankshaft]` train (docs/CONVENTIONS-crankcheck.md, "Torsion"), the flywheel driven at the
 /// scene's omega, sampled over one working cycle. Plain values, no engine behind them.
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "crankcheck/scene/crank_train_run.h"
+#include "crankcheck/solver/crank_train_run.h"
 #include "crankcheck/scene/evaluation.h"
-#include "crankcheck/scene/free_run.h"
+#include "crankcheck/solver/free_run.h"
 #include "crankcheck/scene/mechanism.h"
 
 namespace crankcheck {

@@ -1,4 +1,4 @@
-#include "crankcheck/scene/stepped_run.h"
+#include "crankcheck/solver/stepped_run.h"
 
 #include <algorithm>
 #include <cmath>
