@@ -75,14 +75,46 @@ std::string formatNumber(double x) {
 // one may lie on the other side of a limit: 1000000000000000001 rounds to 1e18, the limit of the inertias, stiffness
 // and damping. The double next to the integer away from zero is taken instead (|x| >= |i|, at most one ulp more), so
 // that every limit, itself a double, compares with the value as typed: 1000000000000000001 is above 1e18.
+// The integers of the scene being parsed that numberFromInteger moved (the double taken, the integer typed), so that
+// a limit's refusal quotes the value as typed ("(got 1000000000000000001)"), not the double beside it. One list per
+// parseScene on its thread (InexactIntegers); none outside a parse.
+thread_local std::vector<std::pair<double, long long>>* inexact_integers = nullptr;
+
 double numberFromInteger(long long i) {
   double x = static_cast<double>(i);
-  if (x >= 0x1p63) return x;  // i near 2^63 rounded up to 2^63, already away from zero (and beyond long long)
-  const long long back = static_cast<long long>(x);
-  if (i > 0 && back < i) x = std::nextafter(x, HUGE_VAL);
-  if (i < 0 && back > i) x = std::nextafter(x, -HUGE_VAL);
+  // i near 2^63 rounds up to 2^63: already away from zero, and beyond long long (no cast back)
+  bool exact = false;
+  if (x < 0x1p63) {
+    const long long back = static_cast<long long>(x);
+    exact = back == i;
+    if (i > 0 && back < i) x = std::nextafter(x, HUGE_VAL);
+    if (i < 0 && back > i) x = std::nextafter(x, -HUGE_VAL);
+  }
+  if (!exact && inexact_integers != nullptr) inexact_integers->emplace_back(x, i);
   return x;
 }
+
+// The list of numberFromInteger's moved integers for one parse (the scope of inexact_integers).
+class InexactIntegers {
+ public:
+  InexactIntegers() : previous_(inexact_integers) { inexact_integers = &moved_; }
+  ~InexactIntegers() { inexact_integers = previous_; }
+  InexactIntegers(const InexactIntegers&) = delete;
+  InexactIntegers& operator=(const InexactIntegers&) = delete;
+  /// `message` with a moved integer's double, where it is quoted as "(got X)", shown as the integer typed.
+  std::string quoteAsTyped(std::string message) const {
+    for (const auto& [x, typed] : moved_) {
+      const std::string shown = "(got " + formatNumber(x) + ")";
+      if (const size_t at = message.rfind(shown); at != std::string::npos)
+        return message.replace(at, shown.size(), "(got " + std::to_string(typed) + ")");
+    }
+    return message;
+  }
+
+ private:
+  std::vector<std::pair<double, long long>> moved_;
+  std::vector<std::pair<double, long long>>* previous_;
+};
 
 // What a value of the wrong type is, for a refusal's "(got ...)": a string as typed (quoted, its control characters
 // escaped, cut at 40 characters), a boolean, or the kind of value ("an array", "a table", "a date").
@@ -446,6 +478,7 @@ void validateMechanism(const Mechanism& m, const std::string& source) {
 }
 
 Mechanism parseScene(std::string_view text, const std::string& source) {
+  const InexactIntegers moved_integers;
   toml::table root;
   try {
     root = toml::parse(text, source);
@@ -715,7 +748,11 @@ Mechanism parseScene(std::string_view text, const std::string& source) {
     }
   }
 
-  validateMechanism(m, source);
+  try {
+    validateMechanism(m, source);
+  } catch (const SceneError& e) {
+    throw SceneError(moved_integers.quoteAsTyped(e.what()));
+  }
   // The flywheel end of the elastic crank train turns at omega t ("Torsion"): a scene with [crankshaft] needs a speed.
   if (m.crankshaft && !(m.machine.speed > 0.0))
     fail(source, "[engine].speed_rpm",

@@ -545,7 +545,12 @@ INSTANTIATE_TEST_SUITE_P(
                     "[flywheel].inertia: must be at most 1e18 kg m^2 (1e6 kg at 1e6 m) (got 2e+18)"},
         // an integer just above 1e18, whose nearest double is 1e18: refused (SCENE-FORMAT.md, "Limits")
         BeyondLimit{"flywheel_inertia_integer_just_above_1e18", "inertia = 0.1", "inertia = 1000000000000000001",
-                    "[flywheel].inertia: must be at most 1e18 kg m^2 (1e6 kg at 1e6 m) (got 1000000000000000128)"},
+                    "[flywheel].inertia: must be at most 1e18 kg m^2 (1e6 kg at 1e6 m) (got 1000000000000000001)"},
+        // the largest integer TOML holds, whose nearest double is 2^63 (beyond it): quoted as typed too
+        BeyondLimit{"flywheel_inertia_largest_integer", "inertia = 0.1", "inertia = 9223372036854775807",
+                    "[flywheel].inertia: must be at most 1e18 kg m^2 (1e6 kg at 1e6 m) (got 9223372036854775807)"},
+        BeyondLimit{"piston_mass_integer_beyond_2p53", "mass = 0.4", "mass = -9007199254740993",
+                    "[piston].mass: must be >= 0 (got -9007199254740993)"},
         // speed, gravity, angles
         BeyondLimit{"speed_above_1e6_rpm", "speed_rpm = 3000", "speed_rpm = 1.000001e6",
                     "[engine].speed_rpm: must be at most 1e6 rpm (got 1000001)"},
