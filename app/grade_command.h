@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// `crankcheck grade [SCENE...] [--quick] [--out DIR] [--jobs N] [--timeout S] [--batch] -- PROGRAM [ARG...]`:
-/// the user's program graded against both engines (validation/grade.h, docs/grade.md); with `--free-run`, its
+/// the user's program graded against the exact engines (validation/grade.h, docs/grade.md); with `--free-run`, its
 /// time-stepped runs (validation/free_run_grade.h).
 
 #include <CLI/CLI.hpp>
@@ -38,7 +38,7 @@ void addGradeOptions(CLI::App& command, GradeOptions& options);
 /// arguments before it.
 std::vector<std::string> splitGradeProgram(int argc, char** argv, std::vector<std::string>& program);
 
-/// Runs the grade and writes its report. @return 0 when every provided value agrees with both engines, 1 otherwise.
+/// Runs the grade and writes its report. @return 0 when every provided value agrees with every reference engine, 1 otherwise.
 /// @throws UsageError for bad scenes or flags (2); EnvironmentError when the program cannot be run, crashes, times
 /// out or breaks the protocol (3).
 int runGrade(const GradeOptions& options);

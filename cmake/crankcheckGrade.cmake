@@ -7,7 +7,7 @@
 #
 # The test runs `crankcheck grade [SCENES] [--quick] [--batch] [--timeout S] [--jobs N] --out
 # <current binary dir>/NAME-report -- COMMAND...` and passes when every value the program provides agrees with
-# both engines (exit status 0). COMMAND may name an executable target of your project. Labels: `grade` by default.
+# every reference engine (exit status 0). COMMAND may name an executable target of your project. Labels: `grade` by default.
 # Every argument (COMMAND's, SCENES, the values) reaches the program exactly as written: one holding `;` stays one
 # argument and an empty one is kept (issue 58); generator expressions are evaluated as add_test evaluates them. A
 # program argument spelled like one of the function's keywords (QUICK, SCENES, ...) is taken as that keyword; one

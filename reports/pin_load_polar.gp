@@ -1,5 +1,5 @@
 # pin_load_polar.gp -- the crank-pin and main-bearing forces over a working cycle as polar diagrams (after Norton's
-# Program ENGINE), one panel per scene, both engines.
+# Program ENGINE), one panel per scene, every exact engine.
 #
 #   gnuplot -e "in_dir='DIR'; out_dir='DIR'" reports/pin_load_polar.gp
 #

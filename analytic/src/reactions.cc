@@ -20,7 +20,7 @@ using Eigen::Vector2d;
 double cross(const Vector2d& a, const Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // The reactions are computed with Eigen vectors; the results are stored as the plain Vec2 (std::array) of
-// scene/evaluation.h, the type both engines fill: Simbody's translation units include it, and SimTK's catch-all
+// scene/evaluation.h, the type every engine fills: Simbody's translation units include it, and SimTK's catch-all
 // operators clash with Eigen's (simbody_models/README.md, "Traps met").
 Vec2 toVec2(const Vector2d& v) { return {v.x(), v.y()}; }
 

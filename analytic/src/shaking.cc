@@ -28,7 +28,7 @@ Shaking calcShaking(const Mechanism& m, const std::vector<CylinderMotion>& motio
   const double I_G = m.rod.inertia_about_wrist_pin - m_k * m.rod.com_from_wrist_pin * m.rod.com_from_wrist_pin;
   const double throw_first_moment = m.crank.mass * m.crank.com_radius - m.crank.counterweight_mass * m.crank.counterweight_radius;
   // dP/dt and dH_O/dt of the moving parts, global X, Y, Z (Eigen vectors; the result is stored in the plain arrays
-  // of scene/evaluation.h that both engines fill, see reactions.cc).
+  // of scene/evaluation.h that every engine fills, see reactions.cc).
   Eigen::Vector3d P_dot = Eigen::Vector3d::Zero(), H_dot = Eigen::Vector3d::Zero();
   for (const CylinderMotion& c : motions) {
     // m a of the piston, the rod and the throw (m_s at r_s, m_p at -r_p on the crank line: a = -omega^2 p), and

@@ -325,7 +325,8 @@ def grade(function, scenes=None, quick=True, *, jobs=None, timeout=60.0, out=Non
         if reports is not None:
             _os.environ["CRANKCHECK_REPORTS_DIR"] = reports
     try:
-        run = _crankcheck._grade_start(scene_list, bool(quick), 0 if jobs is None else int(jobs), float(timeout),
+        run = _crankcheck._grade_start(scene_list, _bool_argument("grade", "quick", quick),
+                                       0 if jobs is None else int(jobs), float(timeout),
                                        out, _RELAY, program)
         clock = None
         try:
@@ -412,6 +413,21 @@ class FreeRunGradeResult:
         return "FAIL" if any(r["verdict"] == "FAIL" for r in rows) else rows[0]["verdict"]
 
 
+def _integer_argument(function, name, value):
+    """value as an int, or TypeError naming function and name: a float (2.9), a bool or a string is not truncated or
+    read into one (the CLI refuses --revolutions 2.9 too)."""
+    if isinstance(value, bool) or not isinstance(value, _numbers.Integral):
+        raise TypeError("%s: %s must be an integer, got %r" % (function, name, value))
+    return int(value)
+
+
+def _bool_argument(function, name, value):
+    """value if it is True or False, else TypeError naming function and name ("no" is not False)."""
+    if not isinstance(value, bool):
+        raise TypeError("%s: %s must be True or False, got %r" % (function, name, value))
+    return value
+
+
 def _as_run_response(answer):
     """The function's answer as protocol 2's response: {"samples": [...]} as it is, or columns {"t": [...], "phi": [...],
     "omega": [...], ...} (sequences or NumPy arrays of one length n; per-cylinder quantities (n, k) or (n, k, 2))
@@ -475,6 +491,9 @@ def grade_free_run(function, scenes, *, drive="free", revolutions=10, dt=None, d
         raise TypeError("grade_free_run: function must be callable as function(request) -> dict")
     if isinstance(scenes, (str, bytes, _os.PathLike, Scene)):
         raise TypeError("grade_free_run: scenes must be a list of scene files or Scenes, not one (scenes=[...])")
+    revolutions = _integer_argument("grade_free_run", "revolutions", revolutions)
+    dt_sweep = _integer_argument("grade_free_run", "dt_sweep", dt_sweep)
+    quick = _bool_argument("grade_free_run", "quick", quick)
     own = isinstance(dt, str)
     if own and dt != "own":
         raise ValueError("grade_free_run: dt must be a step [s], None or \"own\", not %r" % dt)
@@ -506,11 +525,11 @@ def grade_free_run(function, scenes, *, drive="free", revolutions=10, dt=None, d
 
     try:
         r = _crankcheck._grade_free_run(
-            list(scenes), str(drive), int(revolutions), None if (dt is None or own) else float(dt), own, int(dt_sweep),
+            list(scenes), str(drive), revolutions, None if (dt is None or own) else float(dt), own, dt_sweep,
             None if output_interval is None else float(output_interval),
             [None if x is None else float(x) for x in
              (energy_tolerance, delta_tolerance, extreme_phase_tolerance, phase_tolerance, values_tolerance)],
-            bool(quick), float(timeout), out, answer, program, float(work_limit))
+            quick, float(timeout), out, answer, program, float(work_limit))
     finally:
         clock.close()
         if reports is not None:

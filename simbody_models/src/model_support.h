@@ -54,7 +54,7 @@ class CrankMotion : public SimTK::Motion::Custom::Implementation {
 
 Vec2 toVec2(const SimTK::Vec3& v) { return {v[0], v[1]}; }
 
-/// The gas force on every piston (scene/gas.h, an input both engines apply alike): -p A e_j at the wrist pin, with p
+/// The gas force on every piston (scene/gas.h, an input every engine applies alike): -p A e_j at the wrist pin, with p
 /// taken at the crank angle the crank mobilizer has in the state (q = phi). A station force on the piston body, so
 /// the slider's reaction stays the wall's; the equal force on the cylinder head stays in the frame.
 class GasForce : public SimTK::Force::Custom::Implementation {

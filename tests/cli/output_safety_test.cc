@@ -422,6 +422,25 @@ TEST(StdoutTest, ResultsThatCannotBeWrittenAreStatus3) {
   }
 }
 
+// A program's stderr is kept to its end (grade quotes its last lines): one that writes 8 MiB to stderr costs
+// crankcheck kErrorTailBytes of it (at most twice that while reading), not 8 MiB; a short one is kept whole.
+TEST(StderrTest, AProgramsStderrIsKeptToItsEnd) {
+  validation::ProgramCall flood{{"/usr/bin/python3", "-c",
+                                 "import os\nfor _ in range(8): os.write(2, b'e' * (1 << 20))\nos.write(2, b'last\\n')"}};
+  flood.timeout_seconds = testing::kCliRunSeconds;
+  const ProgramResult r = validation::runProgram(flood);
+  ASSERT_EQ(r.exit_status, 0) << r.err.substr(r.err.size() > 300 ? r.err.size() - 300 : 0);
+  EXPECT_TRUE(r.err_cut);
+  ASSERT_EQ(r.err.size(), validation::kErrorTailBytes);
+  EXPECT_EQ(r.err.substr(r.err.size() - 5), "last\n");
+  EXPECT_EQ(r.err.find_first_not_of('e'), r.err.size() - 5);
+  validation::ProgramCall short_call{{"/usr/bin/python3", "-c", "import sys\nsys.stderr.write('one\\ntwo\\n')"}};
+  short_call.timeout_seconds = testing::kCliRunSeconds;
+  const ProgramResult s = validation::runProgram(short_call);
+  EXPECT_FALSE(s.err_cut);
+  EXPECT_EQ(s.err, "one\ntwo\n");
+}
+
 // SIGINT and SIGTERM in the middle of a run: status 128 + the signal, the previous report as it was, the partial
 // folder removed. The previous report is a folder crankcheck's manifest marks as its own.
 class InterruptTest : public OutputSafetyTest, public ::testing::WithParamInterface<int> {};

@@ -150,3 +150,22 @@ def test_the_default_tolerances_are_the_cli_s():
     assert tolerance["delta"] == 2.0  # given
     assert tolerance["energy_trend"] == defaults["energy_tolerance"]  # left at None: the CLI's default
     assert tolerance["phase"] == defaults["phase_tolerance"]
+
+
+def test_a_count_or_a_switch_of_another_type_is_refused_not_read_into_one():
+    # The CLI refuses --revolutions 2.9; the function must not run 2 revolutions in its place, nor read "no" as quick.
+    calls = []
+
+    def never(request):
+        calls.append(request)
+        return constant_speed(request)
+    for kwargs, name in (({"revolutions": 2.9}, "revolutions"), ({"revolutions": True}, "revolutions"),
+                         ({"revolutions": "3"}, "revolutions"), ({"dt": 1e-3, "dt_sweep": 2.0}, "dt_sweep"),
+                         ({"quick": "no"}, "quick"), ({"quick": 1}, "quick")):
+        args = {"revolutions": 2, "quick": True}
+        args.update(kwargs)
+        with pytest.raises(TypeError, match="grade_free_run: %s must be" % name):
+            crankcheck.grade_free_run(never, [SINGLE], **args)
+    with pytest.raises(TypeError, match="grade: quick must be True or False"):
+        crankcheck.grade(lambda scene, phi: {}, [SINGLE], quick="no")
+    assert calls == []

@@ -268,6 +268,10 @@ ProgramResult RunningProgram::wait() {
       const ssize_t got = ::read(fd, buffer, sizeof buffer);
       if (got > 0) {
         text.append(buffer, static_cast<size_t>(got));
+        if (!is_out && text.size() > 2 * kErrorTailBytes) {  // keep the tail; erase once per kErrorTailBytes read
+          text.erase(0, text.size() - kErrorTailBytes);
+          result.err_cut = true;
+        }
         if (is_out && output_limit_ > 0 && text.size() > output_limit_) {
           text.resize(output_limit_);
           result.output_limit_exceeded = true;
@@ -286,6 +290,10 @@ ProgramResult RunningProgram::wait() {
       ::close(*fd);
       *fd = -1;
     }
+  if (result.err.size() > kErrorTailBytes) {
+    result.err.erase(0, result.err.size() - kErrorTailBytes);
+    result.err_cut = true;
+  }
   // A program that closed its output but does not end is still held to the timeout.
   while (timeout_seconds_ > 0.0 && !killed) {
     const pid_t done = ::waitpid(pid_, &status, WNOHANG);

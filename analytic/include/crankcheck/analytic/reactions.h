@@ -62,7 +62,7 @@ Reactions calcReactionsAtState(const Mechanism& m, double phi, double omega, dou
                                const std::vector<CylinderMotion>& motions,
                                RodInertiaForm rod = RodInertiaForm::kTrueInertia);
 
-/// Everything the analytic engine reports at phi, in the struct both engines share (engine = "analytic"):
+/// Everything the analytic engine reports at phi, in the struct every engine fills (engine = "analytic"):
 /// U (eq 12), Q (eq 13), exact piston kinematics, calcReactions and calcShaking, each cylinder in its own bank.
 /// calcEvaluationAtState(m, phi, m.machine.speed, 0.0).
 Evaluation calcEvaluation(const Mechanism& m, double phi);

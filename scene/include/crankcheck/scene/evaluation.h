@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// What an engine (analytic or Simbody) reports for a mechanism at one crank angle. Both engines fill the same
+/// What an engine reports for a mechanism at one crank angle. Every engine fills the same
 /// struct so that the CLI, the tests and the reports compare like with like. Names, frames and signs are those
 /// of docs/CONVENTIONS.md: global X horizontal, Y up, forces "ON b FROM a" in global components.
 

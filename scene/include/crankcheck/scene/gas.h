@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Gas pressure: an input of the scene, applied alike by both engines (CONVENTIONS.md, "Layouts, axial positions,
+/// Gas pressure: an input of the scene, applied alike by every engine (CONVENTIONS.md, "Layouts, axial positions,
 /// gas and shaking"). The gauge pressure above the crankcase is periodic and piecewise linear in the cycle angle
 /// phi - firing_j over one working cycle (720 degrees four-stroke, 360 two-stroke): linear between the table's
 /// points, and from the last point to the cycle's end, where it meets the first value again. It pushes piston j

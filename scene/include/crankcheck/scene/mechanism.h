@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The plain description of a k-crank mechanism that both engines (analytic and Simbody) are built from: an inline
+/// The plain description of a k-crank mechanism that every engine is built from: an inline
 /// engine (one bank, the paper's and Norton's subject) or any layout of cylinders around one crankshaft (V, W,
 /// opposed, radial; cylinders spaced along the shaft), docs/CONVENTIONS.md "Layouts".
 /// Symbols, frames and signs follow docs/CONVENTIONS.md and docs/CONVENTIONS-crankcheck.md.

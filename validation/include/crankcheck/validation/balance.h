@@ -43,7 +43,7 @@ BalanceResolution calcBalanceResolution(const Mechanism& m);
 std::string findBalanceDisagreement(const analytic::ShakingHarmonic& closed, const analytic::ShakingHarmonic& dft,
                                     int n, const BalanceResolution& resolution);
 
-/// Harmonics 1..order of both engines. `samples` = 0 chooses max(64, 4 order) angles per revolution: the DFT then
+/// Harmonics 1..order of every exact engine. `samples` = 0 chooses max(64, 4 order) angles per revolution: the DFT then
 /// folds harmonic samples - n onto n, whose size is below lambda^(samples - n) times the primary (nothing at engine
 /// crank ratios).
 /// @throws std::invalid_argument if order < 1 or samples is not 0 and below 2 order + 1, or an engine cannot build m

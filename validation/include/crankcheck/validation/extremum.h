@@ -3,7 +3,7 @@
 /// The largest value of a periodic function over one crank turn, found so that it does not depend on the sampling
 /// grid: the function is sampled at evenly spaced angles, and the best sampled local maxima are refined by Brent's
 /// method (golden section with parabolic steps) on the two grid cells around each. Every "max over a turn" of the
-/// report is found this way, for both engines alike (the parts error_vs_lambda, speed_vs_error, gravity_significance, errata, rod_models).
+/// report is found this way, for every engine alike (the parts error_vs_lambda, speed_vs_error, gravity_significance, errata, rod_models).
 
 #include <functional>
 #include <vector>

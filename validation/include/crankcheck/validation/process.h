@@ -28,11 +28,17 @@ struct ProgramCall {
   size_t output_limit = 0;
 };
 
+/// [bytes] How much of a program's stderr is kept: its last 256 KiB (a message is read from its end: grade quotes the
+/// last three lines), so that a program writing stderr at full speed until its timeout costs crankcheck no more memory.
+inline constexpr size_t kErrorTailBytes = 256 * 1024;
+
 /// How a program ended, and what it printed.
 struct ProgramResult {
   int exit_status = -1;  ///< the exit status, or -1 when a signal ended it
   int signal = 0;        ///< the signal that ended it, or 0
-  std::string out, err;  ///< everything it wrote to stdout and stderr (stdout cut at the call's output_limit)
+  std::string out;       ///< everything it wrote to stdout (cut at the call's output_limit)
+  std::string err;       ///< the end of what it wrote to stderr: at most kErrorTailBytes (err_cut: its start dropped)
+  bool err_cut = false;  ///< stderr was longer than kErrorTailBytes
   bool timed_out = false;              ///< killed at the call's timeout_seconds
   bool output_limit_exceeded = false;  ///< killed because stdout passed the call's output_limit
   bool input_refused = false;          ///< it closed its stdin (or ended) before reading all of the input

@@ -49,7 +49,7 @@ struct Scales {
   /// (in the plane up to l + r, along the shaft up to |z_j|).
   double moment = 0.0;
   // The conditioning: how much the loop's rounding is amplified near lambda = 1, beyond what the scale already
-  // carries, counted once per quantity (docs/CONVENTIONS-crankcheck.md, "Tolerances"). Both engines close the loop
+  // carries, counted once per quantity (docs/CONVENTIONS-crankcheck.md, "Tolerances"). Every exact engine closes the loop
   // through cos(beta) = sqrt(1 - lambda^2 sin^2 theta), whose relative rounding is eps / (1 - lambda^2) at worst;
   // times (l + r) / r because Simbody holds the rod in absolute coordinates (its rounding relative to crank-scale
   // quantities grows like 1 / lambda).
@@ -92,7 +92,7 @@ constexpr double kStandardGravity = 9.80665;
 ///   - acceleration A_s; force, torque and moment calcForceScale's masses (and arms) times it; energy calcEnergyScale
 ///     with A_s in place of g (the work of the static load over the crank's mass moments).
 /// Never below double's smallest normal number, so that no tolerance is 0. The gate and `validate` use calcScales
-/// (where both engines give 0 exactly they must agree exactly); a scale that calcScales gives positive (every scale
+/// (where two engines give 0 exactly they must agree exactly); a scale that calcScales gives positive (every scale
 /// at speed with a load) is used unchanged.
 Scales calcPositiveScales(const Mechanism& m);
 
