@@ -12,6 +12,8 @@
 #include "crankcheck/scene/scene_writer.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/work_limit.h"
+#include "flag_checks.h"
 #include "help_format.h"
 #include "json_output.h"
 #include "scene_input.h"
@@ -73,9 +75,11 @@ void addTorsionOptions(CLI::App& command, TorsionOptions& options) {
   command.footer(
       "Domain: results are computed only for a shaft that twists at most 0.1 rad a section (a crankshaft, not a chain "
       "of loose masses). A scene whose throws' mean torque twists a section beyond that is refused before any work "
-      "(status 2, naming [crankshaft].stiffness[i]); a speed at which Holzer's linear twist exceeds it, a steady state "
-      "past its work limit (1e8 evaluations of the train's equations, about a minute; an engine's train: 3e5 Simbody "
-      "or 4e6 MuJoCo steps) or one that does not converge is refused with one line, status 1, nothing printed. Very "
+      "(status 2, naming [crankshaft].stiffness[i]). The work is estimated before it starts (probes of the train's "
+      "equations at up to 8 of the speeds and of each engine's step) and refused past --work-limit (status 2). A "
+      "speed at which Holzer's linear twist exceeds the domain, a steady state past its own work limit (1e8 "
+      "evaluations of the train's equations, about a minute; an engine's train: 3e5 Simbody or 4e6 MuJoCo steps) or "
+      "one that does not converge is refused with one line, status 1, nothing printed. Very "
       "stiff shafts (8 x the highest natural frequency's order above 65536 harmonics: the example four from about 3e4 "
       "x its stiffness) take the stiff limit, K^-1 T in closed form plus its corrections, where its bound is within 1 % "
       "of the twist (from about 3e5 x), else the explicit route (docs/torsion.md).");
@@ -97,6 +101,11 @@ void addTorsionOptions(CLI::App& command, TorsionOptions& options) {
   command.add_option("--engine", options.engines, help)
       ->delimiter(',')
       ->check(CLI::IsMember(names))
+      ->capture_default_str();
+  command.add_option(validation::kWorkLimitFlag, options.work_limit,
+                     "The longest work to start [s]: the speeds' steady states and the engines' trains are estimated "
+                     "before they start (probes of the train's equations and of each engine's step) and refused past it")
+      ->check(FiniteRange(1.0, 1e7))
       ->capture_default_str();
   command.add_option("--format", options.format, "Output format")
       ->check(CLI::IsMember({"table", "json"}))
@@ -129,10 +138,12 @@ std::string runTorsion(const TorsionOptions& options) {
   const bool progress = (speeds.size() > 1 || !trains.empty()) && ::isatty(STDERR_FILENO);
   validation::TorsionResult torsion;
   try {
-    torsion = validation::calcTorsion(scene, speeds, trains, [&](size_t s) {
+    torsion = validation::calcTorsion(scene, speeds, trains, options.work_limit, [&](size_t s) {
       if (progress) std::fprintf(stderr, "\r\033[Ktorsion: speed %zu of %zu (%g rpm)", s + 1, speeds.size(), speeds[s]);
     });
   } catch (const std::invalid_argument& e) {
+    throw UsageError(options.scene_path + ": " + e.what());
+  } catch (const UsageError& e) {  // the work estimated past --work-limit
     throw UsageError(options.scene_path + ": " + e.what());
   } catch (const validation::TorsionSpeedError& e) {
     throw UncomputableError(options.scene_path + " at " + formatShortest(e.rpm) + " rpm: " + e.what());

@@ -26,6 +26,7 @@ struct TorsionOptions {
   std::optional<std::string> speed;   ///< --speed as typed [rpm] (given empty: refused)
   std::optional<std::string> speeds;  ///< --speeds FROM:TO:STEP [rpm] as typed (given empty: refused)
   std::vector<std::string> engines{"analytic"};  ///< the exact steady states shown: engines with Engine::simulate_crank_train
+  double work_limit = 600.0;  ///< --work-limit [s]: the longest estimated work started (validation/work_limit.h)
   std::string format = "table";
 };
 

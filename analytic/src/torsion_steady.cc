@@ -1,9 +1,11 @@
 #include "crankcheck/analytic/torsion_steady.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -271,6 +273,90 @@ ExactSteadyState solveStiffLimit(const CrankTrain& t, const HolzerResponse& holz
   return out;
 }
 
+// Holzer's response at s: the state y = (x, dx/ds) (d/ds of Re c_p e^{i p tau} with tau = 2 pi s / cycle).
+State findHolzerState(const HolzerResponse& holzer, double cycle, double s) {
+  const int n = static_cast<int>(holzer.bodies.size());
+  State y(static_cast<size_t>(2 * n), 0.0);
+  const double tau = 2.0 * M_PI * s / cycle;
+  for (int b = 0; b < n; ++b) {
+    const PeriodicSignal& x = holzer.bodies[static_cast<size_t>(b)];
+    PeriodicSignal rate;
+    for (size_t p = 0; p < x.coefficients.size(); ++p)
+      rate.coefficients.push_back(x.coefficients[p] * std::complex<double>(0.0, 2.0 * M_PI * static_cast<double>(p) / cycle));
+    y[static_cast<size_t>(b)] = x.evaluate(tau);
+    y[static_cast<size_t>(n + b)] = rate.evaluate(tau);
+  }
+  return y;
+}
+
+// The twist scale: the largest |x| of Holzer's response over the cycle (the unit of the residual and the error).
+double findTwistScale(const HolzerResponse& holzer) {
+  double scale = 0.0;
+  for (const PeriodicSignal& x : holzer.bodies) {
+    const SignalExtremes ex = findSignalExtremes(x);
+    scale = std::max({scale, std::fabs(ex.min), std::fabs(ex.max)});
+  }
+  return scale;
+}
+
+// The probe (estimateExactSteadyStateWork): kProbeSlices slices of 1/kProbeSliceFraction of the cycle each, spread
+// evenly over it, from Holzer's state at each slice's start, by the accurate integrator; at most kProbeEvaluations
+// evaluations in all, the part of a slice covered by then counted. 4 slices of 1/32: the gas torque's peaks of a
+// four-cylinder four-stroke (every quarter cycle) each met once; about 6000 evaluations (4 ms) on the example four.
+constexpr int kProbeSlices = 4;
+constexpr double kProbeSliceFraction = 32.0;
+constexpr long long kProbeEvaluations = 200'000;
+
+struct ShootingProbe {
+  double steps_per_cycle = 0.0;        // infinite: no step taken within the probe's evaluations
+  double evaluations_per_cycle = 0.0;  // likewise
+  double seconds_per_evaluation = 0.0;
+};
+
+ShootingProbe probeShooting(const CrankTrain& t, const HolzerResponse& holzer, double scale,
+                            const SteadyStateOptions& options) {
+  const TrainEquations equations(t, kProbeEvaluations);
+  const double slice = t.cycle / kProbeSliceFraction;
+  double covered = 0.0;
+  long long steps = 0;
+  double seconds = 0.0;  // of the integration alone
+  for (int k = 0; k < kProbeSlices; ++k) {
+    const double s0 = t.cycle * k / kProbeSlices;
+    State y = findHolzerState(holzer, t.cycle, s0);
+    double reached = s0;
+    const auto begin = std::chrono::steady_clock::now();
+    auto lap = [&] { seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count(); };
+    auto stepper = odeint::make_controlled(options.tolerance * scale, options.tolerance, odeint::runge_kutta_dopri5<State>());
+    try {
+      odeint::integrate_adaptive(stepper, std::cref(equations), y, s0, s0 + slice, t.cycle / 512,
+                                 [&](const State&, double s) {
+                                   if (s > s0) ++steps;
+                                   reached = s;
+                                 });
+      lap();
+      covered += slice;
+    } catch (const std::runtime_error&) {  // the probe's evaluations spent (or odeint's step size gave out)
+      lap();
+      covered += reached - s0;
+      break;
+    }
+  }
+  ShootingProbe probe;
+  const double evaluations = static_cast<double>(std::min(equations.evaluations, kProbeEvaluations));
+  const double infinity = std::numeric_limits<double>::infinity();
+  probe.steps_per_cycle = covered > 0.0 ? static_cast<double>(steps) * t.cycle / covered : infinity;
+  probe.evaluations_per_cycle = covered > 0.0 ? evaluations * t.cycle / covered : infinity;
+  probe.seconds_per_evaluation = evaluations > 0.0 ? seconds / evaluations : 0.0;
+  return probe;
+}
+
+// @throws std::invalid_argument for options outside their domain.
+void checkSteadyStateOptions(const SteadyStateOptions& options) {
+  if (!(options.tolerance > 0.0) || options.samples < 16 || options.samples % 2 != 0 || options.max_evaluations < 1)
+    throw std::invalid_argument("torsion: the steady state needs a tolerance > 0, an even number of samples >= 16 and "
+                                "max_evaluations >= 1");
+}
+
 // The exact steady state by shooting (Dormand-Prince 5(4) and Newton's method on the one-cycle map) from y0, Holzer's
 // start; `scale` > 0 or 0 (no torque: the rigid motion). @throws std::runtime_error past the work limit or without
 // convergence.
@@ -387,9 +473,7 @@ ExactSteadyState solveByShooting(const CrankTrain& t, const SteadyStateOptions& 
 }  // namespace
 
 ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptions& options) {
-  if (!(options.tolerance > 0.0) || options.samples < 16 || options.samples % 2 != 0 || options.max_evaluations < 1)
-    throw std::invalid_argument("torsion: the steady state needs a tolerance > 0, an even number of samples >= 16 and "
-                                "max_evaluations >= 1");
+  checkSteadyStateOptions(options);
   const CrankTrain t = makeCrankTrain(m);
   std::vector<double> inertias;
   if (t.has_front) inertias.push_back(t.front_inertia);
@@ -400,30 +484,14 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptio
 
 ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& holzer,
                                       const SteadyStateOptions& options) {
-  if (!(options.tolerance > 0.0) || options.samples < 16 || options.samples % 2 != 0 || options.max_evaluations < 1)
-    throw std::invalid_argument("torsion: the steady state needs a tolerance > 0, an even number of samples >= 16 and "
-                                "max_evaluations >= 1");
+  checkSteadyStateOptions(options);
   const CrankTrain t = makeCrankTrain(m);
   if (static_cast<int>(holzer.bodies.size()) != t.countBodies())
     throw std::invalid_argument("torsion: Holzer's start has " + std::to_string(holzer.bodies.size()) +
                                 " bodies for a train of " + std::to_string(t.countBodies()));
   checkHolzerTwist(holzer, m.speed_rpm);  // the small-twist domain (torsion_domain.h): refused beyond, before any work
-  const int n = t.countBodies(), dim = 2 * n;
-
-  ExactSteadyState out;
-  // The start: Holzer's deviations and their rates at s = 0 (d/ds of Re c_p e^{i p tau}, tau = 2 pi s / cycle).
-  State y0(static_cast<size_t>(dim), 0.0);
-  double scale = 0.0;
-  for (int b = 0; b < n; ++b) {
-    const PeriodicSignal& x = holzer.bodies[static_cast<size_t>(b)];
-    const SignalExtremes ex = findSignalExtremes(x);
-    scale = std::max({scale, std::fabs(ex.min), std::fabs(ex.max)});
-    y0[static_cast<size_t>(b)] = x.evaluate(0.0);
-    double rate = 0.0;
-    for (size_t p = 0; p < x.coefficients.size(); ++p)
-      rate += (x.coefficients[p] * std::complex<double>(0.0, 2.0 * M_PI * static_cast<double>(p) / t.cycle)).real();
-    y0[static_cast<size_t>(n + b)] = rate;
-  }
+  const State y0 = findHolzerState(holzer, t.cycle, 0.0);
+  const double scale = findTwistScale(holzer);
   // Stiff shafts: where Holzer's response took the stiff-limit route (8 x the highest natural frequency's order beyond
   // its harmonics), so does the steady state where it is accurate (the explicit integrator's steps would follow that
   // frequency).
@@ -445,6 +513,36 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& 
                   kStiffLimitAccuracy);
     throw std::runtime_error(e.what() + std::string(text));
   }
+}
+
+SteadyStateWork estimateExactSteadyStateWork(const Mechanism& m, const HolzerResponse& holzer,
+                                             const SteadyStateOptions& options) {
+  checkSteadyStateOptions(options);
+  const CrankTrain t = makeCrankTrain(m);
+  if (static_cast<int>(holzer.bodies.size()) != t.countBodies())
+    throw std::invalid_argument("torsion: Holzer's start has " + std::to_string(holzer.bodies.size()) +
+                                " bodies for a train of " + std::to_string(t.countBodies()));
+  SteadyStateWork work;
+  const double scale = findTwistScale(holzer);
+  if (!(scale > 0.0)) return work;  // the rigid motion: no work
+  const ShootingProbe probe = probeShooting(t, holzer, scale, options);
+  work.steps_per_cycle = probe.steps_per_cycle;
+  if (holzer.stiff_limit && holzer.stiff) {
+    // The stiff-limit route first, as calcExactSteadyState: measured, not estimated (a few ms).
+    const auto begin = std::chrono::steady_clock::now();
+    const ExactSteadyState stiff = solveStiffLimit(t, holzer, scale);
+    work.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    work.evaluations = static_cast<double>(stiff.evaluations);
+    const double largest = *std::max_element(stiff.peak_to_peak.begin(), stiff.peak_to_peak.end());
+    if (stiff.error_bound <= kStiffLimitAccuracy * largest) {
+      work.stiff_limit = true;
+      return work;
+    }
+  }
+  const double shooting = kShootingCycles * probe.evaluations_per_cycle;
+  work.evaluations += shooting;
+  work.seconds += shooting * probe.seconds_per_evaluation;
+  return work;
 }
 
 }  // namespace crankcheck::analytic

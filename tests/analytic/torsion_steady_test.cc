@@ -337,5 +337,47 @@ TEST(ExactSteadyState, VeryStiffShaftsComputeAndTendToTheRigidDriveTorque) {
   }
 }
 
+// estimateExactSteadyStateWork against the work it estimates, in evaluations of the train's equations (counted, not
+// timed): never below it, so that the work limit errs towards refusing early rather than running past it, and within
+// 6 x of it. kShootingCycles (8) takes the probe's evaluations per cycle eight times; the computations measured here
+// took 2.2 to 5.2 of the probe's cycles (the example four, its throw damping at 1e3 and 1e4 N m s/rad, the marine six).
+// The stiff limit, where it answers, is the route estimated, its count its own. A damping of 1e18 N m s/rad is
+// estimated past the 1e8 evaluations at which calcExactSteadyState refuses (after about a minute): an estimate that
+// sees the refusal coming, from a probe of at most 2e5 evaluations.
+
+TEST(SteadyStateWork, TheProbesEstimateIsAboveTheWorkAndWithinSixTimesIt) {
+  std::vector<std::pair<std::string, Mechanism>> cases;
+  cases.emplace_back("four", loadWithCrankshaft("inline4_four_stroke.toml", kInline4Train));
+  for (double c : {1e3, 1e4}) {
+    Mechanism m = cases.front().second;
+    m.crankshaft->throw_damping = c;
+    cases.emplace_back("four, throw damping " + std::to_string(c), m);
+  }
+  cases.emplace_back("marine six", loadSceneFile(std::filesystem::path(CRANKCHECK_SCENES_DIR) /
+                                                 "inline6_two_stroke_marine.toml"));
+  for (const auto& [name, m] : cases) {
+    SCOPED_TRACE(name);
+    const HolzerResponse h = calcHolzerResponse(m);
+    const SteadyStateWork work = estimateExactSteadyStateWork(m, h);
+    const ExactSteadyState e = calcExactSteadyState(m, h);
+    EXPECT_FALSE(work.stiff_limit);
+    const double ratio = work.evaluations / static_cast<double>(e.evaluations);
+    if (std::getenv("CRANKCHECK_PRINT_RATIOS")) std::printf("%s: estimate / work %.2f\n", name.c_str(), ratio);
+    EXPECT_GE(ratio, 1.0);
+    EXPECT_LE(ratio, 6.0);
+  }
+  Mechanism stiff = cases.front().second;
+  for (double& k : stiff.crankshaft->stiffness) k *= 1e6;
+  const HolzerResponse hs = calcHolzerResponse(stiff);
+  const SteadyStateWork stiff_work = estimateExactSteadyStateWork(stiff, hs);
+  EXPECT_TRUE(stiff_work.stiff_limit);
+  EXPECT_EQ(stiff_work.evaluations, static_cast<double>(calcExactSteadyState(stiff, hs).evaluations));
+
+  Mechanism heavy = cases.front().second;
+  heavy.crankshaft->throw_damping = 1e18;
+  const SteadyStateWork heavy_work = estimateExactSteadyStateWork(heavy, calcHolzerResponse(heavy));
+  EXPECT_GT(heavy_work.evaluations, static_cast<double>(SteadyStateOptions{}.max_evaluations));
+}
+
 }  // namespace
 }  // namespace crankcheck::analytic

@@ -501,6 +501,45 @@ TEST(Cli, TorsionRefusesAShaftBeyondACrankshaftsTwist) {
   EXPECT_FALSE(std::filesystem::exists(folder.path() / "report"));
 }
 
+// torsion's work is estimated before it (probes of the train's equations and of each engine's step,
+// validation/commands/torsion.h) and refused past --work-limit: status 2, one line naming the file, the estimate and
+// the part to ask less of, nothing run. Before: a throw damping of 1e18 N m s/rad ran 55 s to a status-1 refusal (the
+// analytic route's 1e8 evaluations), 1e6 ran 43 s a speed, and a sweep of 1000 such speeds had no bound but those.
+// The limits asked here are far from the estimates: 1e18 is estimated at about 1e8 days; 501 speeds of the example
+// four at about 150 s against 1 s; 11 speeds with MuJoCo's train at about 20 s against 1 s, the train the dearest part.
+TEST(Cli, TorsionWorkIsEstimatedAndRefusedPastTheWorkLimit) {
+  testing::FreshFolder folder;
+  const auto heavy = editedScene(folder.path(), "inline4_four_stroke.toml", "throw_damping = 0.4 ", "throw_damping = 1e18 ");
+  expectRefusedWithOneLine({"torsion", heavy.string()},
+                           heavy.string() + ": torsion at 6000.0 rpm would take about ");
+  const RunResult r = testing::runCrankcheck({"torsion", heavy.string()});
+  EXPECT_NE(r.err.find("evaluations of the train's equations"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("more than --work-limit 600 s; nothing was run: a lighter [crankshaft] damping or stiffness"),
+            std::string::npos) << r.err;
+
+  const std::string four = std::string(CRANKCHECK_SCENES_DIR) + "/inline4_four_stroke.toml";
+  expectRefusedWithOneLine({"torsion", four, "--speeds", "1000:6000:10", "--work-limit", "1"},
+                           four + ": torsion at 501 speeds would take about ");
+  const RunResult sweep = testing::runCrankcheck({"torsion", four, "--speeds", "1000:6000:10", "--work-limit", "1"});
+  EXPECT_NE(sweep.err.find("(501 speeds at the dearest of 8 probed, "), std::string::npos) << sweep.err;
+  EXPECT_NE(sweep.err.find("nothing was run: fewer --speeds, or a larger --work-limit"), std::string::npos) << sweep.err;
+  const RunResult engine =
+      testing::runCrankcheck({"torsion", four, "--speeds", "5000:6000:100", "--engine", "mujoco", "--work-limit", "1"});
+  EXPECT_EQ(engine.exit_status, 2) << engine.err;
+  EXPECT_EQ(engine.out, "");
+  EXPECT_NE(engine.err.find("; mujoco "), std::string::npos) << engine.err;
+  EXPECT_NE(engine.err.find("steps at the measured "), std::string::npos) << engine.err;
+  EXPECT_NE(engine.err.find("nothing was run: without --engine mujoco or fewer --speeds"), std::string::npos)
+      << engine.err;
+  for (const std::string value : {"0", "-1", "nan", "inf", "1e8", ""}) {
+    SCOPED_TRACE("--work-limit '" + value + "'");
+    const RunResult bad = testing::runCrankcheck({"torsion", four, "--work-limit", value});
+    EXPECT_EQ(bad.exit_status, 2) << bad.err;
+    EXPECT_EQ(bad.out, "");
+    EXPECT_NE(bad.err.find("--work-limit"), std::string::npos) << bad.err;
+  }
+}
+
 // --speed and --speeds take what the scene file's [engine].speed_rpm takes, (0, 1e6] rpm, and sweeps of at most 1000
 // distinct speeds; an empty value (which CLI11 would take as not given), nan, inf, a step that resolves no speed and a
 // count grown by rounding are refused before any work. Before: --speed 1e20 printed a twist of 0 (exit 0), --speed ''

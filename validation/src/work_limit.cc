@@ -10,7 +10,11 @@ namespace crankcheck::validation {
 std::string formatDuration(double seconds) {
   char buffer[64];
   if (!std::isfinite(seconds)) return "without end";
-  if (seconds < 120.0)
+  if (seconds < 1e-3)
+    std::snprintf(buffer, sizeof buffer, "%.2g us", seconds * 1e6);
+  else if (seconds < 0.1)
+    std::snprintf(buffer, sizeof buffer, "%.2g ms", seconds * 1e3);
+  else if (seconds < 120.0)
     std::snprintf(buffer, sizeof buffer, "%.2g s", seconds);
   else if (seconds < 7200.0)
     std::snprintf(buffer, sizeof buffer, "%.0f min", seconds / 60.0);

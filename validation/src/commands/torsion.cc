@@ -1,11 +1,17 @@
 #include "crankcheck/validation/commands/torsion.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <map>
+#include <tuple>
 
 #include "crankcheck/analytic/crank_train.h"
 #include "crankcheck/analytic/torsion_domain.h"
+#include "crankcheck/scene/scene_writer.h"
 #include "crankcheck/validation/variants.h"
+#include "crankcheck/validation/work_limit.h"
 
 namespace crankcheck::validation {
 
@@ -19,8 +25,110 @@ CrankTrainRunOptions makeTrainOptions(const Engine& engine) {
   return options;
 }
 
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point begin) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+}
+
+// An engine's train at `m`, capped at `steps` steps: the seconds it took, and whether it finished within them.
+std::pair<double, bool> timeTrainRun(const Engine& engine, const Mechanism& m, long long steps) {
+  CrankTrainRunOptions options = makeTrainOptions(engine);
+  options.max_steps = steps;
+  const auto begin = std::chrono::steady_clock::now();
+  try {
+    engine.simulate_crank_train(m, options);
+    return {secondsSince(begin), true};
+  } catch (const std::runtime_error&) {  // the cap (or the engine's own refusal, which the sweep then names)
+    return {secondsSince(begin), false};
+  }
+}
+
+}  // namespace
+
+TorsionWorkEstimate estimateTorsionWork(const Mechanism& scene, const std::vector<double>& rpms,
+                                        const std::vector<const Engine*>& engines,
+                                        std::map<size_t, analytic::HolzerResponse>* holzer) {
+  TorsionWorkEstimate estimate;
+  if (rpms.empty()) return estimate;
+  // The speeds probed: every one of a short sweep, else kProbedSpeeds spread evenly, the first and the last among them.
+  std::vector<size_t> probed;
+  for (size_t j = 0; j < std::min(rpms.size(), kProbedSpeeds); ++j)
+    probed.push_back(rpms.size() <= kProbedSpeeds ? j : (j * (rpms.size() - 1) + (kProbedSpeeds - 1) / 2) / (kProbedSpeeds - 1));
+  analytic::ThrowLoadOrders load_orders;
+  double dearest = 0.0, steps_per_cycle = 0.0, dearest_evaluations = 0.0;
+  size_t dearest_speed = 0, stiffest_speed = 0;
+  for (size_t i : probed) {
+    const Mechanism m = withSpeed(scene, rpms[i]);
+    const auto begin = std::chrono::steady_clock::now();
+    analytic::HolzerResponse response;
+    analytic::SteadyStateWork work;
+    double holzer_seconds = 0.0;
+    try {
+      response = analytic::calcHolzerResponse(m, {}, load_orders);
+      holzer_seconds = secondsSince(begin);
+      analytic::checkHolzerTwist(response, rpms[i]);  // a speed outside the small-twist domain: refused before any work
+      work = analytic::estimateExactSteadyStateWork(m, response);
+    } catch (const std::invalid_argument&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      throw TorsionSpeedError(rpms[i], e.what());
+    }
+    if (holzer) holzer->emplace(i, std::move(response));
+    if (holzer_seconds + work.seconds >= dearest)
+      dearest = holzer_seconds + work.seconds, dearest_speed = i, dearest_evaluations = work.evaluations;
+    if (work.steps_per_cycle >= steps_per_cycle) steps_per_cycle = work.steps_per_cycle, stiffest_speed = i;
+  }
+  const double count = static_cast<double>(rpms.size());
+  estimate.seconds = dearest * count;
+  char text[400];
+  if (rpms.size() == 1)
+    std::snprintf(text, sizeof text, "the analytic steady state %s (%.2g evaluations of the train's equations)",
+                  formatDuration(dearest).c_str(), dearest_evaluations);
+  else
+    std::snprintf(text, sizeof text, "%zu speeds at the dearest of %zu probed, %s rpm: the analytic steady state %s "
+                  "(%.2g evaluations of the train's equations)", rpms.size(), probed.size(),
+                  formatShortest(rpms[dearest_speed]).c_str(), formatDuration(dearest).c_str(), dearest_evaluations);
+  estimate.how = text;
+  // The advice names the dearest part: the speeds' count, an engine, or the train itself (its fastest rate, a heavy
+  // damping or a stiff shaft, sets the explicit steps of every route).
+  double dearest_part = estimate.seconds;
+  estimate.smaller = rpms.size() > 1 ? "fewer --speeds" : "a lighter [crankshaft] damping or stiffness (the train's "
+                                                          "fastest rate sets the integrators' steps)";
+  // Each engine's train at the speed of the most steps a cycle: a run capped at kEngineProbeSteps, against one capped
+  // at a single step (its build), gives its cost of a step; a run that finishes within the cap is its own cost.
+  const Mechanism m = withSpeed(scene, rpms[stiffest_speed]);
+  for (const Engine* engine : engines) {
+    // Longer probes while they stay short (50 ms), as the stepped runs' estimate: a run's first steps cost more than
+    // its steady ones (64 of Simbody's read twice its cost of a step).
+    const auto [one, done_one] = timeTrainRun(*engine, m, 1);
+    double more = one, step = 0.0;
+    bool done = done_one;
+    for (long long n = kEngineProbeSteps; !done; n *= 4) {
+      std::tie(more, done) = timeTrainRun(*engine, m, 1 + n);
+      step = std::max(more - one, 0.0) / static_cast<double>(n);
+      if (more - one > 0.05 || n >= 64 * kEngineProbeSteps) break;
+    }
+    const double samples = static_cast<double>(makeTrainOptions(*engine).samples);
+    const double steps = (kEngineCycles - 1.0) * steps_per_cycle + std::max(steps_per_cycle, samples);
+    const double per_speed = done ? more : one + steps * step;
+    estimate.seconds += per_speed * count;
+    if (per_speed * count > dearest_part)
+      dearest_part = per_speed * count, estimate.smaller = "without --engine " + engine->name;
+    if (done)
+      std::snprintf(text, sizeof text, "; %s %s (run)", engine->name.c_str(), formatDuration(per_speed).c_str());
+    else
+      std::snprintf(text, sizeof text, "; %s %s (%.2g steps at the measured %s a step)", engine->name.c_str(),
+                    formatDuration(per_speed).c_str(), steps, formatDuration(step).c_str());
+    estimate.how += text;
+  }
+  if (rpms.size() > 1) estimate.how += " a speed";
+  if (rpms.size() > 1 && estimate.smaller.rfind("without", 0) == 0) estimate.smaller += " or fewer --speeds";
+  return estimate;
+}
+
 TorsionResult calcTorsion(const Mechanism& scene, const std::vector<double>& rpms, const std::vector<const Engine*>& engines,
-                          const std::function<void(size_t)>& on_speed) {
+                          double work_limit_seconds, const std::function<void(size_t)>& on_speed) {
   if (!scene.crankshaft)
     throw std::invalid_argument("[crankshaft]: missing table (the elastic crank train: throw_inertia, stiffness, ...; "
                                 "docs/SCENE-FORMAT.md)");
@@ -48,6 +156,13 @@ TorsionResult calcTorsion(const Mechanism& scene, const std::vector<double>& rpm
   std::sort(result.critical.begin(), result.critical.end(),
             [](const CriticalSpeed& a, const CriticalSpeed& b) { return a.rpm < b.rpm; });
 
+  // The work, estimated before it: refused past the limit (status 2), nothing run.
+  std::map<size_t, analytic::HolzerResponse> probed;  // Holzer's responses of the speeds probed, not computed twice
+  const TorsionWorkEstimate estimate = estimateTorsionWork(scene, rpms, engines, &probed);
+  checkWorkLimit(rpms.size() == 1 ? "torsion at " + formatShortest(rpms.front()) + " rpm"
+                                   : "torsion at " + std::to_string(rpms.size()) + " speeds",
+                 estimate.seconds, estimate.how, estimate.smaller, work_limit_seconds);
+
   analytic::ThrowLoadOrders load_orders;  // the throws' speed-free torque orders, computed once for every speed
   for (size_t s = 0; s < rpms.size(); ++s) {
     if (on_speed) on_speed(s);
@@ -55,7 +170,11 @@ TorsionResult calcTorsion(const Mechanism& scene, const std::vector<double>& rpm
     TorsionSpeed r;
     r.rpm = rpms[s];
     try {
-      r.holzer = analytic::calcHolzerResponse(m, {}, load_orders);
+      const auto it = probed.find(s);
+      if (it != probed.end())
+        r.holzer = std::move(it->second);
+      else
+        r.holzer = analytic::calcHolzerResponse(m, {}, load_orders);
       r.exact = analytic::calcExactSteadyState(m, r.holzer);
       for (const Engine* e : engines) {
         const CrankTrainRun run = e->simulate_crank_train(m, makeTrainOptions(*e));

@@ -77,4 +77,33 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptio
 ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& holzer,
                                       const SteadyStateOptions& options = {});
 
+/// What calcExactSteadyState(m, holzer, options) costs, estimated before it (`crankcheck torsion`'s work limit,
+/// validation/commands/torsion.h).
+struct SteadyStateWork {
+  /// The stiff-limit route answers: `seconds` and `evaluations` are its own, measured.
+  bool stiff_limit = false;
+  /// The accurate integrator's steps per cycle on the explicit route, from the probe (infinite when the probe's
+  /// evaluations took no step: a damping or stiffness beyond any explicit step). The engines' own trains run the
+  /// same equations by explicit integrators: their steps follow the same rates.
+  double steps_per_cycle = 0.0;
+  double evaluations = 0.0;  ///< of the train's equations in all, estimated
+  double seconds = 0.0;      ///< [s] on this machine: evaluations x the probe's measured cost of one
+};
+
+/// The cycles' worth of the accurate run's evaluations a steady state takes by shooting: the Newton iterations' runs,
+/// the Jacobian's variational run (dearer by the evaluation, fewer steps at its 1e-5) and the error bound's looser
+/// run. Measured on the example four and the marine six at their speeds, and on the four with throw_damping 1e3 to
+/// 1e6: 2.2 to 5.2 cycles in evaluations, 2.8 to 7.6 in time (the whole computation against the probe's cost of a
+/// cycle; the Jacobian's evaluations cost more); 8 covers them (tests/analytic/torsion_steady_test.cc, SteadyStateWork).
+inline constexpr double kShootingCycles = 8.0;
+
+/// The work of calcExactSteadyState(m, holzer, options), estimated from a probe of the same equations: the accurate
+/// integrator over four slices of 1/32 of the cycle each, spread over it, from Holzer's state at each slice's start,
+/// at most 2e5 evaluations (a few ms; where they run out, the part of a slice covered counts), its evaluations per
+/// cycle x kShootingCycles at its measured cost of one evaluation. On the stiff-limit route (where it answers) the
+/// route itself is run and timed. An estimate, not a bound: a resonance that takes Newton more iterations costs more.
+/// @throws std::invalid_argument as calcExactSteadyState for options or a Holzer response that do not fit the scene.
+SteadyStateWork estimateExactSteadyStateWork(const Mechanism& m, const HolzerResponse& holzer,
+                                             const SteadyStateOptions& options = {});
+
 }  // namespace crankcheck::analytic

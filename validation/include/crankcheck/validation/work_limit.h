@@ -1,10 +1,10 @@
 #pragma once
 /// @file
 /// The bound on work crankcheck starts: every piece of work that can run long (a sweep of stepped runs, the reference
-/// runs of a time-stepped grade) is estimated before it starts, from the measured cost of a short probe of the same
-/// work times how much of it is asked, and refused past the limit with the flag that lifts it (`--work-limit
-/// SECONDS`, in validate, stepped and grade --free-run; `work_limit` in Python). The estimate is a measurement on this
-/// machine, not a promise: the work itself may take somewhat less or more.
+/// runs of a time-stepped grade, a torsion sweep) is estimated before it starts, from the measured cost of a short
+/// probe of the same work times how much of it is asked, and refused past the limit with the flag that lifts it
+/// (`--work-limit SECONDS`, in validate, stepped, grade --free-run and torsion; `work_limit` in Python). The estimate
+/// is a measurement on this machine, not a promise: the work itself may take somewhat less or more.
 
 #include <string>
 
@@ -26,7 +26,7 @@ inline constexpr const char* kWorkLimitFlag = "--work-limit";
 void checkWorkLimit(const std::string& what, double estimated_seconds, const std::string& how_estimated,
                     const std::string& smaller, double limit_seconds);
 
-/// A duration for a message: "42 s", "17 min", "3.2 h", "5.1 days".
+/// A duration for a message: "35 us", "0.37 ms", "42 s", "17 min", "3.2 h", "5.1 days".
 std::string formatDuration(double seconds);
 
 }  // namespace crankcheck::validation

@@ -7,6 +7,7 @@
 /// (Engine::simulate_crank_train).
 
 #include <functional>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "crankcheck/solver/engine.h"
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/validation/errors.h"
+#include "crankcheck/validation/work_limit.h"
 
 namespace crankcheck::validation {
 
@@ -61,13 +63,44 @@ class TorsionSpeedError : public UncomputableError {
 /// (its step is its accuracy).
 CrankTrainRunOptions makeTrainOptions(const Engine& engine);
 
+/// The speeds a sweep's estimate probes: every one of a sweep of at most 8, else 8 spread evenly over it (the first and
+/// the last among them). A train's cost falls with the speed where a fast rate sets its steps (a cycle lasts longer in
+/// the rate's time) and varies slowly otherwise: the dearest probed speed stands for every speed.
+inline constexpr size_t kProbedSpeeds = 8;
+/// The steps of an engine's first probe (against a run of one step: its build), 4 x more while it stays below 50 ms.
+inline constexpr long long kEngineProbeSteps = 64;
+/// The cycles an engine's train runs at a speed, for its estimate: the example four's exact trains run 10 cycles from
+/// the rigid motion to periodic at 6000 rpm (5 at 1000 rpm), and the sampled one (its steps at least the samples).
+inline constexpr double kEngineCycles = 11.0;
+
+/// The work calcTorsion is estimated to take, before it.
+struct TorsionWorkEstimate {
+  double seconds = 0.0;  ///< [s] on this machine
+  std::string how;       ///< how it was estimated, for the refusal: "N speeds at the dearest of K probed, ..."
+  std::string smaller;   ///< how to ask for less, by the dearest part: "fewer --speeds", "without --engine simbody", ...
+};
+
+/// The work of calcTorsion(scene, rpms, engines), estimated before it: at each speed probed (kProbedSpeeds), Holzer's
+/// response (timed) and the exact steady state's estimate (analytic::estimateExactSteadyStateWork), the dearest speed's
+/// sum taken for every speed; each engine's train at the speed of the most steps a cycle: kEngineCycles x that (or
+/// the samples, if more, for the sampled cycle) steps at its cost of a step measured by capped runs
+/// (kEngineProbeSteps), for every speed.
+/// `holzer` (optional) receives the probed speeds' Holzer responses by index, for the sweep to reuse.
+/// @throws std::invalid_argument as calcTorsion; TorsionSpeedError at a probed speed outside the small-twist domain
+///         (analytic::checkHolzerTwist) or whose Holzer response cannot be computed.
+TorsionWorkEstimate estimateTorsionWork(const Mechanism& scene, const std::vector<double>& rpms,
+                                        const std::vector<const Engine*>& engines,
+                                        std::map<size_t, analytic::HolzerResponse>* holzer = nullptr);
+
 /// The torsion of `scene` at `rpms` (each > 0, increasing) with the trains of `engines` (each offering
-/// simulate_crank_train); `on_speed(i)` is called before speed i is computed (a progress line).
+/// simulate_crank_train); `on_speed(i)` is called before speed i is computed (a progress line). The work is estimated
+/// first (estimateTorsionWork) and refused past `work_limit_seconds` (checkWorkLimit, `--work-limit`), nothing run.
 /// @throws std::invalid_argument "[crankshaft]: rule" or "KEY: rule" for a scene outside the model's domain
 ///         (analytic/torsion_domain.h), "[crankshaft]: missing table ..." without one, or an engine's refusal;
-///         UncomputableError when the modes cannot be computed; TorsionSpeedError when a steady state cannot be
-///         found at a speed.
+///         UsageError for work estimated past the limit; UncomputableError when the modes cannot be computed;
+///         TorsionSpeedError when a steady state cannot be found at a speed.
 TorsionResult calcTorsion(const Mechanism& scene, const std::vector<double>& rpms, const std::vector<const Engine*>& engines,
+                          double work_limit_seconds = kDefaultWorkLimitSeconds,
                           const std::function<void(size_t)>& on_speed = {});
 
 }  // namespace crankcheck::validation
