@@ -357,6 +357,22 @@ void checkSteadyStateOptions(const SteadyStateOptions& options) {
                                 "max_evaluations >= 1");
 }
 
+// The train of m, with the options and Holzer's response checked against it.
+// @throws std::invalid_argument for options outside their domain or a response of another number of bodies.
+CrankTrain makeCheckedTrain(const Mechanism& m, const HolzerResponse& holzer, const SteadyStateOptions& options) {
+  checkSteadyStateOptions(options);
+  CrankTrain t = makeCrankTrain(m);
+  if (static_cast<int>(holzer.bodies.size()) != t.countBodies())
+    throw std::invalid_argument("torsion: Holzer's start has " + std::to_string(holzer.bodies.size()) +
+                                " bodies for a train of " + std::to_string(t.countBodies()));
+  return t;
+}
+
+// The stiff limit's state is returned where its error bound is within kStiffLimitAccuracy of its largest twist.
+bool isAccurateEnough(const ExactSteadyState& stiff) {
+  return stiff.error_bound <= kStiffLimitAccuracy * *std::max_element(stiff.peak_to_peak.begin(), stiff.peak_to_peak.end());
+}
+
 // The exact steady state by shooting (Dormand-Prince 5(4) and Newton's method on the one-cycle map) from y0, Holzer's
 // start; `scale` > 0 or 0 (no torque: the rigid motion). @throws std::runtime_error past the work limit or without
 // convergence.
@@ -484,11 +500,7 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const SteadyStateOptio
 
 ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& holzer,
                                       const SteadyStateOptions& options) {
-  checkSteadyStateOptions(options);
-  const CrankTrain t = makeCrankTrain(m);
-  if (static_cast<int>(holzer.bodies.size()) != t.countBodies())
-    throw std::invalid_argument("torsion: Holzer's start has " + std::to_string(holzer.bodies.size()) +
-                                " bodies for a train of " + std::to_string(t.countBodies()));
+  const CrankTrain t = makeCheckedTrain(m, holzer, options);
   checkHolzerTwist(holzer, m.speed_rpm);  // the small-twist domain (torsion_domain.h): refused beyond, before any work
   const State y0 = findHolzerState(holzer, t.cycle, 0.0);
   const double scale = findTwistScale(holzer);
@@ -498,8 +510,7 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& 
   ExactSteadyState stiff;
   if (holzer.stiff_limit && holzer.stiff && scale > 0.0) {
     stiff = solveStiffLimit(t, holzer, scale);
-    const double largest = *std::max_element(stiff.peak_to_peak.begin(), stiff.peak_to_peak.end());
-    if (stiff.error_bound <= kStiffLimitAccuracy * largest) return stiff;
+    if (isAccurateEnough(stiff)) return stiff;
   }
   // The explicit route: the shaft is not that stiff, or too little for the stiff limit's accuracy (then its cost, near
   // the stiff limit's switch, within the work limit, or refused naming both routes).
@@ -517,11 +528,7 @@ ExactSteadyState calcExactSteadyState(const Mechanism& m, const HolzerResponse& 
 
 SteadyStateWork estimateExactSteadyStateWork(const Mechanism& m, const HolzerResponse& holzer,
                                              const SteadyStateOptions& options) {
-  checkSteadyStateOptions(options);
-  const CrankTrain t = makeCrankTrain(m);
-  if (static_cast<int>(holzer.bodies.size()) != t.countBodies())
-    throw std::invalid_argument("torsion: Holzer's start has " + std::to_string(holzer.bodies.size()) +
-                                " bodies for a train of " + std::to_string(t.countBodies()));
+  const CrankTrain t = makeCheckedTrain(m, holzer, options);
   SteadyStateWork work;
   const double scale = findTwistScale(holzer);
   if (!(scale > 0.0)) return work;  // the rigid motion: no work
@@ -533,8 +540,7 @@ SteadyStateWork estimateExactSteadyStateWork(const Mechanism& m, const HolzerRes
     const ExactSteadyState stiff = solveStiffLimit(t, holzer, scale);
     work.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     work.evaluations = static_cast<double>(stiff.evaluations);
-    const double largest = *std::max_element(stiff.peak_to_peak.begin(), stiff.peak_to_peak.end());
-    if (stiff.error_bound <= kStiffLimitAccuracy * largest) {
+    if (isAccurateEnough(stiff)) {
       work.stiff_limit = true;
       return work;
     }
