@@ -98,16 +98,16 @@ TEST(EngineRunsTest, MujocoEulerSpeedStandsHalfAStepBehind) {
     settings.revolutions = 3;
     return toSteppedRun(engine.simulate(m, m.machine.speed, settings));
   };
-  auto phiAtMax = [&](const SteppedRun& r) { return calcSpeedFluctuation(m, r).run.phi_at_omega_max; };
+  auto phiAtMax = [&](const Trajectory& r) { return calcSpeedFluctuation(m, r).run.phi_at_omega_max; };
   constexpr double kAccuracy = 1e-3;
   const double shift = M_PI * kAccuracy;  // half a step in angle [rad]
-  const SteppedRun reference = run("RK4", kAccuracy / 10.0);
+  const Trajectory reference = run("RK4", kAccuracy / 10.0);
   ASSERT_FALSE(reference.omega_half_step_behind);
   const double phi_ref = phiAtMax(reference);
 
   for (const char* integrator : {"Euler", "implicit"}) {
     SCOPED_TRACE(integrator);
-    SteppedRun r = run(integrator, kAccuracy);
+    Trajectory r = run(integrator, kAccuracy);
     ASSERT_TRUE(r.omega_half_step_behind);  // recognised by phi_i - phi_{i-1} = h phi_dot_i
     EXPECT_LT(std::fabs(phiAtMax(r) - phi_ref), 0.1 * shift);
     r.omega_half_step_behind = false;  // read at the step instead: off by the half step
@@ -115,7 +115,7 @@ TEST(EngineRunsTest, MujocoEulerSpeedStandsHalfAStepBehind) {
     // and the reference's (RK4 at a tenth of the step), measured 1.0e-4 rad against the shift's 3.1e-3 (0.03 of it).
     EXPECT_NEAR(phiAtMax(r) - phi_ref, shift, 0.1 * shift);
   }
-  SteppedRun rk4 = run("RK4", kAccuracy);
+  Trajectory rk4 = run("RK4", kAccuracy);
   ASSERT_FALSE(rk4.omega_half_step_behind);
   EXPECT_LT(std::fabs(phiAtMax(rk4) - phi_ref), 0.1 * shift);
   rk4.omega_half_step_behind = true;  // read half a step behind instead: off by the half step the other way
@@ -151,10 +151,10 @@ TEST(EngineRunsTest, ToSteppedRunRecognisesABackwardDifference) {
     phi += h / 6.0 * (k1p + 2.0 * k2p + 2.0 * k3p + k4p);
     omega += h / 6.0 * (k1w + 2.0 * k2w + 2.0 * k3w + k4w);
   }
-  const SteppedRun a = toSteppedRun(euler);
+  const Trajectory a = toSteppedRun(euler);
   EXPECT_TRUE(a.omega_half_step_behind);
   EXPECT_EQ(a.time.size(), euler.time.size());
-  const SteppedRun b = toSteppedRun(rk4);
+  const Trajectory b = toSteppedRun(rk4);
   EXPECT_FALSE(b.omega_half_step_behind);
   ASSERT_EQ(b.time.size(), rk4.time.size() - 1);  // the repeated start dropped
   EXPECT_EQ(b.time[1], h);

@@ -41,8 +41,8 @@ double accel(const Mechanism& m, double phi, double omega) {
 }
 
 // Classical Runge-Kutta, `steps` steps of h from (0, omega0).
-SteppedRun runRk4(const Mechanism& m, double omega0, double h, int steps) {
-  SteppedRun run;
+Trajectory runRk4(const Mechanism& m, double omega0, double h, int steps) {
+  Trajectory run;
   double phi = 0.0, omega = omega0;
   for (int i = 0; i <= steps; ++i) {
     run.time.push_back(i * h);
@@ -60,8 +60,8 @@ SteppedRun runRk4(const Mechanism& m, double omega0, double h, int steps) {
 
 // Semi-implicit (symplectic) Euler as game and engine simulators step: omega += h a(phi, omega); phi += h omega. The
 // stored omega[i] (i >= 1) is the speed over the step that ended at time[i]: it stands half a step behind.
-SteppedRun runSymplecticEuler(const Mechanism& m, double omega0, double h, int steps) {
-  SteppedRun run;
+Trajectory runSymplecticEuler(const Mechanism& m, double omega0, double h, int steps) {
+  Trajectory run;
   run.omega_half_step_behind = true;
   double phi = 0.0, omega = omega0;
   for (int i = 0; i <= steps; ++i) {
@@ -76,8 +76,8 @@ SteppedRun runSymplecticEuler(const Mechanism& m, double omega0, double h, int s
 
 // The exact run sampled at phi = 2 pi i / per_turn: omega from the energy integral, time by Gauss-Legendre (20
 // points) over each cell of 1 / phi_dot, summed with Neumaier's compensation.
-SteppedRun runExact(const Mechanism& m, double omega0, int per_turn, int turns) {
-  SteppedRun run;
+Trajectory runExact(const Mechanism& m, double omega0, int per_turn, int turns) {
+  Trajectory run;
   const double dphi = 2.0 * M_PI / per_turn;
   double t = 0.0, carry = 0.0;
   auto slowness = [&](double p) { return 1.0 / analytic::calcFreeRunSpeed(m, omega0, p); };
@@ -109,7 +109,7 @@ TEST(RunMeasuresTest, RungeKuttaConvergesAtItsOrder) {
   std::vector<double> steps, trends, phases;
   for (int per_turn : {16, 24, 32, 48}) {
     const double h = period / per_turn;
-    const SteppedRun run = runRk4(m, kOmegaSlow, h, per_turn * 8);
+    const Trajectory run = runRk4(m, kOmegaSlow, h, per_turn * 8);
     steps.push_back(h);
     trends.push_back(calcEnergyTrend(m, run));
     phases.push_back(calcPhaseError(m, run, run.time.back()));
@@ -129,7 +129,7 @@ TEST(RunMeasuresTest, RungeKuttaConvergesAtItsOrder) {
 // 16 eps. The phase of omega_max: Brent's angle tolerance (1e-10 rad) on both sides, 1e-9 rad.
 TEST(RunMeasuresTest, ExactRunMeasuresAtRounding) {
   const Mechanism m = loadSingle();
-  const SteppedRun exact = runExact(m, kOmegaSlow, 1024, 4);
+  const Trajectory exact = runExact(m, kOmegaSlow, 1024, 4);
   EXPECT_LE(std::fabs(calcEnergyTrend(m, exact)), 16.0 * kEps);
   for (size_t i : {size_t{1500}, size_t{3072}, exact.time.size() - 1})
     EXPECT_LE(std::fabs(calcPhaseError(m, exact, exact.time[i])), 16.0 * kEps * exact.phi[i]) << i;
@@ -149,7 +149,7 @@ TEST(RunMeasuresTest, ExactRunMeasuresAtRounding) {
 // equal extreme, not the one the exact run's root finder happened to land on, and is within the bump's width.
 TEST(RunMeasuresTest, EqualExtremesAreEither) {
   const Mechanism m = loadSingle();
-  SteppedRun run = runExact(m, kOmegaSlow, 1024, 2);
+  Trajectory run = runExact(m, kOmegaSlow, 1024, 2);
   const analytic::FreeRun exact = analytic::calcFreeRun(m, kOmegaSlow);
   ASSERT_GT(exact.phi_at_omega_min, 0.1);  // not at 0 or pi: a pair phi, 2 pi - phi
   const double mirror = 2.0 * M_PI - exact.phi_at_omega_min, width = 0.05;
@@ -170,7 +170,7 @@ TEST(RunMeasuresTest, EqualExtremesAreEither) {
 TEST(RunMeasuresTest, HalfStepBehindRunAtFixedPhase) {
   const Mechanism m = loadSingle();
   const double omega0 = m.machine.speed, h = 1e-4;
-  SteppedRun run = runSymplecticEuler(m, omega0, h, static_cast<int>(std::round(10.0 * periodOf(m, omega0) / h)));
+  Trajectory run = runSymplecticEuler(m, omega0, h, static_cast<int>(std::round(10.0 * periodOf(m, omega0) / h)));
   double e_min = std::numeric_limits<double>::infinity(), e_max = -e_min;
   for (size_t i = 1; i < run.time.size(); ++i) {
     const double e = 0.5 * analytic::calcReducedInertia(m, run.phi[i]).J * run.omega[i] * run.omega[i] +
@@ -193,8 +193,8 @@ TEST(RunMeasuresTest, HalfStepBehindRunAtFixedPhase) {
 TEST(RunMeasuresTest, OmegaInstantsGivenSampleBySample) {
   const Mechanism m = loadSingle();
   const double omega0 = m.machine.speed, h = 2e-4;
-  const SteppedRun flagged = runSymplecticEuler(m, omega0, h, static_cast<int>(std::round(3.0 * periodOf(m, omega0) / h)));
-  SteppedRun timed = flagged;
+  const Trajectory flagged = runSymplecticEuler(m, omega0, h, static_cast<int>(std::round(3.0 * periodOf(m, omega0) / h)));
+  Trajectory timed = flagged;
   timed.omega_half_step_behind = false;
   timed.time.erase(timed.time.begin());  // omega[0] stands at no half step: the sample is dropped, as the flag drops it
   timed.phi.erase(timed.phi.begin());
@@ -202,11 +202,11 @@ TEST(RunMeasuresTest, OmegaInstantsGivenSampleBySample) {
   for (double t : timed.time) timed.omega_time.push_back(t - 0.5 * h);
   // The flag computes t_i - (t_i - t_{i-1}) / 2, the instants above t_i - h / 2: they agree to an ulp of t, so the
   // readings agree to the interpolation's conditioning times that (a few ulps of omega).
-  const SteppedRunReader a(flagged), b(timed);
+  const TrajectoryReader a(flagged), b(timed);
   for (double t = 0.01; t < 2.0 * periodOf(m, omega0); t += 0.0137)
     EXPECT_NEAR(a.findOmega(t), b.findOmega(t), 64.0 * kEps * omega0) << t;
   timed.omega_time.pop_back();
-  EXPECT_THROW(SteppedRunReader{timed}, std::invalid_argument);
+  EXPECT_THROW(TrajectoryReader{timed}, std::invalid_argument);
 }
 
 // A power law's order, exactly.
@@ -230,19 +230,19 @@ void expectRefusal(F&& f, const std::string& words) {
 // Each malformed run and argument is refused by each measure, naming what is wrong.
 TEST(RunMeasuresTest, Refusals) {
   const Mechanism m = loadSingle();
-  const SteppedRun good = runExact(m, kOmegaSlow, 16, 2);
-  auto all = [&](const SteppedRun& run, const std::string& words) {
+  const Trajectory good = runExact(m, kOmegaSlow, 16, 2);
+  auto all = [&](const Trajectory& run, const std::string& words) {
     expectRefusal([&] { calcEnergyTrend(m, run); }, words);
     expectRefusal([&] { calcSpeedFluctuation(m, run); }, words);
     expectRefusal([&] { calcPhaseError(m, run, run.time.empty() ? 0.0 : run.time.back()); }, words);
   };
-  SteppedRun r = good;
+  Trajectory r = good;
   r.omega.pop_back();
   all(r, "as many samples");
   r = good;
   r.time.resize(7), r.phi.resize(7), r.omega.resize(7);
   all(r, "too few samples");
-  for (auto member : {&SteppedRun::time, &SteppedRun::phi, &SteppedRun::omega}) {
+  for (auto member : {&Trajectory::time, &Trajectory::phi, &Trajectory::omega}) {
     r = good;
     (r.*member)[5] = std::nan("");
     all(r, "is not finite");
@@ -300,7 +300,7 @@ TEST(RunMeasuresTest, LoadedRunAgainstSimbodyAndTheFlywheelsSteadyRun) {
   settings.revolutions = 4;  // two working cycles
   settings.gas = true;
   settings.load_torque = gas.getMeanTorque();
-  const SteppedRun run = toSteppedRun(findEngine("simbody").simulate(m, steady.omega0, settings));
+  const Trajectory run = toSteppedRun(findEngine("simbody").simulate(m, steady.omega0, settings));
   const RunLoad load{true};
   // Simbody at 1e-10 relative per step keeps the invariant E - W + T_L phi to about its steps times 1e-10 a cycle
   // (about 3000 steps a cycle: 3e-7 at most; measured far below): 1e-6 per cycle bounds it.

@@ -66,7 +66,7 @@ std::string shortMeaning(const std::string& meaning) {
 // A run judged by the time-stepped grade's measures (run_measures.h): its row without the engine's own columns (engine,
 // integrator, accuracy, revolutions, steps, cost). exact_horizon [s]: the phase error's horizon, or the run's end if
 // it ends sooner.
-EngineRunRow measureRun(const Mechanism& m, const SteppedRun& run, const RunLoad& load, double exact_horizon) {
+EngineRunRow measureRun(const Mechanism& m, const Trajectory& run, const RunLoad& load, double exact_horizon) {
   EngineRunRow row;
   row.scene = m.name;
   row.energy_trend_per_revolution = calcEnergyTrend(m, run, load);
@@ -103,7 +103,7 @@ void checkFreeRunScene(const Mechanism& m, double omega0, int revolutions, const
 
 }  // namespace
 
-SteppedRun toSteppedRun(const SteppedFreeRun& run, double dt, double phi0, double omega0) {
+Trajectory toSteppedRun(const SteppedFreeRun& run, double dt, double phi0, double omega0) {
   const size_t n = run.time.size();
   if (run.phi.size() != n || run.omega.size() != n)
     throw std::invalid_argument("toSteppedRun: time, phi and omega must have as many samples (" + std::to_string(n) +
@@ -111,7 +111,7 @@ SteppedRun toSteppedRun(const SteppedFreeRun& run, double dt, double phi0, doubl
   if (n < 2) throw std::invalid_argument("toSteppedRun: fewer than 2 samples");
   // The release first: the run is judged from the state it was given, so that what the engine does to it in its
   // first step (a speed cap, damping) is measured, not taken as the run's own start.
-  SteppedRun out;
+  Trajectory out;
   out.time = {0.0};
   out.phi = {phi0};
   const double lag = (1.0 - run.omega_step_fraction) * dt;
@@ -200,7 +200,7 @@ std::vector<SteppedFreeRunSpec> listDefaultSteppedFreeRuns(bool quick) {
   return specs;
 }
 
-SteppedRun toSteppedRun(const FreeRunResult& result) {
+Trajectory toSteppedRun(const FreeRunResult& result) {
   const size_t n = result.time.size();
   if (result.phi.size() != n || result.phi_dot.size() != n)
     throw std::invalid_argument("toSteppedRun: time, phi and phi_dot must have as many samples (" + std::to_string(n) +
@@ -209,7 +209,7 @@ SteppedRun toSteppedRun(const FreeRunResult& result) {
   if (n < 2) throw std::invalid_argument("toSteppedRun: fewer than 2 samples");
   // A sample at the time of the one before it is dropped (an integrator that reports its start twice: Simbody's
   // first return of every internal step is the initial state again).
-  SteppedRun run;
+  Trajectory run;
   for (size_t i = 0; i < n; ++i) {
     if (i > 0 && result.time[i] == run.time.back()) continue;
     run.time.push_back(result.time[i]);
@@ -259,7 +259,7 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
     const std::clock_t start = std::clock();
     const FreeRunResult result = engine.simulate(m, omega0, settings);
     const double cpu = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
-    const SteppedRun run = toSteppedRun(result);
+    const Trajectory run = toSteppedRun(result);
 
     EngineRunRow row = measureRun(m, run, load, exact_horizon);
     row.engine = spec.engine;

@@ -321,7 +321,7 @@ namespace {
 void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& tol, const std::string& program,
               std::vector<RunMeasureRow>& measures, std::vector<RunHistoryRow>& history) {
   const Mechanism& m = c.mechanism;
-  const SteppedRun& run = answer.run;
+  const Trajectory& run = answer.run;
   // The horizon: t_end, or the run's last sample where that stands within rounding before it (parseRunResponse allows
   // 1e-9 of t_end: a run that adds its steps up reaches t_end to rounding).
   const double horizon = std::min(c.t_end, run.time.back());
@@ -346,7 +346,7 @@ void gradeRun(const RunCase& c, const ProgramRun& answer, const RunTolerances& t
   };
   const size_t first_history = history.size();
   try {
-    const SteppedRunReader reader(run);
+    const TrajectoryReader reader(run);
     const double revolutions = (run.phi.back() - run.phi.front()) / kTwoPi;
     // The history's instants: kHistoryPointsPerRevolution per revolution of the horizon, and t_end.
     std::vector<double> times;

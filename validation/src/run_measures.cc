@@ -18,6 +18,7 @@
 #include "crankcheck/analytic/motion.h"
 #include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/solver/stepped_run.h"
+#include "crankcheck/solver/trajectory.h"
 #include "crankcheck/validation/extremum.h"
 
 namespace crankcheck::validation {
@@ -25,20 +26,9 @@ namespace crankcheck::validation {
 namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
-constexpr int kWindow = 6;  // Lagrange interpolation of degree 5
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 
-void checkStrictlyIncreasing(const std::vector<double>& v, const char* what, const char* who) {
-  for (size_t i = 0; i < v.size(); ++i) {
-    if (!std::isfinite(v[i]))
-      throw std::invalid_argument(std::string(who) + ": " + what + "[" + std::to_string(i) + "] is not finite");
-    if (i > 0 && !(v[i] > v[i - 1]))
-      throw std::invalid_argument(std::string(who) + ": " + what + " is not strictly increasing at sample " +
-                                  std::to_string(i));
-  }
-}
-
-void checkRun(const Mechanism& m, const SteppedRun& run, const RunLoad& load, const char* who) {
+void checkRun(const Mechanism& m, const Trajectory& run, const RunLoad& load, const char* who) {
   if (run.phi.size() != run.time.size() || run.omega.size() != run.time.size())
     throw std::invalid_argument(std::string(who) + ": time, phi and omega must have as many samples (" +
                                 std::to_string(run.time.size()) + ", " + std::to_string(run.phi.size()) + ", " +
@@ -67,68 +57,14 @@ void checkRun(const Mechanism& m, const SteppedRun& run, const RunLoad& load, co
   if (load.gas && !m.gas) throw std::invalid_argument(std::string(who) + ": a run under gas needs the scene's [gas] table");
 }
 
-void checkOnePeriod(const SteppedRun& run, double period, const char* who) {
+void checkOnePeriod(const Trajectory& run, double period, const char* who) {
   if (run.phi.back() - run.phi.front() < period)
     throw std::invalid_argument(std::string(who) + ": the run is shorter than one " +
                                 (period > kTwoPi ? "working cycle" : "revolution") + " (" +
                                 std::to_string(run.phi.back() - run.phi.front()) + " rad)");
 }
 
-// y(x) by Lagrange interpolation on the six samples around x (fewer never: the run has at least kMinRunSamples - 1).
-double interpolate(const std::vector<double>& xs, const std::vector<double>& ys, double x) {
-  const int n = static_cast<int>(xs.size());
-  const int cell = static_cast<int>(std::upper_bound(xs.begin(), xs.end(), x) - xs.begin()) - 1;
-  const int first = std::clamp(cell - kWindow / 2 + 1, 0, n - kWindow);
-  double y = 0.0;
-  for (int j = first; j < first + kWindow; ++j) {
-    if (x == xs[static_cast<size_t>(j)]) return ys[static_cast<size_t>(j)];
-    double w = 1.0;
-    for (int k = first; k < first + kWindow; ++k)
-      if (k != j) w *= (x - xs[static_cast<size_t>(k)]) / (xs[static_cast<size_t>(j)] - xs[static_cast<size_t>(k)]);
-    y += w * ys[static_cast<size_t>(j)];
-  }
-  return y;
-}
-
 }  // namespace
-
-SteppedRunReader::SteppedRunReader(const SteppedRun& run) : run_(run) {
-  if (!run.omega_time.empty()) {
-    if (run.omega_time.size() != run.omega.size())
-      throw std::invalid_argument("the run has " + std::to_string(run.omega.size()) + " omega samples but " +
-                                  std::to_string(run.omega_time.size()) + " omega instants");
-    checkStrictlyIncreasing(run.omega_time, "omega's instants", "the run");
-    omega_time_ = run.omega_time;
-    omega_ = run.omega;
-  } else if (run.omega_half_step_behind) {
-    for (size_t i = 1; i < run.time.size(); ++i) {
-      omega_time_.push_back(run.time[i] - 0.5 * (run.time[i] - run.time[i - 1]));
-      omega_.push_back(run.omega[i]);
-    }
-  } else {
-    omega_time_ = run.time;
-    omega_ = run.omega;
-  }
-}
-
-double SteppedRunReader::findPhi(double t) const { return interpolate(run_.time, run_.phi, t); }
-
-double SteppedRunReader::findOmega(double t) const { return interpolate(omega_time_, omega_, t); }
-
-double SteppedRunReader::findTimeAtPhase(double target) const {
-  const auto& phi = run_.phi;
-  const size_t upper = static_cast<size_t>(std::upper_bound(phi.begin(), phi.end(), target) - phi.begin());
-  if (upper == 0) return run_.time.front();
-  const size_t i = upper - 1;
-  if (phi[i] == target || i + 1 == phi.size()) return run_.time[i];
-  const double a = run_.time[i], b = run_.time[i + 1];
-  auto g = [&](double t) { return findPhi(t) - target; };
-  const double ga = phi[i] - target, gb = phi[i + 1] - target;
-  std::uintmax_t iterations = 100;
-  const auto root =
-      boost::math::tools::toms748_solve(g, a, b, ga, gb, boost::math::tools::eps_tolerance<double>(52), iterations);
-  return 0.5 * (root.first + root.second);
-}
 
 namespace {
 
@@ -277,13 +213,13 @@ ExactRun makeExactRun(const Mechanism& m, const RunInvariant& invariant, double 
 
 }  // namespace
 
-std::vector<double> calcEnergyAtTurns(const Mechanism& m, const SteppedRun& run, const RunLoad& load) {
+std::vector<double> calcEnergyAtTurns(const Mechanism& m, const Trajectory& run, const RunLoad& load) {
   constexpr const char* kWho = "calcEnergyAtTurns";
   checkRun(m, run, load, kWho);
   const RunInvariant invariant(m, load);
   const double period = invariant.getPeriod();
   checkOnePeriod(run, period, kWho);
-  const SteppedRunReader reader(run);
+  const TrajectoryReader reader(run);
   const double phi0 = run.phi.front();
   const int turns = static_cast<int>(std::floor((run.phi.back() - phi0) / period));
   std::vector<double> energy;
@@ -295,24 +231,24 @@ std::vector<double> calcEnergyAtTurns(const Mechanism& m, const SteppedRun& run,
   return energy;
 }
 
-double calcEnergyTrend(const Mechanism& m, const SteppedRun& run, const RunLoad& load) {
+double calcEnergyTrend(const Mechanism& m, const Trajectory& run, const RunLoad& load) {
   const std::vector<double> energy = calcEnergyAtTurns(m, run, load);
   std::vector<double> k;
   for (size_t i = 0; i < energy.size(); ++i) k.push_back(static_cast<double>(i));
-  const SteppedRunReader reader(run);
+  const TrajectoryReader reader(run);
   // Relative to the kinetic and potential energy at the start (the invariant's value there, less the gas terms).
   const double phi0 = run.phi.front(), omega0 = reader.findOmegaAtPhase(phi0);
   const double start = 0.5 * analytic::calcReducedInertia(m, phi0).J * omega0 * omega0 + analytic::calcPotentialEnergy(m, phi0);
   return leastSquaresSlope(k, energy) / (load.gas ? start : energy.front());
 }
 
-SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const SteppedRun& run, const RunLoad& load) {
+SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Trajectory& run, const RunLoad& load) {
   constexpr const char* kWho = "calcSpeedFluctuation";
   checkRun(m, run, load, kWho);
   const RunInvariant invariant(m, load);
   const double period = invariant.getPeriod();
   checkOnePeriod(run, period, kWho);
-  const SteppedRunReader reader(run);
+  const TrajectoryReader reader(run);
   const double phi0 = run.phi.front(), phi1 = phi0 + period;
   // omega against phase over the first period: the samples in it and its end, then the extremes refined.
   std::vector<double> phase, omega;
@@ -381,7 +317,7 @@ SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Steppe
   return out;
 }
 
-std::vector<double> calcPhaseErrors(const Mechanism& m, const SteppedRun& run, const std::vector<double>& horizons,
+std::vector<double> calcPhaseErrors(const Mechanism& m, const Trajectory& run, const std::vector<double>& horizons,
                                     const RunLoad& load) {
   constexpr const char* kWho = "calcPhaseError";
   checkRun(m, run, load, kWho);
@@ -390,7 +326,7 @@ std::vector<double> calcPhaseErrors(const Mechanism& m, const SteppedRun& run, c
       throw std::invalid_argument(std::string(kWho) + ": the horizon " + std::to_string(horizon) +
                                   " s is outside the run's time [" + std::to_string(run.time.front()) + ", " +
                                   std::to_string(run.time.back()) + "] s");
-  const SteppedRunReader reader(run);
+  const TrajectoryReader reader(run);
   const double t0 = run.time.front(), phi0 = run.phi.front();
   const RunInvariant invariant(m, load);
   const ExactRun exact = makeExactRun(m, invariant, phi0, reader.findOmega(t0));  // throws if it does not turn over
@@ -417,7 +353,7 @@ std::vector<double> calcPhaseErrors(const Mechanism& m, const SteppedRun& run, c
   return out;
 }
 
-double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon, const RunLoad& load) {
+double calcPhaseError(const Mechanism& m, const Trajectory& run, double horizon, const RunLoad& load) {
   return calcPhaseErrors(m, run, {horizon}, load).front();
 }
 

@@ -9,7 +9,7 @@
 /// Where a run's speed stands: an integrator that updates the velocity before the position (semi-implicit Euler, as
 /// MuJoCo's Euler and implicit integrators step) records at each step the position at t_i and the velocity that moved
 /// it there, phi_i = phi_{i-1} + (t_i - t_{i-1}) phi_dot_i: a backward difference, which stands half a step behind
-/// t_i (SteppedRun::omega_half_step_behind). calcEngineRuns recognises such a run by that identity, held to rounding
+/// t_i (Trajectory::omega_half_step_behind). calcEngineRuns recognises such a run by that identity, held to rounding
 /// at every step, rather than by the engine's name; a run whose speed is its own state at t_i (Runge-Kutta, Simbody's
 /// integrators) fails it by the step's change of speed times the step.
 
@@ -56,12 +56,12 @@ struct EngineRunRow {
   double cpu_seconds_per_revolution = 0.0;  ///< [s] processor time of the engine's run (std::clock) / revolutions
 };
 
-/// An engine's free run as a SteppedRun: its time, phi and phi_dot (a sample at the same time as the one before it
+/// An engine's free run as a Trajectory: its time, phi and phi_dot (a sample at the same time as the one before it
 /// dropped: an integrator that reports its start twice), with omega_half_step_behind set when every step
 /// satisfies phi_i - phi_{i-1} = (t_i - t_{i-1}) phi_dot_i to rounding (16 eps x (|phi_i| + |phi_dot_i| t_i): the
 /// rounding of the position's and of the clock's sums).
 /// @throws std::invalid_argument if time, phi and phi_dot differ in size or have fewer than 2 samples.
-SteppedRun toSteppedRun(const FreeRunResult& result);
+Trajectory toSteppedRun(const FreeRunResult& result);
 
 /// Runs each spec on m (no gas: the free run under gravity alone) released at phi = 0 with omega0 [rad/s] for
 /// `revolutions` revolutions, and measures each run (run_measures.h), in the order of the specs. Every spec is checked
@@ -99,12 +99,12 @@ struct SteppedFreeRunSpec {
   double dt = 0.0;
 };
 
-/// A stepped engine's free run as a SteppedRun: the release (t = 0, phi0, omega0) first, then each step's sample with
+/// A stepped engine's free run as a Trajectory: the release (t = 0, phi0, omega0) first, then each step's sample with
 /// omega at its instant, omega_time = time - (1 - f) dt with f the run's omega_step_fraction. The release is the run's
 /// first state: what the engine does to it in its first step is measured. Where omega belongs to its step's start (f
 /// <= 0: Box2D), the first step's omega is the engine's reading of the release and stands at t = 0 in its place.
 /// @throws std::invalid_argument if time, phi and omega differ in size or have fewer than 2 samples.
-SteppedRun toSteppedRun(const SteppedFreeRun& run, double dt, double phi0, double omega0);
+Trajectory toSteppedRun(const SteppedFreeRun& run, double dt, double phi0, double omega0);
 
 /// Runs each spec free on m (under gravity alone, released at phi = 0 with omega0 from the exact state) for
 /// `revolutions` revolutions of the exact run and a tenth more, and measures it as calcEngineRuns does; in each row

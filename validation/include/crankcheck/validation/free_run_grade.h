@@ -96,7 +96,7 @@ std::string makeRunRequest(const RunCase& c);
 
 /// A program's answer to one request.
 struct ProgramRun {
-  SteppedRun run;                    ///< t, phi, omega (with omega's own instants)
+  Trajectory run;                    ///< t, phi, omega (with omega's own instants)
   std::vector<double> values_time;   ///< [s] the instant each sample's other values stand at
   std::vector<Evaluation> values;    ///< NaN where not provided (readProgramValues)
   bool any_value = false;            ///< some sample provided some value beyond phi and omega

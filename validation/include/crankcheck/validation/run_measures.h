@@ -3,48 +3,14 @@
 /// Measures of a time-stepped run of the crank train: a program steps the mechanism through time (a free run under
 /// gravity alone: no gas, no drive, no load) and hands back its samples; these functions judge them against the exact
 /// free run of analytic/motion.h (the energy integral (1/2) J(phi) phi_dot^2 + U(phi) = E).
-///
-/// The run is read between its samples by local Lagrange interpolation of degree 5 (the six samples around the
-/// instant) of phi(t) and, separately, of omega(t) at omega's own instants, so that a run's own integration error is
-/// measured rather than the reading's: on a smooth run the reading's error falls as the step to the sixth power.
-/// A phase phi* is reached at the time where the interpolated phi(t) equals phi* (TOMS 748 between the two samples that
-/// bracket it).
+/// The run is a Trajectory, read between its samples as solver/trajectory.h says.
 
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/solver/trajectory.h"
 
 namespace crankcheck::validation {
-
-/// A program's run, as samples.
-struct SteppedRun {
-  std::vector<double> time;   ///< [s], strictly increasing
-  std::vector<double> phi;    ///< [rad] the crank angle (the scene's convention), unwrapped and strictly increasing
-  std::vector<double> omega;  ///< [rad/s] the crank speed
-  /// true: omega[i] stands at time[i] - (time[i] - time[i-1]) / 2 (a backward difference, as many game and engine
-  /// simulators store it; omega[0] is then not used), not at time[i].
-  bool omega_half_step_behind = false;
-  /// When not empty: the instant each omega stands at [s] (strictly increasing, as many as omega), in place of time and
-  /// of omega_half_step_behind (a program that says at which time each value stands, as protocol 2 lets it).
-  std::vector<double> omega_time;
-};
-
-/// A run read between its samples (the interpolation above). Keeps a reference to the run: the run must outlive it.
-class SteppedRunReader {
- public:
-  /// @throws std::invalid_argument if omega_time is given but is not as long as omega, finite and strictly increasing.
-  explicit SteppedRunReader(const SteppedRun& run);
-  double findPhi(double t) const;    ///< [rad] phi at time t [s]
-  double findOmega(double t) const;  ///< [rad/s] omega at time t, read at omega's own instants
-  /// [s] The time at which phi reaches `phase` [rad] (within [phi.front(), phi.back()]; the first or last sample's time
-  /// outside it).
-  double findTimeAtPhase(double phase) const;
-  double findOmegaAtPhase(double phase) const { return findOmega(findTimeAtPhase(phase)); }
-
- private:
-  const SteppedRun& run_;
-  std::vector<double> omega_time_, omega_;
-};
 
 /// What acts on the crank in the run besides gravity.
 struct RunLoad {
@@ -67,10 +33,10 @@ inline constexpr double kMaxRunSteps = 1e9;
 /// of E; only the loss or gain per revolution does.
 /// @throws std::invalid_argument if the run is malformed (sizes differ, fewer than kMinRunSamples, NaN, time or phi not
 ///         strictly increasing), the scene has no flywheel inertia, or the run is shorter than one revolution.
-double calcEnergyTrend(const Mechanism& m, const SteppedRun& run, const RunLoad& load = {});
+double calcEnergyTrend(const Mechanism& m, const Trajectory& run, const RunLoad& load = {});
 /// The energies E_k [J] that calcEnergyTrend fits, k = 0, 1, ... (every crossing of phi(0) + 2 pi k within the run).
 /// @throws std::invalid_argument as calcEnergyTrend.
-std::vector<double> calcEnergyAtTurns(const Mechanism& m, const SteppedRun& run, const RunLoad& load = {});
+std::vector<double> calcEnergyAtTurns(const Mechanism& m, const Trajectory& run, const RunLoad& load = {});
 
 /// The speed's fluctuation over one revolution.
 struct SpeedFluctuationOfRun {
@@ -97,7 +63,7 @@ struct SpeedFluctuationComparison {
 /// The speed fluctuation of the run's first revolution and of the exact free run.
 /// @throws std::invalid_argument as calcEnergyTrend; std::domain_error if the exact free run does not complete a
 ///         revolution at that release speed.
-SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const SteppedRun& run, const RunLoad& load = {});
+SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Trajectory& run, const RunLoad& load = {});
 
 /// [rad] phi_run(horizon) - phi_exact(horizon): phi_run read at time `horizon` [s] (a time of the run, between its first
 /// and its last sample), phi_exact the free run through the run's first state (phi(0), and omega read at time(0)),
@@ -105,9 +71,9 @@ SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Steppe
 /// rest (Gauss-Kronrod quadrature), inverted by TOMS 748.
 /// @throws std::invalid_argument if the run is malformed (as calcEnergyTrend), the scene has no flywheel inertia, or
 ///         horizon is outside [time.front(), time.back()]; std::domain_error if the exact run does not turn over.
-double calcPhaseError(const Mechanism& m, const SteppedRun& run, double horizon, const RunLoad& load = {});
+double calcPhaseError(const Mechanism& m, const Trajectory& run, double horizon, const RunLoad& load = {});
 /// calcPhaseError at each of `horizons` (the exact run's quadrature set up once).
-std::vector<double> calcPhaseErrors(const Mechanism& m, const SteppedRun& run, const std::vector<double>& horizons,
+std::vector<double> calcPhaseErrors(const Mechanism& m, const Trajectory& run, const std::vector<double>& horizons,
                                     const RunLoad& load = {});
 
 /// The observed order of convergence: the least-squares slope of log|error| against log(step).
