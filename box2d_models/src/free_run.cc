@@ -11,7 +11,7 @@
 
 namespace crankcheck::box2d_models {
 
-SteppedFreeRun runBox2dFree(const Mechanism& m, const Box2dRunOptions& o) {
+Trajectory runBox2dFree(const Mechanism& m, const Box2dRunOptions& o) {
   if (!m.flywheel_inertia.has_value() || !(*m.flywheel_inertia > 0.0))
     throw std::invalid_argument("Box2D free run: the scene needs [flywheel].inertia > 0 (the crank runs free with its "
                                 "flywheel)");
@@ -25,11 +25,11 @@ SteppedFreeRun runBox2dFree(const Mechanism& m, const Box2dRunOptions& o) {
   const b2Body* crank = model.crank;
 
   const float dt = static_cast<float>(o.dt);
-  SteppedFreeRun run;
-  run.omega_step_fraction = 0.0;
+  Trajectory run;  // omega belongs to the step's start (box2d_models/free_run.h)
   run.time.reserve(static_cast<std::size_t>(o.steps));
   run.phi.reserve(static_cast<std::size_t>(o.steps));
   run.omega.reserve(static_cast<std::size_t>(o.steps));
+  run.omega_time.reserve(static_cast<std::size_t>(o.steps));
   const auto started = std::chrono::steady_clock::now();
   for (long i = 0; i < o.steps; ++i) {
     world->Step(dt, o.velocity_iterations, o.position_iterations);
@@ -41,6 +41,7 @@ SteppedFreeRun runBox2dFree(const Mechanism& m, const Box2dRunOptions& o) {
     run.time.push_back(static_cast<double>(i + 1) * o.dt);
     run.phi.push_back(crank->GetAngle());
     run.omega.push_back(omega);
+    run.omega_time.push_back(static_cast<double>(i) * o.dt);
   }
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - started;
   run.seconds_per_step = elapsed.count() / static_cast<double>(o.steps);

@@ -87,7 +87,7 @@ ConstantSpeedRun runSteppedBox2d(const Mechanism& m, const ConstantSpeedRunOptio
   return out;
 }
 
-SteppedFreeRun runFreeSteppedBox2d(const Mechanism& m, const SteppedFreeRunOptions& options) {
+Trajectory runFreeSteppedBox2d(const Mechanism& m, const SteppedFreeRunOptions& options) {
   return runBox2dFree(m, toRunOptions(options.dt, options.steps, options.settings, options.start));
 }
 

@@ -314,23 +314,25 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
   return run;
 }
 
-SteppedFreeRun runBulletFree(const Mechanism& m, const BulletRunOptions& o) {
+Trajectory runBulletFree(const Mechanism& m, const BulletRunOptions& o) {
   const std::unique_ptr<Model> model = buildModel(m, o, /*driven=*/false);
   btMultiBody& body = *model->body;
   const long steps = o.steps;
-  SteppedFreeRun run;
+  Trajectory run;
   run.time.reserve(static_cast<std::size_t>(steps));
   run.phi.reserve(static_cast<std::size_t>(steps));
   run.omega.reserve(static_cast<std::size_t>(steps));
+  run.omega_time.reserve(static_cast<std::size_t>(steps));
   // Semi-implicit Euler: the joint speed after the step is the one stepPositionsMultiDof moved the joint by,
   // phi_i - phi_{i-1} = dt omega_i (tests/bullet/bullet_free_run_test.cc verifies it): the middle of the step.
-  run.omega_step_fraction = 0.5;
+  const double lag = 0.5 * o.dt;
   const auto started = std::chrono::steady_clock::now();
   for (long i = 0; i < steps; ++i) {
     model->world->stepSimulation(o.dt, 0);  // one step of exactly dt (runBulletAtConstantSpeed says why)
     run.time.push_back(static_cast<double>(i + 1) * o.dt);
     run.phi.push_back(o.start.phi + body.getJointPos(model->crank_link));
     run.omega.push_back(body.getJointVel(model->crank_link));  // the crank's joint speed is its angular velocity about +Z
+    run.omega_time.push_back(run.time.back() - lag);
   }
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - started;
   run.seconds_per_step = elapsed.count() / static_cast<double>(steps);

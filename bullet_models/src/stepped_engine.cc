@@ -88,7 +88,7 @@ ConstantSpeedRun runStepped(const Mechanism& m, const ConstantSpeedRunOptions& o
   return out;
 }
 
-SteppedFreeRun runSteppedFree(const Mechanism& m, const SteppedFreeRunOptions& options, const std::vector<std::string>& names) {
+Trajectory runSteppedFree(const Mechanism& m, const SteppedFreeRunOptions& options, const std::vector<std::string>& names) {
   BulletRunOptions o = getSettings(options.settings, names);
   o.dt = options.dt;
   o.steps = options.steps;

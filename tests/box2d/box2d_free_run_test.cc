@@ -35,7 +35,7 @@ const SteppedEngine& box2d() {
 
 using crankcheck::testing::ExactFreeRun;
 
-SteppedFreeRun runFree(const Mechanism& m, double dt, double seconds, const std::string& settings = "defaults") {
+Trajectory runFree(const Mechanism& m, double dt, double seconds, const std::string& settings = "defaults") {
   SteppedFreeRunOptions o;
   o.dt = dt;
   o.steps = static_cast<long>(std::ceil(seconds / dt)) + 1;
@@ -45,7 +45,7 @@ SteppedFreeRun runFree(const Mechanism& m, double dt, double seconds, const std:
 }
 
 /// [rad] phi_run - phi_exact at the run's sample nearest the exact run's time of `turns` revolutions.
-double phaseErrorAfter(const ExactFreeRun& exact, const SteppedFreeRun& run, double dt, double turns) {
+double phaseErrorAfter(const ExactFreeRun& exact, const Trajectory& run, double dt, double turns) {
   const size_t i = static_cast<size_t>(std::lround(exact.time(turns * kTwoPi) / dt)) - 1;
   return run.phi.at(i) - exact.phi(run.time.at(i));
 }
@@ -55,7 +55,7 @@ double phaseErrorAfter(const ExactFreeRun& exact, const SteppedFreeRun& run, dou
 /// step's middle to second order, so (phi_i - phi_{i-1}) / dt - omega_i = (1/2 - f) dt alpha + what the position pass
 /// turns the crank by; a least-squares fit of it to a + c dt alpha (alpha the exact acceleration at the step's
 /// middle) gives f = 1/2 - c.
-double fitOmegaFraction(const ExactFreeRun& exact, const SteppedFreeRun& run, double dt) {
+double fitOmegaFraction(const ExactFreeRun& exact, const Trajectory& run, double dt) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   const double n = static_cast<double>(run.phi.size() - 1);
   for (size_t i = 1; i < run.phi.size(); ++i) {
@@ -83,7 +83,7 @@ TEST(Box2dFreeRunTest, PhaseErrorFallsAtFirstOrder) {
     const double two_turns = exact.time(2.0 * kTwoPi);
     std::vector<double> errors;
     for (double dt : kSteps) {
-      const SteppedFreeRun run = runFree(m, dt, 1.01 * two_turns);
+      const Trajectory run = runFree(m, dt, 1.01 * two_turns);
       ASSERT_EQ(run.time.size(), run.phi.size());
       ASSERT_EQ(run.omega.size(), run.phi.size());
       errors.push_back(phaseErrorAfter(exact, run, dt, 2.0));
@@ -105,7 +105,7 @@ TEST(Box2dFreeRunTest, PhaseErrorFallsAtFirstOrder) {
 
 // The free run loses energy at first order: Box2D's velocity solve projects each step's velocity onto the joints'
 // tangent at the step's start, an inelastic projection. The crank's speed at 2 turns, omega read at the instant
-// SteppedFreeRun states, against the exact speed there: measured 4.7 / 0.48 / 0.10 rad/s on the single (1.5e-2 /
+// Trajectory states, against the exact speed there: measured 4.7 / 0.48 / 0.10 rad/s on the single (1.5e-2 /
 // 1.5e-3 / 3.2e-4 of its speed), 62 / 7.2 / 0.90 on the four; from 1e-3 to 1e-4 s 9.8 and 8.7 times smaller (first
 // order; band [0.85, 1.15]).
 TEST(Box2dFreeRunTest, LosesEnergyAtFirstOrder) {
@@ -115,9 +115,9 @@ TEST(Box2dFreeRunTest, LosesEnergyAtFirstOrder) {
     const ExactFreeRun exact(m, m.machine.speed, 4);
     std::vector<double> errors;
     for (double dt : {1e-3, 1e-4}) {
-      const SteppedFreeRun run = runFree(m, dt, 1.01 * exact.time(2.0 * kTwoPi));
+      const Trajectory run = runFree(m, dt, 1.01 * exact.time(2.0 * kTwoPi));
       const size_t i = static_cast<size_t>(std::lround(exact.time(2.0 * kTwoPi) / dt)) - 1;
-      const double phi = run.phi[i - 1] + run.omega_step_fraction * (run.phi[i] - run.phi[i - 1]);
+      const double phi = run.phi[i - 1] + testing::findOmegaStepFraction(run) * (run.phi[i] - run.phi[i - 1]);
       errors.push_back(run.omega[i] - exact.speed(phi));
       EXPECT_LT(errors.back(), 0.0) << dt;
     }
@@ -134,20 +134,20 @@ TEST(Box2dFreeRunTest, LosesEnergyAtFirstOrder) {
 // 0.14 and 0.11; at 1e-5 s 0.41 and 0.45, where the float angle's rounding, 1e-6 rad a step, is 1e3 times the lag
 // term). Band at 1e-4 s: within 0.1 of 0, and read at the step's middle it would be 0.5 away.
 TEST(Box2dFreeRunTest, OmegaBelongsToTheStepsStart) {
-  EXPECT_EQ(box2d().run_free(loadSteppedExample("single_cylinder.toml", true),
-                             {.dt = 1e-4, .steps = 8, .settings = "defaults",
-                              .start = testing::calcExactStartState(loadSteppedExample("single_cylinder.toml", true))})
-                .omega_step_fraction,
+  EXPECT_EQ(testing::findOmegaStepFraction(box2d().run_free(
+                loadSteppedExample("single_cylinder.toml", true),
+                {.dt = 1e-4, .steps = 8, .settings = "defaults",
+                 .start = testing::calcExactStartState(loadSteppedExample("single_cylinder.toml", true))})),
             0.0);
   for (const char* scene : {"single_cylinder.toml", "inline4_four_stroke.toml"}) {
     SCOPED_TRACE(scene);
     const Mechanism m = loadSteppedExample(scene, true);
     const ExactFreeRun exact(m, m.machine.speed, 4);
-    const SteppedFreeRun run = runFree(m, 1e-4, exact.time(2.0 * kTwoPi));
+    const Trajectory run = runFree(m, 1e-4, exact.time(2.0 * kTwoPi));
     // Within 0.1 of a step: the fit measured -0.02 (single) and 0.01 (four) at 1e-4 s; the position pass's own move
     // (1/2 dt^2 alpha) and the first-order energy loss shift it by a few hundredths, against the 0.5 that would mean the
     // step's middle.
-    EXPECT_NEAR(fitOmegaFraction(exact, run, 1e-4), run.omega_step_fraction, 0.1);
+    EXPECT_NEAR(fitOmegaFraction(exact, run, 1e-4), testing::findOmegaStepFraction(run), 0.1);
   }
 }
 
@@ -160,9 +160,9 @@ TEST(Box2dFreeRunTest, RefusesASceneWithoutFlywheelAndDropsTheGas) {
   o.dt = 1e-4;
   o.steps = 100;
   o.start = testing::calcExactStartState(m);
-  const SteppedFreeRun with_gas = box2d().run_free(m, o);
+  const Trajectory with_gas = box2d().run_free(m, o);
   m.gas.reset();
-  const SteppedFreeRun without = box2d().run_free(m, o);
+  const Trajectory without = box2d().run_free(m, o);
   EXPECT_EQ(with_gas.phi, without.phi);
   EXPECT_EQ(with_gas.omega, without.omega);
   m.flywheel_inertia.reset();

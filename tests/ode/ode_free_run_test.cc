@@ -34,7 +34,7 @@ const std::vector<SteppedEngine>& engines() {
 
 using crankcheck::testing::ExactFreeRun;
 
-SteppedFreeRun runFree(const SteppedEngine& e, const Mechanism& m, const std::string& settings, double dt, long steps) {
+Trajectory runFree(const SteppedEngine& e, const Mechanism& m, const std::string& settings, double dt, long steps) {
   SteppedFreeRunOptions o;
   o.dt = dt;
   o.steps = steps;
@@ -44,7 +44,7 @@ SteppedFreeRun runFree(const SteppedEngine& e, const Mechanism& m, const std::st
 }
 
 /// [rad] The largest |phi - phi_exact(t)| over the samples within the exact run's first `turns` turns.
-double phaseError(const SteppedFreeRun& run, const ExactFreeRun& exact, int turns) {
+double phaseError(const Trajectory& run, const ExactFreeRun& exact, int turns) {
   const double horizon = exact.time(turns * kTwoPi);
   double worst = 0.0;
   for (size_t i = 0; i < run.time.size() && run.time[i] <= horizon; ++i)
@@ -54,7 +54,7 @@ double phaseError(const SteppedFreeRun& run, const ExactFreeRun& exact, int turn
 
 /// [rad/s] The largest |omega_i - phi_dot_exact| with the exact speed taken at the crank's own angle at fraction f of
 /// step i (phi_{i-1} + f (phi_i - phi_{i-1})), over the first `turns` turns.
-double speedError(const SteppedFreeRun& run, const ExactFreeRun& exact, double f, int turns) {
+double speedError(const Trajectory& run, const ExactFreeRun& exact, double f, int turns) {
   double worst = 0.0;
   for (size_t i = 0; i < run.phi.size() && run.phi[i] <= turns * kTwoPi; ++i) {
     const double before = i == 0 ? 0.0 : run.phi[i - 1];
@@ -68,7 +68,7 @@ long stepsFor(const Mechanism& m, double dt, int turns) {
 }
 
 /// [rad/s] The largest half-step lag: |phi_dot_exact at the step's end angle - at its middle angle|.
-double halfStepLag(const SteppedFreeRun& run, const ExactFreeRun& exact, int turns) {
+double halfStepLag(const Trajectory& run, const ExactFreeRun& exact, int turns) {
   double worst = 0.0;
   for (size_t i = 0; i < run.phi.size() && run.phi[i] <= turns * kTwoPi; ++i) {
     const double before = i == 0 ? 0.0 : run.phi[i - 1];
@@ -78,7 +78,7 @@ double halfStepLag(const SteppedFreeRun& run, const ExactFreeRun& exact, int tur
 }
 
 /// [rad/s] omega of the step whose angle range holds phi = turns 2 pi, minus the release speed (the exact speed there).
-double speedAtTurns(const SteppedFreeRun& run, int turns, double omega0) {
+double speedAtTurns(const Trajectory& run, int turns, double omega0) {
   for (size_t i = 0; i < run.phi.size(); ++i)
     if (run.phi[i] >= turns * kTwoPi) return run.omega[i] - omega0;
   return NAN;
@@ -123,11 +123,11 @@ TEST(OdeFreeRunTest, RecordsEachStepsAngleAndTheSpeedThatCarriedIt) {
   for (const SteppedEngine& e : engines())
     for (const std::string& settings : e.settings) {
       SCOPED_TRACE(e.name + " " + settings);
-      const SteppedFreeRun run = runFree(e, m, settings, dt, steps);
+      const Trajectory run = runFree(e, m, settings, dt, steps);
       ASSERT_EQ(run.time.size(), static_cast<size_t>(steps));
       ASSERT_EQ(run.phi.size(), run.time.size());
       ASSERT_EQ(run.omega.size(), run.time.size());
-      EXPECT_EQ(run.omega_step_fraction, 0.5);
+      EXPECT_EQ(testing::findOmegaStepFraction(run), 0.5);
       EXPECT_GT(run.seconds_per_step, 0.0);
       for (size_t i = 0; i < run.time.size(); ++i) {
         EXPECT_DOUBLE_EQ(run.time[i], static_cast<double>(i + 1) * dt);
@@ -136,7 +136,7 @@ TEST(OdeFreeRunTest, RecordsEachStepsAngleAndTheSpeedThatCarriedIt) {
         ASSERT_NEAR(turned, carried, 1e-12 * std::abs(carried)) << i;
       }
       EXPECT_GT(run.phi.back(), kTwoPi);  // a turn and a tenth: released at speed, the crank goes round
-      const SteppedFreeRun gassed = runFree(e, with_gas, settings, dt, steps);
+      const Trajectory gassed = runFree(e, with_gas, settings, dt, steps);
       ASSERT_EQ(gassed.phi.size(), run.phi.size());
       for (size_t i = 0; i < run.phi.size(); ++i) {
         ASSERT_NEAR(gassed.phi[i], run.phi[i], 1e-9 * run.phi[i]) << i;
@@ -168,7 +168,7 @@ TEST(OdeFreeRunTest, PhaseErrorFallsAtSecondOrderAndTheRunLosesEnergy) {
       for (size_t s = 0; s < e.settings.size(); ++s) {
         SCOPED_TRACE(std::string(scene) + " " + e.name + " " + e.settings[s]);
         for (double dt : steps) {
-          const SteppedFreeRun run = runFree(e, m, e.settings[s], dt, stepsFor(m, dt, 2));
+          const Trajectory run = runFree(e, m, e.settings[s], dt, stepsFor(m, dt, 2));
           phase[s].push_back(phaseError(run, exact, 2));
           loss[s].push_back(-speedAtTurns(run, 2, omega0));
           EXPECT_GT(loss[s].back(), 0.0);
@@ -202,9 +202,9 @@ TEST(OdeFreeRunTest, TheSpeedBelongsToTheStepsMiddle) {
     const ExactFreeRun exact(m, m.machine.speed, 3);
     for (const char* settings : {"defaults", "tightened"}) {
       SCOPED_TRACE(std::string(scene) + " " + settings);
-      const SteppedFreeRun coarse = runFree(direct, m, settings, 1e-5, stepsFor(m, 1e-5, 2));
-      const SteppedFreeRun fine = runFree(direct, m, settings, 1e-6, stepsFor(m, 1e-6, 2));
-      const double f = fine.omega_step_fraction;
+      const Trajectory coarse = runFree(direct, m, settings, 1e-5, stepsFor(m, 1e-5, 2));
+      const Trajectory fine = runFree(direct, m, settings, 1e-6, stepsFor(m, 1e-6, 2));
+      const double f = testing::findOmegaStepFraction(fine);
       const double mid_coarse = speedError(coarse, exact, f, 2), mid_fine = speedError(fine, exact, f, 2);
       const double end_coarse = speedError(coarse, exact, 1.0, 2), end_fine = speedError(fine, exact, 1.0, 2);
       EXPECT_GT(std::log10(mid_coarse / mid_fine), 1.9);

@@ -32,6 +32,13 @@ inline StartState calcExactStartState(const Mechanism& m, double phi = 0.0) {
   return calcStartState(m, validation::getClosedFormEngine().build(m)->evaluate(phi));
 }
 
+/// Where within its step a free run's omega belongs (0 its start, 1 its end), read off its first sample's omega_time
+/// (SteppedEngine::run_free: time[i] = (i + 1) dt).
+inline double findOmegaStepFraction(const Trajectory& run) {
+  const double dt = run.time.at(1) - run.time.at(0);
+  return 1.0 - (run.time.at(0) - run.omega_time.at(0)) / dt;
+}
+
 /// The engine called `name` of `engines` (a folder's describeSteppedEngines()). Fails the test if there is none.
 inline const SteppedEngine& findStepped(const std::vector<SteppedEngine>& engines, const std::string& name) {
   for (const SteppedEngine& e : engines)

@@ -103,33 +103,34 @@ void checkFreeRunScene(const Mechanism& m, double omega0, int revolutions, const
 
 }  // namespace
 
-Trajectory toSteppedRun(const SteppedFreeRun& run, double dt, double phi0, double omega0) {
+Trajectory withRelease(const Trajectory& run, double phi0, double omega0) {
   const size_t n = run.time.size();
-  if (run.phi.size() != n || run.omega.size() != n)
-    throw std::invalid_argument("toSteppedRun: time, phi and omega must have as many samples (" + std::to_string(n) +
-                                ", " + std::to_string(run.phi.size()) + ", " + std::to_string(run.omega.size()) + ")");
-  if (n < 2) throw std::invalid_argument("toSteppedRun: fewer than 2 samples");
+  if (run.phi.size() != n || run.omega.size() != n || run.omega_time.size() != n)
+    throw std::invalid_argument("withRelease: time, phi, omega and omega_time must have as many samples (" +
+                                std::to_string(n) + ", " + std::to_string(run.phi.size()) + ", " +
+                                std::to_string(run.omega.size()) + ", " + std::to_string(run.omega_time.size()) + ")");
+  if (n < 2) throw std::invalid_argument("withRelease: fewer than 2 samples");
   // The release first: the run is judged from the state it was given, so that what the engine does to it in its
   // first step (a speed cap, damping) is measured, not taken as the run's own start.
   Trajectory out;
+  out.seconds_per_step = run.seconds_per_step;
   out.time = {0.0};
   out.phi = {phi0};
-  const double lag = (1.0 - run.omega_step_fraction) * dt;
-  if (run.time.front() - lag > 0.0) {
+  if (run.omega_time.front() > 0.0) {
     out.omega = {omega0};
     out.omega_time = {0.0};
     out.time.insert(out.time.end(), run.time.begin(), run.time.end());
     out.phi.insert(out.phi.end(), run.phi.begin(), run.phi.end());
     out.omega.insert(out.omega.end(), run.omega.begin(), run.omega.end());
-    for (double t : run.time) out.omega_time.push_back(t - lag);
+    out.omega_time.insert(out.omega_time.end(), run.omega_time.begin(), run.omega_time.end());
     return out;
   }
-  // A speed that belongs to its step's start (or before it: Box2D's): the first step's speed is the engine's own
-  // reading of the release, standing at t = 0 in its place; the last step's angle has no speed of its own and is left.
+  // A speed that belongs to its step's start (or before it): the first step's speed is the engine's own reading of
+  // the release, standing at t <= 0 in its place; the last step's angle has no speed of its own and is left.
   out.time.insert(out.time.end(), run.time.begin(), run.time.end() - 1);
   out.phi.insert(out.phi.end(), run.phi.begin(), run.phi.end() - 1);
   out.omega = run.omega;
-  for (double t : run.time) out.omega_time.push_back(t - lag);
+  out.omega_time = run.omega_time;
   return out;
 }
 
@@ -162,7 +163,7 @@ std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0,
     options.steps = static_cast<long>(std::ceil(1.1 * exact_horizon / spec.dt));
     options.settings = spec.settings;
     options.start = start;
-    SteppedFreeRun result;
+    Trajectory result;
     try {
       result = engines[s]->run_free(m, options);
     } catch (const std::exception& e) {  // a scene or step the engine refuses (Box2D's largest rotation a step)
@@ -173,7 +174,7 @@ std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0,
     // cap, damping) is reported with the reason, not measured.
     EngineRunRow row;
     try {
-      row = measureRun(m, toSteppedRun(result, spec.dt, start.phi, omega0), {}, exact_horizon);
+      row = measureRun(m, withRelease(result, start.phi, omega0), {}, exact_horizon);
     } catch (const std::exception& e) {
       if (refusals)
         refusals->push_back(spec.engine + " (" + spec.settings + ", " + shortText(spec.dt) + " s): not measured: " + e.what());

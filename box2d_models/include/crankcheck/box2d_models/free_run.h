@@ -10,7 +10,7 @@
 /// the joints' velocity solve, which makes them tangent to the step's start configuration), moves every body by dt
 /// times its new velocity, then corrects positions only. The position pass, closing the loop that the straight move
 /// along the start's tangent opened, turns the crank too: measured, phi_i - phi_{i-1} = dt omega_i + (1/2) dt^2 alpha,
-/// so omega_i acts as the speed at the step's start (omega_step_fraction 0; tests/box2d/box2d_free_run_test.cc,
+/// so omega_i acts as the speed at the step's start (its omega_time the step's start; tests/box2d/box2d_free_run_test.cc,
 /// OmegaBelongsToTheStepsStart, at 1e-4 s; at 1/240..1e-3 s Box2D's 5 mm slop shifts it toward 0.1 of the step).
 ///
 /// The run loses energy at first order in dt: each step's velocity solve projects the velocities onto the joints'
@@ -31,6 +31,6 @@ namespace crankcheck::box2d_models {
 /// @throws std::invalid_argument "[flywheel].inertia ..." if m has none (or not > 0), and as runBox2dAtConstantSpeed
 ///   for a scene Box2D cannot build, a step it would cap at the release speed or a bad option (the scene's speed
 ///   itself is not used); std::runtime_error if the crank's speed reaches Box2D's cap during the run.
-SteppedFreeRun runBox2dFree(const Mechanism& m, const Box2dRunOptions& o);
+Trajectory runBox2dFree(const Mechanism& m, const Box2dRunOptions& o);
 
 }  // namespace crankcheck::box2d_models

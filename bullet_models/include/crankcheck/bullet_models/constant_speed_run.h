@@ -139,10 +139,10 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
 /// gravity and stepped `o.steps` times at o.dt with o's solver settings and Bullet's defaults as o sets them (the
 /// damping and the joint speed cap act on the free crank as on every link; motor_max_impulse does not apply).
 /// Records after each step its end's time, the crank's angle (o.start.phi plus its joint coordinate, continuous) and
-/// its joint speed (about +Z), which belongs to the step's middle (omega_step_fraction 0.5: semi-implicit Euler
+/// its joint speed (about +Z), which belongs to the step's middle (omega_time half a step behind: semi-implicit Euler
 /// moves the angle by dt times the speed after the step).
 /// @throws std::invalid_argument naming `[flywheel].inertia` when the scene has none (or a negative one), what
 ///   runBulletAtConstantSpeed refuses but the speed (the release speed may be any finite number), or a bad option.
-SteppedFreeRun runBulletFree(const Mechanism& m, const BulletRunOptions& o);
+Trajectory runBulletFree(const Mechanism& m, const BulletRunOptions& o);
 
 }  // namespace crankcheck::bullet_models

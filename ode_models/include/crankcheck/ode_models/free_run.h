@@ -19,7 +19,7 @@
 
 namespace crankcheck::ode_models {
 
-/// Where within its step the free run's omega belongs (SteppedFreeRun::omega_step_fraction): its middle.
+/// Where within its step the free run's omega belongs (0 its start, 1 its end; the trajectory's omega_time): its middle.
 inline constexpr double kOdeFreeOmegaStepFraction = 0.5;
 
 /// Runs m free from o.start (o.start.omega the release speed, any finite value) for o.steps steps of o.dt with o's
@@ -27,6 +27,6 @@ inline constexpr double kOdeFreeOmegaStepFraction = 0.5;
 /// @throws std::invalid_argument naming [flywheel].inertia when m has none, or as runOdeAtConstantSpeed for what ODE
 ///   cannot build and for a bad option (a scene of speed 0 is accepted: nothing is driven);
 ///   std::runtime_error when one of ODE's internal checks fails during the run.
-SteppedFreeRun runOdeFree(const Mechanism& m, const OdeRunOptions& o);
+Trajectory runOdeFree(const Mechanism& m, const OdeRunOptions& o);
 
 }  // namespace crankcheck::ode_models

@@ -15,6 +15,7 @@
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/scene/quantities.h"
+#include "crankcheck/solver/trajectory.h"
 
 namespace crankcheck {
 
@@ -135,18 +136,6 @@ struct SteppedFreeRunOptions {
   StartState start;          ///< the exact state at phi = 0 and the release speed
 };
 
-/// A free run: the crank's angle and speed after each step, as the engine's own API gives them.
-struct SteppedFreeRun {
-  std::vector<double> time;   ///< [s] each step's end (the release at 0 not included)
-  std::vector<double> phi;    ///< [rad] the crank's angle at each step's end, unwrapped
-  std::vector<double> omega;  ///< [rad/s] the crank's angular velocity after each step
-  /// Where within its step omega belongs (as QuantityInstant::step_fraction), found by measurement: 0.5 for a
-  /// semi-implicit Euler step whose velocity after the step is the one that carried the position from its start to its
-  /// end (ODE, Bullet); 0 where a position pass moves the body again after the velocity solve (Box2D).
-  double omega_step_fraction = 1.0;
-  double seconds_per_step = 0.0;  ///< [s] wall time of the stepping and the reads, divided by the steps
-};
-
 /// What an engine's documentation or its upstream issues say about a quantity it reports, where the measurement bears
 /// on it: the report (part stepped_engines) states the note beside the measured errors and the command that shows them.
 struct SteppedEngineNote {
@@ -170,10 +159,14 @@ struct SteppedEngine {
   std::function<ConstantSpeedRun(const Mechanism& m, const ConstantSpeedRunOptions& options)> run;
   /// Notes on quantities whose measurement confirms or contradicts the engine's documentation or upstream reports.
   std::vector<SteppedEngineNote> notes;
-  /// Runs m free (SteppedFreeRunOptions). m needs a flywheel (Mechanism::flywheel_inertia).
+  /// Runs m free (SteppedFreeRunOptions). m needs a flywheel (Mechanism::flywheel_inertia). The trajectory has one
+  /// sample per step (time[i] = (i + 1) dt: the release is not among them), phi and omega as the engine's own API
+  /// gives them after the step, and omega_time the instant each omega belongs to, found by measurement: the step's
+  /// middle for a semi-implicit Euler step whose velocity after the step carried the position from its start to its
+  /// end (ODE, Bullet); its start where a position pass moves the body again after the velocity solve (Box2D).
   /// @throws std::invalid_argument for a mechanism without flywheel, a scene key the engine cannot build or a bad
   ///         option; std::runtime_error if the library fails during the run.
-  std::function<SteppedFreeRun(const Mechanism& m, const SteppedFreeRunOptions& options)> run_free;
+  std::function<Trajectory(const Mechanism& m, const SteppedFreeRunOptions& options)> run_free;
 };
 
 }  // namespace crankcheck

@@ -25,6 +25,7 @@ struct Trajectory {
   /// When not empty: the instant each omega stands at [s] (strictly increasing, as many as omega), in place of time and
   /// of omega_half_step_behind (a run that says at which time each value stands).
   std::vector<double> omega_time;
+  double seconds_per_step = 0.0;  ///< [s] an engine's wall time of its stepping and reads, divided by its steps (0: untimed)
 };
 
 /// A run read between its samples (the interpolation above). Keeps a reference to the run: the run must outlive it.

@@ -99,12 +99,12 @@ struct SteppedFreeRunSpec {
   double dt = 0.0;
 };
 
-/// A stepped engine's free run as a Trajectory: the release (t = 0, phi0, omega0) first, then each step's sample with
-/// omega at its instant, omega_time = time - (1 - f) dt with f the run's omega_step_fraction. The release is the run's
-/// first state: what the engine does to it in its first step is measured. Where omega belongs to its step's start (f
-/// <= 0: Box2D), the first step's omega is the engine's reading of the release and stands at t = 0 in its place.
-/// @throws std::invalid_argument if time, phi and omega differ in size or have fewer than 2 samples.
-Trajectory toSteppedRun(const SteppedFreeRun& run, double dt, double phi0, double omega0);
+/// A stepped engine's free run (SteppedEngine::run_free: one sample per step, omega at its omega_time) with the
+/// release (t = 0, phi0, omega0) first: the release is the run's first state, so what the engine does to it in its
+/// first step is measured. Where omega belongs to its step's start or before it (omega_time.front() <= 0: Box2D), the
+/// first step's omega is the engine's reading of the release and stands there in its place.
+/// @throws std::invalid_argument if time, phi, omega and omega_time differ in size or have fewer than 2 samples.
+Trajectory withRelease(const Trajectory& run, double phi0, double omega0);
 
 /// Runs each spec free on m (under gravity alone, released at phi = 0 with omega0 from the exact state) for
 /// `revolutions` revolutions of the exact run and a tenth more, and measures it as calcEngineRuns does; in each row
