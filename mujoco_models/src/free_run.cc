@@ -62,9 +62,9 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, Variant variant
     const double phi = d->qpos[crank_q], w = d->qvel[crank_v], e = d->energy[0] + d->energy[1];
     if (!(std::isfinite(phi) && std::isfinite(w) && std::isfinite(e)))
       throw std::runtime_error("MuJoCo's free run became non-finite at t = " + num(d->time) + " s");
-    r.time.push_back(d->time);
-    r.phi.push_back(phi);
-    r.phi_dot.push_back(w);
+    r.trajectory.time.push_back(d->time);
+    r.trajectory.phi.push_back(phi);
+    r.trajectory.omega.push_back(w);
     r.energy.push_back(e);
     if (phi >= target) break;
     if (step == max_steps)
@@ -78,12 +78,12 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, Variant variant
   // The first revolution: the time the crank passes 2 pi (linear between the two steps around it: the steps are a
   // small fraction of a revolution), the extreme speeds at the steps before it.
   size_t i = 1;
-  while (r.phi[i] < 2.0 * M_PI) ++i;
-  const double t1 = r.time[i - 1] + (2.0 * M_PI - r.phi[i - 1]) / (r.phi[i] - r.phi[i - 1]) * (r.time[i] - r.time[i - 1]);
-  r.omega_min = r.omega_max = r.phi_dot[0];
+  while (r.trajectory.phi[i] < 2.0 * M_PI) ++i;
+  const double t1 = r.trajectory.time[i - 1] + (2.0 * M_PI - r.trajectory.phi[i - 1]) / (r.trajectory.phi[i] - r.trajectory.phi[i - 1]) * (r.trajectory.time[i] - r.trajectory.time[i - 1]);
+  r.omega_min = r.omega_max = r.trajectory.omega[0];
   for (size_t s = 0; s <= i; ++s) {
-    r.omega_min = std::min(r.omega_min, r.phi_dot[s]);
-    r.omega_max = std::max(r.omega_max, r.phi_dot[s]);
+    r.omega_min = std::min(r.omega_min, r.trajectory.omega[s]);
+    r.omega_max = std::max(r.omega_max, r.trajectory.omega[s]);
   }
   r.omega_mean = 2.0 * M_PI / t1;
   r.delta = (r.omega_max - r.omega_min) / r.omega_mean;

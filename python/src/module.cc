@@ -316,9 +316,9 @@ py::object motion(const ScenePtr& scene, const std::string& integrator, double a
       if (r.integrator.empty()) continue;  // the energy integral has no steps
       // The run with gravity, step by step: time [s], phi [rad] (unwrapped), phi_dot [rad/s], energy [J].
       py::dict s;
-      s["time"] = toArray(r.with_gravity.time);
-      s["phi"] = toArray(r.with_gravity.phi);
-      s["phi_dot"] = toArray(r.with_gravity.phi_dot);
+      s["time"] = toArray(r.with_gravity.trajectory.time);
+      s["phi"] = toArray(r.with_gravity.trajectory.phi);
+      s["phi_dot"] = toArray(r.with_gravity.trajectory.omega);
       s["energy"] = toArray(r.with_gravity.energy);
       result[py::str(r.engine)]["series"] = s;
     }

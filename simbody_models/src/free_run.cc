@@ -152,18 +152,21 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOp
 
   FreeRunResult out;
   std::vector<double> accel;  // crank phi'' at each recorded step
+  Trajectory& run = out.trajectory;
   auto record = [&](const SimTK::State& s) {
+    // The integrator's first return is its initial state again: a sample at the time of the last is not recorded.
+    if (!run.time.empty() && s.getTime() == run.time.back()) return;
     system.realize(s, SimTK::Stage::Acceleration);
-    out.time.push_back(s.getTime());
-    out.phi.push_back(crank.getQ(s));
-    out.phi_dot.push_back(crank.getU(s));
+    run.time.push_back(s.getTime());
+    run.phi.push_back(crank.getQ(s));
+    run.omega.push_back(crank.getU(s));
     accel.push_back(crank.getOneUDot(s, SimTK::MobilizerUIndex(0)));
     out.energy.push_back(system.calcEnergy(s));
   };
   record(integrator->getState());
   try {
-    while (out.phi.back() < target) {
-      if (!(out.phi_dot.back() > 0.0))
+    while (run.phi.back() < target) {
+      if (!(run.omega.back() > 0.0))
         throw std::runtime_error("the crank stops or turns back before " + std::to_string(options.revolutions) + " revolutions");
       if (integrator->getNumStepsTaken() > static_cast<long long>(options.max_steps_per_revolution) * options.revolutions)
         throw std::runtime_error("took more than " + std::to_string(options.max_steps_per_revolution) +
@@ -186,13 +189,13 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOp
   const double period = options.gas && m.gas ? m.gas->cycle : two_pi;
   if (period > target) throw std::invalid_argument("simulateFreeRun: the revolutions do not cover the working cycle");
   size_t i1 = 1;
-  while (out.phi[i1] < period) ++i1;
-  const double t_rev = hermiteCrossing(out.time[i1 - 1], out.phi[i1 - 1], out.phi_dot[i1 - 1], out.time[i1], out.phi[i1],
-                                       out.phi_dot[i1], period);
+  while (run.phi[i1] < period) ++i1;
+  const double t_rev = hermiteCrossing(run.time[i1 - 1], run.phi[i1 - 1], run.omega[i1 - 1], run.time[i1], run.phi[i1],
+                                       run.omega[i1], period);
   out.omega_mean = period / t_rev;
-  double lo = out.phi_dot[0], hi = out.phi_dot[0];
+  double lo = run.omega[0], hi = run.omega[0];
   for (size_t i = 0; i < i1; ++i)
-    hermiteExtremes(out.time[i + 1] - out.time[i], out.phi_dot[i], accel[i], out.phi_dot[i + 1], accel[i + 1], lo, hi);
+    hermiteExtremes(run.time[i + 1] - run.time[i], run.omega[i], accel[i], run.omega[i + 1], accel[i + 1], lo, hi);
   out.omega_min = lo;
   out.omega_max = hi;
   out.delta = (out.omega_max - out.omega_min) / out.omega_mean;
@@ -202,7 +205,7 @@ FreeRunResult simulateFreeRun(const Mechanism& m, double omega0, const FreeRunOp
   if (drive->gas || options.load_torque != 0.0) {
     // Gas and load do work: the mechanical energy returns only after a whole cycle (the load is the gas's mean), at
     // the cycle's end, between the two steps around it
-    const double s = (t_rev - out.time[i1 - 1]) / (out.time[i1] - out.time[i1 - 1]);
+    const double s = (t_rev - run.time[i1 - 1]) / (run.time[i1] - run.time[i1 - 1]);
     drift = std::fabs((1.0 - s) * out.energy[i1 - 1] + s * out.energy[i1] - out.energy.front());
     out.energy_drift_per_revolution = drift / std::max(kinetic, std::fabs(out.energy.front())) / (period / two_pi);
   } else {

@@ -201,22 +201,14 @@ std::vector<SteppedFreeRunSpec> listDefaultSteppedFreeRuns(bool quick) {
   return specs;
 }
 
-Trajectory toSteppedRun(const FreeRunResult& result) {
+Trajectory findOmegaInstants(const Trajectory& result) {
   const size_t n = result.time.size();
-  if (result.phi.size() != n || result.phi_dot.size() != n)
-    throw std::invalid_argument("toSteppedRun: time, phi and phi_dot must have as many samples (" + std::to_string(n) +
-                                ", " + std::to_string(result.phi.size()) + ", " + std::to_string(result.phi_dot.size()) +
-                                ")");
-  if (n < 2) throw std::invalid_argument("toSteppedRun: fewer than 2 samples");
-  // A sample at the time of the one before it is dropped (an integrator that reports its start twice: Simbody's
-  // first return of every internal step is the initial state again).
-  Trajectory run;
-  for (size_t i = 0; i < n; ++i) {
-    if (i > 0 && result.time[i] == run.time.back()) continue;
-    run.time.push_back(result.time[i]);
-    run.phi.push_back(result.phi[i]);
-    run.omega.push_back(result.phi_dot[i]);
-  }
+  if (result.phi.size() != n || result.omega.size() != n)
+    throw std::invalid_argument("findOmegaInstants: time, phi and omega must have as many samples (" +
+                                std::to_string(n) + ", " + std::to_string(result.phi.size()) + ", " +
+                                std::to_string(result.omega.size()) + ")");
+  if (n < 2) throw std::invalid_argument("findOmegaInstants: fewer than 2 samples");
+  Trajectory run = result;
   // A backward difference: phi_i = phi_{i-1} + h_i phi_dot_i, to the rounding of phi's sum (eps |phi_i|) and of the
   // clock's (eps t_i, times the speed), with a margin of 16 for the step's own product and the subtraction.
   bool backward = true;
@@ -260,7 +252,7 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
     const std::clock_t start = std::clock();
     const FreeRunResult result = engine.simulate(m, omega0, settings);
     const double cpu = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
-    const Trajectory run = toSteppedRun(result);
+    const Trajectory run = findOmegaInstants(result.trajectory);
 
     EngineRunRow row = measureRun(m, run, load, exact_horizon);
     row.engine = spec.engine;

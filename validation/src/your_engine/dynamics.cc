@@ -182,16 +182,17 @@ TableSet calcEngineRun(const Mechanism& m, const Engine& engine, SharedResult<Ex
   const FreeRunSettings settings = makeFlywheelRunSettings(engine, m.gas.has_value(), exact.row.load_torque);
   r.accuracy = settings.accuracy;
   try {
-    const FreeRunResult run = engine.simulate(m, exact.row.omega0, settings);
-    r.omega_mean = run.omega_mean;
-    r.omega_min = run.omega_min;
-    r.omega_max = run.omega_max;
-    r.delta = run.delta;
+    const FreeRunResult result = engine.simulate(m, exact.row.omega0, settings);
+    const Trajectory& run = result.trajectory;
+    r.omega_mean = result.omega_mean;
+    r.omega_min = result.omega_min;
+    r.omega_max = result.omega_max;
+    r.delta = result.delta;
     const double cycle = cycleOf(m);
     size_t imax = 0, imin = 0;
     for (size_t i = 0; i < run.phi.size() && run.phi[i] - run.phi.front() < cycle; ++i) {
-      if (run.phi_dot[i] > run.phi_dot[imax]) imax = i;
-      if (run.phi_dot[i] < run.phi_dot[imin]) imin = i;
+      if (run.omega[i] > run.omega[imax]) imax = i;
+      if (run.omega[i] < run.omega[imin]) imin = i;
     }
     if (!run.phi.empty()) {
       r.phi_deg_at_omega_max = degreesFromRadians(std::fmod(run.phi[imax] - run.phi.front(), cycle));
@@ -201,8 +202,8 @@ TableSet calcEngineRun(const Mechanism& m, const Engine& engine, SharedResult<Ex
       tables.at(kFitnessTable.name())
           .getRows(kFitnessTable)
           .push_back({m.name, kNortonOrder + 1 + static_cast<int>(&engine - listEngines().data()), kNortonFlywheel, "delta",
-                      engine.name, std::fabs(exact.norton_delta - run.delta) / run.delta,
-                      "delta (" + engine.name + ")", run.delta, "-", std::nullopt, 1});
+                      engine.name, std::fabs(exact.norton_delta - result.delta) / result.delta,
+                      "delta (" + engine.name + ")", result.delta, "-", std::nullopt, 1});
   } catch (const std::exception& e) {
     r.note = e.what();
   }

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "crankcheck/solver/trajectory.h"
+
 namespace crankcheck {
 
 /// How to run: the integrator by the engine's own name for it, and its accuracy in the engine's own sense
@@ -24,7 +26,9 @@ struct FreeRunSettings {
 };
 
 struct FreeRunResult {
-  std::vector<double> time, phi, phi_dot, energy;  ///< at every step [s, rad, rad/s, J] (phi unwrapped, KE + PE)
+  /// At every step: time strictly increasing, phi unwrapped, omega at its sample's time (omega_time empty).
+  Trajectory trajectory;
+  std::vector<double> energy;                       ///< [J] KE + PE at each of the trajectory's samples
   double omega_min = 0.0, omega_max = 0.0;          ///< [rad/s] over the first revolution
   double omega_mean = 0.0;                          ///< [rad/s] 2 pi / time of the first revolution
   double delta = 0.0;                               ///< (omega_max - omega_min) / omega_mean

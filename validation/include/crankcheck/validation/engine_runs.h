@@ -56,12 +56,12 @@ struct EngineRunRow {
   double cpu_seconds_per_revolution = 0.0;  ///< [s] processor time of the engine's run (std::clock) / revolutions
 };
 
-/// An engine's free run as a Trajectory: its time, phi and phi_dot (a sample at the same time as the one before it
-/// dropped: an integrator that reports its start twice), with omega_half_step_behind set when every step
-/// satisfies phi_i - phi_{i-1} = (t_i - t_{i-1}) phi_dot_i to rounding (16 eps x (|phi_i| + |phi_dot_i| t_i): the
-/// rounding of the position's and of the clock's sums).
-/// @throws std::invalid_argument if time, phi and phi_dot differ in size or have fewer than 2 samples.
-Trajectory toSteppedRun(const FreeRunResult& result);
+/// An engine's free run (FreeRunResult::trajectory, each omega at its sample's time as the engine reports it) with the
+/// instant its omega stands at found by measurement: omega_half_step_behind set when every step satisfies
+/// phi_i - phi_{i-1} = (t_i - t_{i-1}) omega_i to rounding (16 eps x (|phi_i| + |omega_i| t_i): the rounding of the
+/// position's and of the clock's sums), a backward difference (MuJoCo's Euler and implicit steps).
+/// @throws std::invalid_argument if time, phi and omega differ in size or have fewer than 2 samples.
+Trajectory findOmegaInstants(const Trajectory& run);
 
 /// Runs each spec on m (no gas: the free run under gravity alone) released at phi = 0 with omega0 [rad/s] for
 /// `revolutions` revolutions, and measures each run (run_measures.h), in the order of the specs. Every spec is checked
