@@ -49,30 +49,29 @@ Box2dRunOptions toRunOptions(double dt, long steps, const std::string& settings,
   return o;
 }
 
-ConstantSpeedRun runSteppedBox2d(const Mechanism& m, const ConstantSpeedRunOptions& options) {
+Trajectory runSteppedBox2d(const Mechanism& m, const ConstantSpeedRunOptions& options) {
   if (!(m.machine.speed != 0.0))
     throw std::invalid_argument("[engine].speed_rpm must be != 0: " + std::string(kName) + " is driven at the scene's speed");
   const Box2dRun run =
       runBox2dAtConstantSpeed(m, toRunOptions(options.dt, options.steps, options.settings, options.start));
   const int k = m.machine.cylinders;
-  ConstantSpeedRun out;
+  Trajectory out;
   out.reported = reportedQuantities();
   out.seconds_per_step = run.seconds_per_step;
-  out.samples.reserve(run.samples.size());
   for (std::size_t i = 0; i < run.samples.size(); ++i) {
     const Box2dSample& s = run.samples[i];
-    ConstantSpeedSample sample;
-    sample.t = s.t;
-    sample.phi_start = s.phi_start;
-    sample.phi_end = s.phi;
-    sample.values = makeUnreportedEvaluation(kName, k);
-    sample.values.phi = s.phi;
-    sample.values.drive_torque = s.drive_torque;
-    sample.values.bearing_force = s.bearing_force;
+    out.time.push_back(s.t);
+    out.phi.push_back(s.phi);
+    out.omega.push_back(s.crank_speed);
+    out.omega_time.push_back(s.t - options.dt);  // the step's start, as the free run's (box2d_models/free_run.h)
+    Evaluation& values = out.values.emplace_back(makeUnreportedEvaluation(kName, k));
+    values.phi = s.phi;
+    values.drive_torque = s.drive_torque;
+    values.bearing_force = s.bearing_force;
     double loop = s.bearing_error;
     for (int j = 0; j < k; ++j) {
       const Box2dCylinderSample& c = run.cylinders[i][static_cast<std::size_t>(j)];
-      CylinderEvaluation& v = sample.values.cylinders[static_cast<std::size_t>(j)];
+      CylinderEvaluation& v = values.cylinders[static_cast<std::size_t>(j)];
       v.x_p = c.x_p;
       v.v_p = c.v_p;
       v.a_p = c.a_p;
@@ -81,8 +80,7 @@ ConstantSpeedRun runSteppedBox2d(const Mechanism& m, const ConstantSpeedRunOptio
       v.wall_force = c.wall_force;
       loop = std::max(loop, c.loop_error);
     }
-    sample.loop_error = loop;
-    out.samples.push_back(std::move(sample));
+    out.loop_error.push_back(loop);
   }
   return out;
 }

@@ -287,6 +287,7 @@ BulletRun runBulletAtConstantSpeed(const Mechanism& m, const BulletRunOptions& o
     sample.phi_start = phi;
     phi = start.phi + body->getJointPos(crank_link);
     sample.phi = phi;
+    sample.crank_speed = body->getJointVel(crank_link);
     sample.drive_torque = motor->getAppliedImpulse(0) / o.dt;
     sample.bearing_feedback = toGlobal(crank_start, crank_feedback);
     sample.bearing_feedback_free = toGlobal(crank_start, crank_free);

@@ -45,7 +45,7 @@ BulletRunOptions getSettings(const std::string& name, const std::vector<std::str
   return o;
 }
 
-ConstantSpeedRun runStepped(const Mechanism& m, const ConstantSpeedRunOptions& options, const std::vector<std::string>& names) {
+Trajectory runStepped(const Mechanism& m, const ConstantSpeedRunOptions& options, const std::vector<std::string>& names) {
   BulletRunOptions o = getSettings(options.settings, names);
   if (!(std::fabs(m.machine.speed) > 0.0))
     throw std::invalid_argument("[engine].speed_rpm must be != 0: bullet is driven at the scene's constant speed");
@@ -54,36 +54,34 @@ ConstantSpeedRun runStepped(const Mechanism& m, const ConstantSpeedRunOptions& o
   o.start = options.start;
   const BulletRun run = runBulletAtConstantSpeed(m, o);
   const int k = m.machine.cylinders;
-  ConstantSpeedRun out;
+  Trajectory out;
   out.seconds_per_step = run.seconds_per_step;
   out.reported = {{QuantityId::kPistonPosition, 1.0},  {QuantityId::kPistonVelocity, 0.5},
                   {QuantityId::kPistonAcceleration, 0.0}, {QuantityId::kDriveTorque, 0.0},
                   {QuantityId::kBearingForce, 0.0},    {QuantityId::kCrankPinForce, 0.0},
                   {QuantityId::kWristPinForce, 0.0},   {QuantityId::kWallForce, 0.0}};
   const Evaluation blank = makeUnreportedEvaluation("bullet", k);
-  out.samples.reserve(run.samples.size());
   for (const BulletSample& b : run.samples) {
-    ConstantSpeedSample s;
-    s.t = b.t;
-    s.phi_start = b.phi_start;
-    s.phi_end = b.phi;
-    s.values = blank;
-    s.values.phi = b.phi;
-    s.values.drive_torque = b.drive_torque;
-    s.values.bearing_force = {b.bearing_feedback[0], b.bearing_feedback[1]};
-    s.loop_error = 0.0;
+    out.time.push_back(b.t);
+    out.phi.push_back(b.phi);
+    out.omega.push_back(b.crank_speed);
+    out.omega_time.push_back(b.t - 0.5 * options.dt);  // semi-implicit Euler: the step's middle, as the free run's
+    Evaluation& values = out.values.emplace_back(blank);
+    double& loop_error = out.loop_error.emplace_back(0.0);
+    values.phi = b.phi;
+    values.drive_torque = b.drive_torque;
+    values.bearing_force = {b.bearing_feedback[0], b.bearing_feedback[1]};
     for (int j = 0; j < k; ++j) {
       const BulletCylinderSample& c = b.cylinders[static_cast<std::size_t>(j)];
-      CylinderEvaluation& e = s.values.cylinders[static_cast<std::size_t>(j)];
+      CylinderEvaluation& e = values.cylinders[static_cast<std::size_t>(j)];
       e.x_p = c.x_p;
       e.v_p = c.v_p;
       e.a_p = c.a_p;
       e.crank_pin_force = {c.crank_pin_feedback[0], c.crank_pin_feedback[1]};
       e.wrist_pin_force = {c.wrist_pin[0], c.wrist_pin[1]};
       e.wall_force = c.wall_force;
-      s.loop_error = std::max(s.loop_error, c.loop_error);
+      loop_error = std::max(loop_error, c.loop_error);
     }
-    out.samples.push_back(std::move(s));
   }
   return out;
 }

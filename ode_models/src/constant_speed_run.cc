@@ -55,6 +55,7 @@ OdeRun runOdeAtConstantSpeed(const Mechanism& m, const OdeRunOptions& o) {
     // The crank's rotation about Z (it starts at the identity): unwrapped against the previous step's angle.
     phi = readCrankAngle(model, phi);
     sample.phi = phi;
+    sample.crank_speed = dBodyGetAngularVel(model.crank)[2];
     // The drive torque about O: the joint's torque about the crank's centre of mass plus (c - O) x f.
     sample.bearing_force = toVec3(model.crank_feedback.f1);
     sample.drive_torque = model.crank_feedback.t1[2] + arm_x * model.crank_feedback.f1[1] - arm_y * model.crank_feedback.f1[0];

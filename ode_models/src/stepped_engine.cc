@@ -66,38 +66,38 @@ OdeRunOptions makeOptions(const std::string& engine, OdeSolver solver, const Sea
 }
 
 /// An Evaluation of k cylinders with every field NaN.
-ConstantSpeedRun runStepped(const std::string& engine, OdeSolver solver, const Mechanism& m, const ConstantSpeedRunOptions& options) {
+Trajectory runStepped(const std::string& engine, OdeSolver solver, const Mechanism& m, const ConstantSpeedRunOptions& options) {
   if (!(std::fabs(m.machine.speed) > 0.0))
     throw std::invalid_argument(engine + ": [engine].speed_rpm must be != 0 (the run is driven at the scene's speed)");
   const OdeRun run = runOdeAtConstantSpeed(m, makeOptions(engine, solver, options));
   const int k = m.machine.cylinders;
-  ConstantSpeedRun out;
+  Trajectory out;
   out.reported = kInstants;
   out.seconds_per_step = run.seconds_per_step;
-  out.samples.reserve(run.samples.size());
   const Evaluation blank = makeUnreportedEvaluation(engine, k);
+  // The crank's speed after a step, as in the free run: its step's middle (ode_models/free_run.h).
+  const double lag = (1.0 - kOdeFreeOmegaStepFraction) * options.dt;
   for (const OdeSample& s : run.samples) {
-    ConstantSpeedSample sample;
-    sample.t = s.t;
-    sample.phi_start = s.phi_start;
-    sample.phi_end = s.phi;
-    sample.values = blank;
-    sample.values.phi = s.phi;
-    sample.values.drive_torque = s.drive_torque;
-    sample.values.bearing_force = {s.bearing_force[0], s.bearing_force[1]};
-    sample.loop_error = s.bearing_error;
+    out.time.push_back(s.t);
+    out.phi.push_back(s.phi);
+    out.omega.push_back(s.crank_speed);
+    out.omega_time.push_back(s.t - lag);
+    Evaluation& values = out.values.emplace_back(blank);
+    double& loop_error = out.loop_error.emplace_back(s.bearing_error);
+    values.phi = s.phi;
+    values.drive_torque = s.drive_torque;
+    values.bearing_force = {s.bearing_force[0], s.bearing_force[1]};
     for (int j = 0; j < k; ++j) {
       const OdeCylinderSample& c = s.cylinders[static_cast<size_t>(j)];
-      CylinderEvaluation& e = sample.values.cylinders[static_cast<size_t>(j)];
+      CylinderEvaluation& e = values.cylinders[static_cast<size_t>(j)];
       e.x_p = c.x_p;
       e.v_p = c.v_p;
       e.a_p = c.a_p;
       e.crank_pin_force = {c.crank_pin.on_first[0], c.crank_pin.on_first[1]};  // on the rod from the crank
       e.wrist_pin_force = {c.wrist_pin.on_first[0], c.wrist_pin.on_first[1]};  // on the piston from the rod
       e.wall_force = c.wall_force;
-      sample.loop_error = std::max(sample.loop_error, c.loop_error);
+      loop_error = std::max(loop_error, c.loop_error);
     }
-    out.samples.push_back(std::move(sample));
   }
   return out;
 }

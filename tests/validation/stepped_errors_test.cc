@@ -28,18 +28,19 @@ SteppedEngine makeSyntheticEngine(double shift, double loop_amplitude, long* ste
   e.settings_meaning = {"the only one", "the same"};
   e.run = [shift, loop_amplitude, steps_asked](const Mechanism& m, const ConstantSpeedRunOptions& o) {
     *steps_asked = o.steps;
-    ConstantSpeedRun run;
+    Trajectory run;
     run.reported = {{QuantityId::kPistonPosition, 0.0}, {QuantityId::kDriveTorque, 0.0}};
     const double step = m.machine.speed * o.dt;
+    double phi_start = o.start.phi;
     for (long i = 0; i < o.steps; ++i) {
-      ConstantSpeedSample s;
-      s.phi_start = o.start.phi + i * step;
-      s.phi_end = s.phi_start + step;
-      s.t = (i + 1) * o.dt;
-      s.values = analytic::calcEvaluation(m, s.phi_start + shift * step);
-      s.values.U = std::numeric_limits<double>::quiet_NaN();  // not reported: must not be read
-      s.loop_error = loop_amplitude * std::fabs(std::sin(s.phi_end));
-      run.samples.push_back(s);
+      const double phi_end = phi_start + step;
+      run.time.push_back((i + 1) * o.dt);
+      run.phi.push_back(phi_end);
+      run.omega.push_back(m.machine.speed);
+      Evaluation& values = run.values.emplace_back(analytic::calcEvaluation(m, phi_start + shift * step));
+      values.U = std::numeric_limits<double>::quiet_NaN();  // not reported: must not be read
+      run.loop_error.push_back(loop_amplitude * std::fabs(std::sin(phi_end)));
+      phi_start = phi_end;
     }
     return run;
   };

@@ -33,8 +33,12 @@ void checkStepAngle(const Mechanism& m, double dt) {
   throw std::invalid_argument(line);
 }
 
-std::vector<SteppedError> calcSteppedErrors(const Mechanism& m, const ConstantSpeedRun& run, size_t first) {
-  if (first >= run.samples.size()) throw std::invalid_argument("calcSteppedErrors: the run has no sample to measure");
+std::vector<SteppedError> calcSteppedErrors(const Mechanism& m, const Trajectory& run, size_t first) {
+  const size_t n = run.time.size();
+  if (run.phi.size() != n || run.values.size() != n || run.loop_error.size() != n)
+    throw std::invalid_argument("calcSteppedErrors: the run's time, phi, values and loop_error must have as many samples");
+  if (first < 1) throw std::invalid_argument("calcSteppedErrors: the first step's start is the caller's; measure from 1");
+  if (first >= n) throw std::invalid_argument("calcSteppedErrors: the run has no sample to measure");
   const Scales scales = calcScales(m);
   const std::unique_ptr<EngineModel> exact = getClosedFormEngine().build(m);
   std::vector<const Quantity*> quantities;
@@ -55,25 +59,25 @@ std::vector<SteppedError> calcSteppedErrors(const Mechanism& m, const ConstantSp
     }
   };
   const int k = m.machine.cylinders;
-  for (size_t i = first; i < run.samples.size(); ++i) {
-    const ConstantSpeedSample& s = run.samples[i];
+  for (size_t i = first; i < n; ++i) {
+    const double phi_start = run.phi[i - 1], phi_end = run.phi[i];
     std::map<double, Evaluation> at;  // the exact evaluation at each instant of this step
     for (size_t r = 0; r < quantities.size(); ++r) {
       const Quantity& q = *quantities[r];
-      const double phi = s.phi_start + run.reported[r].step_fraction * (s.phi_end - s.phi_start);
+      const double phi = phi_start + run.reported[r].step_fraction * (phi_end - phi_start);
       auto it = at.find(phi);
       if (it == at.end()) it = at.emplace(phi, exact->evaluate(phi)).first;
       const double scale = getQuantityScale(scales, q.scale, m);
       for (int c = q.per_cylinder ? 0 : -1; c < (q.per_cylinder ? k : 0); ++c) {
         const double* want = readQuantity(q, it->second, c);
-        const double* got = readQuantity(q, s.values, c);
+        const double* got = readQuantity(q, run.values[i], c);
         for (int component = 0; component < q.components; ++component)
           if (isComponentDefined(q, component, m)) note(errors[r], std::fabs(got[component] - want[component]) / scale, phi);
       }
     }
-    if (!std::isnan(s.loop_error)) {
+    if (!std::isnan(run.loop_error[i])) {
       has_loop = true;
-      note(loop, s.loop_error / scales.position, s.phi_end);
+      note(loop, run.loop_error[i] / scales.position, phi_end);
     }
   }
   if (has_loop) errors.push_back(loop);
@@ -94,9 +98,9 @@ SteppedMeasure measureSteppedRun(const SteppedEngine& engine, const Mechanism& m
   const long settle = std::max(kSettlingSteps, turn);
   options.steps = settle + turn;
   options.start = calcStartState(m, getClosedFormEngine().build(m)->evaluate(0.0));
-  const ConstantSpeedRun run = engine.run(m, options);
-  if (static_cast<long>(run.samples.size()) != options.steps)
-    throw std::runtime_error(engine.name + " returned " + std::to_string(run.samples.size()) + " steps of " +
+  const Trajectory run = engine.run(m, options);
+  if (static_cast<long>(run.time.size()) != options.steps)
+    throw std::runtime_error(engine.name + " returned " + std::to_string(run.time.size()) + " steps of " +
                              std::to_string(options.steps));
   SteppedMeasure measure;
   measure.errors = calcSteppedErrors(m, run, static_cast<size_t>(settle));

@@ -108,6 +108,7 @@ struct BulletSample {
   /// [rad] the crank angle at the step's start (the previous sample's phi; the start's for the first step): the
   /// instant the step's impulses belong to.
   double phi_start = 0.0;
+  double crank_speed = 0.0;    ///< [rad/s] the crank joint's speed after the step (its angular velocity about +Z)
   double drive_torque = 0.0;   ///< [N m] about +Z on the crank: the motor's applied impulse / dt
   /// [N] the crank's joint feedback (global axes): what Bullet reports as the force on the crankshaft from the frame
   /// at O. NOT that force: see the file's comment.

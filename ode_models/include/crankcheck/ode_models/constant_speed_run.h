@@ -99,6 +99,7 @@ struct OdeSample {
   /// [rad] the crank angle at the step's start (the previous sample's phi; start.phi for the first step): the
   /// instant the step's forces and drive torque belong to.
   double phi_start = 0.0;
+  double crank_speed = 0.0;    ///< [rad/s] the crank body's angular velocity about Z after the step
   double drive_torque = 0.0;   ///< [N m] about +Z at O, the motor and hinge's torque on the crank (feedback)
   Vec3 bearing_force{};        ///< [N] on the crank from the frame at O: the crank hinge's feedback force
   double bearing_error = 0.0;  ///< [m] the crank hinge's anchor separation at the step's end

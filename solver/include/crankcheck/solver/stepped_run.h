@@ -85,37 +85,8 @@ void checkSteppedScene(const Mechanism& m, const std::string& library);
 double calcRodCentroidalInertia(const Mechanism& m);
 
 /// An Evaluation of `cylinders` cylinders by `engine` with every quantity of the catalogue NaN (quantities.h): a stepped
-/// engine's sample before it fills what it reports (ConstantSpeedSample::values).
+/// engine's sample before it fills what it reports (Trajectory::values).
 Evaluation makeUnreportedEvaluation(const std::string& engine, int cylinders);
-
-/// Where within its step a stepped engine's value belongs: 0 the step's start, 1 its end, 0.5 its middle; outside
-/// [0, 1] where the engine's value is best read there (Box2D's impulses: -0.5, half a step before the start).
-struct QuantityInstant {
-  QuantityId quantity;
-  double step_fraction = 0.0;
-};
-
-/// One step of a run.
-struct ConstantSpeedSample {
-  double t = 0.0;            ///< [s] the step's end, from the run's start
-  double phi_start = 0.0;    ///< [rad] the crank's angle at the step's start, unwrapped (the run starts at 0)
-  double phi_end = 0.0;      ///< [rad] at its end (the engine's own crank angle, unwrapped)
-  /// The reported quantities (ConstantSpeedRun::reported) in eval's fields; every other field NaN. Each belongs to
-  /// phi_start + step_fraction (phi_end - phi_start).
-  Evaluation values;
-  /// [m] the largest separation, at the step's end, of a joint the engine holds by constraint (a pin's anchor as
-  /// each of its two bodies carries it, a piston off its line): how far the engine leaves the loops open. NaN: the
-  /// engine closes them by construction.
-  double loop_error = 0.0;
-};
-
-/// A constant-speed run.
-struct ConstantSpeedRun {
-  std::vector<ConstantSpeedSample> samples;  ///< one per step, in order
-  /// The quantities the engine reports and where each belongs (the same for every sample).
-  std::vector<QuantityInstant> reported;
-  double seconds_per_step = 0.0;       ///< [s] wall time of the stepping and the reads, divided by the steps
-};
 
 /// How to run.
 struct ConstantSpeedRunOptions {
@@ -153,10 +124,12 @@ struct SteppedEngine {
   std::string instants;   ///< one line: where each reported quantity belongs within a step, and why
   /// The layouts and keys it cannot build, in one line (each refused by name with std::invalid_argument).
   std::string cannot_build;
-  /// Runs m at its constant speed (m.machine.speed != 0).
+  /// Runs m at its constant speed (m.machine.speed != 0). The trajectory has one sample per step (time[i] = (i + 1)
+  /// dt; the start, options.start, is the caller's), the crank's angle and speed after the step as the engine's API
+  /// gives them (omega at its omega_time), and the quantities it reports (`reported`, `values`, `loop_error`).
   /// @throws std::invalid_argument naming the scene key the engine cannot build, or a bad option;
   ///         std::runtime_error if the library fails during the run.
-  std::function<ConstantSpeedRun(const Mechanism& m, const ConstantSpeedRunOptions& options)> run;
+  std::function<Trajectory(const Mechanism& m, const ConstantSpeedRunOptions& options)> run;
   /// Notes on quantities whose measurement confirms or contradicts the engine's documentation or upstream reports.
   std::vector<SteppedEngineNote> notes;
   /// Runs m free (SteppedFreeRunOptions). m needs a flywheel (Mechanism::flywheel_inertia). The trajectory has one

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// A run of the crank through time, as samples: what every time-stepped run returns or hands in (a free run of an
-/// engine, a stepped engine's run, a user's program's run in the time-stepped grade), and how it is read between its
-/// samples. Plain values, no engine behind them; validation/run_measures.h judges a trajectory against the exact run.
+/// engine, a stepped engine's run free or held at speed with the quantities it reports, a user's program's run in the
+/// time-stepped grade), and how it is read between its samples. Plain values, no engine behind them; validation/run_measures.h judges a trajectory against the exact run.
 ///
 /// The reading: local Lagrange interpolation of degree 5 (the six samples around the instant) of phi(t) and,
 /// separately, of omega(t) at omega's own instants, so that a run's own integration error is measured rather than the
@@ -12,7 +12,17 @@
 #include <string>
 #include <vector>
 
+#include "crankcheck/scene/evaluation.h"
+#include "crankcheck/scene/quantities.h"
+
 namespace crankcheck {
+
+/// Where within its step a stepped engine's value belongs: 0 the step's start, 1 its end, 0.5 its middle; outside
+/// [0, 1] where the engine's value is best read there (Box2D's impulses: -0.5, half a step before the start).
+struct QuantityInstant {
+  QuantityId quantity;
+  double step_fraction = 0.0;
+};
 
 /// A run, as samples.
 struct Trajectory {
@@ -26,6 +36,18 @@ struct Trajectory {
   /// of omega_half_step_behind (a run that says at which time each value stands).
   std::vector<double> omega_time;
   double seconds_per_step = 0.0;  ///< [s] an engine's wall time of its stepping and reads, divided by its steps (0: untimed)
+
+  /// A run that reports more than the crank's motion (a stepped engine's run held at its speed): the quantities it
+  /// reports and where each belongs within its step, the same for every step (empty: only phi and omega).
+  std::vector<QuantityInstant> reported;
+  /// One per sample: the step that ends at sample i, its reported quantities in an Evaluation's fields (every other
+  /// field NaN), each belonging to phi_start + step_fraction (phi[i] - phi_start), phi_start the previous sample's phi
+  /// (for the first step, the run's start). Empty where `reported` is.
+  std::vector<Evaluation> values;
+  /// [m] One per sample where `values` is: the largest separation, at the step's end, of a joint the engine holds by
+  /// constraint (a pin's anchor as each of its two bodies carries it, a piston off its line): how far the engine
+  /// leaves the loops open. NaN: the engine closes them by construction.
+  std::vector<double> loop_error;
 };
 
 /// A run read between its samples (the interpolation above). Keeps a reference to the run: the run must outlive it.

@@ -13,7 +13,7 @@
 
 namespace crankcheck::validation {
 
-/// The name measureSteppedRun gives the loops' separation (ConstantSpeedSample::loop_error, relative to the position scale).
+/// The name measureSteppedRun gives the loops' separation (Trajectory::loop_error, relative to the position scale).
 inline constexpr const char* kLoopErrorName = "loop_error";
 
 /// One quantity's worst error over the measured turn.
@@ -27,7 +27,7 @@ struct SteppedError {
 /// The measure of one run.
 struct SteppedMeasure {
   std::vector<SteppedError> errors;  ///< in the catalogue's order, kLoopErrorName last
-  double seconds_per_step = 0.0;     ///< [s] the engine's own (ConstantSpeedRun::seconds_per_step)
+  double seconds_per_step = 0.0;     ///< [s] the engine's own (Trajectory::seconds_per_step)
   long settling_steps = 0;           ///< steps run before the measured turn
   long measured_steps = 0;           ///< steps of the measured turn
 };
@@ -45,10 +45,12 @@ long calcStepsPerTurn(const Mechanism& m, double dt);
 /// @throws std::invalid_argument naming the step, its angle and the largest step that is measured, otherwise
 void checkStepAngle(const Mechanism& m, double dt);
 
-/// The errors of `run` (a run of m), its samples from `first` on, against the closed forms (the analytic engine) at
-/// each quantity's instant. Components the mechanism does not define (isComponentDefined) are skipped.
-/// @throws std::invalid_argument if the run reports a quantity m does not define or has no sample from `first` on.
-std::vector<SteppedError> calcSteppedErrors(const Mechanism& m, const ConstantSpeedRun& run, size_t first);
+/// The errors of `run` (a stepped engine's run of m held at its speed: SteppedEngine::run), its steps from `first` on
+/// (first >= 1: each step from sample i - 1 to sample i), against the closed forms (the analytic engine) at each
+/// quantity's instant. Components the mechanism does not define (isComponentDefined) are skipped.
+/// @throws std::invalid_argument if the run reports a quantity m does not define, if its values and loop errors are
+///         not one per sample, if `first` is 0, or if it has no sample from `first` on.
+std::vector<SteppedError> calcSteppedErrors(const Mechanism& m, const Trajectory& run, size_t first);
 
 /// Runs `engine` on m at `settings` and step dt from the exact state at phi = 0 (the analytic engine's, calcStartState):
 /// settling steps (above), then one turn measured.
