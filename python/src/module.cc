@@ -778,7 +778,7 @@ radians. Immutable; thread-safe (every call builds its own engine model).)doc")
             const validation::Scales sc = validation::calcScales(s.m);
             py::dict d;
             d["energy"] = sc.energy;
-            d["simbody_energy"] = sc.simbody_energy;
+            d["absolute_height_energy"] = sc.absolute_height_energy;
             d["position"] = sc.position;
             d["velocity"] = sc.velocity;
             d["acceleration"] = sc.acceleration;

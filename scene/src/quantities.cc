@@ -29,7 +29,7 @@ Quantity cylinder(Id id, const char* name, const char* unit, int components, Sca
 const std::vector<Quantity>& getQuantityCatalogue() {
   // In QuantityId's order (getQuantity indexes by it); eval's JSON order.
   static const std::vector<Quantity> catalogue = {
-      whole(Id::kU, "U", "J", 1, Scale::kSimbodyEnergy, Cond::kClosure, Presence::kAlways, true,
+      whole(Id::kU, "U", "J", 1, Scale::kAbsoluteHeightEnergy, Cond::kClosure, Presence::kAlways, true,
             [](Evaluation& e) { return &e.U; }),
       whole(Id::kQ, "Q", "N m", 1, Scale::kEnergy, Cond::kLoop, Presence::kAlways, true, [](Evaluation& e) { return &e.Q; }),
       whole(Id::kDriveTorque, "drive_torque", "N m", 1, Scale::kTorque, Cond::kAcceleration, Presence::kAlways, false,

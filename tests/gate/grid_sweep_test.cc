@@ -4,7 +4,7 @@
 // shaft at a prescribed angle, for one bank, for several banks and for crank angles that are not whole steps.
 //
 // Tolerance: the gate's rule (validation/scales.h), |a - b| <= 64 eps x scale x conditioning, with the scales the
-// gate uses for Simbody's U and Q (simbody_energy for U, Simbody subtracts absolute heights; energy for Q). Each side
+// gate uses for Simbody's U and Q (absolute_height_energy for U, Simbody subtracts absolute heights; energy for Q). Each side
 // rounds at the level of a few eps of the scale plus its position projection; the sum over k one-cylinder values
 // adds k roundings, which the scale (k times one cylinder's) covers.
 
@@ -89,7 +89,7 @@ TEST_P(GridSweepGateTest, SuperpositionAgreesWithTheFullModel) {
     const Comparison q{"Q", -1, Q[i], full.calcHoldingTorque(phi), sc.energy, sc.conditioning};
     EXPECT_TRUE(q.agrees()) << "phi " << phi << ": superposed " << q.a << ", full " << q.b << ", |difference| "
                             << q.error() << " > " << q.tolerance();
-    const Comparison u{"U", -1, U[i], full.calcPotentialEnergy(phi), sc.simbody_energy, 1.0};
+    const Comparison u{"U", -1, U[i], full.calcPotentialEnergy(phi), sc.absolute_height_energy, 1.0};
     EXPECT_TRUE(u.agrees()) << "phi " << phi << ": superposed " << u.a << ", full " << u.b << ", |difference| "
                             << u.error() << " > " << u.tolerance();
     worst_q = std::max(worst_q, q.error() / (validation::kEps * q.scale));

@@ -64,7 +64,7 @@ def test_scales_are_the_clis(path):
     s = scene.scales()
     split = cli_json("eval", path, "--phi-deg", "30", "--split")["results"][0]["split"]
     assert split["tolerance"] == 64 * np.finfo(float).eps * s["torque"] * s["acceleration_conditioning"]
-    assert set(s) == {"energy", "simbody_energy", "position", "velocity", "acceleration", "force", "torque", "moment",
+    assert set(s) == {"energy", "absolute_height_energy", "position", "velocity", "acceleration", "force", "torque", "moment",
                       "conditioning", "velocity_conditioning", "acceleration_conditioning", "closure"}
     assert all(v > 0 or (v == 0 and scene.engine.speed == 0) for v in s.values())
     # The energy scale as scales.h defines it, for a plain inline scene (offsets and shafts add terms of their own).

@@ -66,7 +66,7 @@ Scales calcScales(const Mechanism& m) {
   const double offset = lambda * l - r;  // max |delta_j|
   Scales s;
   s.energy = calcEnergyScale(m);
-  s.simbody_energy = s.energy + m.machine.cylinders * m.machine.gravity * (m.piston.mass + m.rod.mass) * (l + r);
+  s.absolute_height_energy = s.energy + m.machine.cylinders * m.machine.gravity * (m.piston.mass + m.rod.mass) * (l + r);
   s.position = l + r + offset;
   s.velocity = r * m.machine.speed * (1.0 + std::sqrt(stiff));
   s.acceleration = calcAccelerationScale(m);
@@ -78,7 +78,7 @@ Scales calcScales(const Mechanism& m) {
     shaft_arm = std::max(shaft_arm, std::hypot(b.position[0], b.position[1], b.position[2]) + b.radius);
   s.moment = s.force * (std::max(l + r + offset, shaft_arm) + z_max);
   // Simbody's and MuJoCo's U subtract absolute heights: the shafts' masses at up to their arm from O
-  for (const BalanceShaftParams& b : m.balance_shafts) s.simbody_energy += m.machine.gravity * b.mass * shaft_arm;
+  for (const BalanceShaftParams& b : m.balance_shafts) s.absolute_height_energy += m.machine.gravity * b.mass * shaft_arm;
   s.closure = std::sqrt(stiff);
   s.conditioning = stiff * (l + r) / r;
   s.velocity_conditioning = s.closure * (l + r) / r;
@@ -93,7 +93,7 @@ Scales calcPositiveScales(const Mechanism& m) {
   Scales s = calcScales(m);
   const double tiny = std::numeric_limits<double>::min();  // smallest normal double
   auto zero = [tiny](double scale) { return !(scale >= tiny); };
-  if (!zero(s.energy) && !zero(s.simbody_energy) && !zero(s.velocity) && !zero(s.acceleration) && !zero(s.force) &&
+  if (!zero(s.energy) && !zero(s.absolute_height_energy) && !zero(s.velocity) && !zero(s.acceleration) && !zero(s.force) &&
       !zero(s.torque) && !zero(s.moment))
     return s;
   // The case's static load A_s (standard gravity when it has none), and the same mechanism with A_s as its gravity
@@ -109,7 +109,7 @@ Scales calcPositiveScales(const Mechanism& m) {
     if (zero(scale)) scale = std::max(value, tiny);
   };
   floor(s.energy, at_rest.energy);
-  floor(s.simbody_energy, at_rest.simbody_energy);
+  floor(s.absolute_height_energy, at_rest.absolute_height_energy);
   floor(s.velocity, std::sqrt(m.crank.radius * load) * (1.0 + s.closure));  // r omega_c (1 + (1 - lambda^2)^(-1/2))
   floor(s.acceleration, load);
   floor(s.force, at_rest.force);
@@ -121,13 +121,13 @@ Scales calcPositiveScales(const Mechanism& m) {
 double Comparison::error() const { return std::fabs(a - b); }
 double Comparison::tolerance() const { return kAgreementMultiple * kEps * scale * conditioning; }
 
-std::vector<Comparison> compareEvaluations(const Mechanism& m, const Evaluation& a, const Evaluation& s) {
-  return compareEvaluations(m, calcScales(m), a, s);
+std::vector<Comparison> compareEvaluations(const Mechanism& m, const Evaluation& a, const Evaluation& b) {
+  return compareEvaluations(m, calcScales(m), a, b);
 }
 
 double getQuantityScale(const Scales& sc, QuantityScale scale, const Mechanism& m) {
   switch (scale) {
-    case QuantityScale::kSimbodyEnergy: return sc.simbody_energy;
+    case QuantityScale::kAbsoluteHeightEnergy: return sc.absolute_height_energy;
     case QuantityScale::kEnergy: return sc.energy;
     case QuantityScale::kTorque: return sc.torque;
     case QuantityScale::kForce: return sc.force;

@@ -280,13 +280,13 @@ class FlywheelPart final : public Part {
       first_gas_scene = false;
       out.push_back({"flywheel " + m.name, false,
                      [m, quick, runs, sizing] { return calcFlywheelSceneTables(m, quick, runs, -1, *sizing); },
-                     task_cost::kSimbodyRun});
+                     task_cost::kFineCycleRun});
       for (int point : runs)
         out.push_back({"flywheel " + m.name + " run " + std::to_string(point), false,
                        [m, quick, runs, point, sizing] {
                          return calcFlywheelSceneTables(m, quick, runs, point, *sizing);
                        },
-                       task_cost::kSimbodyRun});
+                       task_cost::kFineCycleRun});
     }
     out.push_back({"flywheel_norton", false, [base = context.base, quick] { return calcFlywheelNortonTables(base, quick); }});
     return out;

@@ -748,7 +748,7 @@ class TorsionPart final : public Part {
                            return calcOrNote(tag, m.name + " by " + engine.name,
                                              [&] { return calcEngineTables(m, engine, quick, *analytic_state); });
                          },
-                         task_cost::kSimbodyRun});
+                         task_cost::kFineCycleRun});
     }
     if (!scenes.empty())
       for (double factor : listRatioFactors(context.quick))

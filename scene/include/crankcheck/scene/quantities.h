@@ -26,7 +26,7 @@ enum class QuantityId {
 /// The physical scale a quantity is measured against: a member of validation::Scales, or one built from it
 /// (validation/scales.h: getQuantityScale).
 enum class QuantityScale {
-  kSimbodyEnergy,     ///< Scales::simbody_energy (U: Simbody's and MuJoCo's U subtract absolute heights)
+  kAbsoluteHeightEnergy,  ///< Scales::absolute_height_energy (U: an engine's U may subtract absolute heights)
   kEnergy,            ///< Scales::energy
   kTorque,            ///< Scales::torque
   kForce,             ///< Scales::force

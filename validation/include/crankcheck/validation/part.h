@@ -38,7 +38,7 @@ struct PartContext {
 /// A task's estimated cost, relative: the campaign starts the larger first so that parallel jobs end together (the
 /// order changes no table: they are sorted). Ties keep the order in which the parts list them.
 namespace task_cost {
-inline constexpr double kSimbodyRun = 4.0;   ///< a Simbody run over a working cycle at fine steps (flywheel)
+inline constexpr double kFineCycleRun = 4.0;  ///< an engine's run over a working cycle at fine steps (flywheel)
 inline constexpr double kCycleSweep = 3.0;   ///< every engine over a working cycle at 1 degree, refined (offset)
 inline constexpr double kCrossCheck = 2.0;   ///< every engine on one case at every angle and speed
 inline constexpr double kGateSweep = 1.0;    ///< the gate's sweep of one k and stroke over lambda and gamma

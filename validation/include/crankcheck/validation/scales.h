@@ -39,7 +39,8 @@ double calcTorqueScale(const Mechanism& m);
 /// Every scale of a case, and the conditioning of the comparison of the two engines.
 struct Scales {
   double energy = 0.0;            ///< E [J]: U and Q
-  double simbody_energy = 0.0;    ///< E + k g (m_o + m_k)(l + r): Simbody's U subtracts absolute heights up to l + r
+  /// E + k g (m_o + m_k)(l + r): the scale of a U that subtracts absolute heights up to l + r (Simbody's, MuJoCo's)
+  double absolute_height_energy = 0.0;
   double position = 0.0;          ///< l + r + max |delta_j| [m]
   double velocity = 0.0;          ///< r omega (1 + (1 - lambda^2)^(-1/2)) [m/s]
   double acceleration = 0.0;      ///< calcAccelerationScale [m/s^2]
@@ -115,11 +116,12 @@ struct Comparison {
   bool agrees() const { return error() <= tolerance(); }
 };
 
-/// Every quantity of an analytic and a Simbody Evaluation at the same angle, with its scale and conditioning
+/// Every quantity of two Evaluations at the same angle (the reference's, `a`, and another engine's, `b`), with its
+/// scale and conditioning
 /// (Q is compared as the static holding torque): the catalogue's whole-mechanism quantities, then each cylinder's
 /// (those the mechanism defines: gas_force only with [gas]; shaking_moment's three components always), each vector
 /// component by component, X first.
-std::vector<Comparison> compareEvaluations(const Mechanism& m, const Evaluation& analytic, const Evaluation& simbody);
+std::vector<Comparison> compareEvaluations(const Mechanism& m, const Evaluation& a, const Evaluation& b);
 /// The same with given scales (calcPositiveScales for grade).
 std::vector<Comparison> compareEvaluations(const Mechanism& m, const Scales& scales, const Evaluation& a, const Evaluation& b);
 
