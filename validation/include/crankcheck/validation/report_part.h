@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/table.h"
 
 namespace crankcheck::validation {
 
