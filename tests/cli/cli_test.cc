@@ -521,7 +521,7 @@ TEST(Cli, TorsionWorkIsEstimatedAndRefusedPastTheWorkLimit) {
   expectRefusedWithOneLine({"torsion", four, "--speeds", "1000:6000:10", "--work-limit", "1"},
                            four + ": torsion at 501 speeds would take about ");
   const RunResult sweep = testing::runCrankcheck({"torsion", four, "--speeds", "1000:6000:10", "--work-limit", "1"});
-  EXPECT_NE(sweep.err.find("(501 speeds at the dearest of 8 probed, "), std::string::npos) << sweep.err;
+  EXPECT_NE(sweep.err.find("(501 speeds at the mean of 8 probed: the analytic steady state "), std::string::npos) << sweep.err;
   EXPECT_NE(sweep.err.find("nothing was run: fewer --speeds, or a larger --work-limit"), std::string::npos) << sweep.err;
   const RunResult engine =
       testing::runCrankcheck({"torsion", four, "--speeds", "5000:6000:100", "--engine", "mujoco", "--work-limit", "1"});

@@ -10,18 +10,17 @@ namespace crankcheck::validation {
 std::string formatDuration(double seconds) {
   char buffer[64];
   if (!std::isfinite(seconds)) return "without end";
-  if (seconds < 1e-3)
-    std::snprintf(buffer, sizeof buffer, "%.2g us", seconds * 1e6);
-  else if (seconds < 0.1)
-    std::snprintf(buffer, sizeof buffer, "%.2g ms", seconds * 1e3);
-  else if (seconds < 120.0)
-    std::snprintf(buffer, sizeof buffer, "%.2g s", seconds);
-  else if (seconds < 7200.0)
-    std::snprintf(buffer, sizeof buffer, "%.0f min", seconds / 60.0);
-  else if (seconds < 2.0 * 86400.0)
-    std::snprintf(buffer, sizeof buffer, "%.2g h", seconds / 3600.0);
-  else
-    std::snprintf(buffer, sizeof buffer, "%.2g days", seconds / 86400.0);
+  // Two significant digits, without an exponent below 1000 of a unit: "5.8 ms", "580 us", "42 s".
+  auto in = [&](double value, const char* unit) {
+    std::snprintf(buffer, sizeof buffer, value >= 10.0 ? "%.0f %s" : "%.2g %s", value, unit);
+    return std::string(buffer);
+  };
+  if (seconds < 1e-3) return in(seconds * 1e6, "us");
+  if (seconds < 0.1) return in(seconds * 1e3, "ms");
+  if (seconds < 120.0) return in(seconds, "s");
+  if (seconds < 7200.0) return in(seconds / 60.0, "min");
+  if (seconds < 2.0 * 86400.0) return in(seconds / 3600.0, "h");
+  std::snprintf(buffer, sizeof buffer, "%.2g days", seconds / 86400.0);
   return buffer;
 }
 

@@ -56,7 +56,7 @@ TorsionWorkEstimate estimateTorsionWork(const Mechanism& scene, const std::vecto
   for (size_t j = 0; j < std::min(rpms.size(), kProbedSpeeds); ++j)
     probed.push_back(rpms.size() <= kProbedSpeeds ? j : (j * (rpms.size() - 1) + (kProbedSpeeds - 1) / 2) / (kProbedSpeeds - 1));
   analytic::ThrowLoadOrders load_orders;
-  double dearest = 0.0, steps_per_cycle = 0.0, dearest_evaluations = 0.0;
+  double dearest = 0.0, steps_per_cycle = 0.0, dearest_evaluations = 0.0, probed_seconds = 0.0, probed_steps = 0.0;
   size_t dearest_speed = 0, stiffest_speed = 0;
   for (size_t i : probed) {
     const Mechanism m = withSpeed(scene, rpms[i]);
@@ -75,20 +75,25 @@ TorsionWorkEstimate estimateTorsionWork(const Mechanism& scene, const std::vecto
       throw TorsionSpeedError(rpms[i], e.what());
     }
     if (holzer) holzer->emplace(i, std::move(response));
+    probed_seconds += holzer_seconds + work.seconds;
     if (holzer_seconds + work.seconds >= dearest)
       dearest = holzer_seconds + work.seconds, dearest_speed = i, dearest_evaluations = work.evaluations;
+    probed_steps += work.steps_per_cycle;
     if (work.steps_per_cycle >= steps_per_cycle) steps_per_cycle = work.steps_per_cycle, stiffest_speed = i;
   }
   const double count = static_cast<double>(rpms.size());
-  estimate.seconds = dearest * count;
+  // The probed speeds' mean for every speed: they are spread evenly over the sweep.
+  const double mean = probed_seconds / static_cast<double>(probed.size());
+  estimate.seconds = mean * count;
   char text[400];
   if (rpms.size() == 1)
     std::snprintf(text, sizeof text, "the analytic steady state %s (%.2g evaluations of the train's equations)",
                   formatDuration(dearest).c_str(), dearest_evaluations);
   else
-    std::snprintf(text, sizeof text, "%zu speeds at the dearest of %zu probed, %s rpm: the analytic steady state %s "
-                  "(%.2g evaluations of the train's equations)", rpms.size(), probed.size(),
-                  formatShortest(rpms[dearest_speed]).c_str(), formatDuration(dearest).c_str(), dearest_evaluations);
+    std::snprintf(text, sizeof text, "%zu speeds at the mean of %zu probed: the analytic steady state %s a speed, "
+                  "the dearest %s at %s rpm (%.2g evaluations of the train's equations)", rpms.size(), probed.size(),
+                  formatDuration(mean).c_str(), formatDuration(dearest).c_str(),
+                  formatShortest(rpms[dearest_speed]).c_str(), dearest_evaluations);
   estimate.how = text;
   // The advice names the dearest part: the speeds' count, an engine, or the train itself (its fastest rate, a heavy
   // damping or a stiff shaft, sets the explicit steps of every route).
@@ -96,7 +101,8 @@ TorsionWorkEstimate estimateTorsionWork(const Mechanism& scene, const std::vecto
   estimate.smaller = rpms.size() > 1 ? "fewer --speeds" : "a lighter [crankshaft] damping or stiffness (the train's "
                                                           "fastest rate sets the integrators' steps)";
   // Each engine's train at the speed of the most steps a cycle: a run capped at kEngineProbeSteps, against one capped
-  // at a single step (its build), gives its cost of a step; a run that finishes within the cap is its own cost.
+  // at a single step (its build), gives its cost of a step; a run that finishes within the cap is its own cost. Its
+  // steps a speed: the probed speeds' mean steps a cycle over kEngineCycles.
   const Mechanism m = withSpeed(scene, rpms[stiffest_speed]);
   for (const Engine* engine : engines) {
     // Longer probes while they stay short (50 ms), as the stepped runs' estimate: a run's first steps cost more than
@@ -110,19 +116,20 @@ TorsionWorkEstimate estimateTorsionWork(const Mechanism& scene, const std::vecto
       if (more - one > 0.05 || n >= 64 * kEngineProbeSteps) break;
     }
     const double samples = static_cast<double>(makeTrainOptions(*engine).samples);
-    const double steps = (kEngineCycles - 1.0) * steps_per_cycle + std::max(steps_per_cycle, samples);
+    const double mean_steps = probed_steps / static_cast<double>(probed.size());
+    const double steps = (kEngineCycles - 1.0) * mean_steps + std::max(mean_steps, samples);
     const double per_speed = done ? more : one + steps * step;
     estimate.seconds += per_speed * count;
     if (per_speed * count > dearest_part)
       dearest_part = per_speed * count, estimate.smaller = "without --engine " + engine->name;
+    const char* each = rpms.size() > 1 ? " a speed" : "";
     if (done)
-      std::snprintf(text, sizeof text, "; %s %s (run)", engine->name.c_str(), formatDuration(per_speed).c_str());
+      std::snprintf(text, sizeof text, "; %s %s%s (run)", engine->name.c_str(), formatDuration(per_speed).c_str(), each);
     else
-      std::snprintf(text, sizeof text, "; %s %s (%.2g steps at the measured %s a step)", engine->name.c_str(),
-                    formatDuration(per_speed).c_str(), steps, formatDuration(step).c_str());
+      std::snprintf(text, sizeof text, "; %s %s%s (%.2g steps at the measured %s a step)", engine->name.c_str(),
+                    formatDuration(per_speed).c_str(), each, steps, formatDuration(step).c_str());
     estimate.how += text;
   }
-  if (rpms.size() > 1) estimate.how += " a speed";
   if (rpms.size() > 1 && estimate.smaller.rfind("without", 0) == 0) estimate.smaller += " or fewer --speeds";
   return estimate;
 }

@@ -65,7 +65,7 @@ CrankTrainRunOptions makeTrainOptions(const Engine& engine);
 
 /// The speeds a sweep's estimate probes: every one of a sweep of at most 8, else 8 spread evenly over it (the first and
 /// the last among them). A train's cost falls with the speed where a fast rate sets its steps (a cycle lasts longer in
-/// the rate's time) and varies slowly otherwise: the dearest probed speed stands for every speed.
+/// the rate's time) and varies slowly otherwise: the probed speeds' mean stands for every speed.
 inline constexpr size_t kProbedSpeeds = 8;
 /// The steps of an engine's first probe (against a run of one step: its build), 4 x more while it stays below 50 ms.
 inline constexpr long long kEngineProbeSteps = 64;
@@ -76,15 +76,15 @@ inline constexpr double kEngineCycles = 11.0;
 /// The work calcTorsion is estimated to take, before it.
 struct TorsionWorkEstimate {
   double seconds = 0.0;  ///< [s] on this machine
-  std::string how;       ///< how it was estimated, for the refusal: "N speeds at the dearest of K probed, ..."
+  std::string how;       ///< how it was estimated, for the refusal: "N speeds at the mean of K probed: ..."
   std::string smaller;   ///< how to ask for less, by the dearest part: "fewer --speeds", "without --engine simbody", ...
 };
 
 /// The work of calcTorsion(scene, rpms, engines), estimated before it: at each speed probed (kProbedSpeeds), Holzer's
-/// response (timed) and the exact steady state's estimate (analytic::estimateExactSteadyStateWork), the dearest speed's
-/// sum taken for every speed; each engine's train at the speed of the most steps a cycle: kEngineCycles x that (or
-/// the samples, if more, for the sampled cycle) steps at its cost of a step measured by capped runs
-/// (kEngineProbeSteps), for every speed.
+/// response (timed) and the exact steady state's estimate (analytic::estimateExactSteadyStateWork), the probed speeds'
+/// mean taken for every speed; each engine's train: kEngineCycles x the probed speeds' mean steps a cycle (or the
+/// samples, if more, for the sampled cycle) at its cost of a step measured by capped runs (kEngineProbeSteps) at the
+/// speed of the most steps a cycle, for every speed.
 /// `holzer` (optional) receives the probed speeds' Holzer responses by index, for the sweep to reuse.
 /// @throws std::invalid_argument as calcTorsion; TorsionSpeedError at a probed speed outside the small-twist domain
 ///         (analytic::checkHolzerTwist) or whose Holzer response cannot be computed.
