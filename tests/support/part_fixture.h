@@ -8,13 +8,14 @@
 #include <string>
 
 #include "crankcheck/validation/csv.h"
+#include "crankcheck/validation/table_schemas.h"
 #include "crankcheck/validation/report_part.h"
 
 namespace crankcheck::testing {
 
 /// Table `name` from its CSV text (the header first), typed through its schema as `report merge` reads it.
 inline validation::Table readTable(const std::string& name, const std::string& csv) {
-  return validation::parseTable(name, validation::parseCsv(csv, name), name);
+  return validation::parseTable(name, validation::parseCsv(csv, name), name, validation::findTableSchema(name));
 }
 
 /// The paragraph (of the sentences or the blocks) that contains `needle`, or "" (the test then fails on its

@@ -14,6 +14,7 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/csv.h"
+#include "crankcheck/validation/table_schemas.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/parts.h"
 #include "crankcheck/validation/report.h"

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "crankcheck/validation/csv.h"
+#include "crankcheck/validation/table_schemas.h"
 #include "crankcheck/validation/grade.h"
 
 namespace crankcheck::validation {
@@ -19,7 +20,7 @@ std::string headerOf(const TableSchema& schema) {
 }
 
 // The table `name` of the CSV `text`, read through its schema (the way `report merge` and readTables read it).
-Table readCsv(const std::string& name, const std::string& text) { return parseTable(name, parseCsv(text, name), name); }
+Table readCsv(const std::string& name, const std::string& text) { return parseTable(name, parseCsv(text, name), name, findTableSchema(name)); }
 
 // The headers as grade wrote them before its tables were typed (the reference engines of this build: simbody and
 // mujoco; the closed forms, analytic).

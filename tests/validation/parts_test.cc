@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "crankcheck/validation/csv.h"
+#include "crankcheck/validation/table_schemas.h"
 
 #include <algorithm>
 #include <map>
@@ -31,7 +32,7 @@ const Part& partNumbered(int number) {
 Table makeTable(const std::string& name, std::vector<Column> columns, std::vector<std::vector<std::string>> rows) {
   Table t(name, std::move(columns));
   t.rows = std::move(rows);
-  return parseTable(name, parseCsv(formatCsv(t), name), name);
+  return parseTable(name, parseCsv(formatCsv(t), name), name, findTableSchema(name));
 }
 
 using testing::findParagraph;

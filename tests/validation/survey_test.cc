@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "crankcheck/validation/csv.h"
+#include "crankcheck/validation/table_schemas.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/parts.h"
 #include "part_fixture.h"
@@ -91,7 +92,7 @@ TEST(SurveyTest, HeadingNamesTheFirstSceneAndHowTheSurveyUsesIt) {
 
 TEST(SurveyTest, BaseTableReadsBackThroughItsSchema) {
   const Table base = makeBase("my_v8,user,8,four-stroke,0.3,5000,0,1");
-  const Table again = parseTable("survey_base", parseCsv(formatCsv(base), "survey_base"), "survey_base");
+  const Table again = parseTable("survey_base", parseCsv(formatCsv(base), "survey_base"), "survey_base", findTableSchema("survey_base"));
   EXPECT_EQ(formatCsv(again), formatCsv(base));
   EXPECT_EQ(formatCsv(base).substr(0, formatCsv(base).find('\n')),
             "scene,given,k [-],cycle,lambda [-],speed_rpm [rpm],single_bank [-],centric [-]");

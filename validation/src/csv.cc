@@ -4,9 +4,6 @@
 #include <string_view>
 #include <stdexcept>
 
-#include "crankcheck/validation/campaign.h"
-#include "crankcheck/validation/grade.h"
-#include "crankcheck/validation/parts.h"
 
 namespace crankcheck::validation {
 
@@ -130,11 +127,12 @@ std::string formatCsv(const Table& table) {
 
 // Table `name` from its CSV records; each column's unit from its header (parseHeader). @throws std::runtime_error on an
 // empty table, an empty unit or a row of another length than the header.
-Table parseTable(const std::string& name, std::vector<std::vector<std::string>> records, const std::string& source) {
+Table parseTable(const std::string& name, std::vector<std::vector<std::string>> records, const std::string& source,
+                 const TableSchema* schema) {
   if (records.empty()) throw std::runtime_error(source + ": empty table");
   std::vector<Column> columns;
   for (const std::string& header : records.front()) columns.push_back(parseHeader(header, source));
-  if (const TableSchema* schema = findTableSchema(name)) {
+  if (schema) {
     if (columns != schema->columns())
       throw std::runtime_error(source + ": columns " + joinHeaders(columns) + "; this crankcheck's table " + name +
                                " has " + joinHeaders(schema->columns()));
@@ -161,14 +159,5 @@ Table parseTable(const std::string& name, std::vector<std::vector<std::string>> 
   return table;
 }
 
-
-const TableSchema* findTableSchema(const std::string& name) {
-  if (name == kNotesTable.name()) return &kNotesTable;
-  if (const TableSchema* schema = findGradeTableSchema(name)) return schema;
-  for (const Part* part : listParts())
-    for (const TableSchema* schema : part->schemas())
-      if (schema->name() == name) return schema;
-  return nullptr;
-}
 
 }  // namespace crankcheck::validation

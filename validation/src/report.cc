@@ -21,6 +21,7 @@
 #include <stdexcept>
 
 #include "crankcheck/validation/csv.h"
+#include "crankcheck/validation/table_schemas.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
 #include "crankcheck/validation/install_paths.h"
@@ -81,7 +82,7 @@ TableSet readTables(const fs::path& dir) {
     if (entry.path().extension() != ".csv") continue;
     const std::string source = quotePath(entry.path());
     const std::string name = entry.path().stem().string();
-    tables[name] = parseTable(name, parseCsv(readBytes(entry.path()), source), source);
+    tables[name] = parseTable(name, parseCsv(readBytes(entry.path()), source), source, findTableSchema(name));
   }
   return tables;
 }
@@ -374,7 +375,7 @@ TableSet readShardTables(const fs::path& dir, const ShardManifest& manifest) {
       throw std::runtime_error(source + ": not the content the shard wrote (FNV-1a 64 " + checksum + ", shard.json records " +
                                f.checksum + ")");
     const std::string name = fs::path(f.path).stem().string();
-    tables[name] = parseTable(name, std::move(records), source);
+    tables[name] = parseTable(name, std::move(records), source, findTableSchema(name));
   }
   return tables;
 }

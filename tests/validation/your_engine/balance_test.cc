@@ -21,6 +21,7 @@
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/balance.h"
 #include "crankcheck/validation/csv.h"
+#include "crankcheck/validation/table_schemas.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/report_part.h"
 #include "crankcheck/validation/scales.h"
@@ -449,7 +450,7 @@ TEST(YourEngineBalanceTest, TablesReadBackThroughTheirSchemas) {
   for (const TableSchema* schema : balanceTopic().schemas()) {
     ASSERT_TRUE(t.count(schema->name())) << schema->name();
     const std::string csv = formatCsv(t.at(schema->name()));
-    const Table back = parseTable(schema->name(), parseCsv(csv, schema->name()), schema->name());
+    const Table back = parseTable(schema->name(), parseCsv(csv, schema->name()), schema->name(), findTableSchema(schema->name()));
     EXPECT_EQ(formatCsv(back), csv) << schema->name();
   }
 }

@@ -20,6 +20,7 @@
 #include "crankcheck/analytic/torsion.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/csv.h"
+#include "crankcheck/validation/table_schemas.h"
 #include "../../../validation/src/your_engine/topic.h"
 #include "scene_section_fixture.h"
 
@@ -268,7 +269,7 @@ TEST(DynamicsTopicTest, TablesReadBackThroughTheirSchemas) {
   for (const TableSchema* schema : findDynamics().schemas()) {
     const Table& t = tables.at(schema->name());
     const std::string csv = formatCsv(t);
-    const Table back = parseTable(schema->name(), parseCsv(csv, schema->name()), schema->name());
+    const Table back = parseTable(schema->name(), parseCsv(csv, schema->name()), schema->name(), findTableSchema(schema->name()));
     EXPECT_EQ(formatCsv(back), csv) << schema->name();
   }
   // The section read from the tables alone: the exact delta and the twist are there.

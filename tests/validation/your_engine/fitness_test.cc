@@ -19,6 +19,7 @@
 #include "crankcheck/scene/quantities.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/csv.h"
+#include "crankcheck/validation/table_schemas.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/scales.h"
 #include "../../../validation/src/your_engine/topic.h"
@@ -395,7 +396,7 @@ TEST_P(FitnessSceneTest, RowsReadBackThroughTheSchema) {
   for (const TableSchema* schema : topics::fitness().schemas()) {
     const Table& table = tables.at(schema->name());
     const std::string csv = formatCsv(table);
-    const Table back = parseTable(schema->name(), parseCsv(csv, schema->name()), schema->name());
+    const Table back = parseTable(schema->name(), parseCsv(csv, schema->name()), schema->name(), findTableSchema(schema->name()));
     EXPECT_EQ(formatCsv(back), csv) << schema->name();
   }
   EXPECT_EQ(getRows(tables, kFitnessTable).size() % (1 + listReferenceEngines().size()), 0u);

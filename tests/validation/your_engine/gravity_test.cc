@@ -10,6 +10,7 @@
 #include "../../../validation/src/your_engine/topic.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/csv.h"
+#include "crankcheck/validation/table_schemas.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/report_part.h"
 #include "independent_loads.h"
@@ -161,7 +162,7 @@ TEST(YourEngineGravityTest, TableReadsBackThroughItsSchema) {
   for (const std::string& scene : {std::string(kSlowSingle), text}) {
     const TableSet tables = validation::your_engine::kGravityTable.tableSet(run(parseScene(scene, "slow_single.toml"), true));
     const std::string csv = validation::formatCsv(tables.at("your_engine_gravity"));
-    const validation::Table back = validation::parseTable("your_engine_gravity", validation::parseCsv(csv, "g"), "g");
+    const validation::Table back = validation::parseTable("your_engine_gravity", validation::parseCsv(csv, "g"), "g", validation::findTableSchema("your_engine_gravity"));
     EXPECT_EQ(validation::formatCsv(back), csv);
   }
 }

@@ -11,6 +11,7 @@
 #include "../../../validation/src/your_engine/topic.h"
 #include "crankcheck/scene/scene_file.h"
 #include "crankcheck/validation/csv.h"
+#include "crankcheck/validation/table_schemas.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/report_part.h"
 #include "independent_loads.h"
@@ -239,7 +240,7 @@ TEST(YourEngineLoadsTest, DescribeSaysWhatIsMissing) {
                                                                       "0,bare_inline3,user,inline 3,3,four-stroke,single,2500,0.2857,"
                                                                       "0,0,0,0,0,0\n",
                                                                       "your_engine"),
-                                                 "your_engine"));
+                                                 "your_engine", validation::findTableSchema("your_engine")));
   const std::vector<validation::ReportBlock> blocks = findTopic("Loads over a working cycle").describe(tables, "bare_inline3");
   bool missing = false, table = false, figure = false;
   for (const validation::ReportBlock& b : blocks) {
@@ -262,7 +263,7 @@ TEST(YourEngineLoadsTest, TablesReadBackThroughTheirSchemas) {
     SCOPED_TRACE(schema->name());
     const validation::Table& table = tables.at(schema->name());
     const std::string csv = validation::formatCsv(table);
-    const validation::Table back = validation::parseTable(schema->name(), validation::parseCsv(csv, schema->name()), schema->name());
+    const validation::Table back = validation::parseTable(schema->name(), validation::parseCsv(csv, schema->name()), schema->name(), validation::findTableSchema(schema->name()));
     EXPECT_EQ(validation::formatCsv(back), csv);
     EXPECT_GT(back.size(), 0u);
   }
