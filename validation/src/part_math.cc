@@ -5,7 +5,12 @@
 #include <map>
 #include <stdexcept>
 
-#include "crankcheck/validation/campaign.h"
+#include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/campaign_scenes.h"
+#include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/report_format.h"
+#include "crankcheck/validation/table.h"
+#include "crankcheck/validation/task.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/scales.h"
 

@@ -2,6 +2,8 @@
 
 #include <cstdlib>
 
+#include "crankcheck/validation/report_format.h"
+
 namespace crankcheck::validation {
 
 std::vector<std::vector<std::string>> formatRows(const TableSet& tables, const std::string& name,

@@ -16,13 +16,16 @@
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/errors.h"
-#include "crankcheck/validation/campaign.h"
+#include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/campaign_scenes.h"
+#include "crankcheck/validation/report_format.h"
+#include "crankcheck/validation/table.h"
+#include "crankcheck/validation/task.h"
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/scene/quantities.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/scales.h"
 #include "crankcheck/validation/variants.h"
-#include "crankcheck/validation/report_format.h"
 #include "survey.h"
 
 namespace crankcheck::validation {

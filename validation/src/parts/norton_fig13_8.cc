@@ -4,7 +4,12 @@
 
 #include "../part_math.h"
 #include "crankcheck/analytic/kinematics.h"
-#include "crankcheck/validation/campaign.h"
+#include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/campaign_scenes.h"
+#include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/report_format.h"
+#include "crankcheck/validation/table.h"
+#include "crankcheck/validation/task.h"
 #include "crankcheck/validation/part.h"
 
 namespace crankcheck::validation {

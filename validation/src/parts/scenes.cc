@@ -3,9 +3,13 @@
 #include <string>
 #include <vector>
 
-#include "crankcheck/validation/campaign.h"
-#include "crankcheck/validation/part.h"
+#include "crankcheck/scene/mechanism.h"
+#include "crankcheck/validation/campaign_scenes.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/report_format.h"
+#include "crankcheck/validation/table.h"
+#include "crankcheck/validation/task.h"
+#include "crankcheck/validation/part.h"
 
 namespace crankcheck::validation {
 namespace {

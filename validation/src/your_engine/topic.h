@@ -12,10 +12,13 @@
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
-#include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/campaign_scenes.h"
+#include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/report_format.h"
+#include "crankcheck/validation/table.h"
+#include "crankcheck/validation/task.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/report_part.h"
-#include "crankcheck/validation/table.h"
 
 namespace crankcheck::validation::your_engine {
 

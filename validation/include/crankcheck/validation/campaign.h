@@ -27,29 +27,10 @@
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/table.h"
+#include "crankcheck/validation/campaign_scenes.h"
+#include "crankcheck/validation/task.h"
 
 namespace crankcheck::validation {
-
-/// One scene of the campaign as the report lists it: every value used (SI; gamma in degrees, speed in rpm).
-struct SceneRow {
-  std::string family, scene;
-  int cylinders = 1;
-  std::string cycle, acting;
-  double gamma_deg = 0, speed_rpm = 0, r = 0, l = 0, lambda = 0, m_o = 0, m_k = 0, z_k = 0, I_o = 0, m_s = 0, r_s = 0,
-         m_p = 0, r_p = 0, g = 0;
-  std::optional<double> I_w;  ///< empty: the scene has no flywheel
-};
-
-/// data/scenes.csv.
-extern const Schema<SceneRow> kScenesTable;
-
-/// One note of the campaign: what it left out, and why (only when there is something to say).
-struct NoteRow {
-  std::string note;
-};
-
-/// data/notes.csv.
-extern const Schema<NoteRow> kNotesTable;
 
 struct CampaignOptions {
   bool quick = false;               ///< fewer lambdas, angles and methods: a smoke test of the whole report
@@ -64,25 +45,6 @@ struct CampaignOptions {
   /// SatOutScope of them, and the report's notes name each one, its scene and its reason.
   std::vector<SatOut> sat_out;
 };
-
-/// One independent unit of work.
-struct Task {
-  std::string id;                   ///< e.g. "crosscheck inline4_four_gamma90 lambda=0.3"
-  /// Times itself (Google Benchmark): run on a core of its own, never beside another such task (runner.h runTasks:
-  /// on one worker while the others compute, when every worker has a core; else after the others).
-  bool measures_time = false;
-  std::function<TableSet()> run;
-  double cost = 0.0;                ///< estimated, relative (part.h's task_cost): buildCampaign lists the largest first
-};
-
-/// The built-in scenes: a single cylinder (gamma 90, 0, 180, -90), inline 2, 3, 4, 6, 8, 12 in both strokes,
-/// an inline four at gamma 0, 180, -90, a marine-size and a small-engine scale.
-std::vector<Mechanism> buildDefaultScenes();
-
-/// The example scenes, scenes/*.toml (the folder findScenesDir finds: install_paths.h), sorted by
-/// file name: the scenes of report part pin_load_polar in the default campaign. @throws SceneError if one
-/// does not load.
-std::vector<Mechanism> loadExampleScenes();
 
 /// The campaign: cross-checks of every family over lambda (its own and 0.1 .. 0.9), and the data of every report
 /// figure. With options.scenes the first scene is the base of the lambda sweeps and figures.

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
-#include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/task.h"
 #include "crankcheck/validation/report_part.h"
 
 namespace crankcheck::validation {
