@@ -41,7 +41,7 @@ Trajectory runBox2dFree(const Mechanism& m, const Box2dRunOptions& o) {
     run.time.push_back(static_cast<double>(i + 1) * o.dt);
     run.phi.push_back(crank->GetAngle());
     run.omega.push_back(omega);
-    run.omega_time.push_back(static_cast<double>(i) * o.dt);
+    run.omega_time.push_back(run.time.back() - o.dt);  // the step's start
   }
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - started;
   run.seconds_per_step = elapsed.count() / static_cast<double>(o.steps);
