@@ -31,8 +31,9 @@ Trajectory makeQuintic(int n) {
   return run;
 }
 
-// Degree 5 or less is reproduced: to the rounding of the weights' products, a few tens of ulps of the values (at most
-// about 8 here: phi up to 2.6, omega up to 3).
+// Degree 5 or less is reproduced: to the rounding of the six weights' products (five factors each) and of their sum,
+// amplified by the weights' sum of magnitudes (Lebesgue's constant, below about 30 on these near-even nodes): 256
+// ulps of the values' scale, 8 (phi up to 2.6, omega up to 3, taken at about 3 x), bound it.
 TEST(TrajectoryReaderTest, ReadsAQuinticExactlyBetweenItsSamples) {
   const Trajectory run = makeQuintic(40);
   const TrajectoryReader reader(run);
@@ -42,7 +43,8 @@ TEST(TrajectoryReaderTest, ReadsAQuinticExactlyBetweenItsSamples) {
   }
 }
 
-// phi(t) = t + t^2 / 10 reaches phase p at t = 5 (sqrt(1 + 0.4 p) - 1): TOMS 748 to about an ulp of t.
+// phi(t) = t + t^2 / 10 reaches phase p at t = 5 (sqrt(1 + 0.4 p) - 1): TOMS 748 to 52 bits, an ulp of t, and the
+// interpolated phi's rounding (a few ulps of phi, over a slope phi' >= 1): 16 ulps of the scale 3 (t, omega up to 3).
 TEST(TrajectoryReaderTest, FindsThePhasesTimeByTheQuadraticFormula) {
   Trajectory run;
   for (int i = 0; i <= 30; ++i) {
@@ -61,7 +63,10 @@ TEST(TrajectoryReaderTest, FindsThePhasesTimeByTheQuadraticFormula) {
   EXPECT_EQ(reader.findTimeAtPhase(1e3), run.time.back());
 }
 
-// omega half a step behind its sample: a speed linear in time, given at the steps' midpoints, reads as that line.
+// omega half a step behind its sample: a speed linear in time, given at the steps' midpoints, reads as that line. The
+// reader's midpoints, t - (t - t_prev) / 2, and the test's, (t + t_prev) / 2, differ by an ulp of t (below 1); the
+// line's slope 0.5 carries that into omega (about 3) with the six weights' rounding (their sum is 1, each below about
+// 3 here): 64 ulps of omega's scale, 3, bound both with room.
 TEST(TrajectoryReaderTest, HalfStepBehindReadsAtTheMidpoints) {
   Trajectory run;
   for (int i = 0; i <= 20; ++i) {

@@ -4,15 +4,13 @@
 #include <chrono>
 #include <type_traits>
 
+#include "crankcheck/validation/timing.h"
+
 namespace crankcheck::validation {
 
 namespace {
 
 std::atomic<bool> g_profiling{false};
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // An engine's model whose evaluations are counted and timed into the calling thread's counters.
 class CountedModel : public EngineModel {

@@ -10,6 +10,7 @@
 #include "crankcheck/analytic/crank_train.h"
 #include "crankcheck/analytic/torsion_domain.h"
 #include "crankcheck/scene/scene_writer.h"
+#include "crankcheck/validation/timing.h"
 #include "crankcheck/validation/variants.h"
 #include "crankcheck/validation/work_limit.h"
 
@@ -26,10 +27,6 @@ CrankTrainRunOptions makeTrainOptions(const Engine& engine) {
 }
 
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point begin) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-}
 
 // An engine's train at `m`, capped at `steps` steps: the seconds it took, and whether it finished within them.
 std::pair<double, bool> timeTrainRun(const Engine& engine, const Mechanism& m, long long steps) {

@@ -28,6 +28,7 @@
 #include "crankcheck/validation/extremum.h"
 #include "crankcheck/validation/part.h"
 #include "crankcheck/validation/report_format.h"
+#include "crankcheck/validation/timing.h"
 #include "crankcheck/validation/variants.h"
 #include "../torsion_train.h"
 #include "survey.h"
@@ -217,10 +218,6 @@ std::vector<Row>& rowsOf(TableSet& tables, const Schema<Row>& schema) {
   return tables.at(schema.name()).getRows(schema);
 }
 
-double seconds(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
-}
-
 std::vector<const Mechanism*> listTrainScenes(const std::vector<Mechanism>& scenes) {
   std::vector<const Mechanism*> out;
   for (const Mechanism& m : scenes)
@@ -287,11 +284,11 @@ TableSet calcSpeedTables(const Mechanism& scene, double rpm, analytic::ThrowLoad
   const analytic::HolzerOptions holzer_options = makeTrainHolzerOptions();
   auto start = std::chrono::steady_clock::now();
   const analytic::HolzerResponse holzer = analytic::calcHolzerResponse(m, holzer_options, load_orders);
-  const double holzer_seconds = seconds(start);
+  const double holzer_seconds = secondsSince(start);
   const analytic::SteadyStateOptions exact_options = makeTrainSteadyStateOptions();
   start = std::chrono::steady_clock::now();
   const analytic::ExactSteadyState exact = analytic::calcExactSteadyState(m, holzer, exact_options);
-  const double exact_seconds = seconds(start);
+  const double exact_seconds = secondsSince(start);
   const int n = static_cast<int>(exact.peak_to_peak.size());
   int most = 0, worst = 0;
   auto differenceAt = [&](int i) { return exact.peak_to_peak[i] / holzer.peak_to_peak[i] - 1.0; };
@@ -360,7 +357,7 @@ TableSet calcEngineTables(const Mechanism& m, const Engine& engine, bool quick, 
   options.samples = settings.samples;
   const auto start = std::chrono::steady_clock::now();
   const CrankTrainRun run = engine.simulate_crank_train(m, options);
-  const double run_seconds = seconds(start);
+  const double run_seconds = secondsSince(start);
   const analytic::ExactSteadyState& exact = analytic_state.get();
   const int n = static_cast<int>(run.twists.size());
   for (int i = 0; i < n; ++i) {

@@ -3,6 +3,7 @@
 /// Cost per call of several functions, measured side by side in one Google Benchmark run (in-process), so that
 /// the report's speed figures are ratios of one run on one machine.
 
+#include <chrono>
 #include <functional>
 #include <map>
 #include <string>
@@ -10,6 +11,11 @@
 #include <vector>
 
 namespace crankcheck::validation {
+
+/// [s] The wall time since `start` (a work limit's probe, a profile, a part's route costs).
+inline double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 /// Runs each function under Google Benchmark for at least `min_seconds` and returns nanoseconds per call by name.
 /// The functions must defeat the optimizer themselves (benchmark::DoNotOptimize on their result).
