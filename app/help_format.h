@@ -117,10 +117,11 @@ inline std::string describeEngines() {
   return describeEngines([](const Engine&) { return true; });
 }
 
-/// The stepped engines of the registry (validation/engines.h listSteppedEngines): "ode, ode-quickstep, bullet and box2d".
-inline std::string describeSteppedEngines() {
+/// The names of the engines offering `route` (validation/engines.h listEngines): for Route::kStepAtSpeed "ode,
+/// ode-quickstep, bullet and box2d".
+inline std::string joinEngineNames(Route route) {
   std::vector<std::string> names;
-  for (const SteppedEngine& e : validation::listSteppedEngines()) names.push_back(e.name);
+  for (const Engine& e : validation::listEngines(route)) names.push_back(e.name);
   return joinNames(names);
 }
 

@@ -24,7 +24,7 @@ using validation::shortNumber;
 
 void addSteppedOptions(CLI::App& command, SteppedOptions& options) {
   std::vector<std::string> engines = {"all"}, settings = {"all"};
-  for (const SteppedEngine& e : validation::listSteppedEngines()) {
+  for (const Engine& e : validation::listEngines(Route::kStepAtSpeed)) {
     engines.push_back(e.name);
     for (const std::string& s : e.settings)
       if (std::find(settings.begin(), settings.end(), s) == settings.end()) settings.push_back(s);
@@ -58,7 +58,7 @@ void addSteppedOptions(CLI::App& command, SteppedOptions& options) {
       ->check(CLI::IsMember({"table", "json"}))
       ->capture_default_str();
   std::string footer = "The stepped engines, each measured, never gated (docs/stepped-engines.md):\n";
-  for (const SteppedEngine& e : validation::listSteppedEngines()) {
+  for (const Engine& e : validation::listEngines(Route::kStepAtSpeed)) {
     footer += "- " + e.name + " (" + e.library + "): " + e.method + ". Instants: " + e.instants + ". Cannot build: " +
               e.cannot_build + ".\n";
     for (size_t i = 0; i < e.settings.size(); ++i)
@@ -85,7 +85,7 @@ std::string formatStep(double dt) {
 namespace {
 
 // --free: each engine's free run at each settings and step, as grade --free-run's engine rows.
-std::string runSteppedFree(const SteppedOptions& options, Mechanism m, const std::vector<const SteppedEngine*>& engines,
+std::string runSteppedFree(const SteppedOptions& options, Mechanism m, const std::vector<const Engine*>& engines,
                            const std::vector<std::string>& settings, std::vector<double> steps) {
   if (!m.flywheel_inertia) throw UsageError(options.scene_path + ": [flywheel].inertia: the free run (--free) needs it");
   if (!(m.machine.speed > 0.0))
@@ -94,8 +94,8 @@ std::string runSteppedFree(const SteppedOptions& options, Mechanism m, const std
   std::sort(steps.begin(), steps.end(), std::greater<double>());
   std::vector<validation::SteppedFreeRunSpec> specs;
   std::vector<validation::SteppedJob> jobs;
-  for (const SteppedEngine* e : engines) {
-    if (!e->run_free) continue;
+  for (const Engine* e : engines) {
+    if (!e->step_free) continue;
     for (const std::string& s : settings.empty() ? e->settings : settings)
       if (std::find(e->settings.begin(), e->settings.end(), s) != e->settings.end())
         for (double dt : steps) {
@@ -166,18 +166,18 @@ std::string runSteppedFree(const SteppedOptions& options, Mechanism m, const std
 
 std::string runStepped(const SteppedOptions& options) {
   const Mechanism m = loadScene(options.scene_path);
-  std::vector<const SteppedEngine*> engines;
-  for (const SteppedEngine& e : validation::listSteppedEngines())
+  std::vector<const Engine*> engines;
+  for (const Engine& e : validation::listEngines(Route::kStepAtSpeed))
     if (options.engine == "all" || e.name == options.engine) engines.push_back(&e);
   const std::vector<std::string> settings =
       options.settings == "all" ? std::vector<std::string>{} : std::vector<std::string>{options.settings};
   // Settings that none of the chosen engines has: nothing would run.
   if (!settings.empty() &&
-      std::none_of(engines.begin(), engines.end(), [&](const SteppedEngine* e) {
+      std::none_of(engines.begin(), engines.end(), [&](const Engine* e) {
         return std::find(e->settings.begin(), e->settings.end(), settings.front()) != e->settings.end();
       })) {
     std::string theirs;
-    for (const SteppedEngine* e : engines)
+    for (const Engine* e : engines)
       for (const std::string& s : e->settings) theirs += (theirs.empty() ? "" : ", ") + s;
     throw UsageError("--settings: " + options.settings + ": " +
                      (options.engine == "all" ? std::string("no stepped engine has it")

@@ -2,7 +2,7 @@
 /// @file
 /// `crankcheck stepped SCENE [--engine NAME|all] [--settings NAME|all] [--dt S,S,...] [--free [--revolutions N]]
 /// [--format table|json]`: the
-/// physics engines people ship (validation/engines.h listSteppedEngines), each driven at the scene's constant speed
+/// physics engines people ship (validation/engines.h listEngines(Route::kStepAtSpeed)), each driven at the scene's constant speed
 /// from the exact state and stepped by its own solver at a series of time steps and at each of its settings; every
 /// quantity it reports against the closed forms at the instant it belongs to, the observed orders, the cost per step;
 /// --free: each engine's free run judged by the time-stepped grade's measures (validation/engine_runs.h).

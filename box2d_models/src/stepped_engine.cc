@@ -91,8 +91,9 @@ Trajectory runFreeSteppedBox2d(const Mechanism& m, const SteppedFreeRunOptions& 
 
 }  // namespace
 
-std::vector<SteppedEngine> describeSteppedEngines() {
-  SteppedEngine e;
+std::vector<Engine> describeEngines() {
+  Engine e;
+  e.gated = false;  // measured, never gated
   e.name = kName;
   e.library = getBox2dVersion() + " (single precision)";
   e.method = "planar rigid bodies on revolute and prismatic joints, the crank on a speed motor; sequential impulses "
@@ -109,8 +110,8 @@ std::vector<SteppedEngine> describeSteppedEngines() {
   e.cannot_build = "[[balance_shaft]] (no geared coupling); the axial positions' shaking moment X, Y (planar); a step "
                    "turning the crank or a rod more than b2_maxRotation (pi/2) or moving a body more than "
                    "b2_maxTranslation (2 m); a body of zero mass or inertia";
-  e.run = runSteppedBox2d;
-  e.run_free = runFreeSteppedBox2d;
+  e.step_at_speed = runSteppedBox2d;
+  e.step_free = runFreeSteppedBox2d;
   return {e};
 }
 

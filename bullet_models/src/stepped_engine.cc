@@ -96,8 +96,9 @@ Trajectory runSteppedFree(const Mechanism& m, const SteppedFreeRunOptions& optio
 
 }  // namespace
 
-std::vector<SteppedEngine> describeSteppedEngines() {
-  SteppedEngine e;
+std::vector<Engine> describeEngines() {
+  Engine e;
+  e.gated = false;  // measured, never gated
   e.name = "bullet";
   e.library = describeLibrary();
   e.method = "btMultiBody (Featherstone, reduced coordinates) with the wrist pins closed by btMultiBodyPoint2Point and "
@@ -115,7 +116,7 @@ std::vector<SteppedEngine> describeSteppedEngines() {
   e.cannot_build = "[[balance_shaft]]; a zero [rod].mass, [piston].mass or crank mass; a rod with no inertia about its "
                    "centre of mass";
   const std::vector<std::string> names = e.settings;
-  e.run = [names](const Mechanism& m, const ConstantSpeedRunOptions& options) { return runStepped(m, options, names); };
+  e.step_at_speed = [names](const Mechanism& m, const ConstantSpeedRunOptions& options) { return runStepped(m, options, names); };
   // What Bullet's upstream reports say about the rods' and the crank's joint feedback, and what the measurement found
   // (tests/bullet/bullet_run_test.cc, JointFeedbackIsTheForcePlusTheFreePassAgain).
   const std::string feedback =
@@ -125,7 +126,7 @@ std::vector<SteppedEngine> describeSteppedEngines() {
       "first order in the step (tests/bullet: JointFeedbackIsTheForcePlusTheFreePassAgain), so the feedback itself does "
       "not converge";
   e.notes = {{"crank_pin_force", feedback}, {"bearing_force", feedback}};
-  e.run_free = [names](const Mechanism& m, const SteppedFreeRunOptions& options) { return runSteppedFree(m, options, names); };
+  e.step_free = [names](const Mechanism& m, const SteppedFreeRunOptions& options) { return runSteppedFree(m, options, names); };
   return {e};
 }
 

@@ -102,8 +102,9 @@ Trajectory runStepped(const std::string& engine, OdeSolver solver, const Mechani
   return out;
 }
 
-SteppedEngine describe(const std::string& name, OdeSolver solver, const std::string& method) {
-  SteppedEngine e;
+Engine describe(const std::string& name, OdeSolver solver, const std::string& method) {
+  Engine e;
+  e.gated = false;  // measured, never gated
   e.name = name;
   e.library = std::string("ODE ") + dODE_VERSION;
   e.method = method;
@@ -117,8 +118,8 @@ SteppedEngine describe(const std::string& name, OdeSolver solver, const std::str
   e.cannot_build =
       "[[balance_shaft]] (no geared coupling), a massless rod, piston or crank, a rod without inertia about its centre "
       "of mass, speed 0";
-  e.run = [name, solver](const Mechanism& m, const ConstantSpeedRunOptions& o) { return runStepped(name, solver, m, o); };
-  e.run_free = [name, solver](const Mechanism& m, const SteppedFreeRunOptions& o) {
+  e.step_at_speed = [name, solver](const Mechanism& m, const ConstantSpeedRunOptions& o) { return runStepped(name, solver, m, o); };
+  e.step_free = [name, solver](const Mechanism& m, const SteppedFreeRunOptions& o) {
     return runOdeFree(m, makeOptions(name, solver, o));
   };
   return e;
@@ -126,7 +127,7 @@ SteppedEngine describe(const std::string& name, OdeSolver solver, const std::str
 
 }  // namespace
 
-std::vector<SteppedEngine> describeSteppedEngines() {
+std::vector<Engine> describeEngines() {
   return {describe("ode", OdeSolver::kStep,
                    "ODE's dWorldStep: the direct solve of every constraint force, semi-implicit Euler; the crank held "
                    "at the scene's speed by its hinge's motor"),

@@ -1,4 +1,4 @@
-// The Box2D stepped engine's free run ("box2d" run_free, box2d_models/free_run.h) against the exact free run of
+// The Box2D stepped engine's free run ("box2d" step_free, box2d_models/free_run.h) against the exact free run of
 // crankcheck::analytic (analytic/motion.h: phi_dot(phi) from the energy integral, released at phi = 0 with the start's
 // speed; its time t(phi) = integral of dphi / phi_dot by Gauss-Legendre quadrature here, inverted by Newton): the
 // phase error and its order in dt, the instant of omega, and the refusal of a scene without flywheel.
@@ -28,8 +28,8 @@ using crankcheck::testing::loadSteppedExample;
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-const SteppedEngine& box2d() {
-  static const std::vector<SteppedEngine> engines = describeSteppedEngines();
+const Engine& box2d() {
+  static const std::vector<Engine> engines = describeEngines();
   return findStepped(engines, "box2d");
 }
 
@@ -41,7 +41,7 @@ Trajectory runFree(const Mechanism& m, double dt, double seconds, const std::str
   o.steps = static_cast<long>(std::ceil(seconds / dt)) + 1;
   o.settings = settings;
   o.start = testing::calcExactStartState(m);
-  return box2d().run_free(m, o);
+  return box2d().step_free(m, o);
 }
 
 /// [rad] phi_run - phi_exact at the run's sample nearest the exact run's time of `turns` revolutions.
@@ -134,7 +134,7 @@ TEST(Box2dFreeRunTest, LosesEnergyAtFirstOrder) {
 // 0.14 and 0.11; at 1e-5 s 0.41 and 0.45, where the float angle's rounding, 1e-6 rad a step, is 1e3 times the lag
 // term). Band at 1e-4 s: within 0.1 of 0, and read at the step's middle it would be 0.5 away.
 TEST(Box2dFreeRunTest, OmegaBelongsToTheStepsStart) {
-  EXPECT_EQ(testing::findOmegaStepFraction(box2d().run_free(
+  EXPECT_EQ(testing::findOmegaStepFraction(box2d().step_free(
                 loadSteppedExample("single_cylinder.toml", true),
                 {.dt = 1e-4, .steps = 8, .settings = "defaults",
                  .start = testing::calcExactStartState(loadSteppedExample("single_cylinder.toml", true))})),
@@ -160,21 +160,21 @@ TEST(Box2dFreeRunTest, RefusesASceneWithoutFlywheelAndDropsTheGas) {
   o.dt = 1e-4;
   o.steps = 100;
   o.start = testing::calcExactStartState(m);
-  const Trajectory with_gas = box2d().run_free(m, o);
+  const Trajectory with_gas = box2d().step_free(m, o);
   m.gas.reset();
-  const Trajectory without = box2d().run_free(m, o);
+  const Trajectory without = box2d().step_free(m, o);
   EXPECT_EQ(with_gas.phi, without.phi);
   EXPECT_EQ(with_gas.omega, without.omega);
   m.flywheel_inertia.reset();
   try {
-    box2d().run_free(m, o);
+    box2d().step_free(m, o);
     ADD_FAILURE() << "ran without flywheel";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("[flywheel].inertia"), std::string::npos) << e.what();
   }
   m.flywheel_inertia = 0.12;
   o.settings = "neutralised";
-  EXPECT_THROW(box2d().run_free(m, o), std::invalid_argument);
+  EXPECT_THROW(box2d().step_free(m, o), std::invalid_argument);
 }
 
 }  // namespace

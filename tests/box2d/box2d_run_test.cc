@@ -29,14 +29,14 @@ using crankcheck::testing::observedOrder;
 /// Box2D's single precision: float's epsilon (1.19e-7).
 constexpr double kFloatEps = std::numeric_limits<float>::epsilon();
 
-const SteppedEngine& box2d() {
-  static const std::vector<SteppedEngine> engines = describeSteppedEngines();
+const Engine& box2d() {
+  static const std::vector<Engine> engines = describeEngines();
   return findStepped(engines, "box2d");
 }
 
 std::string refusal(const Mechanism& m, const ConstantSpeedRunOptions& o) {
   try {
-    box2d().run(m, o);
+    box2d().step_at_speed(m, o);
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
@@ -56,7 +56,7 @@ struct InstantProbe {
     o.dt = dt;
     o.steps = settle + turn;
     o.start = testing::calcExactStartState(m);
-    run = box2d().run(m, o);
+    run = box2d().step_at_speed(m, o);
   }
   double errorAt(QuantityId quantity, double fraction) const {
     Trajectory copy = run;
@@ -66,7 +66,7 @@ struct InstantProbe {
 };
 
 TEST(Box2dSteppedTest, DescribesItself) {
-  const SteppedEngine& e = box2d();
+  const Engine& e = box2d();
   EXPECT_EQ(e.library.rfind("Box2D 2.4.", 0), 0u) << e.library;  // b2_version of Debian's 2.4.1
   ASSERT_EQ(e.settings, (std::vector<std::string>{"defaults", "tightened"}));
   EXPECT_EQ(e.settings_meaning.size(), e.settings.size());
@@ -150,7 +150,7 @@ TEST(Box2dSteppedTest, StartsFromTheExactStateAndTurnsAtTheScenesSpeed) {
     o.steps = 1;
     o.settings = "tightened";
     o.start = testing::calcExactStartState(m);
-    const Trajectory run = box2d().run(m, o);
+    const Trajectory run = box2d().step_at_speed(m, o);
     ASSERT_EQ(run.time.size(), 1u);
     ASSERT_EQ(run.values.size(), 1u);
     EXPECT_LE(run.loop_error.at(0), sc.acceleration * o.dt * o.dt);

@@ -1,4 +1,4 @@
-// The Bullet engine's free run (SteppedEngine::run_free): the crank released with its flywheel under gravity alone,
+// The Bullet engine's free run (Engine::step_free): the crank released with its flywheel under gravity alone,
 // against the exact free run of the rigid mechanism (crankcheck::analytic's calcFreeRunSpeed, phi_dot(phi) from the
 // conservation of energy; the engine never links it): its phase error falling with the step, the instant its speed
 // belongs to, what Bullet's defaults do to a free crank, and its refusals.
@@ -28,8 +28,8 @@ using crankcheck::testing::loadSteppedExample;
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-const SteppedEngine& getBullet() {
-  static const std::vector<SteppedEngine> engines = describeSteppedEngines();
+const Engine& getBullet() {
+  static const std::vector<Engine> engines = describeEngines();
   return findStepped(engines, "bullet");
 }
 
@@ -42,7 +42,7 @@ Trajectory runFree(const Mechanism& m, const std::string& settings, double dt, d
   o.steps = static_cast<long>(std::ceil(duration / dt)) + 2;
   o.settings = settings;
   o.start = testing::calcExactStartState(m);
-  return getBullet().run_free(m, o);
+  return getBullet().step_free(m, o);
 }
 
 /// The engine's phase error [rad] at the step nearest the exact run's `revolutions`-th turn: its phi there less the
@@ -114,7 +114,7 @@ TEST(BulletFreeRunTest, PhaseConvergesOnceTheDefaultsAreNeutralised) {
 // / 8 against |alpha| dt / 2: omega dt / 4, under 0.2 % at dt = 1e-5 s), and the engine's own error is under a
 // quarter of it.
 TEST(BulletFreeRunTest, SpeedBelongsToTheStepsMiddle) {
-  EXPECT_EQ(getBullet().run_free ? 1 : 0, 1);
+  EXPECT_EQ(getBullet().step_free ? 1 : 0, 1);
   const double dt = 1e-5;
   for (const char* scene : {"single_cylinder.toml", "inline4_four_stroke.toml"}) {
     const Mechanism m = loadSteppedExample(scene, /*drop_gas=*/true);
@@ -183,7 +183,7 @@ TEST(BulletFreeRunTest, RefusesWhatItCannotRunByName) {
       o.steps = 2;
       o.settings = settings;
       o.start = testing::calcExactStartState(m);
-      getBullet().run_free(m, o);
+      getBullet().step_free(m, o);
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }

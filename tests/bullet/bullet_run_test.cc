@@ -32,16 +32,16 @@ using crankcheck::testing::observedOrder;
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-const SteppedEngine& getBullet() {
-  static const std::vector<SteppedEngine> engines = describeSteppedEngines();
+const Engine& getBullet() {
+  static const std::vector<Engine> engines = describeEngines();
   return findStepped(engines, "bullet");
 }
 
 /// The engine with the instant of `quantity` moved to `fraction` (the engine's values unchanged): its error read there.
-SteppedEngine readAt(QuantityId quantity, double fraction) {
-  SteppedEngine e = getBullet();
-  const auto inner = e.run;
-  e.run = [inner, quantity, fraction](const Mechanism& m, const ConstantSpeedRunOptions& o) {
+Engine readAt(QuantityId quantity, double fraction) {
+  Engine e = getBullet();
+  const auto inner = e.step_at_speed;
+  e.step_at_speed = [inner, quantity, fraction](const Mechanism& m, const ConstantSpeedRunOptions& o) {
     Trajectory run = inner(m, o);
     for (QuantityInstant& r : run.reported)
       if (r.quantity == quantity) r.step_fraction = fraction;
@@ -92,7 +92,7 @@ TurnErrors measureTurn(const Mechanism& m, BulletRunOptions o) {
 }
 
 TEST(BulletSteppedTest, DescribesItselfWithTheLibrarysVersion) {
-  const SteppedEngine& e = getBullet();
+  const Engine& e = getBullet();
   EXPECT_EQ(e.library.rfind("Bullet 3.", 0), 0u) << e.library;  // btGetVersion(): Debian's 3.24
   EXPECT_NE(e.library.find("double precision"), std::string::npos);
   EXPECT_EQ(e.settings, (std::vector<std::string>{"defaults", "neutralised", "tightened"}));
@@ -104,7 +104,7 @@ TEST(BulletSteppedTest, DescribesItselfWithTheLibrarysVersion) {
 }
 
 TEST(BulletSteppedTest, RefusesWhatItCannotBuildByName) {
-  const SteppedEngine& engine = getBullet();
+  const Engine& engine = getBullet();
   const auto refusal = [&](const Mechanism& m, const std::string& settings) {
     ConstantSpeedRunOptions o;
     o.dt = 1e-4;
@@ -112,7 +112,7 @@ TEST(BulletSteppedTest, RefusesWhatItCannotBuildByName) {
     o.settings = settings;
     o.start = testing::calcExactStartState(m);
     try {
-      engine.run(m, o);
+      engine.step_at_speed(m, o);
     } catch (const std::invalid_argument& e) {
       return std::string(e.what());
     }
@@ -172,12 +172,12 @@ TEST(BulletSteppedTest, RefusesWhatItCannotBuildByName) {
 // Each sample carries the reported quantities and NaN in every other field of the catalogue.
 TEST(BulletSteppedTest, SamplesCarryOnlyTheReportedQuantities) {
   const Mechanism m = loadSteppedExample("inline4_four_stroke.toml");
-  const SteppedEngine& engine = getBullet();
+  const Engine& engine = getBullet();
   ConstantSpeedRunOptions o;
   o.dt = 1e-4;
   o.steps = 3;
   o.start = testing::calcExactStartState(m);
-  const Trajectory run = engine.run(m, o);
+  const Trajectory run = engine.step_at_speed(m, o);
   ASSERT_EQ(run.time.size(), 3u);
   ASSERT_EQ(run.values.size(), 3u);
   ASSERT_EQ(run.loop_error.size(), 3u);

@@ -1,4 +1,4 @@
-// ODE's free runs ("ode" and "ode-quickstep" through the registry's seam, SteppedEngine::run_free) against the exact
+// ODE's free runs ("ode" and "ode-quickstep" through the registry's seam, Engine::step_free) against the exact
 // free run of the rigid mechanism (analytic/motion.h: the speed at each crank angle from the energy, released at
 // phi = 0 with the scene's speed under gravity alone): the phase error falling with the step, the instant the crank's
 // speed belongs to, the refusal of a scene without flywheel. The test, not the engine, links the analytic library.
@@ -27,20 +27,20 @@ using testing::loadSteppedExample;
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
-const std::vector<SteppedEngine>& engines() {
-  static const std::vector<SteppedEngine> all = describeSteppedEngines();
+const std::vector<Engine>& engines() {
+  static const std::vector<Engine> all = describeEngines();
   return all;
 }
 
 using crankcheck::testing::ExactFreeRun;
 
-Trajectory runFree(const SteppedEngine& e, const Mechanism& m, const std::string& settings, double dt, long steps) {
+Trajectory runFree(const Engine& e, const Mechanism& m, const std::string& settings, double dt, long steps) {
   SteppedFreeRunOptions o;
   o.dt = dt;
   o.steps = steps;
   o.settings = settings;
   o.start = testing::calcExactStartState(m);
-  return e.run_free(m, o);
+  return e.step_free(m, o);
 }
 
 /// [rad] The largest |phi - phi_exact(t)| over the samples within the exact run's first `turns` turns.
@@ -84,7 +84,7 @@ double speedAtTurns(const Trajectory& run, int turns, double omega0) {
   return NAN;
 }
 
-std::string refusal(const SteppedEngine& e, const Mechanism& m, const std::string& settings) {
+std::string refusal(const Engine& e, const Mechanism& m, const std::string& settings) {
   try {
     runFree(e, m, settings, 1e-4, 1);
   } catch (const std::invalid_argument& error) {
@@ -95,9 +95,9 @@ std::string refusal(const SteppedEngine& e, const Mechanism& m, const std::strin
 
 TEST(OdeFreeRunTest, RefusesAMechanismWithoutFlywheelByName) {
   Mechanism m = loadSteppedExample("single_cylinder.toml");
-  for (const SteppedEngine& e : engines()) {
+  for (const Engine& e : engines()) {
     SCOPED_TRACE(e.name);
-    ASSERT_TRUE(e.run_free);
+    ASSERT_TRUE(e.step_free);
     const std::string unknown = refusal(e, m, "loose");
     EXPECT_NE(unknown.find("loose"), std::string::npos);
     Mechanism bare = m;
@@ -120,7 +120,7 @@ TEST(OdeFreeRunTest, RecordsEachStepsAngleAndTheSpeedThatCarriedIt) {
   const Mechanism m = loadSteppedExample("inline4_four_stroke.toml", true);
   const double dt = 1e-4;
   const long steps = stepsFor(m, dt, 1);
-  for (const SteppedEngine& e : engines())
+  for (const Engine& e : engines())
     for (const std::string& settings : e.settings) {
       SCOPED_TRACE(e.name + " " + settings);
       const Trajectory run = runFree(e, m, settings, dt, steps);
@@ -163,7 +163,7 @@ TEST(OdeFreeRunTest, PhaseErrorFallsAtSecondOrderAndTheRunLosesEnergy) {
     const double omega0 = m.machine.speed;
     const ExactFreeRun exact(m, omega0, 3);
     std::vector<std::vector<double>> phase_of_direct;
-    for (const SteppedEngine& e : engines()) {
+    for (const Engine& e : engines()) {
       std::vector<std::vector<double>> phase(e.settings.size()), loss(e.settings.size());
       for (size_t s = 0; s < e.settings.size(); ++s) {
         SCOPED_TRACE(std::string(scene) + " " + e.name + " " + e.settings[s]);
@@ -196,7 +196,7 @@ TEST(OdeFreeRunTest, PhaseErrorFallsAtSecondOrderAndTheRunLosesEnergy) {
 // middle angle and its end angle) within 3 % (measured 0.1-1.6 %), the start's equals the end's within 1 %, and the
 // middle's is below 3 % of the end's (measured 0.15-1.7 %).
 TEST(OdeFreeRunTest, TheSpeedBelongsToTheStepsMiddle) {
-  const SteppedEngine& direct = findStepped(engines(), "ode");
+  const Engine& direct = findStepped(engines(), "ode");
   for (const char* scene : {"single_cylinder.toml", "inline4_four_stroke.toml"}) {
     const Mechanism m = loadSteppedExample(scene, true);
     const ExactFreeRun exact(m, m.machine.speed, 3);

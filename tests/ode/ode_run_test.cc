@@ -1,5 +1,5 @@
 // ODE's stepped engines ("ode": dWorldStep, "ode-quickstep": dWorldQuickStep) against the closed forms through the
-// registry's seam (describeSteppedEngines, validation::measureSteppedRun): the loop held within ODE's own joint error,
+// registry's seam (describeEngines, validation::measureSteppedRun): the loop held within ODE's own joint error,
 // each quantity's error falling with the step at the order of ODE's scheme, the instant each belongs to, what the
 // default settings do to the crank train, the refusals. The test, not the engine, links the analytic library.
 #include <gtest/gtest.h>
@@ -29,8 +29,8 @@ using testing::loadSteppedExample;
 using testing::measureAtSteps;
 using testing::observedOrder;
 
-const std::vector<SteppedEngine>& engines() {
-  static const std::vector<SteppedEngine> all = describeSteppedEngines();
+const std::vector<Engine>& engines() {
+  static const std::vector<Engine> all = describeEngines();
   return all;
 }
 
@@ -44,9 +44,9 @@ std::vector<std::string> reportedNames() {
   return names;
 }
 
-std::string refusal(const SteppedEngine& engine, const Mechanism& m, const ConstantSpeedRunOptions& o) {
+std::string refusal(const Engine& engine, const Mechanism& m, const ConstantSpeedRunOptions& o) {
   try {
-    engine.run(m, o);
+    engine.step_at_speed(m, o);
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
@@ -57,7 +57,7 @@ TEST(OdeSteppedEngineTest, DescribesBothEnginesWithTheLibrarysVersion) {
   ASSERT_EQ(engines().size(), 2u);
   EXPECT_EQ(engines()[0].name, "ode");
   EXPECT_EQ(engines()[1].name, "ode-quickstep");
-  for (const SteppedEngine& e : engines()) {
+  for (const Engine& e : engines()) {
     SCOPED_TRACE(e.name);
     EXPECT_EQ(e.library, std::string("ODE ") + dODE_VERSION);  // ODE's own version header
     EXPECT_EQ(e.settings, (std::vector<std::string>{"defaults", "neutralised", "tightened"}));
@@ -75,7 +75,7 @@ TEST(OdeSteppedEngineTest, ReportsOnlyItsQuantitiesAtTheirInstants) {
   o.dt = 1e-4;
   o.steps = 2;
   o.start = testing::calcExactStartState(m);
-  const Trajectory run = findStepped(engines(), "ode").run(m, o);
+  const Trajectory run = findStepped(engines(), "ode").step_at_speed(m, o);
   ASSERT_EQ(run.time.size(), 2u);
   ASSERT_EQ(run.values.size(), 2u);
   ASSERT_EQ(run.loop_error.size(), 2u);
@@ -113,7 +113,7 @@ TEST(OdeSteppedEngineTest, RefusesWhatItCannotBuildByName) {
   o.dt = 1e-4;
   o.steps = 1;
   o.start = testing::calcExactStartState(base);
-  for (const SteppedEngine& e : engines()) {
+  for (const Engine& e : engines()) {
     SCOPED_TRACE(e.name);
     ConstantSpeedRunOptions unknown = o;
     unknown.settings = "loose";
@@ -180,18 +180,18 @@ TEST(OdeSteppedEngineTest, DefaultRotationUpdateSlowsTheCrank) {
   o.steps = 4;
   o.start = testing::calcExactStartState(m);
   const double h = m.machine.speed * o.dt;
-  for (const SteppedEngine& e : engines()) {
+  for (const Engine& e : engines()) {
     SCOPED_TRACE(e.name);
     // dWorldStep's motor holds omega within its constraint force mixing (the speed gives by CFM times the motor's
     // impulse: measured 6e-11 rad over the four steps): 1e-9 rad bounds it. QuickStep's motor row is solved by its
     // 20 iterations from a cold start: measured 3.6e-6 and 7.8e-6 rad off over the four steps, 2e-5 bounds it.
     const double motor = e.name == "ode" ? 1e-9 : 2e-5;
     o.settings = "defaults";
-    const Trajectory defaults = e.run(m, o);
+    const Trajectory defaults = e.step_at_speed(m, o);
     EXPECT_NEAR(defaults.phi.back(), 4.0 * 2.0 * std::atan(h / 2.0), motor);
     EXPECT_GT(4.0 * h - defaults.phi.back(), 0.5);  // half a radian behind after four steps
     o.settings = "neutralised";
-    EXPECT_NEAR(e.run(m, o).phi.back(), 4.0 * h, motor);
+    EXPECT_NEAR(e.step_at_speed(m, o).phi.back(), 4.0 * h, motor);
   }
 }
 
@@ -275,7 +275,7 @@ TEST(OdeSteppedEngineTest, EveryQuantityConvergesAtSecondOrder) {
                         Case{"inline4_four_stroke.toml", true}, Case{"v8_cross_plane.toml", false}}) {
     const Mechanism m = loadSteppedExample(c.scene, c.drop_gas);
     const validation::Scales sc = validation::calcScales(m);
-    for (const SteppedEngine& e : engines())
+    for (const Engine& e : engines())
       for (const std::string& settings : e.settings) {
         SCOPED_TRACE(std::string(c.scene) + (c.drop_gas ? " without gas " : " ") + e.name + " " + settings);
         const std::vector<validation::SteppedMeasure> ms = measureAtSteps(e, m, settings, kSteps);
@@ -300,7 +300,7 @@ TEST(OdeSteppedEngineTest, EveryQuantityConvergesAtSecondOrder) {
 // (an order of 0.5; bounds: below 5e-5, order below 1), while x_p and the loop converge at second order (above).
 TEST(OdeSteppedEngineTest, QuickStepForcesStallOnTheV8) {
   const Mechanism m = loadSteppedExample("v8_cross_plane.toml");
-  const SteppedEngine& quick = findStepped(engines(), "ode-quickstep");
+  const Engine& quick = findStepped(engines(), "ode-quickstep");
   const std::string pin = nameOf(QuantityId::kCrankPinForce);
   const std::vector<double> steps{1e-4, 1e-5};
   const std::vector<validation::SteppedMeasure> defaults = measureAtSteps(quick, m, "defaults", steps);
@@ -336,7 +336,7 @@ TEST(OdeSteppedEngineTest, EachQuantityBelongsToItsStatedInstant) {
     const long settle = std::max(validation::kSettlingSteps, turn);
     o.steps = settle + turn;
     o.start = testing::calcExactStartState(m);
-    const Trajectory run = findStepped(engines(), "ode").run(m, o);
+    const Trajectory run = findStepped(engines(), "ode").step_at_speed(m, o);
     const size_t first = static_cast<size_t>(settle);
     for (QuantityId q : {QuantityId::kDriveTorque, QuantityId::kBearingForce, QuantityId::kCrankPinForce,
                          QuantityId::kWristPinForce, QuantityId::kWallForce, QuantityId::kPistonAcceleration}) {

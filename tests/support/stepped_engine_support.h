@@ -33,15 +33,15 @@ inline StartState calcExactStartState(const Mechanism& m, double phi = 0.0) {
 }
 
 /// Where within its step a free run's omega belongs (0 its start, 1 its end), read off its first sample's omega_time
-/// (SteppedEngine::run_free: time[i] = (i + 1) dt).
+/// (Engine::step_free: time[i] = (i + 1) dt).
 inline double findOmegaStepFraction(const Trajectory& run) {
   const double dt = run.time.at(1) - run.time.at(0);
   return 1.0 - (run.time.at(0) - run.omega_time.at(0)) / dt;
 }
 
-/// The engine called `name` of `engines` (a folder's describeSteppedEngines()). Fails the test if there is none.
-inline const SteppedEngine& findStepped(const std::vector<SteppedEngine>& engines, const std::string& name) {
-  for (const SteppedEngine& e : engines)
+/// The engine called `name` of `engines` (a folder's describeEngines()). Fails the test if there is none.
+inline const Engine& findStepped(const std::vector<Engine>& engines, const std::string& name) {
+  for (const Engine& e : engines)
     if (e.name == name) return e;
   throw std::invalid_argument("no stepped engine " + name);
 }
@@ -54,7 +54,7 @@ inline const validation::SteppedError& findSteppedError(const validation::Steppe
 }
 
 /// measureSteppedRun at each of `steps` [s].
-inline std::vector<validation::SteppedMeasure> measureAtSteps(const SteppedEngine& engine, const Mechanism& m,
+inline std::vector<validation::SteppedMeasure> measureAtSteps(const Engine& engine, const Mechanism& m,
                                                               const std::string& settings, const std::vector<double>& steps) {
   std::vector<validation::SteppedMeasure> out;
   for (double dt : steps) out.push_back(validation::measureSteppedRun(engine, m, settings, dt));

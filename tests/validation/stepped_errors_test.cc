@@ -20,13 +20,13 @@ namespace {
 
 // A synthetic stepped engine: x_p and the drive torque read from the closed forms at phi_start + shift x step, stated
 // as belonging to the step's start; a loop error of loop_amplitude |sin phi_end|. Counts its calls' steps.
-SteppedEngine makeSyntheticEngine(double shift, double loop_amplitude, long* steps_asked) {
-  SteppedEngine e;
+Engine makeSyntheticEngine(double shift, double loop_amplitude, long* steps_asked) {
+  Engine e;
   e.name = "synthetic";
   e.library = "none";
   e.settings = {"defaults", "other"};
   e.settings_meaning = {"the only one", "the same"};
-  e.run = [shift, loop_amplitude, steps_asked](const Mechanism& m, const ConstantSpeedRunOptions& o) {
+  e.step_at_speed = [shift, loop_amplitude, steps_asked](const Mechanism& m, const ConstantSpeedRunOptions& o) {
     *steps_asked = o.steps;
     Trajectory run;
     run.reported = {{QuantityId::kPistonPosition, 0.0}, {QuantityId::kDriveTorque, 0.0}};

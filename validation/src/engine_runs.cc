@@ -138,10 +138,10 @@ std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0,
                                               const std::vector<SteppedFreeRunSpec>& specs,
                                               std::vector<std::string>* refusals) {
   checkFreeRunScene(m, omega0, revolutions, {});
-  std::vector<const SteppedEngine*> engines;
+  std::vector<const Engine*> engines;
   for (const SteppedFreeRunSpec& spec : specs) {
-    const SteppedEngine& e = findSteppedEngine(spec.engine);
-    if (!e.run_free) throw std::invalid_argument("free run: the stepped engine " + e.name + " has no free run");
+    const Engine& e = findEngine(spec.engine, Route::kStepFree);
+    if (!e.step_free) throw std::invalid_argument("free run: the stepped engine " + e.name + " has no free run");
     if (std::find(e.settings.begin(), e.settings.end(), spec.settings) == e.settings.end())
       throw std::invalid_argument("free run: " + e.name + " has no settings \"" + spec.settings + "\" (it has " +
                                   joinNames(e.settings) + ")");
@@ -165,7 +165,7 @@ std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0,
     options.start = start;
     Trajectory result;
     try {
-      result = engines[s]->run_free(m, options);
+      result = engines[s]->step_free(m, options);
     } catch (const std::exception& e) {  // a scene or step the engine refuses (Box2D's largest rotation a step)
       if (refusals) refusals->push_back(spec.engine + " (" + spec.settings + ", " + shortText(spec.dt) + " s): " + e.what());
       continue;
@@ -194,8 +194,8 @@ std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0,
 
 std::vector<SteppedFreeRunSpec> listDefaultSteppedFreeRuns(bool quick) {
   std::vector<SteppedFreeRunSpec> specs;
-  for (const SteppedEngine& e : listSteppedEngines()) {
-    if (!e.run_free) continue;
+  for (const Engine& e : listEngines(Route::kStepAtSpeed)) {
+    if (!e.step_free) continue;
     for (double dt : quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-4}) specs.push_back({e.name, "defaults", dt});
   }
   return specs;

@@ -1,6 +1,8 @@
 #include "crankcheck/validation/engines.h"
 
 #include <algorithm>
+#include <array>
+#include <iterator>
 #include <memory>
 #include <stdexcept>
 
@@ -18,33 +20,40 @@ namespace crankcheck::validation {
 
 namespace {
 
-// The engines registerExtraEngine added, and whether listEngines() has been built (after which none may be added).
+// The engines registerExtraEngine added, and whether the registry has been built (after which none may be added).
 std::vector<Engine>& extraEngines() {
   static std::vector<Engine> extra;
   return extra;
 }
 bool engine_registry_built = false;
 
-}  // namespace
+constexpr Route kRoutes[] = {Route::kEvaluate, Route::kSimulate, Route::kStepAtSpeed, Route::kStepFree, Route::kCrankTrain};
+constexpr size_t kRouteCount = std::size(kRoutes);
 
-void registerExtraEngine(Engine engine) {
-  if (engine_registry_built) throw std::logic_error("registerExtraEngine: the engine registry is already in use");
-  for (const Engine& e : extraEngines())
-    if (e.name == engine.name) throw std::logic_error("registerExtraEngine: engine \"" + engine.name + "\" twice");
-  extraEngines().push_back(std::move(engine));
+// One list per route, of `engines` (in their order) offering it.
+std::array<EngineList, kRouteCount> listByRoute(const std::vector<const Engine*>& engines) {
+  std::array<EngineList, kRouteCount> lists;
+  for (size_t r = 0; r < kRouteCount; ++r) {
+    std::vector<const Engine*> offering;
+    for (const Engine* e : engines)
+      if (offersRoute(*e, kRoutes[r])) offering.push_back(e);
+    lists[r] = EngineList(std::move(offering));
+  }
+  return lists;
 }
-
-namespace {
 
 // Every registered engine, built on first use.
 const std::vector<Engine>& listRegisteredEngines() {
   static const std::vector<Engine> engines = [] {
     engine_registry_built = true;
     std::vector<Engine> all;
-    // One line per engine folder. A fourth engine (e.g. dart_models/) adds its line here.
+    // One line per engine folder. A further engine (e.g. dart_models/) adds its line here.
     for (Engine& e : analytic::describeEngines()) all.push_back(std::move(e));
     for (Engine& e : simbody_models::describeEngines()) all.push_back(std::move(e));
     for (Engine& e : mujoco_models::describeEngines()) all.push_back(std::move(e));
+    for (Engine& e : ode_models::describeEngines()) all.push_back(std::move(e));
+    for (Engine& e : bullet_models::describeEngines()) all.push_back(std::move(e));
+    for (Engine& e : box2d_models::describeEngines()) all.push_back(std::move(e));
     for (const Engine& e : extraEngines()) {  // a test build's (registerExtraEngine)
       for (const Engine& known : all)
         if (known.name == e.name) throw std::logic_error("registerExtraEngine: engine \"" + e.name + "\" twice");
@@ -52,7 +61,8 @@ const std::vector<Engine>& listRegisteredEngines() {
     }
     // Every build counted while profiling is on (profile.h); the engines' own models otherwise.
     for (Engine& e : all) {
-      e.build = [build = std::move(e.build), name = e.name](const Mechanism& m) { return buildCounted(build, name, m); };
+      if (e.build)
+        e.build = [build = std::move(e.build), name = e.name](const Mechanism& m) { return buildCounted(build, name, m); };
       if (e.build_gravity)
         e.build_gravity = [build = std::move(e.build_gravity), name = e.name](const Mechanism& m) {
           return buildCounted(build, name, m);
@@ -63,13 +73,40 @@ const std::vector<Engine>& listRegisteredEngines() {
   return engines;
 }
 
-// The registered engines less those a live SatOutScope leaves out; null when none is alive. Set and cleared only by
+// The registry's lists by route.
+const std::array<EngineList, kRouteCount>& listRegisteredByRoute() {
+  static const std::array<EngineList, kRouteCount> lists = [] {
+    std::vector<const Engine*> all;
+    for (const Engine& e : listRegisteredEngines()) all.push_back(&e);
+    return listByRoute(all);
+  }();
+  return lists;
+}
+
+// The lists by route less the engines a live SatOutScope leaves out; null when none is alive. Set and cleared only by
 // SatOutScope, before and after the work whose threads read it.
-std::unique_ptr<const std::vector<Engine>> engines_in_play;
+std::unique_ptr<const std::array<EngineList, kRouteCount>> engines_in_play;
+
+size_t routeIndex(Route route) { return static_cast<size_t>(std::find(std::begin(kRoutes), std::end(kRoutes), route) - std::begin(kRoutes)); }
 
 }  // namespace
 
-const std::vector<Engine>& listEngines() { return engines_in_play ? *engines_in_play : listRegisteredEngines(); }
+void registerExtraEngine(Engine engine) {
+  if (engine_registry_built) throw std::logic_error("registerExtraEngine: the engine registry is already in use");
+  for (const Engine& e : extraEngines())
+    if (e.name == engine.name) throw std::logic_error("registerExtraEngine: engine \"" + engine.name + "\" twice");
+  extraEngines().push_back(std::move(engine));
+}
+
+size_t EngineList::indexOf(const Engine& engine) const {
+  for (size_t i = 0; i < engines_.size(); ++i)
+    if (engines_[i] == &engine) return i;
+  throw std::invalid_argument("engine \"" + engine.name + "\" is not in this list");
+}
+
+const EngineList& listEngines(Route route) {
+  return (engines_in_play ? *engines_in_play : listRegisteredByRoute())[routeIndex(route)];
+}
 
 SatOutScope::SatOutScope(const std::vector<SatOut>& sat_out) {
   if (engines_in_play) throw std::logic_error("SatOutScope: another one is alive");
@@ -77,28 +114,30 @@ SatOutScope::SatOutScope(const std::vector<SatOut>& sat_out) {
     if (std::none_of(listRegisteredEngines().begin(), listRegisteredEngines().end(),
                      [&](const Engine& e) { return e.name == s.engine; }))
       throw std::invalid_argument("no engine \"" + s.engine + "\"");
-  auto in_play = std::make_unique<std::vector<Engine>>();
+  std::vector<const Engine*> in_play;
   for (const Engine& e : listRegisteredEngines())
     if (std::none_of(sat_out.begin(), sat_out.end(), [&](const SatOut& s) { return s.engine == e.name; }))
-      in_play->push_back(e);
-  const bool closed_form = std::any_of(in_play->begin(), in_play->end(), [](const Engine& e) { return e.closed_form; });
-  const bool reference = std::any_of(in_play->begin(), in_play->end(), [](const Engine& e) { return e.gated && !e.closed_form; });
+      in_play.push_back(&e);
+  const bool closed_form = std::any_of(in_play.begin(), in_play.end(), [](const Engine* e) { return e->closed_form; });
+  const bool reference = std::any_of(in_play.begin(), in_play.end(), [](const Engine* e) { return e->gated && !e->closed_form; });
   if (!closed_form || !reference)
     throw std::invalid_argument("it leaves out " + std::string(closed_form ? "every reference engine" : "the closed forms"));
-  engines_in_play = std::move(in_play);
+  engines_in_play = std::make_unique<const std::array<EngineList, kRouteCount>>(listByRoute(in_play));
 }
 
 SatOutScope::~SatOutScope() { engines_in_play.reset(); }
 
-const Engine& findEngine(const std::string& name) {
-  for (const Engine& e : listEngines())
+const Engine& findEngine(const std::string& name, Route route) {
+  for (const Engine& e : listEngines(route))
     if (e.name == name) return e;
-  throw std::invalid_argument("no engine \"" + name + "\"; the engines are " + joinEngineNames(", "));
+  const bool stepped = route == Route::kStepAtSpeed || route == Route::kStepFree;
+  throw std::invalid_argument(std::string(stepped ? "no stepped engine \"" : "no engine \"") + name + "\"; the " +
+                              (stepped ? "stepped engines" : "engines") + " are " + joinEngineNames(", ", route));
 }
 
-std::string joinEngineNames(const std::string& separator) {
+std::string joinEngineNames(const std::string& separator, Route route) {
   std::string names;
-  for (const Engine& e : listEngines()) names += (names.empty() ? "" : separator) + e.name;
+  for (const Engine& e : listEngines(route)) names += (names.empty() ? "" : separator) + e.name;
   return names;
 }
 
@@ -179,48 +218,6 @@ const Engine& getClosedFormEngine() {
 std::unique_ptr<EngineModel> buildGravityModel(const Engine& engine, const Mechanism& m) {
   if (engine.build_gravity) return engine.build_gravity(m);
   return engine.build(withSpeed(m, 0.0));
-}
-
-namespace {
-std::vector<SteppedEngine>& extraSteppedEngines() {
-  static std::vector<SteppedEngine> extra;
-  return extra;
-}
-bool stepped_registry_built = false;
-}  // namespace
-
-void registerExtraSteppedEngine(SteppedEngine engine) {
-  if (stepped_registry_built) throw std::logic_error("registerExtraSteppedEngine: the stepped engines are already in use");
-  for (const SteppedEngine& e : extraSteppedEngines())
-    if (e.name == engine.name) throw std::logic_error("registerExtraSteppedEngine: engine \"" + engine.name + "\" twice");
-  extraSteppedEngines().push_back(std::move(engine));
-}
-
-const std::vector<SteppedEngine>& listSteppedEngines() {
-  static const std::vector<SteppedEngine> engines = [] {
-    stepped_registry_built = true;
-    std::vector<SteppedEngine> all;
-    // One line per stepped engine folder.
-    for (SteppedEngine& e : ode_models::describeSteppedEngines()) all.push_back(std::move(e));
-    for (SteppedEngine& e : bullet_models::describeSteppedEngines()) all.push_back(std::move(e));
-    for (SteppedEngine& e : box2d_models::describeSteppedEngines()) all.push_back(std::move(e));
-    for (SteppedEngine& e : extraSteppedEngines()) {  // a test's (registerExtraSteppedEngine)
-      for (const SteppedEngine& known : all)
-        if (known.name == e.name) throw std::logic_error("registerExtraSteppedEngine: engine \"" + e.name + "\" twice");
-      all.push_back(e);
-    }
-    return all;
-  }();
-  return engines;
-}
-
-const SteppedEngine& findSteppedEngine(const std::string& name) {
-  std::string names;
-  for (const SteppedEngine& e : listSteppedEngines()) {
-    if (e.name == name) return e;
-    names += (names.empty() ? "" : ", ") + e.name;
-  }
-  throw std::invalid_argument("no stepped engine \"" + name + "\"; the stepped engines are " + names);
 }
 
 }  // namespace crankcheck::validation

@@ -560,8 +560,8 @@ void checkRunGradeWork(const std::vector<RunCase>& cases, bool quick, double lim
     if (c.drive != RunDrive::kFree || !families.insert(c.family).second || reference > limit_seconds) continue;
     std::vector<SteppedJob> jobs;
     for (const SteppedFreeRunSpec& spec : listDefaultSteppedFreeRuns(quick))
-      for (const SteppedEngine& e : listSteppedEngines())
-        if (e.name == spec.engine && e.run_free)
+      for (const Engine& e : listEngines(Route::kStepAtSpeed))
+        if (e.name == spec.engine && e.step_free)
           jobs.push_back({&e, spec.settings, spec.dt, 1.1 * c.t_end / spec.dt});
     const SteppedWorkEstimate e =
         estimateSteppedWork(c.mechanism, jobs, std::max(limit_seconds - reference - stepped, 0.0),

@@ -84,7 +84,7 @@ std::vector<SteppedError> calcSteppedErrors(const Mechanism& m, const Trajectory
   return errors;
 }
 
-SteppedMeasure measureSteppedRun(const SteppedEngine& engine, const Mechanism& m, const std::string& settings, double dt) {
+SteppedMeasure measureSteppedRun(const Engine& engine, const Mechanism& m, const std::string& settings, double dt) {
   if (std::find(engine.settings.begin(), engine.settings.end(), settings) == engine.settings.end()) {
     std::string names;
     for (const std::string& s : engine.settings) names += (names.empty() ? "" : ", ") + s;
@@ -98,7 +98,7 @@ SteppedMeasure measureSteppedRun(const SteppedEngine& engine, const Mechanism& m
   const long settle = std::max(kSettlingSteps, turn);
   options.steps = settle + turn;
   options.start = calcStartState(m, getClosedFormEngine().build(m)->evaluate(0.0));
-  const Trajectory run = engine.run(m, options);
+  const Trajectory run = engine.step_at_speed(m, options);
   if (static_cast<long>(run.time.size()) != options.steps)
     throw std::runtime_error(engine.name + " returned " + std::to_string(run.time.size()) + " steps of " +
                              std::to_string(options.steps));

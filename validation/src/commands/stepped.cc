@@ -48,7 +48,7 @@ std::vector<double> getDefaultSteppedSteps() { return {1.0 / 240.0, 1e-3, 1e-4, 
 namespace {
 
 // The settings of `engine` the sweep runs: `asked` where it has them, else all of its own.
-std::vector<std::string> chooseSettings(const SteppedEngine& engine, const std::vector<std::string>& asked) {
+std::vector<std::string> chooseSettings(const Engine& engine, const std::vector<std::string>& asked) {
   if (asked.empty()) return engine.settings;
   std::vector<std::string> chosen;
   for (const std::string& s : asked)
@@ -58,10 +58,10 @@ std::vector<std::string> chooseSettings(const SteppedEngine& engine, const std::
 
 }  // namespace
 
-std::vector<SteppedJob> listSteppedJobs(const Mechanism& m, const std::vector<const SteppedEngine*>& engines,
+std::vector<SteppedJob> listSteppedJobs(const Mechanism& m, const std::vector<const Engine*>& engines,
                                         const std::vector<std::string>& settings, const std::vector<double>& steps) {
   std::vector<SteppedJob> jobs;
-  for (const SteppedEngine* engine : engines)
+  for (const Engine* engine : engines)
     for (const std::string& s : chooseSettings(*engine, settings))
       for (double dt : steps) {
         if (std::fabs(m.machine.speed) * dt > kMaxStepAngle) continue;  // refused before it runs (checkStepAngle)
@@ -93,13 +93,13 @@ SteppedWorkEstimate estimateSteppedWork(const Mechanism& m, const std::vector<St
   }
   // The cost of a step of each engine and settings, measured at the smallest step its jobs take (the dearest: an
   // iterative solver's work does not fall with the step).
-  std::map<std::pair<const SteppedEngine*, std::string>, double> smallest;
+  std::map<std::pair<const Engine*, std::string>, double> smallest;
   for (const SteppedJob& job : jobs) {
     auto [it, inserted] = smallest.try_emplace({job.engine, job.settings}, job.dt);
     if (!inserted) it->second = std::min(it->second, job.dt);
   }
   const StartState start = calcStartState(m, getClosedFormEngine().build(m)->evaluate(0.0));
-  std::map<std::pair<const SteppedEngine*, std::string>, double> cost;
+  std::map<std::pair<const Engine*, std::string>, double> cost;
   for (const auto& [key, dt] : smallest) {
     auto seconds = [&, engine = key.first, s = key.second](long n) {
       ConstantSpeedRunOptions probe;
@@ -108,7 +108,7 @@ SteppedWorkEstimate estimateSteppedWork(const Mechanism& m, const std::vector<St
       probe.settings = s;
       probe.start = start;
       const auto begin = std::chrono::steady_clock::now();
-      engine->run(m, probe);
+      engine->step_at_speed(m, probe);
       return std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
     };
     try {
@@ -143,7 +143,7 @@ void checkSteppedWork(const Mechanism& m, const std::vector<SteppedJob>& jobs, d
   checkWorkLimit(what, estimate.seconds, estimate.how, smaller, limit_seconds);
 }
 
-SteppedSweep calcSteppedSweep(const Mechanism& m, const std::string& scene, const std::vector<const SteppedEngine*>& engines,
+SteppedSweep calcSteppedSweep(const Mechanism& m, const std::string& scene, const std::vector<const Engine*>& engines,
                               const std::vector<std::string>& settings, std::vector<double> steps) {
   for (double dt : steps) calcStepsPerTurn(m, dt);  // a scene without speed, a step <= 0: before any work
   std::sort(steps.begin(), steps.end(), std::greater<double>());
@@ -161,7 +161,7 @@ SteppedSweep calcSteppedSweep(const Mechanism& m, const std::string& scene, cons
   }
   steps = std::move(sampled);
   if (steps.empty()) return sweep;
-  for (const SteppedEngine* engine : engines) {
+  for (const Engine* engine : engines) {
     for (const std::string& s : chooseSettings(*engine, settings)) {
       // A scene the engine cannot build is refused by a one-step run at the smallest step (the steps an engine
       // refuses, too long for its solver, are the large ones): one refusal row for the scene, not one per step.
@@ -171,7 +171,7 @@ SteppedSweep calcSteppedSweep(const Mechanism& m, const std::string& scene, cons
         one.steps = 1;
         one.settings = s;
         one.start = calcStartState(m, getClosedFormEngine().build(m)->evaluate(0.0));
-        engine->run(m, one);
+        engine->step_at_speed(m, one);
       } catch (const std::exception& e) {
         sweep.refusals.push_back({scene, engine->name, "", 0.0, e.what()});
         break;  // the same scene for every settings of this engine

@@ -104,7 +104,7 @@ Task buildEngineCostTask(const Mechanism& base, bool quick) {
 std::vector<LeagueRow> findSteppedLeague(const TableSet& tables) {
   std::vector<LeagueRow> out;
   if (!tables.count(kSteppedErrorsTable.name()) || !tables.count(kSteppedCostTable.name())) return out;
-  for (const SteppedEngine& e : listSteppedEngines()) {
+  for (const Engine& e : listEngines(Route::kStepAtSpeed)) {
     double finest = 0.0, worst = -1.0, ns = 0.0;
     for (const SteppedCostRow& c : getRows(tables, kSteppedCostTable))
       if (c.engine == e.name && c.settings == "defaults" && (finest == 0.0 || c.dt < finest)) {

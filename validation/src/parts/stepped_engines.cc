@@ -1,5 +1,5 @@
 // Report part `stepped_engines`: the physics engines people ship (ODE, Bullet, Box2D: validation/engines.h
-// listSteppedEngines), each driven at the scene's speed by its own time-stepping solver, measured at a series of steps
+// listEngines(Route::kStepAtSpeed)), each driven at the scene's speed by its own time-stepping solver, measured at a series of steps
 // and at each of its settings against the closed forms (validation/commands/stepped.h, the same computation as
 // `crankcheck stepped`); the figure of each engine's error against its step; sentences read from the data.
 #include <algorithm>
@@ -72,7 +72,7 @@ void deriveSteppedSummary(TableSet& tables) {
   }
   // Series in the registry's order of engines, each engine's settings in its own order.
   int n = 0;
-  for (const SteppedEngine& e : listSteppedEngines())
+  for (const Engine& e : listEngines(Route::kStepAtSpeed))
     for (const std::string& s : e.settings)
       if (series.count({e.name, s})) series[{e.name, s}] = ++n;
   for (auto& [key, v] : series)
@@ -189,7 +189,7 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
       std::string s = "Not converging between the two finest steps (order below 0.5 with the error still above 1e-6 "
                       "of the scale; the error at the finer step): ";
       bool first = true;
-      for (const SteppedEngine& e : listSteppedEngines())
+      for (const Engine& e : listEngines(Route::kStepAtSpeed))
         for (const std::string& settings : e.settings) {
           const auto it = stuck.find({e.name, settings});
           if (it == stuck.end()) continue;
@@ -201,7 +201,7 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
     }
   }
   // 3. What the defaults that change the physics do: each engine with a "neutralised" settings, at every step.
-  for (const SteppedEngine& e : listSteppedEngines()) {
+  for (const Engine& e : listEngines(Route::kStepAtSpeed)) {
     if (std::find(e.settings.begin(), e.settings.end(), "neutralised") == e.settings.end()) continue;
     std::string s;
     for (const SteppedSummaryRow& d : summary) {
@@ -224,7 +224,7 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
     for (const SteppedCostRow& r : getRows(tables, kSteppedCostTable))
       if (r.dt == finest && r.settings == "defaults") ns[r.engine] = r.ns_per_step;
     std::string s;
-    for (const SteppedEngine& e : listSteppedEngines())
+    for (const Engine& e : listEngines(Route::kStepAtSpeed))
       if (ns.count(e.name)) s += (s.empty() ? "" : ", ") + e.name + " " + shortNumber(ns[e.name], 3) + " ns";
     if (!s.empty()) part.paragraphs.push_back("Cost per step at its defaults (stepping and reads, one run): " + s + ".");
   }
@@ -232,7 +232,7 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
   {
     // Each engine at its defaults; where no run at the defaults could be judged (Bullet's speed cap), its next settings.
     std::string s;
-    for (const SteppedEngine& e : listSteppedEngines())
+    for (const Engine& e : listEngines(Route::kStepAtSpeed))
       for (const std::string& settings : e.settings) {
         bool any = false;
         for (const EngineRunRow& r : getRows(tables, getSteppedFreeRunsSchema()))
@@ -251,10 +251,10 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
                                 "the scene's speed; judged as grade --free-run judges a program's run; every settings in "
                                 "data/stepped_free_runs.csv; " + reproduce(scene, "--free") + "): " + s + ".");
   }
-  // 6. What the engines' documentation or upstream reports say, beside the measurement (SteppedEngine::notes): the
+  // 6. What the engines' documentation or upstream reports say, beside the measurement (Engine::notes): the
   // quantity's error at every step, at the settings that neutralise the defaults where the engine has them.
-  for (const SteppedEngine& e : listSteppedEngines())
-    for (const SteppedEngineNote& n : e.notes) {
+  for (const Engine& e : listEngines(Route::kStepAtSpeed))
+    for (const EngineNote& n : e.notes) {
       const bool neutral = std::find(e.settings.begin(), e.settings.end(), "neutralised") != e.settings.end();
       const std::string settings = neutral ? "neutralised" : "defaults";
       std::string measured;
@@ -266,7 +266,7 @@ ReportPart describeSteppedPart(const TableSet& tables, const std::string& headin
                                 n.note + " (" + reproduce(scene, "--engine " + e.name + " --settings " + settings) + ").");
     }
   // 7. The engines themselves: method, instants, what each cannot build, and the refusals of this campaign.
-  for (const SteppedEngine& e : listSteppedEngines())
+  for (const Engine& e : listEngines(Route::kStepAtSpeed))
     part.paragraphs.push_back(e.name + " (" + e.library + ", measured, never gated): " + e.method + ". Instants: " +
                               e.instants + ". Cannot build: " + e.cannot_build + ".");
   for (const std::string& line : formatRefusals(getRows(tables, kSteppedRefusalsTable))) part.paragraphs.push_back(line);
@@ -288,7 +288,7 @@ class SteppedEnginesPart final : public Part {
     std::vector<Task> out;
     const Mechanism* m = chooseScene(context);
     if (!m) return out;
-    for (const SteppedEngine& e : listSteppedEngines())
+    for (const Engine& e : listEngines(Route::kStepAtSpeed))
       out.push_back({"stepped " + e.name, true, [m = *m, engine = &e, quick = context.quick] {
                        const SteppedSweep sweep = calcSteppedSweep(m, m.name, {engine}, {}, chooseSteps(quick));
                        TableSet tables = kSteppedErrorsTable.tableSet(sweep.errors);
@@ -297,7 +297,7 @@ class SteppedEnginesPart final : public Part {
                        tables.merge(kSteppedRefusalsTable.tableSet(sweep.refusals));
                        // The free run (a scene with a flywheel): gravity alone, released at the scene's speed, each
                        // settings at 1e-3 and 1e-4 s (quick: 1e-4 s), judged as grade --free-run judges a program's.
-                       if (engine->run_free && m.flywheel_inertia) {
+                       if (engine->step_free && m.flywheel_inertia) {
                          Mechanism free = m;
                          free.gas.reset();
                          std::vector<SteppedFreeRunSpec> specs;
@@ -320,8 +320,8 @@ class SteppedEnginesPart final : public Part {
   void checkWork(const PartContext& context) const override {
     const Mechanism* m = chooseScene(context);
     if (!m) return;
-    std::vector<const SteppedEngine*> engines;
-    for (const SteppedEngine& e : listSteppedEngines()) engines.push_back(&e);
+    std::vector<const Engine*> engines;
+    for (const Engine& e : listEngines(Route::kStepAtSpeed)) engines.push_back(&e);
     std::vector<SteppedJob> jobs;
     try {
       jobs = listSteppedJobs(*m, engines, {}, chooseSteps(context.quick));
@@ -329,8 +329,8 @@ class SteppedEnginesPart final : public Part {
       throw UsageError("part " + key() + ": scene " + m->name + ": " + e.what());
     }
     if (m->flywheel_inertia)  // the free runs, kFreeRevolutions each (as tasks() makes them)
-      for (const SteppedEngine* e : engines)
-        if (e->run_free)
+      for (const Engine* e : engines)
+        if (e->step_free)
           for (const std::string& s : e->settings)
             for (double dt : context.quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-4})
               jobs.push_back({e, s, dt, 1.1 * kFreeRevolutions * 2.0 * M_PI / (std::fabs(m->machine.speed) * dt)});

@@ -201,7 +201,7 @@ TableSet calcEngineRun(const Mechanism& m, const Engine& engine, SharedResult<Ex
     if (m.gas)
       tables.at(kFitnessTable.name())
           .getRows(kFitnessTable)
-          .push_back({m.name, kNortonOrder + 1 + static_cast<int>(&engine - listEngines().data()), kNortonFlywheel, "delta",
+          .push_back({m.name, kNortonOrder + 1 + static_cast<int>(listEngines().indexOf(engine)), kNortonFlywheel, "delta",
                       engine.name, std::fabs(exact.norton_delta - result.delta) / result.delta,
                       "delta (" + engine.name + ")", result.delta, "-", std::nullopt, 1});
   } catch (const std::exception& e) {

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// ODE's two stepped engines for the registry (crankcheck/solver/stepped_run.h: SteppedEngine): "ode" (dWorldStep, the
+/// ODE's two stepped engines for the registry (crankcheck/solver/engine.h: Engine, its stepped routes): "ode" (dWorldStep, the
 /// direct solve of the constraint forces) and "ode-quickstep" (dWorldQuickStep, projected Gauss-Seidel), each run by
 /// runOdeAtConstantSpeed (constant_speed_run.h) and run free by runOdeFree (free_run.h: the same model without the
 /// motor, carrying the scene's flywheel; its speed belongs to the step's middle) at one of three named settings,
@@ -20,14 +20,14 @@
 
 #include <vector>
 
-#include "crankcheck/solver/stepped_run.h"
+#include "crankcheck/solver/engine.h"
 
 namespace crankcheck::ode_models {
 
 /// "ode" and "ode-quickstep", in that order. Their library reads ODE's version from its header (ode/version.h).
-/// Their run throws std::invalid_argument for an unknown settings name (naming it and the engine's settings) and for
-/// a scene of speed 0, and as runOdeAtConstantSpeed otherwise; their run_free for an unknown settings name, and as
+/// Their step_at_speed throws std::invalid_argument for an unknown settings name (naming it and the engine's settings) and for
+/// a scene of speed 0, and as runOdeAtConstantSpeed otherwise; their step_free for an unknown settings name, and as
 /// runOdeFree otherwise (a scene without [flywheel].inertia).
-std::vector<SteppedEngine> describeSteppedEngines();
+std::vector<Engine> describeEngines();
 
 }  // namespace crankcheck::ode_models

@@ -1,9 +1,12 @@
 #pragma once
 /// @file
-/// The one notion of an engine the harness has: a named way of computing the Evaluation of a Mechanism at a crank
-/// angle. Each engine folder (analytic/, simbody_models/, mujoco_models/) describes its engines with this plain
-/// interface; validation/src/engines.cc lists them (one registration line per folder), and the CLI, the gate, the
-/// campaign and the report loop over that list. Header only, no engine library behind it.
+/// The one notion of an engine (a solver) the harness has: a named way of computing the mechanism, with the routes it
+/// offers: evaluate the Evaluation at a crank angle (the gate), simulate the free run by its integrators, step the
+/// mechanism by fixed time steps held at speed or free (the physics engines people ship), run the elastic crank
+/// train. Each engine folder (analytic/, simbody_models/, mujoco_models/, ode_models/, bullet_models/, box2d_models/)
+/// describes its engines with this plain type; validation/src/engines.cc lists them in one registry (one
+/// registration line per folder), filtered by route, and the CLI, the gate, the campaign and the report loop over
+/// that list. Header only, no engine library behind it.
 
 #include <functional>
 #include <memory>
@@ -15,6 +18,8 @@
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/solver/free_run.h"
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/solver/step_options.h"
+#include "crankcheck/solver/trajectory.h"
 
 namespace crankcheck {
 
@@ -53,9 +58,31 @@ class EngineModel {
   }
 };
 
-/// An engine, or one way of evaluating with an engine ("mujoco" and "mujoco-soft" are two ways of one library).
+/// What an engine's documentation or its upstream issues say about a quantity it reports, where the measurement bears
+/// on it: the report (part stepped_engines) states the note beside the measured errors and the command that shows them.
+struct EngineNote {
+  std::string quantity;  ///< the catalogue's name (quantities.h)
+  std::string note;      ///< the claim, its source, and what the measurement found, in one sentence
+};
+
+/// What an engine can be asked to do: each route is one member of Engine, empty where the engine does not offer it.
+enum class Route {
+  kEvaluate,     ///< Engine::build: the Evaluation at a crank angle (the gate, eval, the campaign's comparisons)
+  kSimulate,     ///< Engine::simulate: the free run by the engine's integrators (`crankcheck motion`, the flywheel)
+  kStepAtSpeed,  ///< Engine::step_at_speed: fixed time steps held at the scene's speed (`crankcheck stepped`)
+  kStepFree,     ///< Engine::step_free: fixed time steps, the crank free with its flywheel (grade's engines table)
+  kCrankTrain,   ///< Engine::simulate_crank_train: the elastic crank train's steady state (`crankcheck torsion`)
+};
+
+struct Engine;
+/// True when `engine` offers `route` (its member for the route is set).
+bool offersRoute(const Engine& engine, Route route);
+
+/// An engine, or one way of computing with an engine's library ("mujoco" and "mujoco-soft" are two ways of one
+/// library; "ode" and "ode-quickstep" two solvers of one). Every member beyond the name, the library and the method
+/// belongs to a route (Route) and is empty (or false) where the engine does not offer it.
 struct Engine {
-  std::string name;         ///< as on the command line and in JSON: "analytic", "simbody", "mujoco", ...
+  std::string name;         ///< as on the command line and in JSON: "analytic", "simbody", "mujoco", "ode", ...
   std::string library;      ///< the library that computes, with its version: "Simbody 3.7.0", "MuJoCo 2.2.2"
   std::string method;       ///< one line: how it computes (for --help, the docs and the report)
   /// True when the engine claims exactness: the gate holds it to the agreement rule (64 eps x scale x conditioning)
@@ -64,7 +91,7 @@ struct Engine {
   /// True for the closed forms under test (the analytic engine): the engine every other engine is compared with. The
   /// others, gated, are its references (validation/engines.h listReferenceEngines).
   bool closed_form = false;
-  /// Builds the engine's model of m.
+  /// Route::kEvaluate: builds the engine's model of m.
   /// @throws std::invalid_argument if the engine cannot build m (the message names the scene key and the rule), or
   ///         cannot hold its promised accuracy on it (found by its own check on a probe before any value is given:
   ///         a residual of its equations; the message says what was measured);
@@ -72,7 +99,7 @@ struct Engine {
   using BuildFunction = std::function<std::unique_ptr<EngineModel>(const Mechanism& m)>;
   BuildFunction build;
 
-  /// The free run (`crankcheck motion`), for engines that simulate; empty `integrators`: none.
+  /// Route::kSimulate: the free run (`crankcheck motion`), for engines that simulate; empty `integrators`: none.
   std::vector<std::string> integrators;  ///< the names FreeRunSettings::integrator takes; the first is the default
   std::string accuracy_meaning;          ///< what FreeRunSettings::accuracy means for this engine, and its default
   double default_accuracy = 0.0;
@@ -105,6 +132,44 @@ struct Engine {
   /// True when simulate_crank_train claims the exact steady state (gated against the analytic engine's to the
   /// integrators' accuracy); false: a soft solver's run, its difference reported, never gated.
   bool crank_train_gated = false;
+
+  // Route::kStepAtSpeed and Route::kStepFree: the physics engines people ship, advancing the mechanism by fixed time
+  // steps with their own constraint solvers (crankcheck/solver/stepped_run.h), measured and never gated.
+
+  /// The settings the stepped routes run at, "defaults" first; settings_meaning[i] says what settings[i] changes, in
+  /// one line.
+  std::vector<std::string> settings, settings_meaning;
+  std::string instants;   ///< one line: where each reported quantity belongs within a step, and why
+  /// The layouts and keys the stepped routes cannot build, in one line (each refused by name with
+  /// std::invalid_argument).
+  std::string cannot_build;
+  /// Runs m at its constant speed (m.machine.speed != 0). The trajectory has one sample per step (time[i] = (i + 1)
+  /// dt; the start, options.start, is the caller's), the crank's angle and speed after the step as the engine's API
+  /// gives them (omega at its omega_time), and the quantities it reports (`reported`, `values`, `loop_error`).
+  /// @throws std::invalid_argument naming the scene key the engine cannot build, or a bad option;
+  ///         std::runtime_error if the library fails during the run.
+  std::function<Trajectory(const Mechanism& m, const ConstantSpeedRunOptions& options)> step_at_speed;
+  /// Runs m free (SteppedFreeRunOptions). m needs a flywheel (Mechanism::flywheel_inertia). The trajectory has one
+  /// sample per step (time[i] = (i + 1) dt: the release is not among them), phi and omega as the engine's own API
+  /// gives them after the step, and omega_time the instant each omega belongs to, found by measurement: the step's
+  /// middle for a semi-implicit Euler step whose velocity after the step carried the position from its start to its
+  /// end (ODE, Bullet); its start where a position pass moves the body again after the velocity solve (Box2D).
+  /// @throws std::invalid_argument for a mechanism without flywheel, a scene key the engine cannot build or a bad
+  ///         option; std::runtime_error if the library fails during the run.
+  std::function<Trajectory(const Mechanism& m, const SteppedFreeRunOptions& options)> step_free;
+  /// Notes on quantities whose measurement confirms or contradicts the engine's documentation or upstream reports.
+  std::vector<EngineNote> notes;
 };
+
+inline bool offersRoute(const Engine& engine, Route route) {
+  switch (route) {
+    case Route::kEvaluate: return static_cast<bool>(engine.build);
+    case Route::kSimulate: return static_cast<bool>(engine.simulate);
+    case Route::kStepAtSpeed: return static_cast<bool>(engine.step_at_speed);
+    case Route::kStepFree: return static_cast<bool>(engine.step_free);
+    case Route::kCrankTrain: return static_cast<bool>(engine.simulate_crank_train);
+  }
+  return false;
+}
 
 }  // namespace crankcheck

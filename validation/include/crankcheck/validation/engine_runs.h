@@ -92,14 +92,14 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
 /// With load.gas: only the engines that take the gas and a load (Engine::simulates_loads).
 std::vector<EngineRunSpec> listDefaultEngineRuns(bool quick, const RunLoad& load = {});
 
-/// One stepped engine's free run to make (validation/engines.h listSteppedEngines, SteppedEngine::run_free): the
+/// One stepped engine's free run to make (validation/engines.h listEngines(Route::kStepAtSpeed), Engine::step_free): the
 /// engine, one of its settings, the time step [s].
 struct SteppedFreeRunSpec {
   std::string engine, settings;
   double dt = 0.0;
 };
 
-/// A stepped engine's free run (SteppedEngine::run_free: one sample per step, omega at its omega_time) with the
+/// A stepped engine's free run (Engine::step_free: one sample per step, omega at its omega_time) with the
 /// release (t = 0, phi0, omega0) first: the release is the run's first state, so what the engine does to it in its
 /// first step is measured. Where omega belongs to its step's start or before it (omega_time.front() <= 0: Box2D), the
 /// first step's omega is the engine's reading of the release and stands there in its place.
@@ -109,7 +109,7 @@ Trajectory withRelease(const Trajectory& run, double phi0, double omega0);
 /// Runs each spec free on m (under gravity alone, released at phi = 0 with omega0 from the exact state) for
 /// `revolutions` revolutions of the exact run and a tenth more, and measures it as calcEngineRuns does; in each row
 /// `integrator` is the settings' name and `accuracy` the step [s]. Every spec is checked before the first run.
-/// A run the engine refuses (a scene it cannot build, a step too long for it: SteppedEngine::run_free throws), or one
+/// A run the engine refuses (a scene it cannot build, a step too long for it: Engine::step_free throws), or one
 /// the measures cannot judge (it stops turning or falls short of a revolution: a speed cap, damping), has no row; its
 /// one line goes to `refusals` when given.
 /// @throws std::invalid_argument as calcEngineRuns (no [gas], a flywheel), or for a stepped engine, settings or step

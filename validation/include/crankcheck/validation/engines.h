@@ -1,27 +1,70 @@
 #pragma once
 /// @file
-/// Every engine the harness knows, in one list (validation/src/engines.cc): the CLI's --engine, the gate, the
-/// campaign and the report loop over it. An engine is an Engine (crankcheck/solver/engine.h) described by its own
-/// folder; adding one is that folder plus one registration line in engines.cc (docs/engines.md).
+/// Every engine the harness knows, in one registry (validation/src/engines.cc), filtered by the route asked
+/// (crankcheck::Route): the CLI's --engine, the gate, the campaign and the report loop over it. An engine is an Engine
+/// (crankcheck/solver/engine.h) described by its own folder; adding one is that folder plus one registration line in
+/// engines.cc (docs/contributing.md).
 
+#include <cstddef>
+#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "crankcheck/solver/engine.h"
-#include "crankcheck/solver/stepped_run.h"
 
 namespace crankcheck::validation {
 
-/// analytic, simbody, mujoco, mujoco-soft, mujoco-soft-stiff (the order of the report's tables), less the engines a
-/// live SatOutScope leaves out.
-const std::vector<Engine>& listEngines();
+/// Engines of the registry, in its order: iterated, indexed and sized as a std::vector<Engine>, each element a
+/// reference to the registry's engine (which lives as long as the program).
+class EngineList {
+ public:
+  class const_iterator {
+   public:
+    using iterator_category = std::forward_iterator_tag;
+    using value_type = Engine;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const Engine*;
+    using reference = const Engine&;
+    const_iterator() = default;
+    explicit const_iterator(std::vector<const Engine*>::const_iterator at) : at_(at) {}
+    reference operator*() const { return **at_; }
+    pointer operator->() const { return *at_; }
+    const_iterator& operator++() { ++at_; return *this; }
+    const_iterator operator++(int) { const_iterator before = *this; ++at_; return before; }
+    bool operator==(const const_iterator& other) const { return at_ == other.at_; }
+    bool operator!=(const const_iterator& other) const { return at_ != other.at_; }
+   private:
+    std::vector<const Engine*>::const_iterator at_{};
+  };
+  EngineList() = default;
+  explicit EngineList(std::vector<const Engine*> engines) : engines_(std::move(engines)) {}
+  const_iterator begin() const { return const_iterator(engines_.begin()); }
+  const_iterator end() const { return const_iterator(engines_.end()); }
+  size_t size() const { return engines_.size(); }
+  bool empty() const { return engines_.empty(); }
+  const Engine& operator[](size_t i) const { return *engines_[i]; }
+  /// @throws std::out_of_range past the end.
+  const Engine& at(size_t i) const { return *engines_.at(i); }
+  const Engine& front() const { return *engines_.front(); }
+  /// The place of `engine` in the list. @throws std::invalid_argument if it is not in it.
+  size_t indexOf(const Engine& engine) const;
 
-/// The engine called `name`. @throws std::invalid_argument naming the known engines if there is none.
-const Engine& findEngine(const std::string& name);
+ private:
+  std::vector<const Engine*> engines_;
+};
 
-/// The names of listEngines(), joined by `separator`.
-std::string joinEngineNames(const std::string& separator);
+/// The engines offering `route`, in the registry's order, less the engines a live SatOutScope leaves out. For
+/// Route::kEvaluate: analytic, simbody, mujoco, mujoco-soft, mujoco-soft-stiff (the order of the report's tables);
+/// for the stepped routes: ode, ode-quickstep, bullet, box2d.
+const EngineList& listEngines(Route route = Route::kEvaluate);
+
+/// The engine called `name` among those offering `route`. @throws std::invalid_argument naming those engines if there
+/// is none ("no engine ..." for Route::kEvaluate, "no stepped engine ..." for the stepped routes).
+const Engine& findEngine(const std::string& name, Route route = Route::kEvaluate);
+
+/// The names of listEngines(route), joined by `separator`.
+std::string joinEngineNames(const std::string& separator, Route route = Route::kEvaluate);
 
 /// An engine that sits out of a piece of work on a scene: its build refuses the scene (a rule of its own, or an
 /// accuracy it cannot hold there: Engine::build), and the engine's reason. The other engines answer without it.
@@ -84,21 +127,10 @@ std::string getReferenceName();
 /// MuJoCo 2.2.2" (Engine::library), for a report's header.
 std::string joinEngineLibraries();
 
-/// Registers one more engine after the engine folders' (a test build shows with it that every engine-comparing part
-/// and the verdict take a new engine with no other change: tests/validation/extra_engine_test.cc). Call it before the
-/// first listEngines(). @throws std::logic_error once the registry is in use, or for a name it has already.
+/// Registers one more engine after the engine folders', with whatever routes it offers (a test build shows with it
+/// that every engine-comparing part and the verdict take a new engine with no other change:
+/// tests/validation/extra_engine_test.cc; a test's synthetic stepped engine). Call it before the first listEngines().
+/// @throws std::logic_error once the registry is in use, or for a name it has already.
 void registerExtraEngine(Engine engine);
-
-/// The stepped engines (crankcheck/solver/stepped_run.h): the physics engines people ship, driven at the scene's speed
-/// by their own time-stepping solvers and measured at a series of steps (validation/stepped_errors.h), never gated:
-/// ode, ode-quickstep, bullet, box2d. One registration line per engine folder in engines.cc, like listEngines().
-const std::vector<SteppedEngine>& listSteppedEngines();
-
-/// The stepped engine called `name`. @throws std::invalid_argument naming the stepped engines if there is none.
-const SteppedEngine& findSteppedEngine(const std::string& name);
-
-/// Registers one more stepped engine after the engine folders' (a test's synthetic engine). Call it before the first
-/// listSteppedEngines(). @throws std::logic_error once that list is in use, or for a name it has already.
-void registerExtraSteppedEngine(SteppedEngine engine);
 
 }  // namespace crankcheck::validation

@@ -3,12 +3,13 @@
 /// A stepped engine's run (crankcheck/solver/stepped_run.h) measured against the closed forms: every quantity it reports
 /// at the instant it belongs to, over one turn after the start-up transient, relative to the quantity's scale; the
 /// observed order of convergence between two steps. The engines are listed by validation/engines.h
-/// listSteppedEngines; `crankcheck stepped` and the report's part `stepped_engines` print these.
+/// listEngines(Route::kStepAtSpeed); `crankcheck stepped` and the report's part `stepped_engines` print these.
 
 #include <string>
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/solver/engine.h"
 #include "crankcheck/solver/stepped_run.h"
 
 namespace crankcheck::validation {
@@ -45,7 +46,7 @@ long calcStepsPerTurn(const Mechanism& m, double dt);
 /// @throws std::invalid_argument naming the step, its angle and the largest step that is measured, otherwise
 void checkStepAngle(const Mechanism& m, double dt);
 
-/// The errors of `run` (a stepped engine's run of m held at its speed: SteppedEngine::run), its steps from `first` on
+/// The errors of `run` (a stepped engine's run of m held at its speed: Engine::run), its steps from `first` on
 /// (first >= 1: each step from sample i - 1 to sample i), against the closed forms (the analytic engine) at each
 /// quantity's instant. Components the mechanism does not define (isComponentDefined) are skipped.
 /// @throws std::invalid_argument if the run reports a quantity m does not define, if its values and loop errors are
@@ -54,8 +55,8 @@ std::vector<SteppedError> calcSteppedErrors(const Mechanism& m, const Trajectory
 
 /// Runs `engine` on m at `settings` and step dt from the exact state at phi = 0 (the analytic engine's, calcStartState):
 /// settling steps (above), then one turn measured.
-/// @throws as SteppedEngine::run; std::invalid_argument for settings the engine does not have (naming its settings).
-SteppedMeasure measureSteppedRun(const SteppedEngine& engine, const Mechanism& m, const std::string& settings, double dt);
+/// @throws as Engine::run; std::invalid_argument for settings the engine does not have (naming its settings).
+SteppedMeasure measureSteppedRun(const Engine& engine, const Mechanism& m, const std::string& settings, double dt);
 
 /// The observed order of convergence from the errors e1 at step dt1 and e2 at dt2: log(e1 / e2) / log(dt1 / dt2).
 /// NaN when either error is not positive or the steps are equal.

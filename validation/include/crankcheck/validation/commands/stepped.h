@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The computation of `crankcheck stepped` and of the report's part `stepped_engines`: each stepped engine
-/// (validation/engines.h listSteppedEngines: the physics engines people ship) on one scene, at each of its settings
+/// (validation/engines.h listEngines(Route::kStepAtSpeed): the physics engines people ship) on one scene, at each of its settings
 /// and a series of time steps, every quantity it reports against the closed forms at the instant it belongs to
 /// (stepped_errors.h), the order observed between neighbouring steps and the cost per step. Typed rows, declared once.
 
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "crankcheck/scene/mechanism.h"
+#include "crankcheck/solver/engine.h"
 #include "crankcheck/solver/stepped_run.h"
 #include "crankcheck/validation/table.h"
 
@@ -70,7 +71,7 @@ inline constexpr double kMaxSteppedSteps = 2e6;
 
 /// One engine's runs at one settings and step, as the work before it starts counts them.
 struct SteppedJob {
-  const SteppedEngine* engine = nullptr;
+  const Engine* engine = nullptr;
   std::string settings;
   double dt = 0.0;     ///< [s]
   double steps = 0.0;  ///< the steps the runs take in all (settling included)
@@ -79,7 +80,7 @@ struct SteppedJob {
 /// The driven sweep's jobs (calcSteppedSweep's runs): each engine of `engines` at each of `settings` it has (empty:
 /// its every settings) and each of `steps`, its steps max(kSettlingSteps, a turn) + a turn.
 /// @throws std::invalid_argument as calcStepsPerTurn.
-std::vector<SteppedJob> listSteppedJobs(const Mechanism& m, const std::vector<const SteppedEngine*>& engines,
+std::vector<SteppedJob> listSteppedJobs(const Mechanism& m, const std::vector<const Engine*>& engines,
                                         const std::vector<std::string>& settings, const std::vector<double>& steps);
 
 /// The steps of the first probe that measures the cost of an engine's step on a scene (checkSteppedWork): a run of
@@ -117,7 +118,7 @@ void checkSteppedWork(const Mechanism& m, const std::vector<SteppedJob>& jobs, d
 /// not have is skipped for it) and each of `steps` (sorted here from the largest) on m, named `scene` in the rows.
 /// A scene an engine cannot build, or a step it refuses (std::invalid_argument, std::runtime_error), is a refusal row.
 /// @throws std::invalid_argument if m has no speed or a step is <= 0.
-SteppedSweep calcSteppedSweep(const Mechanism& m, const std::string& scene, const std::vector<const SteppedEngine*>& engines,
+SteppedSweep calcSteppedSweep(const Mechanism& m, const std::string& scene, const std::vector<const Engine*>& engines,
                               const std::vector<std::string>& settings, std::vector<double> steps);
 
 }  // namespace crankcheck::validation
