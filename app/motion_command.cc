@@ -1,5 +1,6 @@
 #include "motion_command.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 
@@ -32,6 +33,20 @@ void addMotionOptions(CLI::App& command, MotionOptions& options) {
                      "MuJoCo's fixed time step as a fraction of one revolution at the release speed")
       ->check(FiniteRange(1e-6, 1e-1))
       ->capture_default_str();
+  command.add_option("--stepped-step", options.stepped_step,
+                     "The fixed time step of the engines that step free (" + joinEngineNames(Route::kStepFree) +
+                         ") as a fraction of one revolution at the release speed")
+      ->check(FiniteRange(1e-5, 1e-1))
+      ->capture_default_str();
+  std::vector<std::string> settings;
+  for (const Engine& e : validation::listEngines(Route::kStepFree))
+    for (const std::string& s : e.settings)
+      if (std::find(settings.begin(), settings.end(), s) == settings.end()) settings.push_back(s);
+  command.add_option("--stepped-settings", options.stepped_settings,
+                     "The settings of the engines that step free, for each that has settings of that name (the "
+                     "others run at their defaults; crankcheck stepped --help says what each changes)")
+      ->check(CLI::IsMember(settings))
+      ->capture_default_str();
 }
 
 
@@ -41,6 +56,7 @@ std::string runMotion(const MotionOptions& options) {
   validation::FreeRunChoices choices = validation::getDefaultFreeRunSettings();
   validation::chooseIntegrator(choices, options.integrator, options.accuracy);
   validation::chooseIntegrator(choices, options.mujoco_integrator, options.mujoco_step);
+  validation::chooseSteppedRun(choices, options.stepped_settings, options.stepped_step);
   std::vector<validation::MotionRun> results;
   std::vector<validation::SatOut> sat_out;  // an engine that cannot build the scene sits out, named with its reason
   try {
@@ -60,20 +76,29 @@ std::string runMotion(const MotionOptions& options) {
   // Within 100 columns: the scene's path and the settings on lines of their own.
   std::snprintf(buffer, sizeof buffer,
                 "released at phi = 0 with %.6g rpm (Simbody: %s, accuracy %.0e; MuJoCo: %s, step %.0e "
-                "of a revolution)\n%-17s %15s %16s %12s %12s %12s %10s\n",
+                "of a revolution; stepped engines: %s, step %.0e of a revolution)\n%-17s %15s %16s %12s %12s "
+                "%12s %10s\n",
                 m.speed_rpm, options.integrator.c_str(), options.accuracy,
-                options.mujoco_integrator.c_str(), options.mujoco_step, "engine", "delta_gravity", "delta_no_gravity",
+                options.mujoco_integrator.c_str(), options.mujoco_step, options.stepped_settings.c_str(), options.stepped_step,
+                "engine", "delta_gravity", "delta_no_gravity",
                 "omega_min", "omega_max", "omega_mean", "drift");
   std::string out = "free run of " + showPath(options.scene_path) + "\n" + buffer;
+  std::string not_measured;
   for (const validation::MotionRun& r : results) {
+    if (!r.not_measured.empty()) {
+      not_measured += escapeText(r.engine) + " not measured: " + escapeText(formatOneLine(r.not_measured)) + "\n";
+      continue;
+    }
     char drift[32] = "-";
     if (!r.integrator.empty()) std::snprintf(drift, sizeof drift, "%.3e", r.energy_drift);
     std::snprintf(buffer, sizeof buffer, "%-17s %15.8e %16.8e %12.9g %12.9g %12.9g %10s\n", r.engine.c_str(),
                   r.delta_gravity, r.delta_no_gravity, r.omega_min, r.omega_max, r.omega_mean, drift);
     out += buffer;
   }
-  return wrapText(out, kHelpWidth) + wrapText(formatSatOut(sat_out), kHelpWidth) +
-         "(omega [rad/s]; drift: the energy's, max |E(t) - E(0)| / E(0) per revolution, gravity on)\n" +
+  return wrapText(out, kHelpWidth) + wrapText(not_measured, kHelpWidth) + wrapText(formatSatOut(sat_out), kHelpWidth) +
+         wrapText("(omega [rad/s]; drift: the energy's, max |E(t) - E(0)| / E(0) per revolution, gravity on; an "
+                  "engine that steps: the closed forms' energy at its phi and omega)\n",
+                  kHelpWidth) +
          describeRigidShaft(m);
 }
 

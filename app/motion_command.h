@@ -1,12 +1,15 @@
 #pragma once
 /// @file
 /// `crankcheck motion SCENE [--format table|json] [--integrator ...] [--accuracy A] [--mujoco-integrator ...]
-/// [--mujoco-step S]`: the free run under gravity
-/// (released at phi = 0 with the scene's speed, no drive, no load), by the analytic energy integral and by every engine
-/// that simulates (Simbody; MuJoCo's soft solver at its default and stiffest settings).
+/// [--mujoco-step S] [--stepped-step S] [--stepped-settings NAME]`: the free run under gravity
+/// (released at phi = 0 with the scene's speed, no drive, no load), by the analytic energy integral, by every engine
+/// that simulates (Simbody; MuJoCo's soft solver at its default and stiffest settings) and by every engine that steps
+/// free (ODE, Bullet, Box2D at their defaults or the settings named).
 
 #include <CLI/CLI.hpp>
 #include <string>
+
+#include "crankcheck/validation/commands/motion.h"
 
 namespace crankcheck::app {
 
@@ -17,6 +20,9 @@ struct MotionOptions {
   double accuracy = 1e-10;
   std::string mujoco_integrator = "RK4";
   double mujoco_step = 1e-3;  ///< MuJoCo's fixed time step as a fraction of a revolution
+  /// The step of the engines that step free (ODE, Bullet, Box2D) as a fraction of a revolution
+  double stepped_step = validation::kDefaultSteppedMotionStep;
+  std::string stepped_settings = "defaults";  ///< the settings of each engine that steps free and has them
 };
 
 void addMotionOptions(CLI::App& command, MotionOptions& options);

@@ -78,6 +78,10 @@ void buildOdeModel(OdeModel& model, const Mechanism& m, const OdeRunOptions& o, 
       lumped.inertia_about_cm + (drive == CrankDrive::kFreeWithFlywheel ? *m.flywheel_inertia : 0.0);
 
   initOde();
+  // QuickStep reorders its constraints at random every few iterations from ODE's one process-wide generator
+  // (dRandInt): seeded here, each run repeats exactly whatever ran before it in the process (unseeded, a second
+  // `motion` in one Python session differed from the first in the 12th digit).
+  dRandSetSeed(0);
   model.world.reset(dWorldCreate());
   dWorldID w = model.world.get();
   dWorldSetGravity(w, 0.0, -m.machine.gravity, 0.0);

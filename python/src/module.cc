@@ -274,7 +274,8 @@ py::object balance(const ScenePtr& scene, int order) {
 
 // ---- motion: the CLI's JSON from the library's calcMotion (validation/commands/motion.h), optionally with each engine's run.
 py::object motion(const ScenePtr& scene, const std::string& integrator, double accuracy,
-                  const std::string& mujoco_integrator, double mujoco_step, bool series) {
+                  const std::string& mujoco_integrator, double mujoco_step, double stepped_step,
+                  const std::string& stepped_settings, bool series) {
   const Mechanism& m = scene->m;
   const std::string& source = scene->source;
   // The CLI's checks of its flags, by the parameters' names.
@@ -289,10 +290,22 @@ py::object motion(const ScenePtr& scene, const std::string& integrator, double a
     throw py::value_error("mujoco_integrator: " + escapeText(mujoco_integrator) + " not in {RK4, Euler, implicit}");
   if (!(accuracy >= 1e-14 && accuracy <= 1e-1)) throw py::value_error("accuracy: value not in range 1e-14 to 0.1");
   if (!(mujoco_step >= 1e-6 && mujoco_step <= 1e-1)) throw py::value_error("mujoco_step: value not in range 1e-06 to 0.1");
+  if (!(stepped_step >= 1e-5 && stepped_step <= 1e-1)) throw py::value_error("stepped_step: value not in range 1e-05 to 0.1");
   // Each pair goes to the engines that offer its integrator (Engine::integrators), as the CLI's flags.
   validation::FreeRunChoices choices = validation::getDefaultFreeRunSettings();
   validation::chooseIntegrator(choices, integrator, accuracy);
   validation::chooseIntegrator(choices, mujoco_integrator, mujoco_step);
+  {
+    std::vector<std::string> settings;  // the CLI's --stepped-settings choices
+    for (const Engine& e : validation::listEngines(Route::kStepFree))
+      for (const std::string& name : e.settings)
+        if (!member(settings, name)) settings.push_back(name);
+    std::string names;
+    for (const std::string& name : settings) names += (names.empty() ? "" : ", ") + name;
+    if (!member(settings, stepped_settings))
+      throw py::value_error("stepped_settings: " + escapeText(stepped_settings) + " not in {" + names + "}");
+  }
+  validation::chooseSteppedRun(choices, stepped_settings, stepped_step);
   std::vector<validation::MotionRun> runs;
   std::vector<validation::SatOut> sat_out;  // as the CLI's: an engine that cannot build the scene sits out
   {
@@ -313,7 +326,7 @@ py::object motion(const ScenePtr& scene, const std::string& integrator, double a
   py::object result = toPython(doc);
   if (series)
     for (const validation::MotionRun& r : runs) {
-      if (r.integrator.empty()) continue;  // the energy integral has no steps
+      if (r.integrator.empty() || !r.not_measured.empty()) continue;  // the energy integral has no steps
       // The run with gravity, step by step: time [s], phi [rad] (unwrapped), phi_dot [rad/s], energy [J].
       py::dict s;
       s["time"] = toArray(r.with_gravity.trajectory.time);
@@ -807,7 +820,9 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
            "Harmonics 1..order of the shaking force and moment: `crankcheck balance SCENE --order N --format json` as a dict "
            "(without its words, \"reason\": \"vanishes_by_symmetry\" says what vanishes exactly).")
       .def("motion", &motion, py::kw_only(), py::arg("integrator") = "RungeKuttaMerson", py::arg("accuracy") = 1e-10,
-           py::arg("mujoco_integrator") = "RK4", py::arg("mujoco_step") = 1e-3, py::arg("series") = false,
+           py::arg("mujoco_integrator") = "RK4", py::arg("mujoco_step") = 1e-3,
+           py::arg("stepped_step") = validation::kDefaultSteppedMotionStep, py::arg("stepped_settings") = "defaults",
+           py::arg("series") = false,
            "The free run: `crankcheck motion SCENE --format json` as a dict (series=True adds each integrating engine's "
            "run with gravity: time [s], phi [rad], phi_dot [rad/s], energy [J]).")
       .def("__repr__", [](const Scene& s) {

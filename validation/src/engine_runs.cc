@@ -141,7 +141,6 @@ std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0,
   std::vector<const Engine*> engines;
   for (const SteppedFreeRunSpec& spec : specs) {
     const Engine& e = findEngine(spec.engine, Route::kStepFree);
-    if (!e.step_free) throw std::invalid_argument("free run: the stepped engine " + e.name + " has no free run");
     if (std::find(e.settings.begin(), e.settings.end(), spec.settings) == e.settings.end())
       throw std::invalid_argument("free run: " + e.name + " has no settings \"" + spec.settings + "\" (it has " +
                                   joinNames(e.settings) + ")");
@@ -194,8 +193,7 @@ std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0,
 
 std::vector<SteppedFreeRunSpec> listDefaultSteppedFreeRuns(bool quick) {
   std::vector<SteppedFreeRunSpec> specs;
-  for (const Engine& e : listEngines(Route::kStepAtSpeed)) {
-    if (!e.step_free) continue;
+  for (const Engine& e : listEngines(Route::kStepFree)) {
     for (double dt : quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-4}) specs.push_back({e.name, "defaults", dt});
   }
   return specs;

@@ -166,6 +166,8 @@ nlohmann::ordered_json balanceToJson(const std::vector<BalanceRow>& rows, bool a
 }
 
 nlohmann::ordered_json motionRunToJson(const MotionRun& run) {
+  if (!run.not_measured.empty())
+    return {{"integrator", run.integrator}, {"step_s", run.accuracy}, {"steps", run.steps}, {"not_measured", run.not_measured}};
   nlohmann::ordered_json j = {{"delta_gravity", run.delta_gravity}, {"delta_no_gravity", run.delta_no_gravity},
                               {"omega_min", run.omega_min}, {"omega_max", run.omega_max}, {"omega_mean", run.omega_mean}};
   if (!run.integrator.empty()) {

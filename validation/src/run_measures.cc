@@ -278,11 +278,15 @@ SpeedFluctuationComparison calcSpeedFluctuation(const Mechanism& m, const Trajec
   out.run.delta = (omega_max - omega_min) / omega_mean;
   out.run.phi_at_omega_max = std::fmod(std::fmod(phi_max, period) + period, period);
   out.run.phi_at_omega_min = std::fmod(std::fmod(phi_min, period) + period, period);
+  out.run.omega_min = omega_min;
+  out.run.omega_max = omega_max;
+  out.run.omega_mean = omega_mean;
   // The exact run through the run's state at its first phi = 0 (mod the period).
   const double zero = period * std::ceil(phi0 / period);
   out.omega_at_zero = reader.findOmegaAtPhase(zero);
   const ExactRun exact = makeExactRun(m, invariant, zero, out.omega_at_zero);
-  out.exact = {(exact.omega_max - exact.omega_min) / exact.omega_mean, exact.phi_at_omega_max, exact.phi_at_omega_min};
+  out.exact = {(exact.omega_max - exact.omega_min) / exact.omega_mean, exact.phi_at_omega_max, exact.phi_at_omega_min,
+               exact.omega_min, exact.omega_max, exact.omega_mean};
   if (!load.gas) out.exact.delta = analytic::calcFreeRun(m, out.omega_at_zero).delta;  // the analytic engine's own
   out.delta_error = out.run.delta - out.exact.delta;
   // An extreme can be reached at several phases with speeds the run cannot tell apart (a centric standing single:

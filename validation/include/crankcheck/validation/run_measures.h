@@ -43,6 +43,8 @@ struct SpeedFluctuationOfRun {
   double delta = 0.0;             ///< (omega_max - omega_min) / omega_mean [-]
   double phi_at_omega_max = 0.0;  ///< [rad] in [0, 2 pi)
   double phi_at_omega_min = 0.0;  ///< [rad] in [0, 2 pi)
+  double omega_min = 0.0, omega_max = 0.0;  ///< [rad/s] the extremes
+  double omega_mean = 0.0;        ///< [rad/s] the revolution's angle over its duration
 };
 
 /// The run's fluctuation against the exact free run's.

@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// The computation of `crankcheck motion` and of the Python module's Scene.motion: the free run under gravity
-/// (released at phi = 0 with the scene's speed, no drive, no load) by the analytic energy integral and by every engine
-/// of the registry that simulates (Engine::simulate), each with its own integrator and accuracy.
+/// (released at phi = 0 with the scene's speed, no drive, no load) by the analytic energy integral, by every engine
+/// of the registry that simulates (Route::kSimulate: Engine::simulate), each with its own integrator and accuracy, and
+/// by every engine that steps free (Route::kStepFree: ODE, Bullet, Box2D), each at its defaults and a fixed step.
 
 #include <map>
 #include <string>
@@ -14,13 +15,25 @@
 
 namespace crankcheck::validation {
 
-/// How each engine that simulates runs, by engine name (Engine::name). An engine that simulates and has no entry runs
-/// at its defaults (getDefaultFreeRunSettings).
+/// How each engine that runs free runs, by engine name (Engine::name). An engine that simulates has an integrator
+/// and an accuracy in its own sense; an engine that steps free has one of its settings (Engine::settings) as
+/// `integrator` and its step as a fraction of a revolution at the release speed as `accuracy`. An engine without an
+/// entry runs at its defaults (getDefaultFreeRunSettings).
 using FreeRunChoices = std::map<std::string, FreeRunSettings>;
 
+/// [-] The step of an engine that steps free, as a fraction of a revolution at the release speed, by default: a
+/// thousandth (2e-5 s at 3000 rpm; the whole run of two revolutions 2200 steps).
+inline constexpr double kDefaultSteppedMotionStep = 1e-3;
+
 /// Every engine that simulates at its defaults: its first integrator (Engine::integrators) and its default accuracy
-/// (Engine::default_accuracy, in the engine's own sense: Engine::accuracy_meaning).
+/// (Engine::default_accuracy, in the engine's own sense: Engine::accuracy_meaning); every engine that steps free at
+/// its "defaults" settings and kDefaultSteppedMotionStep.
 FreeRunChoices getDefaultFreeRunSettings();
+
+/// Chooses the step, a fraction of a revolution at the release speed, of every engine of `choices` that steps free,
+/// and `settings` for each of them that has settings of that name (Engine::settings; the others keep theirs).
+/// @return how many engines took the settings.
+int chooseSteppedRun(FreeRunChoices& choices, const std::string& settings, double fraction);
 
 /// Chooses `integrator` at `accuracy` (in the engine's own sense) for every engine of `choices` that offers that
 /// integrator (Engine::integrators), the others left as they are. A user's integrator names its engines: the CLI's
@@ -28,21 +41,31 @@ FreeRunChoices getDefaultFreeRunSettings();
 /// @return how many engines took it.
 int chooseIntegrator(FreeRunChoices& choices, const std::string& integrator, double accuracy);
 
-/// One way's free run: the analytic energy integral or one engine's simulation.
+/// One way's free run: the analytic energy integral, one engine's simulation or one engine's fixed steps.
 struct MotionRun {
   std::string engine;             ///< the engine's name; "analytic" for the energy integral
-  std::string integrator;         ///< the engine's integrator; "" for the energy integral
-  double accuracy = 0.0;          ///< the integrator's accuracy in the engine's sense; 0 for the energy integral
+  std::string integrator;         ///< the engine's integrator (an engine that steps: its settings); "" for the integral
+  double accuracy = 0.0;          ///< the integrator's accuracy in the engine's sense (an engine that steps: its step
+                                  ///< [s]); 0 for the energy integral
   double delta_gravity = 0.0;     ///< (omega_max - omega_min) / omega_mean with gravity
   double delta_no_gravity = 0.0;  ///< the same without gravity
   double omega_min = 0.0, omega_max = 0.0, omega_mean = 0.0;  ///< [rad/s] with gravity
   double energy_drift = 0.0;      ///< max |E(t) - E(0)| / E(0) per revolution, gravity on (the energy integral: 0)
   int steps = 0;                  ///< integrator steps with gravity (the energy integral: 0)
-  FreeRunResult with_gravity;     ///< the engine's run with gravity step by step (empty for the energy integral)
+  FreeRunResult with_gravity;     ///< the engine's run with gravity step by step (empty for the energy integral);
+                                  ///< an engine that steps: from the release, its energy the closed forms' at each
+                                  ///< sample's phi and omega
+  /// An engine that steps free and whose run cannot be measured (it does not turn a revolution: a speed cap, its
+  /// damping; or its library fails during the run): why, in one line; every number above then 0. Empty: measured.
+  std::string not_measured;
 };
 
 /// The free run of m at its speed: the energy integral first, then every engine that simulates in the registry's
-/// order, each with its choice from `choices` (or its defaults). `sat_out`: null, an engine whose build refuses m
+/// order, each with its choice from `choices` (or its defaults), then every engine that steps free likewise, for two
+/// revolutions of the exact run and a tenth more. A stepped run's delta and omega extremes are its first
+/// revolution's, its speed interpolated between its samples as grade reads a run (run_measures.h
+/// calcSpeedFluctuation; the release is its first sample), and its drift is that of the closed forms' energy
+/// (1/2) J(phi) omega^2 + U(phi) at its samples. `sat_out`: null, an engine whose build refuses m
 /// (Engine::build: a rule of its own, or an accuracy it cannot hold there) is an error "ENGINE: reason"; given, it
 /// sits out, added there with its reason, and the others run (the energy integral always does).
 /// @throws std::invalid_argument "KEY: rule" for a scene the free run cannot use (no [flywheel].inertia, no speed,
