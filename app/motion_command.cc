@@ -21,13 +21,13 @@ void addMotionOptions(CLI::App& command, MotionOptions& options) {
       ->check(CLI::IsMember({"table", "json"}))
       ->capture_default_str();
   command.add_option("--integrator", options.integrator, "Simbody integrator")
-      ->check(CLI::IsMember({"RungeKuttaMerson", "CPodes", "SemiExplicitEuler2"}))
+      ->check(CLI::IsMember(validation::listIntegrators(true)))
       ->capture_default_str();
   command.add_option("--accuracy", options.accuracy, "Simbody integrator's accuracy (its relative error per step)")
       ->check(FiniteRange(1e-14, 1e-1))
       ->capture_default_str();
   command.add_option("--mujoco-integrator", options.mujoco_integrator, "MuJoCo integrator (mujoco-soft, mujoco-soft-stiff)")
-      ->check(CLI::IsMember({"RK4", "Euler", "implicit"}))
+      ->check(CLI::IsMember(validation::listIntegrators(false)))
       ->capture_default_str();
   command.add_option("--mujoco-step", options.mujoco_step,
                      "MuJoCo's fixed time step as a fraction of one revolution at the release speed")
@@ -38,14 +38,10 @@ void addMotionOptions(CLI::App& command, MotionOptions& options) {
                          ") as a fraction of one revolution at the release speed")
       ->check(FiniteRange(1e-5, 1e-1))
       ->capture_default_str();
-  std::vector<std::string> settings;
-  for (const Engine& e : validation::listEngines(Route::kStepFree))
-    for (const std::string& s : e.settings)
-      if (std::find(settings.begin(), settings.end(), s) == settings.end()) settings.push_back(s);
   command.add_option("--stepped-settings", options.stepped_settings,
                      "The settings of the engines that step free, for each that has settings of that name (the "
                      "others run at their defaults; crankcheck stepped --help says what each changes)")
-      ->check(CLI::IsMember(settings))
+      ->check(CLI::IsMember(validation::listSteppedSettings()))
       ->capture_default_str();
 }
 

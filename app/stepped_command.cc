@@ -92,7 +92,7 @@ std::string runSteppedFree(const SteppedOptions& options, Mechanism m, const std
     throw UsageError(options.scene_path + ": [engine].speed_rpm: the free run (--free) is released at it; it must be > 0");
   m.gas.reset();  // gravity alone
   std::sort(steps.begin(), steps.end(), std::greater<double>());
-  std::vector<validation::SteppedFreeRunSpec> specs;
+  std::vector<validation::EngineRunSpec> specs;
   std::vector<validation::SteppedJob> jobs;
   for (const Engine* e : engines) {
     if (!e->step_free) continue;
@@ -111,7 +111,7 @@ std::string runSteppedFree(const SteppedOptions& options, Mechanism m, const std
   std::vector<std::string> refusals;
   std::vector<validation::EngineRunRow> rows;
   try {
-    rows = validation::calcSteppedFreeRuns(m, m.machine.speed, options.revolutions, specs, &refusals);
+    rows = validation::calcEngineRuns(m, m.machine.speed, options.revolutions, specs, {}, &refusals);
   } catch (const std::invalid_argument& e) {
     throw UsageError(options.scene_path + ": " + e.what());
   }

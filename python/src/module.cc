@@ -278,16 +278,16 @@ py::object motion(const ScenePtr& scene, const std::string& integrator, double a
                   const std::string& stepped_settings, bool series) {
   const Mechanism& m = scene->m;
   const std::string& source = scene->source;
-  // The CLI's checks of its flags, by the parameters' names.
-  const std::vector<std::string> integrators = {"RungeKuttaMerson", "CPodes", "SemiExplicitEuler2"};
-  const std::vector<std::string> mujoco_integrators = {"RK4", "Euler", "implicit"};
-  auto member = [](const std::vector<std::string>& set, const std::string& x) {
-    return std::find(set.begin(), set.end(), x) != set.end();
+  // The CLI's checks of its flags, by the parameters' names, from the registry (validation/commands/motion.h).
+  auto checkMember = [](const char* parameter, const std::vector<std::string>& set, const std::string& x) {
+    if (std::find(set.begin(), set.end(), x) != set.end()) return;
+    std::string names;
+    for (const std::string& name : set) names += (names.empty() ? "" : ", ") + name;
+    throw py::value_error(std::string(parameter) + ": " + escapeText(x) + " not in {" + names + "}");
   };
-  if (!member(integrators, integrator))
-    throw py::value_error("integrator: " + escapeText(integrator) + " not in {RungeKuttaMerson, CPodes, SemiExplicitEuler2}");
-  if (!member(mujoco_integrators, mujoco_integrator))
-    throw py::value_error("mujoco_integrator: " + escapeText(mujoco_integrator) + " not in {RK4, Euler, implicit}");
+  checkMember("integrator", validation::listIntegrators(true), integrator);
+  checkMember("mujoco_integrator", validation::listIntegrators(false), mujoco_integrator);
+  checkMember("stepped_settings", validation::listSteppedSettings(), stepped_settings);
   if (!(accuracy >= 1e-14 && accuracy <= 1e-1)) throw py::value_error("accuracy: value not in range 1e-14 to 0.1");
   if (!(mujoco_step >= 1e-6 && mujoco_step <= 1e-1)) throw py::value_error("mujoco_step: value not in range 1e-06 to 0.1");
   if (!(stepped_step >= 1e-5 && stepped_step <= 1e-1)) throw py::value_error("stepped_step: value not in range 1e-05 to 0.1");
@@ -295,16 +295,6 @@ py::object motion(const ScenePtr& scene, const std::string& integrator, double a
   validation::FreeRunChoices choices = validation::getDefaultFreeRunSettings();
   validation::chooseIntegrator(choices, integrator, accuracy);
   validation::chooseIntegrator(choices, mujoco_integrator, mujoco_step);
-  {
-    std::vector<std::string> settings;  // the CLI's --stepped-settings choices
-    for (const Engine& e : validation::listEngines(Route::kStepFree))
-      for (const std::string& name : e.settings)
-        if (!member(settings, name)) settings.push_back(name);
-    std::string names;
-    for (const std::string& name : settings) names += (names.empty() ? "" : ", ") + name;
-    if (!member(settings, stepped_settings))
-      throw py::value_error("stepped_settings: " + escapeText(stepped_settings) + " not in {" + names + "}");
-  }
   validation::chooseSteppedRun(choices, stepped_settings, stepped_step);
   std::vector<validation::MotionRun> runs;
   std::vector<validation::SatOut> sat_out;  // as the CLI's: an engine that cannot build the scene sits out

@@ -179,11 +179,18 @@ TEST(EngineRunsTest, DefaultRuns) {
                                       "simbody SemiExplicitEuler2 1e-06", "mujoco-soft RK4 0.001",
                                       "mujoco-soft Euler 0.001", "mujoco-soft Euler 0.0001",
                                       "mujoco-soft-stiff RK4 0.001", "mujoco-soft-stiff Euler 0.001",
-                                      "mujoco-soft-stiff Euler 0.0001"}));
+                                      "mujoco-soft-stiff Euler 0.0001", "ode defaults 0.001",
+                                      "ode defaults 0.0001", "ode-quickstep defaults 0.001",
+                                      "ode-quickstep defaults 0.0001", "bullet defaults 0.001",
+                                      "bullet defaults 0.0001", "box2d defaults 0.001", "box2d defaults 0.0001"}));
   EXPECT_EQ(names(listDefaultEngineRuns(true)),
             (std::vector<std::string>{"simbody RungeKuttaMerson 1e-10", "mujoco-soft RK4 0.001",
                                       "mujoco-soft Euler 0.001", "mujoco-soft-stiff RK4 0.001",
-                                      "mujoco-soft-stiff Euler 0.001"}));
+                                      "mujoco-soft-stiff Euler 0.001", "ode defaults 0.0001",
+                                      "ode-quickstep defaults 0.0001", "bullet defaults 0.0001",
+                                      "box2d defaults 0.0001"}));
+  // A loaded run's: the engines that take the gas and a load, none that steps.
+  for (const EngineRunSpec& s : listDefaultEngineRuns(true, {true})) EXPECT_EQ(s.engine, "simbody");
 }
 
 TEST(EngineRunsTest, Schema) {
@@ -219,11 +226,14 @@ TEST(EngineRunsTest, Refusals) {
     return std::string("no std::invalid_argument");
   };
   const EngineRunSpec good{"simbody", "RungeKuttaMerson", 1e-6};
-  EXPECT_EQ(message(m, w, 2, {good, {"bullet", "RK4", 1e-3}}),
-            "free run: no engine \"bullet\" (the engines that simulate: simbody, mujoco-soft, mujoco-soft-stiff)");
+  const std::string running = "simbody, mujoco-soft, mujoco-soft-stiff, ode, ode-quickstep, bullet, box2d";
+  EXPECT_EQ(message(m, w, 2, {good, {"dart", "RK4", 1e-3}}),
+            "free run: no engine \"dart\" (the engines that run free: " + running + ")");
   EXPECT_EQ(message(m, w, 2, {{"mujoco", "RK4", 1e-3}}),
-            "free run: the engine mujoco does not simulate (the engines that do: simbody, mujoco-soft, "
-            "mujoco-soft-stiff)");
+            "free run: the engine mujoco does not run free (the engines that do: " + running + ")");
+  EXPECT_EQ(message(m, w, 2, {{"bullet", "RK4", 1e-3}}),
+            "free run: bullet has no settings \"RK4\" (it has defaults, neutralised, tightened)");
+  EXPECT_EQ(message(m, w, 2, {{"box2d", "defaults", -1.0}}), "free run: box2d: the step -1 s is not finite and > 0");
   EXPECT_EQ(message(m, w, 2, {{"mujoco-soft", "RungeKuttaMerson", 1e-3}}),
             "free run: the engine mujoco-soft has no integrator \"RungeKuttaMerson\" (it has RK4, Euler, implicit)");
   EXPECT_EQ(message(m, w, 2, {{"simbody", "", 1e-6}}),

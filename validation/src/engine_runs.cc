@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <ctime>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -33,26 +34,39 @@ std::string joinNames(const std::vector<std::string>& names) {
   return out;
 }
 
-// The engine of a spec, checked: it simulates, it has the integrator, the accuracy is finite and > 0.
+// The engine of a spec, checked: it runs free (Route::kSimulate: it has the integrator, the accuracy is finite and
+// > 0; Route::kStepFree: it has the settings, the step is finite and > 0).
 const Engine& checkSpec(const EngineRunSpec& spec) {
   const Engine* engine = nullptr;
-  for (const Engine& e : listEngines())
-    if (e.name == spec.engine) engine = &e;
-  std::vector<std::string> simulating;
-  for (const Engine& e : listEngines())
-    if (e.simulate) simulating.push_back(e.name);
-  if (!engine)
-    throw std::invalid_argument("free run: no engine \"" + spec.engine + "\" (the engines that simulate: " +
-                                joinNames(simulating) + ")");
-  if (!engine->simulate)
-    throw std::invalid_argument("free run: the engine " + spec.engine + " does not simulate (the engines that do: " +
-                                joinNames(simulating) + ")");
-  if (std::find(engine->integrators.begin(), engine->integrators.end(), spec.integrator) == engine->integrators.end())
-    throw std::invalid_argument("free run: the engine " + spec.engine + " has no integrator \"" + spec.integrator +
-                                "\" (it has " + joinNames(engine->integrators) + ")");
+  std::vector<std::string> running;  // every engine that runs free, in the registry's order
+  for (Route route : {Route::kSimulate, Route::kStepFree})
+    for (const Engine& e : listEngines(route)) {
+      running.push_back(e.name);
+      if (e.name == spec.engine) engine = &e;
+    }
+  if (!engine) {
+    for (const Engine& e : listEngines())
+      if (e.name == spec.engine)
+        throw std::invalid_argument("free run: the engine " + spec.engine + " does not run free (the engines that do: " +
+                                    joinNames(running) + ")");
+    throw std::invalid_argument("free run: no engine \"" + spec.engine + "\" (the engines that run free: " +
+                                joinNames(running) + ")");
+  }
+  if (engine->simulate) {
+    if (std::find(engine->integrators.begin(), engine->integrators.end(), spec.integrator) == engine->integrators.end())
+      throw std::invalid_argument("free run: the engine " + spec.engine + " has no integrator \"" + spec.integrator +
+                                  "\" (it has " + joinNames(engine->integrators) + ")");
+    if (!(std::isfinite(spec.accuracy) && spec.accuracy > 0.0))
+      throw std::invalid_argument("free run: " + spec.engine + " " + spec.integrator + ": the accuracy " +
+                                  shortText(spec.accuracy) + " is not finite and > 0");
+    return *engine;
+  }
+  if (std::find(engine->settings.begin(), engine->settings.end(), spec.integrator) == engine->settings.end())
+    throw std::invalid_argument("free run: " + engine->name + " has no settings \"" + spec.integrator + "\" (it has " +
+                                joinNames(engine->settings) + ")");
   if (!(std::isfinite(spec.accuracy) && spec.accuracy > 0.0))
-    throw std::invalid_argument("free run: " + spec.engine + " " + spec.integrator + ": the accuracy " +
-                                shortText(spec.accuracy) + " is not finite and > 0");
+    throw std::invalid_argument("free run: " + engine->name + ": the step " + shortText(spec.accuracy) +
+                                " s is not finite and > 0");
   return *engine;
 }
 
@@ -134,71 +148,6 @@ Trajectory withRelease(const Trajectory& run, double phi0, double omega0) {
   return out;
 }
 
-std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0, int revolutions,
-                                              const std::vector<SteppedFreeRunSpec>& specs,
-                                              std::vector<std::string>* refusals) {
-  checkFreeRunScene(m, omega0, revolutions, {});
-  std::vector<const Engine*> engines;
-  for (const SteppedFreeRunSpec& spec : specs) {
-    const Engine& e = findEngine(spec.engine, Route::kStepFree);
-    if (std::find(e.settings.begin(), e.settings.end(), spec.settings) == e.settings.end())
-      throw std::invalid_argument("free run: " + e.name + " has no settings \"" + spec.settings + "\" (it has " +
-                                  joinNames(e.settings) + ")");
-    if (!(std::isfinite(spec.dt) && spec.dt > 0.0))
-      throw std::invalid_argument("free run: " + e.name + ": the step " + shortText(spec.dt) + " s is not finite and > 0");
-    engines.push_back(&e);
-  }
-  const double mean_omega = analytic::calcFreeRun(m, omega0).omega_mean;
-  const double exact_horizon = revolutions * 2.0 * M_PI / mean_omega;
-  // The start: the exact state at phi = 0 with the release speed (the run's input, not what is measured).
-  const Mechanism released = withSpeed(m, omega0 * 30.0 / M_PI);
-  const StartState start = calcStartState(released, getClosedFormEngine().build(released)->evaluate(0.0));
-  std::vector<EngineRunRow> rows;
-  for (size_t s = 0; s < specs.size(); ++s) {
-    const SteppedFreeRunSpec& spec = specs[s];
-    SteppedFreeRunOptions options;
-    options.dt = spec.dt;
-    // The exact run's horizon and a tenth of a turn more (a run that loses speed still reaches it), in whole steps.
-    options.steps = static_cast<long>(std::ceil(1.1 * exact_horizon / spec.dt));
-    options.settings = spec.settings;
-    options.start = start;
-    Trajectory result;
-    try {
-      result = engines[s]->step_free(m, options);
-    } catch (const std::exception& e) {  // a scene or step the engine refuses (Box2D's largest rotation a step)
-      if (refusals) refusals->push_back(spec.engine + " (" + spec.settings + ", " + shortText(spec.dt) + " s): " + e.what());
-      continue;
-    }
-    // A run the measures cannot judge (it stops turning, or falls short of one revolution in the steps given: a speed
-    // cap, damping) is reported with the reason, not measured.
-    EngineRunRow row;
-    try {
-      row = measureRun(m, withRelease(result, start.phi, omega0), {}, exact_horizon);
-    } catch (const std::exception& e) {
-      if (refusals)
-        refusals->push_back(spec.engine + " (" + spec.settings + ", " + shortText(spec.dt) + " s): not measured: " + e.what());
-      continue;
-    }
-    row.engine = spec.engine;
-    row.integrator = spec.settings;
-    row.accuracy = spec.dt;
-    row.accuracy_meaning_short = "time step [s]";
-    row.revolutions = revolutions;
-    row.steps = static_cast<int>(options.steps);
-    row.cpu_seconds_per_revolution = result.seconds_per_step * static_cast<double>(options.steps) / revolutions;
-    rows.push_back(std::move(row));
-  }
-  return rows;
-}
-
-std::vector<SteppedFreeRunSpec> listDefaultSteppedFreeRuns(bool quick) {
-  std::vector<SteppedFreeRunSpec> specs;
-  for (const Engine& e : listEngines(Route::kStepFree)) {
-    for (double dt : quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-4}) specs.push_back({e.name, "defaults", dt});
-  }
-  return specs;
-}
-
 Trajectory findOmegaInstants(const Trajectory& result) {
   const size_t n = result.time.size();
   if (result.phi.size() != n || result.omega.size() != n)
@@ -221,7 +170,8 @@ Trajectory findOmegaInstants(const Trajectory& result) {
 }
 
 std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int revolutions,
-                                         const std::vector<EngineRunSpec>& specs, const RunLoad& load) {
+                                         const std::vector<EngineRunSpec>& specs, const RunLoad& load,
+                                         std::vector<std::string>* refusals) {
   checkFreeRunScene(m, omega0, revolutions, load);
   std::vector<const Engine*> engines;
   for (const EngineRunSpec& spec : specs) {
@@ -235,31 +185,72 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
   const double exact_horizon = load.gas ? std::numeric_limits<double>::infinity()
                                         : revolutions * 2.0 * M_PI / analytic::calcFreeRun(m, omega0).omega_mean;
   const double load_torque = load.gas ? analytic::GasWork(m).getMeanTorque() : 0.0;
+  // An engine that steps starts from the exact state at phi = 0 with the release speed (the run's input, not what is
+  // measured); made once, for the first such spec.
+  std::optional<StartState> start;
 
   std::vector<EngineRunRow> rows;
   for (size_t s = 0; s < specs.size(); ++s) {
     const EngineRunSpec& spec = specs[s];
     const Engine& engine = *engines[s];
-    FreeRunSettings settings;
-    settings.integrator = spec.integrator;
-    settings.accuracy = spec.accuracy;
-    settings.revolutions = revolutions;
-    settings.gravity = true;
-    settings.gas = load.gas;
-    settings.load_torque = load_torque;
-    const std::clock_t start = std::clock();
-    const FreeRunResult result = engine.simulate(m, omega0, settings);
-    const double cpu = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
-    const Trajectory run = findOmegaInstants(result.trajectory);
+    if (engine.simulate) {
+      FreeRunSettings settings;
+      settings.integrator = spec.integrator;
+      settings.accuracy = spec.accuracy;
+      settings.revolutions = revolutions;
+      settings.gravity = true;
+      settings.gas = load.gas;
+      settings.load_torque = load_torque;
+      const std::clock_t begin = std::clock();
+      const FreeRunResult result = engine.simulate(m, omega0, settings);
+      const double cpu = static_cast<double>(std::clock() - begin) / CLOCKS_PER_SEC;
+      const Trajectory run = findOmegaInstants(result.trajectory);
 
-    EngineRunRow row = measureRun(m, run, load, exact_horizon);
+      EngineRunRow row = measureRun(m, run, load, exact_horizon);
+      row.engine = spec.engine;
+      row.integrator = spec.integrator;
+      row.accuracy = spec.accuracy;
+      row.accuracy_meaning_short = shortMeaning(engine.accuracy_meaning);
+      row.revolutions = revolutions;
+      row.steps = result.steps;
+      row.cpu_seconds_per_revolution = cpu / revolutions;
+      rows.push_back(std::move(row));
+      continue;
+    }
+    if (!start) {
+      const Mechanism released = withSpeed(m, omega0 * 30.0 / M_PI);
+      start = calcStartState(released, getClosedFormEngine().build(released)->evaluate(0.0));
+    }
+    SteppedFreeRunOptions options;
+    options.dt = spec.accuracy;
+    // The exact run's horizon and a tenth of a turn more (a run that loses speed still reaches it), in whole steps.
+    options.steps = static_cast<long>(std::ceil(1.1 * exact_horizon / spec.accuracy));
+    options.settings = spec.integrator;
+    options.start = *start;
+    const std::string who = spec.engine + " (" + spec.integrator + ", " + shortText(spec.accuracy) + " s): ";
+    Trajectory result;
+    try {
+      result = engine.step_free(m, options);
+    } catch (const std::exception& e) {  // a scene or step the engine refuses (Box2D's largest rotation a step)
+      if (refusals) refusals->push_back(who + e.what());
+      continue;
+    }
+    // A run the measures cannot judge (it stops turning, or falls short of one revolution in the steps given: a speed
+    // cap, damping) is reported with the reason, not measured.
+    EngineRunRow row;
+    try {
+      row = measureRun(m, withRelease(result, start->phi, omega0), {}, exact_horizon);
+    } catch (const std::exception& e) {
+      if (refusals) refusals->push_back(who + "not measured: " + e.what());
+      continue;
+    }
     row.engine = spec.engine;
     row.integrator = spec.integrator;
     row.accuracy = spec.accuracy;
-    row.accuracy_meaning_short = shortMeaning(engine.accuracy_meaning);
+    row.accuracy_meaning_short = "time step [s]";
     row.revolutions = revolutions;
-    row.steps = result.steps;
-    row.cpu_seconds_per_revolution = cpu / revolutions;
+    row.steps = static_cast<int>(options.steps);
+    row.cpu_seconds_per_revolution = result.seconds_per_step * static_cast<double>(options.steps) / revolutions;
     rows.push_back(std::move(row));
   }
   return rows;
@@ -267,8 +258,8 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
 
 std::vector<EngineRunSpec> listDefaultEngineRuns(bool quick, const RunLoad& load) {
   std::vector<EngineRunSpec> specs;
-  for (const Engine& e : listEngines()) {
-    if (!e.simulate || e.integrators.empty() || (load.gas && !e.simulates_loads)) continue;
+  for (const Engine& e : listEngines(Route::kSimulate)) {
+    if (e.integrators.empty() || (load.gas && !e.simulates_loads)) continue;
     const double a = e.default_accuracy;
     if (e.gated) {
       // A tolerance: the default integrator over four decades, the others each at one accuracy by their order.
@@ -289,6 +280,10 @@ std::vector<EngineRunSpec> listDefaultEngineRuns(bool quick, const RunLoad& load
           specs.push_back({e.name, e.integrators[1], factor * a});
     }
   }
+  // The engines that step free (they take no gas and no load) at their defaults, at 1e-3 and 1e-4 s (quick: 1e-4 s).
+  if (!load.gas)
+    for (const Engine& e : listEngines(Route::kStepFree))
+      for (double dt : quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-4}) specs.push_back({e.name, "defaults", dt});
   return specs;
 }
 

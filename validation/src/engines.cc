@@ -127,6 +127,12 @@ SatOutScope::SatOutScope(const std::vector<SatOut>& sat_out) {
 
 SatOutScope::~SatOutScope() { engines_in_play.reset(); }
 
+const Engine* findEngineOffering(const std::string& name, Route route) {
+  for (const Engine& e : listEngines(route))
+    if (e.name == name) return &e;
+  return nullptr;
+}
+
 const Engine& findEngine(const std::string& name, Route route) {
   for (const Engine& e : listEngines(route))
     if (e.name == name) return e;

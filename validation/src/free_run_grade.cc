@@ -517,13 +517,10 @@ void addEngineRuns(TableSet& tables, const std::vector<RunCase>& cases, bool qui
   for (const RunCase& c : cases) {
     if (c.drive == RunDrive::kHeld || !done.insert(c.family).second) continue;
     const RunLoad load{c.drive == RunDrive::kLoaded};
+    // Every engine that runs free (the physics engines people ship take no gas and no load: not in a loaded run's).
     for (EngineRunRow& row :
          calcEngineRuns(c.mechanism, c.omega0, c.revolutions, listDefaultEngineRuns(quick, load), load))
       rows.push_back(std::move(row));
-    // The physics engines people ship, free (they take no gas and no load here).
-    if (c.drive == RunDrive::kFree)
-      for (EngineRunRow& row : calcSteppedFreeRuns(c.mechanism, c.omega0, c.revolutions, listDefaultSteppedFreeRuns(quick)))
-        rows.push_back(std::move(row));
   }
   if (!rows.empty()) addRows(tables, getFreeRunEnginesSchema(), std::move(rows));
 }
@@ -546,6 +543,7 @@ void checkRunGradeWork(const std::vector<RunCase>& cases, bool quick, double lim
     // One revolution of each; a loaded run's working cycle, two of a four-stroke (its measures need a whole cycle).
     const int probed = std::min(c.revolutions, load.gas && c.mechanism.machine.cycle == Cycle::kFourStroke ? 2 : 1);
     for (const EngineRunSpec& spec : listDefaultEngineRuns(quick, load)) {
+      if (findEngineOffering(spec.engine, Route::kStepFree)) continue;  // estimated by its steps below
       const auto begin = std::chrono::steady_clock::now();
       (void)calcEngineRuns(c.mechanism, c.omega0, probed, {spec}, load);
       reference += std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count() * c.revolutions /
@@ -559,10 +557,9 @@ void checkRunGradeWork(const std::vector<RunCase>& cases, bool quick, double lim
   for (const RunCase& c : cases) {
     if (c.drive != RunDrive::kFree || !families.insert(c.family).second || reference > limit_seconds) continue;
     std::vector<SteppedJob> jobs;
-    for (const SteppedFreeRunSpec& spec : listDefaultSteppedFreeRuns(quick))
-      for (const Engine& e : listEngines(Route::kStepAtSpeed))
-        if (e.name == spec.engine && e.step_free)
-          jobs.push_back({&e, spec.settings, spec.dt, 1.1 * c.t_end / spec.dt});
+    for (const EngineRunSpec& spec : listDefaultEngineRuns(quick))
+      if (const Engine* e = findEngineOffering(spec.engine, Route::kStepFree))
+        jobs.push_back({e, spec.integrator, spec.accuracy, 1.1 * c.t_end / spec.accuracy});
     const SteppedWorkEstimate e =
         estimateSteppedWork(c.mechanism, jobs, std::max(limit_seconds - reference - stepped, 0.0),
                             "--revolutions: the stepped engines' free runs of " + c.family + " over " +

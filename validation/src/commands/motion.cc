@@ -46,6 +46,26 @@ int chooseSteppedRun(FreeRunChoices& choices, const std::string& settings, doubl
   return taken;
 }
 
+namespace {
+void addOnce(std::vector<std::string>& names, const std::vector<std::string>& more) {
+  for (const std::string& n : more)
+    if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+}
+}  // namespace
+
+std::vector<std::string> listIntegrators(bool gated) {
+  std::vector<std::string> names;
+  for (const Engine& engine : listEngines(Route::kSimulate))
+    if (engine.gated == gated) addOnce(names, engine.integrators);
+  return names;
+}
+
+std::vector<std::string> listSteppedSettings() {
+  std::vector<std::string> names;
+  for (const Engine& engine : listEngines(Route::kStepFree)) addOnce(names, engine.settings);
+  return names;
+}
+
 int chooseIntegrator(FreeRunChoices& choices, const std::string& integrator, double accuracy) {
   int taken = 0;
   for (const Engine& engine : listEngines(Route::kSimulate)) {

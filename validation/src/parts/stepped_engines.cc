@@ -300,12 +300,12 @@ class SteppedEnginesPart final : public Part {
                        if (engine->step_free && m.flywheel_inertia) {
                          Mechanism free = m;
                          free.gas.reset();
-                         std::vector<SteppedFreeRunSpec> specs;
+                         std::vector<EngineRunSpec> specs;
                          for (const std::string& s : engine->settings)
                            for (double dt : quick ? std::vector<double>{1e-4} : std::vector<double>{1e-3, 1e-4})
                              specs.push_back({engine->name, s, dt});
                          std::vector<std::string> refused;
-                         std::vector<EngineRunRow> runs = calcSteppedFreeRuns(free, free.machine.speed, kFreeRevolutions, specs, &refused);
+                         std::vector<EngineRunRow> runs = calcEngineRuns(free, free.machine.speed, kFreeRevolutions, specs, {}, &refused);
                          tables.merge(getSteppedFreeRunsSchema().tableSet(std::move(runs)));
                          std::vector<SteppedRefusalRow> refusals;
                          for (const std::string& r : refused) refusals.push_back({m.name, engine->name, "free run", 0.0, r});

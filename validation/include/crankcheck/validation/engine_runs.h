@@ -1,10 +1,11 @@
 #pragma once
 /// @file
-/// The free runs of the engines that simulate (Engine::simulate), judged by the measures a user's time-stepped run is
-/// judged by (run_measures.h): `crankcheck grade --free-run`'s references and its report's table of engines. Each run
-/// is the mechanism under gravity alone with its crankshaft free (carrying the flywheel), released at phi = 0 with
-/// omega0, stepped by one of the engine's integrators at one accuracy in the engine's own sense
-/// (Engine::accuracy_meaning).
+/// The free runs of the engines that run free, judged by the measures a user's time-stepped run is judged by
+/// (run_measures.h): `crankcheck grade --free-run`'s references and its report's table of engines, `crankcheck stepped`'s
+/// and report part stepped_engines' free runs. Each run is the mechanism under gravity alone with its crankshaft free
+/// (carrying the flywheel), released at phi = 0 with omega0, by one of two routes (crankcheck::Route): an engine that
+/// simulates (Engine::simulate) by one of its integrators at one accuracy in the engine's own sense
+/// (Engine::accuracy_meaning); an engine that steps free (Engine::step_free) at one of its settings and a fixed step.
 ///
 /// Where a run's speed stands: an integrator that updates the velocity before the position (semi-implicit Euler, as
 /// MuJoCo's Euler and implicit integrators step) records at each step the position at t_i and the velocity that moved
@@ -24,12 +25,14 @@
 
 namespace crankcheck::validation {
 
-/// One run to make: an engine of the registry (validation/engines.h) that simulates, one of its integrators (by the
-/// engine's own name for it), and its accuracy in the engine's sense (Engine::accuracy_meaning).
+/// One run to make: an engine of the registry (validation/engines.h) that runs free, and how:
+/// - an engine that simulates (Route::kSimulate): one of its integrators (by the engine's own name for it) and its
+///   accuracy in the engine's sense (Engine::accuracy_meaning);
+/// - an engine that steps free (Route::kStepFree): one of its settings (Engine::settings) and the time step [s].
 struct EngineRunSpec {
   std::string engine;
-  std::string integrator;
-  double accuracy = 0.0;
+  std::string integrator;  ///< the integrator, or the settings of an engine that steps
+  double accuracy = 0.0;   ///< the accuracy in the engine's sense, or the step [s] of an engine that steps
 };
 
 /// One run, measured.
@@ -65,16 +68,22 @@ Trajectory findOmegaInstants(const Trajectory& run);
 
 /// Runs each spec on m (no gas: the free run under gravity alone) released at phi = 0 with omega0 [rad/s] for
 /// `revolutions` revolutions, and measures each run (run_measures.h), in the order of the specs. Every spec is checked
-/// before the first run.
+/// before the first run. An engine that steps runs `revolutions` revolutions of the exact run and a tenth more from
+/// the exact state at phi = 0 (calcStartState), and its release is its run's first sample (withRelease); in its row
+/// `integrator` is the settings' name and `accuracy` the step [s]. Such a run the engine refuses (a scene it cannot
+/// build, a step too long for it: Engine::step_free throws), or one the measures cannot judge (it stops turning or
+/// falls short of a revolution: a speed cap, damping), has no row; its one line goes to `refusals` when given.
 /// @throws std::invalid_argument if omega0 is not finite and > 0, revolutions < 1, m has [gas] or no flywheel inertia,
-///         or a spec names an engine the registry does not have, an engine that does not simulate, an integrator the
-///         engine does not have (the message lists the engine's), or an accuracy that is not finite and > 0;
-///         std::runtime_error (from the engine) if a run fails; std::domain_error if the exact run does not turn over.
+///         or a spec names an engine the registry does not have, an engine that does not run free, an integrator or
+///         settings the engine does not have (the message lists the engine's), or an accuracy or step that is not
+///         finite and > 0; std::runtime_error (from an engine that simulates) if a run fails; std::domain_error if the
+///         exact run does not turn over.
 /// With load.gas: the run under the scene's gas against its cycle-mean load (run_measures.h RunLoad; the engines that
 /// take the gas and a load, Engine::simulates_loads; energy_trend_per_revolution is then per working cycle and the
 /// phase error's horizon the run's end).
 std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int revolutions,
-                                         const std::vector<EngineRunSpec>& specs, const RunLoad& load = {});
+                                         const std::vector<EngineRunSpec>& specs, const RunLoad& load = {},
+                                         std::vector<std::string>* refusals = nullptr);
 
 /// The runs the report shows, for every engine of the registry that simulates, read from the engine's description
 /// (no engine is named here):
@@ -89,15 +98,10 @@ std::vector<EngineRunRow> calcEngineRuns(const Mechanism& m, double omega0, int 
 /// quick: the runs at the default accuracy or step alone, and the gated engine's other integrators left out.
 /// The steps and accuracies are chosen by cost: the whole set runs in a few seconds of one core on the example scenes
 /// over 5 revolutions (calcEngineRuns' cpu_seconds_per_revolution says what each run cost).
-/// With load.gas: only the engines that take the gas and a load (Engine::simulates_loads).
+/// Then every engine that steps free at its defaults at 1e-3 and 1e-4 s (quick: 1e-4 s), steps at which every one of
+/// them runs the example scenes (Box2D refuses steps that turn the crank more than pi/2).
+/// With load.gas: only the engines that take the gas and a load (Engine::simulates_loads; none that steps).
 std::vector<EngineRunSpec> listDefaultEngineRuns(bool quick, const RunLoad& load = {});
-
-/// One stepped engine's free run to make (validation/engines.h listEngines(Route::kStepAtSpeed), Engine::step_free): the
-/// engine, one of its settings, the time step [s].
-struct SteppedFreeRunSpec {
-  std::string engine, settings;
-  double dt = 0.0;
-};
 
 /// A stepped engine's free run (Engine::step_free: one sample per step, omega at its omega_time) with the
 /// release (t = 0, phi0, omega0) first: the release is the run's first state, so what the engine does to it in its
@@ -105,23 +109,6 @@ struct SteppedFreeRunSpec {
 /// first step's omega is the engine's reading of the release and stands there in its place.
 /// @throws std::invalid_argument if time, phi, omega and omega_time differ in size or have fewer than 2 samples.
 Trajectory withRelease(const Trajectory& run, double phi0, double omega0);
-
-/// Runs each spec free on m (under gravity alone, released at phi = 0 with omega0 from the exact state) for
-/// `revolutions` revolutions of the exact run and a tenth more, and measures it as calcEngineRuns does; in each row
-/// `integrator` is the settings' name and `accuracy` the step [s]. Every spec is checked before the first run.
-/// A run the engine refuses (a scene it cannot build, a step too long for it: Engine::step_free throws), or one
-/// the measures cannot judge (it stops turning or falls short of a revolution: a speed cap, damping), has no row; its
-/// one line goes to `refusals` when given.
-/// @throws std::invalid_argument as calcEngineRuns (no [gas], a flywheel), or for a stepped engine, settings or step
-///         that does not exist.
-std::vector<EngineRunRow> calcSteppedFreeRuns(const Mechanism& m, double omega0, int revolutions,
-                                              const std::vector<SteppedFreeRunSpec>& specs,
-                                              std::vector<std::string>* refusals = nullptr);
-
-/// The stepped engines' free runs the grade's table and the report show: each engine that runs free at its defaults
-/// at 1e-3 and 1e-4 s (quick: 1e-4 s), steps at which every one of them runs the example scenes (Box2D refuses steps
-/// that turn the crank more than pi/2).
-std::vector<SteppedFreeRunSpec> listDefaultSteppedFreeRuns(bool quick);
 
 /// The table `free_run_engines`: one row per run (EngineRunRow's members, in order).
 const Schema<EngineRunRow>& getFreeRunEnginesSchema();

@@ -63,6 +63,9 @@ const EngineList& listEngines(Route route = Route::kEvaluate);
 /// is none ("no engine ..." for Route::kEvaluate, "no stepped engine ..." for the stepped routes).
 const Engine& findEngine(const std::string& name, Route route = Route::kEvaluate);
 
+/// The engine called `name` among those offering `route`, or null if there is none.
+const Engine* findEngineOffering(const std::string& name, Route route);
+
 /// The names of listEngines(route), joined by `separator`.
 std::string joinEngineNames(const std::string& separator, Route route = Route::kEvaluate);
 

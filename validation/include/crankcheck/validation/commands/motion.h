@@ -35,6 +35,16 @@ FreeRunChoices getDefaultFreeRunSettings();
 /// @return how many engines took the settings.
 int chooseSteppedRun(FreeRunChoices& choices, const std::string& settings, double fraction);
 
+/// The integrators of the engines that simulate (Engine::integrators), each once, in the registry's order: of the
+/// gated ones (Simbody's: RungeKuttaMerson, CPodes, SemiExplicitEuler2) or of the others (MuJoCo's soft ways: RK4,
+/// Euler, implicit). What the CLI's --integrator and --mujoco-integrator, and the Python module's integrator and
+/// mujoco_integrator, take.
+std::vector<std::string> listIntegrators(bool gated);
+
+/// The settings of the engines that step free (Engine::settings), each once, in the registry's order: what the CLI's
+/// --stepped-settings and the Python module's stepped_settings take.
+std::vector<std::string> listSteppedSettings();
+
 /// Chooses `integrator` at `accuracy` (in the engine's own sense) for every engine of `choices` that offers that
 /// integrator (Engine::integrators), the others left as they are. A user's integrator names its engines: the CLI's
 /// --integrator and --mujoco-integrator, the Python module's integrator and mujoco_integrator.
