@@ -820,19 +820,44 @@ C-contiguous float64 array is not copied); other engines run angle by angle in C
                ", lambda = " + validation::formatNumber(calcCrankRatio(s.m)) + ", " + validation::formatNumber(s.m.speed_rpm) + " rpm>";
       });
 
-  mod.def("engines", [] {
+  mod.def("engines", [](const std::string& route) {
+        // The registry's routes by the names Python passes (crankcheck::Route).
+        const std::vector<std::pair<std::string, Route>> routes = {
+            {"evaluate", Route::kEvaluate}, {"simulate", Route::kSimulate}, {"step_at_speed", Route::kStepAtSpeed},
+            {"step_free", Route::kStepFree}, {"crank_train", Route::kCrankTrain}};
+        std::vector<const Engine*> chosen;
+        auto add = [&](Route r) {
+          for (const Engine& e : validation::listEngines(r))
+            if (std::find(chosen.begin(), chosen.end(), &e) == chosen.end()) chosen.push_back(&e);
+        };
+        std::string names;
+        for (const auto& [name, r] : routes) {
+          names += (names.empty() ? "" : ", ") + name;
+          if (route == name || route == "all") add(r);
+        }
+        if (chosen.empty() && route != "all")
+          throw py::value_error("route: " + escapeText(route) + " not in {" + names + ", all}");
         py::list list;
-        for (const Engine& e : validation::listEngines()) {
+        for (const Engine* e : chosen) {
           py::dict d;
-          d["name"] = e.name;
-          d["library"] = e.library;
-          d["method"] = e.method;
-          d["gated"] = e.gated;
-          d["integrators"] = e.integrators;
+          d["name"] = e->name;
+          d["library"] = e->library;
+          d["method"] = e->method;
+          d["gated"] = e->gated;
+          d["integrators"] = e->integrators;
+          d["settings"] = e->settings;
+          std::vector<std::string> offered;
+          for (const auto& [name, r] : routes)
+            if (offersRoute(*e, r)) offered.push_back(name);
+          d["routes"] = offered;
           list.append(d);
         }
         return list;
-      }, "Every engine of the registry (validation::listEngines()), in its order: name, library, method, gated, integrators.");
+      }, py::arg("route") = "evaluate",
+      "The engines of the registry (validation::listEngines(route)) offering `route`, in its order: \"evaluate\" (the "
+      "default: every engine eval and Scene.evaluate take), \"simulate\", \"step_at_speed\", \"step_free\", "
+      "\"crank_train\", or \"all\". Each: name, library, method, gated, integrators (Scene.motion's), settings (the "
+      "stepped routes'), routes (what it offers).");
   mod.def("quantities", [] {
         py::list list;
         for (const QuantityInfo& q : listQuantities()) list.append(q.name);

@@ -79,7 +79,18 @@ def test_engines_are_the_registry():
     names = [e["name"] for e in crankcheck.engines()]
     assert names[:5] == ["analytic", "simbody", "mujoco", "mujoco-soft", "mujoco-soft-stiff"]
     for e in crankcheck.engines():
-        assert set(e) == {"name", "library", "method", "gated", "integrators"}
+        assert set(e) == {"name", "library", "method", "gated", "integrators", "settings", "routes"}
+        assert "evaluate" in e["routes"]
+    # One registry, filtered by route: the engines that step are not among those that evaluate.
+    stepped = [e["name"] for e in crankcheck.engines("step_free")]
+    assert stepped == ["ode", "ode-quickstep", "bullet", "box2d"]
+    assert not set(stepped) & set(names)
+    everything = [e["name"] for e in crankcheck.engines("all")]
+    assert everything == names + stepped
+    assert all(not e["gated"] and e["settings"][0] == "defaults" for e in crankcheck.engines("step_at_speed"))
+    assert "simbody" in [e["name"] for e in crankcheck.engines("crank_train")]
+    with pytest.raises(ValueError, match="route: walk not in"):
+        crankcheck.engines("walk")
     assert crankcheck.batch_target() in ("AVX3", "AVX2", "SSE4", "SSSE3", "SCALAR", "AVX3_ZEN4", "AVX3_SPR")
     assert crankcheck.__version__ == cli_version()
 
