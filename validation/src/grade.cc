@@ -14,6 +14,7 @@
 #include <set>
 #include <thread>
 
+#include "crankcheck/validation/campaign_scenes.h"
 #include "crankcheck/analytic/reactions.h"
 #include "crankcheck/scene/quantities.h"
 #include "crankcheck/scene/scene_file.h"

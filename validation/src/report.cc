@@ -20,6 +20,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "crankcheck/validation/report_format.h"
 #include "crankcheck/validation/csv.h"
 #include "crankcheck/validation/table_schemas.h"
 #include "crankcheck/validation/engines.h"

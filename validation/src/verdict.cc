@@ -8,6 +8,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "crankcheck/validation/report_format.h"
 #include "crankcheck/scene/quantities.h"
 #include "crankcheck/validation/crosscheck.h"
 #include "crankcheck/validation/engines.h"

@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "crankcheck/analytic/shaking.h"
-#include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/engines.h"
 #include "crankcheck/scene/mechanism.h"
 

@@ -5,7 +5,6 @@
 
 #include "crankcheck/scene/gas.h"
 #include "crankcheck/scene/mechanism.h"
-#include "crankcheck/validation/campaign.h"
 
 namespace crankcheck::validation {
 

@@ -31,7 +31,7 @@
 
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
-#include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/engines.h"
 #include "crankcheck/validation/table.h"
 
 namespace crankcheck::validation {

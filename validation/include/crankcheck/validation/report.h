@@ -8,7 +8,8 @@
 #include <string_view>
 #include <vector>
 
-#include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/table.h"
 #include "crankcheck/validation/verdict.h"
 
 namespace crankcheck::validation {

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "crankcheck/validation/campaign.h"
+#include "crankcheck/validation/table.h"
 
 namespace crankcheck::validation {
 

@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "crankcheck/validation/campaign.h"
 #include "crankcheck/validation/crosscheck.h"
+#include "crankcheck/validation/table.h"
 
 namespace crankcheck::validation {
 
