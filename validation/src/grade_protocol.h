@@ -10,7 +10,7 @@
 
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
-#include "crankcheck/validation/grade.h"
+#include "crankcheck/validation/grade_program.h"
 
 namespace crankcheck::validation {
 

@@ -32,6 +32,7 @@
 #include "crankcheck/scene/evaluation.h"
 #include "crankcheck/scene/mechanism.h"
 #include "crankcheck/validation/engines.h"
+#include "crankcheck/validation/grade_program.h"
 #include "crankcheck/validation/table.h"
 
 namespace crankcheck::validation {
@@ -57,14 +58,6 @@ std::vector<GradeCase> buildGradeCases(const std::vector<Mechanism>& scenes, boo
 
 /// The request of one case as one line of JSON (no newline inside; none at the end).
 std::string makeGradeRequest(const GradeCase& c);
-
-/// How to run the graded program.
-struct GradeProgram {
-  std::vector<std::string> argv;          ///< the program and its arguments (argv[0]: a path or a name on PATH)
-  double timeout_seconds = 60.0;          ///< [s] per request (batch: per request times the requests sent)
-  size_t output_limit = size_t{64} << 20; ///< [bytes] of stdout per request (batch: times the requests)
-  bool batch = false;
-};
 
 /// The program's answer for one case: its values as Evaluations (one per angle), NaN where not provided, and
 /// shaking_moment X, Y NaN when the scene has no axial positions (not defined, so never graded).
