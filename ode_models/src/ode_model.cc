@@ -79,9 +79,14 @@ void buildOdeModel(OdeModel& model, const Mechanism& m, const OdeRunOptions& o, 
 
   initOde();
   // QuickStep reorders its constraints at random every few iterations from ODE's one process-wide generator
-  // (dRandInt): seeded here, each run repeats exactly whatever ran before it in the process (unseeded, a second
-  // `motion` in one Python session differed from the first in the 12th digit).
-  dRandSetSeed(0);
+  // (dRandInt): seeded here and held by this model to its end (OdeModel::random_generator), each run repeats exactly
+  // whatever ran before it or beside it in the process (unseeded, a second `motion` in one Python session differed
+  // from the first in the 12th digit). dWorldStep draws nothing: its runs neither seed nor wait.
+  if (o.solver == OdeSolver::kQuickStep) {
+    static std::mutex generator;
+    model.random_generator = std::unique_lock<std::mutex>(generator);
+    dRandSetSeed(0);
+  }
   model.world.reset(dWorldCreate());
   dWorldID w = model.world.get();
   dWorldSetGravity(w, 0.0, -m.machine.gravity, 0.0);

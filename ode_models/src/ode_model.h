@@ -7,6 +7,7 @@
 #include <ode/ode.h>
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,10 @@ struct OdeCylinderBodies {
 
 /// The built mechanism. ODE holds pointers to the feedback members: the model never moves once built.
 struct OdeModel {
+  /// A QuickStep model holds ODE's one process-wide random generator (its constraint reordering draws from it) from
+  /// its build, which seeds it, to its end: two QuickStep runs on two threads would draw from each other's sequence.
+  /// Declared first, released last.
+  std::unique_lock<std::mutex> random_generator;
   std::unique_ptr<dxWorld, OdeWorldDeleter> world;
   dBodyID crank = nullptr;
   dJointID crank_hinge = nullptr;   ///< the crank's hinge about Z at O
