@@ -98,6 +98,9 @@ std::vector<MotionRun> calcMotion(const Mechanism& m, const FreeRunChoices& choi
     throw std::invalid_argument(std::string("[engine].speed_rpm: ") + e.what());
   }
   const FreeRunChoices defaults = getDefaultFreeRunSettings();
+  Mechanism free = m;  // no gas in a free run (the integrators' runs leave it out likewise: FreeRunSettings::gas)
+  free.gas.reset();
+  const Mechanism weightless = withLoads(m, false, true, false);
   for (const Engine& engine : listEngines(Route::kSimulate)) {
     if (!engine.build) continue;  // the sat-out check below needs a model
     const auto chosen = choices.find(engine.name);
@@ -118,11 +121,14 @@ std::vector<MotionRun> calcMotion(const Mechanism& m, const FreeRunChoices& choi
       r.engine = engine.name;
       r.integrator = run.integrator;
       r.accuracy = run.accuracy;
-      r.delta_gravity = with.delta;
-      r.delta_no_gravity = without.delta;
-      r.omega_min = with.omega_min;
-      r.omega_max = with.omega_max;
-      r.omega_mean = with.omega_mean;
+      // Read from the run as every engine's run is read (a stepped one's below): the first revolution, each speed at
+      // its instant (findOmegaInstants), interpolated between the samples.
+      const SpeedFluctuationOfRun g = calcSpeedFluctuation(free, findOmegaInstants(with.trajectory)).run;
+      r.delta_gravity = g.delta;
+      r.delta_no_gravity = calcSpeedFluctuation(weightless, findOmegaInstants(without.trajectory)).run.delta;
+      r.omega_min = g.omega_min;
+      r.omega_max = g.omega_max;
+      r.omega_mean = g.omega_mean;
       r.energy_drift = with.energy_drift_per_revolution;
       r.steps = with.steps;
       r.with_gravity = std::move(with);
@@ -135,9 +141,6 @@ std::vector<MotionRun> calcMotion(const Mechanism& m, const FreeRunChoices& choi
   }
   // The engines that step free: released from the exact state at phi = 0 and w0.
   const double horizon = 2.0 * 2.0 * std::numbers::pi / analytic::calcFreeRun(m, w0).omega_mean;
-  Mechanism free = m;  // no gas in a free run (the integrators' runs leave it out likewise: FreeRunSettings::gas)
-  free.gas.reset();
-  const Mechanism weightless = withLoads(m, false, true, false);
   const StartState start = calcStartState(free, getClosedFormEngine().build(free)->evaluate(0.0));
   const StartState weightless_start = calcStartState(weightless, getClosedFormEngine().build(weightless)->evaluate(0.0));
   for (const Engine& engine : listEngines(Route::kStepFree)) {

@@ -72,10 +72,10 @@ struct MotionRun {
 
 /// The free run of m at its speed: the energy integral first, then every engine that simulates in the registry's
 /// order, each with its choice from `choices` (or its defaults), then every engine that steps free likewise, for two
-/// revolutions of the exact run and a tenth more. A stepped run's delta and omega extremes are its first
-/// revolution's, its speed interpolated between its samples as grade reads a run (run_measures.h
-/// calcSpeedFluctuation; the release is its first sample), and its drift is that of the closed forms' energy
-/// (1/2) J(phi) omega^2 + U(phi) at its samples. `sat_out`: null, an engine whose build refuses m
+/// revolutions of the exact run and a tenth more. Every run's delta and omega extremes are its first revolution's,
+/// its speed interpolated between its samples as grade reads a run (run_measures.h calcSpeedFluctuation; a stepped
+/// run's release is its first sample). An integrator's drift is of its engine's own energy; a stepped run's, of the
+/// closed forms' energy (1/2) J(phi) omega^2 + U(phi) at its samples. `sat_out`: null, an engine whose build refuses m
 /// (Engine::build: a rule of its own, or an accuracy it cannot hold there) is an error "ENGINE: reason"; given, it
 /// sits out, added there with its reason, and the others run (the energy integral always does).
 /// @throws std::invalid_argument "KEY: rule" for a scene the free run cannot use (no [flywheel].inertia, no speed,
