@@ -8,6 +8,12 @@
 /// separately, of omega(t) at omega's own instants, so that a run's own integration error is measured rather than the
 /// reading's: on a smooth run the reading's error falls as the step to the sixth power. A phase phi* is reached at the
 /// time where the interpolated phi(t) equals phi* (TOMS 748 between the two samples that bracket it).
+///
+/// The start: a run that integrates from a state it is given returns the samples it made. An engine that simulates
+/// (Engine::simulate) records its initial state, so its first sample is the release (t = 0). An engine that steps
+/// (Engine::step_at_speed, Engine::step_free) returns one sample per step, the first at t = dt: the start was handed
+/// in by the caller, who prepends it where a measure needs it (validation/engine_runs.h withRelease). A user's
+/// program's run starts at its own first sample, which the time-stepped grade requires at t = 0.
 
 #include <string>
 #include <vector>
