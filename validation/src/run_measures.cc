@@ -231,6 +231,15 @@ std::vector<double> calcEnergyAtTurns(const Mechanism& m, const Trajectory& run,
   return energy;
 }
 
+std::vector<double> calcEnergyAtSamples(const Mechanism& m, const Trajectory& run) {
+  checkRun(m, run, {}, "calcEnergyAtSamples");
+  const RunInvariant invariant(m, {});
+  const TrajectoryReader reader(run);
+  std::vector<double> energy;
+  for (size_t i = 0; i < run.time.size(); ++i) energy.push_back(invariant.calcValue(run.phi[i], reader.findOmega(run.time[i])));
+  return energy;
+}
+
 double calcEnergyTrend(const Mechanism& m, const Trajectory& run, const RunLoad& load) {
   const std::vector<double> energy = calcEnergyAtTurns(m, run, load);
   std::vector<double> k;

@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "crankcheck/analytic/motion.h"
-#include "crankcheck/analytic/potential_energy.h"
 #include "crankcheck/solver/stepped_run.h"
 #include "crankcheck/validation/engine_runs.h"
 #include "crankcheck/validation/engines.h"
@@ -179,15 +178,10 @@ std::vector<MotionRun> calcMotion(const Mechanism& m, const FreeRunChoices& choi
       r.omega_max = g.omega_max;
       r.omega_mean = g.omega_mean;
       // The closed forms' energy at each sample: its phi and its omega read at the sample's time.
-      const TrajectoryReader reader(released);
       r.with_gravity.trajectory = released;
+      r.with_gravity.energy = calcEnergyAtSamples(free, released);
       double drift = 0.0;
-      for (size_t i = 0; i < released.time.size(); ++i) {
-        const double phi = released.phi[i], omega = reader.findOmega(released.time[i]);
-        r.with_gravity.energy.push_back(0.5 * analytic::calcReducedInertia(free, phi).J * omega * omega +
-                                        analytic::calcPotentialEnergy(free, phi));
-        drift = std::max(drift, std::fabs(r.with_gravity.energy.back() - r.with_gravity.energy.front()));
-      }
+      for (double e : r.with_gravity.energy) drift = std::max(drift, std::fabs(e - r.with_gravity.energy.front()));
       r.energy_drift = drift / std::fabs(r.with_gravity.energy.front()) / 2.0;  // per revolution of the two
     } catch (const std::exception& e) {  // it stops turning, or falls short of a revolution (a speed cap, damping)
       r = MotionRun{engine.name, run.integrator, options.dt};

@@ -37,6 +37,10 @@ double calcEnergyTrend(const Mechanism& m, const Trajectory& run, const RunLoad&
 /// The energies E_k [J] that calcEnergyTrend fits, k = 0, 1, ... (every crossing of phi(0) + 2 pi k within the run).
 /// @throws std::invalid_argument as calcEnergyTrend.
 std::vector<double> calcEnergyAtTurns(const Mechanism& m, const Trajectory& run, const RunLoad& load = {});
+/// The energy E_i [J] at each sample (its phi and its omega read at the sample's time), the run under gravity alone:
+/// what `crankcheck motion` reports the drift of for an engine that has no energy of its own.
+/// @throws std::invalid_argument if the run is malformed (as calcEnergyTrend) or the scene has no flywheel inertia.
+std::vector<double> calcEnergyAtSamples(const Mechanism& m, const Trajectory& run);
 
 /// The speed's fluctuation over one revolution.
 struct SpeedFluctuationOfRun {
