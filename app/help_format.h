@@ -119,7 +119,7 @@ inline std::string describeEngines() {
 
 /// The names of the engines offering `route` (validation/engines.h listEngines): for Route::kStepAtSpeed "ode,
 /// ode-quickstep, bullet and box2d".
-inline std::string joinEngineNames(Route route) {
+inline std::string describeEngineNames(Route route) {
   std::vector<std::string> names;
   for (const Engine& e : validation::listEngines(route)) names.push_back(e.name);
   return joinNames(names);

@@ -219,7 +219,7 @@ int main(int argc, char** argv) {
 
   crankcheck::app::SteppedOptions stepped;
   CLI::App* stepped_cmd = app.add_subcommand(
-      "stepped", "The physics engines people ship (" + crankcheck::app::joinEngineNames(crankcheck::Route::kStepAtSpeed) +
+      "stepped", "The physics engines people ship (" + crankcheck::app::describeEngineNames(crankcheck::Route::kStepAtSpeed) +
                      ", measured, never gated), each driven at the scene's speed by its own time-stepping solver: every "
                      "quantity it reports against the closed forms at a series of time steps and at each of its "
                      "settings, the observed order, the cost per step");

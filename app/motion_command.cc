@@ -34,7 +34,7 @@ void addMotionOptions(CLI::App& command, MotionOptions& options) {
       ->check(FiniteRange(1e-6, 1e-1))
       ->capture_default_str();
   command.add_option("--stepped-step", options.stepped_step,
-                     "The fixed time step of the engines that step free (" + joinEngineNames(Route::kStepFree) +
+                     "The fixed time step of the engines that step free (" + describeEngineNames(Route::kStepFree) +
                          ") as a fraction of one revolution at the release speed")
       ->check(FiniteRange(1e-5, 1e-1))
       ->capture_default_str();
